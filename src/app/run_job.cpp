@@ -1,0 +1,206 @@
+#include "app/run_job.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <memory>
+#include <ostream>
+
+#include "app/checkpoint.h"
+#include "app/interrupt.h"
+#include "app/summary_builder.h"
+#include "common/input_error.h"
+#include "engine/simulation.h"
+#include "model/model.h"
+#include "output/atomic_file.h"
+#include "output/impact_csv_writer.h"
+#include "output/progress_reporter.h"
+#include "output/summary_json.h"
+#include "output/summary_text.h"
+#include "scene/scene_parser.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string output_directory(const RunOptions& options, const SceneDescription& scene) {
+    if (!options.output_dir.empty()) return options.output_dir;
+    if (!scene.output.directory.empty()) return scene.output.directory;
+    return "out/" + fs::path(options.scene_path).stem().string();
+}
+
+// Slot of each component in the per-logged-component statistics (-1 if not logged).
+std::vector<int> logged_slots(const Model& model) {
+    std::vector<int> slots;
+    int next = 0;
+    for (const Component& c : model.components) slots.push_back(c.logged ? next++ : -1);
+    return slots;
+}
+
+std::vector<std::string> component_names(const Model& model) {
+    std::vector<std::string> names;
+    for (const Component& c : model.components) names.push_back(c.name);
+    return names;
+}
+
+class Job {
+public:
+    Job(const RunOptions& options, std::ostream& out, std::ostream& err) : options_(options), out_(out), err_(err) {}
+
+    int run() {
+        const SceneDescription scene = parse_scene_file(options_.scene_path, options_.overrides);
+        model_ = compile_model(scene);
+        dir_ = output_directory(options_, scene);
+        fs::create_directories(dir_);
+        write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
+        slots_ = logged_slots(*model_);
+        start();
+        const bool finished = loop();
+        return finished ? complete() : interrupted();
+    }
+
+private:
+    std::string checkpoint_path() const { return (fs::path(dir_) / kCheckpointFileName).string(); }
+
+    void start() {
+        const std::size_t logged = static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), [](int s) { return s >= 0; }));
+        if (options_.resume) {
+            Checkpoint c = load_checkpoint(checkpoint_path());
+            if (c.scene_hash != model_->scene_hash)
+                throw std::runtime_error(checkpoint_path() + ": the scene changed since this checkpoint was written; "
+                                         "run without --resume to start over");
+            sim_ = std::make_unique<Simulation>(model_, std::move(c.state));
+            writer_ = std::make_unique<ImpactCsvWriter>(ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows));
+            speeds_ = std::move(c.normal_speeds);
+            wall_before_ = c.wall_time_s;
+            if (speeds_.size() != logged) throw std::runtime_error(checkpoint_path() + ": logged components differ from the scene");
+        } else {
+            fs::remove(checkpoint_path());
+            fs::remove(fs::path(dir_) / kImpactCsvFileName);
+            sim_ = std::make_unique<Simulation>(model_);
+            writer_ = std::make_unique<ImpactCsvWriter>(dir_, component_names(*model_));
+            speeds_.assign(logged, SpeedHistogram());
+        }
+        logged_impacts_ = writer_->rows_written();
+    }
+
+    // Returns true when the scene's duration was reached, false when interrupted.
+    bool loop() {
+        InterruptGuard guard;
+        ProgressReporter progress(err_, options_.progress && isatty(STDERR_FILENO));
+        const double interval = model_->description.output.checkpoint_interval_s;
+        started_ = Clock::now();
+        auto last_checkpoint = started_;
+        std::vector<ImpactRecord> impacts;
+        impacts.reserve(1024);
+        std::uint64_t steps = 0;
+        while (!sim_->finished()) {
+            sim_->step(impacts);
+            if (!impacts.empty()) {
+                const auto t = Clock::now();
+                writer_->write(impacts);
+                for (const ImpactRecord& r : impacts)
+                    speeds_[static_cast<std::size_t>(slots_[static_cast<std::size_t>(r.component)])].add(r.vn_in_m_per_s);
+                logged_impacts_ += impacts.size();
+                impacts.clear();
+                output_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
+            }
+            progress.update(sim_->state().time.seconds(), model_->duration_s, logged_impacts_);
+            ++steps;
+            if (InterruptGuard::requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps)) {
+                progress.finish();
+                return false;
+            }
+            if ((steps & 1023) == 0 && std::chrono::duration<double>(Clock::now() - last_checkpoint).count() > interval) {
+                checkpoint();
+                last_checkpoint = Clock::now();
+            }
+        }
+        progress.finish();
+        return true;
+    }
+
+    double wall_time() const { return wall_before_ + std::chrono::duration<double>(Clock::now() - started_).count(); }
+
+    void checkpoint() {
+        writer_->flush_durable();
+        Checkpoint c;
+        c.scene_hash = model_->scene_hash;
+        c.state = sim_->state();
+        c.csv_bytes = writer_->bytes_written();
+        c.csv_rows = writer_->rows_written();
+        c.normal_speeds = speeds_;
+        c.wall_time_s = wall_time();
+        save_checkpoint(checkpoint_path(), c);
+    }
+
+    RunSummary summary(bool finished) const {
+        RunSummary s = build_summary(*sim_, options_.scene_path, speeds_, wall_time(), finished);
+        for (StageTime& st : s.stage_times)
+            if (st.stage == "record_impacts") st.seconds += output_seconds_;
+        return s;
+    }
+
+    int interrupted() {
+        checkpoint();
+        write_summary((fs::path(dir_) / "summary.json").string(), summary(false));
+        err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s
+             << " s; outputs in " << dir_ << " are consistent up to that time.\n"
+             << "resume with: peensim run " << options_.scene_path << " -o " << dir_ << " --resume"
+             << (options_.overrides.empty() ? "" : " (and the same --set options)") << "\n";
+        return kExitInterrupted;
+    }
+
+    int complete() {
+        writer_->finish();
+        const RunSummary s = summary(true);
+        write_summary((fs::path(dir_) / "summary.json").string(), s);
+        fs::remove(checkpoint_path());
+        out_ << summary_to_text(s);
+        out_ << "outputs: " << dir_ << "/{impacts.csv, summary.json, scene.resolved.yaml}\n";
+        for (const LostShot& l : sim_->state().lost)
+            err_ << "warning: shot " << l.shot << " left the chamber at t = " << l.time_s << " s near (" << l.position_m.x() * 1e3
+                 << ", " << l.position_m.y() * 1e3 << ", " << l.position_m.z() * 1e3 << ") mm: the meshes leak there\n";
+        if (options_.strict && sim_->state().health.serious() > 0) {
+            err_ << "error: --strict: the run had numerical trouble (see health counters in summary.json)\n";
+            return kExitHealthFailure;
+        }
+        return kExitOk;
+    }
+
+    const RunOptions& options_;
+    std::ostream& out_;
+    std::ostream& err_;
+    std::shared_ptr<const Model> model_;
+    std::string dir_;
+    std::vector<int> slots_;
+    std::unique_ptr<Simulation> sim_;
+    std::unique_ptr<ImpactCsvWriter> writer_;
+    std::vector<SpeedHistogram> speeds_;
+    std::uint64_t logged_impacts_ = 0;
+    double wall_before_ = 0.0;     // s, wall time of earlier sessions of a resumed run
+    double output_seconds_ = 0.0;  // s, spent writing impacts
+    Clock::time_point started_;
+};
+
+}  // namespace
+
+int run_job(const RunOptions& options, std::ostream& out, std::ostream& err) {
+    try {
+        return Job(options, out, err).run();
+    } catch (const InputError& e) {
+        err << "error: " << e.what() << "\n";
+        return kExitInputError;
+    } catch (const std::exception& e) {
+        err << "error: " << e.what() << "\n";
+        return kExitRuntimeError;
+    }
+}
+
+}  // namespace peensim

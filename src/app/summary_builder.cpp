@@ -1,0 +1,43 @@
+#include "app/summary_builder.h"
+
+#include <cstdio>
+
+#include "output/peak_memory.h"
+
+namespace peensim {
+
+RunSummary build_summary(const Simulation& sim, const std::string& scene_file,
+                         const std::vector<SpeedHistogram>& normal_speeds, double wall_time_s, bool finished) {
+    const Model& model = sim.model();
+    const SimulationState& state = sim.state();
+    RunSummary s;
+    s.scene_file = scene_file;
+    char hash[17];
+    std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(model.scene_hash));
+    s.scene_hash = hash;
+    s.scheme = std::string(sim.scheme().name());
+    s.finished = finished;
+    s.simulated_time_s = state.time.seconds();
+    s.duration_s = model.duration_s;
+    s.wall_time_s = wall_time_s;
+    s.steps = state.steps;
+    s.shot_steps = state.shot_steps;
+    s.shot_steps_per_s = wall_time_s > 0.0 ? static_cast<double>(state.shot_steps) / wall_time_s : 0.0;
+    s.sim_seconds_per_wall_second = wall_time_s > 0.0 ? s.simulated_time_s / wall_time_s : 0.0;
+    s.shot_count = static_cast<std::uint64_t>(model.shot_count);
+    s.shot_lost = state.health.shot_lost + state.health.non_finite;
+    s.impacts_per_component.push_back({"shot-shot", state.shot_shot_impacts});
+    std::size_t logged = 0;
+    for (std::size_t c = 0; c < model.components.size(); ++c) {
+        s.impacts_per_component.push_back({model.components[c].name, state.impacts_per_component[c]});
+        if (model.components[c].logged && logged < normal_speeds.size())
+            s.normal_speed.push_back(normal_speed_stats(model.components[c].name, normal_speeds[logged++]));
+    }
+    state.health.for_each([&](const char* name, std::uint64_t count) { s.health_counters.push_back({name, count}); });
+    const StepStats& stats = sim.scheme().stats();
+    for (std::size_t k = 0; k < kStageNames.size(); ++k) s.stage_times.push_back({std::string(kStageNames[k]), stats.seconds[k]});
+    s.peak_memory_bytes = peak_resident_bytes();
+    return s;
+}
+
+}  // namespace peensim

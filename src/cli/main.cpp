@@ -1,0 +1,61 @@
+// The `peensim` command line: run, check, generate, schema.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "app/check_job.h"
+#include "app/run_job.h"
+#include "cli/generate_command.h"
+#include "scene/schema.h"
+
+int main(int argc, char** argv) {
+    using namespace peensim;
+    CLI::App app{"peensim: ultrasonic shot peening simulator (rigid shot, Bullet collision detection)"};
+    app.set_version_flag("--version", std::string(PEENSIM_VERSION));
+    app.require_subcommand(1);
+
+    RunOptions run;
+    bool quiet = false;
+    auto* run_cmd = app.add_subcommand("run", "simulate a scene: writes impacts.csv, summary.json, scene.resolved.yaml");
+    run_cmd->add_option("scene", run.scene_path, "scene file (YAML)")->required();
+    run_cmd->add_option("-o,--output", run.output_dir, "output directory (default: the scene's output.directory, else out/<scene>)");
+    run_cmd->add_option("--set", run.overrides, "override a scene field, e.g. --set process.duration=0.2 --set shot.diameter=\"1 mm\"")
+        ->allow_extra_args(false);
+    run_cmd->add_flag("-q,--quiet", quiet, "no progress bar and no summary on stdout");
+    run_cmd->add_flag("--resume", run.resume, "continue an interrupted run from its checkpoint in the output directory");
+    run_cmd->add_flag("--strict", run.strict, "exit 3 if any shot was lost or the numerics went wrong");
+    std::uint64_t stop_after = 0;
+    run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
+
+    std::string check_scene;
+    std::vector<std::string> check_overrides;
+    auto* check_cmd = app.add_subcommand("check", "validate a scene and print it resolved (defaults filled in, SI units)");
+    check_cmd->add_option("scene", check_scene, "scene file (YAML)")->required();
+    check_cmd->add_option("--set", check_overrides, "override a scene field")->allow_extra_args(false);
+
+    auto* generate_cmd = app.add_subcommand("generate", "write a generated mesh (gear, cylinder, box, chamber); see 'peensim generate --help'");
+    generate_cmd->prefix_command();
+    generate_cmd->set_help_flag();
+
+    app.add_subcommand("schema", "print the scene file reference (Markdown)");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : kExitInputError;
+    }
+
+    if (*run_cmd) {
+        if (stop_after > 0) run.stop_after_steps = stop_after;
+        std::ostream null_stream(nullptr);
+        run.progress = !quiet;
+        return run_job(run, quiet ? null_stream : std::cout, std::cerr);
+    }
+    if (*check_cmd) return check_job(check_scene, check_overrides, std::cout, std::cerr);
+    if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
+    if (app.got_subcommand("schema")) {
+        std::cout << scene_reference_markdown();
+        return 0;
+    }
+    return kExitInputError;
+}

@@ -1,0 +1,95 @@
+#include "collision/distance_gate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "collision/closest_point.h"
+
+namespace peensim {
+
+namespace {
+constexpr int kMaxLevel = 250;  // levels fit a byte; beyond, the bound is (kMaxLevel - 1) cells
+}
+
+DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double reach_m) {
+    if (mesh.triangles.empty()) throw std::invalid_argument("DistanceGate: empty mesh");
+    if (!(cell_size_m > 0.0)) throw std::invalid_argument("DistanceGate: cell size must be positive");
+    mesh_lo_ = mesh.vertices.front();
+    mesh_hi_ = mesh_lo_;
+    for (const Vec3& v : mesh.vertices) {
+        mesh_lo_ = mesh_lo_.cwiseMin(v);
+        mesh_hi_ = mesh_hi_.cwiseMax(v);
+    }
+    // Levels needed to resolve `reach`, plus a border of that many cells around the mesh so that
+    // points a little outside the bounds still get a sharp answer.
+    const int levels = std::clamp(static_cast<int>(std::ceil(reach_m / cell_size_m)) + 2, 2, kMaxLevel);
+    cell_ = cell_size_m;
+    inv_cell_ = 1.0 / cell_size_m;
+    const double border = levels * cell_size_m;
+    origin_ = mesh_lo_ - Vec3::Constant(border);
+    const Vec3 extent = (mesh_hi_ - mesh_lo_) + Vec3::Constant(2.0 * border);
+    nx_ = static_cast<int>(std::ceil(extent.x() * inv_cell_)) + 1;
+    ny_ = static_cast<int>(std::ceil(extent.y() * inv_cell_)) + 1;
+    nz_ = static_cast<int>(std::ceil(extent.z() * inv_cell_)) + 1;
+    const std::size_t nx = static_cast<std::size_t>(nx_), ny = static_cast<std::size_t>(ny_), nz = static_cast<std::size_t>(nz_);
+    if (nx * ny * nz > 400'000'000ull) throw std::invalid_argument("DistanceGate: grid too large; raise the cell size");
+    cells_.assign(nx * ny * nz, static_cast<std::uint8_t>(levels));
+    auto index = [&](std::size_t i, std::size_t j, std::size_t k) { return (k * ny + j) * nx + i; };
+
+    // Mark cells a triangle may touch.
+    const double half_diagonal = 0.5 * std::sqrt(3.0) * cell_;
+    std::vector<std::size_t> frontier;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
+        const Vec3 lo = (a.cwiseMin(b).cwiseMin(c) - origin_) * inv_cell_ - Vec3::Constant(0.5);
+        const Vec3 hi = (a.cwiseMax(b).cwiseMax(c) - origin_) * inv_cell_ + Vec3::Constant(0.5);
+        const auto clampi = [](double v, int n) { return static_cast<std::size_t>(std::clamp(static_cast<int>(std::floor(v)), 0, n - 1)); };
+        const std::size_t i0 = clampi(lo.x(), nx_), i1 = clampi(hi.x(), nx_);
+        const std::size_t j0 = clampi(lo.y(), ny_), j1 = clampi(hi.y(), ny_);
+        const std::size_t k0 = clampi(lo.z(), nz_), k1 = clampi(hi.z(), nz_);
+        for (std::size_t k = k0; k <= k1; ++k)
+            for (std::size_t j = j0; j <= j1; ++j)
+                for (std::size_t i = i0; i <= i1; ++i) {
+                    std::uint8_t& cell = cells_[index(i, j, k)];
+                    if (cell == 0) continue;
+                    const Vec3 centre = origin_ + cell_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
+                    if ((closest_point_on_triangle(centre, a, b, c).point - centre).squaredNorm() <= half_diagonal * half_diagonal) {
+                        cell = 0;
+                        frontier.push_back(index(i, j, k));
+                    }
+                }
+    }
+
+    // Breadth-first Chebyshev distance transform from the marked cells, up to `levels`.
+    std::vector<std::size_t> next;
+    for (int level = 1; level < levels && !frontier.empty(); ++level) {
+        next.clear();
+        for (std::size_t id : frontier) {
+            const std::size_t i = id % nx, j = (id / nx) % ny, k = id / (nx * ny);
+            for (int dk = -1; dk <= 1; ++dk)
+                for (int dj = -1; dj <= 1; ++dj)
+                    for (int di = -1; di <= 1; ++di) {
+                        const long ii = static_cast<long>(i) + di, jj = static_cast<long>(j) + dj, kk = static_cast<long>(k) + dk;
+                        if (ii < 0 || jj < 0 || kk < 0 || ii >= nx_ || jj >= ny_ || kk >= nz_) continue;
+                        std::uint8_t& cell = cells_[index(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj), static_cast<std::size_t>(kk))];
+                        if (cell > level) {
+                            cell = static_cast<std::uint8_t>(level);
+                            next.push_back(index(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj), static_cast<std::size_t>(kk)));
+                        }
+                    }
+        }
+        frontier.swap(next);
+    }
+    bound_of_level_.resize(static_cast<std::size_t>(levels) + 1);
+    for (int level = 0; level <= levels; ++level)
+        bound_of_level_[static_cast<std::size_t>(level)] = std::max(0, level - 1) * cell_;
+}
+
+double DistanceGate::outside_bound(const Vec3& p) const {
+    // Outside the grid: the distance to the mesh's bounding box is a lower bound.
+    const Vec3 d = (mesh_lo_ - p).cwiseMax(p - mesh_hi_).cwiseMax(Vec3::Zero());
+    return d.norm();
+}
+
+}  // namespace peensim

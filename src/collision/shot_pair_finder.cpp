@@ -1,0 +1,56 @@
+#include "collision/shot_pair_finder.h"
+
+#include <btBulletCollisionCommon.h>
+
+#include <cstdint>
+
+namespace peensim {
+
+struct ShotPairFinder::Impl {
+    btDefaultCollisionConfiguration configuration;
+    btCollisionDispatcher dispatcher{&configuration};
+    btDbvtBroadphase broadphase;
+    std::vector<btBroadphaseProxy*> proxies;
+    double radius = 0.0;
+};
+
+ShotPairFinder::ShotPairFinder(int shot_count, double radius_m, double fat_margin_m) : impl_(std::make_unique<Impl>()) {
+    // gDbvtMargin is a Bullet process global (default 0.05 m, fifty times a shot). It is set here,
+    // the one place that creates a shot broad phase; every finder in a process uses the same rule.
+    gDbvtMargin = fat_margin_m;
+    impl_->radius = radius_m;
+    impl_->proxies.resize(static_cast<std::size_t>(shot_count));
+    for (int i = 0; i < shot_count; ++i) {
+        const btVector3 far(1e3 + 10.0 * i * radius_m, 1e3, 1e3);  // parked until the first update
+        impl_->proxies[static_cast<std::size_t>(i)] = impl_->broadphase.createProxy(
+            far - btVector3(radius_m, radius_m, radius_m), far + btVector3(radius_m, radius_m, radius_m),
+            /*shapeType=*/SPHERE_SHAPE_PROXYTYPE, reinterpret_cast<void*>(static_cast<std::intptr_t>(i)),
+            btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter, &impl_->dispatcher);
+    }
+    pairs_.reserve(static_cast<std::size_t>(shot_count) * 4);
+}
+
+ShotPairFinder::~ShotPairFinder() {
+    for (btBroadphaseProxy* p : impl_->proxies) impl_->broadphase.destroyProxy(p, &impl_->dispatcher);
+}
+
+void ShotPairFinder::update(const double* x, const double* y, const double* z, const unsigned char* active) {
+    const double r = impl_->radius;
+    const btVector3 half(r, r, r);
+    for (std::size_t i = 0; i < impl_->proxies.size(); ++i) {
+        btVector3 c(x[i], y[i], z[i]);
+        if (!active[i]) c = btVector3(-1e3 - 10.0 * static_cast<double>(i) * r, -1e3, -1e3);
+        impl_->broadphase.setAabb(impl_->proxies[i], c - half, c + half, &impl_->dispatcher);
+    }
+    impl_->broadphase.calculateOverlappingPairs(&impl_->dispatcher);
+    pairs_.clear();
+    const btBroadphasePairArray& cache = impl_->broadphase.getOverlappingPairCache()->getOverlappingPairArray();
+    for (int k = 0; k < cache.size(); ++k) {
+        int a = static_cast<int>(reinterpret_cast<std::intptr_t>(cache[k].m_pProxy0->m_clientObject));
+        int b = static_cast<int>(reinterpret_cast<std::intptr_t>(cache[k].m_pProxy1->m_clientObject));
+        if (a > b) std::swap(a, b);
+        pairs_.emplace_back(a, b);
+    }
+}
+
+}  // namespace peensim

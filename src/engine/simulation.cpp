@@ -1,0 +1,39 @@
+#include "engine/simulation.h"
+
+#include "engine/time_stepping.h"
+#include "model/shot_placement.h"
+
+namespace peensim {
+
+namespace {
+
+std::unique_ptr<Stepper> make_scheme(const std::shared_ptr<const Model>& model) {
+    // Only time stepping exists so far; the event-driven scheme will be chosen here.
+    switch (model->description.accuracy.scheme) {
+        case SteppingScheme::step: return std::make_unique<TimeStepping>(model);
+    }
+    return std::make_unique<TimeStepping>(model);
+}
+
+SimulationState initial_state(const Model& model) {
+    SimulationState state;
+    const InitialShots shots = place_shots(model);
+    state.shots.resize(static_cast<std::size_t>(model.shot_count));
+    for (std::size_t i = 0; i < shots.positions.size(); ++i) {
+        state.shots.set_position(i, shots.positions[i]);
+        state.shots.set_velocity(i, shots.velocities[i]);
+        state.fastest_shot_m_per_s = std::max(state.fastest_shot_m_per_s, shots.velocities[i].norm());
+    }
+    state.impacts_per_component.assign(model.components.size(), 0);
+    return state;
+}
+
+}  // namespace
+
+Simulation::Simulation(std::shared_ptr<const Model> model)
+    : model_(std::move(model)), state_(initial_state(*model_)), scheme_(make_scheme(model_)) {}
+
+Simulation::Simulation(std::shared_ptr<const Model> model, SimulationState state)
+    : model_(std::move(model)), state_(std::move(state)), scheme_(make_scheme(model_)) {}
+
+}  // namespace peensim

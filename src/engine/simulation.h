@@ -1,0 +1,37 @@
+// A model, its mutable state and the stepping scheme that advances it. No I/O: impacts go to a
+// buffer the caller drains after each step (app/run_job writes them).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "engine/simulation_state.h"
+#include "engine/stepper.h"
+#include "model/model.h"
+
+namespace peensim {
+
+class Simulation {
+public:
+    // A fresh run: shot placed on the sonotrode from the model's seed (throws InputError if they
+    // do not fit or the chamber is open).
+    explicit Simulation(std::shared_ptr<const Model> model);
+    // A resumed run from a saved state.
+    Simulation(std::shared_ptr<const Model> model, SimulationState state);
+
+    // One step; impacts on logged components are appended to `impacts`.
+    void step(std::vector<ImpactRecord>& impacts) { scheme_->advance(state_, model_->duration_s, impacts); }
+    bool finished() const { return !(state_.time.seconds() < model_->duration_s); }
+
+    const Model& model() const { return *model_; }
+    const SimulationState& state() const { return state_; }
+    SimulationState& mutable_state() { return state_; }
+    const Stepper& scheme() const { return *scheme_; }
+
+private:
+    std::shared_ptr<const Model> model_;
+    SimulationState state_;
+    std::unique_ptr<Stepper> scheme_;
+};
+
+}  // namespace peensim

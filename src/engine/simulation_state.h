@@ -1,0 +1,71 @@
+// The mutable state of a run: only what changes (STYLE practice 2). Shot data are stored as
+// structure of arrays, the layout the per-step loops stream through.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/sim_time.h"
+#include "common/vec.h"
+
+namespace peensim {
+
+struct ShotArrays {
+    std::vector<double> x, y, z;        // m, centre, world
+    std::vector<double> vx, vy, vz;     // m/s, world
+    std::vector<unsigned char> active;  // 0 once a shot is lost (left the chamber, non-finite state)
+
+    std::size_t size() const { return x.size(); }
+    void resize(std::size_t n) {
+        for (auto* v : {&x, &y, &z, &vx, &vy, &vz}) v->assign(n, 0.0);
+        active.assign(n, 1);
+    }
+    Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
+    Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
+    void set_position(std::size_t i, const Vec3& p) { x[i] = p.x(), y[i] = p.y(), z[i] = p.z(); }
+    void set_velocity(std::size_t i, const Vec3& v) { vx[i] = v.x(), vy[i] = v.y(), vz[i] = v.z(); }
+};
+
+// Numerical trouble is counted, never fatal (STYLE practice 11); `--strict` fails a run on any.
+struct HealthCounters {
+    std::uint64_t shot_lost = 0;               // shot that left the chamber (a leaky mesh)
+    std::uint64_t non_finite = 0;              // shot removed because their state became NaN/inf
+    std::uint64_t mesh_overlap_corrections = 0;// overlaps with a mesh removed by moving the shot (no energy added)
+    std::uint64_t shot_overlap_corrections = 0;// shot-shot overlaps removed the same way
+    std::uint64_t deep_penetrations = 0;       // a shot found deeper than R/2 inside a surface
+    std::uint64_t unresolved_contacts = 0;     // contact passes exhausted within one step
+
+    template <class Visit>
+    void for_each(Visit&& visit) const {
+        visit("shot_lost", shot_lost);
+        visit("non_finite", non_finite);
+        visit("mesh_overlap_corrections", mesh_overlap_corrections);
+        visit("shot_overlap_corrections", shot_overlap_corrections);
+        visit("deep_penetrations", deep_penetrations);
+        visit("unresolved_contacts", unresolved_contacts);
+    }
+    // Counters that mean a wrong result (the others are routine corrections).
+    std::uint64_t serious() const { return shot_lost + non_finite + deep_penetrations + unresolved_contacts; }
+};
+
+// Where and when a shot left the assembly.
+struct LostShot {
+    int shot = 0;
+    double time_s = 0.0;   // s
+    Vec3 position_m;       // m, world
+};
+
+struct SimulationState {
+    ShotArrays shots;
+    SimTime time;
+    std::uint64_t steps = 0;
+    std::uint64_t shot_steps = 0;            // active shot advanced, summed over steps
+    std::uint64_t shot_shot_impacts = 0;
+    std::vector<std::uint64_t> impacts_per_component;  // every impact, logged or not
+    double fastest_shot_m_per_s = 0.0;       // m/s, after the last step (feeds eq. 7)
+    HealthCounters health;
+    std::vector<LostShot> lost;              // one entry per lost shot (bounded by the shot count)
+};
+
+}  // namespace peensim

@@ -1,0 +1,43 @@
+// Wall time spent in each named stage of a step (STYLE practice 1), for the benchmark and summary.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <string_view>
+
+namespace peensim {
+
+enum class Stage : int { kinematics, integrate, shot_broadphase, shot_contacts, mesh_queries, contact_laws, health, output, count };
+
+constexpr std::array<std::string_view, static_cast<int>(Stage::count)> kStageNames{
+    "advance_kinematics", "integrate_shots", "shot_broadphase", "shot_shot_contacts",
+    "mesh_queries", "contact_laws", "check_health", "record_impacts"};
+
+struct StepStats {
+    std::array<double, static_cast<int>(Stage::count)> seconds{};  // s of wall time per stage
+    // Work counters, to see why a stage costs what it does.
+    std::uint64_t gate_checks = 0;      // distance-gate look-ups (shot x component)
+    std::uint64_t gate_skips = 0;       // shot x component checks skipped by the per-shot skip counters
+    std::uint64_t bvh_queries = 0;      // Bullet BVH queries
+    std::uint64_t triangle_tests = 0;   // closest-point tests on triangles the BVH returned
+    std::uint64_t touch_searches = 0;   // touch-time searches (quadratic or sampled)
+    double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
+    double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }
+};
+
+// Adds the wall time of its scope to one stage.
+class StageTimer {
+public:
+    StageTimer(StepStats& stats, Stage stage) : stats_(stats), stage_(stage), start_(std::chrono::steady_clock::now()) {}
+    ~StageTimer() { stats_[stage_] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+    StageTimer(const StageTimer&) = delete;
+    StageTimer& operator=(const StageTimer&) = delete;
+
+private:
+    StepStats& stats_;
+    Stage stage_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace peensim

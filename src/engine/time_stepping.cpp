@@ -1,0 +1,335 @@
+#include "engine/time_stepping.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "collision/closest_point.h"
+#include "engine/contact_time.h"
+
+namespace peensim {
+
+namespace {
+
+constexpr int kMaxContactPasses = 8;           // impacts of one shot within one step before giving up
+constexpr double kSamplesPerPeriod = 32.0;     // sonotrode gap samples per vibration period
+constexpr double kTouchTolerance = 1e-14;      // s, precision of sampled touch times
+constexpr double kCorrectionWorthCounting = 0.01;  // -, overlaps corrected beyond this fraction of R are counted
+// Bound on how far a shot can move relative to a component in one step, in units of the eq. 7
+// travel: the shot's own travel (1), the surface's (1: V_max includes surface speeds), and a kick
+// received within the step (a rebound changes the velocity by at most ~2 V_max over at most dt: 2).
+constexpr double kMaxRelativeTravelPerStep = 4.0;
+
+}  // namespace
+
+double TimeStepping::step_for(double v_max, double gravity, double travel_m) {
+    // 0.5 g dt^2 + v dt = travel, solved in the form that stays exact when g -> 0 or v -> 0.
+    return 2.0 * travel_m / (v_max + std::sqrt(v_max * v_max + 2.0 * gravity * travel_m));
+}
+
+TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
+    : model_(std::move(model)),
+      // Fat margin of the shot broad phase: one radius, about four steps of travel at the default
+      // quarter-radius step (measured best in the reference notes: fewer re-insertions, few extra pairs).
+      pairs_(model_->shot_count, model_->shot_radius_m, model_->shot_radius_m) {
+    pose_end_.resize(model_->components.size());
+    n_shots_ = static_cast<std::size_t>(model_->shot_count);
+    skip_until_.assign(model_->components.size() * n_shots_, 0);
+    max_relative_travel_ = kMaxRelativeTravelPerStep * model_->travel_fraction * model_->shot_radius_m;
+    last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
+    triangles_.reserve(256);
+}
+
+void TimeStepping::advance(SimulationState& state, double t_end_s, std::vector<ImpactRecord>& impacts) {
+    const double now = state.time.seconds();
+    const double remaining = t_end_s - now;
+    if (!(remaining > 0.0)) return;
+    const double R = model_->shot_radius_m;
+    const double g = model_->gravity_m_per_s2.norm();
+    const double v_max = std::max(state.fastest_shot_m_per_s, model_->peak_surface_speed_m_per_s);
+    double dt = step_for(v_max, g, model_->travel_fraction * R);
+    if (!(dt > 0.0) || !std::isfinite(dt) || dt >= remaining * (1.0 - 1e-9)) dt = remaining;
+    // Approaches slower than what gravity adds over two steps are sustained contact (contact_law.h).
+    resting_speed_ = 2.0 * g * dt;
+    step_ = state.steps;
+
+    {
+        StageTimer timer(stats_, Stage::kinematics);
+        t0_ = state.time;
+        for (std::size_t c = 0; c < model_->components.size(); ++c)
+            pose_end_[c] = model_->components[c].kinematics.pose(t0_, dt);
+    }
+    integrate(state, dt);
+    resolve_shot_pairs(state, dt);
+    resolve_mesh_contacts(state, dt, impacts);
+    check_health(state);
+
+    state.time.advance(dt);
+    if (t_end_s - state.time.seconds() < 1e-12 * t_end_s) {
+        // Land exactly on the end time (the compensated sum may be an ulp short).
+        state.time.hi = t_end_s;
+        state.time.lo = 0.0;
+    }
+    ++state.steps;
+}
+
+void TimeStepping::integrate(SimulationState& state, double dt) {
+    StageTimer timer(stats_, Stage::integrate);
+    ShotArrays& s = state.shots;
+    const Vec3 g = model_->gravity_m_per_s2;
+    const double hx = 0.5 * g.x() * dt * dt, hy = 0.5 * g.y() * dt * dt, hz = 0.5 * g.z() * dt * dt;
+    const std::size_t n = s.size();
+    std::uint64_t active = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        // Exact free flight under gravity (eq. 1). Lost shot keep still.
+        const double on = s.active[i];
+        s.x[i] += on * (s.vx[i] * dt + hx);
+        s.y[i] += on * (s.vy[i] * dt + hy);
+        s.z[i] += on * (s.vz[i] * dt + hz);
+        s.vx[i] += on * g.x() * dt;
+        s.vy[i] += on * g.y() * dt;
+        s.vz[i] += on * g.z() * dt;
+        active += s.active[i];
+    }
+    std::fill(last_touch_.begin(), last_touch_.end(), 0.0);
+    state.shot_steps += active;
+}
+
+void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
+    ShotArrays& s = state.shots;
+    {
+        StageTimer timer(stats_, Stage::shot_broadphase);
+        pairs_.update(s.x.data(), s.y.data(), s.z.data(), s.active.data());
+    }
+    StageTimer timer(stats_, Stage::shot_contacts);
+    const double R = model_->shot_radius_m, D = 2.0 * R;
+    const contact::ShotShotLaw& law = *model_->laws.shot_shot;
+    contact::PairCoefficients plastic = model_->shot_shot;
+    plastic.C0 = 0.0;  // sustained shot-shot contact: the approach is stopped, nothing bounces
+    // Only pairs that overlap now, in a fixed order: the result must not depend on the history
+    // inside Bullet's pair cache (a resumed run continues exactly like an uninterrupted one).
+    touching_.clear();
+    pairs_.for_each_pair([&](int a, int b) {
+        const auto i = static_cast<std::size_t>(a), j = static_cast<std::size_t>(b);
+        if (!s.active[i] || !s.active[j]) return;
+        if ((s.position(j) - s.position(i)).squaredNorm() < D * D) touching_.emplace_back(a, b);
+    });
+    std::sort(touching_.begin(), touching_.end());
+    for (const auto& [a, b] : touching_) {
+        const auto i = static_cast<std::size_t>(a), j = static_cast<std::size_t>(b);
+        const Vec3 r1 = s.position(j) - s.position(i);
+        const double d2 = r1.squaredNorm();
+        if (d2 >= D * D) continue;
+        const Vec3 vi = s.velocity(i), vj = s.velocity(j), dv = vj - vi;
+        // Both shot fall alike, so their relative motion is linear: |r1 - dv s|^2 = D^2, s before the end.
+        const double u_lo = std::max(last_touch_[i], last_touch_[j]);
+        const double u = first_touch_quadratic(d2 - D * D, -2.0 * r1.dot(dv), dv.squaredNorm(), u_lo, dt).value_or(dt);
+        const double back = dt - u;
+        const Vec3 rc = r1 - dv * back;
+        if (rc.squaredNorm() < 1e-24) continue;  // coincident centres: no normal to act along
+        const Vec3 n = rc.normalized();
+        const double approach = -dv.dot(n);
+        if (approach > 0.0) {
+            const bool impact = contact::is_impact(approach, resting_speed_);
+            const contact::ShotShotResponse r = law.respond({vi, vj, n}, impact ? model_->shot_shot : plastic);
+            const Vec3 dvi = r.v_i - vi, dvj = r.v_j - vj;
+            // After a velocity change at time u the rest of the flight shifts by dv * (dt - u): exact.
+            s.set_velocity(i, r.v_i);
+            s.set_velocity(j, r.v_j);
+            s.set_position(i, s.position(i) + dvi * back);
+            s.set_position(j, s.position(j) + dvj * back);
+            last_touch_[i] = last_touch_[j] = u;
+            if (impact) ++state.shot_shot_impacts;
+        }
+        // Any overlap left (several contacts in one step) is removed symmetrically, positions only.
+        const Vec3 r = s.position(j) - s.position(i);
+        const double d = r.norm();
+        if (d < D && d > 0.0) {
+            const Vec3 push = 0.5 * (D - d) / d * r;
+            s.set_position(i, s.position(i) - push);
+            s.set_position(j, s.position(j) + push);
+            if (D - d > kCorrectionWorthCounting * R) ++state.health.shot_overlap_corrections;
+        }
+    }
+}
+
+void TimeStepping::resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts) {
+    const double laws_before = stats_[Stage::contact_laws];
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t n = state.shots.size(), components = model_->components.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!state.shots.active[i]) continue;
+        int pass = 0;
+        bool changed = true;
+        while (changed && pass < kMaxContactPasses) {
+            changed = false;
+            for (std::size_t c = 0; c < components; ++c) changed |= handle_component(state, i, c, dt, impacts);
+            ++pass;
+        }
+        if (changed) ++state.health.unresolved_contacts;
+    }
+    // The loop's time minus what the contact laws took is the time spent finding contacts.
+    const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats_[Stage::mesh_queries] += total - (stats_[Stage::contact_laws] - laws_before);
+}
+
+bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world,
+                                   double query_radius, Contact& out) {
+    const Component& comp = model_->components[component];
+    const Pose& pose = pose_end_[component];
+    const Vec3 p = pose.to_component(p_world);
+    ++stats_.gate_checks;
+    const double clearance = comp.gate->lower_bound(p) - query_radius;
+    if (clearance > 0.0) {
+        // The shot cannot reach this component for a while: skip its checks until then.
+        skip_until_[component * n_shots_ + shot] = step_ + static_cast<std::uint64_t>(clearance / max_relative_travel_);
+        return false;
+    }
+    ++stats_.bvh_queries;
+    comp.collider->triangles_overlapping(p - Vec3::Constant(query_radius), p + Vec3::Constant(query_radius), triangles_);
+    // One contact per shot and component: the closest feature. Neighbouring triangles that share the
+    // closest edge or vertex give the same point, so spurious normals at internal edges never act.
+    stats_.triangle_tests += triangles_.size();
+    double best = query_radius * query_radius;
+    int best_triangle = -1;
+    Vec3 best_point;
+    const TriangleMesh& mesh = *comp.mesh;
+    for (int t : triangles_) {
+        const auto tt = static_cast<std::size_t>(t);
+        const Vec3 cp = closest_point_on_triangle(p, mesh.corner(tt, 0), mesh.corner(tt, 1), mesh.corner(tt, 2)).point;
+        const double d2 = (p - cp).squaredNorm();
+        if (d2 < best) {
+            best = d2;
+            best_triangle = t;
+            best_point = cp;
+        }
+    }
+    if (best_triangle < 0) return false;
+    const double d = std::sqrt(best);
+    Vec3 n_local;
+    if (d > 1e-9 * model_->shot_radius_m) {
+        n_local = (p - best_point) / d;
+    } else {
+        // Centre on the surface: take the face normal on the side the shot came from.
+        const auto tt = static_cast<std::size_t>(best_triangle);
+        n_local = (mesh.corner(tt, 1) - mesh.corner(tt, 0)).cross(mesh.corner(tt, 2) - mesh.corner(tt, 0)).normalized();
+        if (n_local.dot(pose.rotation.transpose() * v_world) > 0.0) n_local = -n_local;
+    }
+    out.gap = d - model_->shot_radius_m;
+    out.normal = pose.rotation * n_local;
+    out.point = pose.to_world(best_point);
+    out.triangle = mesh.source_facet.empty() ? best_triangle : mesh.source_facet[static_cast<std::size_t>(best_triangle)];
+    return true;
+}
+
+bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::size_t c, double dt,
+                                    std::vector<ImpactRecord>& impacts) {
+    const Component& comp = model_->components[c];
+    const Kinematics& kin = comp.kinematics;
+    const double R = model_->shot_radius_m;
+    const bool vibrating = kin.kind == Kinematics::Kind::vibrating && kin.amplitude_m > 0.0;
+    // A vibrating surface may reach a shot within the step and fall back before its end: look
+    // as far as it can travel in the step.
+    const double swing = vibrating ? std::min(2.0 * kin.amplitude_m, kin.amplitude_m * kin.angular_frequency() * dt) : 0.0;
+    if (step_ < skip_until_[c * n_shots_ + i]) {
+        ++stats_.gate_skips;
+        return false;
+    }
+    ShotArrays& s = state.shots;
+    Vec3 p1 = s.position(i), v1 = s.velocity(i);
+    Contact contact;
+    if (!closest_contact(c, i, p1, v1, R + swing, contact)) return false;
+    if (contact.gap >= swing && contact.gap >= 0.0) return false;
+
+    StageTimer timer(stats_, Stage::contact_laws);
+    const Vec3 g = model_->gravity_m_per_s2;
+    const Vec3& n = contact.normal;
+    const double u_lo = last_touch_[i];
+    // Gap at time u within the step, with the shot on its free-flight arc and the contact plane
+    // moving with the surface.
+    std::optional<double> touch;
+    ++stats_.touch_searches;
+    if (vibrating) {
+        const double a_n = kin.axis.dot(n), d_end = kin.displacement(t0_, dt);
+        auto gap = [&](double u) {
+            const double back = dt - u;
+            return contact.gap + n.dot(-v1 * back + 0.5 * g * back * back) - a_n * (kin.displacement(t0_, u) - d_end);
+        };
+        touch = first_touch_sampled(gap, u_lo, dt, 1.0 / (kin.frequency_hz * kSamplesPerPeriod), kTouchTolerance);
+    } else {
+        const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
+        touch = first_touch_quadratic(contact.gap, -n.dot(v1 - v_surface_end), 0.5 * n.dot(g), u_lo, dt);
+    }
+    if (!touch) return false;
+    if (contact.gap < -0.5 * R) ++state.health.deep_penetrations;
+
+    const double u = *touch, back = dt - u;
+    const Vec3 v_touch = v1 - g * back;
+    const Vec3 centre_touch = p1 - v1 * back + 0.5 * g * back * back;
+    const Vec3 x_touch = centre_touch - R * n;
+    const Vec3 v_surface = kin.point_velocity(x_touch, t0_, u);
+    const double approach = -(v_touch - v_surface).dot(n);
+    const contact::SurfaceLaw& law = *model_->laws.surface;
+
+    if (contact::is_impact(approach, resting_speed_)) {
+        const contact::SurfaceContactResponse r = law.impact({v_touch, v_surface, n, 0.0, dt}, comp.coefficients);
+        const Vec3 dv = r.v_shot - v_touch;
+        s.set_velocity(i, v1 + dv);
+        s.set_position(i, p1 + dv * back);
+        last_touch_[i] = u;
+        ++state.impacts_per_component[c];
+        if (comp.logged) {
+            const Pose pose = kin.pose(t0_, u);
+            ImpactRecord rec;
+            rec.time_s = t0_.hi + (t0_.lo + u);
+            rec.shot = static_cast<std::int32_t>(i);
+            rec.component = static_cast<std::int32_t>(c);
+            rec.triangle = contact.triangle;
+            rec.point_m = pose.to_component(x_touch);
+            rec.v_in_m_per_s = pose.rotation.transpose() * (v_touch - v_surface);
+            rec.v_out_m_per_s = pose.rotation.transpose() * (r.v_shot - v_surface);
+            rec.vn_in_m_per_s = r.vn_in;
+            rec.vt_in_m_per_s = r.vt_in;
+            rec.vn_out_m_per_s = r.vn_out;
+            impacts.push_back(rec);
+        }
+        return true;
+    }
+    if (contact.gap >= 0.0) return false;  // a slow touch that has already ended
+    // Sustained contact (resting, rolling, sliding) at the step end: the approach stops, friction
+    // acts, and the overlap is removed by moving the shot out along the normal (no energy added).
+    const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
+    const double pressing = std::max(0.0, -g.dot(n) + kin.point_acceleration(contact.point, t0_, dt).dot(n));
+    const contact::SurfaceContactResponse r = law.sustain({v1, v_surface_end, n, pressing, dt}, comp.coefficients);
+    s.set_velocity(i, r.v_shot);
+    s.set_position(i, p1 - contact.gap * n);
+    if (-contact.gap > kCorrectionWorthCounting * R) ++state.health.mesh_overlap_corrections;
+    return false;
+}
+
+void TimeStepping::check_health(SimulationState& state) {
+    StageTimer timer(stats_, Stage::health);
+    ShotArrays& s = state.shots;
+    const Vec3 lo = model_->world_lo, hi = model_->world_hi;
+    double fastest2 = 0.0;
+    const double t = t0_.seconds();
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (!s.active[i]) continue;
+        const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i];
+        const double x = s.x[i], y = s.y[i], z = s.z[i];
+        if (!std::isfinite(v2) || !std::isfinite(x + y + z)) {
+            s.active[i] = 0;
+            ++state.health.non_finite;
+            continue;
+        }
+        if (x < lo.x() || y < lo.y() || z < lo.z() || x > hi.x() || y > hi.y() || z > hi.z()) {
+            s.active[i] = 0;
+            ++state.health.shot_lost;
+            state.lost.push_back({static_cast<int>(i), t, Vec3(x, y, z)});
+            continue;
+        }
+        fastest2 = std::max(fastest2, v2);
+    }
+    state.fastest_shot_m_per_s = std::sqrt(fastest2);
+}
+
+}  // namespace peensim

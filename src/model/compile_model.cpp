@@ -1,0 +1,173 @@
+// Scene description -> immutable model: load meshes, place them, build the collision
+// structures, resolve materials and contact pairs, and check the assembly is closed.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geometry/mesh_loader.h"
+#include "model/enclosure.h"
+#include "model/model.h"
+#include "scene/resolved_writer.h"
+
+namespace peensim {
+
+namespace {
+
+std::string component_field(std::size_t i, const std::string& leaf) {
+    return "components[" + std::to_string(i) + "]." + leaf;
+}
+
+// Grid spacing for the distance gates: half a shot radius resolves "can this shot touch it"
+// sharply; on very large meshes the grid is coarsened to stay within ~8 M cells (still exact
+// as a lower bound, just less sharp).
+double gate_cell_size(const TriangleMesh& mesh, double shot_radius) {
+    Vec3 lo = mesh.vertices.front(), hi = lo;
+    for (const Vec3& v : mesh.vertices) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    const Vec3 extent = (hi - lo) + Vec3::Constant(8.0 * shot_radius);
+    const double volume = extent.prod();
+    return std::max(0.5 * shot_radius, std::cbrt(volume / 8.0e6));
+}
+
+// Mean outward normal of the triangles facing `up` (area weighted), in the mesh frame.
+Vec3 mean_upward_normal(const TriangleMesh& mesh, const Vec3& up_in_mesh) {
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const Vec3 n2a = (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
+        if (n2a.norm() > 0.0 && n2a.normalized().dot(up_in_mesh) > 0.5) sum += n2a;
+    }
+    return sum.norm() > 0.0 ? Vec3(sum.normalized()) : up_in_mesh;
+}
+
+Kinematics build_kinematics(const ComponentDesc& desc, const TriangleMesh& mesh, const Vec3& up) {
+    Kinematics k;
+    k.rest = Pose{desc.rotation, desc.translation_m};
+    if (desc.vibration) {
+        const VibrationDesc& v = *desc.vibration;
+        k.kind = Kinematics::Kind::vibrating;
+        k.amplitude_m = v.amplitude_m;
+        k.frequency_hz = v.frequency_hz;
+        k.phase_rad = v.phase_rad;
+        k.axis = v.axis ? v.axis->normalized()
+                        : Vec3(desc.rotation * mean_upward_normal(mesh, desc.rotation.transpose() * up));
+    }
+    if (desc.rotation_motion) {
+        const RotationDesc& r = *desc.rotation_motion;
+        k.kind = Kinematics::Kind::rotating;
+        k.axis_point_m = r.axis_point_m;
+        k.axis_direction = r.axis_direction.normalized();
+        k.omega_rad_per_s = r.speed_rad_per_s;
+    }
+    return k;
+}
+
+void component_bounds(Component& c) {
+    const Pose pose = c.kinematics.rest;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    double max_axis = 0.0, max_from_point = 0.0;
+    for (const Vec3& v : c.mesh->vertices) {
+        const Vec3 w = pose.to_world(v);
+        lo = lo.cwiseMin(w);
+        hi = hi.cwiseMax(w);
+        const Vec3 r = w - c.kinematics.axis_point_m;
+        max_axis = std::max(max_axis, (r - c.kinematics.axis_direction.dot(r) * c.kinematics.axis_direction).norm());
+        max_from_point = std::max(max_from_point, r.norm());
+    }
+    if (c.kinematics.kind == Kinematics::Kind::rotating) {
+        // The swept volume lies within a sphere about the axis point.
+        lo = c.kinematics.axis_point_m - Vec3::Constant(max_from_point);
+        hi = c.kinematics.axis_point_m + Vec3::Constant(max_from_point);
+        c.max_axis_distance_m = max_axis;
+    }
+    if (c.kinematics.kind == Kinematics::Kind::vibrating) {
+        const Vec3 swing = (c.kinematics.axis * c.kinematics.amplitude_m).cwiseAbs();
+        lo -= swing;
+        hi += swing;
+    }
+    c.world_lo = lo;
+    c.world_hi = hi;
+}
+
+const ContactPairDesc& contact_for(const SceneDescription& scene, const std::string& key) {
+    const ContactPairDesc* fallback = nullptr;
+    for (const ContactPairDesc& c : scene.contacts) {
+        if (c.key == key) return c;
+        if (c.key == "default") fallback = &c;
+    }
+    if (!fallback) throw InputError({scene.source_file, 0, 0}, "contacts", "no entry for '" + key + "' and no default");
+    return *fallback;
+}
+
+contact::PairCoefficients coefficients_of(const ContactPairDesc& c) { return {c.C0, c.V0_m_per_s, c.mu, c.f}; }
+
+}  // namespace
+
+int Model::component_index(const std::string& name) const {
+    for (std::size_t i = 0; i < components.size(); ++i)
+        if (components[i].name == name) return static_cast<int>(i);
+    return -1;
+}
+
+std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
+    auto model = std::make_shared<Model>();
+    model->description = scene;
+    model->resolved_scene_yaml = resolved_scene_yaml(scene);
+    model->scene_hash = scene_hash(scene);
+    model->shot_count = scene.shot.count;
+    model->shot_radius_m = 0.5 * scene.shot.diameter_m;
+    model->shot_mass_kg = scene.shot.density_kg_per_m3 * (4.0 / 3.0) * M_PI * std::pow(model->shot_radius_m, 3);
+    model->gravity_m_per_s2 = scene.process.gravity_m_per_s2;
+    model->duration_s = scene.process.duration_s;
+    model->seed = scene.process.seed;
+    model->travel_fraction = scene.accuracy.travel_fraction;
+    model->laws = contact::make_laws("impulse");
+    model->shot_shot = coefficients_of(contact_for(scene, "shot-shot"));
+
+    const double R = model->shot_radius_m;
+    const Vec3 up = model->gravity_m_per_s2.norm() > 0.0 ? Vec3(-model->gravity_m_per_s2.normalized()) : Vec3::UnitZ();
+    const std::vector<std::string>& logged = scene.output.logged_components;
+
+    for (std::size_t i = 0; i < scene.components.size(); ++i) {
+        const ComponentDesc& desc = scene.components[i];
+        Component c;
+        c.name = desc.name;
+        c.role = desc.role;
+        c.material = desc.material;
+        try {
+            c.mesh = std::make_shared<const TriangleMesh>(load_mesh(desc.mesh_path, desc.mesh_unit_m));
+        } catch (const InputError& e) {
+            throw InputError(desc.where, component_field(i, "mesh"), e.problem());
+        }
+        c.collider = std::make_shared<const MeshCollider>(*c.mesh);
+        const double swing = desc.vibration ? 2.0 * desc.vibration->amplitude_m : 0.0;
+        c.gate = std::make_shared<const DistanceGate>(*c.mesh, gate_cell_size(*c.mesh, R), 2.0 * R + swing);
+        c.kinematics = build_kinematics(desc, *c.mesh, up);
+        const ContactPairDesc& pair = contact_for(scene, "shot-" + desc.material);
+        c.coefficients = coefficients_of(pair);
+        c.coefficients_source = pair.key;
+        c.logged = logged.empty() ? desc.role == ComponentRole::part
+                                  : std::find(logged.begin(), logged.end(), desc.name) != logged.end();
+        component_bounds(c);
+        if (desc.role == ComponentRole::sonotrode) model->sonotrode = static_cast<int>(i);
+        model->components.push_back(std::move(c));
+    }
+    if (model->sonotrode < 0)
+        throw InputError({scene.source_file, 0, 0}, "components", "expected one component with role sonotrode");
+
+    model->world_lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    model->world_hi = -model->world_lo;
+    for (const Component& c : model->components) {
+        model->world_lo = model->world_lo.cwiseMin(c.world_lo);
+        model->world_hi = model->world_hi.cwiseMax(c.world_hi);
+        model->peak_surface_speed_m_per_s =
+            std::max(model->peak_surface_speed_m_per_s, c.kinematics.peak_surface_speed(c.max_axis_distance_m));
+    }
+    // A shot beyond the assembly's bounds by more than a diameter has certainly left it.
+    model->world_lo -= Vec3::Constant(4.0 * R);
+    model->world_hi += Vec3::Constant(4.0 * R);
+    return model;
+}
+
+}  // namespace peensim

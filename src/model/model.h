@@ -1,0 +1,66 @@
+// The compiled model: immutable, checked, everything resolved (meshes loaded in their own
+// frames, Bullet BVHs and distance gates built, contact coefficients per component, SI).
+// The engine reads it; only the simulation state changes during a run.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "collision/distance_gate.h"
+#include "collision/mesh_collider.h"
+#include "contact/contact_law.h"
+#include "contact/law_registry.h"
+#include "geometry/triangle_mesh.h"
+#include "model/kinematics.h"
+#include "scene/scene_description.h"
+
+namespace peensim {
+
+struct Component {
+    std::string name;
+    ComponentRole role = ComponentRole::fixture;
+    std::string material;
+    std::shared_ptr<const TriangleMesh> mesh;        // component frame, m
+    std::shared_ptr<const MeshCollider> collider;    // Bullet BVH over `mesh`
+    std::shared_ptr<const DistanceGate> gate;        // distance lower bounds over `mesh`
+    Kinematics kinematics;
+    contact::PairCoefficients coefficients;          // shot against this component's material
+    std::string coefficients_source;                 // "shot-<material>" or "default"
+    bool logged = false;                             // impacts written to impacts.csv
+    double max_axis_distance_m = 0.0;                // m, largest distance of a vertex from the rotation axis
+    Vec3 world_lo, world_hi;                         // m, bounds at t = 0 (rotating: swept about the axis)
+};
+
+struct Model {
+    SceneDescription description;
+    std::string resolved_scene_yaml;
+    std::uint64_t scene_hash = 0;
+
+    std::vector<Component> components;
+    int sonotrode = -1;                              // index into components
+
+    int shot_count = 0;
+    double shot_radius_m = 0.0;                      // m, R = D / 2
+    double shot_mass_kg = 0.0;                       // kg
+    contact::PairCoefficients shot_shot;
+    contact::LawSet laws;
+
+    Vec3 gravity_m_per_s2 = Vec3::Zero();            // m/s2
+    double duration_s = 0.0;                         // s
+    std::uint64_t seed = 1;
+    double travel_fraction = 0.25;                   // -, eq. 7 travel per step / R
+    double peak_surface_speed_m_per_s = 0.0;         // m/s, fastest moving surface (sonotrode or part rim)
+
+    Vec3 world_lo, world_hi;                         // m, a shot outside this box has left the chamber
+
+    const Component& sonotrode_component() const { return components[static_cast<std::size_t>(sonotrode)]; }
+    // Index of a component by name, or -1.
+    int component_index(const std::string& name) const;
+};
+
+// Checks a scene description and builds the model. Throws InputError naming the scene line.
+std::shared_ptr<const Model> compile_model(const SceneDescription& scene);
+
+}  // namespace peensim

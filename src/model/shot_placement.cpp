@@ -1,0 +1,207 @@
+#include "model/shot_placement.h"
+
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+#include "collision/closest_point.h"
+#include "common/random.h"
+#include "model/enclosure.h"
+
+namespace peensim {
+
+namespace {
+
+constexpr int kRejectionsPerLayer = 400;
+constexpr double kClearance = 0.01;  // -, gap left between placed shot and surfaces, fraction of R
+
+// Exact clearance of a sphere of radius r at p (world) from every component at t = 0.
+bool clear_of_meshes(const Model& model, const Vec3& p, double r, std::vector<int>& scratch) {
+    const SimTime t0;
+    for (const Component& c : model.components) {
+        const Vec3 q = c.kinematics.pose(t0).to_component(p);
+        if (c.gate->lower_bound(q) > r) continue;
+        c.collider->triangles_overlapping(q - Vec3::Constant(r), q + Vec3::Constant(r), scratch);
+        for (int t : scratch) {
+            const auto tt = static_cast<std::size_t>(t);
+            const Vec3 cp = closest_point_on_triangle(q, c.mesh->corner(tt, 0), c.mesh->corner(tt, 1), c.mesh->corner(tt, 2)).point;
+            if ((cp - q).squaredNorm() < r * r) return false;
+        }
+    }
+    return true;
+}
+
+// Shot already placed, hashed by cells one diameter wide.
+class PlacedShots {
+public:
+    explicit PlacedShots(double diameter) : cell_(diameter) {}
+    bool overlaps(const Vec3& p) const {
+        const auto [i, j, k] = cell(p);
+        for (long a = i - 1; a <= i + 1; ++a)
+            for (long b = j - 1; b <= j + 1; ++b)
+                for (long c = k - 1; c <= k + 1; ++c) {
+                    const auto it = cells_.find(key(a, b, c));
+                    if (it == cells_.end()) continue;
+                    for (const Vec3& q : it->second)
+                        if ((q - p).squaredNorm() < cell_ * cell_) return true;
+                }
+        return false;
+    }
+    void add(const Vec3& p) {
+        const auto [i, j, k] = cell(p);
+        cells_[key(i, j, k)].push_back(p);
+    }
+
+private:
+    std::array<long, 3> cell(const Vec3& p) const {
+        return {std::lround(std::floor(p.x() / cell_)), std::lround(std::floor(p.y() / cell_)), std::lround(std::floor(p.z() / cell_))};
+    }
+    static long long key(long i, long j, long k) { return (static_cast<long long>(i) * 73856093) ^ (static_cast<long long>(j) * 19349663) ^ (static_cast<long long>(k) * 83492791); }
+    double cell_;
+    std::unordered_map<long long, std::vector<Vec3>> cells_;
+};
+
+// Area-weighted sampler of the sonotrode's upward faces (world frame at t = 0).
+struct FaceSampler {
+    std::vector<std::array<Vec3, 3>> faces;
+    std::vector<double> cumulative_area;
+
+    Vec3 sample(Random& rng) const {
+        const double u = rng.uniform() * cumulative_area.back();
+        const std::size_t f = static_cast<std::size_t>(std::upper_bound(cumulative_area.begin(), cumulative_area.end(), u) - cumulative_area.begin());
+        const auto& tri = faces[std::min(f, faces.size() - 1)];
+        const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
+        return (1.0 - r1) * tri[0] + r1 * (1.0 - r2) * tri[1] + r1 * r2 * tri[2];
+    }
+};
+
+FaceSampler upward_faces(const Component& sonotrode, const Vec3& up) {
+    FaceSampler s;
+    const Pose pose = sonotrode.kinematics.pose(SimTime{});
+    double total = 0.0;
+    for (std::size_t t = 0; t < sonotrode.mesh->triangle_count(); ++t) {
+        const std::array<Vec3, 3> w{pose.to_world(sonotrode.mesh->corner(t, 0)), pose.to_world(sonotrode.mesh->corner(t, 1)),
+                                    pose.to_world(sonotrode.mesh->corner(t, 2))};
+        const Vec3 n2a = (w[1] - w[0]).cross(w[2] - w[0]);
+        if (n2a.norm() == 0.0 || n2a.normalized().dot(up) < 0.9) continue;
+        total += 0.5 * n2a.norm();
+        s.faces.push_back(w);
+        s.cumulative_area.push_back(total);
+    }
+    return s;
+}
+
+TriangleMesh world_mesh(const Model& model) {
+    TriangleMesh all;
+    for (const Component& c : model.components) {
+        const Pose pose = c.kinematics.pose(SimTime{});
+        const int base = static_cast<int>(all.vertices.size());
+        for (const Vec3& v : c.mesh->vertices) all.vertices.push_back(pose.to_world(v));
+        for (const auto& t : c.mesh->triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    }
+    return all;
+}
+
+std::string mm_point(const Vec3& p) {
+    std::ostringstream s;
+    s.precision(4);
+    s << "(" << p.x() * 1e3 << ", " << p.y() * 1e3 << ", " << p.z() * 1e3 << ") mm";
+    return s.str();
+}
+
+}  // namespace
+
+Vec3 sonotrode_up(const Model& model) {
+    const Vec3 up = model.gravity_m_per_s2.norm() > 0.0 ? Vec3(-model.gravity_m_per_s2.normalized()) : Vec3::UnitZ();
+    const Vec3 axis = model.sonotrode_component().kinematics.axis;
+    return axis.dot(up) >= 0.0 ? axis : Vec3(-axis);
+}
+
+InitialShots place_shots(const Model& model) {
+    const SceneDescription& scene = model.description;
+    const double R = model.shot_radius_m, D = 2.0 * R;
+    const Vec3 up = sonotrode_up(model);
+    const Component& sono = model.sonotrode_component();
+    const SourceLocation sono_where = scene.components[static_cast<std::size_t>(model.sonotrode)].where;
+
+    const FaceSampler faces = upward_faces(sono, up);
+    if (faces.faces.empty())
+        throw InputError(sono_where, "components[" + std::to_string(model.sonotrode) + "].mesh",
+                         "expected the sonotrode mesh to have an upper face pointing into the chamber (against gravity), found none");
+
+    const Enclosure enclosure(world_mesh(model), std::max(0.5 * R, 1e-5), R);
+    Random rng(model.seed);
+
+    // Closed-chamber check: shot resting on the sonotrode must be enclosed.
+    {
+        int enclosed = 0;
+        Vec3 first = Vec3::Zero();
+        for (int k = 0; k < 64; ++k) {
+            const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance));
+            if (k == 0) first = p;
+            enclosed += enclosure.inside(p) ? 1 : 0;
+        }
+        if (enclosed == 0) {
+            Vec3 lo = Vec3::Constant(1e300), hi = -lo;
+            for (const Component& c : model.components)
+                if (c.role == ComponentRole::chamber) {
+                    lo = lo.cwiseMin(c.world_lo);
+                    hi = hi.cwiseMax(c.world_hi);
+                }
+            Vec3 where = first;
+            enclosure.escape_point(first, lo, hi, where);
+            SourceLocation at{scene.source_file, 0, 0};
+            for (const ComponentDesc& c : scene.components)
+                if (c.role == ComponentRole::chamber) { at = c.where; break; }
+            throw InputError(at, "components", "the chamber is not closed around the sonotrode: a shot placed on the sonotrode can leave the assembly near " +
+                                                   mm_point(where) + " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
+        }
+    }
+
+    InitialShots out;
+    PlacedShots placed(D);
+    std::vector<int> scratch;
+    int layer = 0, in_layer = 0, rejections = 0;
+    while (static_cast<int>(out.positions.size()) < model.shot_count) {
+        const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance) + layer * D * (1.0 + kClearance));
+        const bool ok = enclosure.inside(p) && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kClearance), scratch);
+        if (ok) {
+            placed.add(p);
+            out.positions.push_back(p);
+            ++in_layer;
+            rejections = 0;
+            continue;
+        }
+        if (++rejections < kRejectionsPerLayer) continue;
+        if (in_layer == 0) {
+            std::ostringstream msg;
+            msg << "expected at most about " << out.positions.size() << " shot of " << D * 1e3
+                << " mm to fit on the sonotrode inside the chamber (" << layer << " layers up to the first obstacle), got "
+                << model.shot_count << "; lower shot.count or shot.diameter";
+            throw InputError(scene.shot.where, "shot.count", msg.str());
+        }
+        ++layer;
+        in_layer = 0;
+        rejections = 0;
+    }
+    out.layers = layer + 1;
+
+    // Initial velocities.
+    const Vec3 side = (std::abs(up.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(up).normalized();
+    const Vec3 side2 = up.cross(side);
+    for (int i = 0; i < model.shot_count; ++i) {
+        switch (scene.shot.initial) {
+            case InitialVelocityKind::rest: out.velocities.push_back(Vec3::Zero()); break;
+            case InitialVelocityKind::vector: out.velocities.push_back(scene.shot.initial_velocity_m_per_s); break;
+            case InitialVelocityKind::random_upward: {
+                // Uniform on the upper hemisphere: cos(theta) uniform in [0, 1].
+                const double c = rng.uniform(), s = std::sqrt(std::max(0.0, 1.0 - c * c)), phi = 2.0 * M_PI * rng.uniform();
+                out.velocities.push_back(scene.shot.initial_speed_m_per_s * (c * up + s * std::cos(phi) * side + s * std::sin(phi) * side2));
+                break;
+            }
+        }
+    }
+    return out;
+}
+
+}  // namespace peensim

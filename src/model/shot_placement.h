@@ -1,0 +1,27 @@
+// Initial shot positions and velocities (reference sec. 2: random, non-overlapping, on the
+// sonotrode at t = 0). Shot are dropped at random points of the sonotrode's upper faces, one
+// radius (plus 1 %) above them, rejected if outside the chamber or touching a mesh or another
+// shot; when a layer is full (400 rejections in a row) the next layer is filled one diameter
+// higher, until the shot are placed or no layer takes any more.
+#pragma once
+
+#include <vector>
+
+#include "common/vec.h"
+#include "model/model.h"
+
+namespace peensim {
+
+struct InitialShots {
+    std::vector<Vec3> positions;   // m, world
+    std::vector<Vec3> velocities;  // m/s, world
+    int layers = 0;                // layers used
+};
+
+// Throws InputError if the chamber is not closed around the sonotrode or the shot do not fit.
+InitialShots place_shots(const Model& model);
+
+// The direction "up" from the sonotrode into the chamber (unit, world).
+Vec3 sonotrode_up(const Model& model);
+
+}  // namespace peensim

@@ -1,0 +1,62 @@
+// What a run reports when it ends (or is interrupted): the numbers behind summary.json and
+// the few lines printed to the terminal. Plain values; the engine and the CLI fill it in.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "output/speed_histogram.h"
+
+namespace peensim {
+
+struct NamedCount {
+    std::string name;
+    std::uint64_t count = 0;
+};
+
+// Normal approach speeds of the impacts on one logged component.
+struct NormalSpeedStats {
+    std::string component;
+    std::uint64_t count = 0;
+    double mean_m_per_s = 0.0;  // m/s; NaN when count == 0 (null in JSON)
+    double p10_m_per_s = 0.0;   // m/s, 10th percentile (within one histogram bin)
+    double p50_m_per_s = 0.0;   // m/s, median
+    double p90_m_per_s = 0.0;   // m/s, 90th percentile
+    double max_m_per_s = 0.0;   // m/s, exact
+};
+
+NormalSpeedStats normal_speed_stats(std::string component, const SpeedHistogram& speeds);
+
+// Wall time spent in one named stage of the step (e.g. "detectContacts").
+struct StageTime {
+    std::string stage;
+    double seconds = 0.0;  // s, wall time summed over all steps
+};
+
+struct RunSummary {
+    std::string scene_file;  // path as the user gave it
+    std::string scene_hash;  // hex digest of the scene and everything it references
+    std::string scheme;      // time-integration scheme name
+    bool finished = false;   // false when the run was interrupted (Ctrl-C, --max-wall-time)
+
+    double simulated_time_s = 0.0;  // s, simulated time reached
+    double duration_s = 0.0;        // s, simulated time the scene asked for
+    double wall_time_s = 0.0;       // s, wall-clock time of the run
+    std::uint64_t steps = 0;
+    std::uint64_t shot_steps = 0;              // steps x shots in flight, summed
+    double shot_steps_per_s = 0.0;             // 1/s of wall time
+    double sim_seconds_per_wall_second = 0.0;  // simulated s per wall s
+
+    std::uint64_t shot_count = 0;
+    std::uint64_t shot_lost = 0;  // shots that left the chamber or went non-finite
+
+    std::vector<NamedCount> impacts_per_component;
+    std::vector<NormalSpeedStats> normal_speed;  // per logged component
+    std::vector<NamedCount> health_counters;
+    std::vector<StageTime> stage_times;  // in step order
+
+    std::uint64_t peak_memory_bytes = 0;  // bytes, peak resident set size
+};
+
+}  // namespace peensim

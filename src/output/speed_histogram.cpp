@@ -1,0 +1,216 @@
+#include "output/speed_histogram.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace peensim {
+namespace {
+
+// Guards against absurd bin counts (and against corrupt checkpoint bytes asking for them).
+constexpr double kMaxBins = 1e8;
+constexpr std::string_view kMagic = "PSHIST01";
+
+void put_u64(std::string& out, std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
+}
+
+void put_f64(std::string& out, double v) {
+    put_u64(out, std::bit_cast<std::uint64_t>(v));
+}
+
+class ByteReader {
+public:
+    explicit ByteReader(std::string_view bytes) : bytes_(bytes) {}
+
+    std::uint64_t u64() {
+        if (bytes_.size() - pos_ < 8) fail("truncated");
+        std::uint64_t v = 0;
+        for (int i = 0; i < 8; ++i) {
+            v |= std::uint64_t{static_cast<unsigned char>(bytes_[pos_ + i])} << (8 * i);
+        }
+        pos_ += 8;
+        return v;
+    }
+    double f64() { return std::bit_cast<double>(u64()); }
+    std::string_view take(std::size_t n) {
+        if (bytes_.size() - pos_ < n) fail("truncated");
+        const auto s = bytes_.substr(pos_, n);
+        pos_ += n;
+        return s;
+    }
+    bool at_end() const { return pos_ == bytes_.size(); }
+
+    [[noreturn]] static void fail(const std::string& problem) {
+        throw std::runtime_error("speed histogram checkpoint data is invalid: " + problem);
+    }
+
+private:
+    std::string_view bytes_;
+    std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+SpeedHistogram::SpeedHistogram(double bin_width_m_per_s, double upper_m_per_s)
+    : bin_width_(bin_width_m_per_s) {
+    if (!(bin_width_m_per_s > 0.0) || !std::isfinite(bin_width_m_per_s) || !(upper_m_per_s > 0.0) ||
+        !std::isfinite(upper_m_per_s)) {
+        throw std::invalid_argument("speed histogram: bin width and upper end must be positive");
+    }
+    const double bins = std::round(upper_m_per_s / bin_width_m_per_s);
+    if (bins < 1.0 || bins > kMaxBins) {
+        throw std::invalid_argument("speed histogram: upper / bin width must give 1 to 1e8 bins");
+    }
+    bins_.assign(static_cast<std::size_t>(bins), 0);
+}
+
+void SpeedHistogram::add_finite(double v) {
+    if (count_ == 0) {
+        min_ = max_ = v;
+    } else {
+        min_ = std::min(min_, v);
+        max_ = std::max(max_, v);
+    }
+    ++count_;
+    add_to_sum(v);
+    if (v < 0.0) {
+        ++bins_.front();
+        return;
+    }
+    const double index = v / bin_width_;
+    if (index >= static_cast<double>(bins_.size())) {
+        // v / w can round up to the bin count for v just below the upper end.
+        if (v < upper_m_per_s()) {
+            ++bins_.back();
+        } else {
+            ++overflow_;
+        }
+        return;
+    }
+    ++bins_[static_cast<std::size_t>(index)];
+}
+
+void SpeedHistogram::add_to_sum(double v) {
+    const double t = sum_ + v;
+    sum_correction_ += std::abs(sum_) >= std::abs(v) ? (sum_ - t) + v : (v - t) + sum_;
+    sum_ = t;
+}
+
+double SpeedHistogram::mean() const {
+    if (count_ == 0) return std::numeric_limits<double>::quiet_NaN();
+    return (sum_ + sum_correction_) / static_cast<double>(count_);
+}
+
+double SpeedHistogram::min() const {
+    return count_ == 0 ? std::numeric_limits<double>::quiet_NaN() : min_;
+}
+
+double SpeedHistogram::max() const {
+    return count_ == 0 ? std::numeric_limits<double>::quiet_NaN() : max_;
+}
+
+double SpeedHistogram::percentile(double p) const {
+    if (!(p >= 0.0 && p <= 100.0)) {
+        throw std::invalid_argument("speed histogram: percentile must be in [0, 100], got " +
+                                    std::to_string(p));
+    }
+    if (count_ == 0) return std::numeric_limits<double>::quiet_NaN();
+    const double rank = p / 100.0 * static_cast<double>(count_);  // 1-based, continuous
+    if (rank <= 0.0) return min_;
+    double below = 0.0;  // values in the bins before the current one
+    for (std::size_t i = 0; i < bins_.size(); ++i) {
+        if (bins_[i] == 0) continue;
+        const double in_bin = static_cast<double>(bins_[i]);
+        if (below + in_bin >= rank) {
+            const double fraction = (rank - below) / in_bin;
+            const double v = (static_cast<double>(i) + fraction) * bin_width_;
+            return std::clamp(v, min_, max_);
+        }
+        below += in_bin;
+    }
+    // The rank falls in the overflow bin [upper, max].
+    const double fraction = std::min(1.0, (rank - below) / static_cast<double>(overflow_));
+    const double upper = upper_m_per_s();
+    return std::clamp(upper + fraction * (max_ - upper), min_, max_);
+}
+
+void SpeedHistogram::merge(const SpeedHistogram& other) {
+    if (other.bin_width_ != bin_width_ || other.bins_.size() != bins_.size()) {
+        throw std::invalid_argument("speed histogram: cannot merge histograms with other bins");
+    }
+    if (other.count_ > 0) {
+        min_ = count_ == 0 ? other.min_ : std::min(min_, other.min_);
+        max_ = count_ == 0 ? other.max_ : std::max(max_, other.max_);
+    }
+    for (std::size_t i = 0; i < bins_.size(); ++i) bins_[i] += other.bins_[i];
+    overflow_ += other.overflow_;
+    count_ += other.count_;
+    non_finite_ += other.non_finite_;
+    add_to_sum(other.sum_);
+    sum_correction_ += other.sum_correction_;
+}
+
+std::string SpeedHistogram::serialize() const {
+    std::uint64_t filled = 0;
+    for (const auto c : bins_) filled += c != 0 ? 1 : 0;
+    std::string out(kMagic);
+    out.reserve(out.size() + 8 * 10 + 16 * filled);
+    put_u64(out, bins_.size());
+    put_f64(out, bin_width_);
+    put_u64(out, count_);
+    put_u64(out, overflow_);
+    put_u64(out, non_finite_);
+    put_f64(out, sum_);
+    put_f64(out, sum_correction_);
+    put_f64(out, min_);
+    put_f64(out, max_);
+    put_u64(out, filled);
+    for (std::size_t i = 0; i < bins_.size(); ++i) {
+        if (bins_[i] == 0) continue;
+        put_u64(out, i);
+        put_u64(out, bins_[i]);
+    }
+    return out;
+}
+
+SpeedHistogram SpeedHistogram::deserialize(std::string_view bytes) {
+    ByteReader in(bytes);
+    if (in.take(kMagic.size()) != kMagic) ByteReader::fail("wrong magic");
+    const std::uint64_t bin_count = in.u64();
+    const double width = in.f64();
+    if (bin_count < 1 || static_cast<double>(bin_count) > kMaxBins || !(width > 0.0) ||
+        !std::isfinite(width)) {
+        ByteReader::fail("bad bins");
+    }
+    SpeedHistogram h(width, static_cast<double>(bin_count) * width);
+    if (h.bins_.size() != bin_count) ByteReader::fail("bad bins");
+    h.count_ = in.u64();
+    h.overflow_ = in.u64();
+    h.non_finite_ = in.u64();
+    h.sum_ = in.f64();
+    h.sum_correction_ = in.f64();
+    h.min_ = in.f64();
+    h.max_ = in.f64();
+    const std::uint64_t filled = in.u64();
+    if (filled > bin_count) ByteReader::fail("more filled bins than bins");
+    std::uint64_t total = h.overflow_;
+    std::uint64_t previous = 0;
+    for (std::uint64_t k = 0; k < filled; ++k) {
+        const std::uint64_t index = in.u64();
+        const std::uint64_t c = in.u64();
+        if (index >= bin_count || (k > 0 && index <= previous) || c == 0) {
+            ByteReader::fail("bad bin entry");
+        }
+        h.bins_[index] = c;
+        total += c;
+        previous = index;
+    }
+    if (!in.at_end()) ByteReader::fail("trailing bytes");
+    if (total != h.count_) ByteReader::fail("bin counts do not add up to the count");
+    return h;
+}
+
+}  // namespace peensim

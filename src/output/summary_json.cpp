@@ -1,0 +1,61 @@
+#include "output/summary_json.h"
+
+#include <nlohmann/json.hpp>
+
+#include "output/atomic_file.h"
+
+namespace peensim {
+
+std::string summary_to_json(const RunSummary& s) {
+    // ordered_json keeps the keys in the documented order, which reads better than sorted.
+    nlohmann::ordered_json j;
+    j["scene_file"] = s.scene_file;
+    j["scene_hash"] = s.scene_hash;
+    j["scheme"] = s.scheme;
+    j["finished"] = s.finished;
+    j["simulated_time_s"] = s.simulated_time_s;
+    j["duration_s"] = s.duration_s;
+    j["wall_time_s"] = s.wall_time_s;
+    j["steps"] = s.steps;
+    j["shot_steps"] = s.shot_steps;
+    j["shot_steps_per_s"] = s.shot_steps_per_s;
+    j["sim_seconds_per_wall_second"] = s.sim_seconds_per_wall_second;
+    j["shot_count"] = s.shot_count;
+    j["shot_lost"] = s.shot_lost;
+
+    auto impacts = nlohmann::ordered_json::array();
+    for (const auto& c : s.impacts_per_component) {
+        impacts.push_back({{"component", c.name}, {"impacts", c.count}});
+    }
+    j["impacts_per_component"] = std::move(impacts);
+
+    auto speeds = nlohmann::ordered_json::array();
+    for (const auto& n : s.normal_speed) {
+        speeds.push_back({{"component", n.component},
+                          {"count", n.count},
+                          {"mean_normal_speed_mps", n.mean_m_per_s},
+                          {"p10_normal_speed_mps", n.p10_m_per_s},
+                          {"p50_normal_speed_mps", n.p50_m_per_s},
+                          {"p90_normal_speed_mps", n.p90_m_per_s},
+                          {"max_normal_speed_mps", n.max_m_per_s}});
+    }
+    j["normal_speed"] = std::move(speeds);
+
+    auto health = nlohmann::ordered_json::object();
+    for (const auto& h : s.health_counters) health[h.name] = h.count;
+    j["health_counters"] = std::move(health);
+
+    auto stages = nlohmann::ordered_json::object();
+    for (const auto& t : s.stage_times) stages[t.stage] = t.seconds;
+    j["step_stage_time_s"] = std::move(stages);
+
+    j["peak_memory_bytes"] = s.peak_memory_bytes;
+    // Paths and names are the user's bytes: replace invalid UTF-8 rather than fail the report.
+    return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + '\n';
+}
+
+void write_summary(const std::string& path, const RunSummary& summary) {
+    write_file_atomically(path, summary_to_json(summary));
+}
+
+}  // namespace peensim

@@ -1,0 +1,78 @@
+#include "output/summary_text.h"
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <utility>
+#include <vector>
+
+namespace peensim {
+namespace {
+
+std::string printf_string(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+std::string printf_string(const char* fmt, ...) {
+    char line[512];
+    va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(line, sizeof line, fmt, args);
+    va_end(args);
+    return line;
+}
+
+std::string speeds_text(const NormalSpeedStats& n) {
+    if (n.count == 0) return "no impacts";
+    return printf_string("vn mean %.3f m/s  p10 %.3f  p50 %.3f  p90 %.3f  max %.3f m/s",
+                         n.mean_m_per_s, n.p10_m_per_s, n.p50_m_per_s, n.p90_m_per_s,
+                         n.max_m_per_s);
+}
+
+std::string health_text(const std::vector<NamedCount>& counters) {
+    std::string text;
+    for (const auto& c : counters) {
+        if (c.count == 0) continue;
+        if (!text.empty()) text += ", ";
+        text += c.name + " " + std::to_string(c.count);
+    }
+    return text.empty() ? "all zero" : text;
+}
+
+}  // namespace
+
+std::string summary_to_text(const RunSummary& s) {
+    std::vector<std::pair<std::string, std::string>> rows;  // label, value
+    rows.emplace_back("simulated",
+                      printf_string("%.6g s of %.6g s (%s)", s.simulated_time_s, s.duration_s,
+                                    s.finished ? "finished" : "interrupted"));
+    rows.emplace_back("wall time", printf_string("%.3f s (%.4g simulated s per wall s)",
+                                                 s.wall_time_s, s.sim_seconds_per_wall_second));
+    rows.emplace_back("steps",
+                      printf_string("%llu (%.4g shot steps, %.4g per s)",
+                                    static_cast<unsigned long long>(s.steps),
+                                    static_cast<double>(s.shot_steps), s.shot_steps_per_s));
+    rows.emplace_back(
+        "shots", printf_string("%llu (%llu lost)", static_cast<unsigned long long>(s.shot_count),
+                               static_cast<unsigned long long>(s.shot_lost)));
+    for (const auto& c : s.impacts_per_component) {
+        std::string value = std::to_string(c.count);
+        const auto stats =
+            std::find_if(s.normal_speed.begin(), s.normal_speed.end(),
+                         [&](const NormalSpeedStats& n) { return n.component == c.name; });
+        if (stats != s.normal_speed.end() && stats->count > 0) value += "  " + speeds_text(*stats);
+        rows.emplace_back("impacts " + c.name, std::move(value));
+    }
+    rows.emplace_back("health", health_text(s.health_counters));
+    rows.emplace_back(
+        "peak memory",
+        printf_string("%.1f MiB", static_cast<double>(s.peak_memory_bytes) / (1024.0 * 1024.0)));
+
+    std::size_t width = 0;
+    for (const auto& row : rows) width = std::max(width, row.first.size());
+    std::string text = "peensim " + s.scene_file + "\n";
+    for (const auto& [label, value] : rows) {
+        text += "  " + label + std::string(width - label.size() + 2, ' ') + value + '\n';
+    }
+    return text;
+}
+
+}  // namespace peensim

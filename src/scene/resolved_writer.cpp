@@ -1,0 +1,189 @@
+#include "scene/resolved_writer.h"
+
+#include <array>
+#include <cstdio>
+#include <stdexcept>
+
+#include "common/units.h"
+#include "scene/schema.h"
+
+namespace peensim {
+namespace {
+
+// Text as a YAML scalar: plain when it cannot be misread, double-quoted otherwise.
+std::string yaml_text(const std::string& s) {
+    bool plain = !s.empty() && s.front() != '-' && s.front() != '.';
+    for (char c : s) {
+        const bool safe = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                          c == '_' || c == '-' || c == '.' || c == '/';
+        plain = plain && safe;
+    }
+    for (const char* word : {"null", "Null", "NULL", "true", "True", "TRUE", "false", "False", "FALSE"})
+        plain = plain && s != word;
+    if (plain) return s;
+    std::string out = "\"";
+    for (unsigned char c : s) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += static_cast<char>(c);
+        } else if (c < 0x20) {
+            std::array<char, 8> buf{};
+            std::snprintf(buf.data(), buf.size(), "\\x%02x", c);
+            out += buf.data();
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    return out + "\"";
+}
+
+std::string num(double v) { return format_si(v); }
+
+std::string vec(const Vec3& v) {
+    std::string out = "[";  // appended piece by piece: GCC 12 warns falsely on "literal" + string&&
+    out += num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]";
+    return out;
+}
+
+std::string unit_comment(Dimension d) { return "  # " + std::string(si_unit(d)); }
+
+std::string role_name(ComponentRole r) {
+    switch (r) {
+        case ComponentRole::sonotrode: return "sonotrode";
+        case ComponentRole::chamber: return "chamber";
+        case ComponentRole::part: return "part";
+        case ComponentRole::fixture: return "fixture";
+    }
+    return "fixture";
+}
+
+std::string mesh_unit_name(double metres_per_unit) {
+    for (std::string_view unit : split_choices(find_schema_entry("components[].mesh_unit")->choices))
+        if (parse_quantity("1 " + std::string(unit), Dimension::length) == metres_per_unit) return std::string(unit);
+    throw std::invalid_argument("resolved_scene_yaml: mesh_unit_m " + num(metres_per_unit) +
+                                " is none of the scene file's mesh units");
+}
+
+void write_header(std::string& y, const SceneDescription& s) {
+    y += "# Resolved scene: every default filled in, SI units, absolute paths.\n";
+    y += "name: " + yaml_text(s.name) + "\n";
+    y += "process:\n";
+    y += "  duration: " + num(s.process.duration_s) + unit_comment(Dimension::time) + "\n";
+    y += "  gravity: " + vec(s.process.gravity_m_per_s2) + unit_comment(Dimension::acceleration) + "\n";
+    y += "  seed: " + std::to_string(s.process.seed) + "\n";
+    y += "accuracy:\n";
+    y += "  travel_fraction: " + num(s.accuracy.travel_fraction) + "  # of the shot radius\n";
+    y += "  scheme: step\n";
+}
+
+void write_shot(std::string& y, const ShotDesc& shot) {
+    y += "shot:\n";
+    y += "  count: " + std::to_string(shot.count) + "\n";
+    y += "  diameter: " + num(shot.diameter_m) + unit_comment(Dimension::length) + "\n";
+    if (shot.material.empty())
+        y += "  density: " + num(shot.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
+    else
+        y += "  material: " + yaml_text(shot.material) + "  # density " + num(shot.density_kg_per_m3) + " kg/m3\n";
+    if (shot.initial == InitialVelocityKind::vector)
+        y += "  initial_velocity: " + vec(shot.initial_velocity_m_per_s) + unit_comment(Dimension::speed) + "\n";
+    else if (shot.initial == InitialVelocityKind::random_upward)
+        y += "  initial_speed: " + num(shot.initial_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
+    else
+        y += "  # initially at rest\n";
+}
+
+void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
+    y += s.materials.empty() ? "materials: {}\n" : "materials:\n";
+    for (const MaterialDesc& m : s.materials) {
+        if (!m.density_kg_per_m3 && !m.yield_stress_pa) {
+            y += "  " + yaml_text(m.name) + ": {}\n";
+            continue;
+        }
+        y += "  " + yaml_text(m.name) + ":\n";
+        if (m.density_kg_per_m3) y += "    density: " + num(*m.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
+        if (m.yield_stress_pa) y += "    yield_stress: " + num(*m.yield_stress_pa) + unit_comment(Dimension::stress) + "\n";
+    }
+    y += "contacts:\n";
+    for (const ContactPairDesc& c : s.contacts) {
+        y += "  " + yaml_text(c.key) + ":\n";
+        y += "    C0: " + num(c.C0) + "\n";
+        y += "    V0: " + num(c.V0_m_per_s) + unit_comment(Dimension::speed) + "\n";
+        if (c.key == "shot-shot") continue;  // mu and f do not apply between shot
+        y += "    mu: " + num(c.mu) + "\n";
+        y += "    f: " + num(c.f) + "\n";
+    }
+}
+
+std::string matrix_text(const Mat3& m) {
+    std::string out = "[";
+    for (int r = 0; r < 3; ++r)
+        out += std::string(r ? ", " : "") + "[" + num(m(r, 0)) + ", " + num(m(r, 1)) + ", " + num(m(r, 2)) + "]";
+    return out + "]";
+}
+
+void write_component(std::string& y, const ComponentDesc& k) {
+    y += "  - name: " + yaml_text(k.name) + "\n";
+    y += "    role: " + role_name(k.role) + "\n";
+    y += "    mesh: " + yaml_text(k.mesh_path) + "\n";
+    y += "    mesh_unit: " + mesh_unit_name(k.mesh_unit_m) + "  # " + num(k.mesh_unit_m) + " m per mesh unit\n";
+    y += "    translation: " + vec(k.translation_m) + unit_comment(Dimension::length) + "\n";
+    const Eigen::AngleAxisd aa(k.rotation);
+    y += "    rotation:  # " + num(aa.angle()) + " rad about " + vec(aa.axis()) + "\n";
+    y += "      matrix: " + matrix_text(k.rotation) + "\n";
+    if (!k.material.empty()) y += "    material: " + yaml_text(k.material) + "\n";
+    if (k.vibration) {
+        const VibrationDesc& v = *k.vibration;
+        y += "    vibration:\n";
+        y += "      amplitude: " + num(v.amplitude_m) + unit_comment(Dimension::length) + "\n";
+        y += "      frequency: " + num(v.frequency_hz) + unit_comment(Dimension::frequency) + "\n";
+        y += "      phase: " + num(v.phase_rad) + unit_comment(Dimension::angle) + "\n";
+        if (v.axis) y += "      axis: " + vec(*v.axis) + "\n";
+        else y += "      # axis: the sonotrode's mean face normal (found when the model is compiled)\n";
+    }
+    if (!k.rotation_motion) {
+        y += "    motion: static\n";
+        return;
+    }
+    const RotationDesc& r = *k.rotation_motion;
+    y += "    motion:\n";
+    y += "      type: rotating\n";
+    y += "      axis_point: " + vec(r.axis_point_m) + unit_comment(Dimension::length) + "\n";
+    y += "      axis_direction: " + vec(r.axis_direction) + "\n";
+    y += "      speed: " + num(r.speed_rad_per_s) + unit_comment(Dimension::angular_speed) + "\n";
+}
+
+void write_output(std::string& y, const OutputDesc& o) {
+    y += "output:\n";
+    std::string log;
+    for (const std::string& n : o.logged_components) log += (log.empty() ? "" : ", ") + yaml_text(n);
+    y += "  log: [" + log + "]\n";
+    if (!o.directory.empty()) y += "  directory: " + yaml_text(o.directory) + "\n";
+    else y += "  # directory: given on the command line\n";
+    y += "  checkpoint_interval: " + num(o.checkpoint_interval_s) + unit_comment(Dimension::time) + "\n";
+}
+
+}  // namespace
+
+std::string resolved_scene_yaml(const SceneDescription& s) {
+    std::string y;
+    write_header(y, s);
+    write_shot(y, s.shot);
+    write_materials_and_contacts(y, s);
+    y += "components:\n";
+    for (const ComponentDesc& k : s.components) write_component(y, k);
+    write_output(y, s.output);
+    return y;
+}
+
+std::uint64_t scene_hash(const SceneDescription& s) {
+    constexpr std::uint64_t fnv_offset_basis = 14695981039346656037ull;
+    constexpr std::uint64_t fnv_prime = 1099511628211ull;
+    std::uint64_t h = fnv_offset_basis;
+    for (unsigned char c : resolved_scene_yaml(s)) {
+        h ^= c;
+        h *= fnv_prime;
+    }
+    return h;
+}
+
+}  // namespace peensim

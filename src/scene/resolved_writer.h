@@ -1,0 +1,18 @@
+// The resolved scene: a SceneDescription written back as a scene file with every default filled
+// in, SI numbers (unit in a trailing comment), absolute mesh paths and rotations as matrices.
+// Parsing it again gives the same description, bit for bit; its hash identifies a run's input.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "scene/scene_description.h"
+
+namespace peensim {
+
+std::string resolved_scene_yaml(const SceneDescription& scene);
+
+// FNV-1a 64 of resolved_scene_yaml(scene): equal for scenes that differ only in how they were written.
+std::uint64_t scene_hash(const SceneDescription& scene);
+
+}  // namespace peensim

@@ -1,0 +1,112 @@
+// A scene file parsed into plain values: every quantity in SI, every default filled in,
+// every field remembering where it came from (for error messages at compile time).
+// This is the *description*; model/compile turns it into the immutable model the engine runs.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/input_error.h"
+#include "common/vec.h"
+
+namespace peensim {
+
+enum class ComponentRole { sonotrode, chamber, part, fixture };
+
+// Sinusoidal translation of a component along an axis: d(t) = A sin(2 pi F t + phase).
+struct VibrationDesc {
+    std::optional<Vec3> axis;  // unit vector, world frame; empty = the sonotrode's mean face normal
+    double amplitude_m = 0.0;  // m, A0
+    double frequency_hz = 0.0; // Hz, F
+    double phase_rad = 0.0;    // rad
+    SourceLocation where;
+};
+
+// Constant-speed rotation of a component about a fixed world axis.
+struct RotationDesc {
+    Vec3 axis_point_m = Vec3::Zero();        // m, a point on the axis (world frame)
+    Vec3 axis_direction = Vec3::UnitZ();     // unit vector (world frame), right-hand rule
+    double speed_rad_per_s = 0.0;            // rad/s, omega (signed)
+    SourceLocation where;
+};
+
+struct ComponentDesc {
+    std::string name;
+    ComponentRole role = ComponentRole::fixture;
+    std::string mesh_path;            // absolute or relative to the working directory (resolved by the parser)
+    double mesh_unit_m = 1.0;         // m per mesh-file length unit (mm -> 1e-3)
+    Vec3 translation_m = Vec3::Zero();// m, placement of the component frame in the world
+    Mat3 rotation = Mat3::Identity(); // component frame -> world (applied before translation)
+    std::string material;             // key into SceneDescription::materials
+    std::optional<VibrationDesc> vibration;  // only for role sonotrode (required there)
+    std::optional<RotationDesc> rotation_motion;  // only for role part; empty = static
+    SourceLocation where;             // the component's entry in the file
+};
+
+struct MaterialDesc {
+    std::string name;
+    std::optional<double> density_kg_per_m3;  // kg/m3
+    std::optional<double> yield_stress_pa;    // Pa (used by the impact analysis, eq. 10)
+    SourceLocation where;
+};
+
+// Coefficients of one contact pair (shot-shot, or shot against one material), reference eq. 2-5.
+struct ContactPairDesc {
+    std::string key;           // "shot-shot", "shot-<material>" or "default"
+    double C0 = 0.9;           // -, normal restitution in the elastic regime
+    double V0_m_per_s = 0.5;   // m/s, onset of the plastic regime
+    double mu = 0.71;          // -, tangential restitution (not used for shot-shot)
+    double f = 0.1;            // -, Coulomb friction in sustained contact (not used for shot-shot)
+    SourceLocation where;
+};
+
+enum class InitialVelocityKind { rest, vector, random_upward };
+
+struct ShotDesc {
+    int count = 0;
+    double diameter_m = 0.0;           // m, D
+    double density_kg_per_m3 = 0.0;    // kg/m3 (from `density`, or from `material`)
+    std::string material;              // optional material name ("" if density given directly)
+    InitialVelocityKind initial = InitialVelocityKind::rest;
+    Vec3 initial_velocity_m_per_s = Vec3::Zero();  // m/s, for `vector`
+    double initial_speed_m_per_s = 0.0;            // m/s, for `random_upward` (uniform on the upper hemisphere around the sonotrode axis)
+    SourceLocation where;
+};
+
+struct ProcessDesc {
+    double duration_s = 0.0;                  // s
+    Vec3 gravity_m_per_s2 = Vec3(0, 0, -9.81);  // m/s2
+    std::uint64_t seed = 1;
+    SourceLocation where;
+};
+
+enum class SteppingScheme { step };  // `event` arrives with the event-driven issue
+
+struct AccuracyDesc {
+    double travel_fraction = 0.25;  // -, max travel per step / shot radius (eq. 7 uses 0.25)
+    SteppingScheme scheme = SteppingScheme::step;
+    SourceLocation where;
+};
+
+struct OutputDesc {
+    std::vector<std::string> logged_components;  // names; default: every component with role part
+    std::string directory;                       // "" = given on the command line
+    double checkpoint_interval_s = 60.0;         // s of wall time between checkpoints (resume)
+    SourceLocation where;
+};
+
+struct SceneDescription {
+    std::string source_file;   // the scene file as given
+    std::string name;          // free text, for reports
+    ProcessDesc process;
+    AccuracyDesc accuracy;
+    ShotDesc shot;
+    std::vector<MaterialDesc> materials;
+    std::vector<ContactPairDesc> contacts;   // includes a "default" entry (given or built in)
+    std::vector<ComponentDesc> components;
+    OutputDesc output;
+};
+
+}  // namespace peensim

@@ -1,0 +1,70 @@
+#include "scene/scene_parser.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scene/overrides.h"
+#include "scene/schema_validation.h"
+#include "scene/scene_sections.h"
+
+namespace peensim {
+namespace {
+
+YAML::Node load_yaml(const std::string& text, const std::string& file) {
+    try {
+        return YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+        const int line = e.mark.line >= 0 ? e.mark.line + 1 : 0;
+        const int column = e.mark.column >= 0 ? e.mark.column + 1 : 0;
+        throw InputError(SourceLocation{file, line, column}, "", "invalid YAML: " + e.msg);
+    }
+}
+
+SceneDescription build(const Cursor& root, const std::filesystem::path& scene_dir) {
+    SceneDescription d;
+    d.name = read_text(root.child("name"));
+    d.process = read_process(root.child("process"));
+    d.accuracy = read_accuracy(root.child("accuracy"));
+    d.materials = read_materials(root.child("materials"));
+    d.shot = read_shot(root.child("shot"), d.materials);
+    d.contacts = read_contacts(root.child("contacts"), d.materials);
+    d.components = read_components(root.child("components"), scene_dir, d.materials);
+    d.output = read_output(root.child("output"), d.components);
+    return d;
+}
+
+}  // namespace
+
+SceneDescription parse_scene_text(const std::string& yaml_text, const std::string& virtual_path,
+                                  const std::vector<std::string>& overrides) {
+    SceneContext context;
+    context.file = virtual_path;
+    YAML::Node root = load_yaml(yaml_text, virtual_path);
+    try {
+        apply_overrides(root, overrides, context);
+        const Cursor top = root_cursor(context, root);
+        check_structure(top);
+        const std::filesystem::path scene_dir = std::filesystem::absolute(virtual_path).parent_path();
+        SceneDescription d = build(top, scene_dir);
+        d.source_file = virtual_path;
+        return d;
+    } catch (const YAML::Exception& e) {
+        // The checks above should leave yaml-cpp nothing to throw; never let it escape as a crash.
+        const int line = e.mark.line >= 0 ? e.mark.line + 1 : 0;
+        throw InputError(SourceLocation{virtual_path, line, 0}, "", "unexpected YAML problem: " + e.msg);
+    }
+}
+
+SceneDescription parse_scene_file(const std::string& path, const std::vector<std::string>& overrides) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw InputError(SourceLocation{path, 0, 0}, "", "cannot read the scene file: it does not exist or is not a regular file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(SourceLocation{path, 0, 0}, "", "cannot read the scene file: it cannot be opened");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_scene_text(text.str(), path, overrides);
+}
+
+}  // namespace peensim

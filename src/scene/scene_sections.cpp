@@ -1,0 +1,90 @@
+// The small sections: process, accuracy, shot, output.
+#include "scene/scene_sections.h"
+
+#include <algorithm>
+
+namespace peensim {
+
+ProcessDesc read_process(const Cursor& c) {
+    ProcessDesc d;
+    d.duration_s = read_quantity(c.child("duration"));
+    d.gravity_m_per_s2 = read_vector(c.child("gravity"));
+    d.seed = static_cast<std::uint64_t>(read_integer(c.child("seed")));
+    d.where = location_of(c);
+    return d;
+}
+
+AccuracyDesc read_accuracy(const Cursor& c) {
+    AccuracyDesc d;
+    d.travel_fraction = read_quantity(c.child("travel_fraction"));
+    const std::string scheme = read_choice(c.child("scheme"));
+    if (scheme == "step") d.scheme = SteppingScheme::step;
+    d.where = location_of(c);
+    return d;
+}
+
+ShotDesc read_shot(const Cursor& c, const std::vector<MaterialDesc>& materials) {
+    ShotDesc d;
+    d.count = static_cast<int>(read_integer(c.child("count")));
+    d.diameter_m = read_quantity(c.child("diameter"));
+
+    const Cursor density = c.child("density");
+    const Cursor material = c.child("material");
+    if (density.present() && material.present())
+        fail(material, "give either shot.density or shot.material, not both");
+    if (density.present()) {
+        d.density_kg_per_m3 = read_quantity(density);
+    } else if (material.present()) {
+        d.material = read_text(material);
+        const MaterialDesc* m = find_material(materials, d.material);
+        if (m == nullptr)
+            fail(material, "unknown material '" + d.material + "'; expected one of the materials: " +
+                               material_names(materials));
+        if (!m->density_kg_per_m3)
+            fail(material, "material '" + d.material + "' has no density; add materials." + d.material +
+                               ".density or give shot.density");
+        d.density_kg_per_m3 = *m->density_kg_per_m3;
+    } else {
+        fail(density, "missing required key 'density' or 'material' (the shot needs a density)");
+    }
+
+    const Cursor velocity = c.child("initial_velocity");
+    const Cursor speed = c.child("initial_speed");
+    if (velocity.present() && speed.present())
+        fail(speed, "give either shot.initial_velocity or shot.initial_speed, not both");
+    if (velocity.present()) {
+        d.initial = InitialVelocityKind::vector;
+        d.initial_velocity_m_per_s = read_vector(velocity);
+    } else if (speed.present()) {
+        d.initial = InitialVelocityKind::random_upward;
+        d.initial_speed_m_per_s = read_quantity(speed);
+    }
+    d.where = location_of(c);
+    return d;
+}
+
+OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& components) {
+    OutputDesc d;
+    const Cursor log = c.child("log");
+    if (log.present()) {
+        d.logged_components = read_names(log);
+        for (const std::string& name : d.logged_components) {
+            const bool known = std::any_of(components.begin(), components.end(),
+                                           [&](const ComponentDesc& k) { return k.name == name; });
+            if (!known) {
+                std::string names;
+                for (const ComponentDesc& k : components) names += (names.empty() ? "" : ", ") + k.name;
+                fail(log, "unknown component '" + name + "'; expected names of components: " + names);
+            }
+        }
+    } else {
+        for (const ComponentDesc& k : components)
+            if (k.role == ComponentRole::part) d.logged_components.push_back(k.name);
+    }
+    d.directory = read_text(c.child("directory"));
+    d.checkpoint_interval_s = read_quantity(c.child("checkpoint_interval"));
+    d.where = location_of(c);
+    return d;
+}
+
+}  // namespace peensim

@@ -1,0 +1,30 @@
+// Readers of the scene file's sections (internal to src/scene). Each takes the cursor of its
+// section in a tree that has passed check_structure, reads through the schema-driven reads of
+// yaml_access.h, and checks what the schema alone cannot (either-or keys, roles, references).
+#pragma once
+
+#include <filesystem>
+
+#include "scene/scene_description.h"
+#include "scene/yaml_access.h"
+
+namespace peensim {
+
+ProcessDesc read_process(const Cursor& process);
+AccuracyDesc read_accuracy(const Cursor& accuracy);
+std::vector<MaterialDesc> read_materials(const Cursor& materials);
+// Needs the materials (the shot may name one for its density).
+ShotDesc read_shot(const Cursor& shot, const std::vector<MaterialDesc>& materials);
+// Needs the materials ("shot-<material>" keys must name one). Ends with a "default" entry.
+std::vector<ContactPairDesc> read_contacts(const Cursor& contacts, const std::vector<MaterialDesc>& materials);
+// Mesh paths are resolved against `scene_dir`; roles, names and material references are checked.
+std::vector<ComponentDesc> read_components(const Cursor& components, const std::filesystem::path& scene_dir,
+                                           const std::vector<MaterialDesc>& materials);
+// Needs the components (the logged names must be components; the default logs every part).
+OutputDesc read_output(const Cursor& output, const std::vector<ComponentDesc>& components);
+
+// "a, b, c" of the materials' names, for messages.
+std::string material_names(const std::vector<MaterialDesc>& materials);
+const MaterialDesc* find_material(const std::vector<MaterialDesc>& materials, const std::string& name);
+
+}  // namespace peensim

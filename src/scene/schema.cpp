@@ -1,0 +1,293 @@
+#include "scene/schema.h"
+
+#include <array>
+
+namespace peensim {
+namespace {
+
+constexpr Range above(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), true, false}; }
+constexpr Range at_least(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), false, false}; }
+constexpr Range open_closed(double lo, double hi) { return Range{lo, hi, true, false}; }
+constexpr Range closed(double lo, double hi) { return Range{lo, hi, false, false}; }
+
+using K = ValueKind;
+using D = Dimension;
+
+// The scene file format. Sanity limits (shot diameter <= 20 mm, count <= 1e8) catch unit slips
+// such as "2" (metres) for "2 mm"; they are not physical limits of the model.
+const std::array schema_table{
+    SchemaEntry{"", K::map, D::dimensionless, false, "", "", {}, "", "", "", "A scene file."},
+    SchemaEntry{"name", K::text, D::dimensionless, false, "", "empty", {}, "", "", "",
+                "Free text naming the scene in reports."},
+
+    SchemaEntry{"process", K::map, D::dimensionless, true, "", "", {}, "", "", "",
+                "Process parameters."},
+    SchemaEntry{"process.duration", K::quantity, D::time, true, "", "", above(0), "", "", "",
+                "Simulated process time."},
+    SchemaEntry{"process.gravity", K::vector3, D::acceleration, false, "[0, 0, -9.81]", "", {}, "", "", "",
+                "Gravity vector, world frame."},
+    SchemaEntry{"process.seed", K::integer, D::dimensionless, false, "1", "",
+                at_least(0), "", "", "",
+                "Seed of the random numbers (shot placement, initial directions)."},
+
+    SchemaEntry{"accuracy", K::map, D::dimensionless, false, "", "", {}, "", "", "",
+                "Speed/accuracy settings."},
+    SchemaEntry{"accuracy.travel_fraction", K::quantity, D::dimensionless, false, "0.25", "",
+                open_closed(0, 1), "", "", "",
+                "Largest travel of anything in one step, as a fraction of the shot radius (eq. 7 uses 0.25)."},
+    SchemaEntry{"accuracy.scheme", K::choice, D::dimensionless, false, "step", "", {}, "step", "event", "",
+                "Time stepping scheme: `step` (fixed travel per step). `event` is not available yet."},
+
+    SchemaEntry{"shot", K::map, D::dimensionless, true, "", "", {}, "", "", "", "The shot (all of one size)."},
+    SchemaEntry{"shot.count", K::integer, D::dimensionless, true, "", "", closed(1, 1e8), "", "", "",
+                "Number of shot."},
+    SchemaEntry{"shot.diameter", K::quantity, D::length, true, "", "", open_closed(0, 0.02), "", "", "",
+                "Shot diameter D."},
+    SchemaEntry{"shot.density", K::quantity, D::density, false, "", "from `material`", above(0), "", "", "",
+                "Shot density; give either `density` or `material`, not both."},
+    SchemaEntry{"shot.material", K::text, D::dimensionless, false, "", "none", {}, "", "", "",
+                "A key of `materials` that defines `density`; instead of `density`."},
+    SchemaEntry{"shot.initial_velocity", K::vector3, D::speed, false, "", "at rest", {}, "", "", "",
+                "Initial velocity of every shot (world frame); not with `initial_speed`."},
+    SchemaEntry{"shot.initial_speed", K::quantity, D::speed, false, "", "at rest", at_least(0), "", "", "",
+                "Initial speed in random directions on the upper hemisphere around the sonotrode axis; "
+                "not with `initial_velocity`."},
+
+    SchemaEntry{"materials", K::named_map, D::dimensionless, false, "", "none", {}, "", "", "",
+                "Materials by name (`[A-Za-z0-9_-]+`)."},
+    SchemaEntry{"materials.*", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One material."},
+    SchemaEntry{"materials.*.density", K::quantity, D::density, false, "", "none", above(0), "", "", "",
+                "Density (needed if the shot names this material)."},
+    SchemaEntry{"materials.*.yield_stress", K::quantity, D::stress, false, "", "none", above(0), "", "", "",
+                "Yield stress, for dent diameters (eq. 10)."},
+
+    SchemaEntry{"contacts", K::named_map, D::dimensionless, false, "", "built-in `default`", {}, "", "", "",
+                "Contact coefficients by pair: `shot-shot`, `shot-<material>` or `default` (every pair not "
+                "listed)."},
+    SchemaEntry{"contacts.*", K::map, D::dimensionless, false, "", "", {}, "", "", "",
+                "One pair; a coefficient left out takes the value of the `default` pair."},
+    SchemaEntry{"contacts.*.C0", K::quantity, D::dimensionless, false, "0.9", "", open_closed(0, 1), "", "", "",
+                "Normal restitution in the elastic regime (eq. 2)."},
+    SchemaEntry{"contacts.*.V0", K::quantity, D::speed, false, "0.5", "", above(0), "", "", "",
+                "Impact speed where the plastic regime starts (eq. 2)."},
+    SchemaEntry{"contacts.*.mu", K::quantity, D::dimensionless, false, "0.71", "", closed(0, 1), "", "", "",
+                "Tangential restitution (eq. 4, 5); not for `shot-shot`."},
+    SchemaEntry{"contacts.*.f", K::quantity, D::dimensionless, false, "0.1", "", at_least(0), "", "", "",
+                "Coulomb friction in sustained contact; not for `shot-shot`."},
+
+    SchemaEntry{"components", K::list, D::dimensionless, true, "", "", {}, "", "", "",
+                "The meshes: exactly one `sonotrode`, at least one `chamber`."},
+    SchemaEntry{"components[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One component."},
+    SchemaEntry{"components[].name", K::text, D::dimensionless, true, "", "", {}, "", "", "",
+                "Unique name (`[A-Za-z0-9_-]+`)."},
+    SchemaEntry{"components[].role", K::choice, D::dimensionless, true, "", "", {},
+                "sonotrode|chamber|part|fixture", "", "", "What the component does."},
+    SchemaEntry{"components[].mesh", K::text, D::dimensionless, true, "", "", {}, "", "", "",
+                "Mesh file (STL, OBJ, ...), relative to the scene file's directory."},
+    SchemaEntry{"components[].mesh_unit", K::choice, D::dimensionless, false, "m", "", {}, "m|cm|mm|um|in", "",
+                "", "Length unit of the mesh file's coordinates."},
+    SchemaEntry{"components[].translation", K::vector3, D::length, false, "[0, 0, 0]", "", {}, "", "", "",
+                "Position of the component frame in the world; `[x, y, z]`, `\"x y z unit\"` (one unit for all) "
+                "or `\"x unit y unit z unit\"`."},
+    SchemaEntry{"components[].rotation", K::map, D::dimensionless, false, "", "identity", {}, "", "", "",
+                "Orientation (applied before the translation): `{axis, angle}`, `{euler_xyz}` or `{matrix}`."},
+    SchemaEntry{"components[].rotation.axis", K::vector3, D::dimensionless, false, "", "", {}, "", "", "",
+                "Rotation axis (normalised; not zero), with `angle`."},
+    SchemaEntry{"components[].rotation.angle", K::quantity, D::angle, false, "", "", {}, "", "", "",
+                "Rotation angle about `axis` (right-hand rule)."},
+    SchemaEntry{"components[].rotation.euler_xyz", K::vector3, D::angle, false, "", "", {}, "", "", "deg",
+                "Intrinsic rotations about X, then the new Y, then the newest Z (R = Rx Ry Rz); plain numbers "
+                "are degrees."},
+    SchemaEntry{"components[].rotation.matrix", K::matrix3, D::dimensionless, false, "", "", {}, "", "", "",
+                "Rotation matrix (rows; component frame -> world), orthonormal with determinant +1."},
+    SchemaEntry{"components[].material", K::text, D::dimensionless, false, "", "none (`default` contact)", {},
+                "", "", "", "A key of `materials`; selects the `shot-<material>` contact pair."},
+    SchemaEntry{"components[].vibration", K::map, D::dimensionless, false, "", "", {}, "", "", "",
+                "Sinusoidal vibration A sin(2 pi F t + phase); required for the sonotrode, forbidden for "
+                "others."},
+    SchemaEntry{"components[].vibration.amplitude", K::quantity, D::length, true, "", "", at_least(0), "", "",
+                "", "Amplitude A0."},
+    SchemaEntry{"components[].vibration.frequency", K::quantity, D::frequency, true, "", "", at_least(0), "",
+                "", "", "Frequency F (> 0 when the amplitude is > 0)."},
+    SchemaEntry{"components[].vibration.phase", K::quantity, D::angle, false, "0", "", {}, "", "", "",
+                "Phase at t = 0."},
+    SchemaEntry{"components[].vibration.axis", K::vector3, D::dimensionless, false, "",
+                "mean face normal", {}, "", "", "", "Direction of vibration (normalised; not zero)."},
+    SchemaEntry{"components[].motion", K::map, D::dimensionless, false, "", "static", {}, "static", "", "",
+                "`static`, or a rotation at constant speed; only for role `part`."},
+    SchemaEntry{"components[].motion.type", K::choice, D::dimensionless, true, "", "", {}, "static|rotating",
+                "", "", "Kind of motion."},
+    SchemaEntry{"components[].motion.axis_point", K::vector3, D::length, false, "[0, 0, 0]", "", {}, "", "",
+                "", "A point on the rotation axis (world frame)."},
+    SchemaEntry{"components[].motion.axis_direction", K::vector3, D::dimensionless, false, "",
+                "required if rotating", {}, "", "", "", "Axis direction (normalised; not zero), right-hand rule."},
+    SchemaEntry{"components[].motion.speed", K::quantity, D::angular_speed, false, "", "required if rotating",
+                {}, "", "", "", "Angular speed (signed)."},
+
+    SchemaEntry{"output", K::map, D::dimensionless, false, "", "", {}, "", "", "", "What to write."},
+    SchemaEntry{"output.log", K::name_list, D::dimensionless, false, "", "every component with role `part`",
+                {}, "", "", "", "Components whose impacts are logged."},
+    SchemaEntry{"output.directory", K::text, D::dimensionless, false, "", "from the command line", {}, "",
+                "", "", "Output directory, relative to the working directory."},
+    SchemaEntry{"output.checkpoint_interval", K::quantity, D::time, false, "60", "", above(0), "", "", "",
+                "Wall-clock time between resume checkpoints."},
+};
+
+std::string number_text(double v) {
+    if (v == std::numeric_limits<double>::infinity()) return "inf";
+    if (v == -std::numeric_limits<double>::infinity()) return "-inf";
+    return format_si(v);
+}
+
+std::string_view kind_name(const SchemaEntry& e) {
+    switch (e.kind) {
+        case K::map: return e.choices.empty() ? "map" : "map or word";
+        case K::named_map: return "map of names";
+        case K::list: return "list";
+        case K::quantity: return "number";
+        case K::integer: return "integer";
+        case K::vector3: return "vector";
+        case K::matrix3: return "3x3 matrix";
+        case K::text: return "text";
+        case K::choice: return "word";
+        case K::name_list: return "list of names";
+    }
+    return "";
+}
+
+std::string markdown_cell(std::string_view text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '|') out += "\\|";
+        else out += c;
+    }
+    return out;
+}
+
+}  // namespace
+
+bool Range::contains(double v) const {
+    if (lo_open ? !(v > lo) : !(v >= lo)) return false;
+    if (hi_open ? !(v < hi) : !(v <= hi)) return false;
+    return true;
+}
+
+std::string Range::text() const {
+    const bool has_lo = lo != -std::numeric_limits<double>::infinity();
+    const bool has_hi = hi != std::numeric_limits<double>::infinity();
+    if (has_lo && has_hi)
+        return std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + (hi_open ? ")" : "]");
+    if (has_lo) return std::string(lo_open ? "> " : ">= ") + number_text(lo);
+    if (has_hi) return std::string(hi_open ? "< " : "<= ") + number_text(hi);
+    return "";
+}
+
+std::span<const SchemaEntry> scene_schema() { return schema_table; }
+
+const SchemaEntry* find_schema_entry(std::string_view path) {
+    for (const SchemaEntry& e : schema_table)
+        if (e.path == path) return &e;
+    return nullptr;
+}
+
+std::string schema_child_path(std::string_view parent, std::string_view key) {
+    if (parent.empty()) return std::string(key);
+    return std::string(parent) + "." + std::string(key);
+}
+
+std::vector<std::string_view> schema_child_keys(std::string_view map_path) {
+    std::vector<std::string_view> keys;
+    const std::string prefix = map_path.empty() ? std::string() : std::string(map_path) + ".";
+    for (const SchemaEntry& e : schema_table) {
+        if (e.path.empty() || e.path.size() <= prefix.size() || e.path.substr(0, prefix.size()) != prefix) continue;
+        const std::string_view rest = e.path.substr(prefix.size());
+        if (rest.find_first_of(".[*") == std::string_view::npos) keys.push_back(rest);
+    }
+    return keys;
+}
+
+bool is_valid_name(std::string_view name) {
+    if (name.empty()) return false;
+    for (char c : name) {
+        const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                        c == '_' || c == '-';
+        if (!ok) return false;
+    }
+    return true;
+}
+
+std::vector<std::string_view> split_choices(std::string_view choices) {
+    std::vector<std::string_view> out;
+    while (!choices.empty()) {
+        const std::size_t bar = choices.find('|');
+        out.push_back(choices.substr(0, bar));
+        if (bar == std::string_view::npos) break;
+        choices.remove_prefix(bar + 1);
+    }
+    return out;
+}
+
+std::string join_names(const std::vector<std::string_view>& names) {
+    std::string out;
+    for (std::string_view n : names) {
+        if (!out.empty()) out += ", ";
+        out += n;
+    }
+    return out;
+}
+
+std::string expected_text(const SchemaEntry& e) {
+    switch (e.kind) {
+        case K::map: {
+            std::string s = "a map with keys " + join_names(schema_child_keys(e.path));
+            if (!e.choices.empty()) s = std::string("'").append(e.choices).append("' or ").append(s);
+            return s;
+        }
+        case K::named_map: return "a map of names to entries";
+        case K::list: return "a list";
+        case K::quantity: return std::string(dimension_noun(e.dimension));
+        case K::integer: return "a whole number";
+        case K::vector3:
+            return "a vector of 3 numbers (" + std::string(si_unit(e.dimension)) + "), as [x, y, z] or \"x y z unit\"";
+        case K::matrix3: return "a 3x3 matrix [[a, b, c], [d, e, f], [g, h, i]]";
+        case K::text: return "a text";
+        case K::choice: return "one of " + join_names(split_choices(e.choices));
+        case K::name_list: return "a list of names, e.g. [a, b]";
+    }
+    return "a value";
+}
+
+std::string scene_reference_markdown() {
+    std::string md;
+    md += "# Scene file reference\n\n";
+    md += "Scene files are YAML. Quantities are plain numbers in SI units or text with a unit (\"2 mm\", "
+          "\"20 kHz\", \"60 rpm\"). `[]` stands for each item of a list, `*` for a name you choose. "
+          "Any value can be replaced from the command line with `--set path=value` "
+          "(e.g. `--set shot.diameter=\"1 mm\"`, `--set components[gear].motion.speed=\"60 rpm\"`).\n\n";
+    md += "| Key | Type | Unit (SI) | Default | Range | Description |\n";
+    md += "|---|---|---|---|---|---|\n";
+    for (const SchemaEntry& e : schema_table) {
+        if (e.path.empty()) continue;
+        const bool has_unit = e.kind == K::quantity || e.kind == K::vector3;
+        const std::string unit = has_unit ? std::string(si_unit(e.dimension)) : std::string();
+        std::string deflt;
+        if (e.required) deflt = "required";
+        else if (!e.default_value.empty()) deflt = "`" + std::string(e.default_value) + "`";
+        else deflt = std::string(e.default_note);
+        std::string range = e.range.text();
+        if (e.kind == K::choice) range = join_names(split_choices(e.choices));
+        if (!e.plain_number_unit.empty()) range += (range.empty() ? "" : "; ") + std::string("plain numbers in ") +
+                                                   std::string(e.plain_number_unit);
+        md += "| `" + std::string(e.path) + "` | " + std::string(kind_name(e)) + " | " + markdown_cell(unit) +
+              " | " + markdown_cell(deflt) + " | " + markdown_cell(range) + " | " + markdown_cell(e.doc) + " |\n";
+    }
+    md += "\n## Units\n\n| Quantity | Accepted units (first is SI) |\n|---|---|\n";
+    for (Dimension d : {D::length, D::time, D::frequency, D::speed, D::acceleration, D::density, D::stress,
+                        D::angle, D::angular_speed}) {
+        md += "| " + std::string(dimension_noun(d).substr(dimension_noun(d).find(' ') + 1)) + " | " +
+              markdown_cell(accepted_units_text(d)) + " |\n";
+    }
+    return md;
+}
+
+}  // namespace peensim

@@ -1,0 +1,113 @@
+// The catalogue of bad scene files (tests/scenes_bad/*.yaml): each one is refused with a message
+// that names the file, the line, the field and what was expected. Never a crash.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "common/input_error.h"
+#include "scene/scene_parser.h"
+
+namespace peensim {
+namespace {
+
+const std::string bad_dir = std::string(PEENSIM_SOURCE_DIR) + "/tests/scenes_bad";
+
+struct BadScene {
+    const char* file;
+    int line;             // 1-based line the message must point at
+    const char* field;    // "" when no field applies (YAML syntax)
+    const char* expected; // a phrase of what was expected
+};
+
+const BadScene catalogue[] = {
+    {"unknown_key.yaml", 3, "shot.densty", "unknown key 'densty' in shot; valid keys: count, diameter, density"},
+    {"negative_diameter.yaml", 3, "shot.diameter", "expected a length in (0, 0.02] m, got '-2 mm'"},
+    {"unit_typo.yaml", 3, "shot.diameter", "unknown unit 'mmm'"},
+    {"wrong_dimension.yaml", 11, "components[0].vibration.amplitude", "'kHz' is a unit of frequency, but a length"},
+    {"missing_mesh.yaml", 14, "components[1].mesh", "mesh file not found"},
+    {"unknown_material.yaml", 10, "components[0].material", "unknown material 'unobtainium'; expected one of"},
+    {"two_sonotrodes.yaml", 16, "components[2].role", "expected exactly one sonotrode"},
+    {"missing_required.yaml", 2, "process.duration", "missing required key 'duration'"},
+    {"wrong_type.yaml", 16, "output.log", "expected a list of names"},
+    {"bad_syntax.yaml", 2, "", "invalid YAML"},
+    {"duplicate_component.yaml", 15, "components[2].name", "duplicate component name 'chamber'"},
+    {"no_chamber.yaml", 6, "components", "expected at least one chamber"},
+    {"vibration_on_chamber.yaml", 15, "components[1].vibration", "vibration is only for the sonotrode"},
+    {"shot_shot_friction.yaml", 16, "contacts.shot-shot.f", "expected only C0 and V0"},
+    {"contact_unknown_material.yaml", 16, "contacts.shot-steel", "unknown contact pair 'shot-steel'"},
+    {"zero_axis.yaml", 11, "components[0].vibration.axis", "expected a direction, got the zero vector"},
+    {"event_scheme.yaml", 15, "accuracy.scheme", "'event' is not available yet"},
+    {"density_and_material.yaml", 3, "shot.material", "either shot.density or shot.material, not both"},
+    {"rpm_for_part_not_rotating.yaml", 18, "components[2].motion", "a rotating motion is only for role part"},
+    {"count_not_integer.yaml", 3, "shot.count", "expected a whole number"},
+};
+
+class SceneBadFiles : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(SceneBadFiles, IsRefusedWithFileLineFieldAndExpectation) {
+    const BadScene& bad = GetParam();
+    const std::string path = bad_dir + "/" + bad.file;
+    try {
+        parse_scene_file(path);
+        FAIL() << bad.file << " was accepted";
+    } catch (const InputError& e) {
+        const std::string msg = e.what();
+        EXPECT_EQ(e.where().file, path) << msg;
+        EXPECT_EQ(e.where().line, bad.line) << msg;
+        EXPECT_GT(e.where().column, 0) << msg;
+        EXPECT_NE(msg.find(std::string(bad.file) + ":" + std::to_string(bad.line) + ":"), std::string::npos) << msg;
+        EXPECT_EQ(e.field(), bad.field) << msg;
+        if (*bad.field != '\0') {
+            EXPECT_NE(msg.find(std::string(": ") + bad.field + ": "), std::string::npos) << msg;
+        }
+        EXPECT_NE(msg.find(bad.expected), std::string::npos) << msg;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, SceneBadFiles, ::testing::ValuesIn(catalogue),
+                         [](const ::testing::TestParamInfo<BadScene>& info) {
+                             std::string name = info.param.file;
+                             name = name.substr(0, name.find('.'));
+                             for (char& c : name)
+                                 if (c == '-') c = '_';
+                             return name;
+                         });
+
+// Each bad file is the same small scene with one thing broken; the unbroken scene parses.
+TEST(SceneBadFilesCatalogue, TheUnbrokenSceneParses) {
+    const std::string text = R"(# The scene every bad file breaks in one place.
+process: {duration: 1 s}
+shot: {count: 10, diameter: 2 mm, density: 7.8 g/cm3}
+materials:
+  titanium: {density: 4.5 g/cm3}
+components:
+  - name: sonotrode
+    role: sonotrode
+    mesh: tetrahedron.stl
+    material: titanium
+    vibration: {amplitude: 25 um, frequency: 20 kHz}
+  - name: chamber
+    role: chamber
+    mesh: tetrahedron.stl
+)";
+    const SceneDescription s = parse_scene_text(text, bad_dir + "/unbroken.yaml");
+    EXPECT_EQ(s.shot.diameter_m, 0.002);
+    EXPECT_EQ(s.components.size(), 2u);
+}
+
+TEST(SceneBadFilesCatalogue, EveryFileInTheFolderIsInTheCatalogue) {
+    std::set<std::string> listed;
+    for (const BadScene& bad : catalogue) listed.insert(bad.file);
+    for (const auto& entry : std::filesystem::directory_iterator(bad_dir)) {
+        if (entry.path().extension() != ".yaml") continue;
+        EXPECT_TRUE(listed.count(entry.path().filename().string())) << entry.path() << " is not checked";
+    }
+    EXPECT_EQ(listed.size(), std::size(catalogue));
+}
+
+}  // namespace
+}  // namespace peensim

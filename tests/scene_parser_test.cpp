@@ -1,0 +1,417 @@
+// Scene files -> SceneDescription: SI values, defaults, --set overrides, the resolved scene.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "common/input_error.h"
+#include "scene/resolved_writer.h"
+#include "scene/scene_parser.h"
+
+namespace peensim {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// Scenes given as text are placed in tests/scenes_bad/, next to its small tetrahedron mesh.
+const std::string scene_dir = std::string(PEENSIM_SOURCE_DIR) + "/tests/scenes_bad";
+const std::string virtual_path = scene_dir + "/inline.yaml";
+
+const char* const full_scene = R"(
+name: gear case study
+process:   {duration: 5 s, gravity: [0, 0, -9.81], seed: 3}
+accuracy:  {travel_fraction: 0.2, scheme: step}
+shot:
+  count: 512
+  diameter: 2 mm
+  material: steel
+  initial_speed: 2 m/s
+materials:
+  steel: {density: 7.8 g/cm3}
+  titanium: {density: 4.5 g/cm3, yield_stress: 1.1 GPa}
+  aluminium-2000: {yield_stress: 300 MPa}
+contacts:
+  shot-shot: {C0: 0.95, V0: 2 m/s}
+  shot-titanium: {C0: 0.8, V0: 1.5 m/s, mu: 0.9, f: 0.2}
+  default: {C0: 0.85, V0: 0.4 m/s, mu: 0.7, f: 0.15}
+components:
+  - name: sonotrode
+    role: sonotrode
+    mesh: tetrahedron.stl
+    mesh_unit: mm
+    translation: [0, 0, -5 mm]
+    rotation: {axis: [1, 0, 0], angle: 90 deg}
+    material: titanium
+    vibration: {amplitude: 25 um, frequency: 20 kHz, phase: 90 deg, axis: [0, 0, 2]}
+  - name: chamber
+    role: chamber
+    mesh: ./tetrahedron.stl
+    translation: "0 0 10 mm"
+  - name: gear
+    role: part
+    mesh: ../scenes_bad/tetrahedron.stl
+    material: aluminium-2000
+    motion: {type: rotating, axis_point: [0, 0, 40 mm], axis_direction: [0, 3, 0], speed: 30 rpm}
+  - name: axle
+    role: fixture
+    mesh: tetrahedron.stl
+    motion: static
+output:
+  log: [gear, axle]
+  directory: out/gear
+  checkpoint_interval: 2 min
+)";
+
+const char* const minimal_scene = R"(
+process: {duration: 0.5}
+shot: {count: 3, diameter: 0.001, density: 7800}
+components:
+  - {name: sono, role: sonotrode, mesh: tetrahedron.stl, vibration: {amplitude: 30 um, frequency: 20 kHz}}
+  - {name: box, role: chamber, mesh: tetrahedron.stl}
+  - {name: rod, role: part, mesh: tetrahedron.stl}
+)";
+
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+    try {
+        parse_scene_text(text, virtual_path, overrides);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+const ComponentDesc& component(const SceneDescription& s, const std::string& name) {
+    for (const ComponentDesc& k : s.components)
+        if (k.name == name) return k;
+    throw std::runtime_error("no component " + name);
+}
+
+const ContactPairDesc& contact(const SceneDescription& s, const std::string& key) {
+    for (const ContactPairDesc& c : s.contacts)
+        if (c.key == key) return c;
+    throw std::runtime_error("no contact " + key);
+}
+
+std::string tetrahedron_path() {
+    return std::filesystem::path(scene_dir + "/tetrahedron.stl").lexically_normal().string();
+}
+
+TEST(SceneParser, FullSceneReadsInSI) {
+    const SceneDescription s = parse_scene_text(full_scene, virtual_path);
+    EXPECT_EQ(s.name, "gear case study");
+    EXPECT_EQ(s.source_file, virtual_path);
+    EXPECT_EQ(s.process.duration_s, 5.0);
+    EXPECT_EQ(s.process.gravity_m_per_s2, Vec3(0, 0, -9.81));
+    EXPECT_EQ(s.process.seed, 3u);
+    EXPECT_EQ(s.accuracy.travel_fraction, 0.2);
+    EXPECT_EQ(s.accuracy.scheme, SteppingScheme::step);
+
+    EXPECT_EQ(s.shot.count, 512);
+    EXPECT_EQ(s.shot.diameter_m, 0.002);
+    EXPECT_EQ(s.shot.material, "steel");
+    EXPECT_EQ(s.shot.density_kg_per_m3, 7800.0);
+    EXPECT_EQ(s.shot.initial, InitialVelocityKind::random_upward);
+    EXPECT_EQ(s.shot.initial_speed_m_per_s, 2.0);
+
+    ASSERT_EQ(s.materials.size(), 3u);
+    EXPECT_EQ(s.materials[1].name, "titanium");
+    EXPECT_EQ(*s.materials[1].density_kg_per_m3, 4500.0);
+    EXPECT_EQ(*s.materials[1].yield_stress_pa, 1.1e9);
+    EXPECT_FALSE(s.materials[2].density_kg_per_m3.has_value());
+    EXPECT_EQ(*s.materials[2].yield_stress_pa, 300e6);
+
+    ASSERT_EQ(s.contacts.size(), 3u);
+    EXPECT_EQ(contact(s, "shot-shot").C0, 0.95);
+    EXPECT_EQ(contact(s, "shot-shot").V0_m_per_s, 2.0);
+    EXPECT_EQ(contact(s, "shot-titanium").mu, 0.9);
+    EXPECT_EQ(contact(s, "shot-titanium").f, 0.2);
+    EXPECT_EQ(contact(s, "default").C0, 0.85);
+    EXPECT_EQ(contact(s, "default").V0_m_per_s, 0.4);
+
+    const ComponentDesc& sono = component(s, "sonotrode");
+    EXPECT_EQ(sono.role, ComponentRole::sonotrode);
+    EXPECT_EQ(sono.mesh_path, tetrahedron_path());
+    EXPECT_EQ(sono.mesh_unit_m, 1e-3);
+    EXPECT_EQ(sono.translation_m, Vec3(0, 0, -0.005));
+    EXPECT_TRUE(sono.rotation.isApprox(Eigen::AngleAxisd(pi / 2, Vec3::UnitX()).toRotationMatrix()));
+    EXPECT_EQ(sono.material, "titanium");
+    ASSERT_TRUE(sono.vibration.has_value());
+    EXPECT_EQ(sono.vibration->amplitude_m, 25e-6);
+    EXPECT_EQ(sono.vibration->frequency_hz, 20000.0);
+    EXPECT_EQ(sono.vibration->phase_rad, pi / 2);
+    EXPECT_EQ(*sono.vibration->axis, Vec3(0, 0, 1));  // normalised
+    EXPECT_FALSE(sono.rotation_motion.has_value());
+
+    const ComponentDesc& chamber = component(s, "chamber");
+    EXPECT_EQ(chamber.mesh_path, tetrahedron_path());
+    EXPECT_EQ(chamber.translation_m, Vec3(0, 0, 0.01));
+    EXPECT_FALSE(chamber.vibration.has_value());
+
+    const ComponentDesc& gear = component(s, "gear");
+    EXPECT_EQ(gear.mesh_path, tetrahedron_path());
+    ASSERT_TRUE(gear.rotation_motion.has_value());
+    EXPECT_EQ(gear.rotation_motion->axis_point_m, Vec3(0, 0, 0.04));
+    EXPECT_EQ(gear.rotation_motion->axis_direction, Vec3(0, 1, 0));
+    EXPECT_EQ(gear.rotation_motion->speed_rad_per_s, pi);
+    EXPECT_FALSE(component(s, "axle").rotation_motion.has_value());
+
+    EXPECT_EQ(s.output.logged_components, (std::vector<std::string>{"gear", "axle"}));
+    EXPECT_EQ(s.output.directory, "out/gear");
+    EXPECT_EQ(s.output.checkpoint_interval_s, 120.0);
+}
+
+TEST(SceneParser, FieldsRememberWhereTheyCameFrom) {
+    const SceneDescription s = parse_scene_text(full_scene, virtual_path);
+    EXPECT_EQ(s.shot.where.file, virtual_path);
+    EXPECT_EQ(s.shot.where.line, 5);
+    EXPECT_EQ(component(s, "gear").where.line, 31);
+    EXPECT_EQ(component(s, "sonotrode").vibration->where.line, 26);
+}
+
+TEST(SceneParser, DefaultsAreFilledIn) {
+    const SceneDescription s = parse_scene_text(minimal_scene, virtual_path);
+    EXPECT_EQ(s.name, "");
+    EXPECT_EQ(s.process.gravity_m_per_s2, Vec3(0, 0, -9.81));
+    EXPECT_EQ(s.process.seed, 1u);
+    EXPECT_EQ(s.accuracy.travel_fraction, 0.25);
+    EXPECT_EQ(s.shot.initial, InitialVelocityKind::rest);
+    EXPECT_EQ(s.shot.material, "");
+    EXPECT_TRUE(s.materials.empty());
+    ASSERT_EQ(s.contacts.size(), 1u);
+    EXPECT_EQ(s.contacts[0].key, "default");
+    EXPECT_EQ(s.contacts[0].C0, 0.9);
+    EXPECT_EQ(s.contacts[0].V0_m_per_s, 0.5);
+    EXPECT_EQ(s.contacts[0].mu, 0.71);
+    EXPECT_EQ(s.contacts[0].f, 0.1);
+    const ComponentDesc& sono = component(s, "sono");
+    EXPECT_EQ(sono.mesh_unit_m, 1.0);
+    EXPECT_EQ(sono.translation_m, Vec3::Zero());
+    EXPECT_EQ(sono.rotation, Mat3::Identity());
+    EXPECT_EQ(sono.material, "");
+    EXPECT_EQ(sono.vibration->phase_rad, 0.0);
+    EXPECT_FALSE(sono.vibration->axis.has_value());
+    EXPECT_EQ(s.output.logged_components, std::vector<std::string>{"rod"});  // every part
+    EXPECT_EQ(s.output.directory, "");
+    EXPECT_EQ(s.output.checkpoint_interval_s, 60.0);
+}
+
+TEST(SceneParser, PairCoefficientsLeftOutTakeTheDefaultPair) {
+    const std::string text = std::string(minimal_scene) + R"(
+materials: {steel: {}}
+contacts:
+  shot-steel: {C0: 0.7}
+  shot-shot: {V0: 3 m/s}
+  default: {C0: 0.6, V0: 0.2, mu: 0.5, f: 0.3}
+)";
+    const SceneDescription s = parse_scene_text(text, virtual_path);
+    ASSERT_EQ(s.contacts.size(), 3u);
+    EXPECT_EQ(contact(s, "shot-steel").C0, 0.7);
+    EXPECT_EQ(contact(s, "shot-steel").V0_m_per_s, 0.2);
+    EXPECT_EQ(contact(s, "shot-steel").mu, 0.5);
+    EXPECT_EQ(contact(s, "shot-steel").f, 0.3);
+    EXPECT_EQ(contact(s, "shot-shot").C0, 0.6);
+    EXPECT_EQ(contact(s, "shot-shot").V0_m_per_s, 3.0);
+}
+
+TEST(SceneParser, RotationFormsAgree) {
+    const auto rotation_of = [](const std::string& rotation) {
+        const std::string text = std::string(minimal_scene) + "  - {name: r, role: fixture, mesh: tetrahedron.stl, "
+                                                              "rotation: " + rotation + "}\n";
+        return component(parse_scene_text(text, virtual_path), "r").rotation;
+    };
+    const Mat3 expected = (Eigen::AngleAxisd(pi / 2, Vec3::UnitX()) * Eigen::AngleAxisd(pi / 6, Vec3::UnitZ()))
+                              .toRotationMatrix();
+    EXPECT_TRUE(rotation_of("{euler_xyz: [90, 0, 30]}").isApprox(expected, 1e-15));
+    EXPECT_TRUE(rotation_of("{euler_xyz: [90 deg, 0, 0.5235987755982988 rad]}").isApprox(expected, 1e-15));
+    EXPECT_TRUE(rotation_of("{axis: [0, 0, 1], angle: 90 deg}")
+                    .isApprox(Eigen::AngleAxisd(pi / 2, Vec3::UnitZ()).toRotationMatrix(), 1e-15));
+    EXPECT_EQ(rotation_of("{matrix: [[0, -1, 0], [1, 0, 0], [0, 0, 1]]}"),
+              Eigen::AngleAxisd(pi / 2, Vec3::UnitZ()).toRotationMatrix().array().round().matrix());
+    EXPECT_NE(error_of(std::string(minimal_scene) +
+                       "  - {name: r, role: fixture, mesh: tetrahedron.stl, rotation: {matrix: [[2, 0, 0], [0, 1, 0], "
+                       "[0, 0, 1]]}}\n")
+                  .find("expected a rotation matrix"),
+              std::string::npos);
+}
+
+TEST(SceneParser, VectorsAsOneString) {
+    const auto translation_of = [](const std::string& t) {
+        const std::string text = std::string(minimal_scene) + "  - {name: t, role: fixture, mesh: tetrahedron.stl, "
+                                                              "translation: \"" + t + "\"}\n";
+        return component(parse_scene_text(text, virtual_path), "t").translation_m;
+    };
+    EXPECT_EQ(translation_of("0 0 -5 mm"), Vec3(0, 0, -0.005));
+    EXPECT_EQ(translation_of("1 2 3"), Vec3(1, 2, 3));
+    EXPECT_EQ(translation_of("1 mm 2 cm 3 m"), Vec3(0.001, 0.02, 3));
+    EXPECT_EQ(translation_of("1, 2, 3mm"), Vec3(0.001, 0.002, 0.003));
+    EXPECT_NE(error_of(std::string(minimal_scene) +
+                       "  - {name: t, role: fixture, mesh: tetrahedron.stl, translation: \"1 2\"}\n")
+                  .find("expected a vector of 3 numbers"),
+              std::string::npos);
+}
+
+TEST(SceneParser, OverridesApplyBeforeValidation) {
+    const SceneDescription s = parse_scene_text(
+        full_scene, virtual_path,
+        {"process.duration=0.2", "process.seed=7", "shot.diameter=1 mm", "components[gear].motion.speed=60 rpm",
+         "components[1].translation=[1 mm, 2 mm, 3 mm]", "output.log=[gear]", "process.gravity=[0,0,-1.62]",
+         "materials.titanium.density=4.43 g/cm3", "contacts.shot-shot.C0=0.5", "name=renamed"});
+    EXPECT_EQ(s.process.duration_s, 0.2);
+    EXPECT_EQ(s.process.seed, 7u);
+    EXPECT_EQ(s.shot.diameter_m, 0.001);
+    EXPECT_EQ(component(s, "gear").rotation_motion->speed_rad_per_s, 2 * pi);
+    EXPECT_EQ(component(s, "chamber").translation_m, Vec3(0.001, 0.002, 0.003));
+    EXPECT_EQ(s.output.logged_components, std::vector<std::string>{"gear"});
+    EXPECT_EQ(s.process.gravity_m_per_s2, Vec3(0, 0, -1.62));
+    EXPECT_EQ(*s.materials[1].density_kg_per_m3, 4430.0);
+    EXPECT_EQ(contact(s, "shot-shot").C0, 0.5);
+    EXPECT_EQ(s.name, "renamed");
+}
+
+TEST(SceneParser, OverridesCanAddKeysAndSections) {
+    const SceneDescription s = parse_scene_text(
+        minimal_scene, virtual_path,
+        {"accuracy.travel_fraction=0.1", "components[rod].motion={type: rotating, axis_direction: [1, 0, 0], "
+                                         "speed: 10 rpm}",
+         "materials.copper.density=8.96 g/cm3", "shot.density=8960", "process.duration=1", "process.duration=2"});
+    EXPECT_EQ(s.accuracy.travel_fraction, 0.1);
+    ASSERT_TRUE(component(s, "rod").rotation_motion.has_value());
+    EXPECT_EQ(component(s, "rod").rotation_motion->axis_direction, Vec3(1, 0, 0));
+    EXPECT_EQ(*s.materials.at(0).density_kg_per_m3, 8960.0);
+    EXPECT_EQ(s.process.duration_s, 2.0);  // the last override wins
+}
+
+TEST(SceneParser, OverrideOfUnknownPathNamesIt) {
+    for (const std::string& bad : {std::string("process.dration=1"), std::string("components[nope].mesh=x"),
+                                   std::string("components[9].mesh=x"), std::string("shot.count.x=1")}) {
+        try {
+            parse_scene_text(minimal_scene, virtual_path, {bad});
+            ADD_FAILURE() << bad << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.where().file, "<--set>") << e.what();
+            EXPECT_EQ(e.field(), bad.substr(0, bad.find('='))) << e.what();
+            EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_NE(error_of(minimal_scene, {"process.dration=1"}).find("valid keys: duration, gravity, seed"),
+              std::string::npos);
+    EXPECT_NE(error_of(minimal_scene, {"process.duration"}).find("expected path=value"), std::string::npos);
+    EXPECT_NE(error_of(minimal_scene, {"process.duration="}).find("missing value"), std::string::npos);
+}
+
+TEST(SceneParser, BadOverriddenValueBlamesTheOverride) {
+    try {
+        parse_scene_text(minimal_scene, virtual_path, {"components[rod].material=unobtainium"});
+        ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.where().file, "<--set>");
+        EXPECT_EQ(e.field(), "components[2].material");
+        EXPECT_NE(e.problem().find("unknown material 'unobtainium'"), std::string::npos) << e.what();
+        EXPECT_NE(e.problem().find("from --set 'components[rod].material=unobtainium'"), std::string::npos);
+    }
+    EXPECT_NE(error_of(minimal_scene, {"shot.diameter=-1 mm"}).find("<--set>: shot.diameter: expected a length"),
+              std::string::npos);
+}
+
+TEST(SceneParser, ResolvedSceneReadsBackTheSame) {
+    for (const char* text : {full_scene, minimal_scene}) {
+        const SceneDescription first = parse_scene_text(text, virtual_path);
+        const std::string resolved = resolved_scene_yaml(first);
+        // Parsed from elsewhere: mesh paths are absolute now.
+        const SceneDescription second = parse_scene_text(resolved, "/nonexistent/dir/resolved.yaml");
+        EXPECT_EQ(resolved_scene_yaml(second), resolved);
+        EXPECT_EQ(scene_hash(second), scene_hash(first));
+        EXPECT_EQ(second.shot.diameter_m, first.shot.diameter_m);
+        EXPECT_EQ(second.shot.density_kg_per_m3, first.shot.density_kg_per_m3);
+        ASSERT_EQ(second.components.size(), first.components.size());
+        for (std::size_t i = 0; i < first.components.size(); ++i) {
+            EXPECT_EQ(second.components[i].rotation, first.components[i].rotation);
+            EXPECT_EQ(second.components[i].translation_m, first.components[i].translation_m);
+            EXPECT_EQ(second.components[i].mesh_path, first.components[i].mesh_path);
+            EXPECT_EQ(second.components[i].mesh_unit_m, first.components[i].mesh_unit_m);
+        }
+        ASSERT_EQ(second.contacts.size(), first.contacts.size());
+        for (std::size_t i = 0; i < first.contacts.size(); ++i) {
+            EXPECT_EQ(second.contacts[i].key, first.contacts[i].key);
+            EXPECT_EQ(second.contacts[i].mu, first.contacts[i].mu);
+        }
+        EXPECT_EQ(second.output.logged_components, first.output.logged_components);
+    }
+}
+
+TEST(SceneParser, ShippedScenesParseAndReadBackTheSame) {
+    int scenes = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(PEENSIM_SOURCE_DIR) + "/scenes")) {
+        if (entry.path().extension() != ".yaml") continue;
+        ++scenes;
+        const SceneDescription s = parse_scene_file(entry.path().string());
+        const std::string resolved = resolved_scene_yaml(s);
+        EXPECT_EQ(resolved_scene_yaml(parse_scene_text(resolved, entry.path().string())), resolved) << entry.path();
+    }
+    EXPECT_GT(scenes, 0);
+}
+
+TEST(SceneParser, ResolvedSceneIsSiWithUnitComments) {
+    const std::string resolved = resolved_scene_yaml(parse_scene_text(full_scene, virtual_path));
+    EXPECT_NE(resolved.find("  diameter: 0.002  # m\n"), std::string::npos) << resolved;
+    EXPECT_NE(resolved.find("      frequency: 20000  # Hz\n"), std::string::npos) << resolved;
+    EXPECT_NE(resolved.find("      speed: 3.141592653589793  # rad/s\n"), std::string::npos) << resolved;
+    EXPECT_NE(resolved.find("    mesh: " + tetrahedron_path() + "\n"), std::string::npos) << resolved;
+    EXPECT_NE(resolved.find("  checkpoint_interval: 120  # s\n"), std::string::npos) << resolved;
+}
+
+TEST(SceneParser, HashFollowsContentNotSpelling) {
+    const SceneDescription a = parse_scene_text(minimal_scene, virtual_path);
+    const SceneDescription b = parse_scene_text(minimal_scene, virtual_path, {"shot.diameter=1 mm"});
+    const SceneDescription c = parse_scene_text(minimal_scene, virtual_path, {"process.seed=2"});
+    EXPECT_EQ(scene_hash(a), scene_hash(b));  // 0.001 written as "1 mm"
+    EXPECT_NE(scene_hash(a), scene_hash(c));
+}
+
+TEST(SceneParser, ParsesAFileFromDisk) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / "peensim_scene_parser_test";
+    fs::create_directories(dir / "meshes");
+    fs::copy_file(tetrahedron_path(), dir / "meshes" / "t.stl", fs::copy_options::overwrite_existing);
+    {
+        std::ofstream out(dir / "scene.yaml");
+        out << "process: {duration: 1 s}\nshot: {count: 1, diameter: 1 mm, density: 7800}\ncomponents:\n"
+               "  - {name: s, role: sonotrode, mesh: meshes/t.stl, vibration: {amplitude: 0, frequency: 0}}\n"
+               "  - {name: c, role: chamber, mesh: meshes/t.stl}\n";
+    }
+    const SceneDescription s = parse_scene_file((dir / "scene.yaml").string());
+    EXPECT_EQ(s.components[0].mesh_path, (dir / "meshes" / "t.stl").string());
+    EXPECT_EQ(s.components[0].vibration->amplitude_m, 0.0);
+    EXPECT_TRUE(s.output.logged_components.empty());
+    try {
+        parse_scene_file((dir / "missing.yaml").string());
+        ADD_FAILURE() << "a missing scene file was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("missing.yaml"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("cannot read the scene file"), std::string::npos);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(SceneParser, DuplicateKeysAreErrors) {
+    const std::string msg = error_of("process: {duration: 1}\nprocess: {duration: 2}\n");
+    EXPECT_NE(msg.find("inline.yaml:2:1: process: key 'process' appears more than once"), std::string::npos) << msg;
+}
+
+TEST(SceneParser, EmptyOrNonMapSceneIsAnError) {
+    EXPECT_NE(error_of("").find("the scene is empty"), std::string::npos);
+    EXPECT_NE(error_of("- a\n- b\n").find("expected a map with keys name, process"), std::string::npos);
+}
+
+TEST(SceneParser, ZeroAmplitudeAllowsZeroFrequencyOnly) {
+    const std::string text = std::string(minimal_scene);
+    EXPECT_NO_THROW(parse_scene_text(text, virtual_path, {"components[sono].vibration={amplitude: 0, frequency: 0}"}));
+    EXPECT_NE(error_of(text, {"components[sono].vibration={amplitude: 1 um, frequency: 0}"})
+                  .find("expected a frequency > 0 Hz when the amplitude is > 0"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace peensim
