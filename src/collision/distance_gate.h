@@ -10,6 +10,7 @@
 // distance >= (k - 1) * cell_size.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -48,6 +49,12 @@ public:
         i = static_cast<int>(q.x()), j = static_cast<int>(q.y()), k = static_cast<int>(q.z());
         return true;
     }
+
+    std::size_t cell_index(int i, int j, int k) const {
+        return (static_cast<std::size_t>(k) * static_cast<std::size_t>(ny_) + static_cast<std::size_t>(j)) * static_cast<std::size_t>(nx_) +
+               static_cast<std::size_t>(i);
+    }
+    double half_diagonal() const { return 0.5 * std::sqrt(3.0) * cell_; }
 
     double cell_size() const { return cell_; }
     std::size_t cell_count() const { return cells_.size(); }

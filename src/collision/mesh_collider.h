@@ -4,6 +4,7 @@
 // interface: callers get our triangle indices, never Bullet types.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -22,6 +23,20 @@ public:
     // Appends to `out` (cleared first) the triangles whose bounding boxes overlap [lo, hi]
     // (mesh frame, m). `out` is reused by the caller, so a query allocates nothing once warm.
     void triangles_overlapping(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const;
+
+    // The point of the mesh closest to p (mesh frame, m) if it lies within `radius` (m): the
+    // BVH gives the candidate triangles, a plane test rejects most of them cheaply, and the exact
+    // closest point is computed for the rest. `scratch` is reused storage.
+    struct Closest {
+        int triangle = -1;     // index into the mesh's triangles
+        double distance = 0.0; // m
+        Vec3 point;            // m, mesh frame
+    };
+    struct QueryCounters {
+        std::uint64_t triangles_returned = 0;  // by the BVH
+        std::uint64_t triangles_tested = 0;    // exact closest-point tests after the plane test
+    };
+    bool closest_within(const Vec3& p, double radius, std::vector<int>& scratch, Closest& out, QueryCounters& counters) const;
 
     std::size_t memory_bytes() const;
 

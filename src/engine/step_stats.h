@@ -20,7 +20,9 @@ struct StepStats {
     std::uint64_t gate_checks = 0;      // distance-gate look-ups (shot x component)
     std::uint64_t gate_skips = 0;       // shot x component checks skipped by the per-shot skip counters
     std::uint64_t bvh_queries = 0;      // Bullet BVH queries
-    std::uint64_t triangle_tests = 0;   // closest-point tests on triangles the BVH returned
+    std::uint64_t bvh_hits = 0;         // queries that found a triangle within reach
+    std::uint64_t triangles_returned = 0;  // triangles the BVH returned
+    std::uint64_t triangle_tests = 0;   // exact closest-point tests (after the plane test)
     std::uint64_t touch_searches = 0;   // touch-time searches (quadratic or sampled)
     double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
     double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }

@@ -15,9 +15,9 @@ constexpr double kSamplesPerPeriod = 32.0;     // sonotrode gap samples per vibr
 constexpr double kTouchTolerance = 1e-14;      // s, precision of sampled touch times
 constexpr double kCorrectionWorthCounting = 0.01;  // -, overlaps corrected beyond this fraction of R are counted
 // Bound on how far a shot can move relative to a component in one step, in units of the eq. 7
-// travel: the shot's own travel (1), the surface's (1: V_max includes surface speeds), and a kick
-// received within the step (a rebound changes the velocity by at most ~2 V_max over at most dt: 2).
-constexpr double kMaxRelativeTravelPerStep = 4.0;
+// travel: the shot's own travel (1) plus the surface's (1: V_max includes surface speeds). A shot
+// kicked within a step can go further; its skip counters are reset at every kick.
+constexpr double kMaxRelativeTravelPerStep = 2.0;
 
 }  // namespace
 
@@ -35,6 +35,8 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     n_shots_ = static_cast<std::size_t>(model_->shot_count);
     skip_until_.assign(model_->components.size() * n_shots_, 0);
     max_relative_travel_ = kMaxRelativeTravelPerStep * model_->travel_fraction * model_->shot_radius_m;
+    for (const Component& c : model_->components)
+        sharp_.emplace_back(*c.gate, *c.collider, model_->shot_radius_m + 2.0 * c.kinematics.amplitude_m);
     last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
     triangles_.reserve(256);
 }
@@ -138,6 +140,8 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             s.set_position(i, s.position(i) + dvi * back);
             s.set_position(j, s.position(j) + dvj * back);
             last_touch_[i] = last_touch_[j] = u;
+            forget_clearances(i);
+            forget_clearances(j);
             if (impact) ++state.shot_shot_impacts;
         }
         // Any overlap left (several contacts in one step) is removed symmetrically, positions only.
@@ -147,9 +151,15 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             const Vec3 push = 0.5 * (D - d) / d * r;
             s.set_position(i, s.position(i) - push);
             s.set_position(j, s.position(j) + push);
+            forget_clearances(i);
+            forget_clearances(j);
             if (D - d > kCorrectionWorthCounting * R) ++state.health.shot_overlap_corrections;
         }
     }
+}
+
+void TimeStepping::forget_clearances(std::size_t shot) {
+    for (std::size_t c = 0; c < model_->components.size(); ++c) skip_until_[c * n_shots_ + shot] = 0;
 }
 
 void TimeStepping::resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts) {
@@ -178,33 +188,30 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
     const Pose& pose = pose_end_[component];
     const Vec3 p = pose.to_component(p_world);
     ++stats_.gate_checks;
-    const double clearance = comp.gate->lower_bound(p) - query_radius;
-    if (clearance > 0.0) {
-        // The shot cannot reach this component for a while: skip its checks until then.
-        skip_until_[component * n_shots_ + shot] = step_ + static_cast<std::uint64_t>(clearance / max_relative_travel_);
+    const double distance = sharp_[component].lower_bound(p);
+    if (distance > query_radius) {
+        // The shot cannot reach this component for a while: skip its checks until then. The
+        // clearance is taken against the largest query radius any step may use (a vibrating
+        // surface's reach grows with the step, up to twice its amplitude).
+        const double clearance = distance - (model_->shot_radius_m + 2.0 * comp.kinematics.amplitude_m);
+        if (clearance > 0.0)
+            skip_until_[component * n_shots_ + shot] = step_ + static_cast<std::uint64_t>(clearance / max_relative_travel_);
         return false;
     }
     ++stats_.bvh_queries;
-    comp.collider->triangles_overlapping(p - Vec3::Constant(query_radius), p + Vec3::Constant(query_radius), triangles_);
     // One contact per shot and component: the closest feature. Neighbouring triangles that share the
     // closest edge or vertex give the same point, so spurious normals at internal edges never act.
-    stats_.triangle_tests += triangles_.size();
-    double best = query_radius * query_radius;
-    int best_triangle = -1;
-    Vec3 best_point;
+    MeshCollider::Closest closest;
+    MeshCollider::QueryCounters counters;
+    const bool found = comp.collider->closest_within(p, query_radius, triangles_, closest, counters);
+    stats_.triangle_tests += counters.triangles_tested;
+    stats_.triangles_returned += counters.triangles_returned;
+    if (!found) return false;
+    ++stats_.bvh_hits;
     const TriangleMesh& mesh = *comp.mesh;
-    for (int t : triangles_) {
-        const auto tt = static_cast<std::size_t>(t);
-        const Vec3 cp = closest_point_on_triangle(p, mesh.corner(tt, 0), mesh.corner(tt, 1), mesh.corner(tt, 2)).point;
-        const double d2 = (p - cp).squaredNorm();
-        if (d2 < best) {
-            best = d2;
-            best_triangle = t;
-            best_point = cp;
-        }
-    }
-    if (best_triangle < 0) return false;
-    const double d = std::sqrt(best);
+    const int best_triangle = closest.triangle;
+    const Vec3 best_point = closest.point;
+    const double d = closest.distance;
     Vec3 n_local;
     if (d > 1e-9 * model_->shot_radius_m) {
         n_local = (p - best_point) / d;
@@ -276,6 +283,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         s.set_velocity(i, v1 + dv);
         s.set_position(i, p1 + dv * back);
         last_touch_[i] = u;
+        forget_clearances(i);
         ++state.impacts_per_component[c];
         if (comp.logged) {
             const Pose pose = kin.pose(t0_, u);

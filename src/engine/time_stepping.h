@@ -15,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "collision/sharp_distance.h"
 #include "collision/shot_pair_finder.h"
 #include "engine/stepper.h"
 #include "model/model.h"
@@ -50,6 +51,8 @@ private:
     bool closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world, double query_radius,
                          Contact& out);
     void check_health(SimulationState& state);
+    // A kicked shot may move further than the per-step bound: check it against every component again.
+    void forget_clearances(std::size_t shot);
 
     std::shared_ptr<const Model> model_;
     ShotPairFinder pairs_;
@@ -67,6 +70,7 @@ private:
     std::size_t n_shots_ = 0;
     std::vector<std::uint64_t> skip_until_;
     double max_relative_travel_ = 0.0; // m per step
+    std::vector<SharpDistance> sharp_; // per component: distance bounds sharper than the gate's
 };
 
 }  // namespace peensim

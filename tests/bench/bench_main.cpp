@@ -64,9 +64,9 @@ int main(int argc, char** argv) {
         for (std::size_t k = 0; k < kStageNames.size(); ++k)
             if (stats.seconds[k] > 0.0) std::printf(" %s %.0f%%", std::string(kStageNames[k]).c_str(), 100.0 * stats.seconds[k] / wall);
         const double ss = static_cast<double>(st.shot_steps);
-        std::printf("\n  per shot-step: gate checks %.2f, skipped %.2f, BVH queries %.3f, triangle tests %.3f, touch searches %.4f\n",
+        std::printf("\n  per shot-step: gate checks %.2f, skipped %.2f, BVH queries %.3f (hits %.3f), triangles returned %.3f, tested %.3f, touch searches %.4f\n",
                     static_cast<double>(stats.gate_checks) / ss, static_cast<double>(stats.gate_skips) / ss,
-                    static_cast<double>(stats.bvh_queries) / ss, static_cast<double>(stats.triangle_tests) / ss,
+                    static_cast<double>(stats.bvh_queries) / ss, static_cast<double>(stats.bvh_hits) / ss, static_cast<double>(stats.triangles_returned) / ss, static_cast<double>(stats.triangle_tests) / ss,
                     static_cast<double>(stats.touch_searches) / ss);
     } catch (const std::exception& e) {
         std::cerr << "error: " << e.what() << "\n";
