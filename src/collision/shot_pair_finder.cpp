@@ -11,14 +11,22 @@ struct ShotPairFinder::Impl {
     btCollisionDispatcher dispatcher{&configuration};
     btDbvtBroadphase broadphase;
     std::vector<btBroadphaseProxy*> proxies;
-    double radius = 0.0;
+    std::vector<btVector3> anchor;   // m, centre each proxy's box was last set around
+    double radius = 0.0;             // m
+    double margin = 0.0;             // m, how much each proxy's box is larger than its sphere's
 };
 
 ShotPairFinder::ShotPairFinder(int shot_count, double radius_m, double fat_margin_m) : impl_(std::make_unique<Impl>()) {
     // gDbvtMargin is a Bullet process global (default 0.05 m, fifty times a shot). It is set here,
     // the one place that creates a shot broad phase; every finder in a process uses the same rule.
-    gDbvtMargin = fat_margin_m;
+    // Our own fattening replaces Bullet's: a proxy's box is its sphere's box grown by the margin,
+    // and is moved only when the shot has left it, so most steps touch no proxy at all. Bullet's
+    // leaf fattening (gDbvtMargin, a process global, 0.05 m by default: fifty times a shot) is
+    // therefore set to nothing, here, the one place that creates a shot broad phase.
+    gDbvtMargin = 0.0;
     impl_->radius = radius_m;
+    impl_->margin = fat_margin_m;
+    impl_->anchor.assign(static_cast<std::size_t>(shot_count), btVector3(1e30, 1e30, 1e30));
     impl_->proxies.resize(static_cast<std::size_t>(shot_count));
     for (int i = 0; i < shot_count; ++i) {
         const btVector3 far(1e3 + 10.0 * i * radius_m, 1e3, 1e3);  // parked until the first update
@@ -35,11 +43,14 @@ ShotPairFinder::~ShotPairFinder() {
 }
 
 void ShotPairFinder::update(const double* x, const double* y, const double* z, const unsigned char* active) {
-    const double r = impl_->radius;
-    const btVector3 half(r, r, r);
+    const double r = impl_->radius, m = impl_->margin;
+    const btVector3 half(r + m, r + m, r + m);
     for (std::size_t i = 0; i < impl_->proxies.size(); ++i) {
         btVector3 c(x[i], y[i], z[i]);
         if (!active[i]) c = btVector3(-1e3 - 10.0 * static_cast<double>(i) * r, -1e3, -1e3);
+        const btVector3 moved = (c - impl_->anchor[i]).absolute();
+        if (moved.x() <= m && moved.y() <= m && moved.z() <= m) continue;  // still inside its box
+        impl_->anchor[i] = c;
         impl_->broadphase.setAabb(impl_->proxies[i], c - half, c + half, &impl_->dispatcher);
     }
     impl_->broadphase.calculateOverlappingPairs(&impl_->dispatcher);

@@ -43,15 +43,20 @@ inline std::optional<double> first_touch_quadratic(double c0, double c1, double 
 // `max_sample_s` (s) at least, then refined by regula falsi (Illinois) to `tolerance_s`.
 // Used for the vibrating sonotrode, whose gap oscillates within a step: sampling 32 times a
 // period finds every crossing except grazes shallower than ~0.5 % of the amplitude.
+//
+// `leaving`: the shot has just rebounded from this very surface at u_lo, so a gap of ~0 there is
+// that contact, not a new one: the search starts once the gap has opened, and finds the surface
+// catching up with the shot again later in the step (a vibrating plate accelerates at ~1e5 g).
 template <class Gap>
-std::optional<double> first_touch_sampled(const Gap& gap, double u_lo, double u_end, double max_sample_s, double tolerance_s) {
+std::optional<double> first_touch_sampled(const Gap& gap, double u_lo, double u_end, double max_sample_s, double tolerance_s,
+                                          bool leaving = false) {
     double a = u_lo, ga = gap(a);
-    if (ga <= 0.0) return a;
+    if (ga <= 0.0 && !leaving) return a;
     const int samples = std::max(1, static_cast<int>(std::ceil((u_end - u_lo) / max_sample_s)));
     for (int k = 1; k <= samples; ++k) {
         const double b = k == samples ? u_end : u_lo + (u_end - u_lo) * k / samples;
         const double gb = gap(b);
-        if (gb > 0.0) {
+        if (gb > 0.0 || ga <= 0.0) {
             a = b;
             ga = gb;
             continue;

@@ -10,6 +10,8 @@ namespace peensim {
 
 namespace {
 
+double s_velocity_norm(const ShotArrays& s, std::size_t i) { return std::sqrt(s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]); }
+
 constexpr int kMaxContactPasses = 8;           // impacts of one shot within one step before giving up
 constexpr double kSamplesPerPeriod = 32.0;     // sonotrode gap samples per vibration period
 constexpr double kTouchTolerance = 1e-14;      // s, precision of sampled touch times
@@ -35,9 +37,14 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     n_shots_ = static_cast<std::size_t>(model_->shot_count);
     skip_until_.assign(model_->components.size() * n_shots_, 0);
     max_relative_travel_ = kMaxRelativeTravelPerStep * model_->travel_fraction * model_->shot_radius_m;
-    for (const Component& c : model_->components)
-        sharp_.emplace_back(*c.gate, *c.collider, model_->shot_radius_m + 2.0 * c.kinematics.amplitude_m);
+    for (const Component& c : model_->components) {
+        // The largest query radius a step uses for this component (see handle_component).
+        const double travel = model_->travel_fraction * model_->shot_radius_m;
+        max_query_radius_.push_back(model_->shot_radius_m + (c.kinematics.amplitude_m > 0.0 ? 2.0 * c.kinematics.amplitude_m + travel : 0.0));
+        sharp_.emplace_back(*c.gate, *c.collider, max_query_radius_.back());
+    }
     last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
+    last_touch_component_.assign(static_cast<std::size_t>(model_->shot_count), -1);
     triangles_.reserve(256);
 }
 
@@ -93,6 +100,7 @@ void TimeStepping::integrate(SimulationState& state, double dt) {
         active += s.active[i];
     }
     std::fill(last_touch_.begin(), last_touch_.end(), 0.0);
+    std::fill(last_touch_component_.begin(), last_touch_component_.end(), -1);
     state.shot_steps += active;
 }
 
@@ -140,6 +148,7 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             s.set_position(i, s.position(i) + dvi * back);
             s.set_position(j, s.position(j) + dvj * back);
             last_touch_[i] = last_touch_[j] = u;
+            last_touch_component_[i] = last_touch_component_[j] = -1;
             forget_clearances(i);
             forget_clearances(j);
             if (impact) ++state.shot_shot_impacts;
@@ -193,7 +202,7 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
         // The shot cannot reach this component for a while: skip its checks until then. The
         // clearance is taken against the largest query radius any step may use (a vibrating
         // surface's reach grows with the step, up to twice its amplitude).
-        const double clearance = distance - (model_->shot_radius_m + 2.0 * comp.kinematics.amplitude_m);
+        const double clearance = distance - max_query_radius_[component];
         if (clearance > 0.0)
             skip_until_[component * n_shots_ + shot] = step_ + static_cast<std::uint64_t>(clearance / max_relative_travel_);
         return false;
@@ -236,13 +245,17 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     const bool vibrating = kin.kind == Kinematics::Kind::vibrating && kin.amplitude_m > 0.0;
     // A vibrating surface may reach a shot within the step and fall back before its end: look
     // as far as it can travel in the step.
-    const double swing = vibrating ? std::min(2.0 * kin.amplitude_m, kin.amplitude_m * kin.angular_frequency() * dt) : 0.0;
+    // A vibrating surface may reach a shot within the step and fall back before its end, while the
+    // shot moves on: look as far as the surface can travel in the step plus the shot's own travel.
+    const double swing = vibrating ? std::min(2.0 * kin.amplitude_m, kin.amplitude_m * kin.angular_frequency() * dt) +
+                                         s_velocity_norm(state.shots, i) * dt + 0.5 * model_->gravity_m_per_s2.norm() * dt * dt
+                                   : 0.0;
     if (step_ < skip_until_[c * n_shots_ + i]) {
         ++stats_.gate_skips;
         return false;
     }
     ShotArrays& s = state.shots;
-    Vec3 p1 = s.position(i), v1 = s.velocity(i);
+    const Vec3 p1 = s.position(i), v1 = s.velocity(i);
     Contact contact;
     if (!closest_contact(c, i, p1, v1, R + swing, contact)) return false;
     if (contact.gap >= swing && contact.gap >= 0.0) return false;
@@ -261,7 +274,8 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
             const double back = dt - u;
             return contact.gap + n.dot(-v1 * back + 0.5 * g * back * back) - a_n * (kin.displacement(t0_, u) - d_end);
         };
-        touch = first_touch_sampled(gap, u_lo, dt, 1.0 / (kin.frequency_hz * kSamplesPerPeriod), kTouchTolerance);
+        const bool leaving = last_touch_component_[i] == static_cast<int>(c);
+        touch = first_touch_sampled(gap, u_lo, dt, 1.0 / (kin.frequency_hz * kSamplesPerPeriod), kTouchTolerance, leaving);
     } else {
         const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
         touch = first_touch_quadratic(contact.gap, -n.dot(v1 - v_surface_end), 0.5 * n.dot(g), u_lo, dt);
@@ -283,6 +297,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         s.set_velocity(i, v1 + dv);
         s.set_position(i, p1 + dv * back);
         last_touch_[i] = u;
+        last_touch_component_[i] = static_cast<int>(c);
         forget_clearances(i);
         ++state.impacts_per_component[c];
         if (comp.logged) {

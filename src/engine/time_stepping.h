@@ -61,6 +61,7 @@ private:
     SimTime t0_;                       // step start
     std::vector<Pose> pose_end_;       // per component, at the step end
     std::vector<double> last_touch_;   // per shot: offset (s) of its latest contact in this step
+    std::vector<int> last_touch_component_;  // per shot: component of that contact (-1: a shot or none)
     std::vector<int> triangles_;       // BVH query results, reused
     std::vector<std::pair<int, int>> touching_;  // overlapping shot pairs of this step, reused
     double resting_speed_ = 0.0;       // m/s
@@ -71,6 +72,7 @@ private:
     std::vector<std::uint64_t> skip_until_;
     double max_relative_travel_ = 0.0; // m per step
     std::vector<SharpDistance> sharp_; // per component: distance bounds sharper than the gate's
+    std::vector<double> max_query_radius_;  // m, per component
 };
 
 }  // namespace peensim
