@@ -23,6 +23,8 @@ struct SlidePath {
     Vec3 direction;    // unit after normalisation, horizontal
 };
 
+void PrintTo(const SlidePath& p, std::ostream* os) { *os << p.name; }
+
 class EngineEdge : public ::testing::TestWithParam<SlidePath> {};
 
 TEST_P(EngineEdge, SlidingAcrossInternalEdgesKeepsHeightAndSpeed) {

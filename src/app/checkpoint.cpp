@@ -114,7 +114,8 @@ Checkpoint load_checkpoint(const std::string& path) {
     const std::string bytes = buffer.str();
     if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
         throw std::runtime_error(path + ": not a peensim checkpoint of this version");
-    Reader r(bytes.substr(sizeof(kMagic)), path);
+    const std::string body = bytes.substr(sizeof(kMagic));  // Reader keeps a reference: must outlive it
+    Reader r(body, path);
     Checkpoint c;
     c.scene_hash = r.get<std::uint64_t>();
     SimulationState& s = c.state;

@@ -15,6 +15,7 @@ double s_velocity_norm(const ShotArrays& s, std::size_t i) { return std::sqrt(s.
 constexpr int kMaxContactPasses = 8;           // impacts of one shot within one step before giving up
 constexpr double kSamplesPerPeriod = 32.0;     // sonotrode gap samples per vibration period
 constexpr double kTouchTolerance = 1e-14;      // s, precision of sampled touch times
+constexpr double kRideFraction = kSamplesPerPeriod;  // -, rebounds re-caught within one gap sample are rides
 constexpr double kCorrectionWorthCounting = 0.01;  // -, overlaps corrected beyond this fraction of R are counted
 // Bound on how far a shot can move relative to a component in one step, in units of the eq. 7
 // travel: the shot's own travel (1) plus the surface's (1: V_max includes surface speeds). A shot
@@ -45,6 +46,7 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     }
     last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
     last_touch_component_.assign(static_cast<std::size_t>(model_->shot_count), -1);
+    kicked_by_shot_.assign(static_cast<std::size_t>(model_->shot_count), 0);
     triangles_.reserve(256);
 }
 
@@ -68,8 +70,11 @@ void TimeStepping::advance(SimulationState& state, double t_end_s, std::vector<I
             pose_end_[c] = model_->components[c].kinematics.pose(t0_, dt);
     }
     integrate(state, dt);
+    // Walls first: a shot must never end a step inside a surface. Then shot-shot contacts, and
+    // walls again for the shot those kicked (their rest of the step changed).
+    resolve_mesh_contacts(state, dt, impacts, /*only_kicked=*/false);
     resolve_shot_pairs(state, dt);
-    resolve_mesh_contacts(state, dt, impacts);
+    resolve_mesh_contacts(state, dt, impacts, /*only_kicked=*/true);
     check_health(state);
 
     state.time.advance(dt);
@@ -101,6 +106,7 @@ void TimeStepping::integrate(SimulationState& state, double dt) {
     }
     std::fill(last_touch_.begin(), last_touch_.end(), 0.0);
     std::fill(last_touch_component_.begin(), last_touch_component_.end(), -1);
+    std::fill(kicked_by_shot_.begin(), kicked_by_shot_.end(), 0);
     state.shot_steps += active;
 }
 
@@ -149,6 +155,7 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             s.set_position(j, s.position(j) + dvj * back);
             last_touch_[i] = last_touch_[j] = u;
             last_touch_component_[i] = last_touch_component_[j] = -1;
+            kicked_by_shot_[i] = kicked_by_shot_[j] = 1;
             forget_clearances(i);
             forget_clearances(j);
             if (impact) ++state.shot_shot_impacts;
@@ -160,6 +167,7 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             const Vec3 push = 0.5 * (D - d) / d * r;
             s.set_position(i, s.position(i) - push);
             s.set_position(j, s.position(j) + push);
+            kicked_by_shot_[i] = kicked_by_shot_[j] = 1;
             forget_clearances(i);
             forget_clearances(j);
             if (D - d > kCorrectionWorthCounting * R) ++state.health.shot_overlap_corrections;
@@ -171,12 +179,13 @@ void TimeStepping::forget_clearances(std::size_t shot) {
     for (std::size_t c = 0; c < model_->components.size(); ++c) skip_until_[c * n_shots_ + shot] = 0;
 }
 
-void TimeStepping::resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts) {
+void TimeStepping::resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts, bool only_kicked) {
     const double laws_before = stats_[Stage::contact_laws];
     const auto start = std::chrono::steady_clock::now();
     const std::size_t n = state.shots.size(), components = model_->components.size();
     for (std::size_t i = 0; i < n; ++i) {
         if (!state.shots.active[i]) continue;
+        if (only_kicked && !kicked_by_shot_[i]) continue;
         int pass = 0;
         bool changed = true;
         while (changed && pass < kMaxContactPasses) {
@@ -234,6 +243,7 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
     out.normal = pose.rotation * n_local;
     out.point = pose.to_world(best_point);
     out.triangle = mesh.source_facet.empty() ? best_triangle : mesh.source_facet[static_cast<std::size_t>(best_triangle)];
+    out.mesh_triangle = best_triangle;
     return true;
 }
 
@@ -256,7 +266,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     }
     ShotArrays& s = state.shots;
     const Vec3 p1 = s.position(i), v1 = s.velocity(i);
-    Contact contact;
+    Contact contact{};
     if (!closest_contact(c, i, p1, v1, R + swing, contact)) return false;
     if (contact.gap >= swing && contact.gap >= 0.0) return false;
 
@@ -280,19 +290,46 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
         touch = first_touch_quadratic(contact.gap, -n.dot(v1 - v_surface_end), 0.5 * n.dot(g), u_lo, dt);
     }
-    if (!touch) return false;
     if (contact.gap < -0.5 * R) ++state.health.deep_penetrations;
+    if (!touch) {
+        // No new touch: either no contact at all, or the surface never let go of a shot that just
+        // rebounded from it (a slow rebound on an accelerating plate): that shot rides the surface.
+        if (contact.gap >= 0.0) return false;
+        sustain_contact(state, i, c, contact, v1, p1, dt);
+        return false;
+    }
 
     const double u = *touch, back = dt - u;
     const Vec3 v_touch = v1 - g * back;
     const Vec3 centre_touch = p1 - v1 * back + 0.5 * g * back * back;
+    if (kin.kind == Kinematics::Kind::rotating) {
+        // The part has turned since the touch: take the contact point and normal on the same
+        // triangle in the part's pose at the touch time, not at the step end.
+        const Pose pose = kin.pose(t0_, u);
+        const Vec3 q = pose.to_component(centre_touch);
+        const auto tt = static_cast<std::size_t>(contact.mesh_triangle);
+        const Vec3 cp = closest_point_on_triangle(q, comp.mesh->corner(tt, 0), comp.mesh->corner(tt, 1), comp.mesh->corner(tt, 2)).point;
+        if ((q - cp).norm() > 1e-9 * R) contact.normal = pose.rotation * (q - cp).normalized();
+    }
     const Vec3 x_touch = centre_touch - R * n;
     const Vec3 v_surface = kin.point_velocity(x_touch, t0_, u);
     const double approach = -(v_touch - v_surface).dot(n);
     const contact::SurfaceLaw& law = *model_->laws.surface;
 
     if (contact::is_impact(approach, resting_speed_)) {
-        const contact::SurfaceContactResponse r = law.impact({v_touch, v_surface, n, 0.0, dt}, comp.coefficients);
+        contact::SurfaceContactResponse r = law.impact({v_touch, v_surface, n, 0.0, dt}, comp.coefficients);
+        if (vibrating) {
+            // Riding the plate: while the plate accelerates into the shot faster than gravity, a slow
+            // rebound is caught again within microseconds, then again, ever slower (a Zeno sequence
+            // that never ends a step). A rebound the plate would catch within 1/kRideFraction of a
+            // period is taken as zero: the shot leaves with the plate and rides it until the plate
+            // decelerates faster than gravity (sustained contact), as the real shot does.
+            const double closing_accel = kin.point_acceleration(x_touch, t0_, u).dot(n) - g.dot(n);  // m/s2
+            if (closing_accel > 0.0 && r.vn_out < 0.5 * closing_accel / (kin.frequency_hz * kRideFraction)) {
+                r.v_shot -= r.vn_out * n;
+                r.vn_out = 0.0;
+            }
+        }
         const Vec3 dv = r.v_shot - v_touch;
         s.set_velocity(i, v1 + dv);
         s.set_position(i, p1 + dv * back);
@@ -318,15 +355,25 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         return true;
     }
     if (contact.gap >= 0.0) return false;  // a slow touch that has already ended
-    // Sustained contact (resting, rolling, sliding) at the step end: the approach stops, friction
-    // acts, and the overlap is removed by moving the shot out along the normal (no energy added).
+    sustain_contact(state, i, c, contact, v1, p1, dt);
+    return false;
+}
+
+void TimeStepping::sustain_contact(SimulationState& state, std::size_t i, std::size_t c, const Contact& contact, const Vec3& v1,
+                                   const Vec3& p1, double dt) {
+    // Sustained contact (resting, rolling, sliding, riding) at the step end: the approach stops,
+    // friction acts, and the overlap is removed by moving the shot out along the normal (no energy added).
+    const Component& comp = model_->components[c];
+    const Kinematics& kin = comp.kinematics;
+    const Vec3& n = contact.normal;
+    const Vec3 g = model_->gravity_m_per_s2;
     const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
     const double pressing = std::max(0.0, -g.dot(n) + kin.point_acceleration(contact.point, t0_, dt).dot(n));
-    const contact::SurfaceContactResponse r = law.sustain({v1, v_surface_end, n, pressing, dt}, comp.coefficients);
+    const contact::SurfaceContactResponse r = model_->laws.surface->sustain({v1, v_surface_end, n, pressing, dt}, comp.coefficients);
+    ShotArrays& s = state.shots;
     s.set_velocity(i, r.v_shot);
     s.set_position(i, p1 - contact.gap * n);
-    if (-contact.gap > kCorrectionWorthCounting * R) ++state.health.mesh_overlap_corrections;
-    return false;
+    if (-contact.gap > kCorrectionWorthCounting * model_->shot_radius_m) ++state.health.mesh_overlap_corrections;
 }
 
 void TimeStepping::check_health(SimulationState& state) {

@@ -5,11 +5,13 @@
 // Stages of one step, in order (each timed into StepStats):
 //   advance_kinematics  component poses at the step end, in closed form
 //   integrate_shots     exact ballistic flight
-//   shot_broadphase     candidate shot-shot pairs (Bullet btDbvtBroadphase)
-//   shot_shot_contacts  exact touch time of each overlapping pair, eq. 3 there
 //   mesh_queries        per shot and component: distance gate, Bullet BVH, closest feature
 //   contact_laws        touch time (quadratic, or sampled for the vibrating sonotrode), eq. 4/5
+//   shot_broadphase     candidate shot-shot pairs (Bullet btDbvtBroadphase)
+//   shot_shot_contacts  exact touch time of each overlapping pair, eq. 3 there
+//   (mesh_queries and contact_laws again for the shot a shot-shot contact kicked)
 //   check_health        lost and non-finite shot, fastest speed for the next step
+// Walls come first so that no shot ends a step inside a surface.
 #pragma once
 
 #include <memory>
@@ -40,16 +42,20 @@ private:
         Vec3 normal;         // unit, world, from the surface towards the shot centre
         Vec3 point;          // m, world, closest point on the surface at the step end
         int triangle;        // facet index in the component's mesh file
+        int mesh_triangle;   // index into the component's TriangleMesh
     };
 
     void integrate(SimulationState& state, double dt);
     void resolve_shot_pairs(SimulationState& state, double dt);
-    void resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts);
+    // only_kicked: just the shot whose flight a shot-shot contact changed in this step.
+    void resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts, bool only_kicked);
     // Returns true if an impact happened (the shot's trajectory changed within the step).
     bool handle_component(SimulationState& state, std::size_t shot, std::size_t component, double dt,
                           std::vector<ImpactRecord>& impacts);
     bool closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world, double query_radius,
                          Contact& out);
+    void sustain_contact(SimulationState& state, std::size_t shot, std::size_t component, const Contact& contact, const Vec3& v1,
+                         const Vec3& p1, double dt);
     void check_health(SimulationState& state);
     // A kicked shot may move further than the per-step bound: check it against every component again.
     void forget_clearances(std::size_t shot);
@@ -62,6 +68,7 @@ private:
     std::vector<Pose> pose_end_;       // per component, at the step end
     std::vector<double> last_touch_;   // per shot: offset (s) of its latest contact in this step
     std::vector<int> last_touch_component_;  // per shot: component of that contact (-1: a shot or none)
+    std::vector<unsigned char> kicked_by_shot_;  // per shot: a shot-shot contact changed its flight this step
     std::vector<int> triangles_;       // BVH query results, reused
     std::vector<std::pair<int, int>> touching_;  // overlapping shot pairs of this step, reused
     double resting_speed_ = 0.0;       // m/s

@@ -91,6 +91,34 @@ FaceSampler upward_faces(const Component& sonotrode, const Vec3& up) {
     return s;
 }
 
+// True if the ray from p (world) along `dir` meets any component: p lies under a roof, so it
+// belongs inside the chamber; if the enclosure says it is outside, the chamber leaks.
+bool has_roof(const Model& model, const Vec3& p, const Vec3& dir, std::vector<int>& scratch) {
+    const double length = (model.world_hi - model.world_lo).norm();
+    for (const Component& c : model.components) {
+        const Pose pose = c.kinematics.pose(SimTime{});
+        const Vec3 o = pose.to_component(p), d = pose.rotation.transpose() * dir;
+        const Vec3 end = o + d * length;
+        c.collider->triangles_overlapping(o.cwiseMin(end), o.cwiseMax(end), scratch);
+        for (int t : scratch) {
+            const auto tt = static_cast<std::size_t>(t);
+            // Moller-Trumbore ray-triangle intersection.
+            const Vec3 a = c.mesh->corner(tt, 0), e1 = c.mesh->corner(tt, 1) - a, e2 = c.mesh->corner(tt, 2) - a;
+            const Vec3 h = d.cross(e2);
+            const double det = e1.dot(h);
+            if (std::abs(det) < 1e-300) continue;
+            const Vec3 sv = o - a;
+            const double u = sv.dot(h) / det;
+            if (u < 0.0 || u > 1.0) continue;
+            const Vec3 q = sv.cross(e1);
+            const double v = d.dot(q) / det;
+            if (v < 0.0 || u + v > 1.0) continue;
+            if (e2.dot(q) / det > 0.0) return true;
+        }
+    }
+    return false;
+}
+
 TriangleMesh world_mesh(const Model& model) {
     TriangleMesh all;
     for (const Component& c : model.components) {
@@ -132,30 +160,35 @@ InitialShots place_shots(const Model& model) {
     const Enclosure enclosure(world_mesh(model), std::max(0.5 * R, 1e-5), R);
     Random rng(model.seed);
 
-    // Closed-chamber check: shot resting on the sonotrode must be enclosed.
+    // Closed-chamber check: a point on the sonotrode with something above it (under the chamber's
+    // roof) must be enclosed; if it is not, the chamber leaks. Points with nothing above them lie
+    // beyond the chamber (a horn wider than the chamber) and are simply not used for placement.
     {
-        int enclosed = 0;
-        Vec3 first = Vec3::Zero();
-        for (int k = 0; k < 64; ++k) {
+        std::vector<int> scratch;
+        int roofed = 0;
+        for (int k = 0; k < 256 && roofed < 64; ++k) {
             const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance));
-            if (k == 0) first = p;
-            enclosed += enclosure.inside(p) ? 1 : 0;
-        }
-        if (enclosed == 0) {
+            // Only points where a shot fits (a point hugging a wall may sit in a cell the walls mark).
+            if (!clear_of_meshes(model, p, R, scratch) || !has_roof(model, p, up, scratch)) continue;
+            ++roofed;
+            if (enclosure.inside(p)) continue;
             Vec3 lo = Vec3::Constant(1e300), hi = -lo;
             for (const Component& c : model.components)
                 if (c.role == ComponentRole::chamber) {
                     lo = lo.cwiseMin(c.world_lo);
                     hi = hi.cwiseMax(c.world_hi);
                 }
-            Vec3 where = first;
-            enclosure.escape_point(first, lo, hi, where);
+            Vec3 where = p;
+            enclosure.escape_point(p, lo, hi, where);
             SourceLocation at{scene.source_file, 0, 0};
             for (const ComponentDesc& c : scene.components)
                 if (c.role == ComponentRole::chamber) { at = c.where; break; }
-            throw InputError(at, "components", "the chamber is not closed around the sonotrode: a shot placed on the sonotrode can leave the assembly near " +
-                                                   mm_point(where) + " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
+            throw InputError(at, "components", "the chamber is not closed around the sonotrode: a shot placed on the sonotrode at " +
+                                                   mm_point(p) + " can leave the assembly near " + mm_point(where) +
+                                                   " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
         }
+        if (roofed == 0)
+            throw InputError(sono_where, "components", "expected a chamber above the sonotrode, found nothing above its upper face");
     }
 
     InitialShots out;

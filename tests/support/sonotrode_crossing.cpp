@@ -12,8 +12,8 @@ constexpr double kSameState_m_per_s = 1e-9;   // m/s, end velocity equal to the 
 }  // namespace
 
 SonotrodeCrossingCheck::SonotrodeCrossingCheck(const Model& model, double plate_top_m, double tolerance_m,
-                                               int samples_per_step)
-    : model_(model), plate_top_m_(plate_top_m), tolerance_m_(tolerance_m), samples_(samples_per_step) {}
+                                               double samples_per_period)
+    : model_(model), plate_top_m_(plate_top_m), tolerance_m_(tolerance_m), samples_per_period_(samples_per_period) {}
 
 void SonotrodeCrossingCheck::before_step(const SimulationState& state) {
     before_ = state.shots;
@@ -53,8 +53,9 @@ void SonotrodeCrossingCheck::after_step(const SimulationState& state, const std:
             continue;  // something else acted on the shot in this step
         ++report_.flights_checked;
         double deepest = 0.0, at = 0.0;
-        for (int k = 1; k < samples_; ++k) {
-            const double s = s_end * k / samples_;
+        const int samples = std::max(8, static_cast<int>(std::ceil(s_end * kin.frequency_hz * samples_per_period_)));
+        for (int k = 1; k < samples; ++k) {
+            const double s = s_end * k / samples;
             const double z = c.z() + v.z() * s + 0.5 * g.z() * s * s;
             const double gap = z - R - (plate_top_m_ + kin.displacement(t0_, u0 + s));
             if (gap < deepest) deepest = gap, at = s;

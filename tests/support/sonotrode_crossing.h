@@ -30,8 +30,9 @@ struct CrossingReport {
 class SonotrodeCrossingCheck {
 public:
     // tolerance_m: a gap above -tolerance counts as touching, not crossing (m).
+    // The flight is sampled samples_per_period times per vibration period, at least 8 times a step.
     SonotrodeCrossingCheck(const Model& model, double plate_top_m, double tolerance_m = 1e-9,
-                           int samples_per_step = 256);
+                           double samples_per_period = 64.0);
 
     void before_step(const SimulationState& state);
     void after_step(const SimulationState& state, const std::vector<ImpactRecord>& impacts);
@@ -42,7 +43,7 @@ private:
     const Model& model_;
     double plate_top_m_;
     double tolerance_m_;
-    int samples_;
+    double samples_per_period_;
     ShotArrays before_;
     SimTime t0_;
     CrossingReport report_;

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Benchmark: prints what a step costs on the shipped scenes (see README, "Benchmark").
+#   tests/bench/run.sh [--quick]
+# Needs a Release build in build/ (the README's commands make one). --quick runs every case for a
+# tenth of its simulated time (for a smoke test; the README's figures come from full runs).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+cd "$root"
+bench="$root/build/peensim_bench"
+[[ -x "$bench" ]] || { echo "run.sh: build first (cmake --build build --target peensim_bench)" >&2; exit 1; }
+scale=1
+[[ "${1:-}" == "--quick" ]] && scale=0.1
+dur() { awk -v d="$1" -v s="$scale" 'BEGIN { printf "%g s", d * s }'; }
+
+echo "# peensim benchmark, $(date -u +%Y-%m-%d), $(nproc) cores, single thread"
+"$bench" scenes/rod.yaml --set process.duration="$(dur 1)" --label "rod: 512 shot of 2 mm, A0 25 um, $(dur 1)"
+"$bench" scenes/rod.yaml --set process.duration="$(dur 10)" --set shot.diameter="1 mm" \
+    --set "components[sonotrode].vibration.amplitude=80 um" --label "heavy: rod chamber, 512 shot of 1 mm, A0 80 um, $(dur 10)"
+"$bench" scenes/gear.yaml --set process.duration="$(dur 5)" --label "gear, 4960-triangle gear, $(dur 5)"
+fine="$root/build/assets/gear-fine.stl"
+[[ -f "$fine" ]] || PEENSIM="$root/build/peensim" bash assets/regenerate.sh --fine >/dev/null
+"$bench" scenes/gear.yaml --set process.duration="$(dur 5)" --set "components[gear].mesh=$fine" \
+    --label "gear, 500480-triangle gear, $(dur 5)"
+
+echo
+echo "# accuracy knob: accuracy.travel_fraction on the rod scene ($(dur 1)); 0.025 is the converged reference"
+for f in 0.5 0.25 0.1 0.05 0.025; do
+    "$bench" scenes/rod.yaml --set process.duration="$(dur 1)" --set accuracy.travel_fraction=$f --label "rod, travel_fraction $f"
+done
