@@ -3,6 +3,7 @@
 #include <iomanip>
 #include <ostream>
 
+#include "app/report_errors.h"
 #include "app/run_job.h"
 #include "common/input_error.h"
 #include "engine/time_stepping.h"
@@ -44,19 +45,13 @@ void print_report(const Model& model, const InitialShots& shots, std::ostream& o
 }  // namespace
 
 int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, std::ostream& out, std::ostream& err) {
-    try {
+    return report_errors(err, [&] {
         const SceneDescription scene = parse_scene_file(scene_path, overrides);
         const auto model = compile_model(scene);
         const InitialShots shots = place_shots(*model);
         print_report(*model, shots, out);
-        return kExitOk;
-    } catch (const InputError& e) {
-        err << "error: " << e.what() << "\n";
-        return kExitInputError;
-    } catch (const std::exception& e) {
-        err << "error: " << e.what() << "\n";
-        return kExitRuntimeError;
-    }
+        return static_cast<int>(kExitOk);
+    });
 }
 
 }  // namespace peensim

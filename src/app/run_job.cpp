@@ -10,6 +10,7 @@
 
 #include "app/checkpoint.h"
 #include "app/interrupt.h"
+#include "app/report_errors.h"
 #include "app/summary_builder.h"
 #include "common/input_error.h"
 #include "engine/simulation.h"
@@ -192,15 +193,7 @@ private:
 }  // namespace
 
 int run_job(const RunOptions& options, std::ostream& out, std::ostream& err) {
-    try {
-        return Job(options, out, err).run();
-    } catch (const InputError& e) {
-        err << "error: " << e.what() << "\n";
-        return kExitInputError;
-    } catch (const std::exception& e) {
-        err << "error: " << e.what() << "\n";
-        return kExitRuntimeError;
-    }
+    return report_errors(err, [&] { return Job(options, out, err).run(); });
 }
 
 }  // namespace peensim
