@@ -19,6 +19,7 @@ struct StepStats {
     // Work counters, to see why a stage costs what it does.
     std::uint64_t gate_checks = 0;      // distance-gate look-ups (shot x component)
     std::uint64_t gate_skips = 0;       // shot x component checks skipped by the per-shot skip counters
+    std::uint64_t memo_skips = 0;       // queries avoided by a shot's last measured distance
     std::uint64_t bvh_queries = 0;      // Bullet BVH queries
     std::uint64_t bvh_hits = 0;         // queries that found a triangle within reach
     std::uint64_t triangles_returned = 0;  // triangles the BVH returned

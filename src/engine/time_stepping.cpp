@@ -21,6 +21,9 @@ constexpr double kCorrectionWorthCounting = 0.01;  // -, overlaps corrected beyo
 // travel: the shot's own travel (1) plus the surface's (1: V_max includes surface speeds). A shot
 // kicked within a step can go further; its skip counters are reset at every kick.
 constexpr double kMaxRelativeTravelPerStep = 2.0;
+// How much further than needed a mesh query looks (fraction of R), to learn the distance of a shot
+// that misses: it then needs no query until it has moved that much closer.
+constexpr double kMemoMargin = 0.5;
 
 }  // namespace
 
@@ -38,6 +41,8 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     n_shots_ = static_cast<std::size_t>(model_->shot_count);
     skip_until_.assign(model_->components.size() * n_shots_, 0);
     max_relative_travel_ = kMaxRelativeTravelPerStep * model_->travel_fraction * model_->shot_radius_m;
+    memo_.assign(model_->components.size() * n_shots_, DistanceMemo{});
+    memo_margin_ = kMemoMargin * model_->shot_radius_m;
     for (const Component& c : model_->components) {
         // The largest query radius a step uses for this component (see handle_component).
         const double travel = model_->travel_fraction * model_->shot_radius_m;
@@ -216,15 +221,26 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
             skip_until_[component * n_shots_ + shot] = step_ + static_cast<std::uint64_t>(clearance / max_relative_travel_);
         return false;
     }
+    // The shot's last exact distance to this component bounds its distance now: the distance
+    // function is 1-Lipschitz, so it is at least d_then - |p - p_then| (both in the component's frame).
+    DistanceMemo& memo = memo_[component * n_shots_ + shot];
+    if (memo.distance - (p - memo.where).norm() > query_radius) {
+        ++stats_.memo_skips;
+        return false;
+    }
     ++stats_.bvh_queries;
     // One contact per shot and component: the closest feature. Neighbouring triangles that share the
     // closest edge or vertex give the same point, so spurious normals at internal edges never act.
+    // The query looks a little further than needed, to learn the distance of a shot that misses.
+    const double look = query_radius + memo_margin_;
     MeshCollider::Closest closest;
     MeshCollider::QueryCounters counters;
-    const bool found = comp.collider->closest_within(p, query_radius, triangles_, closest, counters);
+    const bool found = comp.collider->closest_within(p, look, triangles_, closest, counters);
     stats_.triangle_tests += counters.triangles_tested;
     stats_.triangles_returned += counters.triangles_returned;
-    if (!found) return false;
+    memo.where = p;
+    memo.distance = found ? closest.distance : look;
+    if (!found || closest.distance >= query_radius) return false;
     ++stats_.bvh_hits;
     const TriangleMesh& mesh = *comp.mesh;
     const int best_triangle = closest.triangle;

@@ -80,6 +80,14 @@ private:
     double max_relative_travel_ = 0.0; // m per step
     std::vector<SharpDistance> sharp_; // per component: distance bounds sharper than the gate's
     std::vector<double> max_query_radius_;  // m, per component
+    // Per component and shot: where (component frame, m) the shot's exact distance (m) to the
+    // component was last measured, and that distance (0 = none: always query).
+    struct DistanceMemo {
+        Vec3 where = Vec3::Zero();
+        double distance = 0.0;
+    };
+    std::vector<DistanceMemo> memo_;
+    double memo_margin_ = 0.0;         // m
 };
 
 }  // namespace peensim

@@ -40,10 +40,12 @@ int main(int argc, char** argv) {
         std::vector<ImpactRecord> impacts;
         impacts.reserve(1024);
         std::uint64_t logged = 0;
+        double speed_sum = 0.0;  // m/s, normal impact speeds on logged components
         const auto t0 = Clock::now();
         while (!sim.finished()) {
             sim.step(impacts);
             logged += impacts.size();
+            for (const ImpactRecord& r : impacts) speed_sum += r.vn_in_m_per_s;
             impacts.clear();
         }
         const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -57,15 +59,16 @@ int main(int argc, char** argv) {
         std::printf("  wall %.3f s   sim s per wall s %.4f   shot-steps/s %.3e (%.0f ns per shot-step)   steps %llu\n", wall,
                     st.time.seconds() / wall, static_cast<double>(st.shot_steps) / wall, 1e9 * wall / static_cast<double>(st.shot_steps),
                     static_cast<unsigned long long>(st.steps));
-        std::printf("  peak memory %.1f MB   logged impacts %llu (%.0f per simulated s)   shot lost %llu\n",
+        std::printf("  peak memory %.1f MB   logged impacts %llu (%.0f per simulated s, mean normal speed %.4f m/s)   shot lost %llu\n",
                     static_cast<double>(peak_resident_bytes()) / 1e6, static_cast<unsigned long long>(logged),
-                    static_cast<double>(logged) / st.time.seconds(), static_cast<unsigned long long>(st.health.shot_lost));
+                    static_cast<double>(logged) / st.time.seconds(), logged ? speed_sum / static_cast<double>(logged) : 0.0,
+                    static_cast<unsigned long long>(st.health.shot_lost));
         std::printf("  stages:");
         for (std::size_t k = 0; k < kStageNames.size(); ++k)
             if (stats.seconds[k] > 0.0) std::printf(" %s %.0f%%", std::string(kStageNames[k]).c_str(), 100.0 * stats.seconds[k] / wall);
         const double ss = static_cast<double>(st.shot_steps);
-        std::printf("\n  per shot-step: gate checks %.2f, skipped %.2f, BVH queries %.3f (hits %.3f), triangles returned %.3f, tested %.3f, touch searches %.4f\n",
-                    static_cast<double>(stats.gate_checks) / ss, static_cast<double>(stats.gate_skips) / ss,
+        std::printf("\n  per shot-step: gate checks %.2f, skipped %.2f, memo skips %.3f, BVH queries %.3f (hits %.3f), triangles returned %.3f, tested %.3f, touch searches %.4f\n",
+                    static_cast<double>(stats.gate_checks) / ss, static_cast<double>(stats.gate_skips) / ss, static_cast<double>(stats.memo_skips) / ss,
                     static_cast<double>(stats.bvh_queries) / ss, static_cast<double>(stats.bvh_hits) / ss, static_cast<double>(stats.triangles_returned) / ss, static_cast<double>(stats.triangle_tests) / ss,
                     static_cast<double>(stats.touch_searches) / ss);
     } catch (const std::exception& e) {
