@@ -12,7 +12,9 @@ namespace {
 
 double s_velocity_norm(const ShotArrays& s, std::size_t i) { return std::sqrt(s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]); }
 
-constexpr int kMaxContactPasses = 8;           // impacts of one shot within one step before giving up
+// Impacts of one shot within one step before giving up. A shot chattering on the plate takes up to
+// ~35 rebounds before its rebound is slow enough to ride (C = 0.9 from 10 m/s down to kRideFraction's limit).
+constexpr int kMaxContactPasses = 64;
 constexpr double kSamplesPerPeriod = 32.0;     // sonotrode gap samples per vibration period
 constexpr double kTouchTolerance = 1e-14;      // s, precision of sampled touch times
 constexpr double kRideFraction = kSamplesPerPeriod;  // -, rebounds re-caught within one gap sample are rides
