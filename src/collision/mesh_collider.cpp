@@ -91,8 +91,7 @@ void MeshCollider::triangles_overlapping(const Vec3& lo, const Vec3& hi, std::ve
     impl_->shape->getOptimizedBvh()->reportAabbOverlappingNodex(&collect, btVector3(l.x(), l.y(), l.z()), btVector3(h.x(), h.y(), h.z()));
 }
 
-bool MeshCollider::closest_within(const Vec3& p, double radius, std::vector<int>& /*scratch*/, Closest& out,
-                                  QueryCounters& counters) const {
+bool MeshCollider::closest_within(const Vec3& p, double radius, Closest& out, QueryCounters& counters) const {
     // Nearest-first descent of Bullet's quantized BVH, pruning every node farther than the best
     // triangle found so far: the cost follows the few triangles near the closest point, not all
     // triangles within `radius` (hundreds on a fine mesh), so it stays flat in the triangle count.

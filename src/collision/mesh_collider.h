@@ -24,19 +24,20 @@ public:
     // (mesh frame, m). `out` is reused by the caller, so a query allocates nothing once warm.
     void triangles_overlapping(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const;
 
-    // The point of the mesh closest to p (mesh frame, m) if it lies within `radius` (m): the
-    // BVH gives the candidate triangles, a plane test rejects most of them cheaply, and the exact
-    // closest point is computed for the rest. `scratch` is reused storage.
+    // The point of the mesh closest to p (mesh frame, m) if it lies within `radius` (m): a
+    // nearest-first descent of the BVH that prunes every node farther than the best triangle so
+    // far; a plane test rejects most leaves cheaply, the exact closest point decides the rest.
+    // Allocates nothing.
     struct Closest {
         int triangle = -1;     // index into the mesh's triangles
         double distance = 0.0; // m
         Vec3 point;            // m, mesh frame
     };
     struct QueryCounters {
-        std::uint64_t triangles_returned = 0;  // by the BVH
+        std::uint64_t triangles_returned = 0;  // BVH leaves reached
         std::uint64_t triangles_tested = 0;    // exact closest-point tests after the plane test
     };
-    bool closest_within(const Vec3& p, double radius, std::vector<int>& scratch, Closest& out, QueryCounters& counters) const;
+    bool closest_within(const Vec3& p, double radius, Closest& out, QueryCounters& counters) const;
 
     std::size_t memory_bytes() const;
 

@@ -15,7 +15,7 @@ float SharpDistance::exact_distance(const Vec3& centre) {
     ++resolved_;
     MeshCollider::Closest closest;
     MeshCollider::QueryCounters counters;
-    if (!collider_->closest_within(centre, resolve_, scratch_, closest, counters)) return std::nextafter(static_cast<float>(resolve_), 0.0f);
+    if (!collider_->closest_within(centre, resolve_, closest, counters)) return std::nextafter(static_cast<float>(resolve_), 0.0f);
     // Rounded down to float so the bound stays a lower bound.
     return std::nextafter(static_cast<float>(closest.distance), 0.0f);
 }

@@ -45,7 +45,6 @@ private:
     double reach_;                          // m
     double resolve_;                        // m, radius of the centre queries
     std::vector<float> centre_distance_;    // m, per gate cell; < 0 = not yet known
-    std::vector<int> scratch_;
     std::size_t resolved_ = 0;
 };
 

@@ -54,7 +54,6 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
     last_touch_component_.assign(static_cast<std::size_t>(model_->shot_count), -1);
     kicked_by_shot_.assign(static_cast<std::size_t>(model_->shot_count), 0);
-    triangles_.reserve(256);
 }
 
 void TimeStepping::advance(SimulationState& state, double t_end_s, std::vector<ImpactRecord>& impacts) {
@@ -237,7 +236,7 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
     const double look = query_radius + memo_margin_;
     MeshCollider::Closest closest;
     MeshCollider::QueryCounters counters;
-    const bool found = comp.collider->closest_within(p, look, triangles_, closest, counters);
+    const bool found = comp.collider->closest_within(p, look, closest, counters);
     stats_.triangle_tests += counters.triangles_tested;
     stats_.triangles_returned += counters.triangles_returned;
     memo.where = p;

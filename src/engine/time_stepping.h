@@ -69,7 +69,6 @@ private:
     std::vector<double> last_touch_;   // per shot: offset (s) of its latest contact in this step
     std::vector<int> last_touch_component_;  // per shot: component of that contact (-1: a shot or none)
     std::vector<unsigned char> kicked_by_shot_;  // per shot: a shot-shot contact changed its flight this step
-    std::vector<int> triangles_;       // BVH query results, reused
     std::vector<std::pair<int, int>> touching_;  // overlapping shot pairs of this step, reused
     double resting_speed_ = 0.0;       // m/s
     std::uint64_t step_ = 0;           // index of the current step

@@ -16,17 +16,14 @@ constexpr int kRejectionsPerLayer = 400;
 constexpr double kClearance = 0.01;  // -, gap left between placed shot and surfaces, fraction of R
 
 // Exact clearance of a sphere of radius r at p (world) from every component at t = 0.
-bool clear_of_meshes(const Model& model, const Vec3& p, double r, std::vector<int>& scratch) {
+bool clear_of_meshes(const Model& model, const Vec3& p, double r) {
     const SimTime t0;
     for (const Component& c : model.components) {
         const Vec3 q = c.kinematics.pose(t0).to_component(p);
         if (c.gate->lower_bound(q) > r) continue;
-        c.collider->triangles_overlapping(q - Vec3::Constant(r), q + Vec3::Constant(r), scratch);
-        for (int t : scratch) {
-            const auto tt = static_cast<std::size_t>(t);
-            const Vec3 cp = closest_point_on_triangle(q, c.mesh->corner(tt, 0), c.mesh->corner(tt, 1), c.mesh->corner(tt, 2)).point;
-            if ((cp - q).squaredNorm() < r * r) return false;
-        }
+        MeshCollider::Closest closest;
+        MeshCollider::QueryCounters counters;
+        if (c.collider->closest_within(q, r, closest, counters)) return false;
     }
     return true;
 }
@@ -137,6 +134,40 @@ std::string mm_point(const Vec3& p) {
     return s.str();
 }
 
+// Closed-chamber check: a point on the sonotrode with something above it (under the chamber's
+// roof) must be enclosed; if it is not, the chamber leaks. Points with nothing above them lie
+// beyond the chamber (a horn wider than the chamber) and are simply not used for placement.
+void require_closed_chamber(const Model& model, const Enclosure& enclosure, const FaceSampler& faces, const Vec3& up, Random& rng) {
+    const SceneDescription& scene = model.description;
+    const double R = model.shot_radius_m;
+    const SourceLocation sono_where = scene.components[static_cast<std::size_t>(model.sonotrode)].where;
+    std::vector<int> scratch;
+    int roofed = 0;
+    for (int k = 0; k < 256 && roofed < 64; ++k) {
+        const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance));
+        // Only points where a shot fits (a point hugging a wall may sit in a cell the walls mark).
+        if (!clear_of_meshes(model, p, R) || !has_roof(model, p, up, scratch)) continue;
+        ++roofed;
+        if (enclosure.inside(p)) continue;
+        Vec3 lo = Vec3::Constant(1e300), hi = -lo;
+        for (const Component& c : model.components)
+            if (c.role == ComponentRole::chamber) {
+                lo = lo.cwiseMin(c.world_lo);
+                hi = hi.cwiseMax(c.world_hi);
+            }
+        Vec3 where = p;
+        enclosure.escape_point(p, lo, hi, where);
+        SourceLocation at{scene.source_file, 0, 0};
+        for (const ComponentDesc& c : scene.components)
+            if (c.role == ComponentRole::chamber) { at = c.where; break; }
+        throw InputError(at, "components", "the chamber is not closed around the sonotrode: a shot placed on the sonotrode at " +
+                                               mm_point(p) + " can leave the assembly near " + mm_point(where) +
+                                               " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
+    }
+    if (roofed == 0)
+        throw InputError(sono_where, "components", "expected a chamber above the sonotrode, found nothing above its upper face");
+}
+
 }  // namespace
 
 Vec3 sonotrode_up(const Model& model) {
@@ -160,44 +191,14 @@ InitialShots place_shots(const Model& model) {
     const Enclosure enclosure(world_mesh(model), std::max(0.5 * R, 1e-5), R);
     Random rng(model.seed);
 
-    // Closed-chamber check: a point on the sonotrode with something above it (under the chamber's
-    // roof) must be enclosed; if it is not, the chamber leaks. Points with nothing above them lie
-    // beyond the chamber (a horn wider than the chamber) and are simply not used for placement.
-    {
-        std::vector<int> scratch;
-        int roofed = 0;
-        for (int k = 0; k < 256 && roofed < 64; ++k) {
-            const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance));
-            // Only points where a shot fits (a point hugging a wall may sit in a cell the walls mark).
-            if (!clear_of_meshes(model, p, R, scratch) || !has_roof(model, p, up, scratch)) continue;
-            ++roofed;
-            if (enclosure.inside(p)) continue;
-            Vec3 lo = Vec3::Constant(1e300), hi = -lo;
-            for (const Component& c : model.components)
-                if (c.role == ComponentRole::chamber) {
-                    lo = lo.cwiseMin(c.world_lo);
-                    hi = hi.cwiseMax(c.world_hi);
-                }
-            Vec3 where = p;
-            enclosure.escape_point(p, lo, hi, where);
-            SourceLocation at{scene.source_file, 0, 0};
-            for (const ComponentDesc& c : scene.components)
-                if (c.role == ComponentRole::chamber) { at = c.where; break; }
-            throw InputError(at, "components", "the chamber is not closed around the sonotrode: a shot placed on the sonotrode at " +
-                                                   mm_point(p) + " can leave the assembly near " + mm_point(where) +
-                                                   " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
-        }
-        if (roofed == 0)
-            throw InputError(sono_where, "components", "expected a chamber above the sonotrode, found nothing above its upper face");
-    }
+    require_closed_chamber(model, enclosure, faces, up, rng);
 
     InitialShots out;
     PlacedShots placed(D);
-    std::vector<int> scratch;
     int layer = 0, in_layer = 0, rejections = 0;
     while (static_cast<int>(out.positions.size()) < model.shot_count) {
         const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance) + layer * D * (1.0 + kClearance));
-        const bool ok = enclosure.inside(p) && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kClearance), scratch);
+        const bool ok = enclosure.inside(p) && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kClearance));
         if (ok) {
             placed.add(p);
             out.positions.push_back(p);
