@@ -259,7 +259,7 @@ std::string expected_text(const SchemaEntry& e) {
 
 std::string scene_reference_markdown() {
     std::string md;
-    md += "# Scene file reference\n\n";
+    md += "### Scene file reference\n\n";
     md += "Scene files are YAML. Quantities are plain numbers in SI units or text with a unit (\"2 mm\", "
           "\"20 kHz\", \"60 rpm\"). `[]` stands for each item of a list, `*` for a name you choose. "
           "Any value can be replaced from the command line with `--set path=value` "
@@ -281,7 +281,7 @@ std::string scene_reference_markdown() {
         md += "| `" + std::string(e.path) + "` | " + std::string(kind_name(e)) + " | " + markdown_cell(unit) +
               " | " + markdown_cell(deflt) + " | " + markdown_cell(range) + " | " + markdown_cell(e.doc) + " |\n";
     }
-    md += "\n## Units\n\n| Quantity | Accepted units (first is SI) |\n|---|---|\n";
+    md += "\n#### Units\n\n| Quantity | Accepted units (first is SI) |\n|---|---|\n";
     for (Dimension d : {D::length, D::time, D::frequency, D::speed, D::acceleration, D::density, D::stress,
                         D::angle, D::angular_speed}) {
         md += "| " + std::string(dimension_noun(d).substr(dimension_noun(d).find(' ') + 1)) + " | " +
