@@ -8,6 +8,7 @@
 #include <memory>
 #include <ostream>
 
+#include "app/analyze_job.h"
 #include "app/checkpoint.h"
 #include "app/interrupt.h"
 #include "app/report_errors.h"
@@ -168,6 +169,10 @@ private:
         for (const LostShot& l : sim_->state().lost)
             err_ << "warning: shot " << l.shot << " left the chamber at t = " << l.time_s << " s near (" << l.position_m.x() * 1e3
                  << ", " << l.position_m.y() * 1e3 << ", " << l.position_m.z() * 1e3 << ") mm: the meshes leak there\n";
+        if (options_.analyze) {
+            const int code = analyze_job(dir_, out_, err_);
+            if (code != kExitOk) err_ << "warning: the run finished but its analysis failed (exit " << code << ")\n";
+        }
         if (options_.strict && sim_->state().health.serious() > 0) {
             err_ << "error: --strict: the run had numerical trouble (see health counters in summary.json)\n";
             return kExitHealthFailure;

@@ -17,6 +17,7 @@ struct RunOptions {
     bool progress = true;                 // draw a progress bar (only on a terminal)
     bool resume = false;                  // continue from output_dir/checkpoint.bin
     bool strict = false;                  // fail (exit 3) if a serious health counter is non-zero
+    bool analyze = true;                  // run `peensim analyze` on the outputs when the run finishes
     std::optional<std::uint64_t> stop_after_steps;  // interrupt after this many steps (tests, benchmarks)
 };
 

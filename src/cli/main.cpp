@@ -3,6 +3,7 @@
 
 #include <iostream>
 
+#include "app/analyze_job.h"
 #include "app/check_job.h"
 #include "app/run_job.h"
 #include "cli/generate_command.h"
@@ -24,6 +25,8 @@ int main(int argc, char** argv) {
     run_cmd->add_flag("-q,--quiet", quiet, "no progress bar and no summary on stdout");
     run_cmd->add_flag("--resume", run.resume, "continue an interrupted run from its checkpoint in the output directory");
     run_cmd->add_flag("--strict", run.strict, "exit 3 if any shot was lost or the numerics went wrong");
+    bool no_analyze = false;
+    run_cmd->add_flag("--no-analyze", no_analyze, "do not analyse the impacts when the run finishes");
     std::uint64_t stop_after = 0;
     run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
 
@@ -32,6 +35,10 @@ int main(int argc, char** argv) {
     auto* check_cmd = app.add_subcommand("check", "validate a scene and print it resolved (defaults filled in, SI units)");
     check_cmd->add_option("scene", check_scene, "scene file (YAML)")->required();
     check_cmd->add_option("--set", check_overrides, "override a scene field")->allow_extra_args(false);
+
+    std::string analyze_dir;
+    auto* analyze_cmd = app.add_subcommand("analyze", "analyse a run's impacts: coverage, per-triangle fields, histograms, report.md");
+    analyze_cmd->add_option("outdir", analyze_dir, "the run's output directory")->required();
 
     auto* generate_cmd = app.add_subcommand("generate", "write a generated mesh (gear, cylinder, box, chamber); see 'peensim generate --help'");
     generate_cmd->prefix_command();
@@ -49,9 +56,11 @@ int main(int argc, char** argv) {
         if (stop_after > 0) run.stop_after_steps = stop_after;
         std::ostream null_stream(nullptr);
         run.progress = !quiet;
+        run.analyze = !no_analyze;
         return run_job(run, quiet ? null_stream : std::cout, std::cerr);
     }
     if (*check_cmd) return check_job(check_scene, check_overrides, std::cout, std::cerr);
+    if (*analyze_cmd) return analyze_job(analyze_dir, std::cout, std::cerr);
     if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
     if (app.got_subcommand("schema")) {
         std::cout << scene_reference_markdown();
