@@ -19,6 +19,7 @@
 #include "geometry/mesh_loader.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
+#include "output/vtp_writer.h"
 #include "scene/scene_parser.h"
 
 namespace fs = std::filesystem;
@@ -57,6 +58,7 @@ struct ComponentAnalysis {
     std::uint64_t impacts = 0;
     double speed_sum = 0.0, dent_sum = 0.0;
     std::vector<CoveragePoint> curve;
+    std::unique_ptr<ImpactPointsVtpWriter> points;  // the impacts, for ParaView
 };
 
 const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
@@ -96,6 +98,25 @@ void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double
           << fmt(c.fields->energy_per_area(t), 6) << ',' << (c.coverage ? fmt(c.coverage->coverage_of_triangle(t)) : "") << '\n';
     }
     write_file_atomically(path.string(), s.str());
+}
+
+// The per-triangle fields as VTK cell data (same names and units as the CSV columns).
+std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) {
+    const std::size_t n = c.fields->triangle_count();
+    std::vector<CellField> f{{"impacts", 1, {}}, {"impacts_per_mm2_s", 1, {}}, {"mean_vn_mps", 1, {}},
+                             {"max_vn_mps", 1, {}}, {"energy_J_per_m2", 1, {}}};
+    if (c.coverage) f.push_back({"coverage", 1, {}});
+    for (CellField& x : f) x.values.reserve(n);
+    for (std::size_t t = 0; t < n; ++t) {
+        const double mean = c.fields->mean_normal_speed(t);
+        f[0].values.push_back(static_cast<double>(c.fields->count(t)));
+        f[1].values.push_back(c.fields->rate_per_mm2_s(t, duration));
+        f[2].values.push_back(std::isfinite(mean) ? mean : 0.0);  // ParaView: 0 where nothing hit
+        f[3].values.push_back(c.fields->max_normal_speed(t));
+        f[4].values.push_back(c.fields->energy_per_area(t));
+        if (c.coverage) f[5].values.push_back(c.coverage->coverage_of_triangle(t));
+    }
+    return f;
 }
 
 void write_histograms_csv(const fs::path& path, const ComponentAnalysis& c) {
@@ -148,7 +169,9 @@ std::string report(const fs::path& dir, const SceneDescription& scene, const std
          "phi = D (8 rho v_n^2 / (9 sigma_y))^(1/4) (eq. 10), sampled on a grid of spacing a fifth of the dent at 1 m/s; "
          "98 % counts as full coverage, its time from the fit C(t) = 1 - exp(-k t).\n\nFiles (per component): "
          "`<component>_triangles.csv` (per-triangle fields), `<component>_coverage.csv` (coverage vs time), "
-         "`<component>_histograms.csv` (normal speed, impact angle, dent diameter).\n";
+         "`<component>_histograms.csv` (normal speed, impact angle, dent diameter), `<component>.vtp` (the mesh with "
+         "the per-triangle fields as cell data, for ParaView), `<component>_impacts.vtp` (the impacts as points with their "
+         "relative velocity, normal speed and time).\n";
     return r.str();
 }
 
@@ -192,6 +215,11 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
         }
         if (parts.empty()) throw std::runtime_error(output_dir + ": the run logged no component (output.log is empty and the scene has no part)");
 
+        const fs::path adir = dir / "analysis";
+        fs::create_directories(adir);
+        for (ComponentAnalysis& a : parts)
+            a.points = std::make_unique<ImpactPointsVtpWriter>((adir / (a.name + "_impacts.vtp")).string(), impact_point_field_layouts());
+
         ImpactLogReader reader(log.string());
         ImpactRow row;
         int next_sample = 1;
@@ -209,6 +237,8 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
             const auto it = by_name.find(row.component);
             if (it == by_name.end()) continue;
             ComponentAnalysis& a = parts[it->second];
+            const double values[5] = {row.v_in_m_per_s.x(), row.v_in_m_per_s.y(), row.v_in_m_per_s.z(), row.vn_in_m_per_s, row.time_s};
+            a.points->add(row.point_m, values);
             a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s);
             ++a.impacts;
             a.speed_sum += row.vn_in_m_per_s;
@@ -223,9 +253,9 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
         }
         sample_until(duration);
 
-        const fs::path adir = dir / "analysis";
-        fs::create_directories(adir);
-        for (const ComponentAnalysis& a : parts) {
+        for (ComponentAnalysis& a : parts) {
+            a.points->finish();
+            write_mesh_vtp((adir / (a.name + ".vtp")).string(), *a.mesh, cell_fields(a, duration));
             write_triangle_csv(adir / (a.name + "_triangles.csv"), a, duration);
             write_histograms_csv(adir / (a.name + "_histograms.csv"), a);
             if (a.coverage) write_curve_csv(adir / (a.name + "_coverage.csv"), a);
@@ -233,7 +263,7 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
         const std::string text = report(dir, scene, parts, duration, finished, reader.truncated());
         write_file_atomically((adir / "report.md").string(), text);
         out << text.substr(text.find("| component"), text.find("\nCoverage follows") - text.find("| component")) << "analysis: "
-            << adir.string() << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv}\n";
+            << adir.string() << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp}\n";
         return 0;
     });
 }
