@@ -8,6 +8,7 @@
 #include <random>
 
 #include "analysis/coverage_map.h"
+#include "geometry/box_mesh.h"
 #include "geometry/cylinder_mesh.h"
 
 namespace peensim {
@@ -193,3 +194,17 @@ TEST(AnalysisCoverage, TimingOnAManyTriangleCylinder) {
 
 }  // namespace
 }  // namespace peensim
+
+// A face lying exactly on a boundary of the coverage map's dent grid must still be found: a unit
+// cube with 0.1 m grid cells puts its faces on cell boundaries.
+TEST(AnalysisCoverage, FacesOnGridCellBoundariesAreCovered) {
+    peensim::BoxSpec spec;
+    spec.size_m = peensim::Vec3(1.0, 1.0, 1.0);
+    spec.center_m = peensim::Vec3(0.5, 0.5, 0.5);
+    const peensim::TriangleMesh cube = peensim::box(spec);
+    peensim::CoverageMap map(cube, 0.01, 0.1);
+    map.add_dent(peensim::Vec3(0.5, 0.5, 1.0), 0.1);  // the middle of the top face (z = 1)
+    map.add_dent(peensim::Vec3(0.5, 0.0, 0.5), 0.1);  // the middle of the y = 0 face
+    const double expected = 2.0 * M_PI * 0.05 * 0.05 / 6.0;  // two discs on a 6 m2 surface
+    EXPECT_NEAR(map.coverage(), expected, 0.1 * expected);
+}

@@ -413,5 +413,130 @@ TEST(SceneParser, ZeroAmplitudeAllowsZeroFrequencyOnly) {
               std::string::npos);
 }
 
+// A part with one region of every kind (line numbers below count from the opening newline).
+const char* const regions_scene = R"(
+process: {duration: 0.5}
+shot: {count: 3, diameter: 0.001, density: 7800}
+components:
+  - {name: sono, role: sonotrode, mesh: tetrahedron.stl, vibration: {amplitude: 30 um, frequency: 20 kHz}}
+  - {name: box, role: chamber, mesh: tetrahedron.stl}
+  - name: gear
+    role: part
+    mesh: tetrahedron.stl
+    regions:
+      - {name: tooth-0, sector: {axis_point: [0, 0, 0], axis_direction: [0, 2, 0], from: -9 deg, to: 9 deg, reference: [0, 0, 1]}}
+      - {name: teeth, sectors: {axis_direction: [0, 1, 0], count: 20, width: 18 deg, offset: 0 deg, reference: [0, 0, 1], name_prefix: tooth-x}}
+      - {name: left-face, box: {min: [-1, -6 mm, -1], max: [1, -4.9 mm, 1]}}
+      - {name: upper, half_space: {point: [0, 0, 0], normal: [0, 0, 3]}}
+      - {name: solid-A, group: "A"}
+      - {name: rim, sectors: {axis_direction: [0, 1, 0], count: 2, width: 180 deg, reference: [1, 0, 0]}}
+)";
+
+TEST(SceneParser, RegionsAreReadInSi) {
+    const SceneDescription s = parse_scene_text(regions_scene, virtual_path);
+    const std::vector<RegionDesc>& r = s.components[2].regions;
+    ASSERT_EQ(r.size(), 6u);
+    EXPECT_EQ(r[0].kind, RegionKind::sector);
+    EXPECT_EQ(r[0].axis_direction, Vec3(0, 1, 0));
+    EXPECT_DOUBLE_EQ(r[0].from_rad, -9 * pi / 180);
+    EXPECT_DOUBLE_EQ(r[0].to_rad, 9 * pi / 180);
+    EXPECT_EQ(r[0].where.line, 11);
+    EXPECT_EQ(r[1].kind, RegionKind::sectors);
+    EXPECT_EQ(r[1].count, 20);
+    EXPECT_DOUBLE_EQ(r[1].width_rad, 18 * pi / 180);
+    EXPECT_EQ(region_names(r[1]).back(), "tooth-x19");
+    EXPECT_EQ(r[2].kind, RegionKind::box);
+    EXPECT_EQ(r[2].box_min_m, Vec3(-1, -0.006, -1));
+    EXPECT_EQ(r[3].kind, RegionKind::half_space);
+    EXPECT_EQ(r[3].plane_normal, Vec3(0, 0, 1));
+    EXPECT_EQ(r[4].kind, RegionKind::group);
+    EXPECT_EQ(r[4].group, "A");
+    EXPECT_EQ(r[5].name_prefix, "rim-");  // the default prefix is the entry's name and a dash
+    EXPECT_EQ(region_names(r[5]), (std::vector<std::string>{"rim-0", "rim-1"}));
+}
+
+TEST(SceneParser, RegionsReadBackTheSame) {
+    const SceneDescription first = parse_scene_text(regions_scene, virtual_path);
+    const std::string resolved = resolved_scene_yaml(first);
+    EXPECT_NE(resolved.find("    regions:\n      - {name: tooth-0, sector: {"), std::string::npos) << resolved;
+    const SceneDescription second = parse_scene_text(resolved, "/nonexistent/dir/resolved.yaml");
+    EXPECT_EQ(resolved_scene_yaml(second), resolved);
+    ASSERT_EQ(second.components[2].regions.size(), 6u);
+    for (std::size_t i = 0; i < 6; ++i) {
+        const RegionDesc& a = first.components[2].regions[i];
+        const RegionDesc& b = second.components[2].regions[i];
+        EXPECT_EQ(a.name, b.name);
+        EXPECT_EQ(a.kind, b.kind);
+        EXPECT_EQ(a.from_rad, b.from_rad);
+        EXPECT_EQ(a.width_rad, b.width_rad);
+        EXPECT_EQ(a.reference, b.reference);
+        EXPECT_EQ(a.box_max_m, b.box_max_m);
+        EXPECT_EQ(a.name_prefix, b.name_prefix);
+        EXPECT_EQ(a.group, b.group);
+    }
+}
+
+// Replaces the region entries of regions_scene (line 11 on) with `entry`, one region on line 11.
+std::string scene_with_region(const std::string& entry) {
+    const std::string text = regions_scene;
+    return text.substr(0, text.find("      - {name: tooth-0")) + "      - " + entry + "\n";
+}
+
+TEST(SceneParser, BadRegionsNameLineAndField) {
+    struct Bad {
+        std::string entry;
+        std::string field;
+        std::string problem;
+    };
+    const Bad bad[] = {
+        {"{name: a, box: {min: [0, 0, 0], max: [1, 1, 1], mid: [0, 0, 0]}}", "components[2].regions[0].box.mid",
+         "unknown key 'mid'"},
+        {"{name: a, box: {min: [0, 0, 0]}}", "components[2].regions[0].box.max", "missing required key 'max'"},
+        {"{name: a, box: {min: [0, 0, 0], max: [1, -1, 1]}}", "components[2].regions[0].box.max",
+         "expected a corner >= min"},
+        {"{name: a, half_space: {normal: [0, 0, 0]}}", "components[2].regions[0].half_space.normal",
+         "expected a direction, got the zero vector"},
+        {"{name: a, sector: {axis_direction: [0, 0, 0], from: 0, to: 1, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sector.axis_direction", "expected a direction, got the zero vector"},
+        {"{name: a, sector: {axis_direction: [0, 1, 0], from: 10 deg, to: 10 deg, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sector.to", "expected an angle greater than `from`"},
+        {"{name: a, sector: {axis_direction: [0, 1, 0], from: 0, to: 1, reference: [0, 2, 0]}}",
+         "components[2].regions[0].sector.reference", "not along the axis"},
+        {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 0, width: 1 deg, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sectors.count", "expected a whole number >= 1, got '0'"},
+        {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 2, width: 361 deg, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sectors.width", "at most 360 deg"},
+        {"{name: a}", "components[2].regions[0]", "expected exactly one of sector, sectors, box, half_space, group"},
+        {"{name: a, group: A, half_space: {normal: [0, 0, 1]}}", "components[2].regions[0]",
+         "expected exactly one of"},
+        {"{name: a b, group: A}", "components[2].regions[0].name", "invalid name 'a b'"},
+    };
+    for (const Bad& b : bad) {
+        try {
+            parse_scene_text(scene_with_region(b.entry), virtual_path);
+            ADD_FAILURE() << b.entry << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.where().file, virtual_path) << e.what();
+            EXPECT_EQ(e.where().line, 11) << e.what();
+            EXPECT_EQ(e.field(), b.field) << e.what();
+            EXPECT_NE(e.problem().find(b.problem), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(SceneParser, DuplicateRegionNamesAreRefused) {
+    std::string text = scene_with_region("{name: tooth-3, group: A}");
+    text += "      - {name: teeth, sectors: {axis_direction: [0, 1, 0], count: 20, width: 18 deg, reference: [0, 0, 1], "
+            "name_prefix: tooth-}}\n";
+    try {
+        parse_scene_text(text, virtual_path);
+        ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.where().line, 12) << e.what();
+        EXPECT_EQ(e.field(), "components[2].regions[1].name");
+        EXPECT_NE(e.problem().find("duplicate region name 'tooth-3'"), std::string::npos) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace peensim

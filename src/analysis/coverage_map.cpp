@@ -96,7 +96,9 @@ void CoverageMap::build_grid(const TriangleMesh& mesh, double largest_dent_diame
             const Vec3 tlo = p.origin.cwiseMin(b).cwiseMin(c), thi = p.origin.cwiseMax(b).cwiseMax(c);
             std::int64_t r0[3] = {0, 0, 0}, r1[3] = {-1, -1, -1};  // empty unless the box meets the grid
             for (int k = 0; k < 3; ++k) cell_range(tlo[k], thi[k], grid_min_[k], cell_, dims_[k], r0[k], r1[k]);
-            const double half_reach = 0.5 * cell_ * p.unit_normal.cwiseAbs().sum();  // box-plane test (m)
+            // Box-plane test (m), with a margin so a face lying exactly on a cell boundary (common
+            // for axis-aligned faces) is not lost to round-off in both neighbouring cells.
+            const double half_reach = 0.5 * cell_ * p.unit_normal.cwiseAbs().sum() * (1.0 + 1e-9) + 1e-12;
             for (std::int64_t z = r0[2]; z <= r1[2]; ++z)
                 for (std::int64_t y = r0[1]; y <= r1[1]; ++y)
                     for (std::int64_t x = r0[0]; x <= r1[0]; ++x) {

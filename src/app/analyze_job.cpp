@@ -14,7 +14,10 @@
 #include "analysis/coverage_map.h"
 #include "analysis/dent.h"
 #include "analysis/impact_log_reader.h"
+#include "analysis/region_stats.h"
+#include "analysis/regions.h"
 #include "analysis/triangle_fields.h"
+#include "app/analysis_plots.h"
 #include "app/report_errors.h"
 #include "geometry/mesh_loader.h"
 #include "output/atomic_file.h"
@@ -59,6 +62,7 @@ struct ComponentAnalysis {
     double speed_sum = 0.0, dent_sum = 0.0;
     std::vector<CoveragePoint> curve;
     std::unique_ptr<ImpactPointsVtpWriter> points;  // the impacts, for ParaView
+    std::vector<Region> regions;                    // the scene's regions of the component
 };
 
 const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
@@ -119,6 +123,35 @@ std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) 
     return f;
 }
 
+void write_regions_csv(const fs::path& path, const ComponentAnalysis& c, double duration) {
+    std::ostringstream s;
+    s << "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
+    for (const Region& region : c.regions) {
+        const RegionStats r = region_stats(region, *c.fields, c.coverage.get(), duration);
+        s << region.name << ',' << r.triangles << ',' << fmt(r.area_m2 * 1e6, 8) << ',' << r.impacts << ','
+          << fmt(r.impacts_per_mm2_s, 6) << ',' << fmt(r.mean_normal_speed) << ',' << fmt(r.max_normal_speed) << ','
+          << fmt(r.energy_per_area, 6) << ',' << fmt(r.coverage) << '\n';
+    }
+    write_file_atomically(path.string(), s.str());
+}
+
+// Per component with regions: one table row per region (the numbers of <component>_regions.csv).
+std::string region_tables(const std::vector<ComponentAnalysis>& parts, double duration) {
+    std::ostringstream r;
+    for (const ComponentAnalysis& c : parts) {
+        if (c.regions.empty()) continue;
+        r << "\n## Regions of " << c.name << "\n\n| region | triangles | area (mm2) | impacts | per mm2 per s | mean v_n (m/s) "
+             "| max v_n (m/s) | energy (J/m2) | coverage |\n|---|---|---|---|---|---|---|---|---|\n";
+        for (const Region& region : c.regions) {
+            const RegionStats s = region_stats(region, *c.fields, c.coverage.get(), duration);
+            r << "| " << region.name << " | " << s.triangles << " | " << fmt(s.area_m2 * 1e6) << " | " << s.impacts << " | "
+              << fmt(s.impacts_per_mm2_s) << " | " << fmt(s.mean_normal_speed) << " | " << fmt(s.max_normal_speed) << " | "
+              << fmt(s.energy_per_area) << " | " << (c.coverage ? fmt(100.0 * s.coverage, 3) + " %" : "") << " |\n";
+        }
+    }
+    return r.str();
+}
+
 void write_histograms_csv(const fs::path& path, const ComponentAnalysis& c) {
     std::ostringstream s;
     s << "quantity,bin_low,bin_high,unit,count\n";
@@ -140,7 +173,7 @@ void write_curve_csv(const fs::path& path, const ComponentAnalysis& c) {
 }
 
 std::string report(const fs::path& dir, const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, double duration,
-                   bool finished, bool truncated) {
+                   bool finished, bool truncated, const std::vector<std::string>& pngs, const std::string& plot_note) {
     std::ostringstream r;
     r << "# peensim analysis: " << (scene.name.empty() ? dir.string() : scene.name) << "\n\n";
     r << "Run: `" << dir.string() << "`, " << fmt(duration) << " s of peening simulated"
@@ -171,7 +204,16 @@ std::string report(const fs::path& dir, const SceneDescription& scene, const std
          "`<component>_triangles.csv` (per-triangle fields), `<component>_coverage.csv` (coverage vs time), "
          "`<component>_histograms.csv` (normal speed, impact angle, dent diameter), `<component>.vtp` (the mesh with "
          "the per-triangle fields as cell data, for ParaView), `<component>_impacts.vtp` (the impacts as points with their "
-         "relative velocity, normal speed and time).\n";
+         "relative velocity, normal speed and time), `<component>_regions.csv` (the scene's regions of the component, "
+         "each triangle in the region holding its centroid).\n";
+    r << region_tables(parts, duration);
+    if (!pngs.empty()) r << "\n## Plots\n\n";
+    for (const std::string& png : pngs) {
+        const std::string name = fs::path(png).filename().string();
+        const bool coverage = name.ends_with("_coverage.png");
+        r << "![" << (coverage ? "coverage" : "histograms") << "](" << name << ")\n\n";
+    }
+    if (!plot_note.empty()) r << (pngs.empty() ? "\n" : "") << "Plots: " << plot_note << ".\n";
     return r.str();
 }
 
@@ -201,6 +243,7 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
             a.name = c.name;
             a.mesh = std::make_unique<TriangleMesh>(load_mesh(c.mesh_path, c.mesh_unit_m));
             a.fields = std::make_unique<TriangleFields>(*a.mesh, shot_mass);
+            a.regions = select_regions(*a.mesh, c.regions);
             const MaterialDesc* m = material_named(scene, c.material);
             if (m && m->yield_stress_pa) {
                 a.yield_stress_pa = *m->yield_stress_pa;
@@ -259,11 +302,17 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
             write_triangle_csv(adir / (a.name + "_triangles.csv"), a, duration);
             write_histograms_csv(adir / (a.name + "_histograms.csv"), a);
             if (a.coverage) write_curve_csv(adir / (a.name + "_coverage.csv"), a);
+            if (!a.regions.empty()) write_regions_csv(adir / (a.name + "_regions.csv"), a, duration);
         }
-        const std::string text = report(dir, scene, parts, duration, finished, reader.truncated());
+        std::vector<std::string> names;
+        for (const ComponentAnalysis& a : parts) names.push_back(a.name);
+        std::string plot_note;
+        const std::vector<std::string> pngs = write_analysis_plots(adir.string(), names, plot_note);
+        const std::string text = report(dir, scene, parts, duration, finished, reader.truncated(), pngs, plot_note);
         write_file_atomically((adir / "report.md").string(), text);
         out << text.substr(text.find("| component"), text.find("\nCoverage follows") - text.find("| component")) << "analysis: "
-            << adir.string() << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp}\n";
+            << adir.string() << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp"
+            << (pngs.empty() ? "" : ", *.png") << "}\n";
         return 0;
     });
 }

@@ -121,6 +121,30 @@ std::string matrix_text(const Mat3& m) {
     return out + "]";
 }
 
+// One region as a flow map on one line (SI values; angles in rad).
+std::string region_text(const RegionDesc& r) {
+    const std::string axis = "axis_point: " + vec(r.axis_point_m) + ", axis_direction: " + vec(r.axis_direction) +
+                             ", reference: " + vec(r.reference);
+    std::string out = "{name: " + yaml_text(r.name) + ", ";
+    switch (r.kind) {
+        case RegionKind::sector:
+            out += "sector: {" + axis + ", from: " + num(r.from_rad) + ", to: " + num(r.to_rad) + "}}  # m, rad";
+            break;
+        case RegionKind::sectors:
+            out += "sectors: {" + axis + ", count: " + std::to_string(r.count) + ", width: " + num(r.width_rad) +
+                   ", offset: " + num(r.offset_rad) + ", name_prefix: " + yaml_text(r.name_prefix) + "}}  # m, rad";
+            break;
+        case RegionKind::box:
+            out += "box: {min: " + vec(r.box_min_m) + ", max: " + vec(r.box_max_m) + "}}  # m";
+            break;
+        case RegionKind::half_space:
+            out += "half_space: {point: " + vec(r.plane_point_m) + ", normal: " + vec(r.plane_normal) + "}}  # m";
+            break;
+        case RegionKind::group: out += "group: " + yaml_text(r.group) + "}"; break;
+    }
+    return out;
+}
+
 void write_component(std::string& y, const ComponentDesc& k) {
     y += "  - name: " + yaml_text(k.name) + "\n";
     y += "    role: " + role_name(k.role) + "\n";
@@ -140,6 +164,8 @@ void write_component(std::string& y, const ComponentDesc& k) {
         if (v.axis) y += "      axis: " + vec(*v.axis) + "\n";
         else y += "      # axis: the sonotrode's mean face normal (found when the model is compiled)\n";
     }
+    if (!k.regions.empty()) y += "    regions:\n";
+    for (const RegionDesc& r : k.regions) y += "      - " + region_text(r) + "\n";
     if (!k.rotation_motion) {
         y += "    motion: static\n";
         return;

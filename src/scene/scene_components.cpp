@@ -120,6 +120,7 @@ ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene
                                       material_names(materials));
     k.vibration = read_vibration(c.child("vibration"), k);
     k.rotation_motion = read_motion(c.child("motion"), k);
+    k.regions = read_regions(c.child("regions"));
     k.where = location_of(c);
     return k;
 }

@@ -32,6 +32,48 @@ struct RotationDesc {
     SourceLocation where;
 };
 
+// A named selection of a component's triangles, in the component's own frame (the mesh frame after
+// mesh_unit scaling). A triangle belongs to a region when its centroid lies inside the selection
+// (src/analysis/regions.h does the selecting).
+enum class RegionKind {
+    sector,      // angular sector [from, to) about an axis
+    sectors,     // `count` sectors of `width`, centred every 360/count deg from `offset`
+    box,         // axis-aligned box [min, max]
+    half_space,  // the side of a plane the normal points to (plane included)
+    group,       // a named solid / sub-mesh of the mesh file
+};
+
+struct RegionDesc {
+    std::string name;                    // the region (for `sectors`: its entry; regions are <name_prefix><i>)
+    RegionKind kind = RegionKind::box;
+    // sector, sectors: angles measured about axis_direction (right-hand rule) from `reference`
+    // projected onto the plane normal to the axis.
+    Vec3 axis_point_m = Vec3::Zero();    // m, a point on the axis (component frame)
+    Vec3 axis_direction = Vec3::UnitZ(); // unit vector (component frame)
+    Vec3 reference = Vec3::UnitX();      // unit vector (component frame), not along the axis
+    double from_rad = 0.0;               // rad, sector start (included)
+    double to_rad = 0.0;                 // rad, sector end (excluded), from < to <= from + 2 pi
+    int count = 0;                       // sectors: number of sectors (>= 1)
+    double width_rad = 0.0;              // rad, sectors: width of each sector, (0, 2 pi]
+    double offset_rad = 0.0;             // rad, sectors: centre angle of sector 0
+    std::string name_prefix;             // sectors: sector i is named name_prefix + i
+    Vec3 box_min_m = Vec3::Zero();       // m, box: lowest corner (component frame)
+    Vec3 box_max_m = Vec3::Zero();       // m, box: highest corner (component frame)
+    Vec3 plane_point_m = Vec3::Zero();   // m, half_space: a point on the plane (component frame)
+    Vec3 plane_normal = Vec3::UnitZ();   // unit vector, half_space: points into the selected side
+    std::string group;                   // group: a name of the mesh file's solids / sub-meshes
+    SourceLocation where;                // the region's entry in the file
+};
+
+// The names a region entry yields: its name, or for `sectors` name_prefix + 0 .. count - 1.
+inline std::vector<std::string> region_names(const RegionDesc& r) {
+    if (r.kind != RegionKind::sectors) return {r.name};
+    std::vector<std::string> names;
+    names.reserve(static_cast<std::size_t>(r.count));
+    for (int i = 0; i < r.count; ++i) names.push_back(r.name_prefix + std::to_string(i));
+    return names;
+}
+
 struct ComponentDesc {
     std::string name;
     ComponentRole role = ComponentRole::fixture;
@@ -42,6 +84,7 @@ struct ComponentDesc {
     std::string material;             // key into SceneDescription::materials
     std::optional<VibrationDesc> vibration;  // only for role sonotrode (required there)
     std::optional<RotationDesc> rotation_motion;  // only for role part; empty = static
+    std::vector<RegionDesc> regions;  // named selections of triangles, for the impact analysis
     SourceLocation where;             // the component's entry in the file
 };
 

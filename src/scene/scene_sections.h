@@ -20,6 +20,8 @@ std::vector<ContactPairDesc> read_contacts(const Cursor& contacts, const std::ve
 // Mesh paths are resolved against `scene_dir`; roles, names and material references are checked.
 std::vector<ComponentDesc> read_components(const Cursor& components, const std::filesystem::path& scene_dir,
                                            const std::vector<MaterialDesc>& materials);
+// A component's `regions` list (names unique on the component, axes and boxes checked).
+std::vector<RegionDesc> read_regions(const Cursor& regions);
 // Needs the components (the logged names must be components; the default logs every part).
 OutputDesc read_output(const Cursor& output, const std::vector<ComponentDesc>& components);
 

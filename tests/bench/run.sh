@@ -27,3 +27,12 @@ echo "# accuracy knob: accuracy.travel_fraction on the rod scene ($(dur 1)); 0.0
 for f in 0.5 0.25 0.1 0.05 0.025; do
     "$bench" scenes/rod.yaml --set process.duration="$(dur 1)" --set accuracy.travel_fraction=$f --label "rod, travel_fraction $f"
 done
+
+echo
+impacts=$(awk -v s="$scale" 'BEGIN { printf "%d", 10000000 * s }')
+echo "# analysis: peensim analyze on $impacts synthetic gear impacts (10 M: ~1-2 min, ~2 GB in /tmp, deleted after)"
+if [[ -x "$root/build/peensim_analysis_bench" ]]; then
+    "$root/build/peensim_analysis_bench" "$impacts"
+else
+    echo "run.sh: build peensim_analysis_bench for these figures (cmake --build build --target peensim_analysis_bench)"
+fi

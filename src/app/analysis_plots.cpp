@@ -1,0 +1,194 @@
+#include "app/analysis_plots.h"
+
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <system_error>
+
+#include "output/atomic_file.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+// Full coverage by SAE J2277 (drawn as a dashed line on the coverage plot), percent.
+constexpr double kFullCoveragePercent = 98.0;
+
+// One histogram panel: the `quantity` column's value in <c>_histograms.csv and how to label it.
+struct HistogramPanel {
+    const char* quantity;
+    const char* x_label;
+};
+constexpr std::array<HistogramPanel, 3> kHistogramPanels{{
+    {"normal_speed", "normal impact speed v_n (m/s)"},
+    {"impact_angle", "impact angle from the surface normal (deg)"},
+    {"dent_diameter", "dent diameter, SAE J2277 eq. 10 (\u00b5m)"},
+}};
+
+// The absolute path of `gnuplot` on PATH, or "" if there is none.
+std::string find_gnuplot() {
+    const char* path = std::getenv("PATH");
+    if (!path) return "";
+    std::istringstream dirs(path);
+    std::string dir;
+    while (std::getline(dirs, dir, ':')) {
+        if (dir.empty()) dir = ".";
+        const fs::path candidate = fs::path(dir) / "gnuplot";
+        std::error_code ec;
+        if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+    }
+    return "";
+}
+
+// `s` as one word for /bin/sh.
+std::string shell_quoted(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+// `s` as a gnuplot single-quoted string (where '' stands for one quote).
+std::string gnuplot_quoted(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+    return q + "'";
+}
+
+// `s` inside a gnuplot enhanced-text title: _ ^ @ & { } would otherwise format the text.
+std::string enhanced_text_escaped(const std::string& s) {
+    std::string e;
+    for (char c : s) {
+        if (c == '_' || c == '^' || c == '@' || c == '&' || c == '{' || c == '}' || c == '~') e += '\\';
+        e += c;
+    }
+    return e;
+}
+
+// The quantities of a histograms CSV that have at least one counted impact.
+std::set<std::string> quantities_with_counts(const fs::path& csv) {
+    std::set<std::string> found;
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+        const auto first = line.find(',');
+        const auto last = line.rfind(',');
+        if (first == std::string::npos || last == first) continue;
+        if (std::strtoull(line.c_str() + last + 1, nullptr, 10) > 0) found.insert(line.substr(0, first));
+    }
+    return found;
+}
+
+// Lines common to every script: the output file name can be overridden with `gnuplot -e "out='x.png'"`.
+std::string script_header(const std::string& stem) {
+    std::ostringstream s;
+    s << "# Written by peensim analyze; edit and rerun from this directory: gnuplot " << stem << ".gp\n"
+      << "if (!exists(\"out\")) out = " << gnuplot_quoted(stem + ".png") << "\n"
+      << "set terminal pngcairo enhanced size " << kPlotWidthPx << "," << kPlotHeightPx << " font 'sans,10'\n"
+      << "set output out\n"
+      << "set datafile separator ','\n"
+      << "set grid\n";
+    return s.str();
+}
+
+std::string coverage_script(const std::string& component) {
+    const std::string csv = component + "_coverage.csv";
+    std::ostringstream s;
+    s << script_header(component + "_coverage")
+      << "set title " << gnuplot_quoted(enhanced_text_escaped(component) + ": coverage vs time (SAE J2277)") << "\n"
+      << "set xlabel 'simulated time (s)'\n"
+      << "set ylabel 'coverage (%)'\n"
+      // Early in a run coverage is a few %: zoom in then, so the curve stays readable.
+      << "stats " << gnuplot_quoted(csv) << " using (100*$2) every ::1 nooutput\n"
+      << "top = STATS_max > 50 ? 105 : (STATS_max > 0 ? 1.2*STATS_max : 1)\n"
+      << "set yrange [0:top]\n"
+      << "set key bottom right\n"
+      << "plot " << gnuplot_quoted(csv) << " using 1:(100*$2) every ::1 with linespoints lw 2 pt 7 ps 0.6 title 'coverage', \\\n"
+      << "     " << kFullCoveragePercent << " with lines dt 2 lc rgb 'gray40' title (top > " << kFullCoveragePercent << " ? 'full coverage (" << kFullCoveragePercent << " %)' : '')\n";
+    return s.str();
+}
+
+std::string histograms_script(const std::string& component, const std::set<std::string>& with_counts) {
+    const std::string csv = gnuplot_quoted(component + "_histograms.csv");
+    std::ostringstream s;
+    s << script_header(component + "_histograms")
+      << "set style fill solid 0.6 border -1\n"
+      << "set ylabel 'impacts'\n"
+      << "set lmargin 12\n"  // characters: the three panels' axes line up whatever their tick labels
+      << "unset key\n"
+      << "set multiplot layout 3,1 title " << gnuplot_quoted(enhanced_text_escaped(component) + ": impacts") << "\n";
+    for (const HistogramPanel& p : kHistogramPanels) {
+        s << "set xlabel '" << p.x_label << "'\n";
+        if (with_counts.count(p.quantity)) {
+            // Rows of other quantities map to NaN (1/0) and are skipped; the header row too.
+            s << "set xrange [*:*]\nset yrange [0:*]\nunset label 1\nset format x\nset format y\n"
+              << "plot " << csv << " using (strcol(1) eq '" << p.quantity << "' ? ($2+$3)/2 : 1/0):5:($3-$2) with boxes lc rgb '#3070b0'\n";
+        } else {
+            s << "set xrange [0:1]\nset yrange [0:1]\nset format x ''\nset format y ''\n"
+              << "set label 1 'no data (no impact, or the material has no yield\\_stress)' at graph 0.5,0.5 center\n"
+              << "plot NaN\n";
+        }
+    }
+    s << "unset multiplot\n";
+    return s.str();
+}
+
+// Runs `gnuplot script` in `dir` rendering to `png`.tmp, then renames it to `png`.
+// Returns "" on success, else what went wrong (gnuplot's own messages).
+std::string render(const std::string& gnuplot, const fs::path& dir, const std::string& script_name, const std::string& png_name) {
+    const std::string tmp_name = png_name + ".tmp";
+    const std::string command = "cd " + shell_quoted(dir.string()) + " && " + shell_quoted(gnuplot) + " -e " +
+                                shell_quoted("out=" + gnuplot_quoted(tmp_name)) + " " + shell_quoted(script_name) + " 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (!pipe) return "cannot start gnuplot";
+    std::string messages;
+    std::array<char, 512> buffer{};
+    while (std::fgets(buffer.data(), buffer.size(), pipe)) messages += buffer.data();
+    const int status = ::pclose(pipe);
+    std::error_code ec;
+    if (status != 0 || !fs::exists(dir / tmp_name, ec) || fs::file_size(dir / tmp_name, ec) == 0) {
+        fs::remove(dir / tmp_name, ec);
+        return script_name + ": gnuplot failed" + (messages.empty() ? std::string() : ": " + messages);
+    }
+    fs::rename(dir / tmp_name, dir / png_name, ec);
+    if (ec) return png_name + ": " + ec.message();
+    return "";
+}
+
+}  // namespace
+
+std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, const std::vector<std::string>& components,
+                                              std::string& note) {
+    note.clear();
+    std::vector<std::string> written;
+    const std::string gnuplot = find_gnuplot();
+    if (gnuplot.empty()) {
+        note = kNoGnuplotNote;
+        return written;
+    }
+    const fs::path dir(analysis_dir);
+    auto plot = [&](const std::string& stem, const std::string& script) {
+        write_file_atomically((dir / (stem + ".gp")).string(), script);
+        const std::string problem = render(gnuplot, dir, stem + ".gp", stem + ".png");
+        if (problem.empty())
+            written.push_back((dir / (stem + ".png")).string());
+        else
+            note += (note.empty() ? "" : "; ") + problem;
+    };
+    for (const std::string& c : components) {
+        if (fs::exists(dir / (c + "_coverage.csv"))) plot(c + "_coverage", coverage_script(c));
+        const fs::path histograms = dir / (c + "_histograms.csv");
+        if (fs::exists(histograms)) plot(c + "_histograms", histograms_script(c, quantities_with_counts(histograms)));
+    }
+    return written;
+}
+
+}  // namespace peensim

@@ -1,0 +1,31 @@
+// PNG plots of an analysis (coverage vs time, histograms), drawn by gnuplot if it is installed.
+// gnuplot is looked up on PATH at run time, not linked: peensim builds and analyses without it,
+// and the plots are then simply missing (with a note saying how to get them).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace peensim {
+
+// Terminal size of every plot, pixels.
+inline constexpr int kPlotWidthPx = 800;
+inline constexpr int kPlotHeightPx = 600;
+
+// The note left when gnuplot is not on PATH.
+inline constexpr std::string_view kNoGnuplotNote = "gnuplot not found: no PNG plots (apt-get install gnuplot-nox)";
+
+// For every component c in `components`, reads `analysis_dir/<c>_coverage.csv` and
+// `analysis_dir/<c>_histograms.csv` (those that exist), writes a gnuplot script next to each
+// (`<c>_coverage.gp`, `<c>_histograms.gp`, kept so users can edit and rerun them from the analysis
+// dir: `gnuplot <c>_coverage.gp`) and runs it, giving `<c>_coverage.png` (coverage in % vs time)
+// and `<c>_histograms.png` (normal speed, impact angle, dent diameter). Each PNG is rendered to
+// `<png>.tmp` and renamed, so a PNG is either complete or absent.
+// Returns the paths of the PNGs written. `note` is empty when all went well; otherwise it says
+// why plots are missing (gnuplot not found, or gnuplot's own error message).
+// Throws std::runtime_error only if a script cannot be written.
+std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, const std::vector<std::string>& components,
+                                              std::string& note);
+
+}  // namespace peensim

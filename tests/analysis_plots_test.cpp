@@ -1,0 +1,135 @@
+// The analysis PNG plots: gnuplot renders real 800x600 PNGs from small hand-written CSVs, keeps the
+// scripts, copes with an empty histogram and awkward component names, and without gnuplot on PATH
+// leaves no PNG but a note saying how to get them.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "app/analysis_plots.h"
+
+namespace fs = std::filesystem;
+using namespace peensim;
+
+namespace {
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        char tmpl[] = "/tmp/peensim-plots-XXXXXX";
+        path = mkdtemp(tmpl);
+    }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+// Sets PATH for the scope of the object, restoring it after.
+struct PathOverride {
+    std::string saved;
+    explicit PathOverride(const std::string& path) : saved(std::getenv("PATH") ? std::getenv("PATH") : "") { setenv("PATH", path.c_str(), 1); }
+    ~PathOverride() { setenv("PATH", saved.c_str(), 1); }
+};
+
+void write(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+void write_csvs(const fs::path& dir, const std::string& component, bool with_dents) {
+    write(dir / (component + "_coverage.csv"), "time_s,coverage\n0,0\n0.1,0.3\n0.2,0.55\n0.3,0.7\n0.4,0.81\n");
+    std::string h = "quantity,bin_low,bin_high,unit,count\n"
+                    "normal_speed,0,0.25,m/s,3\nnormal_speed,0.25,0.5,m/s,12\nnormal_speed,0.5,0.75,m/s,7\n"
+                    "impact_angle,0,5,deg,4\nimpact_angle,5,10,deg,9\nimpact_angle,10,15,deg,9\n";
+    if (with_dents) h += "dent_diameter,100,110,um,5\ndent_diameter,110,120,um,17\n";
+    write(dir / (component + "_histograms.csv"), h);
+}
+
+struct PngInfo {
+    bool signature_ok = false;
+    std::uint32_t width = 0, height = 0;  // pixels, from the IHDR chunk
+};
+
+PngInfo read_png_info(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<unsigned char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    PngInfo info;
+    if (b.size() < 24) return info;
+    const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    info.signature_ok = std::equal(signature, signature + 8, b.begin()) && std::string(b.begin() + 12, b.begin() + 16) == "IHDR";
+    auto be32 = [&](std::size_t at) { return std::uint32_t{b[at]} << 24 | std::uint32_t{b[at + 1]} << 16 | std::uint32_t{b[at + 2]} << 8 | b[at + 3]; };
+    info.width = be32(16);
+    info.height = be32(20);
+    return info;
+}
+
+bool gnuplot_installed() {
+    return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
+}
+
+}  // namespace
+
+TEST(AnalysisPlots, RendersCoverageAndHistogramPngsOfTheRequestedSize) {
+    if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed (.ci/install-deps installs gnuplot-nox)";
+    TempDir dir;
+    write_csvs(dir.path, "gear", true);
+    std::string note = "stale";
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear"}, note);
+    EXPECT_EQ(note, "");
+    ASSERT_EQ(pngs.size(), 2u);
+    EXPECT_EQ(pngs[0], (dir.path / "gear_coverage.png").string());
+    EXPECT_EQ(pngs[1], (dir.path / "gear_histograms.png").string());
+    for (const std::string& png : pngs) {
+        const PngInfo info = read_png_info(png);
+        EXPECT_TRUE(info.signature_ok) << png;
+        EXPECT_EQ(info.width, static_cast<std::uint32_t>(kPlotWidthPx)) << png;
+        EXPECT_EQ(info.height, static_cast<std::uint32_t>(kPlotHeightPx)) << png;
+        EXPECT_FALSE(fs::exists(png + ".tmp")) << png;
+    }
+    // The scripts stay, for users to edit, and name their CSVs relative to the analysis dir.
+    std::ifstream script(dir.path / "gear_histograms.gp");
+    const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("'gear_histograms.csv'"), std::string::npos);
+    EXPECT_NE(text.find("dent diameter"), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir.path / "gear_coverage.gp"));
+}
+
+TEST(AnalysisPlots, EmptyHistogramPanelAndQuotedNamesStillRender) {
+    if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed";
+    TempDir dir;
+    const std::string name = "Tom's gear_1";  // a quote for the shell and gnuplot, an _ for enhanced text
+    write_csvs(dir.path, name, false);        // no dent rows: material without yield_stress
+    std::string note;
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {name}, note);
+    EXPECT_EQ(note, "");
+    ASSERT_EQ(pngs.size(), 2u);
+    for (const std::string& png : pngs) EXPECT_TRUE(read_png_info(png).signature_ok) << png;
+}
+
+TEST(AnalysisPlots, MissingCsvsGiveNoPlotAndNoError) {
+    if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed";
+    TempDir dir;
+    write(dir.path / "rod_histograms.csv", "quantity,bin_low,bin_high,unit,count\nnormal_speed,0,0.25,m/s,2\n");
+    std::string note;
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"rod", "absent"}, note);
+    EXPECT_EQ(note, "");
+    ASSERT_EQ(pngs.size(), 1u);  // rod has no coverage CSV (no yield stress), "absent" nothing
+    EXPECT_EQ(pngs[0], (dir.path / "rod_histograms.png").string());
+}
+
+TEST(AnalysisPlots, WithoutGnuplotOnPathNoPngAndANote) {
+    TempDir dir;
+    write_csvs(dir.path, "gear", true);
+    std::string note;
+    std::vector<std::string> pngs;
+    {
+        const PathOverride empty_path(dir.path.string());  // a directory without gnuplot
+        pngs = write_analysis_plots(dir.path.string(), {"gear"}, note);
+    }
+    EXPECT_TRUE(pngs.empty());
+    EXPECT_EQ(note, kNoGnuplotNote);
+    EXPECT_FALSE(fs::exists(dir.path / "gear_coverage.png"));
+    EXPECT_FALSE(fs::exists(dir.path / "gear_histograms.png"));
+}
