@@ -7,22 +7,15 @@
 #include <filesystem>
 #include <fstream>
 
+#include "support/temp_dir.h"
 #include "analysis/impact_log_reader.h"
 #include "output/impact_csv_writer.h"
 
 namespace fs = std::filesystem;
+using peensim::testing::TempDir;
 using namespace peensim;
 
 namespace {
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        char tmpl[] = "/tmp/peensim-reader-XXXXXX";
-        path = mkdtemp(tmpl);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
 
 ImpactRecord record(int k) {
     ImpactRecord r;

@@ -11,21 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.h"
 #include "app/analysis_plots.h"
 
 namespace fs = std::filesystem;
+using peensim::testing::TempDir;
 using namespace peensim;
 
 namespace {
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        char tmpl[] = "/tmp/peensim-plots-XXXXXX";
-        path = mkdtemp(tmpl);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
 
 // Sets PATH for the scope of the object, restoring it after.
 struct PathOverride {

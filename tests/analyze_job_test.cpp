@@ -8,23 +8,16 @@
 #include <fstream>
 #include <sstream>
 
+#include "support/temp_dir.h"
 #include "analysis/impact_log_reader.h"
 #include "app/analyze_job.h"
 #include "app/run_job.h"
 
 namespace fs = std::filesystem;
+using peensim::testing::TempDir;
 using namespace peensim;
 
 namespace {
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        char tmpl[] = "/tmp/peensim-analyze-XXXXXX";
-        path = mkdtemp(tmpl);
-    }
-    ~TempDir() { fs::remove_all(path); }
-};
 
 RunOptions rod_run(const fs::path& dir, double duration) {
     RunOptions o;
