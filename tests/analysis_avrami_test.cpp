@@ -6,11 +6,14 @@
 #include <random>
 #include <stdexcept>
 
+#include "support/test_meshes.h"
 #include "analysis/avrami.h"
 #include "analysis/coverage_map.h"
 
 namespace peensim {
 namespace {
+
+using peensim::testing::square;
 
 TEST(AnalysisAvrami, RecoversKFromExactCurve) {
     std::vector<CoveragePoint> points;
@@ -40,14 +43,6 @@ TEST(AnalysisAvrami, ThrowsWithoutAnInformativePoint) {
     EXPECT_THROW(fit_avrami({}), std::invalid_argument);
     EXPECT_THROW(fit_avrami({{0.0, 0.5}, {1.0, 1.0}}), std::invalid_argument);
     EXPECT_THROW(fit_avrami({{1.0, 0.0}}), std::invalid_argument);
-}
-
-TriangleMesh square(double side_m) {
-    TriangleMesh mesh;
-    mesh.vertices = {Vec3(0, 0, 0), Vec3(side_m, 0, 0), Vec3(side_m, side_m, 0), Vec3(0, side_m, 0)};
-    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-    mesh.source_facet = {0, 1};
-    return mesh;
 }
 
 // Peens a square at a steady Poisson rate and samples the coverage every 0.25 s up to duration_s.

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 
+#include "support/test_meshes.h"
 #include "analysis/coverage_map.h"
 #include "geometry/box_mesh.h"
 #include "geometry/cylinder_mesh.h"
@@ -14,14 +15,7 @@
 namespace peensim {
 namespace {
 
-// A flat square [0, side]^2 in z = 0, two triangles sharing the diagonal (0,0)-(side,side).
-TriangleMesh square(double side_m) {
-    TriangleMesh mesh;
-    mesh.vertices = {Vec3(0, 0, 0), Vec3(side_m, 0, 0), Vec3(side_m, side_m, 0), Vec3(0, side_m, 0)};
-    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-    mesh.source_facet = {0, 1};
-    return mesh;
-}
+using peensim::testing::square;
 
 TEST(AnalysisCoverage, SamplesCarryTheTrianglesAreaAndRespectTheSpacing) {
     const double side = 4e-3, h = 0.2e-3;  // m
