@@ -11,6 +11,7 @@
 # face at z = 0) and a 10 mm rod along y across the full width, its axis 20 mm above the floor.
 # Gear case (our sizes): a two-section round chamber, a 29.9 mm sonotrode disk closing its
 # lower section, a module-2, 20-tooth gear on an axle (the scene places the gear at z = 42 mm).
+# Almen strip: an SAE type A strip for scenes/almen.yaml.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -54,3 +55,7 @@ mkdir -p "$out"
 # 4.95 mm, not 5: the axle must not coincide with the bore surface.
 "$peensim" generate cylinder "$out/axle.stl" --radius-mm 4.95 --height-mm 78 --axis y \
     --segments 64 --axial-subdivisions 16 --cap-rings 2
+
+# SAE J442 Almen strip, type A (76.2 x 19.0 x 1.29 mm): peened face up (+z), back face at z = 0.
+"$peensim" generate box "$out/almen-strip-a.stl" --size-x-mm 76.2 --size-y-mm 19 --size-z-mm 1.29 \
+    --center-z-mm 0.645

@@ -33,10 +33,11 @@ void write(const fs::path& path, const std::string& text) {
 
 void write_csvs(const fs::path& dir, const std::string& component, bool with_dents) {
     write(dir / (component + "_coverage.csv"), "time_s,coverage\n0,0\n0.1,0.3\n0.2,0.55\n0.3,0.7\n0.4,0.81\n");
-    std::string h = "quantity,bin_low,bin_high,unit,count\n"
-                    "normal_speed,0,0.25,m/s,3\nnormal_speed,0.25,0.5,m/s,12\nnormal_speed,0.5,0.75,m/s,7\n"
-                    "impact_angle,0,5,deg,4\nimpact_angle,5,10,deg,9\nimpact_angle,10,15,deg,9\n";
-    if (with_dents) h += "dent_diameter,100,110,um,5\ndent_diameter,110,120,um,17\n";
+    std::string h = "region,quantity,bin_low,bin_high,unit,count\n"
+                    "all,normal_speed,0,0.25,m/s,3\nall,normal_speed,0.25,0.5,m/s,12\nall,normal_speed,0.5,0.75,m/s,7\n"
+                    "all,impact_angle,0,5,deg,4\nall,impact_angle,5,10,deg,9\nall,impact_angle,10,15,deg,9\n";
+    if (with_dents) h += "all,dent_diameter,100,110,um,5\nall,dent_diameter,110,120,um,17\n";
+    h += "tooth0,normal_speed,0,0.25,m/s,3\n";  // a region's rows: not in the whole-component panels
     write(dir / (component + "_histograms.csv"), h);
 }
 
@@ -89,6 +90,29 @@ TEST(AnalysisPlots, RendersCoverageAndHistogramPngsOfTheRequestedSize) {
     EXPECT_TRUE(fs::exists(dir.path / "gear_coverage.gp"));
 }
 
+TEST(AnalysisPlots, RegionAndAlmenPlotsWhenTheirTablesExist) {
+    if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed";
+    TempDir dir;
+    write(dir.path / "gear_regions.csv",
+          "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n"
+          "tooth0,10,20.5,30,0.3,1.5,3,0.01,0.2\ntooth1,10,20.5,60,0.6,2.5,4,0.02,0.4\n");
+    write(dir.path / "strip_almen.csv", "time_s,dose_J_per_m2,arc_height_mm\n0,0,0\n1,2,0.05\n2,4,0.09\n");
+    write(dir.path / "bare_almen.csv", "time_s,dose_J_per_m2,arc_height_mm\n0,0,\n1,2,\n2,4,\n");
+    std::string note;
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear", "strip", "bare"}, note);
+    EXPECT_EQ(note, "");
+    ASSERT_EQ(pngs.size(), 3u);
+    EXPECT_EQ(pngs[0], (dir.path / "gear_regions.png").string());
+    EXPECT_EQ(pngs[1], (dir.path / "strip_almen.png").string());
+    EXPECT_EQ(pngs[2], (dir.path / "bare_almen.png").string());
+    for (const std::string& png : pngs) EXPECT_TRUE(read_png_info(png).signature_ok) << png;
+    std::ifstream calibrated(dir.path / "strip_almen.gp"), bare(dir.path / "bare_almen.gp");
+    const std::string with((std::istreambuf_iterator<char>(calibrated)), std::istreambuf_iterator<char>());
+    const std::string without((std::istreambuf_iterator<char>(bare)), std::istreambuf_iterator<char>());
+    EXPECT_NE(with.find("arc height (calibrated)"), std::string::npos);
+    EXPECT_NE(without.find("not calibrated"), std::string::npos);
+}
+
 TEST(AnalysisPlots, EmptyHistogramPanelAndQuotedNamesStillRender) {
     if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed";
     TempDir dir;
@@ -104,7 +128,7 @@ TEST(AnalysisPlots, EmptyHistogramPanelAndQuotedNamesStillRender) {
 TEST(AnalysisPlots, MissingCsvsGiveNoPlotAndNoError) {
     if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed";
     TempDir dir;
-    write(dir.path / "rod_histograms.csv", "quantity,bin_low,bin_high,unit,count\nnormal_speed,0,0.25,m/s,2\n");
+    write(dir.path / "rod_histograms.csv", "region,quantity,bin_low,bin_high,unit,count\nall,normal_speed,0,0.25,m/s,2\n");
     std::string note;
     const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"rod", "absent"}, note);
     EXPECT_EQ(note, "");

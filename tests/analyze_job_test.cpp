@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "support/temp_dir.h"
@@ -117,4 +118,94 @@ TEST(AnalyzeJob, NoPartAndNotARunAreClearErrors) {
     std::ostringstream err3;
     EXPECT_EQ(analyze_job((dir.path / "nothing").string(), out, err3), kExitRuntimeError);
     EXPECT_NE(err3.str().find("not a peensim run directory"), std::string::npos) << err3.str();
+}
+
+namespace {
+
+// Rows of <c>_histograms.csv: (region, quantity) -> total count.
+std::map<std::pair<std::string, std::string>, std::uint64_t> histogram_totals(const fs::path& path) {
+    std::map<std::pair<std::string, std::string>, std::uint64_t> totals;
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "region,quantity,bin_low,bin_high,unit,count");
+    while (std::getline(in, line)) {
+        std::stringstream ls(line);
+        std::string region, quantity;
+        std::getline(ls, region, ',');
+        std::getline(ls, quantity, ',');
+        totals[{region, quantity}] += std::stoull(line.substr(line.rfind(',') + 1));
+    }
+    return totals;
+}
+
+}  // namespace
+
+TEST(AnalyzeJob, GearTeethHistogramsAddUpToTheWholeGear) {
+    TempDir dir;
+    RunOptions o = rod_run(dir.path, 0.3);
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml";
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    const auto totals = histogram_totals(dir.path / "analysis" / "gear_histograms.csv");
+    // The 20 tooth sectors tile the gear: every impact lands in exactly one tooth's histograms.
+    for (const std::string quantity : {"normal_speed", "impact_angle", "dent_diameter"}) {
+        std::uint64_t teeth = 0;
+        int regions = 0;
+        for (const auto& [key, count] : totals)
+            if (key.second == quantity && key.first != "all") teeth += count, ++regions;
+        EXPECT_GT(totals.at({"all", quantity}), 0u) << quantity;
+        EXPECT_EQ(teeth, totals.at({"all", quantity})) << quantity;
+        EXPECT_LE(regions, 20) << quantity;
+    }
+    EXPECT_TRUE(fs::exists(dir.path / "analysis" / "gear_regions.csv"));
+}
+
+TEST(AnalyzeJob, AlmenStripReportsDoseAndNeedsCalibration) {
+    TempDir dir;
+    RunOptions o = rod_run(dir.path, 0.3);
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/almen.yaml";
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    const fs::path csv = dir.path / "analysis" / "almen_almen.csv";
+    ASSERT_TRUE(fs::exists(csv));
+    // Dose never decreases; the arc-height column is empty without calibration.
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "time_s,dose_J_per_m2,arc_height_mm");
+    double last = -1.0;
+    int rows = 0;
+    while (std::getline(in, line)) {
+        const double dose = std::stod(line.substr(line.find(',') + 1));
+        EXPECT_GE(dose, last);
+        EXPECT_EQ(line.back(), ',');
+        last = dose;
+        ++rows;
+    }
+    EXPECT_EQ(rows, 51);
+    EXPECT_GT(last, 0.0);
+    std::ifstream report(dir.path / "analysis" / "report.md");
+    const std::string text((std::istreambuf_iterator<char>(report)), {});
+    EXPECT_NE(text.find("Arc height needs calibration"), std::string::npos);
+    EXPECT_NE(text.find("Not calibrated in this scene"), std::string::npos);
+
+    // Calibrated through --set: arc heights appear, with the J443 saturation time.
+    TempDir dir2;
+    o.output_dir = dir2.path.string();
+    o.overrides.push_back("components[almen].almen.saturation_arc_height=0.3 mm");
+    o.overrides.push_back("components[almen].almen.dose_constant=500 J/m2");
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir2.path.string(), out, err), kExitOk) << err.str();
+    std::ifstream report2(dir2.path / "analysis" / "report.md");
+    const std::string text2((std::istreambuf_iterator<char>(report2)), {});
+    EXPECT_NE(text2.find("Calibration: a = 0.3 mm, E_c = 500 J/m2"), std::string::npos) << text2;
+    EXPECT_NE(text2.find("saturation time T = "), std::string::npos);
+    EXPECT_NE(text2.find("intensity 0.27 mm"), std::string::npos);
+    std::ifstream csv2(dir2.path / "analysis" / "almen_almen.csv");
+    std::getline(csv2, line);
+    std::getline(csv2, line);
+    EXPECT_EQ(line, "0,0,0");
 }

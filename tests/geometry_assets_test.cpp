@@ -125,5 +125,15 @@ TEST(GeometryAssets, GearCase) {
     EXPECT_GT(closest_to_axis(upper_wall, 2), farthest_from_axis(axle, 2));
 }
 
+TEST(GeometryAssets, AlmenStripTypeA) {
+    // SAE J442 type A: 76.2 x 19.0 x 1.29 mm, back face on z = 0, peened face up.
+    const TriangleMesh strip = asset("almen-strip-a.stl");
+    expect_closed_solid(strip);
+    expect_bounds_mm(strip, Vec3(-38.1, -9.5, 0), Vec3(38.1, 9.5, 1.29));
+    // scenes/almen.yaml turns it over at z = 42 mm in the gear chamber: its corners stay inside
+    // the upper section (radius 40 mm above the step at 15 mm).
+    EXPECT_LT(std::hypot(38.1, 9.5), 40.0 * std::cos(M_PI / 128));
+}
+
 }  // namespace
 }  // namespace peensim

@@ -44,6 +44,9 @@ const BadScene catalogue[] = {
     {"density_and_material.yaml", 3, "shot.material", "either shot.density or shot.material, not both"},
     {"rpm_for_part_not_rotating.yaml", 18, "components[2].motion", "a rotating motion is only for role part"},
     {"count_not_integer.yaml", 3, "shot.count", "expected a whole number"},
+    {"almen_half_calibration.yaml", 18, "components[2].almen.dose_constant",
+     "the arc-height calibration needs both saturation_arc_height and dose_constant"},
+    {"almen_on_part.yaml", 18, "components[2].almen", "almen is only for role almen"},
 };
 
 class SceneBadFiles : public ::testing::TestWithParam<BadScene> {};

@@ -1,6 +1,7 @@
 #include "analysis/coverage_map.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 
@@ -8,11 +9,24 @@ namespace peensim {
 
 namespace {
 
-// Offsets (in samples, from a triangle's first sample) of the rows of its sample grid:
-// "up" rows j = 0..n-1 hold n - j samples, then "down" rows j = 0..n-2 hold n - 1 - j.
-std::int64_t up_row_offset(std::int64_t n, std::int64_t j) { return j * n - j * (j - 1) / 2; }
-std::int64_t down_row_offset(std::int64_t n, std::int64_t j) {
-    return n * (n + 1) / 2 + j * (n - 1) - j * (j - 1) / 2;
+// Offsets (in samples, from a triangle's first sample) of the rows of its sample grid. Rows are
+// stored in pairs, "up" row j (n - j samples) then "down" row j (n - 1 - j samples), so that a dent,
+// which marks neighbouring rows of both kinds, touches as few cache lines as possible.
+std::int64_t up_row_offset(std::int64_t n, std::int64_t j) { return j * (2 * n - 1) - j * (j - 1); }
+std::int64_t down_row_offset(std::int64_t n, std::int64_t j) { return up_row_offset(n, j) + n - j; }
+
+// Sets bits [begin, end) of `words`; returns how many of them were clear before.
+std::int64_t set_bits(std::uint64_t* words, std::int64_t begin, std::int64_t end) {
+    std::int64_t newly = 0;
+    while (begin < end) {
+        const std::int64_t word = begin >> 6, bit = begin & 63;
+        const std::int64_t count = std::min<std::int64_t>(64 - bit, end - begin);
+        const std::uint64_t mask = (count == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << count) - 1)) << bit;
+        newly += std::popcount(mask & ~words[word]);
+        words[word] |= mask;
+        begin += count;
+    }
+    return newly;
 }
 
 // Cells [lo, hi] (inclusive, clamped to [0, dim - 1]) overlapped by [a, b] on one axis; false if none.
@@ -26,7 +40,25 @@ bool cell_range(double a, double b, double origin, double cell, std::int64_t dim
     return true;
 }
 
+// Edge subdivisions n of a triangle (so n^2 samples): every sub-triangle's edges <= spacing;
+// 0 for a degenerate triangle.
+int subdivisions(const Vec3& a, const Vec3& b, const Vec3& c, double spacing_m) {
+    const Vec3 ab = b - a, ac = c - a;
+    if (!(ab.cross(ac).norm() > 0.0)) return 0;
+    const double longest = std::max({ab.norm(), ac.norm(), (ac - ab).norm()});
+    return std::max(1, static_cast<int>(std::ceil(longest / spacing_m)));
+}
+
 }  // namespace
+
+std::int64_t CoverageMap::samples_needed(const TriangleMesh& mesh, double spacing_m) {
+    std::int64_t samples = 0;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const std::int64_t n = subdivisions(mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2), spacing_m);
+        samples += n * n;
+    }
+    return samples;
+}
 
 CoverageMap::CoverageMap(const TriangleMesh& mesh, double spacing_m, double largest_dent_diameter_m)
     : spacing_(spacing_m) {
@@ -44,16 +76,19 @@ CoverageMap::CoverageMap(const TriangleMesh& mesh, double spacing_m, double larg
         p.origin = a;
         p.area = 0.5 * cross.norm();
         p.first_sample = samples;
-        if (!(p.area > 0.0)) continue;  // degenerate: no samples, no area
-        const double longest = std::max({ab.norm(), ac.norm(), (ac - ab).norm()});
-        p.n = std::max(1, static_cast<int>(std::ceil(longest / spacing_m)));
+        p.n = subdivisions(a, mesh.corner(t, 1), mesh.corner(t, 2), spacing_m);
+        if (p.n == 0) continue;  // degenerate: no samples, no area
         p.step_u = ab / p.n;
         p.step_v = ac / p.n;
         p.unit_normal = cross.normalized();
+        const Vec3 b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+        p.centre = 0.5 * (a.cwiseMin(b).cwiseMin(c) + a.cwiseMax(b).cwiseMax(c));
+        p.reach = std::max({(a - p.centre).norm(), (b - p.centre).norm(), (c - p.centre).norm()});
         total_area_ += p.area;
         samples += static_cast<std::int64_t>(p.n) * p.n;
     }
-    covered_.assign(static_cast<std::size_t>(samples), 0);
+    sample_count_ = samples;
+    covered_.assign(static_cast<std::size_t>((samples + 63) / 64), 0);
     covered_count_.assign(count, 0);
     stamp_.assign(count, 0);
     build_grid(mesh, largest_dent_diameter_m);
@@ -133,6 +168,7 @@ void CoverageMap::add_dent(const Vec3& centre, double diameter_m) {
                     const std::uint32_t t = cell_triangles_[k];
                     if (stamp_[t] == dent_stamp_) continue;
                     stamp_[t] = dent_stamp_;
+                    if (covered_count_[t] == samples_of_triangle(t)) continue;  // fully covered already
                     cover_patch(t, centre, radius);
                 }
             }
@@ -145,6 +181,10 @@ void CoverageMap::add_dent(const Vec3& centre, double diameter_m) {
 // interval of u, found in closed form.
 void CoverageMap::cover_patch(std::size_t t, const Vec3& centre, double radius_m) {
     const Patch& p = patches_[t];
+    // A dent that cannot reach the triangle's bounding sphere marks nothing: skip the row search
+    // (most triangles a dent's cells hold are coplanar neighbours, found by the plane test alone).
+    const double reach = p.reach + radius_m;
+    if ((centre - p.centre).squaredNorm() > reach * reach) return;
     const Vec3 rel = centre - p.origin;
     const double height = rel.dot(p.unit_normal);  // m
     const double rho2 = radius_m * radius_m - height * height;  // m^2
@@ -176,19 +216,15 @@ void CoverageMap::cover_patch(std::size_t t, const Vec3& centre, double radius_m
             const double i_lo = std::max(0.0, std::ceil((-beta - root) / g11 - offset));
             const double i_hi = std::min(static_cast<double>(i_last), std::floor((-beta + root) / g11 - offset));
             if (i_lo > i_hi) continue;
-            const std::int64_t row = kind == 0 ? up_row_offset(n, j) : down_row_offset(n, j);
-            std::uint8_t* s = covered_.data() + p.first_sample + row;
-            for (std::int64_t i = static_cast<std::int64_t>(i_lo); i <= static_cast<std::int64_t>(i_hi); ++i) {
-                newly += 1 - s[i];
-                s[i] = 1;
-            }
+            const std::int64_t row = p.first_sample + (kind == 0 ? up_row_offset(n, j) : down_row_offset(n, j));
+            newly += set_bits(covered_.data(), row + static_cast<std::int64_t>(i_lo), row + static_cast<std::int64_t>(i_hi) + 1);
         }
     }
     covered_count_[t] += newly;
 }
 
 void CoverageMap::clear() {
-    std::fill(covered_.begin(), covered_.end(), std::uint8_t{0});
+    std::fill(covered_.begin(), covered_.end(), std::uint64_t{0});
     std::fill(covered_count_.begin(), covered_count_.end(), 0);
 }
 
@@ -222,7 +258,7 @@ double CoverageMap::coverage_of(const std::vector<int>& triangles) const {
 }
 
 std::size_t CoverageMap::memory_bytes() const {
-    return covered_.capacity() * sizeof(std::uint8_t) + patches_.capacity() * sizeof(Patch) +
+    return covered_.capacity() * sizeof(std::uint64_t) + patches_.capacity() * sizeof(Patch) +
            covered_count_.capacity() * sizeof(std::int64_t) + stamp_.capacity() * sizeof(std::uint32_t) +
            cell_start_.capacity() * sizeof(std::uint32_t) + cell_triangles_.capacity() * sizeof(std::uint32_t);
 }

@@ -28,7 +28,7 @@
 // Speed. Triangles are binned once into a uniform grid of cubic cells (side >= the largest dent
 // diameter given at construction), so a dent looks at <= 8 cells; each triangle it may touch is
 // handled once (a per-triangle stamp), rows of samples inside the dent's disc are found in closed
-// form. No allocation per dent. Memory: one byte per sample, plus ~130 bytes per triangle and
+// form. No allocation per dent. Memory: one bit per sample, plus ~130 bytes per triangle and
 // 4 bytes per grid cell (see memory_bytes()).
 #pragma once
 
@@ -52,6 +52,10 @@ public:
     // Throws std::invalid_argument for a non-positive spacing or dent size.
     CoverageMap(const TriangleMesh& mesh, double spacing_m, double largest_dent_diameter_m);
 
+    // The number of samples a map of `mesh` at `spacing_m` holds (to choose a spacing that fits
+    // in memory before building it).
+    static std::int64_t samples_needed(const TriangleMesh& mesh, double spacing_m);
+
     // Marks every sample within diameter_m / 2 (3D distance, m) of centre (m, component frame).
     void add_dent(const Vec3& centre, double diameter_m);
     // Forgets all dents.
@@ -65,7 +69,7 @@ public:
     double triangle_area(std::size_t t) const { return patches_[t].area; }  // m^2
 
     std::size_t triangle_count() const { return patches_.size(); }
-    std::int64_t sample_count() const { return static_cast<std::int64_t>(covered_.size()); }
+    std::int64_t sample_count() const { return sample_count_; }
     std::int64_t samples_of_triangle(std::size_t t) const;
     std::int64_t covered_samples_of_triangle(std::size_t t) const { return covered_count_[t]; }
     std::size_t memory_bytes() const;
@@ -73,7 +77,7 @@ public:
     double grid_cell_size() const { return cell_; }     // m
 
 private:
-    // One triangle's sample grid: sample (i, j) of the "up" sub-triangles sits at
+    // One triangle's sample grid (bits first_sample.. of covered_): sample (i, j) of the "up" sub-triangles sits at
     // origin + (i + 1/3) step_u + (j + 1/3) step_v (i + j <= n - 1); of the "down" ones at
     // origin + (i + 2/3) step_u + (j + 2/3) step_v (i + j <= n - 2).
     struct Patch {
@@ -81,6 +85,8 @@ private:
         Vec3 step_u;                  // (B - A) / n (m)
         Vec3 step_v;                  // (C - A) / n (m)
         Vec3 unit_normal;             // (-)
+        Vec3 centre;                  // centre of the triangle's bounding sphere (m): the corners' box centre
+        double reach = 0.0;           // radius of that sphere (m)
         double area = 0.0;            // m^2
         std::int64_t first_sample = 0;
         int n = 0;                    // subdivisions per edge; 0 = degenerate triangle, no samples
@@ -92,7 +98,8 @@ private:
     double spacing_ = 0.0;                       // m
     double total_area_ = 0.0;                    // m^2
     std::vector<Patch> patches_;
-    std::vector<std::uint8_t> covered_;          // one byte per sample: 1 = inside a dent
+    std::int64_t sample_count_ = 0;
+    std::vector<std::uint64_t> covered_;         // one bit per sample: 1 = inside a dent
     std::vector<std::int64_t> covered_count_;    // per triangle: covered samples
     std::vector<std::uint32_t> stamp_;           // per triangle: last dent that visited it
     std::uint32_t dent_stamp_ = 0;

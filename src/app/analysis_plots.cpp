@@ -72,17 +72,19 @@ std::string enhanced_text_escaped(const std::string& s) {
     return e;
 }
 
-// The quantities of a histograms CSV that have at least one counted impact.
+// The quantities of a histograms CSV (columns region,quantity,...,count) that have at least one
+// counted impact on the whole component (region "all").
 std::set<std::string> quantities_with_counts(const fs::path& csv) {
     std::set<std::string> found;
     std::ifstream in(csv);
     std::string line;
     std::getline(in, line);  // header
     while (std::getline(in, line)) {
-        const auto first = line.find(',');
+        if (!line.starts_with("all,")) continue;
+        const auto first = line.find(',', 4);
         const auto last = line.rfind(',');
         if (first == std::string::npos || last == first) continue;
-        if (std::strtoull(line.c_str() + last + 1, nullptr, 10) > 0) found.insert(line.substr(0, first));
+        if (std::strtoull(line.c_str() + last + 1, nullptr, 10) > 0) found.insert(line.substr(4, first - 4));
     }
     return found;
 }
@@ -130,7 +132,8 @@ std::string histograms_script(const std::string& component, const std::set<std::
         if (with_counts.count(p.quantity)) {
             // Rows of other quantities map to NaN (1/0) and are skipped; the header row too.
             s << "set xrange [*:*]\nset yrange [0:*]\nunset label 1\nset format x\nset format y\n"
-              << "plot " << csv << " using (strcol(1) eq '" << p.quantity << "' ? ($2+$3)/2 : 1/0):5:($3-$2) with boxes lc rgb '#3070b0'\n";
+              << "plot " << csv << " using (strcol(1) eq 'all' && strcol(2) eq '" << p.quantity
+              << "' ? ($3+$4)/2 : 1/0):6:($4-$3) with boxes lc rgb '#3070b0'\n";
         } else {
             s << "set xrange [0:1]\nset yrange [0:1]\nset format x ''\nset format y ''\n"
               << "set label 1 'no data (no impact, or the material has no yield\\_stress)' at graph 0.5,0.5 center\n"
@@ -139,6 +142,48 @@ std::string histograms_script(const std::string& component, const std::set<std::
     }
     s << "unset multiplot\n";
     return s.str();
+}
+
+// Impacts and mean normal speed per region (from <c>_regions.csv): which teeth or faces get the shot.
+std::string regions_script(const std::string& component) {
+    const std::string csv = gnuplot_quoted(component + "_regions.csv");
+    std::ostringstream s;
+    s << script_header(component + "_regions")
+      << "set style fill solid 0.6 border -1\n"
+      << "set lmargin 12\nunset key\n"
+      << "set xtics rotate by -45 noenhanced\n"
+      << "set multiplot layout 2,1 title " << gnuplot_quoted(enhanced_text_escaped(component) + ": impacts per region") << "\n"
+      << "set ylabel 'impacts per mm^2 per s'\nset yrange [0:*]\n"
+      << "plot " << csv << " using 0:5:(0.7):xtic(1) every ::1 with boxes lc rgb '#3070b0'\n"
+      << "set ylabel 'mean v_n (m/s)'\n"
+      << "plot " << csv << " using 0:6:(0.7):xtic(1) every ::1 with boxes lc rgb '#c05020'\n"
+      << "unset multiplot\n";
+    return s.str();
+}
+
+// An Almen strip's dose vs time (from <c>_almen.csv), with its arc height when calibrated.
+std::string almen_script(const std::string& component, bool calibrated) {
+    const std::string csv = gnuplot_quoted(component + "_almen.csv");
+    std::ostringstream s;
+    s << script_header(component + "_almen")
+      << "set title " << gnuplot_quoted(enhanced_text_escaped(component) + ": Almen strip") << "\n"
+      << "set xlabel 'simulated time (s)'\nset ylabel 'impact energy dose (J/m^2)'\nset key top left\n";
+    if (calibrated)
+        s << "set y2label 'arc height (mm)'\nset y2tics\nset ytics nomirror\n"
+          << "plot " << csv << " using 1:2 every ::1 with linespoints lw 2 pt 7 ps 0.6 title 'dose', \\\n"
+          << "     " << csv << " using 1:3 every ::1 axes x1y2 with linespoints lw 2 pt 5 ps 0.6 title 'arc height (calibrated)'\n";
+    else
+        s << "plot " << csv << " using 1:2 every ::1 with linespoints lw 2 pt 7 ps 0.6 title 'dose (arc height not calibrated)'\n";
+    return s.str();
+}
+
+// True if the second line of an Almen CSV has an arc-height value.
+bool almen_calibrated(const fs::path& csv) {
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    std::getline(in, line);
+    return !line.empty() && line.back() != ',';
 }
 
 // Runs `gnuplot script` in `dir` rendering to `png`.tmp, then renames it to `png`.
@@ -187,6 +232,9 @@ std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, c
         if (fs::exists(dir / (c + "_coverage.csv"))) plot(c + "_coverage", coverage_script(c));
         const fs::path histograms = dir / (c + "_histograms.csv");
         if (fs::exists(histograms)) plot(c + "_histograms", histograms_script(c, quantities_with_counts(histograms)));
+        if (fs::exists(dir / (c + "_regions.csv"))) plot(c + "_regions", regions_script(c));
+        const fs::path almen = dir / (c + "_almen.csv");
+        if (fs::exists(almen)) plot(c + "_almen", almen_script(c, almen_calibrated(almen)));
     }
     return written;
 }

@@ -20,7 +20,9 @@ inline constexpr std::string_view kNoGnuplotNote = "gnuplot not found: no PNG pl
 // `analysis_dir/<c>_histograms.csv` (those that exist), writes a gnuplot script next to each
 // (`<c>_coverage.gp`, `<c>_histograms.gp`, kept so users can edit and rerun them from the analysis
 // dir: `gnuplot <c>_coverage.gp`) and runs it, giving `<c>_coverage.png` (coverage in % vs time)
-// and `<c>_histograms.png` (normal speed, impact angle, dent diameter). Each PNG is rendered to
+// and `<c>_histograms.png` (normal speed, impact angle, dent diameter), and where their CSV exists
+// `<c>_regions.png` (impacts per area and mean normal speed per region) and `<c>_almen.png` (dose
+// and calibrated arc height vs time). Each PNG is rendered to
 // `<png>.tmp` and renamed, so a PNG is either complete or absent.
 // Returns the paths of the PNGs written. `note` is empty when all went well; otherwise it says
 // why plots are missing (gnuplot not found, or gnuplot's own error message).

@@ -1,28 +1,24 @@
 #include "app/analyze_job.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
-#include <sstream>
 
-#include "analysis/avrami.h"
-#include "analysis/coverage_map.h"
 #include "analysis/dent.h"
-#include "analysis/impact_log_reader.h"
-#include "analysis/region_stats.h"
-#include "analysis/regions.h"
-#include "analysis/triangle_fields.h"
+#include "analysis/impact_stream.h"
 #include "app/analysis_plots.h"
+#include "app/analysis_report.h"
+#include "app/analysis_tables.h"
+#include "app/component_analysis.h"
 #include "app/report_errors.h"
 #include "geometry/mesh_loader.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
-#include "output/vtp_writer.h"
 #include "scene/scene_parser.h"
 
 namespace fs = std::filesystem;
@@ -31,51 +27,15 @@ namespace peensim {
 
 namespace {
 
-constexpr int kCoverageSamples = 50;           // points of the coverage-vs-time curve
+constexpr int kCoverageSamples = 50;           // points of the coverage- and dose-vs-time curves
 constexpr double kDentsPerSpacing = 5.0;       // coverage sampling: spacing = dent at 1 m/s / 5
 constexpr double kLargestSpeed = 30.0;         // m/s, sizes the coverage map's dent grid
-constexpr double kMaxSamples = 5.0e7;          // coverage samples per component at most (memory ~ 1 byte each)
-constexpr double kSpeedBin = 0.25;             // m/s
-constexpr double kAngleBin = 5.0;              // degrees
-constexpr double kDentBin = 10e-6;             // m
-
-// A fixed-bin histogram that grows its bins as values arrive (bins are few: kilobytes).
-struct Histogram {
-    double width;
-    std::vector<std::uint64_t> bins;
-    void add(double v) {
-        if (!(v >= 0.0) || !std::isfinite(v)) return;
-        const auto b = static_cast<std::size_t>(v / width);
-        if (b >= bins.size()) bins.resize(b + 1, 0);
-        ++bins[b];
-    }
-};
-
-struct ComponentAnalysis {
-    std::string name;
-    std::unique_ptr<TriangleMesh> mesh;
-    std::unique_ptr<TriangleFields> fields;
-    std::unique_ptr<CoverageMap> coverage;  // empty if the material has no yield stress
-    double yield_stress_pa = 0.0;
-    Histogram speed{kSpeedBin, {}}, angle{kAngleBin, {}}, dent{kDentBin, {}};
-    std::uint64_t impacts = 0;
-    double speed_sum = 0.0, dent_sum = 0.0;
-    std::vector<CoveragePoint> curve;
-    std::unique_ptr<ImpactPointsVtpWriter> points;  // the impacts, for ParaView
-    std::vector<Region> regions;                    // the scene's regions of the component
-};
+constexpr std::int64_t kMaxSamples = 200'000'000;  // coverage samples per component at most (1 bit each: 25 MB)
 
 const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
     for (const MaterialDesc& m : scene.materials)
         if (m.name == name) return &m;
     return nullptr;
-}
-
-std::string fmt(double v, int precision = 4) {
-    if (!std::isfinite(v)) return "";
-    std::ostringstream s;
-    s << std::setprecision(precision) << v;
-    return s.str();
 }
 
 // Simulated time the log covers: from summary.json, or the scene's duration.
@@ -92,129 +52,75 @@ double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& 
     return scene.process.duration_s;
 }
 
-void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double duration) {
-    std::ostringstream s;
-    s << "triangle,facet,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
-    for (std::size_t t = 0; t < c.fields->triangle_count(); ++t) {
-        s << t << ',' << (c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t]) << ','
-          << fmt(c.fields->area_m2(t) * 1e6, 8) << ',' << c.fields->count(t) << ',' << fmt(c.fields->rate_per_mm2_s(t, duration), 6)
-          << ',' << fmt(c.fields->mean_normal_speed(t)) << ',' << fmt(c.fields->max_normal_speed(t)) << ','
-          << fmt(c.fields->energy_per_area(t), 6) << ',' << (c.coverage ? fmt(c.coverage->coverage_of_triangle(t)) : "") << '\n';
-    }
-    write_file_atomically(path.string(), s.str());
+// The coverage map of a component of yield stress sigma_y: sample spacing a fifth of the dent at
+// 1 m/s, coarsened (in steps of 25 %) while the mesh would need more than kMaxSamples samples.
+std::unique_ptr<CoverageMap> coverage_map(const TriangleMesh& mesh, const SceneDescription& scene, double sigma_y) {
+    const double D = scene.shot.diameter_m, rho = scene.shot.density_kg_per_m3;
+    double spacing = dent_diameter(D, rho, 1.0, sigma_y) / kDentsPerSpacing;
+    while (CoverageMap::samples_needed(mesh, spacing) > kMaxSamples) spacing *= 1.25;
+    return std::make_unique<CoverageMap>(mesh, spacing, dent_diameter(D, rho, kLargestSpeed, sigma_y));
 }
 
-// The per-triangle fields as VTK cell data (same names and units as the CSV columns).
-std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) {
-    const std::size_t n = c.fields->triangle_count();
-    std::vector<CellField> f{{"impacts", 1, {}}, {"impacts_per_mm2_s", 1, {}}, {"mean_vn_mps", 1, {}},
-                             {"max_vn_mps", 1, {}}, {"energy_J_per_m2", 1, {}}};
-    if (c.coverage) f.push_back({"coverage", 1, {}});
-    for (CellField& x : f) x.values.reserve(n);
+// Which regions hold each triangle, as compressed rows (a triangle may be in several regions).
+void index_regions(ComponentAnalysis& a) {
+    const std::size_t n = a.mesh->triangle_count();
+    std::vector<std::vector<std::uint32_t>> of(n);
+    for (std::size_t r = 0; r < a.regions.size(); ++r)
+        for (int t : a.regions[r].triangles) of[static_cast<std::size_t>(t)].push_back(static_cast<std::uint32_t>(r));
+    a.region_start.assign(n + 1, 0);
     for (std::size_t t = 0; t < n; ++t) {
-        const double mean = c.fields->mean_normal_speed(t);
-        f[0].values.push_back(static_cast<double>(c.fields->count(t)));
-        f[1].values.push_back(c.fields->rate_per_mm2_s(t, duration));
-        f[2].values.push_back(std::isfinite(mean) ? mean : 0.0);  // ParaView: 0 where nothing hit
-        f[3].values.push_back(c.fields->max_normal_speed(t));
-        f[4].values.push_back(c.fields->energy_per_area(t));
-        if (c.coverage) f[5].values.push_back(c.coverage->coverage_of_triangle(t));
+        a.region_start[t + 1] = a.region_start[t] + static_cast<std::uint32_t>(of[t].size());
+        a.region_index.insert(a.region_index.end(), of[t].begin(), of[t].end());
     }
-    return f;
+    a.region_histograms.assign(a.regions.size(), ImpactHistograms{});
 }
 
-void write_regions_csv(const fs::path& path, const ComponentAnalysis& c, double duration) {
-    std::ostringstream s;
-    s << "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
-    for (const Region& region : c.regions) {
-        const RegionStats r = region_stats(region, *c.fields, c.coverage.get(), duration);
-        s << region.name << ',' << r.triangles << ',' << fmt(r.area_m2 * 1e6, 8) << ',' << r.impacts << ','
-          << fmt(r.impacts_per_mm2_s, 6) << ',' << fmt(r.mean_normal_speed) << ',' << fmt(r.max_normal_speed) << ','
-          << fmt(r.energy_per_area, 6) << ',' << fmt(r.coverage) << '\n';
+ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& scene, double shot_mass) {
+    ComponentAnalysis a;
+    a.name = c.name;
+    a.role = c.role;
+    a.mesh = std::make_unique<TriangleMesh>(load_mesh(c.mesh_path, c.mesh_unit_m));
+    a.fields = std::make_unique<TriangleFields>(*a.mesh, shot_mass);
+    a.regions = select_regions(*a.mesh, c.regions);
+    index_regions(a);
+    const MaterialDesc* m = material_named(scene, c.material);
+    if (m && m->yield_stress_pa) {
+        a.yield_stress_pa = *m->yield_stress_pa;
+        a.coverage = coverage_map(*a.mesh, scene, a.yield_stress_pa);
     }
-    write_file_atomically(path.string(), s.str());
-}
-
-// Per component with regions: one table row per region (the numbers of <component>_regions.csv).
-std::string region_tables(const std::vector<ComponentAnalysis>& parts, double duration) {
-    std::ostringstream r;
-    for (const ComponentAnalysis& c : parts) {
-        if (c.regions.empty()) continue;
-        r << "\n## Regions of " << c.name << "\n\n| region | triangles | area (mm2) | impacts | per mm2 per s | mean v_n (m/s) "
-             "| max v_n (m/s) | energy (J/m2) | coverage |\n|---|---|---|---|---|---|---|---|---|\n";
-        for (const Region& region : c.regions) {
-            const RegionStats s = region_stats(region, *c.fields, c.coverage.get(), duration);
-            r << "| " << region.name << " | " << s.triangles << " | " << fmt(s.area_m2 * 1e6) << " | " << s.impacts << " | "
-              << fmt(s.impacts_per_mm2_s) << " | " << fmt(s.mean_normal_speed) << " | " << fmt(s.max_normal_speed) << " | "
-              << fmt(s.energy_per_area) << " | " << (c.coverage ? fmt(100.0 * s.coverage, 3) + " %" : "") << " |\n";
+    if (c.almen) {
+        AlmenAnalysis almen;
+        try {
+            almen.dose = std::make_unique<AlmenDose>(*a.mesh, c.almen->face_normal, shot_mass);
+        } catch (const std::invalid_argument& e) {
+            throw InputError(c.almen->where, "almen.face_normal", std::string(e.what()) + " (expected the outward normal of "
+                             "one face of the strip, in the component's frame)");
         }
+        if (c.almen->saturation_arc_height_m)
+            almen.calibration = AlmenCalibration{*c.almen->saturation_arc_height_m, *c.almen->dose_constant_J_per_m2};
+        a.almen = std::move(almen);
     }
-    return r.str();
+    return a;
 }
 
-void write_histograms_csv(const fs::path& path, const ComponentAnalysis& c) {
-    std::ostringstream s;
-    s << "quantity,bin_low,bin_high,unit,count\n";
-    auto rows = [&](const char* q, const Histogram& h, double scale, const char* unit) {
-        for (std::size_t b = 0; b < h.bins.size(); ++b)
-            s << q << ',' << fmt(b * h.width * scale, 6) << ',' << fmt((b + 1) * h.width * scale, 6) << ',' << unit << ',' << h.bins[b] << '\n';
-    };
-    rows("normal_speed", c.speed, 1.0, "m/s");
-    rows("impact_angle", c.angle, 1.0, "deg");
-    rows("dent_diameter", c.dent, 1e6, "um");
-    write_file_atomically(path.string(), s.str());
-}
-
-void write_curve_csv(const fs::path& path, const ComponentAnalysis& c) {
-    std::ostringstream s;
-    s << "time_s,coverage\n";
-    for (const CoveragePoint& p : c.curve) s << fmt(p.time_s, 8) << ',' << fmt(p.coverage, 6) << '\n';
-    write_file_atomically(path.string(), s.str());
-}
-
-std::string report(const fs::path& dir, const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, double duration,
-                   bool finished, bool truncated, const std::vector<std::string>& pngs, const std::string& plot_note) {
-    std::ostringstream r;
-    r << "# peensim analysis: " << (scene.name.empty() ? dir.string() : scene.name) << "\n\n";
-    r << "Run: `" << dir.string() << "`, " << fmt(duration) << " s of peening simulated"
-      << (finished ? "" : " (the run did not finish: its impact log is partial)") << ".\n";
-    if (truncated) r << "The impact log ended inside a row (a run killed mid-write): that row was left out.\n";
-    r << "\n| component | impacts | per s | mean v_n (m/s) | mean dent (um) | coverage | Avrami k (1/s) | time to 98 % (s) |\n";
-    r << "|---|---|---|---|---|---|---|---|\n";
-    for (const ComponentAnalysis& c : parts) {
-        const double mean_v = c.impacts ? c.speed_sum / c.impacts : NAN;
-        const double mean_d = c.impacts && c.coverage ? c.dent_sum / c.impacts * 1e6 : NAN;
-        std::string k = "", t98 = "", cov = "";
-        if (c.coverage) {
-            cov = fmt(100.0 * c.coverage->coverage(), 3) + " %";
-            const AvramiFit fit = fit_avrami(c.curve);
-            if (fit.points_used > 0 && fit.k_per_s > 0.0) {
-                k = fmt(fit.k_per_s) + " +- " + fmt(fit.k_standard_error_per_s, 2);
-                t98 = fmt(fit.time_to_98_percent_s) + (fit.extrapolated ? " (extrapolated)" : "");
-            }
-        } else {
-            cov = "no yield_stress";
-        }
-        r << "| " << c.name << " | " << c.impacts << " | " << fmt(c.impacts / duration) << " | " << fmt(mean_v) << " | " << fmt(mean_d)
-          << " | " << cov << " | " << k << " | " << t98 << " |\n";
+// Adds one impact row to a component's statistics (the ParaView points are written by the reader thread).
+void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescription& scene) {
+    const int t = a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s);
+    ++a.impacts;
+    a.speed_sum += row.vn_in_m_per_s;
+    double dent = std::numeric_limits<double>::quiet_NaN();
+    if (a.coverage) {
+        dent = dent_diameter(scene.shot.diameter_m, scene.shot.density_kg_per_m3, row.vn_in_m_per_s, a.yield_stress_pa);
+        a.coverage->add_dent(row.point_m, dent);
+        a.dent_sum += dent;
     }
-    r << "\nCoverage follows SAE J2277: the area fraction covered by at least one dent, each dent of diameter "
-         "phi = D (8 rho v_n^2 / (9 sigma_y))^(1/4) (eq. 10), sampled on a grid of spacing a fifth of the dent at 1 m/s; "
-         "98 % counts as full coverage, its time from the fit C(t) = 1 - exp(-k t).\n\nFiles (per component): "
-         "`<component>_triangles.csv` (per-triangle fields), `<component>_coverage.csv` (coverage vs time), "
-         "`<component>_histograms.csv` (normal speed, impact angle, dent diameter), `<component>.vtp` (the mesh with "
-         "the per-triangle fields as cell data, for ParaView), `<component>_impacts.vtp` (the impacts as points with their "
-         "relative velocity, normal speed and time), `<component>_regions.csv` (the scene's regions of the component, "
-         "each triangle in the region holding its centroid).\n";
-    r << region_tables(parts, duration);
-    if (!pngs.empty()) r << "\n## Plots\n\n";
-    for (const std::string& png : pngs) {
-        const std::string name = fs::path(png).filename().string();
-        const bool coverage = name.ends_with("_coverage.png");
-        r << "![" << (coverage ? "coverage" : "histograms") << "](" << name << ")\n\n";
+    a.histograms.add(row.vn_in_m_per_s, row.vt_in_m_per_s, dent);
+    if (t >= 0) {
+        const auto ti = static_cast<std::size_t>(t);
+        for (std::uint32_t k = a.region_start[ti]; k < a.region_start[ti + 1]; ++k)
+            a.region_histograms[a.region_index[k]].add(row.vn_in_m_per_s, row.vt_in_m_per_s, dent);
     }
-    if (!plot_note.empty()) r << (pngs.empty() ? "\n" : "") << "Plots: " << plot_note << ".\n";
-    return r.str();
+    if (a.almen) a.almen->dose->add(t, row.vn_in_m_per_s);
 }
 
 }  // namespace
@@ -233,28 +139,14 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
 
         // Components whose impacts were logged.
         std::vector<ComponentAnalysis> parts;
-        std::map<std::string, std::size_t, std::less<>> by_name;
+        std::vector<std::string> names;
         const double shot_mass = scene.shot.density_kg_per_m3 * M_PI / 6.0 * std::pow(scene.shot.diameter_m, 3);
         for (const ComponentDesc& c : scene.components) {
             const auto& logged = scene.output.logged_components;
-            const bool is_logged = logged.empty() ? c.role == ComponentRole::part : std::find(logged.begin(), logged.end(), c.name) != logged.end();
+            const bool is_logged = logged.empty() ? logged_by_default(c.role) : std::find(logged.begin(), logged.end(), c.name) != logged.end();
             if (!is_logged) continue;
-            ComponentAnalysis a;
-            a.name = c.name;
-            a.mesh = std::make_unique<TriangleMesh>(load_mesh(c.mesh_path, c.mesh_unit_m));
-            a.fields = std::make_unique<TriangleFields>(*a.mesh, shot_mass);
-            a.regions = select_regions(*a.mesh, c.regions);
-            const MaterialDesc* m = material_named(scene, c.material);
-            if (m && m->yield_stress_pa) {
-                a.yield_stress_pa = *m->yield_stress_pa;
-                const double area = [&] { double s = 0; for (std::size_t t = 0; t < a.mesh->triangle_count(); ++t) s += 0.5 * (a.mesh->corner(t, 1) - a.mesh->corner(t, 0)).cross(a.mesh->corner(t, 2) - a.mesh->corner(t, 0)).norm(); return s; }();
-                double spacing = dent_diameter(scene.shot.diameter_m, scene.shot.density_kg_per_m3, 1.0, a.yield_stress_pa) / kDentsPerSpacing;
-                spacing = std::max(spacing, std::sqrt(area / kMaxSamples));
-                a.coverage = std::make_unique<CoverageMap>(*a.mesh, spacing,
-                    dent_diameter(scene.shot.diameter_m, scene.shot.density_kg_per_m3, kLargestSpeed, a.yield_stress_pa));
-            }
-            by_name.emplace(a.name, parts.size());
-            parts.push_back(std::move(a));
+            parts.push_back(analysis_of(c, scene, shot_mass));
+            names.push_back(c.name);
         }
         if (parts.empty()) throw std::runtime_error(output_dir + ": the run logged no component (output.log is empty and the scene has no part)");
 
@@ -263,56 +155,44 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
         for (ComponentAnalysis& a : parts)
             a.points = std::make_unique<ImpactPointsVtpWriter>((adir / (a.name + "_impacts.vtp")).string(), impact_point_field_layouts());
 
-        ImpactLogReader reader(log.string());
-        ImpactRow row;
         int next_sample = 1;
         auto sample_until = [&](double t) {
             while (next_sample <= kCoverageSamples && t >= duration * next_sample / kCoverageSamples) {
-                for (ComponentAnalysis& a : parts)
-                    if (a.coverage) a.curve.push_back({duration * next_sample / kCoverageSamples, a.coverage->coverage()});
+                const double at = duration * next_sample / kCoverageSamples;
+                for (ComponentAnalysis& a : parts) {
+                    if (a.coverage) a.curve.push_back({at, a.coverage->coverage()});
+                    if (a.almen) a.almen->curve.push_back({at, a.almen->dose->dose_J_per_m2()});
+                }
                 ++next_sample;
             }
         };
-        for (ComponentAnalysis& a : parts)
+        for (ComponentAnalysis& a : parts) {
             if (a.coverage) a.curve.push_back({0.0, 0.0});
-        while (reader.next(row)) {
-            sample_until(row.time_s);
-            const auto it = by_name.find(row.component);
-            if (it == by_name.end()) continue;
-            ComponentAnalysis& a = parts[it->second];
+            if (a.almen) a.almen->curve.push_back({0.0, 0.0});
+        }
+        // The reader thread parses the log and writes the ParaView points; this one does the rest.
+        ImpactStream stream(log.string(), names, [&parts](const ImpactRow& row, int component) {
             const double values[5] = {row.v_in_m_per_s.x(), row.v_in_m_per_s.y(), row.v_in_m_per_s.z(), row.vn_in_m_per_s, row.time_s};
-            a.points->add(row.point_m, values);
-            a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s);
-            ++a.impacts;
-            a.speed_sum += row.vn_in_m_per_s;
-            a.speed.add(row.vn_in_m_per_s);
-            a.angle.add(std::atan2(row.vt_in_m_per_s, row.vn_in_m_per_s) * 180.0 / M_PI);
-            if (a.coverage) {
-                const double d = dent_diameter(scene.shot.diameter_m, scene.shot.density_kg_per_m3, row.vn_in_m_per_s, a.yield_stress_pa);
-                a.coverage->add_dent(row.point_m, d);
-                a.dent.add(d);
-                a.dent_sum += d;
+            parts[static_cast<std::size_t>(component)].points->add(row.point_m, values);
+        });
+        for (auto block = stream.next_block(); !block.empty(); block = stream.next_block()) {
+            for (const IndexedImpact& impact : block) {
+                sample_until(impact.row.time_s);
+                if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene);
             }
         }
         sample_until(duration);
 
         for (ComponentAnalysis& a : parts) {
             a.points->finish();
-            write_mesh_vtp((adir / (a.name + ".vtp")).string(), *a.mesh, cell_fields(a, duration));
-            write_triangle_csv(adir / (a.name + "_triangles.csv"), a, duration);
-            write_histograms_csv(adir / (a.name + "_histograms.csv"), a);
-            if (a.coverage) write_curve_csv(adir / (a.name + "_coverage.csv"), a);
-            if (!a.regions.empty()) write_regions_csv(adir / (a.name + "_regions.csv"), a, duration);
+            write_component_tables(adir, a, duration);
         }
-        std::vector<std::string> names;
-        for (const ComponentAnalysis& a : parts) names.push_back(a.name);
-        std::string plot_note;
-        const std::vector<std::string> pngs = write_analysis_plots(adir.string(), names, plot_note);
-        const std::string text = report(dir, scene, parts, duration, finished, reader.truncated(), pngs, plot_note);
-        write_file_atomically((adir / "report.md").string(), text);
-        out << text.substr(text.find("| component"), text.find("\nCoverage follows") - text.find("| component")) << "analysis: "
-            << adir.string() << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp"
-            << (pngs.empty() ? "" : ", *.png") << "}\n";
+        ReportContext context{dir, duration, finished, stream.truncated(), {}, ""};
+        context.pngs = write_analysis_plots(adir.string(), names, context.plot_note);
+        write_file_atomically((adir / "report.md").string(), analysis_report(scene, parts, context));
+        out << analysis_summary_table(parts, duration) << "analysis: " << adir.string()
+            << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp"
+            << (context.pngs.empty() ? "" : ", *.png") << "}\n";
         return 0;
     });
 }

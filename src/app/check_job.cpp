@@ -15,15 +15,6 @@ namespace peensim {
 
 namespace {
 
-const char* role_name(ComponentRole r) {
-    switch (r) {
-        case ComponentRole::sonotrode: return "sonotrode";
-        case ComponentRole::chamber: return "chamber";
-        case ComponentRole::part: return "part";
-        case ComponentRole::fixture: return "fixture";
-    }
-    return "?";
-}
 
 void print_report(const Model& model, const InitialShots& shots, std::ostream& out) {
     out << "# peensim check: the scene is valid.\n";

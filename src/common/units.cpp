@@ -70,6 +70,10 @@ constexpr std::array unit_table{
     UnitDef{"rpm", Dimension::angular_speed, 2.0 * pi, 60.0},
     UnitDef{"rev/min", Dimension::angular_speed, 2.0 * pi, 60.0},
     UnitDef{"rev/s", Dimension::angular_speed, 2.0 * pi, 1.0},
+    UnitDef{"J/m2", Dimension::energy_per_area, 1.0, 1.0},
+    UnitDef{"kJ/m2", Dimension::energy_per_area, 1000.0, 1.0},
+    UnitDef{"mJ/mm2", Dimension::energy_per_area, 1000.0, 1.0},
+    UnitDef{"mJ/m2", Dimension::energy_per_area, 1.0, 1000.0},
 };
 
 std::string_view trim(std::string_view s) {
@@ -124,6 +128,7 @@ std::string_view dimension_noun(Dimension dim) {
         case Dimension::stress: return "a stress";
         case Dimension::angle: return "an angle";
         case Dimension::angular_speed: return "an angular speed";
+        case Dimension::energy_per_area: return "an energy per area";
         case Dimension::dimensionless: return "a number";
     }
     return "a quantity";

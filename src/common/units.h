@@ -22,6 +22,7 @@ enum class Dimension {
     stress,         // Pa
     angle,          // rad
     angular_speed,  // rad/s
+    energy_per_area,// J/m2 (a kinetic-energy dose)
     dimensionless,  // -
 };
 

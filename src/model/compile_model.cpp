@@ -147,7 +147,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         const ContactPairDesc& pair = contact_for(scene, "shot-" + desc.material);
         c.coefficients = coefficients_of(pair);
         c.coefficients_source = pair.key;
-        c.logged = logged.empty() ? desc.role == ComponentRole::part
+        c.logged = logged.empty() ? logged_by_default(desc.role)
                                   : std::find(logged.begin(), logged.end(), desc.name) != logged.end();
         component_bounds(c);
         if (desc.role == ComponentRole::sonotrode) model->sonotrode = static_cast<int>(i);

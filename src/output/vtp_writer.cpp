@@ -57,10 +57,24 @@ public:
         used_ = 0;
     }
 
-    // Appends the whole content of `source` (already flushed) after this file's bytes.
+    // Appends the whole content of `source` (already flushed) after this file's bytes: in the
+    // kernel with copy_file_range (hundreds of MB for millions of impacts, never through our
+    // memory), or by reading and writing where the file system cannot.
     void append_contents_of(BufferedFile& source) {
         flush();
-        if (::lseek(source.fd_, 0, SEEK_SET) < 0) posix_file::throw_errno("cannot seek", source.path_);
+        off64_t from = 0;
+        for (;;) {
+            const ssize_t n = ::copy_file_range(source.fd_, &from, fd_, nullptr, std::size_t{1} << 30, 0);
+            if (n > 0) {
+                bytes_ += static_cast<std::uint64_t>(n);
+                continue;
+            }
+            if (n == 0) return;
+            if (errno == EINTR) continue;
+            if (errno == EXDEV || errno == ENOSYS || errno == EINVAL || errno == EOPNOTSUPP) break;
+            posix_file::throw_errno("cannot copy", source.path_);
+        }
+        if (::lseek(source.fd_, from, SEEK_SET) < 0) posix_file::throw_errno("cannot seek", source.path_);
         for (;;) {
             const ssize_t n = ::read(source.fd_, buffer_.get(), kVtpStreamBufferBytes);
             if (n < 0) {

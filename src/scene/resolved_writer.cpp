@@ -47,15 +47,6 @@ std::string vec(const Vec3& v) {
 
 std::string unit_comment(Dimension d) { return "  # " + std::string(si_unit(d)); }
 
-std::string role_name(ComponentRole r) {
-    switch (r) {
-        case ComponentRole::sonotrode: return "sonotrode";
-        case ComponentRole::chamber: return "chamber";
-        case ComponentRole::part: return "part";
-        case ComponentRole::fixture: return "fixture";
-    }
-    return "fixture";
-}
 
 std::string mesh_unit_name(double metres_per_unit) {
     for (std::string_view unit : split_choices(find_schema_entry("components[].mesh_unit")->choices))
@@ -147,7 +138,7 @@ std::string region_text(const RegionDesc& r) {
 
 void write_component(std::string& y, const ComponentDesc& k) {
     y += "  - name: " + yaml_text(k.name) + "\n";
-    y += "    role: " + role_name(k.role) + "\n";
+    y += std::string("    role: ") + role_name(k.role) + "\n";
     y += "    mesh: " + yaml_text(k.mesh_path) + "\n";
     y += "    mesh_unit: " + mesh_unit_name(k.mesh_unit_m) + "  # " + num(k.mesh_unit_m) + " m per mesh unit\n";
     y += "    translation: " + vec(k.translation_m) + unit_comment(Dimension::length) + "\n";
@@ -163,6 +154,17 @@ void write_component(std::string& y, const ComponentDesc& k) {
         y += "      phase: " + num(v.phase_rad) + unit_comment(Dimension::angle) + "\n";
         if (v.axis) y += "      axis: " + vec(*v.axis) + "\n";
         else y += "      # axis: the sonotrode's mean face normal (found when the model is compiled)\n";
+    }
+    if (k.almen) {
+        const AlmenDesc& a = *k.almen;
+        y += "    almen:\n";
+        y += "      face_normal: " + vec(a.face_normal) + "\n";
+        if (a.saturation_arc_height_m) {
+            y += "      saturation_arc_height: " + num(*a.saturation_arc_height_m) + unit_comment(Dimension::length) + "\n";
+            y += "      dose_constant: " + num(*a.dose_constant_J_per_m2) + unit_comment(Dimension::energy_per_area) + "\n";
+        } else {
+            y += "      # saturation_arc_height, dose_constant: not calibrated (dose only)\n";
+        }
     }
     if (!k.regions.empty()) y += "    regions:\n";
     for (const RegionDesc& r : k.regions) y += "      - " + region_text(r) + "\n";

@@ -15,6 +15,7 @@ ComponentRole role_from(const std::string& word) {
     if (word == "sonotrode") return ComponentRole::sonotrode;
     if (word == "chamber") return ComponentRole::chamber;
     if (word == "part") return ComponentRole::part;
+    if (word == "almen") return ComponentRole::almen;
     return ComponentRole::fixture;
 }
 
@@ -103,6 +104,27 @@ std::optional<RotationDesc> read_motion(const Cursor& c, const ComponentDesc& k)
     return r;
 }
 
+std::optional<AlmenDesc> read_almen(const Cursor& c, const ComponentDesc& k) {
+    if (k.role != ComponentRole::almen) {
+        if (c.present()) fail(c, "almen is only for role almen; '" + k.name + "' is not an Almen strip (forbidden here)");
+        return std::nullopt;
+    }
+    AlmenDesc a;
+    if (const auto normal = read_optional_direction(c.child("face_normal"))) a.face_normal = *normal;
+    const Cursor height = c.child("saturation_arc_height");
+    const Cursor dose = c.child("dose_constant");
+    if (height.present() != dose.present())
+        fail(height.present() ? dose : height,
+             std::string("missing required key '") + (height.present() ? "dose_constant" : "saturation_arc_height") +
+                 "' (the arc-height calibration needs both saturation_arc_height and dose_constant)");
+    if (height.present()) {
+        a.saturation_arc_height_m = read_quantity(height);
+        a.dose_constant_J_per_m2 = read_quantity(dose);
+    }
+    a.where = location_of(c);
+    return a;
+}
+
 ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene_dir,
                              const std::vector<MaterialDesc>& materials) {
     ComponentDesc k;
@@ -121,6 +143,7 @@ ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene
     k.vibration = read_vibration(c.child("vibration"), k);
     k.rotation_motion = read_motion(c.child("motion"), k);
     k.regions = read_regions(c.child("regions"));
+    k.almen = read_almen(c.child("almen"), k);
     k.where = location_of(c);
     return k;
 }

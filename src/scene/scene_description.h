@@ -13,7 +13,24 @@
 
 namespace peensim {
 
-enum class ComponentRole { sonotrode, chamber, part, fixture };
+// almen: a virtual SAE Almen strip (J442: 76.2 x 19.0 mm), static, whose impacts are always logged
+// and reported as an impact-energy dose and, once calibrated, an arc-height saturation curve.
+enum class ComponentRole { sonotrode, chamber, part, fixture, almen };
+
+// The word a scene file uses for a role.
+inline const char* role_name(ComponentRole r) {
+    switch (r) {
+        case ComponentRole::sonotrode: return "sonotrode";
+        case ComponentRole::chamber: return "chamber";
+        case ComponentRole::part: return "part";
+        case ComponentRole::fixture: return "fixture";
+        case ComponentRole::almen: return "almen";
+    }
+    return "fixture";
+}
+
+// Components whose impacts are logged when the scene's output.log does not name them.
+inline bool logged_by_default(ComponentRole r) { return r == ComponentRole::part || r == ComponentRole::almen; }
 
 // Sinusoidal translation of a component along an axis: d(t) = A sin(2 pi F t + phase).
 struct VibrationDesc {
@@ -74,6 +91,16 @@ inline std::vector<std::string> region_names(const RegionDesc& r) {
     return names;
 }
 
+// The Almen strip's peened face and the calibration that turns its impact-energy dose E (J/m2) into
+// an arc height h = a (1 - exp(-E / E_c)). The constants depend on strip type, shot and process and
+// must come from a measured saturation curve; without them only the dose is reported.
+struct AlmenDesc {
+    Vec3 face_normal = Vec3::UnitZ();               // unit vector, component frame: out of the peened face
+    std::optional<double> saturation_arc_height_m;  // m, a
+    std::optional<double> dose_constant_J_per_m2;   // J/m2, E_c
+    SourceLocation where;
+};
+
 struct ComponentDesc {
     std::string name;
     ComponentRole role = ComponentRole::fixture;
@@ -85,6 +112,7 @@ struct ComponentDesc {
     std::optional<VibrationDesc> vibration;  // only for role sonotrode (required there)
     std::optional<RotationDesc> rotation_motion;  // only for role part; empty = static
     std::vector<RegionDesc> regions;  // named selections of triangles, for the impact analysis
+    std::optional<AlmenDesc> almen;   // only for role almen (always present there)
     SourceLocation where;             // the component's entry in the file
 };
 

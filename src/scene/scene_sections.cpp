@@ -79,8 +79,13 @@ OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& compon
         }
     } else {
         for (const ComponentDesc& k : components)
-            if (k.role == ComponentRole::part) d.logged_components.push_back(k.name);
+            if (logged_by_default(k.role)) d.logged_components.push_back(k.name);
     }
+    // An Almen strip is there to be measured: its impacts are logged whatever `log` says.
+    for (const ComponentDesc& k : components)
+        if (k.role == ComponentRole::almen &&
+            std::find(d.logged_components.begin(), d.logged_components.end(), k.name) == d.logged_components.end())
+            d.logged_components.push_back(k.name);
     d.directory = read_text(c.child("directory"));
     d.checkpoint_interval_s = read_quantity(c.child("checkpoint_interval"));
     d.where = location_of(c);

@@ -81,7 +81,9 @@ const std::array schema_table{
     SchemaEntry{"components[].name", K::text, D::dimensionless, true, "", "", {}, "", "", "",
                 "Unique name (`[A-Za-z0-9_-]+`)."},
     SchemaEntry{"components[].role", K::choice, D::dimensionless, true, "", "", {},
-                "sonotrode|chamber|part|fixture", "", "", "What the component does."},
+                "sonotrode|chamber|part|fixture|almen", "", "",
+                "What the component does. `almen`: a virtual SAE Almen strip (static; impacts always logged; "
+                "see `almen`)."},
     SchemaEntry{"components[].mesh", K::text, D::dimensionless, true, "", "", {}, "", "", "",
                 "Mesh file (STL, OBJ, ...), relative to the scene file's directory."},
     SchemaEntry{"components[].mesh_unit", K::choice, D::dimensionless, false, "m", "", {}, "m|cm|mm|um|in", "",
@@ -113,6 +115,18 @@ const std::array schema_table{
                 "Phase at t = 0."},
     SchemaEntry{"components[].vibration.axis", K::vector3, D::dimensionless, false, "",
                 "mean face normal", {}, "", "", "", "Direction of vibration (normalised; not zero)."},
+    SchemaEntry{"components[].almen", K::map, D::dimensionless, false, "", "", {}, "", "", "",
+                "Only for role `almen`: the strip's peened face and the arc-height calibration h = a (1 - "
+                "exp(-E / E_c)), E the normal impact energy per area. Arc height needs calibration against a "
+                "measured saturation curve; without it only the dose is reported."},
+    SchemaEntry{"components[].almen.face_normal", K::vector3, D::dimensionless, false, "[0, 0, 1]", "", {}, "",
+                "", "", "Outward normal of the peened face, component frame (normalised; not zero)."},
+    SchemaEntry{"components[].almen.saturation_arc_height", K::quantity, D::length, false, "", "not calibrated",
+                above(0), "", "", "", "Calibration a: the arc height the strip tends to (with `dose_constant`)."},
+    SchemaEntry{"components[].almen.dose_constant", K::quantity, D::energy_per_area, false, "",
+                "not calibrated", above(0), "", "", "",
+                "Calibration E_c: the dose that raises the arc height to 63 % of a (with "
+                "`saturation_arc_height`)."},
     SchemaEntry{"components[].motion", K::map, D::dimensionless, false, "", "static", {}, "static", "", "",
                 "`static`, or a rotation at constant speed; only for role `part`."},
     SchemaEntry{"components[].motion.type", K::choice, D::dimensionless, true, "", "", {}, "static|rotating",
@@ -179,7 +193,7 @@ const std::array schema_table{
 
     SchemaEntry{"output", K::map, D::dimensionless, false, "", "", {}, "", "", "", "What to write."},
     SchemaEntry{"output.log", K::name_list, D::dimensionless, false, "", "every component with role `part`",
-                {}, "", "", "", "Components whose impacts are logged."},
+                {}, "", "", "", "Components whose impacts are logged (Almen strips always are)."},
     SchemaEntry{"output.directory", K::text, D::dimensionless, false, "", "from the command line", {}, "",
                 "", "", "Output directory, relative to the working directory."},
     SchemaEntry{"output.checkpoint_interval", K::quantity, D::time, false, "60", "", above(0), "", "", "",

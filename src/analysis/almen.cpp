@@ -1,0 +1,67 @@
+#include "analysis/almen.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace peensim {
+
+double almen_arc_height(double dose_J_per_m2, const AlmenCalibration& c) {
+    return c.saturation_arc_height_m * -std::expm1(-dose_J_per_m2 / c.dose_constant_J_per_m2);
+}
+
+double almen_dose_rate(const std::vector<AlmenDosePoint>& curve) {
+    if (curve.empty() || !(curve.back().time_s > 0.0)) return 0.0;
+    const double from = 0.5 * curve.back().time_s;
+    double n = 0.0, st = 0.0, se = 0.0, stt = 0.0, ste = 0.0;
+    for (const AlmenDosePoint& p : curve) {
+        if (p.time_s < from) continue;
+        n += 1.0;
+        st += p.time_s;
+        se += p.dose_J_per_m2;
+        stt += p.time_s * p.time_s;
+        ste += p.time_s * p.dose_J_per_m2;
+    }
+    const double spread = n * stt - st * st;
+    if (n < 2.0 || !(spread > 0.0)) return curve.back().dose_J_per_m2 / curve.back().time_s;
+    return (n * ste - st * se) / spread;
+}
+
+std::optional<AlmenSaturation> almen_saturation(double rate, const AlmenCalibration& c, double last_time_s) {
+    if (!(rate > 0.0)) return std::nullopt;
+    AlmenSaturation s;
+    s.rate_constant_per_s = rate / c.dose_constant_J_per_m2;
+    s.saturation_time_s = std::log(10.0) / s.rate_constant_per_s;
+    s.intensity_m = 0.9 * c.saturation_arc_height_m;
+    s.extrapolated = 2.0 * s.saturation_time_s > last_time_s;
+    return s;
+}
+
+AlmenDose::AlmenDose(const TriangleMesh& mesh, const Vec3& face_normal, double shot_mass_kg)
+    : on_face_(mesh.triangle_count(), 0), shot_mass_(shot_mass_kg) {
+    const double cos_tolerance = std::cos(kAlmenFaceToleranceDeg * M_PI / 180.0);
+    const Vec3 n = face_normal.normalized();
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const Vec3 cross = (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0));
+        const double area = 0.5 * cross.norm();
+        if (!(area > 0.0) || cross.normalized().dot(n) < cos_tolerance) continue;
+        on_face_[t] = 1;
+        face_area_ += area;
+    }
+    if (!(face_area_ > 0.0))
+        throw std::invalid_argument("no triangle of the Almen strip faces along its face_normal");
+}
+
+void AlmenDose::add(int triangle, double vn) {
+    if (triangle < 0 || static_cast<std::size_t>(triangle) >= on_face_.size() || !on_face_[static_cast<std::size_t>(triangle)])
+        return;
+    energy_ += 0.5 * shot_mass_ * vn * vn;
+    speed_sum_ += vn;
+    ++impacts_;
+}
+
+double AlmenDose::mean_normal_speed() const {
+    return impacts_ > 0 ? speed_sum_ / static_cast<double>(impacts_) : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace peensim

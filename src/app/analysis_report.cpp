@@ -1,0 +1,123 @@
+#include "app/analysis_report.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "analysis/region_stats.h"
+#include "app/analysis_format.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+// Per component with regions: one table row per region (the numbers of <component>_regions.csv).
+std::string region_tables(const std::vector<ComponentAnalysis>& parts, double duration) {
+    std::ostringstream r;
+    for (const ComponentAnalysis& c : parts) {
+        if (c.regions.empty()) continue;
+        r << "\n## Regions of " << c.name << "\n\n| region | triangles | area (mm2) | impacts | per mm2 per s | mean v_n (m/s) "
+             "| max v_n (m/s) | energy (J/m2) | coverage |\n|---|---|---|---|---|---|---|---|---|\n";
+        for (const Region& region : c.regions) {
+            const RegionStats s = region_stats(region, *c.fields, c.coverage.get(), duration);
+            r << "| " << region.name << " | " << s.triangles << " | " << fmt(s.area_m2 * 1e6) << " | " << s.impacts << " | "
+              << fmt(s.impacts_per_mm2_s) << " | " << fmt(s.mean_normal_speed) << " | " << fmt(s.max_normal_speed) << " | "
+              << fmt(s.energy_per_area) << " | " << (c.coverage ? fmt(100.0 * s.coverage, 3) + " %" : "") << " |\n";
+        }
+        r << "\nDistributions per region: `" << c.name << "_histograms.csv` (column `region`).\n";
+    }
+    return r.str();
+}
+
+std::string almen_sections(const std::vector<ComponentAnalysis>& parts, double duration) {
+    std::ostringstream r;
+    for (const ComponentAnalysis& c : parts) {
+        if (!c.almen) continue;
+        const AlmenAnalysis& a = *c.almen;
+        const double rate = almen_dose_rate(a.curve);  // J/(m2 s)
+        r << "\n## Almen strip " << c.name << "\n\n"
+          << "Peened face: " << fmt(a.dose->face_area_m2() * 1e6) << " mm2, " << a.dose->face_impacts() << " impacts at a mean "
+          << "normal speed of " << fmt(a.dose->mean_normal_speed()) << " m/s. Impact energy dose (normal kinetic energy per "
+          << "area): " << fmt(a.dose->dose_J_per_m2()) << " J/m2 after " << fmt(duration) << " s; steady rate (slope over the run's second half) r = "
+          << fmt(rate) << " J/(m2 s) (`" << c.name << "_almen.csv`).\n\n"
+          << "**Arc height needs calibration.** peensim predicts the dose, not the arc height: with h = a (1 - exp(-E / E_c)) "
+             "the saturation curve is h = a (1 - exp(-b t)), b = r / E_c, saturation (SAE J443) at T = ln(10) / b with "
+             "intensity 0.9 a. Set `almen.saturation_arc_height` (a) and `almen.dose_constant` (E_c) from a measured "
+             "saturation curve of the same strip type, shot and process; from a measured saturation time T_m and intensity "
+             "h_m: a = h_m / 0.9, E_c = r T_m / ln 10 = "
+          << fmt(rate / std::log(10.0)) << " J/m2 per second of T_m for this run.\n";
+        if (!a.calibration) {
+            r << "\nNot calibrated in this scene: dose only.\n";
+            continue;
+        }
+        const auto sat = almen_saturation(rate, *a.calibration, duration);
+        r << "\nCalibration: a = " << fmt(a.calibration->saturation_arc_height_m * 1e3) << " mm, E_c = "
+          << fmt(a.calibration->dose_constant_J_per_m2) << " J/m2. Arc height after " << fmt(duration) << " s: "
+          << fmt(almen_arc_height(a.dose->dose_J_per_m2(), *a.calibration) * 1e3) << " mm.\n";
+        if (sat)
+            r << "Saturation curve h = " << fmt(a.calibration->saturation_arc_height_m * 1e3) << " mm (1 - exp(-"
+              << fmt(sat->rate_constant_per_s) << " t / s)); saturation time T = " << fmt(sat->saturation_time_s)
+              << " s, intensity " << fmt(sat->intensity_m * 1e3) << " mm"
+              << (sat->extrapolated ? " (extrapolated: the run is shorter than 2T)" : "") << ".\n";
+        else
+            r << "No impact on the peened face: no saturation curve.\n";
+    }
+    return r.str();
+}
+
+}  // namespace
+
+std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, double duration) {
+    std::ostringstream r;
+    r << "| component | impacts | per s | mean v_n (m/s) | mean dent (um) | coverage | Avrami k (1/s) | time to 98 % (s) |\n";
+    r << "|---|---|---|---|---|---|---|---|\n";
+    for (const ComponentAnalysis& c : parts) {
+        const double n = static_cast<double>(c.impacts);
+        const double mean_v = c.impacts ? c.speed_sum / n : NAN;
+        const double mean_d = c.impacts && c.coverage ? c.dent_sum / n * 1e6 : NAN;
+        std::string k, t98, cov = "no yield_stress";
+        if (c.coverage) {
+            cov = fmt(100.0 * c.coverage->coverage(), 3) + " %";
+            const AvramiFit fit = fit_avrami(c.curve);
+            if (fit.points_used > 0 && fit.k_per_s > 0.0) {
+                k = fmt(fit.k_per_s) + " +- " + fmt(fit.k_standard_error_per_s, 2);
+                t98 = fmt(fit.time_to_98_percent_s) + (fit.extrapolated ? " (extrapolated)" : "");
+            }
+        }
+        r << "| " << c.name << " | " << c.impacts << " | " << fmt(n / duration) << " | " << fmt(mean_v) << " | " << fmt(mean_d)
+          << " | " << cov << " | " << k << " | " << t98 << " |\n";
+    }
+    return r.str();
+}
+
+std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, const ReportContext& x) {
+    std::ostringstream r;
+    r << "# peensim analysis: " << (scene.name.empty() ? x.run_dir.string() : scene.name) << "\n\n";
+    r << "Run: `" << x.run_dir.string() << "`, " << fmt(x.duration_s) << " s of peening simulated"
+      << (x.finished ? "" : " (the run did not finish: its impact log is partial)") << ".\n";
+    if (x.truncated) r << "The impact log ended inside a row (a run killed mid-write): that row was left out.\n";
+    r << "\n" << analysis_summary_table(parts, x.duration_s);
+    r << "\nCoverage follows SAE J2277: the area fraction covered by at least one dent, each dent of diameter "
+         "phi = D (8 rho v_n^2 / (9 sigma_y))^(1/4) (eq. 10), sampled on a grid of spacing a fifth of the dent at 1 m/s; "
+         "98 % counts as full coverage, its time from the fit C(t) = 1 - exp(-k t).\n\nFiles (per component): "
+         "`<component>_triangles.csv` (per-triangle fields), `<component>_coverage.csv` (coverage vs time), "
+         "`<component>_histograms.csv` (normal speed, impact angle, dent diameter; whole component and per region), "
+         "`<component>.vtp` (the mesh with the per-triangle fields as cell data, for ParaView), `<component>_impacts.vtp` "
+         "(the impacts as points with their relative velocity, normal speed and time), `<component>_regions.csv` (the "
+         "scene's regions of the component, each triangle in the region holding its centroid), `<component>_almen.csv` "
+         "(Almen strips: dose and arc height vs time).\n";
+    r << region_tables(parts, x.duration_s);
+    r << almen_sections(parts, x.duration_s);
+    if (!x.pngs.empty()) r << "\n## Plots\n\n";
+    for (const std::string& png : x.pngs) {
+        const std::string name = fs::path(png).filename().string();
+        const std::string stem = name.substr(0, name.size() - 4);
+        const std::string kind = stem.substr(stem.rfind('_') + 1);
+        r << "![" << kind << "](" << name << ")\n\n";
+    }
+    if (!x.plot_note.empty()) r << (x.pngs.empty() ? "\n" : "") << "Plots: " << x.plot_note << ".\n";
+    return r.str();
+}
+
+}  // namespace peensim

@@ -1,0 +1,28 @@
+// report.md of `peensim analyze`: the numbers and plots of every logged component on one page.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/component_analysis.h"
+#include "scene/scene_description.h"
+
+namespace peensim {
+
+struct ReportContext {
+    std::filesystem::path run_dir;
+    double duration_s = 0.0;         // s, simulated time the log covers
+    bool finished = true;            // false: the run was interrupted (partial log)
+    bool truncated = false;          // the log ended inside a row
+    std::vector<std::string> pngs;   // plots written (paths)
+    std::string plot_note;           // why plots are missing, or ""
+};
+
+std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts,
+                            const ReportContext& context);
+
+// The summary table of the report (what `peensim run` and `analyze` print on the terminal).
+std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, double duration_s);
+
+}  // namespace peensim

@@ -1,0 +1,105 @@
+#include "app/analysis_tables.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "analysis/region_stats.h"
+#include "app/analysis_format.h"
+#include "output/atomic_file.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double duration) {
+    std::ostringstream s;
+    s << "triangle,facet,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
+    for (std::size_t t = 0; t < c.fields->triangle_count(); ++t) {
+        s << t << ',' << (c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t]) << ','
+          << fmt(c.fields->area_m2(t) * 1e6, 8) << ',' << c.fields->count(t) << ',' << fmt(c.fields->rate_per_mm2_s(t, duration), 6)
+          << ',' << fmt(c.fields->mean_normal_speed(t)) << ',' << fmt(c.fields->max_normal_speed(t)) << ','
+          << fmt(c.fields->energy_per_area(t), 6) << ',' << (c.coverage ? fmt(c.coverage->coverage_of_triangle(t)) : "") << '\n';
+    }
+    write_file_atomically(path.string(), s.str());
+}
+
+// The per-triangle fields as VTK cell data (same names and units as the CSV columns).
+std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) {
+    const std::size_t n = c.fields->triangle_count();
+    std::vector<CellField> f{{"impacts", 1, {}}, {"impacts_per_mm2_s", 1, {}}, {"mean_vn_mps", 1, {}},
+                             {"max_vn_mps", 1, {}}, {"energy_J_per_m2", 1, {}}};
+    if (c.coverage) f.push_back({"coverage", 1, {}});
+    for (CellField& x : f) x.values.reserve(n);
+    for (std::size_t t = 0; t < n; ++t) {
+        const double mean = c.fields->mean_normal_speed(t);
+        f[0].values.push_back(static_cast<double>(c.fields->count(t)));
+        f[1].values.push_back(c.fields->rate_per_mm2_s(t, duration));
+        f[2].values.push_back(std::isfinite(mean) ? mean : 0.0);  // ParaView: 0 where nothing hit
+        f[3].values.push_back(c.fields->max_normal_speed(t));
+        f[4].values.push_back(c.fields->energy_per_area(t));
+        if (c.coverage) f[5].values.push_back(c.coverage->coverage_of_triangle(t));
+    }
+    return f;
+}
+
+void write_regions_csv(const fs::path& path, const ComponentAnalysis& c, double duration) {
+    std::ostringstream s;
+    s << "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
+    for (const Region& region : c.regions) {
+        const RegionStats r = region_stats(region, *c.fields, c.coverage.get(), duration);
+        s << region.name << ',' << r.triangles << ',' << fmt(r.area_m2 * 1e6, 8) << ',' << r.impacts << ','
+          << fmt(r.impacts_per_mm2_s, 6) << ',' << fmt(r.mean_normal_speed) << ',' << fmt(r.max_normal_speed) << ','
+          << fmt(r.energy_per_area, 6) << ',' << fmt(r.coverage) << '\n';
+    }
+    write_file_atomically(path.string(), s.str());
+}
+
+// One block of rows per region: "all" (the whole component) first, then the scene's regions.
+void write_histograms_csv(const fs::path& path, const ComponentAnalysis& c) {
+    std::ostringstream s;
+    s << "region,quantity,bin_low,bin_high,unit,count\n";
+    auto rows = [&](const std::string& region, const char* q, const Histogram& h, double scale, const char* unit) {
+        for (std::size_t b = 0; b < h.bins.size(); ++b)
+            s << region << ',' << q << ',' << fmt(static_cast<double>(b) * h.width * scale, 6) << ','
+              << fmt(static_cast<double>(b + 1) * h.width * scale, 6) << ',' << unit << ',' << h.bins[b] << '\n';
+    };
+    auto block = [&](const std::string& region, const ImpactHistograms& h) {
+        rows(region, "normal_speed", h.normal_speed, 1.0, "m/s");
+        rows(region, "impact_angle", h.angle, 1.0, "deg");
+        rows(region, "dent_diameter", h.dent, 1e6, "um");
+    };
+    block("all", c.histograms);
+    for (std::size_t r = 0; r < c.regions.size(); ++r) block(c.regions[r].name, c.region_histograms[r]);
+    write_file_atomically(path.string(), s.str());
+}
+
+void write_curve_csv(const fs::path& path, const ComponentAnalysis& c) {
+    std::ostringstream s;
+    s << "time_s,coverage\n";
+    for (const CoveragePoint& p : c.curve) s << fmt(p.time_s, 8) << ',' << fmt(p.coverage, 6) << '\n';
+    write_file_atomically(path.string(), s.str());
+}
+
+void write_almen_csv(const fs::path& path, const AlmenAnalysis& a) {
+    std::ostringstream s;
+    s << "time_s,dose_J_per_m2,arc_height_mm\n";
+    for (const AlmenDosePoint& p : a.curve)
+        s << fmt(p.time_s, 8) << ',' << fmt(p.dose_J_per_m2, 8) << ','
+          << (a.calibration ? fmt(almen_arc_height(p.dose_J_per_m2, *a.calibration) * 1e3, 6) : "") << '\n';
+    write_file_atomically(path.string(), s.str());
+}
+
+}  // namespace
+
+void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, double duration) {
+    write_mesh_vtp((dir / (c.name + ".vtp")).string(), *c.mesh, cell_fields(c, duration));
+    write_triangle_csv(dir / (c.name + "_triangles.csv"), c, duration);
+    write_histograms_csv(dir / (c.name + "_histograms.csv"), c);
+    if (c.coverage) write_curve_csv(dir / (c.name + "_coverage.csv"), c);
+    if (!c.regions.empty()) write_regions_csv(dir / (c.name + "_regions.csv"), c, duration);
+    if (c.almen) write_almen_csv(dir / (c.name + "_almen.csv"), *c.almen);
+}
+
+}  // namespace peensim

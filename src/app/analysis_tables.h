@@ -1,0 +1,15 @@
+// The files of `peensim analyze` for one component (CSV tables and the ParaView mesh), written
+// atomically into the analysis directory. Column names carry their units.
+#pragma once
+
+#include <filesystem>
+
+#include "app/component_analysis.h"
+
+namespace peensim {
+
+// <c>_triangles.csv, <c>_histograms.csv, <c>.vtp, and those that apply of <c>_coverage.csv,
+// <c>_regions.csv and <c>_almen.csv. duration_s: the simulated time the log covers.
+void write_component_tables(const std::filesystem::path& analysis_dir, const ComponentAnalysis& c, double duration_s);
+
+}  // namespace peensim

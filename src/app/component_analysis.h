@@ -1,0 +1,51 @@
+// What `peensim analyze` accumulates for one logged component while it streams the impact log,
+// shared by the job (which fills it) and the writers of tables and of the report (which read it).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/almen.h"
+#include "analysis/avrami.h"
+#include "analysis/coverage_map.h"
+#include "analysis/impact_histograms.h"
+#include "analysis/regions.h"
+#include "analysis/triangle_fields.h"
+#include "geometry/triangle_mesh.h"
+#include "output/vtp_writer.h"
+#include "scene/scene_description.h"
+
+namespace peensim {
+
+// The Almen side of a component with role almen.
+struct AlmenAnalysis {
+    std::unique_ptr<AlmenDose> dose;
+    std::optional<AlmenCalibration> calibration;  // from the scene; empty = dose only
+    std::vector<AlmenDosePoint> curve;            // dose vs time, sampled like the coverage curve
+};
+
+struct ComponentAnalysis {
+    std::string name;
+    ComponentRole role = ComponentRole::part;
+    std::unique_ptr<TriangleMesh> mesh;
+    std::unique_ptr<TriangleFields> fields;
+    std::unique_ptr<CoverageMap> coverage;  // empty if the material has no yield stress
+    double yield_stress_pa = 0.0;           // Pa (0: none)
+    ImpactHistograms histograms;
+    std::uint64_t impacts = 0;
+    double speed_sum = 0.0;                 // m/s, summed over impacts
+    double dent_sum = 0.0;                  // m, summed over impacts
+    std::vector<CoveragePoint> curve;
+    std::unique_ptr<ImpactPointsVtpWriter> points;  // the impacts, for ParaView
+    std::vector<Region> regions;                    // the scene's regions of the component
+    std::vector<ImpactHistograms> region_histograms;  // per region, same order
+    // The regions holding triangle t: region_index_[region_start_[t] .. region_start_[t + 1]).
+    std::vector<std::uint32_t> region_start;
+    std::vector<std::uint32_t> region_index;
+    std::optional<AlmenAnalysis> almen;
+};
+
+}  // namespace peensim
