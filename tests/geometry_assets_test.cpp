@@ -129,7 +129,10 @@ TEST(GeometryAssets, AlmenStripTypeA) {
     // SAE J442 type A: 76.2 x 19.0 x 1.29 mm, back face on z = 0, peened face up.
     const TriangleMesh strip = asset("almen-strip-a.stl");
     expect_closed_solid(strip);
-    expect_bounds_mm(strip, Vec3(-38.1, -9.5, 0), Vec3(38.1, 9.5, 1.29));
+    // (Binary STL holds float32: 38.1 mm is stored as 38.099998 mm.)
+    const Bounds b = bounds(strip);
+    EXPECT_LT((b.min_m - Vec3(-38.1, -9.5, 0) * kMm).cwiseAbs().maxCoeff(), 1e-5 * kMm);
+    EXPECT_LT((b.max_m - Vec3(38.1, 9.5, 1.29) * kMm).cwiseAbs().maxCoeff(), 1e-5 * kMm);
     // scenes/almen.yaml turns it over at z = 42 mm in the gear chamber: its corners stay inside
     // the upper section (radius 40 mm above the step at 15 mm).
     EXPECT_LT(std::hypot(38.1, 9.5), 40.0 * std::cos(M_PI / 128));
