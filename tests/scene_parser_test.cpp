@@ -538,5 +538,53 @@ TEST(SceneParser, DuplicateRegionNamesAreRefused) {
     }
 }
 
+
+TEST(SceneParser, RenderBlockReadsInSIAndIsLeftOutOfTheSceneHash) {
+    const SceneDescription plain = parse_scene_text(minimal_scene, virtual_path);
+    EXPECT_FALSE(plain.render.has_value());
+    // An empty block takes every default.
+    const SceneDescription defaults = parse_scene_text(std::string(minimal_scene) + "render: {}\n", virtual_path);
+    ASSERT_TRUE(defaults.render.has_value());
+    EXPECT_EQ(defaults.render->width_px, 1280);
+    EXPECT_EQ(defaults.render->height_px, 720);
+    EXPECT_EQ(defaults.render->fps, 30);
+    EXPECT_EQ(defaults.render->slow_motion_s, 0.02);
+    EXPECT_EQ(defaults.render->duration_s, 0.2);
+    EXPECT_FALSE(defaults.render->camera_position_m.has_value());
+    EXPECT_DOUBLE_EQ(defaults.render->fov_rad, 40.0 * pi / 180.0);
+    EXPECT_TRUE(defaults.render->video);
+
+    const SceneDescription s = parse_scene_text(
+        std::string(minimal_scene) +
+            "render: {width: 640, height: 480, fps: 25, slow_motion: 5 ms, start: 0.1 s, duration: 50 ms,\n"
+            "         camera: {position: [0, -100 mm, 50 mm], look_at: [0, 0, 20 mm], up: [0, 0, 2], fov: 30 deg},\n"
+            "         speed_scale: 3 m/s, video: none}\n",
+        virtual_path);
+    ASSERT_TRUE(s.render.has_value());
+    const RenderDesc& r = *s.render;
+    EXPECT_EQ(r.width_px, 640);
+    EXPECT_EQ(r.fps, 25);
+    EXPECT_EQ(r.slow_motion_s, 0.005);
+    EXPECT_EQ(r.start_s, 0.1);
+    EXPECT_EQ(r.duration_s, 0.05);
+    EXPECT_EQ(*r.camera_position_m, Vec3(0, -0.1, 0.05));
+    EXPECT_EQ(*r.camera_look_at_m, Vec3(0, 0, 0.02));
+    EXPECT_EQ(r.camera_up, Vec3(0, 0, 1));
+    EXPECT_DOUBLE_EQ(r.fov_rad, pi / 6);
+    EXPECT_EQ(r.speed_scale_m_per_s, 3.0);
+    EXPECT_FALSE(r.video);
+    // The resolved scene keeps the block (a resumed run reads it back the same) ...
+    EXPECT_NE(resolved_scene_yaml(s).find("render:\n  width: 640"), std::string::npos);
+    // ... but rendering does not change what is simulated: the hash ignores it.
+    EXPECT_EQ(scene_hash(s), scene_hash(plain));
+
+    EXPECT_NE(error_of(minimal_scene, {"render.fps=0"}).find("render.fps"), std::string::npos);
+    EXPECT_NE(error_of(minimal_scene, {"render.camera.fov=180 deg"}).find("render.camera.fov"), std::string::npos);
+    EXPECT_NE(error_of(minimal_scene, {"render.camera.position=[0,0,1]", "render.camera.look_at=[0,0,1]"})
+                  .find("expected a point other than the camera position"),
+              std::string::npos);
+    EXPECT_NE(error_of(minimal_scene, {"render.video=avi"}).find("render.video"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace peensim

@@ -10,6 +10,7 @@
 
 #include "app/analyze_job.h"
 #include "app/checkpoint.h"
+#include "app/frame_recorder.h"
 #include "app/interrupt.h"
 #include "app/report_errors.h"
 #include "app/summary_builder.h"
@@ -63,6 +64,7 @@ public:
         write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
         slots_ = logged_slots(*model_);
         start();
+        start_rendering();
         const bool finished = loop();
         return finished ? complete() : interrupted();
     }
@@ -92,6 +94,15 @@ private:
         logged_impacts_ = writer_->rows_written();
     }
 
+    // The animation, when the scene asks for one (or --render) and --no-render does not forbid it.
+    void start_rendering() {
+        const std::optional<RenderDesc>& scene_render = model_->description.render;
+        const bool wanted = options_.render.value_or(scene_render.has_value());
+        if (!wanted) return;
+        recorder_ = std::make_unique<FrameRecorder>(*model_, scene_render.value_or(RenderDesc{}), dir_, sim_->state());
+        recorder_->after_step(sim_->state(), {}, logged_impacts_);
+    }
+
     // Returns true when the scene's duration was reached, false when interrupted.
     bool loop() {
         InterruptGuard guard;
@@ -110,9 +121,10 @@ private:
                 for (const ImpactRecord& r : impacts)
                     speeds_[static_cast<std::size_t>(slots_[static_cast<std::size_t>(r.component)])].add(r.vn_in_m_per_s);
                 logged_impacts_ += impacts.size();
-                impacts.clear();
                 output_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
             }
+            if (recorder_) recorder_->after_step(sim_->state(), impacts, logged_impacts_);
+            impacts.clear();
             progress.update(sim_->state().time.seconds(), model_->duration_s, logged_impacts_);
             ++steps;
             if (InterruptGuard::requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps)) {
@@ -150,6 +162,7 @@ private:
     }
 
     int interrupted() {
+        if (recorder_) recorder_->flush();  // the frames drawn so far are complete files
         checkpoint();
         write_summary((fs::path(dir_) / "summary.json").string(), summary(false));
         err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s
@@ -166,6 +179,12 @@ private:
         fs::remove(checkpoint_path());
         out_ << summary_to_text(s);
         out_ << "outputs: " << dir_ << "/{impacts.csv, summary.json, scene.resolved.yaml}\n";
+        if (recorder_) {
+            const int n = recorder_->frames_drawn();
+            const std::string video = recorder_->finish_video();
+            out_ << "render: " << video << "; drawing took " << recorder_->draw_seconds() << " s"
+                 << (n > 0 ? " (" + std::to_string(recorder_->draw_seconds() / n * 1e3) + " ms per frame)" : std::string()) << "\n";
+        }
         for (const LostShot& l : sim_->state().lost)
             err_ << "warning: shot " << l.shot << " left the chamber at t = " << l.time_s << " s near (" << l.position_m.x() * 1e3
                  << ", " << l.position_m.y() * 1e3 << ", " << l.position_m.z() * 1e3 << ") mm: the meshes leak there\n";
@@ -188,6 +207,7 @@ private:
     std::vector<int> slots_;
     std::unique_ptr<Simulation> sim_;
     std::unique_ptr<ImpactCsvWriter> writer_;
+    std::unique_ptr<FrameRecorder> recorder_;  // only when rendering
     std::vector<SpeedHistogram> speeds_;
     std::uint64_t logged_impacts_ = 0;
     double wall_before_ = 0.0;     // s, wall time of earlier sessions of a resumed run

@@ -18,6 +18,7 @@ struct RunOptions {
     bool resume = false;                  // continue from output_dir/checkpoint.bin
     bool strict = false;                  // fail (exit 3) if a serious health counter is non-zero
     bool analyze = true;                  // run `peensim analyze` on the outputs when the run finishes
+    std::optional<bool> render;           // --render / --no-render; empty = as the scene's `render` block says
     std::optional<std::uint64_t> stop_after_steps;  // interrupt after this many steps (tests, benchmarks)
 };
 

@@ -1,10 +1,11 @@
-// The `peensim` command line: run, check, generate, schema.
+// The `peensim` command line: run, check, analyze, render-impacts, generate, schema.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
 
 #include "app/analyze_job.h"
 #include "app/check_job.h"
+#include "app/render_impacts_job.h"
 #include "app/run_job.h"
 #include "cli/generate_command.h"
 #include "scene/schema.h"
@@ -27,6 +28,9 @@ int main(int argc, char** argv) {
     run_cmd->add_flag("--strict", run.strict, "exit 3 if any shot was lost or the numerics went wrong");
     bool no_analyze = false;
     run_cmd->add_flag("--no-analyze", no_analyze, "do not analyse the impacts when the run finishes");
+    bool render_on = false, render_off = false;
+    auto* render_flag = run_cmd->add_flag("--render", render_on, "record the animation (frames/ and animation.mp4) with the scene's `render` block or its defaults");
+    run_cmd->add_flag("--no-render", render_off, "do not record the animation even if the scene has a `render` block")->excludes(render_flag);
     std::uint64_t stop_after = 0;
     run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
 
@@ -39,6 +43,13 @@ int main(int argc, char** argv) {
     std::string analyze_dir;
     auto* analyze_cmd = app.add_subcommand("analyze", "analyse a run's impacts: coverage, per-triangle fields, histograms, report.md");
     analyze_cmd->add_option("outdir", analyze_dir, "the run's output directory")->required();
+
+    RenderImpactsOptions render_impacts;
+    auto* render_impacts_cmd = app.add_subcommand("render-impacts", "stills of the logged parts coloured by impacts, mean normal speed, coverage (after analyze)");
+    render_impacts_cmd->add_option("outdir", render_impacts.output_dir, "the run's output directory")->required();
+    render_impacts_cmd->add_option("--field", render_impacts.fields, "impacts, speed or coverage (repeatable; default: all)");
+    render_impacts_cmd->add_option("--width", render_impacts.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
+    render_impacts_cmd->add_option("--height", render_impacts.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
 
     auto* generate_cmd = app.add_subcommand("generate", "write a generated mesh (gear, cylinder, box, chamber); see 'peensim generate --help'");
     generate_cmd->prefix_command();
@@ -57,10 +68,13 @@ int main(int argc, char** argv) {
         std::ostream null_stream(nullptr);
         run.progress = !quiet;
         run.analyze = !no_analyze;
+        if (render_on) run.render = true;
+        if (render_off) run.render = false;
         return run_job(run, quiet ? null_stream : std::cout, std::cerr);
     }
     if (*check_cmd) return check_job(check_scene, check_overrides, std::cout, std::cerr);
     if (*analyze_cmd) return analyze_job(analyze_dir, std::cout, std::cerr);
+    if (*render_impacts_cmd) return render_impacts_job(render_impacts, std::cout, std::cerr);
     if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
     if (app.got_subcommand("schema")) {
         std::cout << scene_reference_markdown();

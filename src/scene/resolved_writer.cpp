@@ -190,6 +190,25 @@ void write_output(std::string& y, const OutputDesc& o) {
     y += "  checkpoint_interval: " + num(o.checkpoint_interval_s) + unit_comment(Dimension::time) + "\n";
 }
 
+void write_render(std::string& y, const RenderDesc& r) {
+    y += "render:\n";
+    y += "  width: " + std::to_string(r.width_px) + "\n";
+    y += "  height: " + std::to_string(r.height_px) + "\n";
+    y += "  fps: " + std::to_string(r.fps) + "\n";
+    y += "  slow_motion: " + num(r.slow_motion_s) + unit_comment(Dimension::time) + "\n";
+    y += "  start: " + num(r.start_s) + unit_comment(Dimension::time) + "\n";
+    y += "  duration: " + num(r.duration_s) + unit_comment(Dimension::time) + "\n";
+    y += "  camera:\n";
+    if (r.camera_position_m) y += "    position: " + vec(*r.camera_position_m) + unit_comment(Dimension::length) + "\n";
+    else y += "    # position: automatic framing of the chamber\n";
+    if (r.camera_look_at_m) y += "    look_at: " + vec(*r.camera_look_at_m) + unit_comment(Dimension::length) + "\n";
+    else y += "    # look_at: the chamber's centre\n";
+    y += "    up: " + vec(r.camera_up) + "\n";
+    y += "    fov: " + num(r.fov_rad) + unit_comment(Dimension::angle) + "\n";
+    y += "  speed_scale: " + num(r.speed_scale_m_per_s) + unit_comment(Dimension::speed) + "\n";
+    y += std::string("  video: ") + (r.video ? "mp4" : "none") + "\n";
+}
+
 }  // namespace
 
 std::string resolved_scene_yaml(const SceneDescription& s) {
@@ -200,14 +219,18 @@ std::string resolved_scene_yaml(const SceneDescription& s) {
     y += "components:\n";
     for (const ComponentDesc& k : s.components) write_component(y, k);
     write_output(y, s.output);
+    if (s.render) write_render(y, *s.render);
     return y;
 }
 
 std::uint64_t scene_hash(const SceneDescription& s) {
     constexpr std::uint64_t fnv_offset_basis = 14695981039346656037ull;
     constexpr std::uint64_t fnv_prime = 1099511628211ull;
+    // Rendering does not change what is simulated: a run may be resumed with other render settings.
+    SceneDescription simulated = s;
+    simulated.render.reset();
     std::uint64_t h = fnv_offset_basis;
-    for (unsigned char c : resolved_scene_yaml(s)) {
+    for (unsigned char c : resolved_scene_yaml(simulated)) {
         h ^= c;
         h *= fnv_prime;
     }

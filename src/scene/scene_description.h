@@ -3,6 +3,7 @@
 // This is the *description*; model/compile turns it into the immutable model the engine runs.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -168,6 +169,24 @@ struct OutputDesc {
     SourceLocation where;
 };
 
+// The off-screen animation recorded while simulating (scene `render:` block, or `run --render`).
+// Frames are taken every slow_motion / fps simulated seconds from start for duration.
+struct RenderDesc {
+    int width_px = 1280;
+    int height_px = 720;
+    int fps = 30;                         // video frames per second
+    double slow_motion_s = 0.02;          // s, simulated seconds per video second
+    double start_s = 0.0;                 // s, simulated time of the first frame
+    double duration_s = 0.2;              // s, simulated time recorded (cut at the run's end)
+    std::optional<Vec3> camera_position_m;  // m, world; empty = automatic framing of the chamber
+    std::optional<Vec3> camera_look_at_m;   // m, world; empty = the centre of the chamber
+    Vec3 camera_up = Vec3::UnitZ();       // world direction shown upward
+    double fov_rad = 40.0 * M_PI / 180.0; // rad, vertical field of view
+    double speed_scale_m_per_s = 5.0;     // m/s, top of the impact flashes' colour bar
+    bool video = true;                    // assemble an MP4 from the frames (needs ffmpeg)
+    SourceLocation where;
+};
+
 struct SceneDescription {
     std::string source_file;   // the scene file as given
     std::string name;          // free text, for reports
@@ -178,6 +197,7 @@ struct SceneDescription {
     std::vector<ContactPairDesc> contacts;   // includes a "default" entry (given or built in)
     std::vector<ComponentDesc> components;
     OutputDesc output;
+    std::optional<RenderDesc> render;  // present when the scene has a `render` block
 };
 
 }  // namespace peensim

@@ -31,6 +31,7 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     d.contacts = read_contacts(root.child("contacts"), d.materials);
     d.components = read_components(root.child("components"), scene_dir, d.materials);
     d.output = read_output(root.child("output"), d.components);
+    d.render = read_render(root.child("render"));
     return d;
 }
 

@@ -92,4 +92,26 @@ OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& compon
     return d;
 }
 
+std::optional<RenderDesc> read_render(const Cursor& c) {
+    if (!c.present()) return std::nullopt;
+    RenderDesc d;
+    d.width_px = static_cast<int>(read_integer(c.child("width")));
+    d.height_px = static_cast<int>(read_integer(c.child("height")));
+    d.fps = static_cast<int>(read_integer(c.child("fps")));
+    d.slow_motion_s = read_quantity(c.child("slow_motion"));
+    d.start_s = read_quantity(c.child("start"));
+    d.duration_s = read_quantity(c.child("duration"));
+    const Cursor camera = c.child("camera");
+    if (camera.child("position").present()) d.camera_position_m = read_vector(camera.child("position"));
+    if (camera.child("look_at").present()) d.camera_look_at_m = read_vector(camera.child("look_at"));
+    if (const auto up = read_optional_direction(camera.child("up"))) d.camera_up = *up;
+    d.fov_rad = read_quantity(camera.child("fov"));
+    if (d.camera_position_m && d.camera_look_at_m && (*d.camera_position_m - *d.camera_look_at_m).norm() == 0.0)
+        fail(camera.child("look_at"), "expected a point other than the camera position");
+    d.speed_scale_m_per_s = read_quantity(c.child("speed_scale"));
+    d.video = read_choice(c.child("video")) == "mp4";
+    d.where = location_of(c);
+    return d;
+}
+
 }  // namespace peensim

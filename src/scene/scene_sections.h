@@ -25,6 +25,9 @@ std::vector<RegionDesc> read_regions(const Cursor& regions);
 // Needs the components (the logged names must be components; the default logs every part).
 OutputDesc read_output(const Cursor& output, const std::vector<ComponentDesc>& components);
 
+// The `render` block, or nullopt when the scene has none.
+std::optional<RenderDesc> read_render(const Cursor& render);
+
 // "a, b, c" of the materials' names, for messages.
 std::string material_names(const std::vector<MaterialDesc>& materials);
 const MaterialDesc* find_material(const std::vector<MaterialDesc>& materials, const std::string& name);

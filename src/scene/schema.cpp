@@ -1,6 +1,7 @@
 #include "scene/schema.h"
 
 #include <array>
+#include <cmath>
 
 namespace peensim {
 namespace {
@@ -9,6 +10,7 @@ constexpr Range above(double lo) { return Range{lo, std::numeric_limits<double>:
 constexpr Range at_least(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), false, false}; }
 constexpr Range open_closed(double lo, double hi) { return Range{lo, hi, true, false}; }
 constexpr Range closed(double lo, double hi) { return Range{lo, hi, false, false}; }
+constexpr Range open_open(double lo, double hi) { return Range{lo, hi, true, true}; }
 
 using K = ValueKind;
 using D = Dimension;
@@ -198,6 +200,36 @@ const std::array schema_table{
                 "", "", "Output directory, relative to the working directory."},
     SchemaEntry{"output.checkpoint_interval", K::quantity, D::time, false, "60", "", above(0), "", "", "",
                 "Wall-clock time between resume checkpoints."},
+
+    SchemaEntry{"render", K::map, D::dimensionless, false, "", "no animation", {}, "", "", "",
+                "Record an off-screen animation while simulating (also `peensim run --render`): PNG frames "
+                "every slow_motion / fps simulated seconds and an MP4."},
+    SchemaEntry{"render.width", K::integer, D::dimensionless, false, "1280", "", closed(16, 7680), "", "", "",
+                "Frame width, pixels."},
+    SchemaEntry{"render.height", K::integer, D::dimensionless, false, "720", "", closed(16, 4320), "", "", "",
+                "Frame height, pixels."},
+    SchemaEntry{"render.fps", K::integer, D::dimensionless, false, "30", "", closed(1, 240), "", "", "",
+                "Video frames per second."},
+    SchemaEntry{"render.slow_motion", K::quantity, D::time, false, "20 ms", "", above(0), "", "", "",
+                "Simulated time per second of video (20 ms: 50x slow motion)."},
+    SchemaEntry{"render.start", K::quantity, D::time, false, "0", "", at_least(0), "", "", "",
+                "Simulated time of the first frame."},
+    SchemaEntry{"render.duration", K::quantity, D::time, false, "0.2", "", above(0), "", "", "",
+                "Simulated time recorded (cut at the end of the run)."},
+    SchemaEntry{"render.camera", K::map, D::dimensionless, false, "", "automatic framing", {}, "", "", "",
+                "Where the camera looks from; without `position`, the chamber is framed from front-above."},
+    SchemaEntry{"render.camera.position", K::vector3, D::length, false, "", "automatic", {}, "", "", "",
+                "Camera position, world frame."},
+    SchemaEntry{"render.camera.look_at", K::vector3, D::length, false, "", "the chamber's centre", {}, "", "",
+                "", "The point at the image centre, world frame."},
+    SchemaEntry{"render.camera.up", K::vector3, D::dimensionless, false, "[0, 0, 1]", "", {}, "", "", "",
+                "World direction shown upward (normalised; not zero)."},
+    SchemaEntry{"render.camera.fov", K::quantity, D::angle, false, "40 deg", "", open_open(0, M_PI), "", "", "",
+                "Vertical field of view."},
+    SchemaEntry{"render.speed_scale", K::quantity, D::speed, false, "5", "", above(0), "", "", "",
+                "Normal impact speed at the top of the impact flashes' colour bar."},
+    SchemaEntry{"render.video", K::choice, D::dimensionless, false, "mp4", "", {}, "mp4|none", "", "",
+                "`mp4`: assemble the frames into animation.mp4 with ffmpeg (if installed); `none`: frames only."},
 };
 
 std::string number_text(double v) {

@@ -1,13 +1,17 @@
 // peensim_bench: runs scenes without writing outputs and prints what a step costs.
-//   peensim_bench SCENE [--set path=value ...] [--label NAME]
+//   peensim_bench SCENE [--set path=value ...] [--label NAME] [--render DIR]
 // Prints one block per scene: wall time, shot-steps per second, simulated seconds per wall
 // second, peak memory, the time split between the stages of a step, and the work counters.
+// --render DIR records the scene's animation (its `render` block, or the defaults) into DIR as
+// `peensim run --render` does, and prints the frames and the time spent drawing them.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "app/frame_recorder.h"
 #include "engine/simulation.h"
 #include "model/model.h"
 #include "output/peak_memory.h"
@@ -22,10 +26,12 @@ int main(int argc, char** argv) {
     const std::string scene_path = argv[1];
     std::vector<std::string> overrides;
     std::string label = scene_path;
+    std::string render_dir;
     for (int k = 2; k + 1 < argc; k += 2) {
         const std::string flag = argv[k];
         if (flag == "--set") overrides.emplace_back(argv[k + 1]);
         else if (flag == "--label") label = argv[k + 1];
+        else if (flag == "--render") render_dir = argv[k + 1];
         else {
             std::cerr << "unknown option " << flag << "\n";
             return 2;
@@ -41,13 +47,19 @@ int main(int argc, char** argv) {
         impacts.reserve(1024);
         std::uint64_t logged = 0;
         double speed_sum = 0.0;  // m/s, normal impact speeds on logged components
+        std::unique_ptr<FrameRecorder> recorder;
+        if (!render_dir.empty())
+            recorder = std::make_unique<FrameRecorder>(*model, model->description.render.value_or(RenderDesc{}), render_dir, sim.state());
         const auto t0 = Clock::now();
+        if (recorder) recorder->after_step(sim.state(), {}, 0);
         while (!sim.finished()) {
             sim.step(impacts);
             logged += impacts.size();
             for (const ImpactRecord& r : impacts) speed_sum += r.vn_in_m_per_s;
+            if (recorder) recorder->after_step(sim.state(), impacts, logged);
             impacts.clear();
         }
+        if (recorder) recorder->flush();
         const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
         const SimulationState& st = sim.state();
         const StepStats& stats = sim.scheme().stats();
@@ -63,6 +75,11 @@ int main(int argc, char** argv) {
                     static_cast<double>(peak_resident_bytes()) / 1e6, static_cast<unsigned long long>(logged),
                     static_cast<double>(logged) / st.time.seconds(), logged ? speed_sum / static_cast<double>(logged) : 0.0,
                     static_cast<unsigned long long>(st.health.shot_lost));
+        if (recorder)
+            std::printf("  render: %d frames of %dx%d, drawing %.1f ms per frame (PNG written by a second thread), %.1f %% of the wall time\n",
+                        recorder->frames_drawn(), model->description.render.value_or(RenderDesc{}).width_px,
+                        model->description.render.value_or(RenderDesc{}).height_px, 1e3 * recorder->draw_seconds() / recorder->frames_drawn(),
+                        100.0 * recorder->draw_seconds() / wall);
         std::printf("  stages:");
         for (std::size_t k = 0; k < kStageNames.size(); ++k)
             if (stats.seconds[k] > 0.0) std::printf(" %s %.0f%%", std::string(kStageNames[k]).c_str(), 100.0 * stats.seconds[k] / wall);

@@ -29,6 +29,14 @@ for f in 0.5 0.25 0.1 0.05 0.025; do
 done
 
 echo
+echo "# rendering: gear scene with 512 shot, $(dur 0.2) simulated, 1280x720 frames at 30 fps of 20 ms per video second (1500 frames per simulated s)"
+render_dir="$(mktemp -d /tmp/peensim-render-bench-XXXXXX)"
+"$bench" scenes/gear.yaml --set process.duration="$(dur 0.2)" --set shot.count=512 --label "gear, 512 shot, no rendering"
+"$bench" scenes/gear.yaml --set process.duration="$(dur 0.2)" --set shot.count=512 --label "gear, 512 shot, rendering" --render "$render_dir"
+rm -rf "$render_dir"
+if [[ -x "$root/build/peensim_render_bench" ]]; then "$root/build/peensim_render_bench"; fi
+
+echo
 impacts=$(awk -v s="$scale" 'BEGIN { printf "%d", 10000000 * s }')
 echo "# analysis: peensim analyze on $impacts synthetic gear impacts (10 M: ~1-2 min, ~2 GB in /tmp, deleted after)"
 if [[ -x "$root/build/peensim_analysis_bench" ]]; then

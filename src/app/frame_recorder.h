@@ -1,0 +1,55 @@
+// The animation of a run (scene `render` block or `run --render`): frames taken at fixed
+// simulated-time intervals while simulating, written as PNG by a second thread (so the
+// simulation waits only for the drawing), and assembled into an MP4 by ffmpeg when the run ends.
+// A run without rendering never constructs one: it pays nothing.
+//
+// Frame k shows the state at t_k = start + k * slow_motion / fps exactly: the step that passes
+// t_k is followed by drawing its shot moved back along their flight to t_k (a shot that bounced
+// within that step is off by at most one step's travel, R/4) and the components at their poses
+// at t_k. Impacts on logged components flash for kFlashFrames frames, coloured by normal speed.
+// Frames are numbered by k, so a resumed run continues the sequence.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+
+#include "engine/simulation_state.h"
+#include "model/model.h"
+#include "output/impact_record.h"
+
+namespace peensim {
+
+inline constexpr int kFlashFrames = 4;  // frames an impact stays visible, fading
+
+class FrameRecorder {
+public:
+    // dir: where frames/ and animation.mp4 go. now: the state's time (a resumed run starts late).
+    FrameRecorder(const Model& model, const RenderDesc& desc, const std::string& dir, const SimulationState& now);
+    ~FrameRecorder();
+    FrameRecorder(const FrameRecorder&) = delete;
+    FrameRecorder& operator=(const FrameRecorder&) = delete;
+
+    // After every step (and once before the first): remembers the step's impacts and draws every
+    // frame whose time the state has reached. logged_impacts: the run's total so far.
+    void after_step(const SimulationState& state, std::span<const ImpactRecord> impacts, std::uint64_t logged_impacts);
+
+    // Waits for the frames still being written. Throws what the writing thread threw.
+    void flush();
+
+    // Assembles frames/frame_*.png into animation.mp4 (flush first). Returns a note for the user:
+    // what was written, or why there is no video (ffmpeg missing, `video: none`, no frame).
+    std::string finish_video();
+
+    int frames_drawn() const { return frames_drawn_; }   // by this process (not before a resume)
+    double draw_seconds() const { return draw_seconds_; } // wall s spent drawing (not writing)
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    int frames_drawn_ = 0;
+    double draw_seconds_ = 0.0;
+};
+
+}  // namespace peensim

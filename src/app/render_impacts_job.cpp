@@ -1,0 +1,166 @@
+#include "app/render_impacts_job.h"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "app/render_view.h"
+#include "app/report_errors.h"
+#include "app/run_job.h"
+#include "model/model.h"
+#include "render/png_io.h"
+#include "scene/scene_parser.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+const std::array<MapField, 3> kFields{{
+    {"impacts", "impacts_per_mm2_s", "impacts per mm2 per s"},
+    {"speed", "mean_vn_mps", "mean normal speed (m/s)"},
+    {"coverage", "coverage", "coverage (SAE J2277)"},
+}};
+
+const std::array<MapView, 4> kViews{{
+    {"front-above", Vec3(0.34, 0.81, -0.47)},
+    {"back-above", Vec3(-0.34, -0.81, -0.47)},
+    {"from below (sonotrode side)", Vec3(0.2, 0.3, 1.0)},
+    {"side", Vec3(-1.0, 0.15, -0.2)},
+}};
+
+// One column of <component>_triangles.csv, NaN for an empty cell.
+std::vector<double> read_column(const fs::path& csv, const std::string& column) {
+    std::ifstream in(csv);
+    if (!in) throw std::runtime_error(csv.string() + ": not found (run `peensim analyze " + csv.parent_path().parent_path().string() + "` first)");
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::string> header;
+    std::stringstream hs(line);
+    for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
+    const auto it = std::find(header.begin(), header.end(), column);
+    if (it == header.end()) throw std::runtime_error(csv.string() + ": no column '" + column + "'");
+    const auto col = static_cast<std::size_t>(it - header.begin());
+    std::vector<double> values;
+    while (std::getline(in, line)) {
+        std::stringstream ls(line);
+        std::string field;
+        for (std::size_t k = 0; k <= col; ++k) std::getline(ls, field, ',');
+        values.push_back(field.empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(field));
+    }
+    return values;
+}
+
+// Copies `tile` into `image` with its top-left corner at (x0, y0).
+void blit(const render::RgbaImage& tile, render::RgbaImage& image, int x0, int y0) {
+    for (int y = 0; y < tile.height; ++y)
+        std::memcpy(image.pixels.data() + (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x0)) * 4,
+                    tile.pixels.data() + static_cast<std::size_t>(y) * tile.row_bytes(), tile.row_bytes());
+}
+
+// The colour scale's top: the value that 98 % of the part's area does not exceed. A plain maximum
+// is set by a tiny triangle that took one impact (its rate per mm2 is huge), leaving the rest of
+// the map in the bottom colour; values above are drawn in the top colour.
+double robust_top(const TriangleMesh& mesh, const std::vector<double>& values) {
+    std::vector<std::pair<double, double>> by_value;  // (value, area m2)
+    double total = 0.0;
+    for (std::size_t t = 0; t < values.size(); ++t) {
+        if (!std::isfinite(values[t])) continue;
+        const double area = 0.5 * (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).norm();
+        by_value.emplace_back(values[t], area);
+        total += area;
+    }
+    std::sort(by_value.begin(), by_value.end());
+    double covered = 0.0;
+    for (const auto& [value, area] : by_value) {
+        covered += area;
+        if (covered >= 0.98 * total) return value;
+    }
+    return by_value.empty() ? 0.0 : by_value.back().first;
+}
+
+}  // namespace
+
+std::span<const MapField> map_fields() { return kFields; }
+std::span<const MapView> map_views() { return kViews; }
+
+std::vector<render::Rgba8> field_colours(std::span<const double> values, double max) {
+    const render::ColourMap map = render::ColourMap::viridis();
+    std::vector<render::Rgba8> colours;
+    colours.reserve(values.size());
+    for (double v : values)
+        colours.push_back(std::isfinite(v) ? map.map8(v, 0.0, max) : render::Rgba8{128, 128, 128, 255});
+    return colours;
+}
+
+int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, std::ostream& err) {
+    return report_errors(err, [&] {
+        const fs::path dir(options.output_dir);
+        const fs::path scene_path = dir / "scene.resolved.yaml";
+        if (!fs::exists(scene_path)) throw std::runtime_error(options.output_dir + ": not a peensim run directory (no scene.resolved.yaml)");
+        std::vector<const MapField*> fields;
+        for (const MapField& f : kFields)
+            if (options.fields.empty() || std::find(options.fields.begin(), options.fields.end(), f.name) != options.fields.end())
+                fields.push_back(&f);
+        for (const std::string& name : options.fields)
+            if (std::none_of(kFields.begin(), kFields.end(), [&](const MapField& f) { return f.name == name; }))
+                throw InputError({}, "--field", "unknown field '" + name + "'; expected impacts, speed or coverage");
+
+        const auto model = compile_model(parse_scene_file(scene_path.string()));
+        const int tile_w = options.width_px / 2, tile_h = options.height_px / 2;
+        render::OffscreenContext context({.width = tile_w, .height = tile_h});
+        render::Renderer renderer(context);
+        const ModelView view = add_model(renderer, *model);
+        render::RgbaImage tile, image;
+        int written = 0;
+        for (std::size_t i = 0; i < model->components.size(); ++i) {
+            const Component& part = model->components[i];
+            if (!part.logged) continue;
+            const fs::path csv = dir / "analysis" / (part.name + "_triangles.csv");
+            // Only the part: it is seen from all sides, with nothing in front of it.
+            for (std::size_t j = 0; j < model->components.size(); ++j) {
+                render::MeshStyle style;
+                style.colour = role_colour(model->components[j].role);
+                style.visible = j == i;
+                renderer.set_style(view.meshes[j], style);
+            }
+            for (const MapField* field : fields) {
+                const std::vector<double> values = read_column(csv, field->column);
+                if (values.size() != part.mesh->triangle_count())
+                    throw std::runtime_error(csv.string() + ": " + std::to_string(values.size()) + " triangles, the mesh has " +
+                                             std::to_string(part.mesh->triangle_count()) + " (a different mesh? rerun the analysis)");
+                if (field->name == "coverage" && std::all_of(values.begin(), values.end(), [](double v) { return std::isnan(v); })) {
+                    out << part.name << ": no coverage (the material has no yield_stress)\n";
+                    continue;
+                }
+                double max = field->name == "coverage" ? 1.0 : robust_top(*part.mesh, values);
+                if (!(max > 0.0)) max = 1.0;
+                renderer.set_triangle_colours(view.meshes[i], field_colours(values, max));
+                const render::ColourBar bar{render::ColourMap::viridis(), 0.0, max, field->title};
+                image.resize(2 * tile_w, 2 * tile_h);
+                for (std::size_t v = 0; v < kViews.size(); ++v) {
+                    const render::Camera camera =
+                        render::Camera::framing(part.world_lo, part.world_hi, static_cast<double>(tile_w) / tile_h, kViews[v].direction);
+                    const std::vector<std::string> text{part.name + ": " + field->title, kViews[v].name};
+                    renderer.render(camera, {.text = text, .colour_bar = &bar}, tile);
+                    blit(tile, image, static_cast<int>(v % 2) * tile_w, static_cast<int>(v / 2) * tile_h);
+                }
+                const fs::path png = dir / "analysis" / (part.name + "_map_" + field->name + ".png");
+                render::write_png(png.string(), image);
+                out << "wrote " << png.string() << "\n";
+                ++written;
+            }
+            renderer.set_triangle_colours(view.meshes[i], {});
+        }
+        if (written == 0) throw std::runtime_error(options.output_dir + ": no logged component to draw");
+        return 0;
+    });
+}
+
+}  // namespace peensim

@@ -1,0 +1,47 @@
+// `peensim render-impacts OUTDIR`: stills of every logged component coloured by a per-triangle
+// field of the run's analysis (impacts per mm2 per s, mean normal speed, coverage), each from
+// four viewpoints tiled in one PNG with its colour bar: OUTDIR/analysis/<component>_map_<field>.png.
+// The colour bar spans 0 to the value 98 % of the area stays under (coverage: 0 to 1); higher
+// values take the top colour.
+#pragma once
+
+#include <iosfwd>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/vec.h"
+#include "render/renderer.h"
+
+namespace peensim {
+
+// A field of <component>_triangles.csv that can be mapped.
+struct MapField {
+    std::string name;    // on the command line and in the file name: impacts, speed, coverage
+    std::string column;  // in <component>_triangles.csv
+    std::string title;   // on the colour bar
+};
+std::span<const MapField> map_fields();
+
+// The four viewpoints of a map (view directions, world frame): front-above, back-above, from
+// below (where the sonotrode is) and from the side.
+struct MapView {
+    std::string name;
+    Vec3 direction;  // the camera looks along it
+};
+std::span<const MapView> map_views();
+
+// Per-triangle colours of `values` on [0, max]: NaN (no data, e.g. a mean speed without impacts)
+// in neutral grey.
+std::vector<render::Rgba8> field_colours(std::span<const double> values, double max);
+
+struct RenderImpactsOptions {
+    std::string output_dir;
+    std::vector<std::string> fields;  // names from map_fields(); empty = all
+    int width_px = 1600;              // whole image (2 x 2 tiles)
+    int height_px = 1200;
+};
+
+int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace peensim

@@ -1,0 +1,65 @@
+// What a frame shows, as plain values: mesh styles, sets of spheres (shot), impact markers and
+// the colour bar. The Renderer draws them; the caller owns the data.
+#pragma once
+
+#include <span>
+#include <string>
+
+#include "common/vec.h"
+#include "render/camera.h"
+#include "render/colour.h"
+#include "render/colour_map.h"
+
+namespace peensim::render {
+
+// Which side of a mesh's triangles is dropped. A triangle's front is the side its normal points
+// to (counter-clockwise corners, see TriangleMesh). For a closed chamber seen from outside,
+// dropping the walls that face away from the inside cuts the near walls away and leaves the
+// far inner walls: `back` for a chamber whose normals face the cavity (the generated ones),
+// `front` for a closed solid with outward normals used as a chamber.
+enum class Cull { none, back, front };
+
+struct MeshStyle {
+    Rgba colour{0.72f, 0.74f, 0.78f, 1.0f};  // alpha < 1: transparent, blended over what is behind
+    Cull cull = Cull::none;
+    bool lit = true;      // false: flat colours (an impact map that must match its colour bar exactly)
+    bool visible = true;
+};
+
+// Rigid transform of a mesh: world_from_mesh (rotation and translation, m).
+inline Mat4 make_pose(const Mat3& rotation, const Vec3& translation_m) {
+    Mat4 m = Mat4::Identity();
+    m.block<3, 3>(0, 0) = rotation;
+    m.block<3, 1>(0, 3) = translation_m;
+    return m;
+}
+
+// Spheres of one radius and colour, centres as three coordinate arrays (the simulator's shot
+// layout, no copy needed). All spans have the same size; `active`, if not empty, hides the
+// spheres whose entry is 0.
+struct SphereSet {
+    std::span<const double> x_m{}, y_m{}, z_m{};  // m, world centres
+    std::span<const unsigned char> active{};
+    double radius_m = 0.0;                    // m
+    Rgba colour{0.85f, 0.86f, 0.9f, 1.0f};
+};
+
+// A flash where an impact happened: a small sphere centred on the contact point (half of it
+// sticks out of the wall, so it reads as a disc on the surface). The caller fades it over a
+// few frames by lowering colour.a; alpha 0 draws nothing.
+struct ImpactMarker {
+    Vec3 point_m = Vec3::Zero();   // m, world
+    double radius_m = 0.0;         // m
+    Rgba colour;                   // typically ColourMap::map(normal speed, ...)
+};
+
+// A vertical colour bar at the right edge of the frame: `title` above, `max` at the top end,
+// `min` at the bottom end (labels printed with 3 significant digits).
+struct ColourBar {
+    ColourMap map = ColourMap::viridis();
+    double min = 0.0;
+    double max = 1.0;
+    std::string title{}; // e.g. "normal speed (m/s)"; ASCII (other characters print as '?')
+};
+
+}  // namespace peensim::render
