@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <type_traits>
 
+#include "common/byte_stream.h"
 #include "output/atomic_file.h"
 
 namespace peensim {
@@ -14,72 +14,11 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '1'};
 
-class Writer {
-public:
-    template <class T>
-    void put(const T& v) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        bytes_.append(reinterpret_cast<const char*>(&v), sizeof(T));
-    }
-    template <class T>
-    void put_vector(const std::vector<T>& v) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        put<std::uint64_t>(v.size());
-        bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-    }
-    void put_string(const std::string& s) {
-        put<std::uint64_t>(s.size());
-        bytes_ += s;
-    }
-    std::string& bytes() { return bytes_; }
-
-private:
-    std::string bytes_;
-};
-
-class Reader {
-public:
-    Reader(const std::string& bytes, const std::string& path) : bytes_(bytes), path_(path) {}
-    template <class T>
-    T get() {
-        T v;
-        need(sizeof(T));
-        std::memcpy(&v, bytes_.data() + at_, sizeof(T));
-        at_ += sizeof(T);
-        return v;
-    }
-    template <class T>
-    std::vector<T> get_vector() {
-        const auto n = get<std::uint64_t>();
-        need(n * sizeof(T));
-        std::vector<T> v(n);
-        std::memcpy(v.data(), bytes_.data() + at_, n * sizeof(T));
-        at_ += n * sizeof(T);
-        return v;
-    }
-    std::string get_string() {
-        const auto n = get<std::uint64_t>();
-        need(n);
-        std::string s = bytes_.substr(at_, n);
-        at_ += n;
-        return s;
-    }
-    bool at_end() const { return at_ == bytes_.size(); }
-
-private:
-    void need(std::size_t n) const {
-        if (at_ + n > bytes_.size()) throw std::runtime_error(path_ + ": checkpoint is truncated");
-    }
-    const std::string& bytes_;
-    const std::string& path_;
-    std::size_t at_ = 0;
-};
-
 }  // namespace
 
 void save_checkpoint(const std::string& path, const Checkpoint& c) {
-    Writer w;
-    w.bytes().append(kMagic, sizeof(kMagic));
+    ByteWriter w;
+    w.put_raw({kMagic, sizeof(kMagic)});
     w.put(c.scene_hash);
     const SimulationState& s = c.state;
     w.put(s.time.hi);
@@ -114,8 +53,7 @@ Checkpoint load_checkpoint(const std::string& path) {
     const std::string bytes = buffer.str();
     if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
         throw std::runtime_error(path + ": not a peensim checkpoint of this version");
-    const std::string body = bytes.substr(sizeof(kMagic));  // Reader keeps a reference: must outlive it
-    Reader r(body, path);
+    ByteReader r(std::string_view(bytes).substr(sizeof(kMagic)), path + ": checkpoint");
     Checkpoint c;
     c.scene_hash = r.get<std::uint64_t>();
     SimulationState& s = c.state;

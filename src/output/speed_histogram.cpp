@@ -1,10 +1,11 @@
 #include "output/speed_histogram.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "common/byte_stream.h"
 
 namespace peensim {
 namespace {
@@ -12,45 +13,6 @@ namespace {
 // Guards against absurd bin counts (and against corrupt checkpoint bytes asking for them).
 constexpr double kMaxBins = 1e8;
 constexpr std::string_view kMagic = "PSHIST01";
-
-void put_u64(std::string& out, std::uint64_t v) {
-    for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xffu));
-}
-
-void put_f64(std::string& out, double v) {
-    put_u64(out, std::bit_cast<std::uint64_t>(v));
-}
-
-class ByteReader {
-public:
-    explicit ByteReader(std::string_view bytes) : bytes_(bytes) {}
-
-    std::uint64_t u64() {
-        if (bytes_.size() - pos_ < 8) fail("truncated");
-        std::uint64_t v = 0;
-        for (int i = 0; i < 8; ++i) {
-            v |= std::uint64_t{static_cast<unsigned char>(bytes_[pos_ + i])} << (8 * i);
-        }
-        pos_ += 8;
-        return v;
-    }
-    double f64() { return std::bit_cast<double>(u64()); }
-    std::string_view take(std::size_t n) {
-        if (bytes_.size() - pos_ < n) fail("truncated");
-        const auto s = bytes_.substr(pos_, n);
-        pos_ += n;
-        return s;
-    }
-    bool at_end() const { return pos_ == bytes_.size(); }
-
-    [[noreturn]] static void fail(const std::string& problem) {
-        throw std::runtime_error("speed histogram checkpoint data is invalid: " + problem);
-    }
-
-private:
-    std::string_view bytes_;
-    std::size_t pos_ = 0;
-};
 
 }  // namespace
 
@@ -156,60 +118,60 @@ void SpeedHistogram::merge(const SpeedHistogram& other) {
 std::string SpeedHistogram::serialize() const {
     std::uint64_t filled = 0;
     for (const auto c : bins_) filled += c != 0 ? 1 : 0;
-    std::string out(kMagic);
-    out.reserve(out.size() + 8 * 10 + 16 * filled);
-    put_u64(out, bins_.size());
-    put_f64(out, bin_width_);
-    put_u64(out, count_);
-    put_u64(out, overflow_);
-    put_u64(out, non_finite_);
-    put_f64(out, sum_);
-    put_f64(out, sum_correction_);
-    put_f64(out, min_);
-    put_f64(out, max_);
-    put_u64(out, filled);
+    ByteWriter out;
+    out.put_raw(kMagic);
+    out.put<std::uint64_t>(bins_.size());
+    out.put(bin_width_);
+    out.put(count_);
+    out.put(overflow_);
+    out.put(non_finite_);
+    out.put(sum_);
+    out.put(sum_correction_);
+    out.put(min_);
+    out.put(max_);
+    out.put(filled);
     for (std::size_t i = 0; i < bins_.size(); ++i) {
         if (bins_[i] == 0) continue;
-        put_u64(out, i);
-        put_u64(out, bins_[i]);
+        out.put<std::uint64_t>(i);
+        out.put<std::uint64_t>(bins_[i]);
     }
-    return out;
+    return out.bytes();
 }
 
 SpeedHistogram SpeedHistogram::deserialize(std::string_view bytes) {
-    ByteReader in(bytes);
-    if (in.take(kMagic.size()) != kMagic) ByteReader::fail("wrong magic");
-    const std::uint64_t bin_count = in.u64();
-    const double width = in.f64();
+    ByteReader in(bytes, "speed histogram checkpoint data is invalid");
+    if (in.take(kMagic.size()) != kMagic) in.fail("wrong magic");
+    const std::uint64_t bin_count = in.get<std::uint64_t>();
+    const double width = in.get<double>();
     if (bin_count < 1 || static_cast<double>(bin_count) > kMaxBins || !(width > 0.0) ||
         !std::isfinite(width)) {
-        ByteReader::fail("bad bins");
+        in.fail("bad bins");
     }
     SpeedHistogram h(width, static_cast<double>(bin_count) * width);
-    if (h.bins_.size() != bin_count) ByteReader::fail("bad bins");
-    h.count_ = in.u64();
-    h.overflow_ = in.u64();
-    h.non_finite_ = in.u64();
-    h.sum_ = in.f64();
-    h.sum_correction_ = in.f64();
-    h.min_ = in.f64();
-    h.max_ = in.f64();
-    const std::uint64_t filled = in.u64();
-    if (filled > bin_count) ByteReader::fail("more filled bins than bins");
+    if (h.bins_.size() != bin_count) in.fail("bad bins");
+    h.count_ = in.get<std::uint64_t>();
+    h.overflow_ = in.get<std::uint64_t>();
+    h.non_finite_ = in.get<std::uint64_t>();
+    h.sum_ = in.get<double>();
+    h.sum_correction_ = in.get<double>();
+    h.min_ = in.get<double>();
+    h.max_ = in.get<double>();
+    const std::uint64_t filled = in.get<std::uint64_t>();
+    if (filled > bin_count) in.fail("more filled bins than bins");
     std::uint64_t total = h.overflow_;
     std::uint64_t previous = 0;
     for (std::uint64_t k = 0; k < filled; ++k) {
-        const std::uint64_t index = in.u64();
-        const std::uint64_t c = in.u64();
+        const std::uint64_t index = in.get<std::uint64_t>();
+        const std::uint64_t c = in.get<std::uint64_t>();
         if (index >= bin_count || (k > 0 && index <= previous) || c == 0) {
-            ByteReader::fail("bad bin entry");
+            in.fail("bad bin entry");
         }
         h.bins_[index] = c;
         total += c;
         previous = index;
     }
-    if (!in.at_end()) ByteReader::fail("trailing bytes");
-    if (total != h.count_) ByteReader::fail("bin counts do not add up to the count");
+    if (!in.at_end()) in.fail("trailing bytes");
+    if (total != h.count_) in.fail("bin counts do not add up to the count");
     return h;
 }
 

@@ -57,7 +57,7 @@ public:
     double bin_width_m_per_s() const { return bin_width_; }
     double upper_m_per_s() const { return static_cast<double>(bins_.size()) * bin_width_; }
 
-    // Compact, platform-independent bytes (little-endian; only non-empty bins) for a
+    // Compact bytes (little-endian, common/byte_stream.h; only non-empty bins) for a
     // checkpoint; deserialize() throws std::runtime_error on anything that is not such bytes.
     std::string serialize() const;
     static SpeedHistogram deserialize(std::string_view bytes);
