@@ -2,10 +2,12 @@
 
 #include <btBulletCollisionCommon.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "collision/closest_point.h"
+#include "event/swept_sphere_box.h"
 
 namespace peensim {
 
@@ -161,6 +163,191 @@ bool MeshCollider::closest_within(const Vec3& p, double radius, Closest& out, Qu
     if (!found) return false;
     out.distance = std::sqrt(best);
     return true;
+}
+
+ToiStatus MeshCollider::first_hit(const Trajectory& path, double radius, double t_begin, double t_end, Hit& out,
+                                  SweepCounters& counters, int queue_capacity) const {
+    // Best-first in time. Leaves are tested in key order and the walk stops once the next key is
+    // later than the best contact, so the cost follows the few triangles the sphere can reach
+    // first, not every triangle within R of its path (what an overlap query would return).
+    // The keys are what keep that set small: with the bare box entry, every leaf within R of the
+    // contact on a fine surface met at a shallow angle is entered (along the box axes) before the
+    // contact itself and would be tested.
+    if (!(t_end >= t_begin)) return ToiStatus::miss;
+    const btQuantizedBvhNode* nodes = &impl_->shape->getOptimizedBvh()->getQuantizedNodeArray()[0];
+    const Vec3& origin = impl_->quantization_origin;
+    const Vec3& step = impl_->quantization_step;
+    const int* idx = impl_->indices.data();
+    const btScalar* v = impl_->vertices.data();
+    auto vertex = [&](int i) { return Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]); };
+
+    SweptSphere swept(path, radius, t_begin, t_end);
+    ToiStatus status = ToiStatus::miss;
+    double best = t_end;
+    double top_speed = path.max_speed(t_begin, t_end);  // m/s, over [t_begin, best]
+
+    struct Queued {
+        double key;   // s, no contact with the node's triangles before this
+        double last;  // s, the sphere is out of reach of the node's box after this
+        int node;
+    };
+    // Fills q and returns true if the node can hold a contact no later than `best`.
+    auto reach = [&](int i, Queued& q) {
+        ++counters.boxes_tested;
+        const btQuantizedBvhNode& node = nodes[i];
+        Vec3 lo, hi;
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = origin[k] + step[k] * node.m_quantizedAabbMin[k];
+            hi[k] = origin[k] + step[k] * node.m_quantizedAabbMax[k];
+        }
+        TimeSpan span;
+        if (!swept.span(lo, hi, span)) return false;
+        double key = span.first;
+        if (!node.isLeafNode()) {
+            for (int step_count = 0; step_count < 2; ++step_count) {  // conservative advancement
+                const Vec3 p = path.position(key);
+                double d2 = 0.0;
+                for (int k = 0; k < 3; ++k) {
+                    const double e = p[k] < lo[k] ? lo[k] - p[k] : (p[k] > hi[k] ? p[k] - hi[k] : 0.0);
+                    d2 += e * e;
+                }
+                const double gap = std::sqrt(d2) - radius - swept.pad();
+                if (gap <= 0.0) break;
+                if (top_speed == 0.0) return false;
+                key += gap / top_speed;
+                if (key > best || key > span.last) return false;
+            }
+        } else {
+            // A leaf: also within reach of the triangle's plane (exact, a quadratic), then two
+            // steps of advancement towards the triangle itself. On a fine surface met at a
+            // shallow angle, the neighbours ahead of the contact are entered (box and plane)
+            // before it, but lie a sideways run away: the advancement puts them after it.
+            const int* tri = idx + 3 * node.getTriangleIndex();
+            const Vec3 a = vertex(tri[0]), b = vertex(tri[1]), c = vertex(tri[2]);
+            Vec3 n = (b - a).cross(c - a);
+            const double n_len = n.norm();
+            if (n_len > 0.0) {
+                n /= n_len;
+                TimeSpan slab;
+                if (!swept.slab_span(n, n.dot(a), n.dot(a), slab)) return false;
+                span.first = std::max(span.first, slab.first);
+                span.last = std::min(span.last, slab.last);
+                if (span.first > span.last) return false;
+                key = span.first;
+            }
+            for (int step_count = 0; step_count < 2; ++step_count) {
+                const Vec3 p = path.position(key);
+                const double gap = (p - closest_point_on_triangle(p, a, b, c).point).norm() - radius - swept.pad();
+                if (gap <= 0.0) break;
+                if (top_speed == 0.0) return false;
+                key += gap / top_speed;
+                if (key > best || key > span.last) return false;
+            }
+        }
+        if (key > best || key > span.last) return false;
+        q = {key, span.last, i};
+        return true;
+    };
+
+    // The exact test of one leaf, searched only from its key to the last moment the sphere is
+    // within reach of its box. True once an overlap ends the walk.
+    auto test_leaf = [&](const Queued& q) {
+        ++counters.leaves_visited;
+        const int t = nodes[q.node].getTriangleIndex();
+        const int* tri = idx + 3 * t;
+        const Vec3 a = vertex(tri[0]), b = vertex(tri[1]), c = vertex(tri[2]);
+        const double until = std::min(best, q.last);
+        TriangleContact contact;
+        ToiStatus found;
+        if (q.key <= t_begin) {
+            // Within reach from the start: read the state at t_begin (overlap, touching).
+            found = sphere_triangle_toi(path, radius, a, b, c, t_begin, until, contact);
+        } else {
+            // Clear of the triangle until the key, so the search alone is exact.
+            found = sphere_triangle_first_touch(path, radius, a, b, c, q.key, until, contact) ? ToiStatus::impact
+                                                                                              : ToiStatus::miss;
+        }
+        if (found == ToiStatus::overlapping) {
+            out = {t, contact};
+            status = ToiStatus::overlapping;
+            return true;
+        }
+        if (found == ToiStatus::impact && (status == ToiStatus::miss || contact.time < best)) {
+            out = {t, contact};
+            status = ToiStatus::impact;
+            best = contact.time;
+            swept.shorten(best);
+            top_speed = path.max_speed(t_begin, best);
+        }
+        return false;
+    };
+    auto children = [&](int i, int& left, int& right) {
+        left = i + 1;
+        right = left + (nodes[left].isLeafNode() ? 1 : nodes[left].getEscapeIndex());
+    };
+
+    // If the queue is full (a wide front of nodes reachable at once, e.g. a sphere skimming a
+    // fine surface), that subtree is walked at once, depth first, earlier child first: still exact.
+    constexpr int kMaxDepth = 256;
+    auto walk_subtree = [&](const Queued& start) {
+        ++counters.heap_overflows;
+        Queued stack[kMaxDepth];
+        int top = 0;
+        stack[top++] = start;
+        while (top > 0) {
+            const Queued q = stack[--top];
+            if (q.key > best) continue;
+            ++counters.nodes_visited;
+            if (nodes[q.node].isLeafNode()) {
+                if (test_leaf(q)) return true;
+                continue;
+            }
+            int left, right;
+            children(q.node, left, right);
+            Queued ql, qr;
+            const bool has_l = reach(left, ql), has_r = reach(right, qr);
+            if (top + 2 > kMaxDepth) throw std::runtime_error("MeshCollider: BVH deeper than expected");
+            if (has_l && has_r) {
+                stack[top++] = ql.key <= qr.key ? qr : ql;
+                stack[top++] = ql.key <= qr.key ? ql : qr;
+            } else if (has_l) {
+                stack[top++] = ql;
+            } else if (has_r) {
+                stack[top++] = qr;
+            }
+        }
+        return false;
+    };
+
+    const int capacity = std::clamp(queue_capacity, 1, kFirstHitQueueCapacity);
+    Queued heap[kFirstHitQueueCapacity];
+    int size = 0;
+    auto later = [](const Queued& x, const Queued& y) { return x.key > y.key; };  // a min-heap on the key
+    if (!reach(0, heap[0])) return ToiStatus::miss;
+    size = 1;
+    while (size > 0) {
+        std::pop_heap(heap, heap + size, later);
+        const Queued q = heap[--size];
+        if (q.key > best) break;  // every node left is reachable only after the best contact
+        ++counters.nodes_visited;
+        if (nodes[q.node].isLeafNode()) {
+            if (test_leaf(q)) return status;
+            continue;
+        }
+        int child[2];
+        children(q.node, child[0], child[1]);
+        for (int i : child) {
+            Queued entry;
+            if (!reach(i, entry)) continue;
+            if (size < capacity) {
+                heap[size++] = entry;
+                std::push_heap(heap, heap + size, later);
+            } else if (walk_subtree(entry)) {
+                return status;
+            }
+        }
+    }
+    return status;
 }
 
 std::size_t MeshCollider::memory_bytes() const {

@@ -9,6 +9,9 @@
 #include <vector>
 
 #include "common/vec.h"
+#include "event/sphere_triangle_toi.h"
+#include "event/toi_status.h"
+#include "event/trajectory.h"
 #include "geometry/triangle_mesh.h"
 
 namespace peensim {
@@ -38,6 +41,32 @@ public:
         std::uint64_t triangles_tested = 0;    // exact closest-point tests after the plane test
     };
     bool closest_within(const Vec3& p, double radius, Closest& out, QueryCounters& counters) const;
+
+    // The first contact in [t_begin, t_end] (s) of a sphere of `radius` (m) moving on `path`
+    // (mesh frame) with any triangle: a time-ordered walk of the BVH along the swept sphere.
+    // Each node gets a key, a lower bound on when the sphere can first touch anything in it (the
+    // entry into its box grown by the radius, from per-axis quadratics, tightened by conservative
+    // advancement; for a leaf also the entry into its plane's slab); nodes are visited in key
+    // order, the walk stops once the next key is later than the best contact, and each leaf
+    // reached gets the exact sphere_triangle_toi, searched only while the sphere is within reach
+    // of its box. The result is what that test over all triangles would give: `overlapping` if
+    // any triangle is overlapped at t_begin, else the earliest impact (ties: any of the equally
+    // early triangles). Allocates nothing; thread-safe (const, no shared scratch).
+    struct Hit {
+        int triangle = -1;        // index into the mesh's triangles
+        TriangleContact contact;  // time (s), point (m, mesh frame), normal, feature
+    };
+    struct SweepCounters {
+        std::uint64_t boxes_tested = 0;    // BVH nodes whose swept-sphere span was computed
+        std::uint64_t nodes_visited = 0;   // BVH nodes taken from the queue (inner nodes and leaves)
+        std::uint64_t leaves_visited = 0;  // triangles given the exact time-of-impact test
+        std::uint64_t heap_overflows = 0;  // subtrees walked depth-first because the queue was full
+    };
+    // queue_capacity: entries of the time-ordered queue (at most kFirstHitQueueCapacity); when full,
+    // a subtree is walked depth-first instead, with the same answer (tests shrink it to exercise that).
+    static constexpr int kFirstHitQueueCapacity = 256;
+    ToiStatus first_hit(const Trajectory& path, double radius, double t_begin, double t_end, Hit& out,
+                        SweepCounters& counters, int queue_capacity = kFirstHitQueueCapacity) const;
 
     std::size_t memory_bytes() const;
 
