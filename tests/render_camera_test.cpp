@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 #include <numbers>
 #include <stdexcept>
 
@@ -73,6 +74,30 @@ TEST(RenderCamera, FramingShowsTheWholeBoxAndFillsTheFrame) {
         EXPECT_TRUE(tight) << "framing leaves the box small: x " << x_min << ".." << x_max << ", y " << y_min << ".." << y_max;
         EXPECT_GT(camera.near_m, 0.0);
     }
+}
+
+TEST(RenderCamera, FramingPointsFitsARoundChamberTighterThanItsBox) {
+    // Rings of a cylinder (r 30 mm, z 0..75 mm): framed by its points it fills the central 90 %
+    // and appears larger than when framed by its bounding box (whose corners stick out).
+    std::vector<Vec3> points;
+    for (int i = 0; i < 64; ++i)
+        for (double z : {0.0, 0.075}) points.emplace_back(0.03 * std::cos(i * M_PI / 32), 0.03 * std::sin(i * M_PI / 32), z);
+    const Camera by_points = Camera::framing_points(points, static_cast<double>(kW) / kH);
+    const Camera by_box = Camera::framing(Vec3(-0.03, -0.03, 0.0), Vec3(0.03, 0.03, 0.075), static_cast<double>(kW) / kH);
+    double y_min = kH, y_max = 0.0, x_min = kW, x_max = 0.0;
+    for (const Vec3& p : points) {
+        const auto q = by_points.project_to_pixel(p, kW, kH);
+        ASSERT_TRUE(q.has_value());
+        EXPECT_GE(q->x(), 0.05 * kW - 1e-6);
+        EXPECT_LE(q->x(), 0.95 * kW + 1e-6);
+        EXPECT_GE(q->y(), 0.05 * kH - 1e-6);
+        EXPECT_LE(q->y(), 0.95 * kH + 1e-6);
+        y_min = std::min(y_min, q->y()), y_max = std::max(y_max, q->y());
+        x_min = std::min(x_min, q->x()), x_max = std::max(x_max, q->x());
+    }
+    EXPECT_TRUE(y_min < 0.05 * kH + 1.0 || y_max > 0.95 * kH - 1.0 || x_min < 0.05 * kW + 1.0 || x_max > 0.95 * kW - 1.0);
+    EXPECT_LT((by_points.position_m - by_points.look_at_m).norm(), (by_box.position_m - by_box.look_at_m).norm());
+    EXPECT_THROW(Camera::framing_points({}, 1.0), std::invalid_argument);
 }
 
 TEST(RenderCamera, FramingRejectsADegenerateView) {

@@ -192,7 +192,7 @@ TEST(RenderImpacts, TheHotColourLandsOnTheHitTriangles) {
     ASSERT_EQ(image.width, 320);
     ASSERT_EQ(image.height, 240);
     // Top-left tile: the first view. The rod's end cap at y = -15 mm faces it.
-    const render::Camera camera = render::Camera::framing(rod.world_lo, rod.world_hi, 160.0 / 120.0, map_views()[0].direction);
+    const render::Camera camera = render::Camera::framing_points(world_vertices(rod), 160.0 / 120.0, map_views()[0].direction);
     const Pose pose = rod.kinematics.pose(SimTime{});
     const auto hot = camera.project_to_pixel(pose.to_world(Vec3(2.5e-3, -15e-3, 20e-3)), 160, 120);
     const auto cold = camera.project_to_pixel(pose.to_world(Vec3(-2.5e-3, -15e-3, 20e-3)), 160, 120);

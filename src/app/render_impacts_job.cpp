@@ -123,6 +123,7 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
             const Component& part = model->components[i];
             if (!part.logged) continue;
             const fs::path csv = dir / "analysis" / (part.name + "_triangles.csv");
+            const std::vector<Vec3> points = world_vertices(part);
             // Only the part: it is seen from all sides, with nothing in front of it.
             for (std::size_t j = 0; j < model->components.size(); ++j) {
                 render::MeshStyle style;
@@ -146,7 +147,7 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
                 image.resize(2 * tile_w, 2 * tile_h);
                 for (std::size_t v = 0; v < kViews.size(); ++v) {
                     const render::Camera camera =
-                        render::Camera::framing(part.world_lo, part.world_hi, static_cast<double>(tile_w) / tile_h, kViews[v].direction);
+                        render::Camera::framing_points(points, static_cast<double>(tile_w) / tile_h, kViews[v].direction);
                     const std::vector<std::string> text{part.name + ": " + field->title, kViews[v].name};
                     renderer.render(camera, {.text = text, .colour_bar = &bar}, tile);
                     blit(tile, image, static_cast<int>(v % 2) * tile_w, static_cast<int>(v / 2) * tile_h);

@@ -4,6 +4,14 @@
 
 namespace peensim {
 
+std::vector<Vec3> world_vertices(const Component& c) {
+    const Pose rest = c.kinematics.pose(SimTime{});
+    std::vector<Vec3> points;
+    points.reserve(c.mesh->vertices.size());
+    for (const Vec3& v : c.mesh->vertices) points.push_back(rest.to_world(v));
+    return points;
+}
+
 render::Rgba role_colour(ComponentRole role) {
     switch (role) {
         case ComponentRole::sonotrode: return {0.45f, 0.55f, 0.70f, 1.0f};
@@ -29,12 +37,15 @@ ModelView add_model(render::Renderer& renderer, const Model& model) {
             view.chamber_lo = any_chamber ? view.chamber_lo.cwiseMin(c.world_lo) : c.world_lo;
             view.chamber_hi = any_chamber ? view.chamber_hi.cwiseMax(c.world_hi) : c.world_hi;
             any_chamber = true;
+            const std::vector<Vec3> points = world_vertices(c);
+            view.chamber_points.insert(view.chamber_points.end(), points.begin(), points.end());
         }
         view.meshes.push_back(renderer.add_mesh(*c.mesh, style));
     }
     if (!any_chamber) {
         view.chamber_lo = model.world_lo;
         view.chamber_hi = model.world_hi;
+        for (const Vec3& v : {model.world_lo, model.world_hi}) view.chamber_points.push_back(v);
     }
     pose_model(renderer, view, model, SimTime{});
     return view;
@@ -50,7 +61,7 @@ void pose_model(render::Renderer& renderer, const ModelView& view, const Model& 
 render::Camera scene_camera(const RenderDesc& desc, const ModelView& view, double aspect) {
     const double fov_deg = desc.fov_rad * 180.0 / M_PI;
     if (!desc.camera_position_m)
-        return render::Camera::framing(view.chamber_lo, view.chamber_hi, aspect, render::Camera::default_view_direction(), fov_deg);
+        return render::Camera::framing_points(view.chamber_points, aspect, render::Camera::default_view_direction(), fov_deg);
     render::Camera camera;
     camera.position_m = *desc.camera_position_m;
     camera.look_at_m = desc.camera_look_at_m.value_or(0.5 * (view.chamber_lo + view.chamber_hi));

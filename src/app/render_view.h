@@ -16,7 +16,11 @@ struct ModelView {
     std::vector<render::MeshId> meshes;  // per component, in model order
     Vec3 chamber_lo = Vec3::Zero();      // m, world box of the chamber(s) at t = 0
     Vec3 chamber_hi = Vec3::Zero();      // m
+    std::vector<Vec3> chamber_points;    // m, world vertices of the chamber(s) at t = 0 (for framing)
 };
+
+// A component's vertices in the world at t = 0 (m): what automatic framings fit.
+std::vector<Vec3> world_vertices(const Component& component);
 
 // The colour a component of `role` is drawn in.
 render::Rgba role_colour(ComponentRole role);
@@ -28,7 +32,7 @@ ModelView add_model(render::Renderer& renderer, const Model& model);
 void pose_model(render::Renderer& renderer, const ModelView& view, const Model& model, const SimTime& t, double offset_s = 0.0);
 
 // The camera of `desc` for an image of `aspect` (width / height): its position and look-at when
-// given, else a framing of the chamber from front-above.
+// given, else a framing of the chamber's vertices from front-above.
 render::Camera scene_camera(const RenderDesc& desc, const ModelView& view, double aspect);
 
 }  // namespace peensim

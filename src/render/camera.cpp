@@ -31,39 +31,45 @@ Vec3 Camera::default_view_direction() { return Vec3(0.35, 1.0, -0.6).normalized(
 
 Camera Camera::framing(const Vec3& bounds_min_m, const Vec3& bounds_max_m, double aspect, const Vec3& view_direction,
                        double vertical_fov_deg) {
+    const auto box = corners(bounds_min_m, bounds_max_m);
+    return framing_points(box, aspect, view_direction, vertical_fov_deg);
+}
+
+Camera Camera::framing_points(std::span<const Vec3> points, double aspect, const Vec3& view_direction,
+                              double vertical_fov_deg) {
     if (!(view_direction.norm() > 0.0) || !view_direction.allFinite()) {
         throw std::invalid_argument("render: camera view direction must be a finite non-zero vector");
     }
     if (!(aspect > 0.0) || !(vertical_fov_deg > 0.0 && vertical_fov_deg < 180.0)) {
         throw std::invalid_argument("render: camera framing needs aspect > 0 and 0 < field of view < 180 deg");
     }
+    if (points.empty()) throw std::invalid_argument("render: camera framing needs at least one point");
+    Vec3 lo = points.front(), hi = points.front();
+    for (const Vec3& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     const Vec3 d = view_direction.normalized();
     const Vec3 up = std::abs(d.z()) > 0.99 ? Vec3::UnitY() : Vec3::UnitZ();
     const Vec3 right = d.cross(up).normalized();
     const Vec3 true_up = right.cross(d);
-    const Vec3 centre = 0.5 * (bounds_min_m + bounds_max_m);
+    const Vec3 centre = 0.5 * (lo + hi);
     const double tan_v = std::tan(0.5 * radians(vertical_fov_deg)) * kFramingFill;
     const double tan_h = tan_v * aspect;
 
-    // A corner at (x, y, z) in the camera basis, seen from distance D behind the centre, is
+    // A point at (x, y, z) in the camera basis, seen from distance D behind the centre, is
     // inside the frame when |x| <= (z + D) tan_h and |y| <= (z + D) tan_v.
     double distance = 0.0;
-    double radius = 0.0;
-    for (const Vec3& corner : corners(bounds_min_m, bounds_max_m)) {
-        const Vec3 q = corner - centre;
+    for (const Vec3& point : points) {
+        const Vec3 q = point - centre;
         const double z = q.dot(d);
         distance = std::max({distance, std::abs(q.dot(right)) / tan_h - z, std::abs(q.dot(true_up)) / tan_v - z});
-        radius = std::max(radius, q.norm());
     }
-    if (radius == 0.0) radius = 1e-3;  // a degenerate box (one point): view it from about 1 mm
-    distance = std::max(distance, radius * 1.05);
+    if (distance == 0.0) distance = 1e-3;  // one point: view it from about 1 mm
 
     Camera camera;
     camera.position_m = centre - distance * d;
     camera.look_at_m = centre;
     camera.up = up;
     camera.vertical_fov_deg = vertical_fov_deg;
-    camera.fit_depth_range(bounds_min_m, bounds_max_m);
+    camera.fit_depth_range(lo, hi);
     return camera;
 }
 
