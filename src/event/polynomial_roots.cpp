@@ -165,33 +165,28 @@ int solve(const Polynomial& p_in, double a, double b, PolynomialRoot* out, bool 
     };
 
     int count = 0;
+    // Records a root in order; true when the search is over (the first accepted one was asked for).
+    auto found = [&](const PolynomialRoot& r) {
+        if (!first_only) {
+            out[count++] = r;
+            return false;
+        }
+        if (!accepted(r.kind, filter)) return false;
+        out[0] = r;
+        count = 1;
+        return true;
+    };
     for (int i = 0; i < n; ++i) {
         if (zero[i]) {
             int before = i > 0 ? sign_inside(i, i - 1) : 0;
             int after = i + 1 < n ? sign_inside(i, i + 1) : 0;
             if (i == 0) before = -after;
             if (i == n - 1 && i > 0) after = -before;
-            const PolynomialRoot r{x[i], classify(before, after)};
-            if (first_only) {
-                if (accepted(r.kind, filter)) {
-                    out[0] = r;
-                    return 1;
-                }
-            } else {
-                out[count++] = r;
-            }
+            if (found({x[i], classify(before, after)})) return count;
         }
         if (i + 1 < n && !zero[i] && !zero[i + 1] && sign_of(f[i]) != sign_of(f[i + 1])) {
-            const PolynomialRoot r{refine(p, x[i], x[i + 1], f[i], f[i + 1]),
-                                   f[i] > 0.0 ? RootKind::falling : RootKind::rising};
-            if (first_only) {
-                if (accepted(r.kind, filter)) {
-                    out[0] = r;
-                    return 1;
-                }
-            } else {
-                out[count++] = r;
-            }
+            if (found({refine(p, x[i], x[i + 1], f[i], f[i + 1]), f[i] > 0.0 ? RootKind::falling : RootKind::rising}))
+                return count;
         }
     }
     return count;
