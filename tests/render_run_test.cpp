@@ -12,8 +12,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/render_impacts_job.h"
-#include "app/render_view.h"
+#include "render/render_impacts_job.h"
+#include "render/render_view.h"
 #include "app/run_job.h"
 #include "engine/simulation.h"
 #include "model/model.h"
@@ -208,4 +208,20 @@ TEST(RenderImpacts, TheHotColourLandsOnTheHitTriangles) {
     std::ostringstream out3, err3;
     EXPECT_EQ(render_impacts_job(bad, out3, err3), kExitInputError);
     EXPECT_NE(err3.str().find("unknown field 'heat'"), std::string::npos) << err3.str();
+}
+
+TEST(RenderRun, ThePeensimBinaryDoesNotLinkOpenGL) {
+    // OSMesa (and the LLVM it brings, ~50 MB resident) is loaded only by a run that renders:
+    // the binary itself must not depend on it.
+    if (std::system("command -v ldd >/dev/null 2>&1") != 0) GTEST_SKIP() << "no ldd";
+    const std::string command = std::string("ldd '") + PEENSIM_BINARY + "' 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string text;
+    std::array<char, 256> buffer{};
+    while (std::fgets(buffer.data(), buffer.size(), pipe)) text += buffer.data();
+    ::pclose(pipe);
+    EXPECT_NE(text.find("libc.so"), std::string::npos) << text;
+    EXPECT_EQ(text.find("libOSMesa"), std::string::npos) << text;
+    EXPECT_EQ(text.find("libLLVM"), std::string::npos) << text;
 }

@@ -10,7 +10,7 @@
 
 #include "app/analyze_job.h"
 #include "app/checkpoint.h"
-#include "app/frame_recorder.h"
+#include "app/render_module.h"
 #include "app/interrupt.h"
 #include "app/report_errors.h"
 #include "app/summary_builder.h"
@@ -99,7 +99,7 @@ private:
         const std::optional<RenderDesc>& scene_render = model_->description.render;
         const bool wanted = options_.render.value_or(scene_render.has_value());
         if (!wanted) return;
-        recorder_ = std::make_unique<FrameRecorder>(*model_, scene_render.value_or(RenderDesc{}), dir_, sim_->state());
+        recorder_ = render_module().make_recorder(*model_, scene_render.value_or(RenderDesc{}), dir_, sim_->state());
         recorder_->after_step(sim_->state(), {}, logged_impacts_);
     }
 
@@ -207,7 +207,7 @@ private:
     std::vector<int> slots_;
     std::unique_ptr<Simulation> sim_;
     std::unique_ptr<ImpactCsvWriter> writer_;
-    std::unique_ptr<FrameRecorder> recorder_;  // only when rendering
+    std::unique_ptr<FrameSink> recorder_;  // only when rendering (the module is loaded then)
     std::vector<SpeedHistogram> speeds_;
     std::uint64_t logged_impacts_ = 0;
     double wall_before_ = 0.0;     // s, wall time of earlier sessions of a resumed run

@@ -5,7 +5,7 @@
 
 #include "app/analyze_job.h"
 #include "app/check_job.h"
-#include "app/render_impacts_job.h"
+#include "app/render_module.h"
 #include "app/run_job.h"
 #include "cli/generate_command.h"
 #include "scene/schema.h"
@@ -74,7 +74,14 @@ int main(int argc, char** argv) {
     }
     if (*check_cmd) return check_job(check_scene, check_overrides, std::cout, std::cerr);
     if (*analyze_cmd) return analyze_job(analyze_dir, std::cout, std::cerr);
-    if (*render_impacts_cmd) return render_impacts_job(render_impacts, std::cout, std::cerr);
+    if (*render_impacts_cmd) {
+        try {
+            return render_module().render_impacts(render_impacts, std::cout, std::cerr);
+        } catch (const std::exception& e) {
+            std::cerr << "error: " << e.what() << "\n";
+            return kExitRuntimeError;
+        }
+    }
     if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
     if (app.got_subcommand("schema")) {
         std::cout << scene_reference_markdown();

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/frame_recorder.h"
+#include "app/render_module.h"
 #include "engine/simulation.h"
 #include "model/model.h"
 #include "output/peak_memory.h"
@@ -47,9 +47,9 @@ int main(int argc, char** argv) {
         impacts.reserve(1024);
         std::uint64_t logged = 0;
         double speed_sum = 0.0;  // m/s, normal impact speeds on logged components
-        std::unique_ptr<FrameRecorder> recorder;
+        std::unique_ptr<FrameSink> recorder;
         if (!render_dir.empty())
-            recorder = std::make_unique<FrameRecorder>(*model, model->description.render.value_or(RenderDesc{}), render_dir, sim.state());
+            recorder = render_module().make_recorder(*model, model->description.render.value_or(RenderDesc{}), render_dir, sim.state());
         const auto t0 = Clock::now();
         if (recorder) recorder->after_step(sim.state(), {}, 0);
         while (!sim.finished()) {

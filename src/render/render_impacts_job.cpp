@@ -1,4 +1,4 @@
-#include "app/render_impacts_job.h"
+#include "render/render_impacts_job.h"
 
 #include <array>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "app/render_view.h"
+#include "render/render_view.h"
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "model/model.h"

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "app/render_module.h"
 #include "common/vec.h"
 #include "render/renderer.h"
 
@@ -34,13 +35,6 @@ std::span<const MapView> map_views();
 // Per-triangle colours of `values` on [0, max]: NaN (no data, e.g. a mean speed without impacts)
 // in neutral grey.
 std::vector<render::Rgba8> field_colours(std::span<const double> values, double max);
-
-struct RenderImpactsOptions {
-    std::string output_dir;
-    std::vector<std::string> fields;  // names from map_fields(); empty = all
-    int width_px = 1600;              // whole image (2 x 2 tiles)
-    int height_px = 1200;
-};
 
 int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, std::ostream& err);
 

@@ -1,4 +1,4 @@
-#include "app/frame_recorder.h"
+#include "render/frame_recorder.h"
 
 #include <chrono>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "app/render_view.h"
+#include "render/render_view.h"
 #include "render/png_io.h"
 #include "render/video_encoder.h"
 

@@ -1,4 +1,4 @@
-#include "app/render_view.h"
+#include "render/render_view.h"
 
 #include "geometry/mesh_checks.h"
 

@@ -1,7 +1,7 @@
 // The animation of a run (scene `render` block or `run --render`): frames taken at fixed
 // simulated-time intervals while simulating, written as PNG by a second thread (so the
 // simulation waits only for the drawing), and assembled into an MP4 by ffmpeg when the run ends.
-// A run without rendering never constructs one: it pays nothing.
+// A run without rendering never constructs one, nor loads this module: it pays nothing.
 //
 // Frame k shows the state at t_k = start + k * slow_motion / fps exactly: the step that passes
 // t_k is followed by drawing its shot moved back along their flight to t_k (a shot that bounced
@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 
+#include "app/render_module.h"
 #include "engine/simulation_state.h"
 #include "model/model.h"
 #include "output/impact_record.h"
@@ -23,27 +24,27 @@ namespace peensim {
 
 inline constexpr int kFlashFrames = 4;  // frames an impact stays visible, fading
 
-class FrameRecorder {
+class FrameRecorder final : public FrameSink {
 public:
     // dir: where frames/ and animation.mp4 go. now: the state's time (a resumed run starts late).
     FrameRecorder(const Model& model, const RenderDesc& desc, const std::string& dir, const SimulationState& now);
-    ~FrameRecorder();
+    ~FrameRecorder() override;
     FrameRecorder(const FrameRecorder&) = delete;
     FrameRecorder& operator=(const FrameRecorder&) = delete;
 
     // After every step (and once before the first): remembers the step's impacts and draws every
     // frame whose time the state has reached. logged_impacts: the run's total so far.
-    void after_step(const SimulationState& state, std::span<const ImpactRecord> impacts, std::uint64_t logged_impacts);
+    void after_step(const SimulationState& state, std::span<const ImpactRecord> impacts, std::uint64_t logged_impacts) override;
 
     // Waits for the frames still being written. Throws what the writing thread threw.
-    void flush();
+    void flush() override;
 
     // Assembles frames/frame_*.png into animation.mp4 (flush first). Returns a note for the user:
     // what was written, or why there is no video (ffmpeg missing, `video: none`, no frame).
-    std::string finish_video();
+    std::string finish_video() override;
 
-    int frames_drawn() const { return frames_drawn_; }   // by this process (not before a resume)
-    double draw_seconds() const { return draw_seconds_; } // wall s spent drawing (not writing)
+    int frames_drawn() const override { return frames_drawn_; }   // by this process (not before a resume)
+    double draw_seconds() const override { return draw_seconds_; } // wall s spent drawing (not writing)
 
 private:
     struct Impl;

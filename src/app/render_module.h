@@ -1,0 +1,51 @@
+// The rendering module (src/render/, built as libpeensim_render.so) is loaded only when a run
+// renders or `render-impacts` is asked for: OSMesa brings LLVM, ~50 MB of memory the moment it is
+// linked, which a run without pictures must not pay. This header is all the rest of peensim sees
+// of it; it names no OpenGL type.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/simulation_state.h"
+#include "model/model.h"
+#include "output/impact_record.h"
+
+namespace peensim {
+
+// The animation of a run (render/frame_recorder.h has the details).
+class FrameSink {
+public:
+    virtual ~FrameSink() = default;
+    // After every step (and once before the first): draws the frames whose time has come.
+    virtual void after_step(const SimulationState& state, std::span<const ImpactRecord> impacts, std::uint64_t logged_impacts) = 0;
+    virtual void flush() = 0;                  // waits for the frames being written
+    virtual std::string finish_video() = 0;    // the MP4, and a note for the user
+    virtual int frames_drawn() const = 0;
+    virtual double draw_seconds() const = 0;   // wall s spent drawing
+};
+
+struct RenderImpactsOptions {
+    std::string output_dir;
+    std::vector<std::string> fields;  // impacts, speed, coverage; empty = all
+    int width_px = 1600;              // whole image (2 x 2 views)
+    int height_px = 1200;
+};
+
+// What the module exports (one C symbol returns it: peensim_render_module).
+struct RenderModule {
+    std::unique_ptr<FrameSink> (*make_recorder)(const Model& model, const RenderDesc& desc, const std::string& dir,
+                                                const SimulationState& now);
+    int (*render_impacts)(const RenderImpactsOptions& options, std::ostream& out, std::ostream& err);
+};
+
+// Loads the module on first use: $PEENSIM_RENDER_MODULE, else libpeensim_render.so next to the
+// executable or one directory up (the tests' place in the build tree), else the library path.
+// Throws std::runtime_error saying where it looked when it is not found.
+const RenderModule& render_module();
+
+}  // namespace peensim
