@@ -37,7 +37,7 @@ TEST(RenderPng, RoundTripKeepsSizeAndEveryPixel) {
     EXPECT_EQ(back.width, 37);
     EXPECT_EQ(back.height, 23);
     EXPECT_EQ(back.pixels, image.pixels);
-    EXPECT_FALSE(fs::exists(path + ".partial"));
+    EXPECT_FALSE(fs::exists(path + ".tmp"));
 }
 
 TEST(RenderPng, TopRowComesFirst) {

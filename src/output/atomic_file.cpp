@@ -7,12 +7,12 @@
 
 namespace peensim {
 
-void write_file_atomically(const std::string& path, std::string_view content) {
+void write_file_atomically(const std::string& path, std::string_view content, Durability durability) {
     const std::string tmp = path + ".tmp";
     const int fd = posix_file::open_or_throw(tmp, O_WRONLY | O_CREAT | O_TRUNC);
     try {
         posix_file::write_all(fd, content.data(), content.size(), tmp);
-        posix_file::fsync_or_throw(fd, tmp);
+        if (durability == Durability::power_cut) posix_file::fsync_or_throw(fd, tmp);
     } catch (...) {
         ::close(fd);
         ::unlink(tmp.c_str());
@@ -25,7 +25,7 @@ void write_file_atomically(const std::string& path, std::string_view content) {
         ::unlink(tmp.c_str());
         throw;
     }
-    posix_file::fsync_directory(posix_file::parent_directory(path));
+    if (durability == Durability::power_cut) posix_file::fsync_directory(posix_file::parent_directory(path));
 }
 
 }  // namespace peensim

@@ -3,13 +3,11 @@
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
-#include <fcntl.h>
 #include <png.h>
 #include <stdexcept>
-#include <unistd.h>
 #include <vector>
 
-#include "output/posix_file.h"
+#include "output/atomic_file.h"
 
 namespace peensim::render {
 
@@ -89,22 +87,7 @@ void write_png(const std::string& path, const RgbaImage& image) {
     if (!encode_png(image, opaque, bytes, error)) {
         throw std::runtime_error("cannot encode PNG '" + path + "': " + error.text);
     }
-    const std::string partial = path + ".partial";
-    const int fd = posix_file::open_or_throw(partial, O_WRONLY | O_CREAT | O_TRUNC);
-    try {
-        posix_file::write_all(fd, reinterpret_cast<const char*>(bytes.data()), bytes.size(), partial);
-    } catch (...) {
-        ::close(fd);
-        ::unlink(partial.c_str());
-        throw;
-    }
-    try {
-        posix_file::close_or_throw(fd, partial);
-        posix_file::rename_or_throw(partial, path);
-    } catch (...) {
-        ::unlink(partial.c_str());
-        throw;
-    }
+    write_file_atomically(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()}, Durability::process_crash);
 }
 
 RgbaImage read_png(const std::string& path) {
