@@ -91,6 +91,7 @@ TEST(AnalyzeJob, AnInterruptedRunIsAnalysedWithANote) {
     TempDir dir;
     std::ostringstream out, err;
     RunOptions o = rod_run(dir.path, 0.2);
+    o.overrides.push_back("accuracy.scheme=step");  // stopped after a count of time steps
     o.stop_after_steps = 2000;
     ASSERT_EQ(run_job(o, out, err), kExitInterrupted) << err.str();
     // Cut the partial log mid-row, as a crash would.

@@ -1,13 +1,15 @@
 // Conservation laws through the whole engine (not just the laws): with perfectly elastic contacts
 // (C0 = 1, V0 far above every speed, mu = 1) and no gravity, a box full of shot keeps its kinetic
 // energy through thousands of shot-shot and wall impacts; and shot-shot impacts alone conserve
-// momentum, elastic or not.
+// momentum, elastic or not. Both run with each stepping scheme (accuracy.scheme step and event),
+// same assertions.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "engine/simulation.h"
@@ -28,7 +30,9 @@ Vec3 momentum_per_mass(const ShotArrays& s) {  // m/s (sum of v)
     return p;
 }
 
-TEST(EngineConservation, ElasticBoxKeepsItsKineticEnergy) {
+class EngineConservation : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EngineConservation, ElasticBoxKeepsItsKineticEnergy) {
     // 50 shot of 2 mm at 1 m/s in random upward directions, in a closed 20 mm box with a still
     // sonotrode, no gravity, for 0.5 s: ~25 wall crossings per shot and a mean free path of ~9 mm.
     // Each impact is exact but for roundings (~1e-16 relative), so after thousands of impacts the
@@ -39,6 +43,7 @@ TEST(EngineConservation, ElasticBoxKeepsItsKineticEnergy) {
     spec.gravity_m_per_s2 = Vec3::Zero();
     spec.duration_s = 0.5;
     spec.seed = 5;
+    spec.scheme = GetParam();
     const PairSpec elastic{1.0, 1e6, 1.0, 0.1};
     spec.shot_shot = elastic;
     spec.sonotrode = elastic;
@@ -59,7 +64,7 @@ TEST(EngineConservation, ElasticBoxKeepsItsKineticEnergy) {
         worst = std::max(worst, std::abs(kinetic_energy_per_mass(sim.state().shots) - e0) / e0);
     }
     const SimulationState& st = sim.state();
-    std::cout << "[ energy   ] " << st.steps << " steps, " << st.shot_shot_impacts << " shot-shot and " << wall_impacts
+    std::cout << "[ energy   ] " << GetParam() << " scheme: " << st.steps << " steps, " << st.shot_shot_impacts << " shot-shot and " << wall_impacts
               << " wall impacts; worst relative energy change " << worst << "; overlap corrections: mesh "
               << st.health.mesh_overlap_corrections << ", shot " << st.health.shot_overlap_corrections << "\n";
     EXPECT_GT(st.shot_shot_impacts, 200u);  // collisions really happened
@@ -68,7 +73,7 @@ TEST(EngineConservation, ElasticBoxKeepsItsKineticEnergy) {
     EXPECT_EQ(st.health.serious(), 0u);
 }
 
-TEST(EngineConservation, ShotShotImpactsConserveMomentum) {
+TEST_P(EngineConservation, ShotShotImpactsConserveMomentum) {
     // A cluster of 8 shot in the middle of a 40 mm box, without gravity, all converging on its centre
     // at 0.5-1 m/s from different directions; inelastic (C0 = 0.5). Within 10 ms they collide among
     // themselves but cannot reach any wall (9 mm away at most 1 m/s), so total momentum is conserved
@@ -79,6 +84,7 @@ TEST(EngineConservation, ShotShotImpactsConserveMomentum) {
     spec.gravity_m_per_s2 = Vec3::Zero();
     spec.duration_s = 0.01;
     spec.shot_shot = {0.5, 1e6, 0.71, 0.1};
+    spec.scheme = GetParam();
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
@@ -96,7 +102,7 @@ TEST(EngineConservation, ShotShotImpactsConserveMomentum) {
     const SimulationState& st = sim.state();
     const Vec3 p1 = momentum_per_mass(st.shots);
     const double e1 = kinetic_energy_per_mass(st.shots);
-    std::cout << "[ momentum ] " << st.shot_shot_impacts << " shot-shot impacts; momentum change " << (p1 - p0).norm()
+    std::cout << "[ momentum ] " << GetParam() << " scheme: " << st.shot_shot_impacts << " shot-shot impacts; momentum change " << (p1 - p0).norm()
               << " m/s, energy " << e0 << " -> " << e1 << " J/kg\n";
     EXPECT_GE(st.shot_shot_impacts, 8u);
     EXPECT_EQ(std::accumulate(st.impacts_per_component.begin(), st.impacts_per_component.end(), std::uint64_t{0}), 0u);
@@ -104,6 +110,9 @@ TEST(EngineConservation, ShotShotImpactsConserveMomentum) {
     EXPECT_LT(e1, 0.9 * e0);  // inelastic: energy really was lost in the collisions
     EXPECT_EQ(st.health.serious(), 0u);
 }
+
+INSTANTIATE_TEST_SUITE_P(Schemes, EngineConservation, ::testing::Values(std::string("step"), std::string("event")),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
 }  // namespace peensim::testing

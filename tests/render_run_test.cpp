@@ -148,6 +148,7 @@ TEST(RenderRun, WithoutFfmpegTheRunSucceedsWithFramesAndANote) {
 TEST(RenderRun, AResumedRunContinuesTheFramesAndNoRenderMeansNoFrames) {
     TempDir dir;
     RunOptions o = rod_render_run(dir.path);
+    o.overrides.push_back("accuracy.scheme=step");  // stopped after a count of time steps
     o.stop_after_steps = 150;
     std::ostringstream out, err;
     ASSERT_EQ(run_job(o, out, err), kExitInterrupted) << err.str();

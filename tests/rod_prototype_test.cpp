@@ -20,6 +20,7 @@ const std::vector<std::string> kPrototypeCoefficients = {
     "contacts.shot-copper={C0: 0.9, V0: 1000 m/s, mu: 1, f: 0.1}",
     "contacts.shot-steel={C0: 0.9, V0: 1000 m/s, mu: 1, f: 0.1}",
     "process.duration=0.6 s",
+    "accuracy.scheme=step",  // time stepping; EngineEventRod checks the event-driven scheme
 };
 
 }  // namespace

@@ -40,7 +40,6 @@ const BadScene catalogue[] = {
     {"shot_shot_friction.yaml", 16, "contacts.shot-shot.f", "expected only C0 and V0"},
     {"contact_unknown_material.yaml", 16, "contacts.shot-steel", "unknown contact pair 'shot-steel'"},
     {"zero_axis.yaml", 11, "components[0].vibration.axis", "expected a direction, got the zero vector"},
-    {"event_scheme.yaml", 15, "accuracy.scheme", "'event' is not available yet"},
     {"density_and_material.yaml", 3, "shot.material", "either shot.density or shot.material, not both"},
     {"rpm_for_part_not_rotating.yaml", 18, "components[2].motion", "a rotating motion is only for role part"},
     {"count_not_integer.yaml", 3, "shot.count", "expected a whole number"},

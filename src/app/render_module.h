@@ -23,6 +23,9 @@ public:
     virtual ~FrameSink() = default;
     // After every step (and once before the first): draws the frames whose time has come.
     virtual void after_step(const SimulationState& state, std::span<const ImpactRecord> impacts, std::uint64_t logged_impacts) = 0;
+    // The simulated time (s) of the next frame to draw (infinity: none left); the run pauses the
+    // event-driven scheme there, so that the frame shows the state of that very moment.
+    virtual double next_frame_s() const = 0;
     virtual void flush() = 0;                  // waits for the frames being written
     virtual std::string finish_video() = 0;    // the MP4, and a note for the user
     virtual int frames_drawn() const = 0;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <ostream>
 
@@ -113,8 +114,9 @@ private:
         std::vector<ImpactRecord> impacts;
         impacts.reserve(1024);
         std::uint64_t steps = 0;
+        bool stopping = false, checkpoint_due = false;
         while (!sim_->finished()) {
-            sim_->step(impacts);
+            sim_->step(impacts, recorder_ ? recorder_->next_frame_s() : std::numeric_limits<double>::infinity());
             if (!impacts.empty()) {
                 const auto t = Clock::now();
                 writer_->write(impacts);
@@ -127,13 +129,20 @@ private:
             impacts.clear();
             progress.update(sim_->state().time.seconds(), model_->duration_s, logged_impacts_);
             ++steps;
-            if (InterruptGuard::requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps)) {
+            // Checkpoints (and so stops) wait for a restart point: the event-driven scheme reaches one
+            // every 0.1 s of simulated time, time stepping at every step.
+            stopping |= InterruptGuard::requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps);
+            if ((steps & 1023) == 0 && std::chrono::duration<double>(Clock::now() - last_checkpoint).count() > interval)
+                checkpoint_due = true;
+            if (!sim_->at_restart_point()) continue;
+            if (stopping) {
                 progress.finish();
                 return false;
             }
-            if ((steps & 1023) == 0 && std::chrono::duration<double>(Clock::now() - last_checkpoint).count() > interval) {
+            if (checkpoint_due) {
                 checkpoint();
                 last_checkpoint = Clock::now();
+                checkpoint_due = false;
             }
         }
         progress.finish();

@@ -1,9 +1,10 @@
-// The `peensim` command line: run, check, analyze, render-impacts, generate, schema.
+// The `peensim` command line: run, check, analyze, render-impacts, bench, generate, schema.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
 
 #include "app/analyze_job.h"
+#include "app/bench_job.h"
 #include "app/check_job.h"
 #include "app/render_module.h"
 #include "app/run_job.h"
@@ -31,6 +32,8 @@ int main(int argc, char** argv) {
     bool render_on = false, render_off = false;
     auto* render_flag = run_cmd->add_flag("--render", render_on, "record the animation (frames/ and animation.mp4) with the scene's `render` block or its defaults");
     run_cmd->add_flag("--no-render", render_off, "do not record the animation even if the scene has a `render` block")->excludes(render_flag);
+    std::string scheme;
+    run_cmd->add_option("--scheme", scheme, "stepping scheme, overriding the scene's accuracy.scheme")->check(CLI::IsMember({"step", "event"}));
     std::uint64_t stop_after = 0;
     run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
 
@@ -51,6 +54,17 @@ int main(int argc, char** argv) {
     render_impacts_cmd->add_option("--width", render_impacts.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
     render_impacts_cmd->add_option("--height", render_impacts.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
 
+    BenchOptions bench;
+    auto* bench_cmd = app.add_subcommand("bench", "run stepping schemes side by side on scenes (default: the shipped ones): speed ratio and impact statistics");
+    bench_cmd->add_option("scene", bench.scene_paths, "scene files (YAML); default: every *.yaml of the shipped scenes/");
+    bench_cmd->add_option("--duration", bench.duration, "simulated time of every scene (s, or with a unit: \"500 ms\"); default: each scene's process.duration");
+    bench_cmd->add_option("--set", bench.overrides, "override a scene field for every scene and scheme")->allow_extra_args(false);
+    bench_cmd->add_option("--schemes", bench.schemes, "schemes to compare with the first, e.g. step,event or step,step:accuracy.travel_fraction=0.1")
+        ->delimiter(',')
+        ->allow_extra_args(false)
+        ->default_str("step,event");
+    bench_cmd->add_option("--csv", bench.csv_path, "also write every figure to this CSV file");
+
     auto* generate_cmd = app.add_subcommand("generate", "write a generated mesh (gear, cylinder, box, chamber); see 'peensim generate --help'");
     generate_cmd->prefix_command();
     generate_cmd->set_help_flag();
@@ -65,6 +79,7 @@ int main(int argc, char** argv) {
 
     if (*run_cmd) {
         if (stop_after > 0) run.stop_after_steps = stop_after;
+        if (!scheme.empty()) run.overrides.push_back("accuracy.scheme=" + scheme);
         std::ostream null_stream(nullptr);
         run.progress = !quiet;
         run.analyze = !no_analyze;
@@ -82,6 +97,7 @@ int main(int argc, char** argv) {
             return kExitRuntimeError;
         }
     }
+    if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
     if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
     if (app.got_subcommand("schema")) {
         std::cout << scene_reference_markdown();

@@ -24,6 +24,11 @@ public:
     // cell_size_m: grid spacing (m); reach_m: distances beyond this need not be resolved (m).
     DistanceGate(const TriangleMesh& mesh, double cell_size_m, double reach_m);
 
+    // The gate time stepping uses for a component's mesh: cells of half a shot radius (coarser
+    // for large meshes, at most ~8 M cells), resolving distances up to a diameter plus `swing`
+    // (m, how far the surface moves: twice a sonotrode's amplitude).
+    static DistanceGate for_shot(const TriangleMesh& mesh, double shot_radius_m, double swing_m);
+
     // Lower bound (m) of the distance from p (mesh frame) to the mesh.
     double lower_bound(const Vec3& p) const {
         const Vec3 q = (p - origin_) * inv_cell_;

@@ -1,5 +1,6 @@
 #include "engine/simulation.h"
 
+#include "engine/event_stepping.h"
 #include "engine/time_stepping.h"
 #include "model/shot_placement.h"
 
@@ -8,9 +9,9 @@ namespace peensim {
 namespace {
 
 std::unique_ptr<Stepper> make_scheme(const std::shared_ptr<const Model>& model) {
-    // Only time stepping exists so far; the event-driven scheme will be chosen here.
     switch (model->description.accuracy.scheme) {
         case SteppingScheme::step: return std::make_unique<TimeStepping>(model);
+        case SteppingScheme::event: return std::make_unique<EventStepping>(model);
     }
     return std::make_unique<TimeStepping>(model);
 }

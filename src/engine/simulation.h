@@ -2,6 +2,7 @@
 // buffer the caller drains after each step (app/run_job writes them).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -19,9 +20,15 @@ public:
     // A resumed run from a saved state.
     Simulation(std::shared_ptr<const Model> model, SimulationState state);
 
-    // One step; impacts on logged components are appended to `impacts`.
-    void step(std::vector<ImpactRecord>& impacts) { scheme_->advance(state_, model_->duration_s, impacts); }
+    // One unit of work of the scheme (a time step, or a stretch of events); impacts on logged
+    // components are appended to `impacts`. An event-driven scheme stops exactly at `pause_at_s`
+    // (s) if it comes first (see Stepper::advance).
+    void step(std::vector<ImpactRecord>& impacts, double pause_at_s = std::numeric_limits<double>::infinity()) {
+        scheme_->advance(state_, model_->duration_s, pause_at_s, impacts);
+    }
     bool finished() const { return !(state_.time.seconds() < model_->duration_s); }
+    // A checkpoint of the state now resumes into exactly this run (Stepper::at_restart_point).
+    bool at_restart_point() const { return scheme_->at_restart_point(); }
 
     const Model& model() const { return *model_; }
     const SimulationState& state() const { return state_; }

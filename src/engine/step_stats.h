@@ -25,6 +25,17 @@ struct StepStats {
     std::uint64_t triangles_returned = 0;  // triangles the BVH returned
     std::uint64_t triangle_tests = 0;   // exact closest-point tests (after the plane test)
     std::uint64_t touch_searches = 0;   // touch-time searches (quadratic or sampled)
+    // Event-driven scheme (zero for time stepping).
+    std::uint64_t events = 0;           // events taken from the queue
+    std::uint64_t stale_events = 0;     // pair events whose partner had changed flight since (re-predicted)
+    std::uint64_t box_renewals = 0;     // search windows (and neighbour boxes) renewed at their end
+    std::uint64_t pair_tests = 0;       // exact shot-shot time-of-impact tests
+    std::uint64_t mesh_predictions = 0; // shot x component time-of-impact searches
+    std::uint64_t rides = 0;            // shot that rode the sonotrode after a slow rebound
+    std::uint64_t substeps = 0;         // sustained-contact substeps (resting, rolling, sliding shot)
+    std::uint64_t sleeps = 0;           // shot put to sleep at rest
+    std::uint64_t collapse_guards = 0;  // shot-shot collisions made elastic by the TC rule
+    std::uint64_t hand_overs = 0;       // restart intervals handed over to time stepping (a load at rest)
     double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
     double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }
 };

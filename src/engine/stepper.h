@@ -16,10 +16,17 @@ class Stepper {
 public:
     virtual ~Stepper() = default;
     virtual std::string_view name() const = 0;
-    // Advances the state by one unit of work (one step), never past t_end_s (s), and appends
-    // the impacts on logged components to `impacts` (the caller drains it after each call).
-    virtual void advance(SimulationState& state, double t_end_s, std::vector<ImpactRecord>& impacts) = 0;
+    // Advances the state by one unit of work, never past t_end_s (s), and appends the impacts on
+    // logged components to `impacts` (the caller drains it after each call). `pause_at_s` (s) is a
+    // time the caller wants to see the state at (an animation frame): a scheme whose units of work
+    // are long (event-driven) stops exactly there; one whose steps are short may step past it (the
+    // caller then moves the shot back along their parabolas). Pausing never changes the dynamics.
+    virtual void advance(SimulationState& state, double t_end_s, double pause_at_s, std::vector<ImpactRecord>& impacts) = 0;
     virtual const StepStats& stats() const = 0;
+    // Whether the state alone now determines the rest of the run: a run resumed from a checkpoint
+    // of this state continues exactly as this one does. Checkpoints are written only at such
+    // points. Time stepping keeps nothing else, so every step end is one.
+    virtual bool at_restart_point() const { return true; }
 };
 
 }  // namespace peensim

@@ -29,7 +29,9 @@ public:
     explicit TimeStepping(std::shared_ptr<const Model> model);
 
     std::string_view name() const override { return "step"; }
-    void advance(SimulationState& state, double t_end_s, std::vector<ImpactRecord>& impacts) override;
+    // Steps are short (at most a quarter radius of travel): pause_at_s is not needed and ignored, so
+    // that recording an animation cannot change a run.
+    void advance(SimulationState& state, double t_end_s, double pause_at_s, std::vector<ImpactRecord>& impacts) override;
     const StepStats& stats() const override { return stats_; }
 
     // Eq. 7 generalised to a travel fraction: the step in which the fastest thing (speed v, m/s)
@@ -77,7 +79,10 @@ private:
     std::size_t n_shots_ = 0;
     std::vector<std::uint64_t> skip_until_;
     double max_relative_travel_ = 0.0; // m per step
-    std::vector<SharpDistance> sharp_; // per component: distance bounds sharper than the gate's
+    // Per component: a voxel gate of distance lower bounds (built here: only time stepping uses it)
+    // and bounds sharper than the gate's.
+    std::vector<std::unique_ptr<const DistanceGate>> gates_;
+    std::vector<SharpDistance> sharp_;
     std::vector<double> max_query_radius_;  // m, per component
     // Per component and shot: where (component frame, m) the shot's exact distance (m) to the
     // component was last measured, and that distance (0 = none: always query).

@@ -1,4 +1,4 @@
-// Exact time of impact of two shot on ballistic paths under the same gravity: their relative
+// Exact time of impact of two shot on ballistic paths: under the same gravity their relative
 // motion is linear, so |dp + dv u|^2 = (R1 + R2)^2 is a quadratic, solved in closed form.
 // Pure computation, no allocation.
 #pragma once
@@ -14,8 +14,9 @@ struct PairContact {
     Vec3 normal = Vec3::UnitZ();  // unit, from the first sphere's centre towards the second's
 };
 
-// The first contact of spheres of radii r1, r2 (m) on paths p1, p2 (same frame; their g must be
-// equal, their t0 may differ) in [t_begin, t_end] (s):
+// The first contact of spheres of radii r1, r2 (m) on paths p1, p2 (same frame, their t0 may differ)
+// in [t_begin, t_end] (s). Equal accelerations (two flying shot) give a quadratic in closed form;
+// different ones (a shot at rest, g = 0, and a flying one) a quartic solved by polynomial_roots.
 // - overlapping: the gap at t_begin is below -kStartTouchFraction * (r1 + r2) (time = t_begin);
 // - impact: the earliest time they touch while approaching, or graze; touching at t_begin
 //   (|gap| within the tolerance) counts only while approaching (spheres that separate on a line

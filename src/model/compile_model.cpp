@@ -17,20 +17,6 @@ std::string component_field(std::size_t i, const std::string& leaf) {
     return "components[" + std::to_string(i) + "]." + leaf;
 }
 
-// Grid spacing for the distance gates: half a shot radius resolves "can this shot touch it"
-// sharply; on very large meshes the grid is coarsened to stay within ~8 M cells (still exact
-// as a lower bound, just less sharp).
-double gate_cell_size(const TriangleMesh& mesh, double shot_radius) {
-    Vec3 lo = mesh.vertices.front(), hi = lo;
-    for (const Vec3& v : mesh.vertices) {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-    }
-    const Vec3 extent = (hi - lo) + Vec3::Constant(8.0 * shot_radius);
-    const double volume = extent.prod();
-    return std::max(0.5 * shot_radius, std::cbrt(volume / 8.0e6));
-}
-
 // Mean outward normal of the triangles facing `up` (area weighted), in the mesh frame.
 Vec3 mean_upward_normal(const TriangleMesh& mesh, const Vec3& up_in_mesh) {
     Vec3 sum = Vec3::Zero();
@@ -141,8 +127,6 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
             throw InputError(desc.where, component_field(i, "mesh"), e.problem());
         }
         c.collider = std::make_shared<const MeshCollider>(*c.mesh);
-        const double swing = desc.vibration ? 2.0 * desc.vibration->amplitude_m : 0.0;
-        c.gate = std::make_shared<const DistanceGate>(*c.mesh, gate_cell_size(*c.mesh, R), 2.0 * R + swing);
         c.kinematics = build_kinematics(desc, *c.mesh, up);
         const ContactPairDesc& pair = contact_for(scene, "shot-" + desc.material);
         c.coefficients = coefficients_of(pair);

@@ -1,5 +1,6 @@
 // The compiled model: immutable, checked, everything resolved (meshes loaded in their own
-// frames, Bullet BVHs and distance gates built, contact coefficients per component, SI).
+// frames, Bullet BVHs built, contact coefficients per component, SI). What only one stepping
+// scheme needs (time stepping's distance gates) that scheme builds.
 // The engine reads it; only the simulation state changes during a run.
 #pragma once
 
@@ -8,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "collision/distance_gate.h"
 #include "collision/mesh_collider.h"
 #include "contact/contact_law.h"
 #include "contact/law_registry.h"
@@ -24,7 +24,6 @@ struct Component {
     std::string material;
     std::shared_ptr<const TriangleMesh> mesh;        // component frame, m
     std::shared_ptr<const MeshCollider> collider;    // Bullet BVH over `mesh`
-    std::shared_ptr<const DistanceGate> gate;        // distance lower bounds over `mesh`
     Kinematics kinematics;
     contact::PairCoefficients coefficients;          // shot against this component's material
     std::string coefficients_source;                 // "shot-<material>" or "default"

@@ -20,7 +20,6 @@ bool clear_of_meshes(const Model& model, const Vec3& p, double r) {
     const SimTime t0;
     for (const Component& c : model.components) {
         const Vec3 q = c.kinematics.pose(t0).to_component(p);
-        if (c.gate->lower_bound(q) > r) continue;
         MeshCollider::Closest closest;
         MeshCollider::QueryCounters counters;
         if (c.collider->closest_within(q, r, closest, counters)) return false;

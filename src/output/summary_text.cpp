@@ -46,10 +46,13 @@ std::string summary_to_text(const RunSummary& s) {
                                     s.finished ? "finished" : "interrupted"));
     rows.emplace_back("wall time", printf_string("%.3f s (%.4g simulated s per wall s)",
                                                  s.wall_time_s, s.sim_seconds_per_wall_second));
-    rows.emplace_back("steps",
-                      printf_string("%llu (%.4g shot steps, %.4g per s)",
-                                    static_cast<unsigned long long>(s.steps),
-                                    static_cast<double>(s.shot_steps), s.shot_steps_per_s));
+    if (s.scheme == "event")  // shot_steps counts events, steps the times the state was brought up to date
+        rows.emplace_back("events", printf_string("%.4g (%.4g per wall s)", static_cast<double>(s.shot_steps), s.shot_steps_per_s));
+    else
+        rows.emplace_back("steps",
+                          printf_string("%llu (%.4g shot steps, %.4g per s)",
+                                        static_cast<unsigned long long>(s.steps),
+                                        static_cast<double>(s.shot_steps), s.shot_steps_per_s));
     rows.emplace_back(
         "shots", printf_string("%llu (%llu lost)", static_cast<unsigned long long>(s.shot_count),
                                static_cast<unsigned long long>(s.shot_lost)));

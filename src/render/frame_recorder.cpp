@@ -4,6 +4,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <limits>
 #include <exception>
 #include <filesystem>
 #include <mutex>
@@ -213,6 +214,11 @@ void FrameRecorder::after_step(const SimulationState& state, std::span<const Imp
         ++frames_drawn_;
         ++m.next_frame;
     }
+}
+
+double FrameRecorder::next_frame_s() const {
+    const double t = impl_->frame_time(impl_->next_frame);
+    return t <= impl_->end_s + 1e-12 ? t : std::numeric_limits<double>::infinity();
 }
 
 void FrameRecorder::flush() { impl_->writer.flush(); }

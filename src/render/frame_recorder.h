@@ -35,6 +35,7 @@ public:
     // After every step (and once before the first): remembers the step's impacts and draws every
     // frame whose time the state has reached. logged_impacts: the run's total so far.
     void after_step(const SimulationState& state, std::span<const ImpactRecord> impacts, std::uint64_t logged_impacts) override;
+    double next_frame_s() const override;
 
     // Waits for the frames still being written. Throws what the writing thread threw.
     void flush() override;

@@ -64,7 +64,7 @@ void write_header(std::string& y, const SceneDescription& s) {
     y += "  seed: " + std::to_string(s.process.seed) + "\n";
     y += "accuracy:\n";
     y += "  travel_fraction: " + num(s.accuracy.travel_fraction) + "  # of the shot radius\n";
-    y += "  scheme: step\n";
+    y += std::string("  scheme: ") + scheme_name(s.accuracy.scheme) + "\n";
 }
 
 void write_shot(std::string& y, const ShotDesc& shot) {

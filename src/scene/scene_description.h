@@ -154,11 +154,12 @@ struct ProcessDesc {
     SourceLocation where;
 };
 
-enum class SteppingScheme { step };  // `event` arrives with the event-driven issue
+enum class SteppingScheme { step, event };
+inline const char* scheme_name(SteppingScheme s) { return s == SteppingScheme::event ? "event" : "step"; }
 
 struct AccuracyDesc {
     double travel_fraction = 0.25;  // -, max travel per step / shot radius (eq. 7 uses 0.25)
-    SteppingScheme scheme = SteppingScheme::step;
+    SteppingScheme scheme = SteppingScheme::event;
     SourceLocation where;
 };
 

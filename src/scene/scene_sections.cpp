@@ -19,6 +19,7 @@ AccuracyDesc read_accuracy(const Cursor& c) {
     d.travel_fraction = read_quantity(c.child("travel_fraction"));
     const std::string scheme = read_choice(c.child("scheme"));
     if (scheme == "step") d.scheme = SteppingScheme::step;
+    if (scheme == "event") d.scheme = SteppingScheme::event;
     d.where = location_of(c);
     return d;
 }

@@ -36,9 +36,12 @@ const std::array schema_table{
                 "Speed/accuracy settings."},
     SchemaEntry{"accuracy.travel_fraction", K::quantity, D::dimensionless, false, "0.25", "",
                 open_closed(0, 1), "", "", "",
-                "Largest travel of anything in one step, as a fraction of the shot radius (eq. 7 uses 0.25)."},
-    SchemaEntry{"accuracy.scheme", K::choice, D::dimensionless, false, "step", "", {}, "step", "event", "",
-                "Time stepping scheme: `step` (fixed travel per step). `event` is not available yet."},
+                "Time stepping only: largest travel of anything in one step, as a fraction of the shot radius (eq. 7 uses 0.25)."},
+    SchemaEntry{"accuracy.scheme", K::choice, D::dimensionless, false, "event", "", {}, "step|event", "", "",
+                "Stepping scheme: `event`, event-driven (each shot flies exactly to its next collision, found in "
+                "closed form or by root finding; `travel_fraction` unused), or `step`, time stepping (every shot "
+                "advances by the step of eq. 7; contacts found at step ends and taken back to their exact touch time). "
+                "See the README's \"Choosing the stepping scheme\"."},
 
     SchemaEntry{"shot", K::map, D::dimensionless, true, "", "", {}, "", "", "", "The shot (all of one size)."},
     SchemaEntry{"shot.count", K::integer, D::dimensionless, true, "", "", closed(1, 1e8), "", "", "",

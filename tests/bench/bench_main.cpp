@@ -84,6 +84,18 @@ int main(int argc, char** argv) {
         for (std::size_t k = 0; k < kStageNames.size(); ++k)
             if (stats.seconds[k] > 0.0) std::printf(" %s %.0f%%", std::string(kStageNames[k]).c_str(), 100.0 * stats.seconds[k] / wall);
         const double ss = static_cast<double>(st.shot_steps);
+        if (stats.events > 0) {
+            // Event-driven: shot_steps counts events.
+            const double ev = static_cast<double>(stats.events), sim_s = st.time.seconds();
+            std::printf("\n  events %.3g per simulated s (%.0f ns each): stale %.1f%%, window ends %.1f%%, substeps %.1f%%; per event: pair tests %.2f, mesh predictions %.2f, BVH sweeps %.2f, leaves %.2f; rides %.3g/s, sleeps %llu, collapse guards %.3g/s, hand-overs to time stepping %llu\n",
+                        ev / sim_s, wall / ev * 1e9, 100.0 * static_cast<double>(stats.stale_events) / ev,
+                        100.0 * static_cast<double>(stats.box_renewals) / ev, 100.0 * static_cast<double>(stats.substeps) / ev,
+                        static_cast<double>(stats.pair_tests) / ev, static_cast<double>(stats.mesh_predictions) / ev,
+                        static_cast<double>(stats.bvh_queries) / ev, static_cast<double>(stats.triangle_tests) / ev,
+                        static_cast<double>(stats.rides) / sim_s, static_cast<unsigned long long>(stats.sleeps),
+                        static_cast<double>(stats.collapse_guards) / sim_s, static_cast<unsigned long long>(stats.hand_overs));
+            return 0;
+        }
         std::printf("\n  per shot-step: gate checks %.2f, skipped %.2f, memo skips %.3f, BVH queries %.3f (hits %.3f), triangles returned %.3f, tested %.3f, touch searches %.4f\n",
                     static_cast<double>(stats.gate_checks) / ss, static_cast<double>(stats.gate_skips) / ss, static_cast<double>(stats.memo_skips) / ss,
                     static_cast<double>(stats.bvh_queries) / ss, static_cast<double>(stats.bvh_hits) / ss, static_cast<double>(stats.triangles_returned) / ss, static_cast<double>(stats.triangle_tests) / ss,

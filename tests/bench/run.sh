@@ -13,6 +13,24 @@ scale=1
 dur() { awk -v d="$1" -v s="$scale" 'BEGIN { printf "%g s", d * s }'; }
 
 echo "# peensim benchmark, $(date -u +%Y-%m-%d), $(nproc) cores, single thread"
+
+# schemes side by side: peensim bench
+# Every shipped scene with time stepping and with the event-driven scheme: speed ratio and the
+# difference of the impact statistics (README, "Benchmark"). --quick runs a tenth of each scene's
+# own process.duration (read from `peensim check`). A failure is reported and the other sections
+# still run.
+peensim="$root/build/peensim"
+[[ -x "$peensim" ]] || { echo "run.sh: build first (cmake --build build --target peensim)" >&2; exit 1; }
+echo "# schemes side by side: peensim bench, step against event on every shipped scene"
+if [[ "$scale" == 1 ]]; then
+    "$peensim" bench || echo "run.sh: peensim bench failed (exit $?)" >&2
+else
+    for scene in scenes/*.yaml; do
+        d=$("$peensim" check "$scene" | awk '/^process:/ {p = 1; next} /^[^ #]/ {p = 0} p && $1 == "duration:" {print $2; exit}')
+        "$peensim" bench "$scene" --duration "$(dur "$d")" || echo "run.sh: peensim bench $scene failed (exit $?)" >&2
+    done
+fi
+echo
 "$bench" scenes/rod.yaml --set process.duration="$(dur 1)" --label "rod: 512 shot of 2 mm, A0 25 um, $(dur 1)"
 "$bench" scenes/rod.yaml --set process.duration="$(dur 10)" --set shot.diameter="1 mm" \
     --set "components[sonotrode].vibration.amplitude=80 um" --label "heavy: rod chamber, 512 shot of 1 mm, A0 80 um, $(dur 10)"

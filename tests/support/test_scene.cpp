@@ -110,6 +110,7 @@ std::string scene_yaml(const TestSceneSpec& s) {
       << "  seed: " << s.seed << "\n"
       << "accuracy:\n"
       << "  travel_fraction: " << num(s.travel_fraction) << "\n"
+      << "  scheme: " << s.scheme << "\n"
       << "shot:\n"
       << "  count: " << s.shot_count << "\n"
       << "  diameter: " << num(s.shot_diameter_m) << " m\n"

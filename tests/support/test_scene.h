@@ -68,6 +68,7 @@ struct TestSceneSpec {
     double duration_s = 0.1;       // s
     std::uint64_t seed = 1;
     double travel_fraction = 0.25; // -, eq. 7 travel per step over R
+    std::string scheme = "step";   // accuracy.scheme: "step" (time stepping) or "event" (event-driven)
 
     PairSpec shot_shot{0.9, 0.5, 0.71, 0.1};   // mu, f unused for shot-shot
     PairSpec sonotrode{0.9, 0.5, 0.71, 0.1};   // shot against the sonotrode (material titanium)

@@ -1,0 +1,59 @@
+#include "collision/shot_box_tree.h"
+
+#include <BulletCollision/BroadphaseCollision/btDbvt.h>
+
+namespace peensim {
+
+namespace {
+
+btDbvtVolume volume(const Vec3& lo, const Vec3& hi) {
+    return btDbvtVolume::FromMM(btVector3(lo.x(), lo.y(), lo.z()), btVector3(hi.x(), hi.y(), hi.z()));
+}
+
+// Collects the shot index stored in each overlapping leaf.
+struct Collect : btDbvt::ICollide {
+    std::vector<int>* out = nullptr;
+    void Process(const btDbvtNode* leaf) override { out->push_back(static_cast<int>(reinterpret_cast<std::intptr_t>(leaf->data))); }
+};
+
+}  // namespace
+
+struct ShotBoxTree::Impl {
+    btDbvt tree;
+    std::vector<btDbvtNode*> leaf;  // per shot, nullptr if none
+    mutable btAlignedObjectArray<const btDbvtNode*> stack;  // traversal stack, reused
+};
+
+ShotBoxTree::ShotBoxTree(int shot_count) : impl_(std::make_unique<Impl>()) {
+    impl_->leaf.assign(static_cast<std::size_t>(shot_count), nullptr);
+    impl_->stack.reserve(128);
+}
+
+ShotBoxTree::~ShotBoxTree() = default;
+
+void ShotBoxTree::set(int shot, const Vec3& lo, const Vec3& hi) {
+    btDbvtNode*& leaf = impl_->leaf[static_cast<std::size_t>(shot)];
+    btDbvtVolume v = volume(lo, hi);
+    if (leaf == nullptr) leaf = impl_->tree.insert(v, reinterpret_cast<void*>(static_cast<std::intptr_t>(shot)));
+    else impl_->tree.update(leaf, v);
+    // No optimizeIncremental pass (what btDbvtBroadphase runs on its trees): measured on the rod
+    // scene, one pass per update made the whole run 27 % slower, four 42 %; the queries it
+    // shortens cost less than the rotations.
+}
+
+void ShotBoxTree::remove(int shot) {
+    btDbvtNode*& leaf = impl_->leaf[static_cast<std::size_t>(shot)];
+    if (leaf == nullptr) return;
+    impl_->tree.remove(leaf);
+    leaf = nullptr;
+}
+
+void ShotBoxTree::overlapping(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const {
+    out.clear();
+    if (impl_->tree.m_root == nullptr) return;
+    Collect collect;
+    collect.out = &out;
+    impl_->tree.collideTVNoStackAlloc(impl_->tree.m_root, volume(lo, hi), impl_->stack, collect);
+}
+
+}  // namespace peensim

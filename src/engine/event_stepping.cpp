@@ -1,0 +1,912 @@
+#include "engine/event_stepping.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "engine/time_stepping.h"
+#include "event/sphere_pair_toi.h"
+#include "event/swept_sphere_box.h"
+#include "model/shot_placement.h"
+
+namespace peensim {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kSubstep = 50e-6;          // s, sustained-contact substep (fall per substep g t^2/2 = 12 nm)
+// Hand-over to time stepping: at a restart point, when more than this fraction of the shot lie still
+// (slower than kHandOverSpeed) on a surface, the next interval is time-stepped.
+constexpr double kHandOverFraction = 0.1;
+constexpr double kHandOverSpeed = 0.05;     // m/s
+constexpr double kMinImpactSpeed = 1e-6;    // m/s, slower approaches are never impacts
+constexpr int kQuietSubsteps = 40;          // still substeps (2 ms) before a resting shot sleeps
+constexpr double kBoxTravel = 4.0;          // radii of travel a flight's first search window (and box) covers
+constexpr double kMaxWindowTravel = 64.0;   // radii: windows double up to this while a flight finds nothing
+constexpr double kMinBoxHorizon = 1e-7;     // s, a box horizon moves time on at least this much
+constexpr double kCollapseWindow = 1e-6;    // s, TC rule: a shot-shot collision this soon after one is elastic
+// m/s: a rebound from the accelerating plate slower than this is a ride. Every faster rebound is
+// followed exactly, however soon the plate catches it again (the chatter sequence, each impact
+// counted). Below this the gap would open by less than ~1e-12 m (u^2 / 2a at a plate acceleration
+// a ~ 4e5 m/s2), the rounding of a contact time, so nothing slower can be resolved anyway.
+constexpr double kRideSpeed = 1e-3;
+constexpr double kLaunchDelay = 1e-4;       // periods after the plate's deceleration passes g (launch)
+constexpr double kTouchTolerance = 1e-9;    // of R: conservative advancement stops this close
+constexpr double kContactSlack = 1e-6;      // of R: a sustained shot this close to a surface touches it
+constexpr double kCorrectionWorthCounting = 0.01;  // of R, as time stepping counts overlap corrections
+constexpr int kMaxAdvancement = 20000;      // conservative-advancement iterations per search
+constexpr std::uint64_t kMaxEventsAtOneTime = 10000;  // then the shot is forced into substeps
+
+SimTime at(double t) { return SimTime{t, 0.0}; }
+
+}  // namespace
+
+EventStepping::EventStepping(std::shared_ptr<const Model> model)
+    : model_(std::move(model)) {
+    const Model& m = *model_;
+    R_ = m.shot_radius_m;
+    g_ = m.gravity_m_per_s2;
+    substep_ = kSubstep;
+    // Slower approaches than gravity adds over two substeps are sustained contact (time stepping's rule).
+    // Never zero: a touch at a rounding-level speed (a flight exactly tangent to a face, without
+    // gravity) is not an impact either.
+    resting_speed_ = std::max(kMinImpactSpeed, 2.0 * g_.norm() * substep_);
+    box_travel_ = kBoxTravel * R_;
+    const Component& sono = m.sonotrode_component();
+    sonotrode_vibrates_ = sono.kinematics.kind == Kinematics::Kind::vibrating && sono.kinematics.moves();
+    if (sonotrode_vibrates_) {
+        face_ = build_sonotrode_face(sono, sonotrode_up(m));
+        if (face_.rest_mesh)
+            for (int f : face_.rest_mesh->source_facet) rest_facets_.push_back(f);
+    }
+    for (const Component& c : m.components) {
+        std::vector<int> facets(c.mesh->triangle_count());
+        for (std::size_t t = 0; t < facets.size(); ++t) facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
+        facets_.push_back(std::move(facets));
+        surface_speed_.push_back(c.kinematics.peak_surface_speed(c.max_axis_distance_m));
+    }
+    shots_.resize(static_cast<std::size_t>(m.shot_count));
+    active_.assign(shots_.size(), 0);
+    queue_.reset(shots_.size());
+    neighbours_.reserve(64);
+    wake_stack_.reserve(64);
+    woken_.reserve(64);
+}
+
+EventStepping::~EventStepping() = default;
+
+const StepStats& EventStepping::stats() const {
+    combined_ = stats_;
+    if (time_stepping_) {
+        const StepStats& ts = time_stepping_->stats();
+        for (std::size_t k = 0; k < combined_.seconds.size(); ++k) combined_.seconds[k] += ts.seconds[k];
+        combined_.gate_checks += ts.gate_checks;
+        combined_.gate_skips += ts.gate_skips;
+        combined_.memo_skips += ts.memo_skips;
+        combined_.bvh_queries += ts.bvh_queries;
+        combined_.bvh_hits += ts.bvh_hits;
+        combined_.triangles_returned += ts.triangles_returned;
+        combined_.triangle_tests += ts.triangle_tests;
+        combined_.touch_searches += ts.touch_searches;
+    }
+    return combined_;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The event loop
+
+void EventStepping::advance(SimulationState& state, double t_end_s, double pause_at_s, std::vector<ImpactRecord>& impacts) {
+    const double now = state.time.seconds();
+    if (!(t_end_s > now)) return;
+    if (!started_) {
+        started_ = true;
+        // The next restart point: the first multiple of kRestartInterval after now.
+        double k = std::floor(now / kRestartInterval);
+        while (k * kRestartInterval <= now) k += 1.0;
+        next_restart_ = k * kRestartInterval;
+        // A load mostly at rest (sonotrode off, a chamber filled with shot) is time stepping's regime:
+        // its sustained contacts resolve whole piles at once, where events would crawl through them
+        // shot by shot. Decided from the state alone, so a resumed run decides the same.
+        handed_over_ = resting_fraction(state) > kHandOverFraction;
+        if (handed_over_) {
+            if (!time_stepping_) time_stepping_ = std::make_unique<TimeStepping>(model_);
+            ++stats_.hand_overs;
+        } else {
+            start(state);
+        }
+    }
+    if (handed_over_) {
+        time_stepping_->advance(state, std::min(t_end_s, next_restart_), pause_at_s, impacts);
+        if (state.time.seconds() >= next_restart_) started_ = false;
+        return;
+    }
+    const double t_stop = std::max(now, std::min({t_end_s, pause_at_s, now + kSyncInterval, next_restart_}));
+    double same_time = -1.0;
+    std::uint64_t at_same_time = 0;
+    while (queue_.top_time() <= t_stop) {
+        const int i = queue_.top();
+        const double t = queue_.top_time();
+        // Forced progress (pitfall 5): should a shot keep producing events without time moving on,
+        // it is advanced in substeps, which always move time forward.
+        at_same_time = t == same_time ? at_same_time + 1 : 0;
+        same_time = t;
+        if (at_same_time > kMaxEventsAtOneTime) {
+            // Contacts at this instant are left to the substeps of sustained contact.
+            ++state.health.unresolved_contacts;
+            shots_[static_cast<std::size_t>(i)].no_pairs_at = t;
+            set_flight(i, position(i, t), velocity(i, t), t, Motion::sustained);
+            predict(i, t);
+            at_same_time = 0;
+            continue;
+        }
+        ++stats_.events;
+        ++events_since_sync_;
+        process(i, state, impacts);
+    }
+
+    // Bring the state up to t_stop: exact positions on every shot's current flight.
+    StageTimer timer(stats_, Stage::integrate);
+    ShotArrays& s = state.shots;
+    double fastest2 = 0.0;
+    for (std::size_t k = 0; k < shots_.size(); ++k) {
+        if (!active_[k]) continue;
+        const int i = static_cast<int>(k);
+        s.set_position(k, position(i, t_stop));
+        const Vec3 v = velocity(i, t_stop);
+        s.set_velocity(k, v);
+        fastest2 = std::max(fastest2, v.squaredNorm());
+    }
+    state.fastest_shot_m_per_s = std::sqrt(fastest2);
+    state.time = at(t_stop);
+    ++state.steps;
+    state.shot_steps += events_since_sync_;
+    events_since_sync_ = 0;
+    state.health.unresolved_contacts += unresolved_;
+    unresolved_ = 0;
+    if (t_stop >= next_restart_) started_ = false;  // the next advance() starts afresh from this state
+    // Most shot in sustained contact or asleep, and the state says the load is at rest: restart now,
+    // to hand the load over to time stepping (see advance).
+    std::size_t active = 0, still = 0;
+    for (std::size_t k = 0; k < shots_.size(); ++k) {
+        if (!active_[k]) continue;
+        ++active;
+        still += shots_[k].motion == Motion::sustained || shots_[k].motion == Motion::sleeping;
+    }
+    if (started_ && static_cast<double>(still) > kHandOverFraction * static_cast<double>(active) &&
+        resting_fraction(state) > kHandOverFraction)
+        started_ = false;
+}
+
+void EventStepping::start(const SimulationState& state) {
+    const double t = state.time.seconds();
+    // Everything from the state alone, as after a resume: fresh tree, queue and per-shot records.
+    boxes_ = std::make_unique<ShotBoxTree>(model_->shot_count);
+    queue_.reset(shots_.size());
+    std::fill(shots_.begin(), shots_.end(), Shot{});
+    // Two passes: every flight and its box first, so that the pair predictions see every neighbour.
+    for (std::size_t k = 0; k < shots_.size(); ++k) {
+        active_[k] = state.shots.active[k];
+        if (!active_[k]) continue;
+        const int i = static_cast<int>(k);
+        // A shot exactly still and touching a surface was asleep (sleeping shot are synchronised
+        // with a zero velocity): it sleeps on, as it would in a run resumed from this state.
+        const Vec3 p = state.shots.position(k), v = state.shots.velocity(k);
+        const bool asleep = v == Vec3::Zero() && touches_surface(p, t);
+        set_flight(i, p, v, t, asleep ? Motion::sleeping : Motion::flying);
+        predict_wall(i, t);
+        renew_box(i, t);
+        shots_[k].pair_time = kInf;
+        schedule(i);
+    }
+    for (std::size_t k = 0; k < shots_.size(); ++k) {
+        if (!active_[k]) continue;
+        pairs_and_schedule(static_cast<int>(k), t);
+    }
+}
+
+double EventStepping::resting_fraction(const SimulationState& state) const {
+    // Still shot (slower than kHandOverSpeed) touching a surface or another still shot, over the
+    // active ones. Neighbours by a sweep along x over the still shot sorted by x.
+    const double t = state.time.seconds(), reach = 2.0 * R_ * (1.0 + kContactSlack);
+    std::size_t active = 0;
+    std::vector<std::pair<double, std::size_t>> still;
+    for (std::size_t k = 0; k < state.shots.size(); ++k) {
+        if (!state.shots.active[k]) continue;
+        ++active;
+        if (state.shots.velocity(k).norm() < kHandOverSpeed) still.emplace_back(state.shots.x[k], k);
+    }
+    if (active == 0 || static_cast<double>(still.size()) <= kHandOverFraction * static_cast<double>(active)) return 0.0;
+    std::sort(still.begin(), still.end());
+    std::vector<unsigned char> resting(still.size(), 0);
+    for (std::size_t a = 0; a < still.size(); ++a) {
+        if (!resting[a] && touches_surface(state.shots.position(still[a].second), t)) resting[a] = 1;
+        for (std::size_t b = a + 1; b < still.size() && still[b].first - still[a].first < reach; ++b)
+            if ((state.shots.position(still[a].second) - state.shots.position(still[b].second)).norm() < reach) resting[a] = resting[b] = 1;
+    }
+    return static_cast<double>(std::count(resting.begin(), resting.end(), 1)) / static_cast<double>(active);
+}
+
+bool EventStepping::touches_surface(const Vec3& p, double t) const {
+    for (const Component& comp : model_->components) {
+        if (comp.kinematics.moves()) continue;  // nothing rests on a vibrating plate or a turning part
+        MeshCollider::Closest closest;
+        MeshCollider::QueryCounters counters;
+        if (comp.collider->closest_within(comp.kinematics.pose(at(t)).to_component(p), R_ * (1.0 + kContactSlack), closest, counters))
+            return true;
+    }
+    return false;
+}
+
+double EventStepping::key(const Shot& s) const { return std::min({s.wall.time, s.pair_time, s.box_until}); }
+
+void EventStepping::schedule(int i) { queue_.set(i, key(shots_[static_cast<std::size_t>(i)])); }
+
+void EventStepping::process(int i, SimulationState& state, std::vector<ImpactRecord>& impacts) {
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    const double t = queue_.top_time();
+    if (s.pair_time <= s.wall.time && s.pair_time <= s.box_until) {
+        const int j = s.partner;
+        if (!active_[static_cast<std::size_t>(j)] || shots_[static_cast<std::size_t>(j)].version != s.partner_version) {
+            // Lazy invalidation: the partner's flight changed since this was predicted.
+            ++stats_.stale_events;
+            pairs_and_schedule(i, t);
+            return;
+        }
+        collide_pair(i, j, t, state);
+        return;
+    }
+    if (s.wall.time <= s.box_until) {
+        collide_wall(i, t, state, impacts);
+        return;
+    }
+    ++stats_.box_renewals;
+    renew_box(i, t);
+    pairs_and_schedule(i, t);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Flights and predictions
+
+void EventStepping::set_flight(int i, const Vec3& p, const Vec3& v, double t, Motion motion, const Vec3& support) {
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    const bool still = motion == Motion::sleeping || motion == Motion::riding;
+    Vec3 g = still ? Vec3(Vec3::Zero()) : g_;
+    // A shot in sustained contact slides along its support: the support takes gravity's pressing
+    // part, so that the shot neither sinks into it between substeps nor leaves it.
+    if (motion == Motion::sustained && g.dot(support) < 0.0) g -= g.dot(support) * support;
+    s.path = Trajectory{p, motion == Motion::sleeping ? Vec3(Vec3::Zero()) : v, g, t};
+    if (motion != Motion::sustained && motion != Motion::sleeping) s.quiet_substeps = 0;
+    s.window_travel = box_travel_;
+    s.motion = motion;
+    ++s.version;
+}
+
+Vec3 EventStepping::position(int i, double t) const {
+    const Shot& s = shots_[static_cast<std::size_t>(i)];
+    if (s.motion == Motion::riding)
+        return s.ride_point + face_.plane.axis * (face_.plane.displacement(t) - face_.plane.displacement(s.ride_start)) +
+               s.ride_tangential * (t - s.ride_start);
+    return s.path.position(t);
+}
+
+Vec3 EventStepping::velocity(int i, double t) const {
+    const Shot& s = shots_[static_cast<std::size_t>(i)];
+    if (s.motion == Motion::riding) return face_.plane.velocity(t) + s.ride_tangential;
+    return s.path.velocity(t);
+}
+
+void EventStepping::predict(int i, double t) {
+    predict_wall(i, t);
+    renew_box(i, t);
+    pairs_and_schedule(i, t);
+}
+
+void EventStepping::pairs_and_schedule(int i, double t) {
+    if (predict_pairs(i, t)) {
+        // Pressed into a pile (shot in sustained contact or asleep): it joins the pile's sustained
+        // contact, which resolves it with the others substep by substep.
+        set_flight(i, position(i, t), velocity(i, t), t, Motion::sustained);
+        predict(i, t);
+        return;
+    }
+    schedule(i);
+}
+
+double EventStepping::leave_time(const Trajectory& path, double t) const {
+    // The first time after t the centre leaves the world box: per axis x0 + v u + h u^2 = bound.
+    const Vec3 p = path.position(t), v = path.velocity(t), h = 0.5 * path.g;
+    double first = kInf;
+    for (int k = 0; k < 3; ++k) {
+        for (const double bound : {model_->world_lo[k], model_->world_hi[k]}) {
+            const double c = p[k] - bound;
+            if ((bound == model_->world_lo[k] && c < 0.0) || (bound == model_->world_hi[k] && c > 0.0)) return t;
+            double u = kInf;
+            if (h[k] == 0.0) {
+                if (v[k] != 0.0 && -c / v[k] > 0.0) u = -c / v[k];
+            } else {
+                const double disc = v[k] * v[k] - 4.0 * h[k] * c;
+                if (disc >= 0.0) {
+                    const double q = -0.5 * (v[k] + std::copysign(std::sqrt(disc), v[k]));
+                    for (const double r : {q / h[k], q != 0.0 ? c / q : kInf})
+                        if (r > 0.0) u = std::min(u, r);
+                }
+            }
+            first = std::min(first, t + u);
+        }
+    }
+    return first;
+}
+
+void EventStepping::predict_wall(int i, double t) {
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    WallEvent& w = s.wall;
+    w = WallEvent{};
+    switch (s.motion) {
+        case Motion::riding: return;  // start_ride set the launch
+        case Motion::sustained:
+            w.time = t + substep_;
+            w.kind = WallKind::substep;
+            return;
+        case Motion::sleeping:
+            w.time = kInf;
+            w.kind = WallKind::none;
+            return;
+        case Motion::flying: break;
+    }
+    StageTimer timer(stats_, Stage::mesh_queries);
+    // Only a window of the flight is searched, a few radii of travel: the next event is usually a
+    // neighbour or a surface close by, and a short sweep visits few BVH nodes. If nothing is found,
+    // the window's end is an event that searches the next one (and renews the neighbour box).
+    // Windows double while nothing is found (a long free flight costs a few searches, not many).
+    const double window = std::max(kMinBoxHorizon, TimeStepping::step_for(s.path.velocity(t).norm(), g_.norm(), s.window_travel));
+    const double t_leave = leave_time(s.path, t);
+    w.time = std::min(t_leave, t + window);
+    w.kind = t_leave <= t + window ? WallKind::leave : WallKind::none;
+    const Trajectory path = s.path.rebased(t);
+    const Model& m = *model_;
+    // The window's sphere bounds: a component whose (swept) bounds they miss cannot be reached.
+    Vec3 reach_lo, reach_hi;
+    path.bounds(t, w.time, reach_lo, reach_hi);
+    reach_lo -= Vec3::Constant(1.001 * R_);
+    reach_hi += Vec3::Constant(1.001 * R_);
+    for (std::size_t k = 0; k < m.components.size(); ++k) {
+        const int c = static_cast<int>(k);
+        const Component& comp = m.components[k];
+        if ((reach_hi.array() < comp.world_lo.array()).any() || (reach_lo.array() > comp.world_hi.array()).any()) continue;
+        ++stats_.mesh_predictions;
+        WallEvent found;
+        bool hit = false;
+        if (c == m.sonotrode && sonotrode_vibrates_) {
+            hit = face_contact(path, t, w.time, found);
+            if (face_.rest_collider && !(hit && found.overlapping)) {
+                // The sonotrode's other triangles move by at most A: a static sweep with the radius
+                // grown by A finds when the shot can first reach them, advancement settles it.
+                MeshCollider::Hit near;
+                MeshCollider::SweepCounters counters;
+                const Pose& rest = comp.kinematics.rest;
+                const Trajectory local{rest.to_component(path.p0), rest.rotation.transpose() * path.v0, rest.rotation.transpose() * path.g, t};
+                const double t_limit = hit ? found.time : w.time;
+                const ToiStatus st = face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t, t_limit, near, counters);
+                if (st != ToiStatus::miss) {
+                    WallEvent side;
+                    const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, rest_facets_, surface_speed_[k], path,
+                                                                   near.contact.time, t_limit, side);
+                    if (r.exhausted) ++unresolved_;
+                    if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
+                }
+            }
+        } else if (comp.kinematics.moves()) {
+            SweptSphere sweep(path, R_, t, w.time);
+            TimeSpan span;
+            if (sweep.span(comp.world_lo, comp.world_hi, span)) {
+                const AdvancementResult r = advance_to_contact(c, *comp.collider, facets_[k], surface_speed_[k], path,
+                                                               std::max(t, span.first), std::min(w.time, span.last), found);
+                if (r.exhausted) ++unresolved_;
+                hit = r.found;
+            }
+        } else {
+            hit = static_contact(c, path, t, w.time, found);
+        }
+        if (!hit) continue;
+        if (found.overlapping || found.time < w.time) {
+            w = found;
+            w.kind = WallKind::contact;
+            w.component = c;
+            if (found.overlapping) break;  // nothing can come first
+        }
+    }
+}
+
+bool EventStepping::static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out) {
+    const Component& comp = model_->components[static_cast<std::size_t>(c)];
+    const Pose& rest = comp.kinematics.rest;
+    const Mat3 to_local = rest.rotation.transpose();
+    const Trajectory local{rest.to_component(path.p0), to_local * path.v0, to_local * path.g, path.t0};
+    MeshCollider::Hit hit;
+    MeshCollider::SweepCounters counters;
+    const ToiStatus st = comp.collider->first_hit(local, R_, t, t_end, hit, counters);
+    stats_.bvh_queries += 1;
+    stats_.triangle_tests += counters.leaves_visited;
+    if (st == ToiStatus::miss) return false;
+    out.time = st == ToiStatus::overlapping ? t : hit.contact.time;
+    out.point = rest.to_world(hit.contact.point);
+    out.normal = rest.rotation * hit.contact.normal;
+    out.triangle = facets_[static_cast<std::size_t>(c)][static_cast<std::size_t>(hit.triangle)];
+    out.overlapping = st == ToiStatus::overlapping;
+    if (out.overlapping) out.depth = std::max(0.0, R_ - (path.position(t) - out.point).norm());
+    return true;
+}
+
+bool EventStepping::face_contact(const Trajectory& path, double t, double t_end, WallEvent& out) {
+    PlaneContact pc;
+    const ToiStatus st = vibrating_plane_toi(path, R_, face_.plane, t, t_end, pc);
+    ++stats_.touch_searches;
+    if (st == ToiStatus::miss) return false;
+    // Only where the plane is the face: the foot of the centre must lie on one of its triangles.
+    const Component& sono = model_->sonotrode_component();
+    const Pose pose = sono.kinematics.pose(at(pc.time));
+    int triangle = -1;
+    if (!face_.contains(sono, pose.to_component(pc.point), kTouchTolerance * R_ + 1e-12, triangle)) return false;
+    out.time = pc.time;
+    out.point = pc.point;
+    out.normal = pc.normal;
+    out.surface_velocity = pc.plate_velocity;
+    out.surface_acceleration = pc.plate_acceleration;
+    out.face = true;
+    out.triangle = facets_[static_cast<std::size_t>(model_->sonotrode)][static_cast<std::size_t>(triangle)];
+    out.overlapping = st == ToiStatus::overlapping;
+    if (out.overlapping) out.depth = std::max(0.0, -vibrating_plane_gap(path, R_, face_.plane, t));
+    return true;
+}
+
+EventStepping::AdvancementResult EventStepping::advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets,
+                                                                   double surface_speed, const Trajectory& path, double t,
+                                                                   double t_end, WallEvent& out) {
+    // Conservative advancement: the distance from the centre to the moving mesh changes no faster
+    // than the shot's speed plus the fastest surface point's, so after measuring a gap d the shot
+    // cannot touch for d / (that speed). Converges on the touch from outside; exact distances
+    // come from the BVH in the component's frame at its pose at each time.
+    const Kinematics& kin = model_->components[static_cast<std::size_t>(c)].kinematics;
+    const double V = path.max_speed(t, t_end) + surface_speed;
+    if (!(V > 0.0)) return {};
+    const double look = 2.0 * R_, tolerance = kTouchTolerance * R_;
+    double u = t;
+    bool at_start = true;
+    for (int it = 0; it < kMaxAdvancement; ++it) {
+        if (u > t_end) return {};
+        const Pose pose = kin.pose(at(u));
+        const Vec3 centre = path.position(u);
+        const Vec3 local = pose.to_component(centre);
+        MeshCollider::Closest closest;
+        MeshCollider::QueryCounters counters;
+        if (!collider.closest_within(local, R_ + look, closest, counters)) {
+            u += look / V;
+            at_start = false;
+            continue;
+        }
+        const double d = closest.distance - R_;
+        if (d > tolerance) {
+            u += d / V;
+            at_start = false;
+            continue;
+        }
+        const Vec3 n_local = closest.distance > 0.0 ? Vec3((local - closest.point) / closest.distance) : Vec3(Vec3::UnitZ());
+        out.point = pose.to_world(closest.point);
+        out.normal = pose.rotation * n_local;
+        out.surface_velocity = kin.point_velocity(out.point, at(u));
+        out.surface_acceleration = kin.point_acceleration(out.point, at(u));
+        out.overlapping = d < -tolerance;
+        const double approach = -(path.velocity(u) - out.surface_velocity).dot(out.normal);
+        if (!out.overlapping && approach <= 0.0) {
+            // Touching but separating (the shot has just left this surface): not a contact; move on
+            // by a hair so that time progresses, and keep watching for the return.
+            u += (at_start ? 1e-3 : 1e-6) * R_ / V;
+            at_start = false;
+            continue;
+        }
+        out.time = u;
+        out.depth = std::max(0.0, -d);
+        out.triangle = facets[static_cast<std::size_t>(closest.triangle)];
+        return {true, false};
+    }
+    return {false, true};
+}
+
+void EventStepping::renew_box(int i, double t) {
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    const double pad = 1e-9 * R_ + 1e-15;
+    Vec3 lo, hi;
+    if (s.motion == Motion::sleeping) {
+        lo = hi = s.path.p0;
+        s.box_until = kInf;
+    } else {
+        // A flying shot's box covers its searched window; others' a few radii of travel.
+        const double horizon = std::max(kMinBoxHorizon, TimeStepping::step_for(velocity(i, t).norm(), g_.norm(), box_travel_));
+        s.box_until = s.motion == Motion::flying ? s.wall.time : std::min(s.wall.time, t + horizon);
+        if (s.motion == Motion::riding) {
+            s.path.bounds(t, s.box_until, lo, hi);
+            const Vec3 swing = Vec3::Constant(2.0 * face_.plane.amplitude_m);
+            lo -= swing, hi += swing;  // riders follow the plate; their path leaves it out
+        } else {
+            s.path.bounds(t, s.box_until, lo, hi);
+        }
+    }
+    s.box_lo = lo - Vec3::Constant(R_ + pad);
+    s.box_hi = hi + Vec3::Constant(R_ + pad);
+    boxes_->set(i, s.box_lo, s.box_hi);
+}
+
+bool EventStepping::predict_pairs(int i, double t) {
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    s.pair_time = kInf;
+    s.partner = -1;
+    s.pair_overlapping = false;
+    bool joins_pile = false;
+    // One timer for the neighbour query and the pair tests: both are short, and reading the clock
+    // around each was a visible cost.
+    StageTimer timer(stats_, Stage::shot_contacts);
+    boxes_->overlapping(s.box_lo, s.box_hi, neighbours_);
+    // Ties between partners go to the lowest index, whatever order the tree returns them in.
+    for (const int j : neighbours_) {
+        if (j == i || !active_[static_cast<std::size_t>(j)]) continue;
+        const Shot& o = shots_[static_cast<std::size_t>(j)];
+        // The partner's flight is known up to its own next event; after that it re-predicts.
+        const double end = std::min(s.box_until, queue_.time_of(j));
+        if (end < t) continue;
+        ++stats_.pair_tests;
+        PairContact pc;
+        const ToiStatus st = sphere_pair_toi(s.path, R_, o.path, R_, t, end, pc);
+        if (st == ToiStatus::miss) continue;
+        // Riding shots' paths leave out the plate's motion: their exact positions are checked in collide_pair.
+        if (st == ToiStatus::overlapping || pc.time == t) {
+            if (st == ToiStatus::impact && j == s.last_partner && s.last_pair_time == t) continue;  // just collided
+            if (t == s.no_pairs_at || t == o.no_pairs_at) continue;     // forced progress (see advance)
+            // Touching (or overlapping) now, with a shot in sustained contact or asleep: a contact
+            // within a pile, which the substeps resolve. As events, shot touching several others at
+            // once pass the approach (or the overlap) round among themselves forever at the same
+            // instant: a pile jams. A flying shot pressed into a pile (overlapping it, or touching
+            // it slower than the resting speed) joins it; a faster one bounces off it (an event).
+            const bool s_rests = s.motion == Motion::sustained || s.motion == Motion::sleeping;
+            const bool o_rests = o.motion == Motion::sustained || o.motion == Motion::sleeping;
+            if (s_rests && o_rests) continue;
+            if (s_rests || o_rests) {
+                const double approach = -(o.path.velocity(t) - s.path.velocity(t)).dot(pc.normal);
+                if (st == ToiStatus::overlapping || approach <= resting_speed_) {
+                    joins_pile |= !s_rests;
+                    continue;
+                }
+            }
+        }
+        const double when = st == ToiStatus::overlapping ? t : pc.time;
+        if (when < s.pair_time || (when == s.pair_time && j < s.partner)) {
+            s.pair_time = when;
+            s.partner = j;
+            s.partner_version = o.version;
+            s.pair_overlapping = st == ToiStatus::overlapping;
+        }
+    }
+    return joins_pile;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Collisions
+
+void EventStepping::collide_wall(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts) {
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    const WallEvent w = s.wall;
+    switch (w.kind) {
+        case WallKind::none:  // the end of a searched window: search the next (same flight)
+            ++stats_.box_renewals;
+            s.window_travel = std::min(kMaxWindowTravel * R_, 2.0 * s.window_travel);
+            predict(i, t);
+            return;
+        case WallKind::leave: lose(i, t, state, false); return;
+        case WallKind::launch: launch(i, t); return;
+        case WallKind::substep: substep(i, t, state, impacts); return;
+        case WallKind::contact: break;
+    }
+    Vec3 p = position(i, t);
+    const Vec3 v = velocity(i, t);
+    if (!std::isfinite(p.squaredNorm() + v.squaredNorm())) {
+        lose(i, t, state, true);
+        return;
+    }
+    const auto c = static_cast<std::size_t>(w.component);
+    const Component& comp = model_->components[c];
+    if (w.overlapping) {
+        // Found inside the surface (an approximated rider, a rounding): moved out, no energy added.
+        p += w.depth * w.normal;
+        if (w.depth > kCorrectionWorthCounting * R_) ++state.health.mesh_overlap_corrections;
+        if (w.depth > 0.5 * R_) ++state.health.deep_penetrations;
+    }
+    const Vec3& n = w.normal;
+    const Vec3& vs = w.surface_velocity;
+    const double approach = -(v - vs).dot(n);
+    if (approach > resting_speed_) {
+        const contact::SurfaceContactResponse r = model_->laws.surface->impact({v, vs, n, 0.0, 0.0}, comp.coefficients);
+        record_impact(i, w.component, t, w, v, r, state, impacts);
+        if (w.face) {
+            // Riding (pitfall 1): the chatter sequence ends in a ride instead of a Zeno sequence.
+            const double closing = (w.surface_acceleration - g_).dot(n);
+            if (closing > 0.0 && r.vn_out < std::max(kRideSpeed, resting_speed_)) {
+                start_ride(i, t, w, p, r.v_shot);
+                return;
+            }
+        }
+        // A rebound slower than the resting speed is no rebound: sustained contact, sliding along n.
+        if (r.vn_out < resting_speed_ && !w.face) {
+            set_flight(i, p, r.v_shot - (r.v_shot - vs).dot(n) * n, t, Motion::sustained, n);
+        } else {
+            set_flight(i, p, r.v_shot, t, Motion::flying);
+        }
+        predict(i, t);
+        return;
+    }
+    // A touch slower than the resting speed: sustained contact from here (riding on the plate).
+    const Vec3 v_kept = v + std::max(0.0, approach) * n;
+    if (w.face) {
+        start_ride(i, t, w, p, v_kept);
+        return;
+    }
+    set_flight(i, p, v_kept, t, Motion::sustained, n);
+    predict(i, t);
+}
+
+void EventStepping::record_impact(int i, int c, double t, const WallEvent& w, const Vec3& v, const contact::SurfaceContactResponse& r,
+                                  SimulationState& state, std::vector<ImpactRecord>& impacts) const {
+    const Component& comp = model_->components[static_cast<std::size_t>(c)];
+    ++state.impacts_per_component[static_cast<std::size_t>(c)];
+    if (!comp.logged) return;
+    const Pose pose = comp.kinematics.pose(at(t));
+    ImpactRecord rec;
+    rec.time_s = t;
+    rec.shot = static_cast<std::int32_t>(i);
+    rec.component = static_cast<std::int32_t>(c);
+    rec.triangle = w.triangle;
+    rec.point_m = pose.to_component(w.point);
+    rec.v_in_m_per_s = pose.rotation.transpose() * (v - w.surface_velocity);
+    rec.v_out_m_per_s = pose.rotation.transpose() * (r.v_shot - w.surface_velocity);
+    rec.vn_in_m_per_s = r.vn_in;
+    rec.vt_in_m_per_s = r.vt_in;
+    rec.vn_out_m_per_s = r.vn_out;
+    impacts.push_back(rec);
+}
+
+void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after) {
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    const VibratingPlane& plane = face_.plane;
+    const Vec3& n = w.normal;
+    const double k = plane.axis.dot(n);
+    const double w2a = plane.amplitude_m * plane.angular_frequency() * plane.angular_frequency() * k;
+    if (!(w2a > 0.0)) {  // a plate moving sideways only: no ride, sustained contact
+        set_flight(i, p, v_after, t, Motion::sustained);
+        predict(i, t);
+        return;
+    }
+    ++stats_.rides;
+    const Vec3 rel = v_after - w.surface_velocity;
+    s.ride_start = t;
+    s.ride_point = p;
+    s.ride_normal = n;
+    s.ride_tangential = rel - rel.dot(n) * n;
+    // The plate's acceleration along n is -A w^2 k sin(phase); it presses the shot while that
+    // exceeds g.n, i.e. until sin(phase) rises through eps = -g.n / (A w^2 k).
+    const double eps = -g_.dot(n) / w2a;
+    double launch_time = kInf;
+    if (eps < 1.0) {
+        const double target = std::asin(std::max(-1.0, eps));
+        double dphi = std::fmod(target - plane.phase(t), 2.0 * M_PI);
+        if (dphi <= 0.0) dphi += 2.0 * M_PI;
+        launch_time = t + dphi / plane.angular_frequency() + kLaunchDelay / plane.frequency_hz;
+    }
+    set_flight(i, p, s.ride_tangential, t, Motion::riding);
+    s.wall = WallEvent{};
+    s.wall.time = launch_time;
+    s.wall.kind = launch_time < kInf ? WallKind::launch : WallKind::none;
+    s.wall.component = model_->sonotrode;
+    renew_box(i, t);
+    pairs_and_schedule(i, t);
+}
+
+void EventStepping::launch(int i, double t) {
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    const VibratingPlane& plane = face_.plane;
+    const Vec3 p = position(i, t);
+    const Vec3 v_plate = plane.velocity(t);
+    // Coulomb friction over the ride: the normal impulse per unit mass is what the plate gave the
+    // shot beyond gravity, and the tangential slip loses f times that (not below zero).
+    const double impulse = std::max(0.0, (v_plate - plane.velocity(s.ride_start)).dot(s.ride_normal) - g_.dot(s.ride_normal) * (t - s.ride_start));
+    const double slip = s.ride_tangential.norm();
+    const double f = model_->sonotrode_component().coefficients.f;
+    const Vec3 tangential = slip > 0.0 ? Vec3(s.ride_tangential * std::max(0.0, 1.0 - f * impulse / slip)) : Vec3(Vec3::Zero());
+    set_flight(i, p, v_plate + tangential, t, Motion::flying);
+    predict(i, t);
+}
+
+void EventStepping::substep(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts) {
+    // Sustained contact (resting, rolling, sliding): time stepping's treatment over one substep.
+    // The shot has flown freely since the last substep; every surface and shot it now touches
+    // takes the approach away (friction on surfaces), and overlaps are removed by moving it out.
+    ++stats_.substeps;
+    Shot& s = shots_[static_cast<std::size_t>(i)];
+    Vec3 p = position(i, t), v = velocity(i, t);
+    if (!std::isfinite(p.squaredNorm() + v.squaredNorm())) {
+        lose(i, t, state, true);
+        return;
+    }
+    const Model& m = *model_;
+    const double slack = kContactSlack * R_;
+    bool touching = false, moving_support = false;
+    Vec3 support = Vec3::Zero();  // the contact normal gravity presses on most
+    const auto consider_support = [&](const Vec3& n) {
+        if (g_.dot(n) < g_.dot(support)) support = n;
+    };
+    // Shot it rests on or leans against: held like a wall (only this shot's motion changes). Shot
+    // first, surfaces last, so that a push from a neighbour never leaves the shot inside a surface.
+    boxes_->overlapping(p - Vec3::Constant(2.0 * R_ + slack), p + Vec3::Constant(2.0 * R_ + slack), neighbours_);
+    for (const int j : neighbours_) {
+        if (j == i || !active_[static_cast<std::size_t>(j)]) continue;
+        const Vec3 pj = position(j, t);
+        const Vec3 d = p - pj;
+        const double dist = d.norm();
+        if (!(dist < 2.0 * R_ + slack) || !(dist > 0.0)) continue;
+        touching = true;
+        const Vec3 n = d / dist;
+        consider_support(n);
+        const double approach = -(v - velocity(j, t)).dot(n);
+        if (approach > 0.0) v += approach * n;
+        if (dist < 2.0 * R_) {
+            // At most a tenth of R per substep: a jammed pile relaxes over a few substeps instead of
+            // pushing a shot through a wall at once.
+            p += std::min(2.0 * R_ - dist, 0.1 * R_) * n;
+            if (2.0 * R_ - dist > kCorrectionWorthCounting * R_) ++state.health.shot_overlap_corrections;
+        }
+        // A neighbour still moving (not asleep, not as still as this shot must be) keeps it awake.
+        const Shot& o = shots_[static_cast<std::size_t>(j)];
+        if (o.motion == Motion::flying || o.motion == Motion::riding || velocity(j, t).norm() >= resting_speed_) moving_support = true;
+    }
+    for (std::size_t c = 0; c < m.components.size(); ++c) {
+        const Component& comp = m.components[c];
+        const Pose pose = comp.kinematics.pose(at(t));
+        const Vec3 local = pose.to_component(p);
+        MeshCollider::Closest closest;
+        MeshCollider::QueryCounters counters;
+        if (!comp.collider->closest_within(local, R_ + slack, closest, counters)) continue;
+        const double gap = closest.distance - R_;
+        if (!(closest.distance > 0.0)) continue;
+        touching = true;
+        const Vec3 n = pose.rotation * ((local - closest.point) / closest.distance);
+        const Vec3 point = pose.to_world(closest.point);
+        const Vec3 vs = comp.kinematics.point_velocity(point, at(t));
+        moving_support |= comp.kinematics.moves();
+        const double approach = -(v - vs).dot(n);
+        consider_support(n);
+        if (approach > resting_speed_) {
+            // Slid or rolled into another surface fast enough to bounce: an impact, at the substep's end.
+            const contact::SurfaceContactResponse r = m.laws.surface->impact({v, vs, n, 0.0, 0.0}, comp.coefficients);
+            WallEvent w;
+            w.point = point;
+            w.normal = n;
+            w.surface_velocity = vs;
+            w.triangle = facets_[c][static_cast<std::size_t>(closest.triangle)];
+            record_impact(i, static_cast<int>(c), t, w, v, r, state, impacts);
+            v = r.v_shot;
+        } else {
+            const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, at(t)).dot(n));
+            v = m.laws.surface->sustain({v, vs, n, pressing, substep_}, comp.coefficients).v_shot;
+        }
+        if (gap < 0.0) {
+            p -= gap * n;
+            if (-gap > kCorrectionWorthCounting * R_) ++state.health.mesh_overlap_corrections;
+        }
+    }
+    if (!touching) {
+        set_flight(i, p, v, t, Motion::flying);
+        predict(i, t);
+        return;
+    }
+    s.quiet_substeps = (!moving_support && v.norm() < resting_speed_) ? s.quiet_substeps + 1 : 0;
+    if (s.quiet_substeps >= kQuietSubsteps) {
+        ++stats_.sleeps;
+        set_flight(i, p, Vec3::Zero(), t, Motion::sleeping);
+    } else {
+        set_flight(i, p, v - std::min(0.0, v.dot(support)) * support, t, Motion::sustained, support);
+    }
+    predict(i, t);
+}
+
+void EventStepping::collide_pair(int i, int j, double t, SimulationState& state) {
+    Shot& a = shots_[static_cast<std::size_t>(i)];
+    Shot& b = shots_[static_cast<std::size_t>(j)];
+    const bool a_slept = a.motion == Motion::sleeping, b_slept = b.motion == Motion::sleeping;
+    Vec3 pi = position(i, t), pj = position(j, t);
+    Vec3 vi = velocity(i, t), vj = velocity(j, t);
+    const Vec3 r = pj - pi;
+    const double d = r.norm();
+    bool slow = false;
+    const Vec3 n = d > 0.0 ? Vec3(r / d) : Vec3(Vec3::Zero());  // from i towards j
+    if (d > 0.0) {
+        if (d < 2.0 * R_) {
+            // Overlap (a rider's approximated path, or a rounding): removed symmetrically, positions only.
+            const double depth = 2.0 * R_ - d;
+            if (depth > kTouchTolerance * 2.0 * R_) {
+                pi -= 0.5 * depth * n;
+                pj += 0.5 * depth * n;
+                if (depth > kCorrectionWorthCounting * R_) ++state.health.shot_overlap_corrections;
+            }
+        }
+        const double approach = -(vj - vi).dot(n);
+        if (approach > 0.0) {
+            contact::PairCoefficients k = model_->shot_shot;
+            slow = approach <= resting_speed_;
+            if (slow) k.C0 = 0.0;  // sustained contact: the approach stops, nothing bounces
+            else if (t - a.last_pair_time < kCollapseWindow || t - b.last_pair_time < kCollapseWindow) {
+                k.C0 = 1.0;  // TC rule
+                ++stats_.collapse_guards;
+            }
+            const contact::ShotShotResponse resp = model_->laws.shot_shot->respond({vi, vj, n}, k);
+            vi = resp.v_i;
+            vj = resp.v_j;
+            if (!slow) ++state.shot_shot_impacts;
+        }
+    }
+    a.last_pair_time = b.last_pair_time = t;
+    a.last_partner = j;
+    b.last_partner = i;
+    const auto after = [&](const Shot& s) { return slow || s.motion == Motion::sustained ? Motion::sustained : Motion::flying; };
+    // A slow contact leaves the upper shot resting on the lower one.
+    set_flight(i, pi, vi, t, after(a), slow ? Vec3(-n) : Vec3(Vec3::Zero()));
+    set_flight(j, pj, vj, t, after(b), slow ? n : Vec3(Vec3::Zero()));
+    predict(i, t);
+    predict(j, t);
+    if (a_slept) wake_neighbours(i, t);
+    if (b_slept) wake_neighbours(j, t);
+}
+
+void EventStepping::wake_neighbours(int i, double t) {
+    wake_stack_.clear();
+    woken_.clear();
+    wake_stack_.push_back(i);
+    while (!wake_stack_.empty()) {
+        const int k = wake_stack_.back();
+        wake_stack_.pop_back();
+        const Vec3 p = position(k, t);
+        const Vec3 reach = Vec3::Constant(2.0 * R_ + kContactSlack * R_);
+        boxes_->overlapping(p - reach, p + reach, neighbours_);
+        const std::size_t first_woken = woken_.size();
+        for (const int j : neighbours_) {
+            Shot& o = shots_[static_cast<std::size_t>(j)];
+            if (j == k || !active_[static_cast<std::size_t>(j)] || o.motion != Motion::sleeping) continue;
+            set_flight(j, o.path.p0, Vec3::Zero(), t, Motion::sustained);
+            woken_.push_back(j);
+        }
+        // Predicted only now: predicting reuses neighbours_.
+        for (std::size_t w = first_woken; w < woken_.size(); ++w) {
+            predict(woken_[w], t);
+            wake_stack_.push_back(woken_[w]);
+        }
+    }
+    woken_.clear();
+}
+
+void EventStepping::lose(int i, double t, SimulationState& state, bool non_finite) {
+    const auto k = static_cast<std::size_t>(i);
+    active_[k] = 0;
+    state.shots.active[k] = 0;
+    if (non_finite) {
+        ++state.health.non_finite;
+    } else {
+        ++state.health.shot_lost;
+        state.lost.push_back({i, t, position(i, t)});
+    }
+    boxes_->remove(i);
+    Shot& s = shots_[k];
+    s.wall = WallEvent{};
+    s.wall.time = kInf;
+    s.pair_time = kInf;
+    s.box_until = kInf;
+    ++s.version;
+    queue_.set(i, kInf);
+}
+
+}  // namespace peensim

@@ -1,0 +1,186 @@
+// Event-driven stepping (`accuracy.scheme: event`): every shot flies its exact parabola (eq. 1)
+// to its next collision, found exactly, and the run jumps from one collision to the next. Cost
+// follows the number of collisions, not of time steps, and there is no step to alias the plate.
+//
+// Each shot has one pending event, the earliest of:
+//   wall    its first contact with any component within its search window: static meshes by
+//           MeshCollider::first_hit (a time-ordered swept-sphere walk of the BVH), the sonotrode's
+//           face by vibrating_plane_toi, moving meshes (rotating part, the sonotrode's sides) by
+//           conservative advancement on exact distances; or the end of a ride / substep, or
+//           leaving the world box (a lost shot);
+//   pair    its first contact with a neighbour (sphere_pair_toi), neighbours being the shot whose
+//           flight boxes overlap its own (ShotBoxTree);
+//   window  the end of the stretch of its flight searched so far (4 radii of travel, doubling
+//           while nothing is found): short searches visit few BVH nodes, and the flight box
+//           that neighbours are found by covers just that stretch.
+// An EventQueue holds one entry per shot. A pair event remembers its partner's flight version:
+// if the partner's flight changed since, the event is stale and the shot re-predicts (lazy
+// invalidation). Contact laws, impact records and health counters are time stepping's.
+//
+// Degenerate regimes (reference event-driven-notes.md, pitfalls 1-5):
+//   ride    a rebound from the sonotrode face slower than 1 mm/s while the plate accelerates into
+//           the shot is a ride: the shot moves with the plate until the plate's deceleration
+//           exceeds gravity, then launches with the plate's velocity (no Zeno sequence; faster
+//           rebounds are followed exactly, however soon the plate catches them again);
+//   rest    a touch slower than the resting speed on any other surface starts sustained contact,
+//           advanced in short substeps with time stepping's sustain law (friction, no approach)
+//           until the shot flies free again; a shot that stays still for a while sleeps (no
+//           events) until a collision or a woken neighbour wakes it;
+//   collapse a shot-shot collision within 1 us of either shot's previous one is elastic (the TC
+//           rule), so clusters cannot collapse into infinitely many collisions;
+//   grazing touching-and-separating at the start of a prediction is never an impact (the
+//           kernels' rule), and a pair is never re-collided at the very time it just collided.
+// Every self-rescheduling event (window end, substep, launch) moves time forward by a fixed minimum.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "collision/mesh_collider.h"
+#include "collision/shot_box_tree.h"
+#include "engine/stepper.h"
+#include "engine/time_stepping.h"
+#include "event/event_queue.h"
+#include "event/sonotrode_face.h"
+#include "event/trajectory.h"
+#include "model/model.h"
+
+namespace peensim {
+
+class EventStepping final : public Stepper {
+public:
+    explicit EventStepping(std::shared_ptr<const Model> model);
+    ~EventStepping() override;
+
+    std::string_view name() const override { return "event"; }
+    // Processes the events up to min(t_end_s, pause_at_s, now + kSyncInterval) and leaves the
+    // state (positions, velocities) exact at that time. Where it pauses does not change the run.
+    void advance(SimulationState& state, double t_end_s, double pause_at_s, std::vector<ImpactRecord>& impacts) override;
+    // Its own work, plus the time stepping's of the intervals handed over.
+    const StepStats& stats() const override;
+    // Every kRestartInterval of simulated time the scheme starts afresh from the state alone (every
+    // flight re-predicted, modes and neighbour tree rebuilt), exactly as a run resumed from a
+    // checkpoint of that state does: so a resumed run equals the uninterrupted one, byte for byte.
+    bool at_restart_point() const override { return !started_; }
+    static constexpr double kRestartInterval = 0.1;  // s
+
+    // Simulated time (s) one advance() covers at most: how often the state is brought up to date
+    // for progress, checkpoints and interrupts.
+    static constexpr double kSyncInterval = 1e-3;
+
+private:
+    enum class Motion : unsigned char { flying, riding, sustained, sleeping };
+    enum class WallKind : unsigned char { none, contact, launch, substep, leave };
+
+    // The next contact of a shot with a component, world frame, at `time`.
+    struct WallEvent {
+        double time = 0.0;            // s
+        WallKind kind = WallKind::none;
+        int component = -1;
+        int triangle = -1;            // facet of the mesh file (impact record)
+        bool overlapping = false;     // found inside the surface at the prediction's start
+        bool face = false;            // on the sonotrode's vibrating face
+        Vec3 point = Vec3::Zero();    // m, surface point
+        Vec3 normal = Vec3::UnitZ();  // unit, from the surface towards the centre
+        Vec3 surface_velocity = Vec3::Zero();      // m/s
+        Vec3 surface_acceleration = Vec3::Zero();  // m/s2
+        double depth = 0.0;           // m, overlap depth if overlapping
+    };
+
+    struct Shot {
+        Trajectory path;              // world; for a sleeping or riding shot: g = 0 (see ride_*)
+        Motion motion = Motion::flying;
+        std::uint32_t version = 0;    // bumped whenever `path` changes
+        WallEvent wall;
+        double pair_time = 0.0;       // s, +inf: none
+        int partner = -1;
+        std::uint32_t partner_version = 0;
+        bool pair_overlapping = false;
+        double box_until = 0.0;       // s, the neighbour box holds the shot up to this time
+        Vec3 box_lo = Vec3::Zero(), box_hi = Vec3::Zero();  // m, that box
+        double last_pair_time = -1.0; // s, latest shot-shot collision (TC rule)
+        int last_partner = -1;
+        double no_pairs_at = -1.0;    // s, an instant at which this shot takes no more pair events
+        int quiet_substeps = 0;       // consecutive still substeps (sleep)
+        double window_travel = 0.0;   // m, travel the next search window of this flight covers
+        // Riding the sonotrode since ride_start (s): centre at ride_point + a (s(t) - s(ride_start))
+        // + ride_tangential (t - ride_start).
+        double ride_start = 0.0;
+        Vec3 ride_point = Vec3::Zero();
+        Vec3 ride_tangential = Vec3::Zero();
+        Vec3 ride_normal = Vec3::UnitZ();
+    };
+
+    // Moving-mesh contact by conservative advancement, with a per-call iteration budget.
+    struct AdvancementResult {
+        bool found = false;
+        bool exhausted = false;
+    };
+
+    void start(const SimulationState& state);
+    void process(int i, SimulationState& state, std::vector<ImpactRecord>& impacts);
+    void predict(int i, double t);                 // wall, box and pairs
+    void predict_wall(int i, double t);
+    // The earliest neighbour contact; true if shot i is pressed into a pile and should join it.
+    bool predict_pairs(int i, double t);
+    void pairs_and_schedule(int i, double t);  // predict_pairs, then the pile or the queue
+    void renew_box(int i, double t);
+    void schedule(int i);
+    double key(const Shot& s) const;
+    // A component that does not move within R (plus the contact slack) of p.
+    bool touches_surface(const Vec3& p, double t) const;
+    double resting_fraction(const SimulationState& state) const;  // of the active shot, still on a surface
+
+    bool static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out);
+    bool face_contact(const Trajectory& path, double t, double t_end, WallEvent& out);
+    AdvancementResult advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets, double surface_speed,
+                                         const Trajectory& path, double t, double t_end, WallEvent& out);
+    double leave_time(const Trajectory& path, double t) const;
+
+    void collide_wall(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
+    void collide_pair(int i, int j, double t, SimulationState& state);
+    void start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after);
+    void launch(int i, double t);
+    void substep(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
+    void lose(int i, double t, SimulationState& state, bool non_finite);
+    // support: unit normal of the surface a sustained shot rests on (zero: none).
+    void set_flight(int i, const Vec3& p, const Vec3& v, double t, Motion motion, const Vec3& support = Vec3::Zero());
+    void record_impact(int i, int c, double t, const WallEvent& w, const Vec3& v, const contact::SurfaceContactResponse& r,
+                       SimulationState& state, std::vector<ImpactRecord>& impacts) const;
+    // Wakes the sleeping shot touching shot i, and those touching them (a pile wakes as a whole).
+    void wake_neighbours(int i, double t);
+
+    // Exact centre and velocity of shot i at time t, whatever its motion.
+    Vec3 position(int i, double t) const;
+    Vec3 velocity(int i, double t) const;
+
+    std::shared_ptr<const Model> model_;
+    StepStats stats_;
+    mutable StepStats combined_;  // stats(): stats_ plus the handed-over time stepping's
+    bool started_ = false;
+    bool handed_over_ = false;                       // this interval is time-stepped
+    std::unique_ptr<TimeStepping> time_stepping_;    // built at the first hand-over
+    double next_restart_ = 0.0;  // s, the next restart point
+    std::vector<Shot> shots_;
+    std::vector<unsigned char> active_;
+    EventQueue queue_;
+    std::unique_ptr<ShotBoxTree> boxes_;
+    std::vector<int> neighbours_;                 // scratch of predict_pairs
+    std::vector<int> wake_stack_;                 // scratch of wake_neighbours: shot whose neighbours to wake
+    std::vector<int> woken_;                      // scratch of wake_neighbours: shot woken so far
+    SonotrodeFace face_;
+    bool sonotrode_vibrates_ = false;
+    std::vector<std::vector<int>> facets_;        // per component: source facet per mesh triangle
+    std::vector<int> rest_facets_;                // source facets of the sonotrode's non-face triangles
+    std::vector<double> surface_speed_;           // m/s, per component: fastest surface point
+
+    double R_ = 0.0;                 // m
+    Vec3 g_ = Vec3::Zero();          // m/s2
+    double resting_speed_ = 0.0;     // m/s, slower touches are sustained contact
+    double substep_ = 0.0;           // s, sustained-contact substep
+    double box_travel_ = 0.0;        // m, how far a flight box reaches along the path
+    std::uint64_t unresolved_ = 0;   // searches that ran out of iterations, added to the health at sync
+    std::uint64_t events_since_sync_ = 0;
+};
+
+}  // namespace peensim
