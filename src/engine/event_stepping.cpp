@@ -54,11 +54,7 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
     box_travel_ = kBoxTravel * R_;
     const Component& sono = m.sonotrode_component();
     sonotrode_vibrates_ = sono.kinematics.kind == Kinematics::Kind::vibrating && sono.kinematics.moves();
-    if (sonotrode_vibrates_) {
-        face_ = build_sonotrode_face(sono, sonotrode_up(m));
-        if (face_.rest_mesh)
-            for (int f : face_.rest_mesh->source_facet) rest_facets_.push_back(f);
-    }
+    if (sonotrode_vibrates_) face_ = build_sonotrode_face(sono, sonotrode_up(m));
     for (const Component& c : m.components) {
         std::vector<int> facets(c.mesh->triangle_count());
         for (std::size_t t = 0; t < facets.size(); ++t) facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
@@ -389,7 +385,7 @@ void EventStepping::predict_wall(int i, double t) {
                 const ToiStatus st = face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t, t_limit, near, counters);
                 if (st != ToiStatus::miss) {
                     WallEvent side;
-                    const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, rest_facets_, surface_speed_[k], path,
+                    const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, face_.rest_mesh->source_facet, surface_speed_[k], path,
                                                                    near.contact.time, t_limit, side);
                     if (r.exhausted) ++unresolved_;
                     if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
@@ -540,7 +536,6 @@ bool EventStepping::predict_pairs(int i, double t) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
     s.pair_time = kInf;
     s.partner = -1;
-    s.pair_overlapping = false;
     bool joins_pile = false;
     // One timer for the neighbour query and the pair tests: both are short, and reading the clock
     // around each was a visible cost.
@@ -582,7 +577,6 @@ bool EventStepping::predict_pairs(int i, double t) {
             s.pair_time = when;
             s.partner = j;
             s.partner_version = o.version;
-            s.pair_overlapping = st == ToiStatus::overlapping;
         }
     }
     return joins_pile;

@@ -95,7 +95,6 @@ private:
         double pair_time = 0.0;       // s, +inf: none
         int partner = -1;
         std::uint32_t partner_version = 0;
-        bool pair_overlapping = false;
         double box_until = 0.0;       // s, the neighbour box holds the shot up to this time
         Vec3 box_lo = Vec3::Zero(), box_hi = Vec3::Zero();  // m, that box
         double last_pair_time = -1.0; // s, latest shot-shot collision (TC rule)
@@ -171,7 +170,6 @@ private:
     SonotrodeFace face_;
     bool sonotrode_vibrates_ = false;
     std::vector<std::vector<int>> facets_;        // per component: source facet per mesh triangle
-    std::vector<int> rest_facets_;                // source facets of the sonotrode's non-face triangles
     std::vector<double> surface_speed_;           // m/s, per component: fastest surface point
 
     double R_ = 0.0;                 // m
