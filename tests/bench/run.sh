@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Benchmark: prints what a step costs on the shipped scenes (see README, "Benchmark").
-#   tests/bench/run.sh [--quick]
+#   tests/bench/run.sh [--quick | --long]
 # Needs a Release build in build/ (the README's commands make one). --quick runs every case for a
-# tenth of its simulated time (for a smoke test; the README's figures come from full runs).
+# tenth of its simulated time (for a smoke test; the README's figures come from full runs); --long
+# adds the published model's long case (3072 shot, 60 s: ~7 min).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "$root"
@@ -31,19 +32,32 @@ else
     done
 fi
 echo
-"$bench" scenes/rod.yaml --set process.duration="$(dur 1)" --label "rod: 512 shot of 2 mm, A0 25 um, $(dur 1)"
-"$bench" scenes/rod.yaml --set process.duration="$(dur 10)" --set shot.diameter="1 mm" \
-    --set "components[sonotrode].vibration.amplitude=80 um" --label "heavy: rod chamber, 512 shot of 1 mm, A0 80 um, $(dur 10)"
-"$bench" scenes/gear.yaml --set process.duration="$(dur 5)" --label "gear, 4960-triangle gear, $(dur 5)"
-fine="$root/build/assets/gear-fine.stl"
-[[ -f "$fine" ]] || PEENSIM="$root/build/peensim" bash assets/regenerate.sh --fine >/dev/null
-"$bench" scenes/gear.yaml --set process.duration="$(dur 5)" --set "components[gear].mesh=$fine" \
-    --label "gear, 500480-triangle gear, $(dur 5)"
+for scheme in event step; do
+    echo "# $scheme scheme"
+    "$bench" scenes/rod.yaml --set accuracy.scheme=$scheme --set process.duration="$(dur 1)" --label "rod: 512 shot of 2 mm, A0 25 um, $(dur 1), $scheme"
+    "$bench" scenes/rod.yaml --set accuracy.scheme=$scheme --set process.duration="$(dur 10)" --set shot.diameter="1 mm" \
+        --set "components[sonotrode].vibration.amplitude=80 um" --label "heavy: rod chamber, 512 shot of 1 mm, A0 80 um, $(dur 10), $scheme"
+    "$bench" scenes/gear.yaml --set accuracy.scheme=$scheme --set process.duration="$(dur 5)" --label "gear, 4960-triangle gear, $(dur 5), $scheme"
+    fine="$root/build/assets/gear-fine.stl"
+    [[ -f "$fine" ]] || PEENSIM="$root/build/peensim" bash assets/regenerate.sh --fine >/dev/null
+    mid="$root/build/assets/gear-200k.stl"
+    [[ -f "$mid" ]] || "$root/build/peensim" generate gear "$mid" --module-mm 2 --teeth 20 --pressure-angle-deg 20 \
+        --face-width-mm 10 --bore-radius-mm 5 --axis y --triangles 200000 >/dev/null
+    "$bench" scenes/gear.yaml --set accuracy.scheme=$scheme --set process.duration="$(dur 5)" --set "components[gear].mesh=$mid" \
+        --label "gear, 198720-triangle gear, $(dur 5), $scheme"
+    "$bench" scenes/gear.yaml --set accuracy.scheme=$scheme --set process.duration="$(dur 5)" --set "components[gear].mesh=$fine" \
+        --label "gear, 500480-triangle gear, $(dur 5), $scheme"
+done
+if [[ "${1:-}" == "--long" ]]; then
+    echo "# the published model's long case: 3072 shot of 1 mm, A0 80 um, 60 s (event-driven; ~7 min)"
+    "$bench" scenes/rod.yaml --set process.duration=60 --set shot.count=3072 --set shot.diameter="1 mm" \
+        --set "components[sonotrode].vibration.amplitude=80 um" --label "3072 shot of 1 mm, A0 80 um, rod chamber, 60 s"
+fi
 
 echo
-echo "# accuracy knob: accuracy.travel_fraction on the rod scene ($(dur 1)); 0.025 is the converged reference"
+echo "# accuracy knob of time stepping: accuracy.travel_fraction on the rod scene ($(dur 1)); 0.025 is the converged reference"
 for f in 0.5 0.25 0.1 0.05 0.025; do
-    "$bench" scenes/rod.yaml --set process.duration="$(dur 1)" --set accuracy.travel_fraction=$f --label "rod, travel_fraction $f"
+    "$bench" scenes/rod.yaml --set accuracy.scheme=step --set process.duration="$(dur 1)" --set accuracy.travel_fraction=$f --label "rod, travel_fraction $f"
 done
 
 echo
