@@ -37,8 +37,6 @@ constexpr double kCorrectionWorthCounting = 0.01;  // of R, as time stepping cou
 constexpr int kMaxAdvancement = 20000;      // conservative-advancement iterations per search
 constexpr std::uint64_t kMaxEventsAtOneTime = 10000;  // then the shot is forced into substeps
 
-SimTime at(double t) { return SimTime{t, 0.0}; }
-
 }  // namespace
 
 EventStepping::EventStepping(std::shared_ptr<const Model> model)
@@ -54,7 +52,10 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
     box_travel_ = kBoxTravel * R_;
     const Component& sono = m.sonotrode_component();
     sonotrode_vibrates_ = sono.kinematics.kind == Kinematics::Kind::vibrating && sono.kinematics.moves();
-    if (sonotrode_vibrates_) face_ = build_sonotrode_face(sono, sonotrode_up(m));
+    if (sonotrode_vibrates_) {
+        face_ = build_sonotrode_face(sono, sonotrode_up(m));
+        face_phase_at_zero_ = face_.plane.phase_rad;
+    }
     for (const Component& c : m.components) {
         std::vector<int> facets(c.mesh->triangle_count());
         for (std::size_t t = 0; t < facets.size(); ++t) facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
@@ -62,6 +63,7 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
         surface_speed_.push_back(c.kinematics.peak_surface_speed(c.max_axis_distance_m));
     }
     shots_.resize(static_cast<std::size_t>(m.shot_count));
+    work_budget_ = std::max(kMinWorkBudget, kWorkBudgetPerShot * static_cast<std::uint64_t>(m.shot_count));
     active_.assign(shots_.size(), 0);
     queue_.reset(shots_.size());
     neighbours_.reserve(64);
@@ -92,14 +94,12 @@ const StepStats& EventStepping::stats() const {
 // The event loop
 
 void EventStepping::advance(SimulationState& state, double t_end_s, double pause_at_s, std::vector<ImpactRecord>& impacts) {
-    const double now = state.time.seconds();
-    if (!(t_end_s > now)) return;
+    const double now_s = state.time.seconds();
+    if (!(t_end_s > now_s)) return;
     if (!started_) {
         started_ = true;
-        // The next restart point: the first multiple of kRestartInterval after now.
-        double k = std::floor(now / kRestartInterval);
-        while (k * kRestartInterval <= now) k += 1.0;
-        next_restart_ = k * kRestartInterval;
+        next_restart_ = next_multiple(now_s, kRestartInterval);
+        work_since_restart_ = 0;
         // A load mostly at rest (sonotrode off, a chamber filled with shot) is time stepping's regime:
         // its sustained contacts resolve whole piles at once, where events would crawl through them
         // shot by shot. Decided from the state alone, so a resumed run decides the same.
@@ -112,32 +112,42 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         }
     }
     if (handed_over_) {
+        const std::uint64_t steps_before = state.shot_steps;
         time_stepping_->advance(state, std::min(t_end_s, next_restart_), pause_at_s, impacts);
+        count_work(state.shot_steps - steps_before, state.time.seconds());
         if (state.time.seconds() >= next_restart_) started_ = false;
         return;
     }
-    const double t_stop = std::max(now, std::min({t_end_s, pause_at_s, now + kSyncInterval, next_restart_}));
-    double same_time = -1.0;
-    std::uint64_t at_same_time = 0;
+    // Where this call stops (absolute s): the end, the caller's pause, the next point of the sync grid
+    // or the next restart point. Only the grid and restart points may change the dynamics (a restart),
+    // and they do not depend on where the caller pauses.
+    const double grid_s = next_multiple(now_s, kSyncInterval);
+    double stop_s = std::min({t_end_s, pause_at_s, grid_s, next_restart_});
+    const double now = since_epoch(now_s);
+    double t_stop = std::max(now, since_epoch(stop_s));
     while (queue_.top_time() <= t_stop) {
         const int i = queue_.top();
         const double t = queue_.top_time();
         // Forced progress (pitfall 5): should a shot keep producing events without time moving on,
         // it is advanced in substeps, which always move time forward.
-        at_same_time = t == same_time ? at_same_time + 1 : 0;
-        same_time = t;
-        if (at_same_time > kMaxEventsAtOneTime) {
+        at_same_time_ = t == same_time_ ? at_same_time_ + 1 : 0;
+        same_time_ = t;
+        if (at_same_time_ > kMaxEventsAtOneTime) {
             // Contacts at this instant are left to the substeps of sustained contact.
             ++state.health.unresolved_contacts;
             shots_[static_cast<std::size_t>(i)].no_pairs_at = t;
             set_flight(i, position(i, t), velocity(i, t), t, Motion::sustained);
             predict(i, t);
-            at_same_time = 0;
+            at_same_time_ = 0;
             continue;
         }
         ++stats_.events;
         ++events_since_sync_;
         process(i, state, impacts);
+        if (count_work(1, absolute_seconds(t)) && next_restart_ < stop_s) {
+            stop_s = next_restart_;
+            t_stop = std::max(now, since_epoch(stop_s));
+        }
     }
 
     // Bring the state up to t_stop: exact positions on every shot's current flight.
@@ -153,28 +163,59 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         fastest2 = std::max(fastest2, v.squaredNorm());
     }
     state.fastest_shot_m_per_s = std::sqrt(fastest2);
-    state.time = at(t_stop);
+    // The stop is one of the absolute times above, so the state's time is that exact double: the
+    // scheme's own times are relative to its epoch, never the other way round.
+    if (stop_s > now_s) state.time = SimTime{stop_s, 0.0};
     ++state.steps;
     state.shot_steps += events_since_sync_;
     events_since_sync_ = 0;
     state.health.unresolved_contacts += unresolved_;
     unresolved_ = 0;
-    if (t_stop >= next_restart_) started_ = false;  // the next advance() starts afresh from this state
-    // Most shot in sustained contact or asleep, and the state says the load is at rest: restart now,
-    // to hand the load over to time stepping (see advance).
+    if (stop_s >= next_restart_) started_ = false;  // the next advance() starts afresh from this state
+    // Most shot in sustained contact or asleep, and the state says the load is at rest: restart at
+    // this grid point, to hand the load over to time stepping (see above). Looked at on the grid only,
+    // so that where a caller pauses never changes the run.
+    if (!started_ || stop_s != grid_s) return;
     std::size_t active = 0, still = 0;
     for (std::size_t k = 0; k < shots_.size(); ++k) {
         if (!active_[k]) continue;
         ++active;
         still += shots_[k].motion == Motion::sustained || shots_[k].motion == Motion::sleeping;
     }
-    if (started_ && static_cast<double>(still) > kHandOverFraction * static_cast<double>(active) &&
-        resting_fraction(state) > kHandOverFraction)
+    if (static_cast<double>(still) > kHandOverFraction * static_cast<double>(active) && resting_fraction(state) > kHandOverFraction)
         started_ = false;
 }
 
+bool EventStepping::count_work(std::uint64_t units, double now_s) {
+    const bool was_due = work_since_restart_ >= work_budget_;
+    work_since_restart_ += units;
+    if (was_due || work_since_restart_ < work_budget_) return false;
+    // Enough work since the last restart point: the next point of the sync grid is one, so that
+    // checkpoints and interrupts come often in wall time too. Counted in events (or time-stepped
+    // shot steps), never in wall time, so that an uninterrupted run restarts where a resumed one does.
+    next_restart_ = std::min(next_restart_, next_multiple(now_s, kSyncInterval));
+    return true;
+}
+
+double EventStepping::next_multiple(double t_s, double step_s) {
+    double k = std::floor(t_s / step_s);
+    while (k * step_s <= t_s) k += 1.0;
+    return k * step_s;
+}
+
+double EventStepping::since_epoch(double t_s) const { return (t_s - epoch_.hi) - epoch_.lo; }
+
+double EventStepping::absolute_seconds(double t) const { return epoch_.hi + (epoch_.lo + t); }
+
 void EventStepping::start(const SimulationState& state) {
-    const double t = state.time.seconds();
+    // The scheme's clock starts here: every time it keeps is seconds since this epoch, so a contact
+    // time is resolved to ~1e-17 s however long the run (an absolute double at 2048 s resolves only
+    // 4.5e-13 s, which at a few m/s is a position error above the touch tolerances).
+    epoch_ = state.time;
+    if (sonotrode_vibrates_) face_.plane.phase_rad = face_phase_at_zero_ + 2.0 * M_PI * epoch_.cycle_fraction(face_.plane.frequency_hz);
+    same_time_ = -1.0;
+    at_same_time_ = 0;
+    const double t = 0.0;
     // Everything from the state alone, as after a resume: fresh tree, queue and per-shot records.
     boxes_ = std::make_unique<ShotBoxTree>(model_->shot_count);
     queue_.reset(shots_.size());
@@ -187,7 +228,7 @@ void EventStepping::start(const SimulationState& state) {
         // A shot exactly still and touching a surface was asleep (sleeping shot are synchronised
         // with a zero velocity): it sleeps on, as it would in a run resumed from this state.
         const Vec3 p = state.shots.position(k), v = state.shots.velocity(k);
-        const bool asleep = v == Vec3::Zero() && touches_surface(p, t);
+        const bool asleep = v == Vec3::Zero() && touches_surface(p);
         set_flight(i, p, v, t, asleep ? Motion::sleeping : Motion::flying);
         predict_wall(i, t);
         renew_box(i, t);
@@ -203,7 +244,7 @@ void EventStepping::start(const SimulationState& state) {
 double EventStepping::resting_fraction(const SimulationState& state) const {
     // Still shot (slower than kHandOverSpeed) touching a surface or another still shot, over the
     // active ones. Neighbours by a sweep along x over the still shot sorted by x.
-    const double t = state.time.seconds(), reach = 2.0 * R_ * (1.0 + kContactSlack);
+    const double reach = 2.0 * R_ * (1.0 + kContactSlack);
     std::size_t active = 0;
     std::vector<std::pair<double, std::size_t>> still;
     for (std::size_t k = 0; k < state.shots.size(); ++k) {
@@ -215,19 +256,19 @@ double EventStepping::resting_fraction(const SimulationState& state) const {
     std::sort(still.begin(), still.end());
     std::vector<unsigned char> resting(still.size(), 0);
     for (std::size_t a = 0; a < still.size(); ++a) {
-        if (!resting[a] && touches_surface(state.shots.position(still[a].second), t)) resting[a] = 1;
+        if (!resting[a] && touches_surface(state.shots.position(still[a].second))) resting[a] = 1;
         for (std::size_t b = a + 1; b < still.size() && still[b].first - still[a].first < reach; ++b)
             if ((state.shots.position(still[a].second) - state.shots.position(still[b].second)).norm() < reach) resting[a] = resting[b] = 1;
     }
     return static_cast<double>(std::count(resting.begin(), resting.end(), 1)) / static_cast<double>(active);
 }
 
-bool EventStepping::touches_surface(const Vec3& p, double t) const {
+bool EventStepping::touches_surface(const Vec3& p) const {
     for (const Component& comp : model_->components) {
         if (comp.kinematics.moves()) continue;  // nothing rests on a vibrating plate or a turning part
         MeshCollider::Closest closest;
         MeshCollider::QueryCounters counters;
-        if (comp.collider->closest_within(comp.kinematics.pose(at(t)).to_component(p), R_ * (1.0 + kContactSlack), closest, counters))
+        if (comp.collider->closest_within(comp.kinematics.rest.to_component(p), R_ * (1.0 + kContactSlack), closest, counters))
             return true;
     }
     return false;
@@ -440,7 +481,7 @@ bool EventStepping::face_contact(const Trajectory& path, double t, double t_end,
     if (st == ToiStatus::miss) return false;
     // Only where the plane is the face: the foot of the centre must lie on one of its triangles.
     const Component& sono = model_->sonotrode_component();
-    const Pose pose = sono.kinematics.pose(at(pc.time));
+    const Pose pose = sono.kinematics.pose(epoch_, pc.time);
     int triangle = -1;
     if (!face_.contains(sono, pose.to_component(pc.point), kTouchTolerance * R_ + 1e-12, triangle)) return false;
     out.time = pc.time;
@@ -470,7 +511,7 @@ EventStepping::AdvancementResult EventStepping::advance_to_contact(int c, const 
     bool at_start = true;
     for (int it = 0; it < kMaxAdvancement; ++it) {
         if (u > t_end) return {};
-        const Pose pose = kin.pose(at(u));
+        const Pose pose = kin.pose(epoch_, u);
         const Vec3 centre = path.position(u);
         const Vec3 local = pose.to_component(centre);
         MeshCollider::Closest closest;
@@ -489,8 +530,8 @@ EventStepping::AdvancementResult EventStepping::advance_to_contact(int c, const 
         const Vec3 n_local = closest.distance > 0.0 ? Vec3((local - closest.point) / closest.distance) : Vec3(Vec3::UnitZ());
         out.point = pose.to_world(closest.point);
         out.normal = pose.rotation * n_local;
-        out.surface_velocity = kin.point_velocity(out.point, at(u));
-        out.surface_acceleration = kin.point_acceleration(out.point, at(u));
+        out.surface_velocity = kin.point_velocity(out.point, epoch_, u);
+        out.surface_acceleration = kin.point_acceleration(out.point, epoch_, u);
         out.overlapping = d < -tolerance;
         const double approach = -(path.velocity(u) - out.surface_velocity).dot(out.normal);
         if (!out.overlapping && approach <= 0.0) {
@@ -651,9 +692,9 @@ void EventStepping::record_impact(int i, int c, double t, const WallEvent& w, co
     const Component& comp = model_->components[static_cast<std::size_t>(c)];
     ++state.impacts_per_component[static_cast<std::size_t>(c)];
     if (!comp.logged) return;
-    const Pose pose = comp.kinematics.pose(at(t));
+    const Pose pose = comp.kinematics.pose(epoch_, t);
     ImpactRecord rec;
-    rec.time_s = t;
+    rec.time_s = absolute_seconds(t);
     rec.shot = static_cast<std::int32_t>(i);
     rec.component = static_cast<std::int32_t>(c);
     rec.triangle = w.triangle;
@@ -674,6 +715,14 @@ void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& 
     const double w2a = plane.amplitude_m * plane.angular_frequency() * plane.angular_frequency() * k;
     if (!(w2a > 0.0)) {  // a plate moving sideways only: no ride, sustained contact
         set_flight(i, p, v_after, t, Motion::sustained);
+        predict(i, t);
+        return;
+    }
+    if (!((w.surface_acceleration - g_).dot(n) > 0.0)) {
+        // The plate pulls away faster than gravity: nothing holds the shot on it. It leaves with the
+        // plate's normal velocity (the approach removed) and the gap opens at once; riding until the
+        // plate next presses would carry it for most of a period and launch it at the plate's peak.
+        set_flight(i, p, v_after, t, Motion::flying);
         predict(i, t);
         return;
     }
@@ -761,7 +810,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
     }
     for (std::size_t c = 0; c < m.components.size(); ++c) {
         const Component& comp = m.components[c];
-        const Pose pose = comp.kinematics.pose(at(t));
+        const Pose pose = comp.kinematics.pose(epoch_, t);
         const Vec3 local = pose.to_component(p);
         MeshCollider::Closest closest;
         MeshCollider::QueryCounters counters;
@@ -771,7 +820,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
         touching = true;
         const Vec3 n = pose.rotation * ((local - closest.point) / closest.distance);
         const Vec3 point = pose.to_world(closest.point);
-        const Vec3 vs = comp.kinematics.point_velocity(point, at(t));
+        const Vec3 vs = comp.kinematics.point_velocity(point, epoch_, t);
         moving_support |= comp.kinematics.moves();
         const double approach = -(v - vs).dot(n);
         consider_support(n);
@@ -786,7 +835,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
             record_impact(i, static_cast<int>(c), t, w, v, r, state, impacts);
             v = r.v_shot;
         } else {
-            const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, at(t)).dot(n));
+            const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, epoch_, t).dot(n));
             v = m.laws.surface->sustain({v, vs, n, pressing, substep_}, comp.coefficients).v_shot;
         }
         if (gap < 0.0) {
@@ -891,7 +940,7 @@ void EventStepping::lose(int i, double t, SimulationState& state, bool non_finit
         ++state.health.non_finite;
     } else {
         ++state.health.shot_lost;
-        state.lost.push_back({i, t, position(i, t)});
+        state.lost.push_back({i, absolute_seconds(t), position(i, t)});
     }
     boxes_->remove(i);
     Shot& s = shots_[k];

@@ -61,12 +61,18 @@ public:
     // Every kRestartInterval of simulated time the scheme starts afresh from the state alone (every
     // flight re-predicted, modes and neighbour tree rebuilt), exactly as a run resumed from a
     // checkpoint of that state does: so a resumed run equals the uninterrupted one, byte for byte.
+    // Restart points come every kRestartInterval of simulated time, and at the next point of the
+    // sync grid after every work budget of events (so at least every few tenths of a second of
+    // wall time: checkpoints and interrupts wait for one).
     bool at_restart_point() const override { return !started_; }
     static constexpr double kRestartInterval = 0.1;  // s
 
-    // Simulated time (s) one advance() covers at most: how often the state is brought up to date
-    // for progress, checkpoints and interrupts.
+    // Simulated time (s) one advance() covers at most: it stops on a grid of this spacing (absolute
+    // multiples), where the state is brought up to date for progress, checkpoints and interrupts.
     static constexpr double kSyncInterval = 1e-3;
+    // Events between restart points at least (more with many shot: a restart re-predicts each).
+    static constexpr std::uint64_t kMinWorkBudget = 200000;
+    static constexpr std::uint64_t kWorkBudgetPerShot = 16;
 
 private:
     enum class Motion : unsigned char { flying, riding, sustained, sleeping };
@@ -117,6 +123,13 @@ private:
     };
 
     void start(const SimulationState& state);
+    // Adds work done (events, or time-stepped shot steps) since the last restart point; once it
+    // reaches the budget, brings the next restart point forward to the next point of the sync grid
+    // (returns true then). now_s: absolute s.
+    bool count_work(std::uint64_t units, double now_s);
+    static double next_multiple(double t_s, double step_s);  // the first multiple of step_s after t_s
+    double since_epoch(double t_s) const;                    // absolute s -> the scheme's clock (s)
+    double absolute_seconds(double t) const;                 // the scheme's clock (s) -> absolute s
     void process(int i, SimulationState& state, std::vector<ImpactRecord>& impacts);
     void predict(int i, double t);                 // wall, box and pairs
     void predict_wall(int i, double t);
@@ -127,7 +140,7 @@ private:
     void schedule(int i);
     double key(const Shot& s) const;
     // A component that does not move within R (plus the contact slack) of p.
-    bool touches_surface(const Vec3& p, double t) const;
+    bool touches_surface(const Vec3& p) const;
     double resting_fraction(const SimulationState& state) const;  // of the active shot, still on a surface
 
     bool static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out);
@@ -159,7 +172,15 @@ private:
     bool started_ = false;
     bool handed_over_ = false;                       // this interval is time-stepped
     std::unique_ptr<TimeStepping> time_stepping_;    // built at the first hand-over
-    double next_restart_ = 0.0;  // s, the next restart point
+    double next_restart_ = 0.0;  // s (absolute), the next restart point
+    // The scheme's clock: every time below (flights, events, rides) is seconds since epoch_, the
+    // state's time at the last restart point.
+    SimTime epoch_;
+    double face_phase_at_zero_ = 0.0;  // rad, the face's phase at t = 0 (face_.plane is rebased to epoch_)
+    std::uint64_t work_since_restart_ = 0;
+    std::uint64_t work_budget_ = 0;    // events between restart points, at most (then the next grid point)
+    double same_time_ = -1.0;          // s, the time of the latest event, and how many came at it (forced progress)
+    std::uint64_t at_same_time_ = 0;
     std::vector<Shot> shots_;
     std::vector<unsigned char> active_;
     EventQueue queue_;
