@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kSubstep = 50e-6;          // s, sustained-contact substep (fall per substep g t^2/2 = 12 nm)
+constexpr double kSubstepTravel = 0.25;     // of R, the most a shot (or a turning surface) moves in a substep
 // Hand-over to time stepping: at a restart point, when more than this fraction of the shot lie still
 // (slower than kHandOverSpeed) on a surface, the next interval is time-stepped.
 constexpr double kHandOverFraction = 0.1;
@@ -61,6 +62,7 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
         for (std::size_t t = 0; t < facets.size(); ++t) facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
         facets_.push_back(std::move(facets));
         surface_speed_.push_back(c.kinematics.peak_surface_speed(c.max_axis_distance_m));
+        if (&c != &sono) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
     }
     shots_.resize(static_cast<std::size_t>(m.shot_count));
     work_budget_ = std::max(kMinWorkBudget, kWorkBudgetPerShot * static_cast<std::uint64_t>(m.shot_count));
@@ -380,10 +382,16 @@ void EventStepping::predict_wall(int i, double t) {
     w = WallEvent{};
     switch (s.motion) {
         case Motion::riding: return;  // start_ride set the launch
-        case Motion::sustained:
-            w.time = t + substep_;
+        case Motion::sustained: {
+            // Contacts are looked for at the substep's end only, so a substep may not carry the
+            // shot (or a turning part's surface) further than a quarter radius: nothing can be
+            // crossed unseen, as with time stepping's travel limit.
+            const double speed = velocity(i, t).norm() + moving_part_speed_;
+            s.substep_s = speed > 0.0 ? std::clamp(kSubstepTravel * R_ / speed, kMinBoxHorizon, substep_) : substep_;
+            w.time = t + s.substep_s;
             w.kind = WallKind::substep;
             return;
+        }
         case Motion::sleeping:
             w.time = kInf;
             w.kind = WallKind::none;
@@ -401,6 +409,11 @@ void EventStepping::predict_wall(int i, double t) {
     w.kind = t_leave <= t + window ? WallKind::leave : WallKind::none;
     const Trajectory path = s.path.rebased(t);
     const Model& m = *model_;
+    // Right after a graze (a touch with no approach on a surface that does not press the shot), the
+    // surfaces are searched from a hair later: the touch itself, read again at the same instant,
+    // would be found again (its approach sign is rounding), forever. Within the hair the shot moves
+    // 1e-9 R: anything it could enter meanwhile is found overlapping by this search.
+    const double t_search = t == s.graze_at ? t + kTouchTolerance * R_ / std::max(path.v0.norm(), resting_speed_) : t;
     // The window's sphere bounds: a component whose (swept) bounds they miss cannot be reached.
     Vec3 reach_lo, reach_hi;
     path.bounds(t, w.time, reach_lo, reach_hi);
@@ -414,7 +427,7 @@ void EventStepping::predict_wall(int i, double t) {
         WallEvent found;
         bool hit = false;
         if (c == m.sonotrode && sonotrode_vibrates_) {
-            hit = face_contact(path, t, w.time, found);
+            hit = face_contact(path, t_search, w.time, found);
             if (face_.rest_collider && !(hit && found.overlapping)) {
                 // The sonotrode's other triangles move by at most A: a static sweep with the radius
                 // grown by A finds when the shot can first reach them, advancement settles it.
@@ -423,7 +436,7 @@ void EventStepping::predict_wall(int i, double t) {
                 const Pose& rest = comp.kinematics.rest;
                 const Trajectory local{rest.to_component(path.p0), rest.rotation.transpose() * path.v0, rest.rotation.transpose() * path.g, t};
                 const double t_limit = hit ? found.time : w.time;
-                const ToiStatus st = face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t, t_limit, near, counters);
+                const ToiStatus st = face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
                 if (st != ToiStatus::miss) {
                     WallEvent side;
                     const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, face_.rest_mesh->source_facet, surface_speed_[k], path,
@@ -433,16 +446,16 @@ void EventStepping::predict_wall(int i, double t) {
                 }
             }
         } else if (comp.kinematics.moves()) {
-            SweptSphere sweep(path, R_, t, w.time);
+            SweptSphere sweep(path, R_, t_search, w.time);
             TimeSpan span;
             if (sweep.span(comp.world_lo, comp.world_hi, span)) {
                 const AdvancementResult r = advance_to_contact(c, *comp.collider, facets_[k], surface_speed_[k], path,
-                                                               std::max(t, span.first), std::min(w.time, span.last), found);
+                                                               std::max(t_search, span.first), std::min(w.time, span.last), found);
                 if (r.exhausted) ++unresolved_;
                 hit = r.found;
             }
         } else {
-            hit = static_contact(c, path, t, w.time, found);
+            hit = static_contact(c, path, t_search, w.time, found);
         }
         if (!hit) continue;
         if (found.overlapping || found.time < w.time) {
@@ -668,9 +681,11 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
                 return;
             }
         }
-        // A rebound slower than the resting speed is no rebound: sustained contact, sliding along n.
+        // A rebound slower than the resting speed is no rebound: sustained contact, sliding along n
+        // (a graze if the surface does not press the shot).
         if (r.vn_out < resting_speed_ && !w.face) {
-            set_flight(i, p, r.v_shot - (r.v_shot - vs).dot(n) * n, t, Motion::sustained, n);
+            touch(i, t, w, p, r.v_shot - (r.v_shot - vs).dot(n) * n);
+            return;
         } else {
             set_flight(i, p, r.v_shot, t, Motion::flying);
         }
@@ -683,7 +698,21 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         start_ride(i, t, w, p, v_kept);
         return;
     }
-    set_flight(i, p, v_kept, t, Motion::sustained, n);
+    touch(i, t, w, p, v_kept);
+}
+
+void EventStepping::touch(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_kept) {
+    // Pressed onto the surface (gravity, or the surface accelerating into the shot): sustained
+    // contact, sliding along it. Otherwise (a side wall, a ceiling) nothing holds the shot there:
+    // it grazes on in free flight, where every surface is searched, however fast it moves.
+    const bool pressed = (w.surface_acceleration - g_).dot(w.normal) > 0.0;
+    if (!pressed) {
+        ++stats_.grazes;
+        shots_[static_cast<std::size_t>(i)].graze_at = t;
+        set_flight(i, p, v_kept, t, Motion::flying);
+    } else {
+        set_flight(i, p, v_kept, t, Motion::sustained, w.normal);
+    }
     predict(i, t);
 }
 
@@ -836,7 +865,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
             v = r.v_shot;
         } else {
             const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, epoch_, t).dot(n));
-            v = m.laws.surface->sustain({v, vs, n, pressing, substep_}, comp.coefficients).v_shot;
+            v = m.laws.surface->sustain({v, vs, n, pressing, s.substep_s}, comp.coefficients).v_shot;
         }
         if (gap < 0.0) {
             p -= gap * n;

@@ -106,6 +106,8 @@ private:
         double last_pair_time = -1.0; // s, latest shot-shot collision (TC rule)
         int last_partner = -1;
         double no_pairs_at = -1.0;    // s, an instant at which this shot takes no more pair events
+        double graze_at = -1.0;       // s, the instant of its latest graze (no wall contact then)
+        double substep_s = 0.0;       // s, length of the current sustained-contact substep
         int quiet_substeps = 0;       // consecutive still substeps (sleep)
         double window_travel = 0.0;   // m, travel the next search window of this flight covers
         // Riding the sonotrode since ride_start (s): centre at ride_point + a (s(t) - s(ride_start))
@@ -153,6 +155,9 @@ private:
     void collide_pair(int i, int j, double t, SimulationState& state);
     void start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after);
     void launch(int i, double t);
+    // A touch without approach (v_kept: the velocity with the approach removed): sustained contact
+    // if the surface presses the shot, else a graze that flies on.
+    void touch(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_kept);
     void substep(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
     void lose(int i, double t, SimulationState& state, bool non_finite);
     // support: unit normal of the surface a sustained shot rests on (zero: none).
@@ -192,6 +197,7 @@ private:
     bool sonotrode_vibrates_ = false;
     std::vector<std::vector<int>> facets_;        // per component: source facet per mesh triangle
     std::vector<double> surface_speed_;           // m/s, per component: fastest surface point
+    double moving_part_speed_ = 0.0;              // m/s, fastest surface point of any moving part but the sonotrode
 
     double R_ = 0.0;                 // m
     Vec3 g_ = Vec3::Zero();          // m/s2
