@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "collision/closest_point.h"
+#include "collision/surface_clearance.h"
 #include "engine/time_stepping.h"
 #include "event/sphere_pair_toi.h"
 #include "event/swept_sphere_box.h"
@@ -26,6 +28,7 @@ constexpr double kBoxTravel = 4.0;          // radii of travel a flight's first 
 constexpr double kMaxWindowTravel = 64.0;   // radii: windows double up to this while a flight finds nothing
 constexpr double kMinBoxHorizon = 1e-7;     // s, a box horizon moves time on at least this much
 constexpr double kCollapseWindow = 1e-6;    // s, TC rule: a shot-shot collision this soon after one is elastic
+constexpr int kMaxQuickGrazes = 4;          // grazes each within kCollapseWindow of the last, then sustained contact
 // m/s: a rebound from the accelerating plate slower than this is a ride. Every faster rebound is
 // followed exactly, however soon the plate catches it again (the chatter sequence, each impact
 // counted). Below this the gap would open by less than ~1e-12 m (u^2 / 2a at a plate acceleration
@@ -33,9 +36,14 @@ constexpr double kCollapseWindow = 1e-6;    // s, TC rule: a shot-shot collision
 constexpr double kRideSpeed = 1e-3;
 constexpr double kLaunchDelay = 1e-4;       // periods after the plate's deceleration passes g (launch)
 constexpr double kTouchTolerance = 1e-9;    // of R: conservative advancement stops this close
-constexpr double kContactSlack = 1e-6;      // of R: a sustained shot this close to a surface touches it
+constexpr double kContactSlack = 1e-6;      // of R: a shot this close to a surface or a shot touches it
+// of R: a shot in sustained contact this close to a surface stays on it. Rolling over a curved
+// surface opens a gap of (v dt)^2 / 2r per substep (6e-5 R for a 1 mm shot at 0.5 m/s on a 5 mm
+// radius); flying off it between substeps would leave a gap of a few nm to close by conservative
+// advancement, whose steps (gap / speed) crawl there.
+constexpr double kSustainSlack = 1e-3;
 constexpr double kCorrectionWorthCounting = 0.01;  // of R, as time stepping counts overlap corrections
-constexpr int kMaxAdvancement = 20000;      // conservative-advancement iterations per search
+constexpr int kMaxAdvancement = 2000;       // conservative-advancement iterations per search (then it resumes later)
 constexpr std::uint64_t kMaxEventsAtOneTime = 10000;  // then the shot is forced into substeps
 
 }  // namespace
@@ -441,7 +449,7 @@ void EventStepping::predict_wall(int i, double t) {
                     WallEvent side;
                     const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, face_.rest_mesh->source_facet, surface_speed_[k], path,
                                                                    near.contact.time, t_limit, side);
-                    if (r.exhausted) ++unresolved_;
+                    if (r.exhausted) resume_search_at(w, r.searched_until);
                     if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
                 }
             }
@@ -451,7 +459,7 @@ void EventStepping::predict_wall(int i, double t) {
             if (sweep.span(comp.world_lo, comp.world_hi, span)) {
                 const AdvancementResult r = advance_to_contact(c, *comp.collider, facets_[k], surface_speed_[k], path,
                                                                std::max(t_search, span.first), std::min(w.time, span.last), found);
-                if (r.exhausted) ++unresolved_;
+                if (r.exhausted) resume_search_at(w, r.searched_until);
                 hit = r.found;
             }
         } else {
@@ -465,6 +473,36 @@ void EventStepping::predict_wall(int i, double t) {
             if (found.overlapping) break;  // nothing can come first
         }
     }
+}
+
+void EventStepping::resume_search_at(WallEvent& w, double t) {
+    ++stats_.search_resumes;
+    if (!(t < w.time)) return;
+    w = WallEvent{};
+    w.time = t;
+    w.kind = WallKind::none;
+}
+
+bool EventStepping::put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const {
+    const Component& comp = model_->components[c];
+    const Pose pose = comp.kinematics.pose(epoch_, t);
+    const auto tri = static_cast<std::size_t>(w.mesh_triangle);
+    const Vec3& a = comp.mesh->corner(tri, 0);
+    const Vec3& b = comp.mesh->corner(tri, 1);
+    const Vec3& e = comp.mesh->corner(tri, 2);
+    const Vec3 local = pose.to_component(p);
+    const ClosestPoint foot = closest_point_on_triangle(local, a, b, e);
+    const Vec3 face = (b - a).cross(e - a);
+    // Behind the face itself (at an edge or a vertex the side of one face does not decide).
+    if (foot.feature != TriangleFeature::face || !(face.dot(local - foot.point) < 0.0)) return false;
+    w.normal = pose.rotation * face.normalized();
+    w.point = pose.to_world(foot.point);
+    p = w.point + R_ * w.normal;
+    if (comp.kinematics.moves()) {
+        w.surface_velocity = comp.kinematics.point_velocity(w.point, epoch_, t);
+        w.surface_acceleration = comp.kinematics.point_acceleration(w.point, epoch_, t);
+    }
+    return true;
 }
 
 bool EventStepping::static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out) {
@@ -482,6 +520,7 @@ bool EventStepping::static_contact(int c, const Trajectory& path, double t, doub
     out.point = rest.to_world(hit.contact.point);
     out.normal = rest.rotation * hit.contact.normal;
     out.triangle = facets_[static_cast<std::size_t>(c)][static_cast<std::size_t>(hit.triangle)];
+    out.mesh_triangle = hit.triangle;
     out.overlapping = st == ToiStatus::overlapping;
     if (out.overlapping) out.depth = std::max(0.0, R_ - (path.position(t) - out.point).norm());
     return true;
@@ -516,7 +555,9 @@ EventStepping::AdvancementResult EventStepping::advance_to_contact(int c, const 
     // than the shot's speed plus the fastest surface point's, so after measuring a gap d the shot
     // cannot touch for d / (that speed). Converges on the touch from outside; exact distances
     // come from the BVH in the component's frame at its pose at each time.
-    const Kinematics& kin = model_->components[static_cast<std::size_t>(c)].kinematics;
+    const Component& comp = model_->components[static_cast<std::size_t>(c)];
+    const Kinematics& kin = comp.kinematics;
+    const bool solid = comp.solid && &collider == comp.collider.get();
     const double V = path.max_speed(t, t_end) + surface_speed;
     if (!(V > 0.0)) return {};
     const double look = 2.0 * R_, tolerance = kTouchTolerance * R_;
@@ -534,15 +575,15 @@ EventStepping::AdvancementResult EventStepping::advance_to_contact(int c, const 
             at_start = false;
             continue;
         }
-        const double d = closest.distance - R_;
+        const SurfaceClearance clear = surface_clearance(solid ? *comp.mesh : collider_mesh(c, collider), solid, local, closest);
+        const double d = clear.distance_m - R_;
         if (d > tolerance) {
             u += d / V;
             at_start = false;
             continue;
         }
-        const Vec3 n_local = closest.distance > 0.0 ? Vec3((local - closest.point) / closest.distance) : Vec3(Vec3::UnitZ());
         out.point = pose.to_world(closest.point);
-        out.normal = pose.rotation * n_local;
+        out.normal = pose.rotation * clear.normal;
         out.surface_velocity = kin.point_velocity(out.point, epoch_, u);
         out.surface_acceleration = kin.point_acceleration(out.point, epoch_, u);
         out.overlapping = d < -tolerance;
@@ -557,9 +598,17 @@ EventStepping::AdvancementResult EventStepping::advance_to_contact(int c, const 
         out.time = u;
         out.depth = std::max(0.0, -d);
         out.triangle = facets[static_cast<std::size_t>(closest.triangle)];
-        return {true, false};
+        out.mesh_triangle = closest.triangle;
+        return {true, false, u};
     }
-    return {false, true};
+    // Out of iterations (a shot skimming a moving surface): nothing was found up to u, and the search
+    // resumes from there (an event), so no contact after u can be missed.
+    return {false, true, u};
+}
+
+const TriangleMesh& EventStepping::collider_mesh(int c, const MeshCollider& collider) const {
+    const Component& comp = model_->components[static_cast<std::size_t>(c)];
+    return &collider == comp.collider.get() ? *comp.mesh : *face_.rest_mesh;
 }
 
 void EventStepping::renew_box(int i, double t) {
@@ -641,8 +690,8 @@ bool EventStepping::predict_pairs(int i, double t) {
 
 void EventStepping::collide_wall(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
-    const WallEvent w = s.wall;
-    switch (w.kind) {
+    const WallKind kind = s.wall.kind;
+    switch (kind) {
         case WallKind::none:  // the end of a searched window: search the next (same flight)
             ++stats_.box_renewals;
             s.window_travel = std::min(kMaxWindowTravel * R_, 2.0 * s.window_travel);
@@ -659,9 +708,15 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         lose(i, t, state, true);
         return;
     }
+    WallEvent w = s.wall;
     const auto c = static_cast<std::size_t>(w.component);
     const Component& comp = model_->components[c];
-    if (w.overlapping) {
+    if (comp.solid && w.mesh_triangle >= 0 && put_out_of_solid(c, t, w, p)) {
+        // The centre was inside the solid (it reached its surface from within): put back out
+        // through the face it lies behind; never a rebound that keeps it inside.
+        ++state.health.deep_penetrations;
+        ++state.health.mesh_overlap_corrections;
+    } else if (w.overlapping) {
         // Found inside the surface (an approximated rider, a rounding): moved out, no energy added.
         p += w.depth * w.normal;
         if (w.depth > kCorrectionWorthCounting * R_) ++state.health.mesh_overlap_corrections;
@@ -705,10 +760,15 @@ void EventStepping::touch(int i, double t, const WallEvent& w, const Vec3& p, co
     // Pressed onto the surface (gravity, or the surface accelerating into the shot): sustained
     // contact, sliding along it. Otherwise (a side wall, a ceiling) nothing holds the shot there:
     // it grazes on in free flight, where every surface is searched, however fast it moves.
+    // Grazes that keep following each other within the TC window (a shot wedged between surfaces,
+    // or skimming a moving one) would crawl a hair at a time: after a few, sustained contact.
+    // (One or two come right after a graze: the same touch read again a hair later.)
+    Shot& s = shots_[static_cast<std::size_t>(i)];
     const bool pressed = (w.surface_acceleration - g_).dot(w.normal) > 0.0;
-    if (!pressed) {
+    s.quick_grazes = t - s.graze_at < kCollapseWindow ? s.quick_grazes + 1 : 0;
+    if (!pressed && s.quick_grazes < kMaxQuickGrazes) {
         ++stats_.grazes;
-        shots_[static_cast<std::size_t>(i)].graze_at = t;
+        s.graze_at = t;
         set_flight(i, p, v_kept, t, Motion::flying);
     } else {
         set_flight(i, p, v_kept, t, Motion::sustained, w.normal);
@@ -843,11 +903,13 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
         const Vec3 local = pose.to_component(p);
         MeshCollider::Closest closest;
         MeshCollider::QueryCounters counters;
-        if (!comp.collider->closest_within(local, R_ + slack, closest, counters)) continue;
-        const double gap = closest.distance - R_;
+        if (!comp.collider->closest_within(local, R_ * (1.0 + kSustainSlack), closest, counters)) continue;
         if (!(closest.distance > 0.0)) continue;
+        const SurfaceClearance clear = surface_clearance(*comp.mesh, comp.solid, local, closest);
+        const double gap = clear.distance_m - R_;
+        if (gap < -0.5 * R_) ++state.health.deep_penetrations;
         touching = true;
-        const Vec3 n = pose.rotation * ((local - closest.point) / closest.distance);
+        const Vec3 n = pose.rotation * clear.normal;
         const Vec3 point = pose.to_world(closest.point);
         const Vec3 vs = comp.kinematics.point_velocity(point, epoch_, t);
         moving_support |= comp.kinematics.moves();

@@ -84,6 +84,7 @@ private:
         WallKind kind = WallKind::none;
         int component = -1;
         int triangle = -1;            // facet of the mesh file (impact record)
+        int mesh_triangle = -1;       // triangle of the component's mesh (static and moving meshes)
         bool overlapping = false;     // found inside the surface at the prediction's start
         bool face = false;            // on the sonotrode's vibrating face
         Vec3 point = Vec3::Zero();    // m, surface point
@@ -107,6 +108,7 @@ private:
         int last_partner = -1;
         double no_pairs_at = -1.0;    // s, an instant at which this shot takes no more pair events
         double graze_at = -1.0;       // s, the instant of its latest graze (no wall contact then)
+        int quick_grazes = 0;         // grazes in a row, each within the TC window of the one before
         double substep_s = 0.0;       // s, length of the current sustained-contact substep
         int quiet_substeps = 0;       // consecutive still substeps (sleep)
         double window_travel = 0.0;   // m, travel the next search window of this flight covers
@@ -121,7 +123,8 @@ private:
     // Moving-mesh contact by conservative advancement, with a per-call iteration budget.
     struct AdvancementResult {
         bool found = false;
-        bool exhausted = false;
+        bool exhausted = false;        // out of iterations: nothing found up to searched_until
+        double searched_until = 0.0;   // s
     };
 
     void start(const SimulationState& state);
@@ -150,6 +153,13 @@ private:
     AdvancementResult advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets, double surface_speed,
                                          const Trajectory& path, double t, double t_end, WallEvent& out);
     double leave_time(const Trajectory& path, double t) const;
+    // The search found nothing up to t and must go on from there: the event becomes a window end at t
+    // if that comes before what `w` holds.
+    void resume_search_at(WallEvent& w, double t);
+    const TriangleMesh& collider_mesh(int c, const MeshCollider& collider) const;
+    // If the centre p (world) lies behind the face of w.mesh_triangle of solid component c at time
+    // t, moves p out to touch that face and sets w's point, normal and surface motion: true.
+    bool put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const;  // the mesh `collider` was built over
 
     void collide_wall(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
     void collide_pair(int i, int j, double t, SimulationState& state);

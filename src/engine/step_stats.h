@@ -32,6 +32,7 @@ struct StepStats {
     std::uint64_t pair_tests = 0;       // exact shot-shot time-of-impact tests
     std::uint64_t mesh_predictions = 0; // shot x component time-of-impact searches
     std::uint64_t rides = 0;            // shot that rode the sonotrode after a slow rebound
+    std::uint64_t search_resumes = 0;   // moving-mesh searches out of iterations, resumed by an event
     std::uint64_t grazes = 0;           // touches without approach on a surface that does not press the shot (flight goes on)
     std::uint64_t substeps = 0;         // sustained-contact substeps (resting, rolling, sliding shot)
     std::uint64_t sleeps = 0;           // shot put to sleep at rest

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
 #include "model/enclosure.h"
 #include "model/model.h"
@@ -134,6 +135,11 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         c.logged = logged.empty() ? logged_by_default(desc.role)
                                   : std::find(logged.begin(), logged.end(), desc.name) != logged.end();
         component_bounds(c);
+        if (desc.role == ComponentRole::part || desc.role == ComponentRole::fixture || desc.role == ComponentRole::almen) {
+            const EdgeReport edges = edge_report(*c.mesh);
+            c.solid = edges.boundary_edges == 0 && edges.non_manifold_edges == 0 && edges.misoriented_edges == 0 &&
+                      enclosed_volume(*c.mesh) > 0.0;
+        }
         if (desc.role == ComponentRole::sonotrode) model->sonotrode = static_cast<int>(i);
         model->components.push_back(std::move(c));
     }

@@ -30,6 +30,10 @@ struct Component {
     bool logged = false;                             // impacts written to impacts.csv
     double max_axis_distance_m = 0.0;                // m, largest distance of a vertex from the rotation axis
     Vec3 world_lo, world_hi;                         // m, bounds at t = 0 (rotating: swept about the axis)
+    // A solid the shot stay out of (part, fixture, Almen strip) whose mesh is closed, consistently
+    // wound, normals outward: a centre on the inner side of its nearest facet is inside the solid,
+    // and is put back out through that facet, never pushed further in.
+    bool solid = false;
 };
 
 struct Model {
