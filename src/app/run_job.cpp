@@ -67,8 +67,13 @@ public:
         slots_ = logged_slots(*model_);
         start();
         start_rendering();
-        const bool finished = loop();
-        return finished ? complete() : interrupted();
+        {
+            // Signals are caught until the final checkpoint of an interrupted run is written; a
+            // finished run's outputs and analysis are left to Ctrl-C's default (the run is complete).
+            InterruptGuard guard(abandon_message());
+            if (!loop()) return interrupted();
+        }
+        return complete();
     }
 
 private:
@@ -77,6 +82,11 @@ private:
     std::string resume_command() const {
         return "peensim run " + options_.scene_path + " -o " + dir_ + " --resume" +
                (options_.overrides.empty() ? "" : " (and the same --set options)");
+    }
+
+    // What a second Ctrl-C prints as it ends the process without waiting for a checkpoint.
+    std::string abandon_message() const {
+        return "\ninterrupted again: run abandoned; " + resume_command() + " continues from the last checkpoint (if one was written)\n";
     }
 
     void start() {
@@ -112,7 +122,6 @@ private:
 
     // Returns true when the scene's duration was reached, false when interrupted.
     bool loop() {
-        InterruptGuard guard;
         ProgressReporter progress(err_, options_.progress && isatty(STDERR_FILENO));
         CheckpointCadence cadence(model_->description.output.checkpoint_interval_s, options_.checkpoint_clock);
         started_ = Clock::now();
