@@ -11,6 +11,7 @@
 
 #include "app/analyze_job.h"
 #include "app/checkpoint.h"
+#include "app/checkpoint_cadence.h"
 #include "app/render_module.h"
 #include "app/interrupt.h"
 #include "app/report_errors.h"
@@ -66,12 +67,27 @@ public:
         slots_ = logged_slots(*model_);
         start();
         start_rendering();
-        const bool finished = loop();
-        return finished ? complete() : interrupted();
+        {
+            // Signals are caught until the final checkpoint of an interrupted run is written; a
+            // finished run's outputs and analysis are left to Ctrl-C's default (the run is complete).
+            InterruptGuard guard(abandon_message());
+            if (!loop()) return interrupted();
+        }
+        return complete();
     }
 
 private:
     std::string checkpoint_path() const { return (fs::path(dir_) / kCheckpointFileName).string(); }
+
+    std::string resume_command() const {
+        return "peensim run " + options_.scene_path + " -o " + dir_ + " --resume" +
+               (options_.overrides.empty() ? "" : " (and the same --set options)");
+    }
+
+    // What a second Ctrl-C prints as it ends the process without waiting for a checkpoint.
+    std::string abandon_message() const {
+        return "\ninterrupted again: run abandoned; " + resume_command() + " continues from the last checkpoint (if one was written)\n";
+    }
 
     void start() {
         const std::size_t logged = static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), [](int s) { return s >= 0; }));
@@ -106,15 +122,13 @@ private:
 
     // Returns true when the scene's duration was reached, false when interrupted.
     bool loop() {
-        InterruptGuard guard;
         ProgressReporter progress(err_, options_.progress && isatty(STDERR_FILENO));
-        const double interval = model_->description.output.checkpoint_interval_s;
+        CheckpointCadence cadence(model_->description.output.checkpoint_interval_s, options_.checkpoint_clock);
         started_ = Clock::now();
-        auto last_checkpoint = started_;
         std::vector<ImpactRecord> impacts;
         impacts.reserve(1024);
         std::uint64_t steps = 0;
-        bool stopping = false, checkpoint_due = false;
+        bool stopping = false;
         while (!sim_->finished()) {
             sim_->step(impacts, recorder_ ? recorder_->next_frame_s() : std::numeric_limits<double>::infinity());
             if (!impacts.empty()) {
@@ -129,21 +143,16 @@ private:
             impacts.clear();
             progress.update(sim_->state().time.seconds(), model_->duration_s, logged_impacts_);
             ++steps;
-            // Checkpoints (and so stops) wait for a restart point: the event-driven scheme reaches one
-            // every 0.1 s of simulated time, time stepping at every step.
+            // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
+            // step, the event-driven scheme at its restart interval. The clock is read only there:
+            // reading it at every unit of work would decide the same (it only acts there) for nothing.
             stopping |= InterruptGuard::requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps);
-            if ((steps & 1023) == 0 && std::chrono::duration<double>(Clock::now() - last_checkpoint).count() > interval)
-                checkpoint_due = true;
             if (!sim_->at_restart_point()) continue;
             if (stopping) {
                 progress.finish();
                 return false;
             }
-            if (checkpoint_due) {
-                checkpoint();
-                last_checkpoint = Clock::now();
-                checkpoint_due = false;
-            }
+            if (cadence.due()) checkpoint();
         }
         progress.finish();
         return true;
@@ -176,8 +185,7 @@ private:
         write_summary((fs::path(dir_) / "summary.json").string(), summary(false));
         err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s
              << " s; outputs in " << dir_ << " are consistent up to that time.\n"
-             << "resume with: peensim run " << options_.scene_path << " -o " << dir_ << " --resume"
-             << (options_.overrides.empty() ? "" : " (and the same --set options)") << "\n";
+             << "resume with: " << resume_command() << "\n";
         return kExitInterrupted;
     }
 

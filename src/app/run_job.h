@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "app/checkpoint_cadence.h"
+
 namespace peensim {
 
 struct RunOptions {
@@ -20,6 +22,7 @@ struct RunOptions {
     bool analyze = true;                  // run `peensim analyze` on the outputs when the run finishes
     std::optional<bool> render;           // --render / --no-render; empty = as the scene's `render` block says
     std::optional<std::uint64_t> stop_after_steps;  // interrupt after this many steps (tests, benchmarks)
+    WallClock checkpoint_clock = steady_wall_clock();  // the clock checkpoint intervals follow (tests: a fake one)
 };
 
 // Exit codes (documented in the README).

@@ -1,0 +1,112 @@
+// The periodic checkpoints of a whole run (run_job in-process) follow the wall clock, driven here
+// by a fake one so that the cadence is exact and the test never waits: with time stepping (a restart
+// point at every step) a checkpoint comes every interval to within one step; with the event-driven
+// scheme at the first restart point after the interval. Every checkpoint loads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/checkpoint.h"
+#include "app/run_job.h"
+#include "support/test_scene.h"
+
+namespace peensim::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kIntervalS = 0.1;  // s of (fake) wall time, output.checkpoint_interval
+
+// 64 shot of 2 mm thrown up at 1 m/s onto a static rod, as in the determinism tests.
+TestSceneSpec rod_scene(const std::string& scheme, double duration_s) {
+    TestSceneSpec spec;
+    spec.scheme = scheme;
+    spec.shot_count = 64;
+    spec.initial_speed_m_per_s = 1.0;
+    spec.amplitude_m = 25e-6;
+    spec.duration_s = duration_s;
+    PartSpec rod;
+    rod.shape = PartShape::cylinder;
+    rod.radius_m = 3e-3;
+    rod.length_m = 16e-3;
+    rod.center_m = Vec3(0.0, 0.0, 8e-3);
+    spec.part = rod;
+    return spec;
+}
+
+// A fake wall clock that moves `tick_s` at every reading. At each reading it also takes away the
+// checkpoint the run wrote since the previous one (loading it: it must be whole), noting when.
+struct CheckpointWatch {
+    struct Seen {
+        double clock_s;     // s, fake wall time when it was found
+        double simulated_s; // s, simulated time it holds
+    };
+    CheckpointWatch(fs::path checkpoint, double tick) : file(std::move(checkpoint)), tick_s(tick) {}
+
+    fs::path file;
+    double tick_s;  // s of fake wall time per reading
+    long readings = 0;
+    std::vector<Seen> seen;
+
+    double read() {
+        if (fs::exists(file)) {
+            seen.push_back({readings * tick_s, load_checkpoint(file.string()).state.time.seconds()});
+            fs::remove(file);
+        }
+        return static_cast<double>(++readings) * tick_s;
+    }
+};
+
+std::vector<CheckpointWatch::Seen> run_watched(const TestScene& scene, double tick_s) {
+    const std::string dir = scene.make_subdirectory("out");
+    CheckpointWatch watch(fs::path(dir) / kCheckpointFileName, tick_s);
+    RunOptions o;
+    o.scene_path = scene.scene_path();
+    o.output_dir = dir;
+    o.progress = false;
+    o.analyze = false;
+    o.overrides = {"output.checkpoint_interval=" + std::to_string(kIntervalS)};
+    o.checkpoint_clock = [&watch] { return watch.read(); };
+    std::ostringstream out, err;
+    EXPECT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    std::cout << "[ cadence  ] " << scene.spec().scheme << ": " << watch.readings << " clock readings, " << watch.seen.size()
+              << " checkpoints\n";
+    return watch.seen;
+}
+
+TEST(RunCheckpoints, TimeSteppingCheckpointsEveryIntervalOfWallTime) {
+    // ~600 steps, one (fake) millisecond each: a checkpoint every 100 steps. (The loop once looked
+    // at the clock only every 1024 steps: this run would have had none.)
+    const TestScene scene(rod_scene("step", 0.05));
+    constexpr double kTickS = 1e-3;
+    const std::vector<CheckpointWatch::Seen> seen = run_watched(scene, kTickS);
+    ASSERT_GE(seen.size(), 4u);
+    for (std::size_t k = 1; k < seen.size(); ++k) {
+        const double gap_s = seen[k].clock_s - seen[k - 1].clock_s;
+        EXPECT_GE(gap_s, kIntervalS - 1e-9) << k;
+        EXPECT_LE(gap_s, kIntervalS + 2 * kTickS) << k;
+        EXPECT_GT(seen[k].simulated_s, seen[k - 1].simulated_s) << k;
+    }
+}
+
+TEST(RunCheckpoints, EventDrivenCheckpointsAtTheFirstRestartPointAfterTheInterval) {
+    // Restart points every 0.1 s of simulated time; the clock moves 0.04 s (fake) at each reading,
+    // so the interval has passed at every third restart point or sooner.
+    const TestScene scene(rod_scene("event", 0.75));
+    const std::vector<CheckpointWatch::Seen> seen = run_watched(scene, 0.04);
+    ASSERT_GE(seen.size(), 2u);
+    double previous_clock_s = 0.0;
+    for (const CheckpointWatch::Seen& s : seen) {
+        EXPECT_NEAR(s.simulated_s * 10.0, std::round(s.simulated_s * 10.0), 1e-9) << "not at a restart point: " << s.simulated_s;
+        EXPECT_GE(s.clock_s - previous_clock_s, kIntervalS) << s.simulated_s;
+        previous_clock_s = s.clock_s;
+    }
+}
+
+}  // namespace
+}  // namespace peensim::testing
