@@ -5,6 +5,7 @@
 
 #include "collision/closest_point.h"
 #include "engine/contact_time.h"
+#include "engine/moving_mesh_gap.h"
 
 namespace peensim {
 
@@ -298,9 +299,12 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     const Vec3 g = model_->gravity_m_per_s2;
     const Vec3& n = contact.normal;
     const double u_lo = last_touch_[i];
+    // A gap of ~0 at u_lo is the rebound from this very component just taken, not a new contact.
+    const bool leaving = last_touch_component_[i] == static_cast<int>(c);
     // Gap at time u within the step, with the shot on its free-flight arc and the contact plane
     // moving with the surface.
     std::optional<double> touch;
+    std::optional<MovingMeshGap> turning_gap;
     ++stats_.touch_searches;
     if (vibrating) {
         const double a_n = kin.axis.dot(n), d_end = kin.displacement(t0_, dt);
@@ -308,11 +312,14 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
             const double back = dt - u;
             return contact.gap + n.dot(-v1 * back + 0.5 * g * back * back) - a_n * (kin.displacement(t0_, u) - d_end);
         };
-        const bool leaving = last_touch_component_[i] == static_cast<int>(c);
         touch = first_touch_sampled(gap, u_lo, dt, 1.0 / (kin.frequency_hz * kSamplesPerPeriod), kTouchTolerance, leaving);
+    } else if (kin.kind == Kinematics::Kind::rotating) {
+        // A turning mesh: the true gap, the mesh in its pose at each trial time (moving_mesh_gap.h).
+        turning_gap.emplace(comp, t0_, StepArc{p1, v1, g, dt}, R, u_lo, stats_);
+        touch = first_touch_sampled(*turning_gap, u_lo, dt, turning_gap->sample_interval(), kTouchTolerance, leaving);
     } else {
-        const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
-        touch = first_touch_quadratic(contact.gap, -n.dot(v1 - v_surface_end), 0.5 * n.dot(g), u_lo, dt);
+        // A static plane: the gap is exactly quadratic in time.
+        touch = first_touch_quadratic(contact.gap, -n.dot(v1), 0.5 * n.dot(g), u_lo, dt);
     }
     if (contact.gap < -0.5 * R) ++state.health.deep_penetrations;
     if (!touch) {
@@ -326,16 +333,17 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     const double u = *touch, back = dt - u;
     const Vec3 v_touch = v1 - g * back;
     const Vec3 centre_touch = p1 - v1 * back + 0.5 * g * back * back;
-    if (kin.kind == Kinematics::Kind::rotating) {
-        // The part has turned since the touch: take the contact point and normal on the same
-        // triangle in the part's pose at the touch time, not at the step end.
-        const Pose pose = kin.pose(t0_, u);
-        const Vec3 q = pose.to_component(centre_touch);
-        const auto tt = static_cast<std::size_t>(contact.mesh_triangle);
-        const Vec3 cp = closest_point_on_triangle(q, comp.mesh->corner(tt, 0), comp.mesh->corner(tt, 1), comp.mesh->corner(tt, 2)).point;
-        if ((q - cp).norm() > 1e-9 * R) contact.normal = pose.rotation * (q - cp).normalized();
+    Vec3 x_touch = centre_touch - R * n;
+    if (turning_gap) {
+        // The part has turned since the touch: the feature touched, its normal and the contact
+        // point are those of the part in its pose at the touch time, not at the step end.
+        const MovingMeshGap::Touch at = turning_gap->touch_at(u);
+        contact.normal = at.normal;
+        contact.mesh_triangle = at.mesh_triangle;
+        const auto tt = static_cast<std::size_t>(at.mesh_triangle);
+        contact.triangle = comp.mesh->source_facet.empty() ? at.mesh_triangle : comp.mesh->source_facet[tt];
+        x_touch = at.point;
     }
-    const Vec3 x_touch = centre_touch - R * n;
     const Vec3 v_surface = kin.point_velocity(x_touch, t0_, u);
     const double approach = -(v_touch - v_surface).dot(n);
     const contact::SurfaceLaw& law = *model_->laws.surface;
