@@ -51,11 +51,13 @@ struct ShotShotResponse {
     bool approaching = false;
 };
 
-// Whether a contact is an impact or sustained contact (rolling, sliding, resting) is decided by the
-// stepping scheme from the approach speed, with this rule: approaches slower than `resting_speed`
-// (about what gravity adds in one step) are sustained contact. Without it a resting shot would
-// bounce forever in ever smaller hops (a Zeno sequence) and jitter on the surface.
-inline bool is_impact(double approach_speed, double resting_speed) { return approach_speed > resting_speed; }
+// Whether a contact is an impact or sustained contact (rolling, sliding, resting) is decided from
+// the normal approach speed (m/s) with one threshold, the scene's `accuracy.impact_speed` (m/s,
+// Model::impact_speed_m_per_s), the same for every scheme and every pair: an approach at least that
+// fast is an impact, a slower one sustained contact. Without such a line a resting shot would
+// bounce forever in ever smaller hops (a Zeno sequence) and jitter on the surface; a fixed speed,
+// unlike one tied to a scheme's step, puts it at the same place whatever the scheme and the step.
+inline bool is_impact(double approach_speed, double impact_speed) { return approach_speed >= impact_speed; }
 
 // A law for shot-surface contacts (static or moving mesh). Laws are immutable values.
 class SurfaceLaw {

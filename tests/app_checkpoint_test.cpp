@@ -26,6 +26,9 @@ Checkpoint sample() {
     c.state.time.advance(1e-17);
     c.state.steps = 42;
     c.state.impacts_per_component = {5, 0, 7};
+    c.state.slow_contacts_per_component = {2, 0, 1};
+    c.state.shot_shot_slow_contacts = 4;
+    c.state.shots.in_flight[1] = 1;
     c.state.health.mesh_overlap_corrections = 3;
     c.state.lost.push_back({0, 0.01, Vec3(0.1, 0.2, 0.3)});
     c.csv_bytes = 1000;
@@ -63,6 +66,9 @@ TEST(Checkpoint, ReadsBackWhatWasSaved) {
     EXPECT_EQ(r.state.shots.vz, c.state.shots.vz);
     EXPECT_EQ(r.state.shots.active, c.state.shots.active);
     EXPECT_EQ(r.state.impacts_per_component, c.state.impacts_per_component);
+    EXPECT_EQ(r.state.slow_contacts_per_component, c.state.slow_contacts_per_component);
+    EXPECT_EQ(r.state.shot_shot_slow_contacts, 4u);
+    EXPECT_EQ(r.state.shots.in_flight, c.state.shots.in_flight);
     EXPECT_EQ(r.state.health.mesh_overlap_corrections, 3u);
     ASSERT_EQ(r.state.lost.size(), 1u);
     EXPECT_EQ(r.state.lost[0].position_m, Vec3(0.1, 0.2, 0.3));

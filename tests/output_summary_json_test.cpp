@@ -33,6 +33,8 @@ RunSummary example_summary() {
     s.shot_count = 5000;
     s.shot_lost = 3;
     s.impacts_per_component = {{"gear", 123456}, {"chamber", 789}};
+    s.slow_contacts_per_component = {{"gear", 12}, {"chamber", 0}};
+    s.impact_speed_m_per_s = 0.05;
     SpeedHistogram gear;
     for (int i = 1; i <= 100; ++i) gear.add(0.1 * i);  // m/s
     s.normal_speed = {normal_speed_stats("gear", gear),
@@ -70,6 +72,12 @@ TEST(SummaryJsonTest, ParsesBackWithUnitKeysAndValues) {
     EXPECT_EQ(impacts[0].at("component"), "gear");
     EXPECT_EQ(impacts[0].at("impacts").get<std::uint64_t>(), 123456u);
     EXPECT_EQ(impacts[1].at("component"), "chamber");
+    const auto& slow = j.at("slow_contacts_per_component");
+    ASSERT_EQ(slow.size(), 2u);
+    EXPECT_EQ(slow[0].at("component"), "gear");
+    EXPECT_EQ(slow[0].at("slow_contacts").get<std::uint64_t>(), 12u);
+    EXPECT_EQ(slow[1].at("slow_contacts").get<std::uint64_t>(), 0u);
+    EXPECT_EQ(j.at("impact_speed_mps").get<double>(), 0.05);
 
     const auto& speeds = j.at("normal_speed");
     ASSERT_EQ(speeds.size(), 2u);
@@ -122,6 +130,8 @@ TEST(SummaryTextTest, AlignedLinesWithTheKeyNumbers) {
     EXPECT_NE(text.find("123456"), std::string::npos) << text;
     EXPECT_NE(text.find("max 10.000 m/s"), std::string::npos) << text;
     EXPECT_NE(text.find("escaped_shots 3"), std::string::npos) << text;
+    EXPECT_NE(text.find("slow contacts"), std::string::npos) << text;
+    EXPECT_NE(text.find("gear 12 (landings slower than 0.05 m/s)"), std::string::npos) << text;
     EXPECT_EQ(text.find("non_finite_velocity"), std::string::npos) << text;  // zero: not listed
     EXPECT_NE(text.find("117.7 MiB"), std::string::npos) << text;
 

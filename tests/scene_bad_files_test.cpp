@@ -46,6 +46,9 @@ const BadScene catalogue[] = {
     {"almen_half_calibration.yaml", 18, "components[2].almen.dose_constant",
      "the arc-height calibration needs both saturation_arc_height and dose_constant"},
     {"almen_on_part.yaml", 18, "components[2].almen", "almen is only for role almen"},
+    {"impact_speed_zero.yaml", 3, "accuracy.impact_speed", "expected a speed > 0 m/s, got '0 m/s'"},
+    {"impact_speed_negative.yaml", 3, "accuracy.impact_speed", "expected a speed > 0 m/s, got '-5 cm/s'"},
+    {"impact_speed_not_a_speed.yaml", 3, "accuracy.impact_speed", "'cm' is a unit of length, but a speed"},
 };
 
 class SceneBadFiles : public ::testing::TestWithParam<BadScene> {};

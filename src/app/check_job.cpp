@@ -24,8 +24,7 @@ void print_report(const Model& model, const InitialShots& shots, std::ostream& o
             << std::setw(8) << c.mesh->triangle_count() << " triangles, contact '" << c.coefficients_source << "'"
             << (c.logged ? ", impacts logged" : "") << "\n";
     }
-    const double g = model.gravity_m_per_s2.norm();
-    const double dt_rest = TimeStepping::step_for(model.peak_surface_speed_m_per_s, g, model.travel_fraction * model.shot_radius_m);
+    const double dt_rest = TimeStepping::time_step(model, model.peak_surface_speed_m_per_s);
     out << "# shot: " << model.shot_count << " placed in " << shots.layers << " layer(s) on the sonotrode\n";
     out << "# fastest surface: " << model.peak_surface_speed_m_per_s << " m/s; eq. 7 step with still shot: " << dt_rest * 1e6
         << " us (shorter while shot fly faster)\n";

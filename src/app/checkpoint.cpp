@@ -12,7 +12,9 @@ namespace peensim {
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '1'};
+// The last character is the format version: 2 added the slow-contact counters and the per-shot
+// in-flight flags.
+constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '2'};
 
 }  // namespace
 
@@ -29,6 +31,8 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
     w.put(s.fastest_shot_m_per_s);
     w.put(s.health);
     w.put_vector(s.impacts_per_component);
+    w.put_vector(s.slow_contacts_per_component);
+    w.put(s.shot_shot_slow_contacts);
     w.put<std::uint64_t>(s.lost.size());
     for (const LostShot& l : s.lost) {
         w.put(l.shot);
@@ -37,6 +41,7 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
     }
     for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz}) w.put_vector(*v);
     w.put_vector(s.shots.active);
+    w.put_vector(s.shots.in_flight);
     w.put(c.csv_bytes);
     w.put(c.csv_rows);
     w.put<std::uint64_t>(c.normal_speeds.size());
@@ -65,6 +70,8 @@ Checkpoint load_checkpoint(const std::string& path) {
     s.fastest_shot_m_per_s = r.get<double>();
     s.health = r.get<HealthCounters>();
     s.impacts_per_component = r.get_vector<std::uint64_t>();
+    s.slow_contacts_per_component = r.get_vector<std::uint64_t>();
+    s.shot_shot_slow_contacts = r.get<std::uint64_t>();
     const auto lost = r.get<std::uint64_t>();
     for (std::uint64_t k = 0; k < lost; ++k) {
         LostShot l;
@@ -75,6 +82,7 @@ Checkpoint load_checkpoint(const std::string& path) {
     }
     for (auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz}) *v = r.get_vector<double>();
     s.shots.active = r.get_vector<unsigned char>();
+    s.shots.in_flight = r.get_vector<unsigned char>();
     c.csv_bytes = r.get<std::uint64_t>();
     c.csv_rows = r.get<std::uint64_t>();
     const auto histograms = r.get<std::uint64_t>();

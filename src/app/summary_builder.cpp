@@ -27,9 +27,13 @@ RunSummary build_summary(const Simulation& sim, const std::string& scene_file,
     s.shot_count = static_cast<std::uint64_t>(model.shot_count);
     s.shot_lost = state.health.shot_lost + state.health.non_finite;
     s.impacts_per_component.push_back({"shot-shot", state.shot_shot_impacts});
+    s.slow_contacts_per_component.push_back({"shot-shot", state.shot_shot_slow_contacts});
+    s.impact_speed_m_per_s = model.impact_speed_m_per_s;
     std::size_t logged = 0;
     for (std::size_t c = 0; c < model.components.size(); ++c) {
         s.impacts_per_component.push_back({model.components[c].name, state.impacts_per_component[c]});
+        const std::uint64_t slow = c < state.slow_contacts_per_component.size() ? state.slow_contacts_per_component[c] : 0;
+        s.slow_contacts_per_component.push_back({model.components[c].name, slow});
         if (model.components[c].logged && logged < normal_speeds.size())
             s.normal_speed.push_back(normal_speed_stats(model.components[c].name, normal_speeds[logged++]));
     }

@@ -26,6 +26,7 @@ SimulationState initial_state(const Model& model) {
         state.fastest_shot_m_per_s = std::max(state.fastest_shot_m_per_s, shots.velocities[i].norm());
     }
     state.impacts_per_component.assign(model.components.size(), 0);
+    state.slow_contacts_per_component.assign(model.components.size(), 0);
     return state;
 }
 

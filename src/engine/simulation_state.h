@@ -15,11 +15,17 @@ struct ShotArrays {
     std::vector<double> x, y, z;        // m, centre, world
     std::vector<double> vx, vy, vz;     // m/s, world
     std::vector<unsigned char> active;  // 0 once a shot is lost (left the chamber, non-finite state)
+    // 1 while a shot is in free flight: since an impact sent it off, or since a step (time
+    // stepping) in which it touched nothing. 0 once it is in sustained contact, and at the start
+    // (placed shot have not flown). A sustained contact that finds it 1 ends a flight more slowly
+    // than the impact speed: counted once as a slow contact, then not again while the shot rests.
+    std::vector<unsigned char> in_flight;
 
     std::size_t size() const { return x.size(); }
     void resize(std::size_t n) {
         for (auto* v : {&x, &y, &z, &vx, &vy, &vz}) v->assign(n, 0.0);
         active.assign(n, 1);
+        in_flight.assign(n, 0);
     }
     Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
     Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
@@ -63,6 +69,10 @@ struct SimulationState {
     std::uint64_t shot_steps = 0;            // active shot advanced, summed over steps
     std::uint64_t shot_shot_impacts = 0;
     std::vector<std::uint64_t> impacts_per_component;  // every impact, logged or not
+    // Flights that ended in sustained contact, approaching slower than the model's impact speed
+    // (not impacts, not logged): per component, and between two shot.
+    std::vector<std::uint64_t> slow_contacts_per_component;
+    std::uint64_t shot_shot_slow_contacts = 0;
     double fastest_shot_m_per_s = 0.0;       // m/s, after the last step (feeds eq. 7)
     HealthCounters health;
     std::vector<LostShot> lost;              // one entry per lost shot (bounded by the shot count)

@@ -5,6 +5,7 @@
 
 #include "collision/closest_point.h"
 #include "engine/contact_time.h"
+#include "engine/moving_mesh_gap.h"
 
 namespace peensim {
 
@@ -29,6 +30,12 @@ constexpr double kCorrectionWorthCounting = 0.01;  // -, overlaps corrected beyo
 // travel: the shot's own travel (1) plus the surface's (1: V_max includes surface speeds). A shot
 // kicked within a step can go further; its skip counters are reset at every kick.
 constexpr double kMaxRelativeTravelPerStep = 2.0;
+// -, the most gravity may add to a shot's speed in one step, as a fraction of the impact speed (5 mm/s
+// at the default 5 cm/s: a 0.51 ms step, longer than the 80 us the shipped sonotrodes already impose).
+constexpr double kGravityShareOfImpactSpeed = 0.1;
+// -, a shot whose gap to a surface is below this fraction of R is touching it (1 nm for 2 mm shot:
+// far above the ~1e-17 m roundings of a shot left on a surface, far below any real flight).
+constexpr double kTouchingGap = 1e-6;
 // How much further than needed a mesh query looks (fraction of R), to learn the distance of a shot
 // that misses: it then needs no query until it has moved that much closer.
 constexpr double kMemoMargin = 0.5;
@@ -38,6 +45,12 @@ constexpr double kMemoMargin = 0.5;
 double TimeStepping::step_for(double v_max, double gravity, double travel_m) {
     // 0.5 g dt^2 + v dt = travel, solved in the form that stays exact when g -> 0 or v -> 0.
     return 2.0 * travel_m / (v_max + std::sqrt(v_max * v_max + 2.0 * gravity * travel_m));
+}
+
+double TimeStepping::time_step(const Model& model, double v_max) {
+    const double g = model.gravity_m_per_s2.norm();
+    const double dt = step_for(v_max, g, model.travel_fraction * model.shot_radius_m);
+    return g > 0.0 ? std::min(dt, kGravityShareOfImpactSpeed * model.impact_speed_m_per_s / g) : dt;
 }
 
 TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
@@ -61,20 +74,21 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
     last_touch_component_.assign(static_cast<std::size_t>(model_->shot_count), -1);
     kicked_by_shot_.assign(static_cast<std::size_t>(model_->shot_count), 0);
+    touched_.assign(static_cast<std::size_t>(model_->shot_count), 0);
 }
 
 void TimeStepping::advance(SimulationState& state, double t_end_s, double /*pause_at_s*/, std::vector<ImpactRecord>& impacts) {
     const double now = state.time.seconds();
     const double remaining = t_end_s - now;
     if (!(remaining > 0.0)) return;
-    const double R = model_->shot_radius_m;
-    const double g = model_->gravity_m_per_s2.norm();
     const double v_max = std::max(state.fastest_shot_m_per_s, model_->peak_surface_speed_m_per_s);
-    double dt = step_for(v_max, g, model_->travel_fraction * R);
+    double dt = time_step(*model_, v_max);
     if (!(dt > 0.0) || !std::isfinite(dt) || dt >= remaining * (1.0 - 1e-9)) dt = remaining;
-    // Approaches slower than what gravity adds over two steps are sustained contact (contact_law.h).
-    resting_speed_ = 2.0 * g * dt;
     step_ = state.steps;
+    // A state made before the flags existed (or by hand in a test) starts with every shot at rest.
+    if (state.shots.in_flight.size() != state.shots.size()) state.shots.in_flight.assign(state.shots.size(), 0);
+    if (state.slow_contacts_per_component.size() != model_->components.size())
+        state.slow_contacts_per_component.resize(model_->components.size(), 0);
 
     {
         StageTimer timer(stats_, Stage::kinematics);
@@ -88,6 +102,7 @@ void TimeStepping::advance(SimulationState& state, double t_end_s, double /*paus
     resolve_mesh_contacts(state, dt, impacts, /*only_kicked=*/false);
     resolve_shot_pairs(state, dt);
     resolve_mesh_contacts(state, dt, impacts, /*only_kicked=*/true);
+    note_free_flights(state);
     check_health(state);
 
     state.time.advance(dt);
@@ -120,6 +135,7 @@ void TimeStepping::integrate(SimulationState& state, double dt) {
     std::fill(last_touch_.begin(), last_touch_.end(), 0.0);
     std::fill(last_touch_component_.begin(), last_touch_component_.end(), -1);
     std::fill(kicked_by_shot_.begin(), kicked_by_shot_.end(), 0);
+    std::fill(touched_.begin(), touched_.end(), 0);
     state.shot_steps += active;
 }
 
@@ -157,8 +173,9 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
         if (rc.squaredNorm() < 1e-24) continue;  // coincident centres: no normal to act along
         const Vec3 n = rc.normalized();
         const double approach = -dv.dot(n);
+        touched_[i] = touched_[j] = 1;
         if (approach > 0.0) {
-            const bool impact = contact::is_impact(approach, resting_speed_);
+            const bool impact = contact::is_impact(approach, model_->impact_speed_m_per_s);
             const contact::ShotShotResponse r = law.respond({vi, vj, n}, impact ? model_->shot_shot : plastic);
             const Vec3 dvi = r.v_i - vi, dvj = r.v_j - vj;
             // After a velocity change at time u the rest of the flight shifts by dv * (dt - u): exact.
@@ -171,7 +188,14 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             kicked_by_shot_[i] = kicked_by_shot_[j] = 1;
             forget_clearances(i);
             forget_clearances(j);
-            if (impact) ++state.shot_shot_impacts;
+            if (impact) {
+                ++state.shot_shot_impacts;
+                state.shots.in_flight[i] = state.shots.in_flight[j] = 1;  // both fly off
+            } else {
+                // Sustained: one slow contact if either shot was flying (a shot landing on a resting one).
+                const bool i_landed = ends_a_flight(state, i), j_landed = ends_a_flight(state, j);
+                if (i_landed || j_landed) ++state.shot_shot_slow_contacts;
+            }
         }
         // Any overlap left (several contacts in one step) is removed symmetrically, positions only.
         const Vec3 r = s.position(j) - s.position(i);
@@ -292,15 +316,22 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     const Vec3 p1 = s.position(i), v1 = s.velocity(i);
     Contact contact{};
     if (!closest_contact(c, i, p1, v1, R + swing, contact)) return false;
+    // A shot left exactly on a surface by sustained contact, which no force presses onto it (sliding
+    // along a wall, rolling round a chamber), is still touching it, not in free flight: without
+    // this its every re-contact (the next facet of a curved wall) would count as a new landing.
+    if (contact.gap < kTouchingGap * R) touched_[i] = 1;
     if (contact.gap >= swing && contact.gap >= 0.0) return false;
 
     StageTimer timer(stats_, Stage::contact_laws);
     const Vec3 g = model_->gravity_m_per_s2;
     const Vec3& n = contact.normal;
     const double u_lo = last_touch_[i];
+    // A gap of ~0 at u_lo is the rebound from this very component just taken, not a new contact.
+    const bool leaving = last_touch_component_[i] == static_cast<int>(c);
     // Gap at time u within the step, with the shot on its free-flight arc and the contact plane
     // moving with the surface.
     std::optional<double> touch;
+    std::optional<MovingMeshGap> turning_gap;
     ++stats_.touch_searches;
     if (vibrating) {
         const double a_n = kin.axis.dot(n), d_end = kin.displacement(t0_, dt);
@@ -308,40 +339,55 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
             const double back = dt - u;
             return contact.gap + n.dot(-v1 * back + 0.5 * g * back * back) - a_n * (kin.displacement(t0_, u) - d_end);
         };
-        const bool leaving = last_touch_component_[i] == static_cast<int>(c);
         touch = first_touch_sampled(gap, u_lo, dt, 1.0 / (kin.frequency_hz * kSamplesPerPeriod), kTouchTolerance, leaving);
+    } else if (kin.kind == Kinematics::Kind::rotating) {
+        // A turning mesh: the true gap, the mesh in its pose at each trial time (moving_mesh_gap.h).
+        turning_gap.emplace(comp, t0_, StepArc{p1, v1, g, dt}, R, u_lo, stats_);
+        touch = first_touch_sampled(*turning_gap, u_lo, dt, turning_gap->sample_interval(), kTouchTolerance, leaving);
     } else {
-        const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
-        touch = first_touch_quadratic(contact.gap, -n.dot(v1 - v_surface_end), 0.5 * n.dot(g), u_lo, dt);
+        // A static plane: the gap is exactly quadratic in time.
+        touch = first_touch_quadratic(contact.gap, -n.dot(v1), 0.5 * n.dot(g), u_lo, dt);
     }
     if (contact.gap < -0.5 * R) ++state.health.deep_penetrations;
     if (!touch) {
         // No new touch: either no contact at all, or the surface never let go of a shot that just
         // rebounded from it (a slow rebound on an accelerating plate): that shot rides the surface.
+        // That is the impact's own contact going on, not the end of a flight: no slow contact.
         if (contact.gap >= 0.0) return false;
+        touched_[i] = 1;
+        if (leaving) {
+            state.shots.in_flight[i] = 0;
+        } else if (ends_a_flight(state, i)) {
+            ++state.slow_contacts_per_component[c];
+        }
         sustain_contact(state, i, c, contact, v1, p1, dt);
         return false;
     }
+    // Sustained contact acts at the step end, on the contact found there.
+    const Contact at_step_end = contact;
 
     const double u = *touch, back = dt - u;
     const Vec3 v_touch = v1 - g * back;
     const Vec3 centre_touch = p1 - v1 * back + 0.5 * g * back * back;
-    if (kin.kind == Kinematics::Kind::rotating) {
-        // The part has turned since the touch: take the contact point and normal on the same
-        // triangle in the part's pose at the touch time, not at the step end.
-        const Pose pose = kin.pose(t0_, u);
-        const Vec3 q = pose.to_component(centre_touch);
-        const auto tt = static_cast<std::size_t>(contact.mesh_triangle);
-        const Vec3 cp = closest_point_on_triangle(q, comp.mesh->corner(tt, 0), comp.mesh->corner(tt, 1), comp.mesh->corner(tt, 2)).point;
-        if ((q - cp).norm() > 1e-9 * R) contact.normal = pose.rotation * (q - cp).normalized();
+    Vec3 x_touch = centre_touch - R * n;
+    if (turning_gap) {
+        // The part has turned since the touch: the feature touched, its normal and the contact
+        // point are those of the part in its pose at the touch time, not at the step end.
+        const MovingMeshGap::Touch at = turning_gap->touch_at(u);
+        contact.normal = at.normal;
+        contact.mesh_triangle = at.mesh_triangle;
+        const auto tt = static_cast<std::size_t>(at.mesh_triangle);
+        contact.triangle = comp.mesh->source_facet.empty() ? at.mesh_triangle : comp.mesh->source_facet[tt];
+        x_touch = at.point;
     }
-    const Vec3 x_touch = centre_touch - R * n;
     const Vec3 v_surface = kin.point_velocity(x_touch, t0_, u);
     const double approach = -(v_touch - v_surface).dot(n);
     const contact::SurfaceLaw& law = *model_->laws.surface;
 
-    if (contact::is_impact(approach, resting_speed_)) {
+    touched_[i] = 1;
+    if (contact::is_impact(approach, model_->impact_speed_m_per_s)) {
         contact::SurfaceContactResponse r = law.impact({v_touch, v_surface, n, 0.0, dt}, comp.coefficients);
+        bool rides = false;
         if (vibrating) {
             // Riding the plate: while the plate accelerates into the shot faster than gravity, a slow
             // rebound is caught again within microseconds, then again, ever slower (a Zeno sequence
@@ -352,8 +398,11 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
             if (closing_accel > 0.0 && r.vn_out < 0.5 * closing_accel / (kin.frequency_hz * kRideFraction)) {
                 r.v_shot -= r.vn_out * n;
                 r.vn_out = 0.0;
+                rides = true;
             }
         }
+        // A rebound starts a free flight; a ride stays in contact with the plate.
+        state.shots.in_flight[i] = rides ? 0 : 1;
         const Vec3 dv = r.v_shot - v_touch;
         s.set_velocity(i, v1 + dv);
         s.set_position(i, p1 + dv * back);
@@ -378,9 +427,26 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         }
         return true;
     }
-    if (contact.gap >= 0.0) return false;  // a slow touch that has already ended
-    sustain_contact(state, i, c, contact, v1, p1, dt);
+    // Slower than the impact speed: sustained contact, not an impact (contact_law.h).
+    if (at_step_end.gap >= 0.0) return false;  // a slow touch that has already ended
+    if (ends_a_flight(state, i)) ++state.slow_contacts_per_component[c];
+    sustain_contact(state, i, c, at_step_end, v1, p1, dt);
     return false;
+}
+
+bool TimeStepping::ends_a_flight(SimulationState& state, std::size_t i) {
+    // Counting rule: a slow contact is a free flight ending in sustained contact. A shot lying
+    // still, rolling or sliding is in sustained contact at every step; it is counted only when it
+    // got there from a flight (in_flight set by an impact's rebound or by a whole step touching
+    // nothing), so a resting shot counts once, however long it rests.
+    const bool was_flying = state.shots.in_flight[i] != 0;
+    state.shots.in_flight[i] = 0;
+    return was_flying;
+}
+
+void TimeStepping::note_free_flights(SimulationState& state) {
+    unsigned char* in_flight = state.shots.in_flight.data();
+    for (std::size_t i = 0; i < touched_.size(); ++i) in_flight[i] |= static_cast<unsigned char>(!touched_[i]);
 }
 
 void TimeStepping::sustain_contact(SimulationState& state, std::size_t i, std::size_t c, const Contact& contact, const Vec3& v1,

@@ -37,6 +37,12 @@ public:
     // Eq. 7 generalised to a travel fraction: the step in which the fastest thing (speed v, m/s)
     // travels at most fraction * R under gravity g (m/s2).
     static double step_for(double v_max, double gravity, double travel_m);
+    // The step (s) this scheme takes when the fastest thing moves at v_max (m/s): eq. 7 at the
+    // model's travel fraction, and never so long that gravity adds more than a tenth of the impact
+    // speed in it (otherwise a shot resting on a support that drops away for one step would land
+    // on it again fast enough to count as an impact, and how many bounces of a slowing shot are
+    // followed would depend on the step).
+    static double time_step(const Model& model, double v_max);
 
 private:
     struct Contact {
@@ -58,6 +64,11 @@ private:
                          Contact& out);
     void sustain_contact(SimulationState& state, std::size_t shot, std::size_t component, const Contact& contact, const Vec3& v1,
                          const Vec3& p1, double dt);
+    // The shot is now in sustained contact: true if that ends a free flight (its in_flight flag was
+    // set: the caller counts one slow contact), false while it goes on resting, rolling or sliding.
+    bool ends_a_flight(SimulationState& state, std::size_t shot);
+    // After a step: a shot that touched nothing in it is in free flight.
+    void note_free_flights(SimulationState& state);
     void check_health(SimulationState& state);
     // A kicked shot may move further than the per-step bound: check it against every component again.
     void forget_clearances(std::size_t shot);
@@ -71,8 +82,8 @@ private:
     std::vector<double> last_touch_;   // per shot: offset (s) of its latest contact in this step
     std::vector<int> last_touch_component_;  // per shot: component of that contact (-1: a shot or none)
     std::vector<unsigned char> kicked_by_shot_;  // per shot: a shot-shot contact changed its flight this step
+    std::vector<unsigned char> touched_;         // per shot: any contact (impact or sustained) this step
     std::vector<std::pair<int, int>> touching_;  // overlapping shot pairs of this step, reused
-    double resting_speed_ = 0.0;       // m/s
     std::uint64_t step_ = 0;           // index of the current step
     // Per component and shot: the first step at which the shot could touch the component again
     // (the distance gate's clearance divided by the most a shot can close in per step).

@@ -109,6 +109,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
     model->duration_s = scene.process.duration_s;
     model->seed = scene.process.seed;
     model->travel_fraction = scene.accuracy.travel_fraction;
+    model->impact_speed_m_per_s = scene.accuracy.impact_speed_m_per_s;
     model->laws = contact::make_laws("impulse");
     model->shot_shot = coefficients_of(contact_for(scene, "shot-shot"));
 

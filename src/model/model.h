@@ -54,6 +54,10 @@ struct Model {
     double duration_s = 0.0;                         // s
     std::uint64_t seed = 1;
     double travel_fraction = 0.25;                   // -, eq. 7 travel per step / R
+    // m/s, the one line between impacts and sustained contact, for both schemes: a normal approach
+    // (relative to the surface's material, or between two shot) at least this fast is an impact;
+    // slower is sustained contact (approach removed, friction, no rebound, not logged).
+    double impact_speed_m_per_s = 0.05;
     double peak_surface_speed_m_per_s = 0.0;         // m/s, fastest moving surface (sonotrode or part rim)
 
     Vec3 world_lo, world_hi;                         // m, a shot outside this box has left the chamber

@@ -52,6 +52,10 @@ struct RunSummary {
     std::uint64_t shot_lost = 0;  // shots that left the chamber or went non-finite
 
     std::vector<NamedCount> impacts_per_component;
+    // Flights that ended in sustained contact (approach slower than impact_speed_m_per_s): not
+    // impacts, counted once per landing; same entries as impacts_per_component.
+    std::vector<NamedCount> slow_contacts_per_component;
+    double impact_speed_m_per_s = 0.0;  // m/s, the scene's accuracy.impact_speed
     std::vector<NormalSpeedStats> normal_speed;  // per logged component
     std::vector<NamedCount> health_counters;
     std::vector<StageTime> stage_times;  // in step order

@@ -29,6 +29,11 @@ std::string summary_to_json(const RunSummary& s) {
     }
     j["impacts_per_component"] = std::move(impacts);
 
+    auto slow = nlohmann::ordered_json::array();
+    for (const auto& c : s.slow_contacts_per_component) slow.push_back({{"component", c.name}, {"slow_contacts", c.count}});
+    j["slow_contacts_per_component"] = std::move(slow);
+    j["impact_speed_mps"] = s.impact_speed_m_per_s;
+
     auto speeds = nlohmann::ordered_json::array();
     for (const auto& n : s.normal_speed) {
         speeds.push_back({{"component", n.component},

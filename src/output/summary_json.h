@@ -7,6 +7,8 @@
 //   "steps": ..., "shot_steps": ..., "shot_steps_per_s": ..., "sim_seconds_per_wall_second": ...,
 //   "shot_count": ..., "shot_lost": ...,
 //   "impacts_per_component": [{"component": "gear", "impacts": 123}, ...],
+//   "slow_contacts_per_component": [{"component": "gear", "slow_contacts": 4}, ...],
+//   "impact_speed_mps": 0.05,
 //   "normal_speed": [{"component": "gear", "count": 123, "mean_normal_speed_mps": ...,
 //                     "p10_normal_speed_mps": ..., "p50_normal_speed_mps": ...,
 //                     "p90_normal_speed_mps": ..., "max_normal_speed_mps": ...}, ...],

@@ -37,6 +37,17 @@ std::string health_text(const std::vector<NamedCount>& counters) {
     return text.empty() ? "all zero" : text;
 }
 
+// Landings slower than the impact speed (sustained contact, not impacts), non-zero ones only.
+std::string slow_contacts_text(const std::vector<NamedCount>& counts, double impact_speed_m_per_s) {
+    std::string text;
+    for (const auto& c : counts) {
+        if (c.count == 0) continue;
+        if (!text.empty()) text += ", ";
+        text += c.name + " " + std::to_string(c.count);
+    }
+    return (text.empty() ? std::string("none") : text) + printf_string(" (landings slower than %.3g m/s)", impact_speed_m_per_s);
+}
+
 }  // namespace
 
 std::string summary_to_text(const RunSummary& s) {
@@ -64,6 +75,7 @@ std::string summary_to_text(const RunSummary& s) {
         if (stats != s.normal_speed.end() && stats->count > 0) value += "  " + speeds_text(*stats);
         rows.emplace_back("impacts " + c.name, std::move(value));
     }
+    rows.emplace_back("slow contacts", slow_contacts_text(s.slow_contacts_per_component, s.impact_speed_m_per_s));
     rows.emplace_back("health", health_text(s.health_counters));
     rows.emplace_back(
         "peak memory",

@@ -64,6 +64,7 @@ void write_header(std::string& y, const SceneDescription& s) {
     y += "  seed: " + std::to_string(s.process.seed) + "\n";
     y += "accuracy:\n";
     y += "  travel_fraction: " + num(s.accuracy.travel_fraction) + "  # of the shot radius\n";
+    y += "  impact_speed: " + num(s.accuracy.impact_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
     y += std::string("  scheme: ") + scheme_name(s.accuracy.scheme) + "\n";
 }
 

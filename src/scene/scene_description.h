@@ -159,6 +159,7 @@ inline const char* scheme_name(SteppingScheme s) { return s == SteppingScheme::e
 
 struct AccuracyDesc {
     double travel_fraction = 0.25;  // -, max travel per step / shot radius (eq. 7 uses 0.25)
+    double impact_speed_m_per_s = 0.05;  // m/s, slower normal approaches are sustained contact, not impacts
     SteppingScheme scheme = SteppingScheme::event;
     SourceLocation where;
 };

@@ -17,6 +17,7 @@ ProcessDesc read_process(const Cursor& c) {
 AccuracyDesc read_accuracy(const Cursor& c) {
     AccuracyDesc d;
     d.travel_fraction = read_quantity(c.child("travel_fraction"));
+    d.impact_speed_m_per_s = read_quantity(c.child("impact_speed"));
     const std::string scheme = read_choice(c.child("scheme"));
     if (scheme == "step") d.scheme = SteppingScheme::step;
     if (scheme == "event") d.scheme = SteppingScheme::event;

@@ -37,6 +37,12 @@ const std::array schema_table{
     SchemaEntry{"accuracy.travel_fraction", K::quantity, D::dimensionless, false, "0.25", "",
                 open_closed(0, 1), "", "", "",
                 "Time stepping only: largest travel of anything in one step, as a fraction of the shot radius (eq. 7 uses 0.25)."},
+    SchemaEntry{"accuracy.impact_speed", K::quantity, D::speed, false, "5 cm/s", "", above(0), "", "", "",
+                "The line between an impact and sustained contact. A shot approaching a surface (relative to its "
+                "moving material) or another shot at a normal speed at least this is an impact (restitution, "
+                "logged); slower is sustained contact (the approach is removed, Coulomb friction acts, no rebound, "
+                "not logged: counted once per landing in `slow_contacts_per_component`). See the README's \"Impacts "
+                "and sustained contact\"."},
     SchemaEntry{"accuracy.scheme", K::choice, D::dimensionless, false, "event", "", {}, "step|event", "", "",
                 "Stepping scheme: `event`, event-driven (each shot flies exactly to its next collision, found in "
                 "closed form or by root finding; `travel_fraction` unused), or `step`, time stepping (every shot "
