@@ -29,14 +29,14 @@ constexpr double kG = 9.81;    // m/s2
 constexpr double kH0 = 2e-3;   // m, drop height of the centre above its height at contact
 constexpr double kC = 0.8;     // -, shot-sonotrode restitution (V0 1000 m/s: always elastic)
 
-TestSceneSpec still_plate() {
+TestSceneSpec still_plate(const std::string& scheme = "step") {
     TestSceneSpec spec;
     spec.chamber_size_m = Vec3(20e-3, 20e-3, 30e-3);
     spec.amplitude_m = 0.0;
     spec.sonotrode = {kC, 1e3, 0.71, 0.1};
     spec.log = {"sonotrode"};
     spec.duration_s = 0.5;  // the bounces are over after ~0.2 s; the shot then rests 0.3 s
-    spec.scheme = "step";
+    spec.scheme = scheme;
     return spec;
 }
 
@@ -51,14 +51,16 @@ struct Drop {
     SimulationState state;
     double R = 0.0;
     double largest_step_s = 0.0;  // s
+    std::string scheme;
     std::size_t sonotrode = 0;
 };
 
-Drop drop(const std::vector<std::string>& overrides) {
-    const TestScene scene(still_plate());
+Drop drop(const std::vector<std::string>& overrides, const std::string& scheme = "step") {
+    const TestScene scene(still_plate(scheme));
     const auto model = scene.compile(overrides);
     Simulation sim(model);
     Drop d;
+    d.scheme = scheme;
     d.R = model->shot_radius_m;
     d.sonotrode = static_cast<std::size_t>(model->sonotrode);
     set_shot(sim.mutable_state(), 0, Vec3(0.0, 0.0, d.R + kH0), Vec3::Zero());
@@ -98,20 +100,35 @@ void expect_closed_form(const Drop& d, double impact_speed) {
     EXPECT_EQ(slow, 1u);
     EXPECT_NEAR(d.state.shots.z[0], d.R, 1e-9);
     EXPECT_LT(std::abs(d.state.shots.vz[0]), 1e-3 * impact_speed);
-    // Gravity adds at most a tenth of the threshold per step.
-    EXPECT_LE(d.largest_step_s * kG, 0.1 * impact_speed * (1.0 + 1e-12));
+    // Time stepping: gravity adds at most a tenth of the threshold per step.
+    if (d.scheme == "step") EXPECT_LE(d.largest_step_s * kG, 0.1 * impact_speed * (1.0 + 1e-12));
     std::cout << "[ impact speed ] " << impact_speed << " m/s: " << d.impacts.size() << " impacts, last at "
               << d.impacts.back().vn_in_m_per_s << " m/s, then 1 slow contact; largest step " << d.largest_step_s * 1e6 << " us\n";
 }
 
-TEST(EngineImpactSpeed, ADroppedShotLogsExactlyTheBouncesFasterThanTheDefaultThresholdThenRests) {
+// Both schemes draw the line at the same place: each logs exactly the closed form's bounces.
+class EngineImpactSpeedSchemes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EngineImpactSpeedSchemes, ADroppedShotLogsExactlyTheBouncesFasterThanTheDefaultThresholdThenRests) {
     EXPECT_EQ(expected_impacts(0.05), 7);
-    expect_closed_form(drop({}), 0.05);
+    expect_closed_form(drop({}, GetParam()), 0.05);
 }
 
-TEST(EngineImpactSpeed, ALowerThresholdSetInTheSceneLogsMoreBounces) {
+TEST_P(EngineImpactSpeedSchemes, ALowerThresholdSetInTheSceneLogsMoreBounces) {
     EXPECT_EQ(expected_impacts(0.01), 14);
-    expect_closed_form(drop({"accuracy.impact_speed=1 cm/s"}), 0.01);
+    expect_closed_form(drop({"accuracy.impact_speed=1 cm/s"}, GetParam()), 0.01);
+}
+
+INSTANTIATE_TEST_SUITE_P(Schemes, EngineImpactSpeedSchemes, ::testing::Values("step", "event"));
+
+TEST(EngineImpactSpeed, BothSchemesLogTheSameSequence) {
+    const Drop step = drop({}, "step"), event = drop({}, "event");
+    ASSERT_EQ(step.impacts.size(), event.impacts.size());
+    for (std::size_t k = 0; k < step.impacts.size(); ++k) {
+        EXPECT_NEAR(step.impacts[k].time_s, event.impacts[k].time_s, 1e-12) << "impact " << k;
+        EXPECT_NEAR(step.impacts[k].vn_in_m_per_s, event.impacts[k].vn_in_m_per_s, 1e-12) << "impact " << k;
+    }
+    EXPECT_EQ(step.state.slow_contacts_per_component, event.state.slow_contacts_per_component);
 }
 
 TEST(EngineImpactSpeed, TheStepIsCappedSoGravityAddsATenthOfTheThresholdAtMost) {

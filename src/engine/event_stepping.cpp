@@ -58,6 +58,7 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
     // Never zero: a touch at a rounding-level speed (a flight exactly tangent to a face, without
     // gravity) is not an impact either.
     resting_speed_ = std::max(kMinImpactSpeed, 2.0 * g_.norm() * substep_);
+    impact_speed_ = m.impact_speed_m_per_s;
     box_travel_ = kBoxTravel * R_;
     const Component& sono = m.sonotrode_component();
     sonotrode_vibrates_ = sono.kinematics.kind == Kinematics::Kind::vibrating && sono.kinematics.moves();
@@ -170,6 +171,7 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         s.set_position(k, position(i, t_stop));
         const Vec3 v = velocity(i, t_stop);
         s.set_velocity(k, v);
+        s.in_flight[k] = shots_[k].in_flight;
         fastest2 = std::max(fastest2, v.squaredNorm());
     }
     state.fastest_shot_m_per_s = std::sqrt(fastest2);
@@ -217,7 +219,10 @@ double EventStepping::since_epoch(double t_s) const { return (t_s - epoch_.hi) -
 
 double EventStepping::absolute_seconds(double t) const { return epoch_.hi + (epoch_.lo + t); }
 
-void EventStepping::start(const SimulationState& state) {
+void EventStepping::start(SimulationState& state) {
+    if (state.shots.in_flight.size() != state.shots.size()) state.shots.in_flight.assign(state.shots.size(), 0);
+    if (state.slow_contacts_per_component.size() != model_->components.size())
+        state.slow_contacts_per_component.resize(model_->components.size(), 0);
     // The scheme's clock starts here: every time it keeps is seconds since this epoch, so a contact
     // time is resolved to ~1e-17 s however long the run (an absolute double at 2048 s resolves only
     // 4.5e-13 s, which at a few m/s is a position error above the touch tolerances).
@@ -240,6 +245,7 @@ void EventStepping::start(const SimulationState& state) {
         const Vec3 p = state.shots.position(k), v = state.shots.velocity(k);
         const bool asleep = v == Vec3::Zero() && touches_surface(p);
         set_flight(i, p, v, t, asleep ? Motion::sleeping : Motion::flying);
+        shots_[k].in_flight = state.shots.in_flight[k] != 0;
         predict_wall(i, t);
         renew_box(i, t);
         shots_[k].pair_time = kInf;
@@ -726,8 +732,17 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
     const Vec3& vs = w.surface_velocity;
     const double approach = -(v - vs).dot(n);
     if (approach > resting_speed_) {
+        // A rebound, followed exactly however slow (down to the resting speed). Only an approach at
+        // least the impact speed is an impact (logged); a slower one is a slow contact, counted once
+        // if it ends a flight, like time stepping's (which stops such a shot instead of following it).
         const contact::SurfaceContactResponse r = model_->laws.surface->impact({v, vs, n, 0.0, 0.0}, comp.coefficients);
-        record_impact(i, w.component, t, w, v, r, state, impacts);
+        if (contact::is_impact(approach, impact_speed_)) {
+            record_impact(i, w.component, t, w, v, r, state, impacts);
+            s.in_flight = true;  // sent off by an impact (time stepping's rule: whatever the rebound)
+        } else {
+            if (s.in_flight) ++state.slow_contacts_per_component[c];
+            s.in_flight = false;
+        }
         if (w.face) {
             // Riding (pitfall 1): the chatter sequence ends in a ride instead of a Zeno sequence.
             const double closing = (w.surface_acceleration - g_).dot(n);
@@ -747,7 +762,9 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         predict(i, t);
         return;
     }
-    // A touch slower than the resting speed: sustained contact from here (riding on the plate).
+    // Slower than the resting speed: sustained contact from here (riding on the plate), or a graze.
+    // A slow contact if it ends a flight (counted once; a graze read again is not).
+    if (s.in_flight && !(t - s.graze_at < kCollapseWindow)) ++state.slow_contacts_per_component[c];
     const Vec3 v_kept = v + std::max(0.0, approach) * n;
     if (w.face) {
         start_ride(i, t, w, p, v_kept);
@@ -769,8 +786,10 @@ void EventStepping::touch(int i, double t, const WallEvent& w, const Vec3& p, co
     if (!pressed && s.quick_grazes < kMaxQuickGrazes) {
         ++stats_.grazes;
         s.graze_at = t;
+        s.in_flight = true;
         set_flight(i, p, v_kept, t, Motion::flying);
     } else {
+        s.in_flight = false;
         set_flight(i, p, v_kept, t, Motion::sustained, w.normal);
     }
     predict(i, t);
@@ -816,6 +835,7 @@ void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& 
         return;
     }
     ++stats_.rides;
+    s.in_flight = false;
     const Vec3 rel = v_after - w.surface_velocity;
     s.ride_start = t;
     s.ride_point = p;
@@ -851,6 +871,7 @@ void EventStepping::launch(int i, double t) {
     const double slip = s.ride_tangential.norm();
     const double f = model_->sonotrode_component().coefficients.f;
     const Vec3 tangential = slip > 0.0 ? Vec3(s.ride_tangential * std::max(0.0, 1.0 - f * impulse / slip)) : Vec3(Vec3::Zero());
+    s.in_flight = true;
     set_flight(i, p, v_plate + tangential, t, Motion::flying);
     predict(i, t);
 }
@@ -916,14 +937,18 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
         const double approach = -(v - vs).dot(n);
         consider_support(n);
         if (approach > resting_speed_) {
-            // Slid or rolled into another surface fast enough to bounce: an impact, at the substep's end.
+            // Slid or rolled into another surface fast enough to bounce: a rebound at the substep's
+            // end, an impact if at least the impact speed.
+            const bool impact = contact::is_impact(approach, impact_speed_);
+            if (!impact && s.in_flight) ++state.slow_contacts_per_component[c];
+            s.in_flight = impact;
             const contact::SurfaceContactResponse r = m.laws.surface->impact({v, vs, n, 0.0, 0.0}, comp.coefficients);
             WallEvent w;
             w.point = point;
             w.normal = n;
             w.surface_velocity = vs;
             w.triangle = facets_[c][static_cast<std::size_t>(closest.triangle)];
-            record_impact(i, static_cast<int>(c), t, w, v, r, state, impacts);
+            if (impact) record_impact(i, static_cast<int>(c), t, w, v, r, state, impacts);
             v = r.v_shot;
         } else {
             const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, epoch_, t).dot(n));
@@ -935,6 +960,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
         }
     }
     if (!touching) {
+        s.in_flight = true;
         set_flight(i, p, v, t, Motion::flying);
         predict(i, t);
         return;
@@ -957,7 +983,7 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state)
     Vec3 vi = velocity(i, t), vj = velocity(j, t);
     const Vec3 r = pj - pi;
     const double d = r.norm();
-    bool slow = false;
+    bool slow = false, impact = false;
     const Vec3 n = d > 0.0 ? Vec3(r / d) : Vec3(Vec3::Zero());  // from i towards j
     if (d > 0.0) {
         if (d < 2.0 * R_) {
@@ -973,7 +999,11 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state)
         if (approach > 0.0) {
             contact::PairCoefficients k = model_->shot_shot;
             slow = approach <= resting_speed_;
-            if (slow) k.C0 = 0.0;  // sustained contact: the approach stops, nothing bounces
+            impact = contact::is_impact(approach, impact_speed_);
+            if (!impact && (a.in_flight || b.in_flight)) ++state.shot_shot_slow_contacts;
+            if (slow) {
+                k.C0 = 0.0;  // sustained contact: the approach stops, nothing bounces
+            }
             else if (t - a.last_pair_time < kCollapseWindow || t - b.last_pair_time < kCollapseWindow) {
                 k.C0 = 1.0;  // TC rule
                 ++stats_.collapse_guards;
@@ -981,14 +1011,15 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state)
             const contact::ShotShotResponse resp = model_->laws.shot_shot->respond({vi, vj, n}, k);
             vi = resp.v_i;
             vj = resp.v_j;
-            if (!slow) ++state.shot_shot_impacts;
+            if (impact) ++state.shot_shot_impacts;
         }
     }
+    if (d > 0.0) a.in_flight = b.in_flight = impact;
     a.last_pair_time = b.last_pair_time = t;
     a.last_partner = j;
     b.last_partner = i;
     const auto after = [&](const Shot& s) { return slow || s.motion == Motion::sustained ? Motion::sustained : Motion::flying; };
-    // A slow contact leaves the upper shot resting on the lower one.
+    // A contact slower than the resting speed leaves the upper shot resting on the lower one.
     set_flight(i, pi, vi, t, after(a), slow ? Vec3(-n) : Vec3(Vec3::Zero()));
     set_flight(j, pj, vj, t, after(b), slow ? n : Vec3(Vec3::Zero()));
     predict(i, t);

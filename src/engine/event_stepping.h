@@ -109,6 +109,7 @@ private:
         double no_pairs_at = -1.0;    // s, an instant at which this shot takes no more pair events
         double graze_at = -1.0;       // s, the instant of its latest graze (no wall contact then)
         int quick_grazes = 0;         // grazes in a row, each within the TC window of the one before
+        bool in_flight = false;       // SimulationState's in_flight (a slow contact ending it is counted)
         double substep_s = 0.0;       // s, length of the current sustained-contact substep
         int quiet_substeps = 0;       // consecutive still substeps (sleep)
         double window_travel = 0.0;   // m, travel the next search window of this flight covers
@@ -127,7 +128,7 @@ private:
         double searched_until = 0.0;   // s
     };
 
-    void start(const SimulationState& state);
+    void start(SimulationState& state);
     // Adds work done (events, or time-stepped shot steps) since the last restart point; once it
     // reaches the budget, brings the next restart point forward to the next point of the sync grid
     // (returns true then). now_s: absolute s.
@@ -211,7 +212,8 @@ private:
 
     double R_ = 0.0;                 // m
     Vec3 g_ = Vec3::Zero();          // m/s2
-    double resting_speed_ = 0.0;     // m/s, slower touches are sustained contact
+    double resting_speed_ = 0.0;     // m/s, what gravity adds in two substeps: slower is still (sleep), a slower rebound is none
+    double impact_speed_ = 0.0;      // m/s, Model::impact_speed_m_per_s: slower contacts are no impacts (sustained contact)
     double substep_ = 0.0;           // s, sustained-contact substep
     double box_travel_ = 0.0;        // m, how far a flight box reaches along the path
     std::uint64_t unresolved_ = 0;   // searches that ran out of iterations, added to the health at sync
