@@ -101,7 +101,9 @@ void expect_closed_form(const Drop& d, double impact_speed) {
     EXPECT_NEAR(d.state.shots.z[0], d.R, 1e-9);
     EXPECT_LT(std::abs(d.state.shots.vz[0]), 1e-3 * impact_speed);
     // Time stepping: gravity adds at most a tenth of the threshold per step.
-    if (d.scheme == "step") EXPECT_LE(d.largest_step_s * kG, 0.1 * impact_speed * (1.0 + 1e-12));
+    if (d.scheme == "step") {
+        EXPECT_LE(d.largest_step_s * kG, 0.1 * impact_speed * (1.0 + 1e-12));
+    }
     std::cout << "[ impact speed ] " << impact_speed << " m/s: " << d.impacts.size() << " impacts, last at "
               << d.impacts.back().vn_in_m_per_s << " m/s, then 1 slow contact; largest step " << d.largest_step_s * 1e6 << " us\n";
 }

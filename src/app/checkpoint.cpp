@@ -38,6 +38,12 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
         w.put(l.shot);
         w.put(l.time_s);
         for (int k = 0; k < 3; ++k) w.put(l.position_m[k]);
+        w.put(l.cause);
+        w.put(l.from_time_s);
+        for (int k = 0; k < 3; ++k) w.put(l.from_m[k]);
+        w.put(l.component);
+        for (int k = 0; k < 3; ++k) w.put(l.where_m[k]);
+        w.put(l.clearance_m);
     }
     for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz}) w.put_vector(*v);
     w.put_vector(s.shots.active);
@@ -78,6 +84,12 @@ Checkpoint load_checkpoint(const std::string& path) {
         l.shot = r.get<int>();
         l.time_s = r.get<double>();
         for (int a = 0; a < 3; ++a) l.position_m[a] = r.get<double>();
+        l.cause = r.get<LossCause>();
+        l.from_time_s = r.get<double>();
+        for (int a = 0; a < 3; ++a) l.from_m[a] = r.get<double>();
+        l.component = r.get<int>();
+        for (int a = 0; a < 3; ++a) l.where_m[a] = r.get<double>();
+        l.clearance_m = r.get<double>();
         s.lost.push_back(l);
     }
     for (auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz}) *v = r.get_vector<double>();

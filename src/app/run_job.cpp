@@ -14,6 +14,7 @@
 #include "app/checkpoint_cadence.h"
 #include "app/render_module.h"
 #include "app/interrupt.h"
+#include "app/loss_report.h"
 #include "app/report_errors.h"
 #include "app/summary_builder.h"
 #include "common/input_error.h"
@@ -202,9 +203,7 @@ private:
             out_ << "render: " << video << "; drawing took " << recorder_->draw_seconds() << " s"
                  << (n > 0 ? " (" + std::to_string(recorder_->draw_seconds() / n * 1e3) + " ms per frame)" : std::string()) << "\n";
         }
-        for (const LostShot& l : sim_->state().lost)
-            err_ << "warning: shot " << l.shot << " left the chamber at t = " << l.time_s << " s near (" << l.position_m.x() * 1e3
-                 << ", " << l.position_m.y() * 1e3 << ", " << l.position_m.z() * 1e3 << ") mm: the meshes leak there\n";
+        for (const LostShot& l : sim_->state().lost) err_ << describe_loss(*model_, l) << "\n";
         if (options_.analyze) {
             const int code = analyze_job(dir_, out_, err_);
             if (code != kExitOk) err_ << "warning: the run finished but its analysis failed (exit " << code << ")\n";

@@ -6,6 +6,7 @@
 
 #include "collision/closest_point.h"
 #include "collision/surface_clearance.h"
+#include "engine/loss_diagnosis.h"
 #include "engine/time_stepping.h"
 #include "event/sphere_pair_toi.h"
 #include "event/swept_sphere_box.h"
@@ -1062,7 +1063,14 @@ void EventStepping::lose(int i, double t, SimulationState& state, bool non_finit
         ++state.health.non_finite;
     } else {
         ++state.health.shot_lost;
-        state.lost.push_back({i, absolute_seconds(t), position(i, t)});
+        LostShot l;
+        l.shot = i;
+        l.time_s = absolute_seconds(t);
+        l.position_m = position(i, t);
+        const Trajectory& flight = shots_[k].path;  // exact since the shot's last event
+        diagnose_loss(*model_, epoch_, flight, flight.t0, t, l);
+        if (l.cause == LossCause::engine_error) ++state.health.engine_errors;
+        state.lost.push_back(l);
     }
     boxes_->remove(i);
     Shot& s = shots_[k];

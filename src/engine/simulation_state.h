@@ -41,6 +41,7 @@ struct HealthCounters {
     std::uint64_t shot_overlap_corrections = 0;// shot-shot overlaps removed the same way
     std::uint64_t deep_penetrations = 0;       // a shot found deeper than R/2 inside a surface
     std::uint64_t unresolved_contacts = 0;     // contact passes exhausted within one step
+    std::uint64_t engine_errors = 0;           // lost shot that crossed a surface (not through an opening)
 
     template <class Visit>
     void for_each(Visit&& visit) const {
@@ -50,16 +51,28 @@ struct HealthCounters {
         visit("shot_overlap_corrections", shot_overlap_corrections);
         visit("deep_penetrations", deep_penetrations);
         visit("unresolved_contacts", unresolved_contacts);
+        visit("engine_errors", engine_errors);
     }
     // Counters that mean a wrong result (the others are routine corrections).
-    std::uint64_t serious() const { return shot_lost + non_finite + deep_penetrations + unresolved_contacts; }
+    std::uint64_t serious() const { return shot_lost + non_finite + deep_penetrations + unresolved_contacts + engine_errors; }
 };
 
-// Where and when a shot left the assembly.
+// Why a shot was lost (engine/loss_diagnosis.h): through an opening of the assembly (a setup
+// error), or through a surface the scheme failed to see (an engine error). Time stepping's losses
+// are not diagnosed (its last step alone proves nothing).
+enum class LossCause : unsigned char { not_diagnosed, leak, engine_error };
+
+// Where and when a shot left the assembly, and why.
 struct LostShot {
     int shot = 0;
     double time_s = 0.0;   // s
-    Vec3 position_m;       // m, world
+    Vec3 position_m = Vec3::Zero();  // m, world, where it left the world box
+    LossCause cause = LossCause::not_diagnosed;
+    double from_time_s = 0.0;        // s, its last event (the flight that carried it out started there)
+    Vec3 from_m = Vec3::Zero();      // m, world, its centre then
+    int component = -1;              // engine error: the component it crossed; leak: the nearest at the opening
+    Vec3 where_m = Vec3::Zero();     // m, world, engine error: the point crossed; leak: where the centre left the chamber's bounds
+    double clearance_m = 0.0;        // m, leak: centre to the nearest surface there (the opening is at least 2 R wide)
 };
 
 struct SimulationState {
