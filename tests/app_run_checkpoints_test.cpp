@@ -22,23 +22,6 @@ namespace fs = std::filesystem;
 
 constexpr double kIntervalS = 0.1;  // s of (fake) wall time, output.checkpoint_interval
 
-// 64 shot of 2 mm thrown up at 1 m/s onto a static rod, as in the determinism tests.
-TestSceneSpec rod_scene(const std::string& scheme, double duration_s) {
-    TestSceneSpec spec;
-    spec.scheme = scheme;
-    spec.shot_count = 64;
-    spec.initial_speed_m_per_s = 1.0;
-    spec.amplitude_m = 25e-6;
-    spec.duration_s = duration_s;
-    PartSpec rod;
-    rod.shape = PartShape::cylinder;
-    rod.radius_m = 3e-3;
-    rod.length_m = 16e-3;
-    rod.center_m = Vec3(0.0, 0.0, 8e-3);
-    spec.part = rod;
-    return spec;
-}
-
 // A fake wall clock that moves `tick_s` at every reading. At each reading it also takes away the
 // checkpoint the run wrote since the previous one (loading it: it must be whole), noting when.
 struct CheckpointWatch {
@@ -82,7 +65,7 @@ std::vector<CheckpointWatch::Seen> run_watched(const TestScene& scene, double ti
 TEST(RunCheckpoints, TimeSteppingCheckpointsEveryIntervalOfWallTime) {
     // ~600 steps, one (fake) millisecond each: a checkpoint every 100 steps. (The loop once looked
     // at the clock only every 1024 steps: this run would have had none.)
-    const TestScene scene(rod_scene("step", 0.05));
+    const TestScene scene(small_rod_scene("step", 0.05));
     constexpr double kTickS = 1e-3;
     const std::vector<CheckpointWatch::Seen> seen = run_watched(scene, kTickS);
     ASSERT_GE(seen.size(), 4u);
@@ -97,7 +80,7 @@ TEST(RunCheckpoints, TimeSteppingCheckpointsEveryIntervalOfWallTime) {
 TEST(RunCheckpoints, EventDrivenCheckpointsAtTheFirstRestartPointAfterTheInterval) {
     // Restart points every 0.1 s of simulated time; the clock moves 0.04 s (fake) at each reading,
     // so the interval has passed at every third restart point or sooner.
-    const TestScene scene(rod_scene("event", 0.75));
+    const TestScene scene(small_rod_scene("event", 0.75));
     const std::vector<CheckpointWatch::Seen> seen = run_watched(scene, 0.04);
     ASSERT_GE(seen.size(), 2u);
     double previous_clock_s = 0.0;

@@ -125,22 +125,6 @@ TEST(EngineEventExact, ElasticBoxWithGravityKeepsItsMechanicalEnergy) {
 
 // The determinism test's small scene: 64 shot thrown up at 1 m/s and by the 25 um sonotrode onto a
 // static rod 8 mm above the plate, 0.05 s, rod and sonotrode impacts logged.
-TestSceneSpec small_rod_scene(const std::string& scheme) {
-    TestSceneSpec spec;
-    spec.scheme = scheme;
-    spec.shot_count = 64;
-    spec.initial_speed_m_per_s = 1.0;
-    spec.amplitude_m = 25e-6;
-    spec.duration_s = 0.05;
-    PartSpec rod;
-    rod.shape = PartShape::cylinder;
-    rod.radius_m = 3e-3;
-    rod.length_m = 16e-3;
-    rod.center_m = Vec3(0.0, 0.0, 8e-3);
-    spec.part = rod;
-    spec.log = {"part", "sonotrode"};
-    return spec;
-}
 
 std::vector<ImpactRecord> run_logging(const std::shared_ptr<const Model>& model, double pause_every_s) {
     Simulation sim(model);
@@ -163,7 +147,9 @@ bool same(const ImpactRecord& a, const ImpactRecord& b) {
 class EngineEventInvariants : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EngineEventInvariants, PausingDoesNotChangeTheImpacts) {
-    const TestScene scene(small_rod_scene(GetParam()));
+    TestSceneSpec spec = small_rod_scene(GetParam(), 0.05);
+    spec.log = {"part", "sonotrode"};
+    const TestScene scene(spec);
     const auto model = scene.compile();
     const std::vector<ImpactRecord> plain = run_logging(model, std::numeric_limits<double>::infinity());
     const std::vector<ImpactRecord> paused = run_logging(model, kPause);

@@ -190,4 +190,20 @@ std::string TestScene::make_subdirectory(const std::string& name) const {
     return p.string();
 }
 
+TestSceneSpec small_rod_scene(const std::string& scheme, double duration_s) {
+    TestSceneSpec spec;
+    spec.scheme = scheme;
+    spec.shot_count = 64;
+    spec.initial_speed_m_per_s = 1.0;
+    spec.amplitude_m = 25e-6;
+    spec.duration_s = duration_s;
+    PartSpec rod;
+    rod.shape = PartShape::cylinder;
+    rod.radius_m = 3e-3;
+    rod.length_m = 16e-3;
+    rod.center_m = Vec3(0.0, 0.0, 8e-3);
+    spec.part = rod;
+    return spec;
+}
+
 }  // namespace peensim::testing
