@@ -399,9 +399,14 @@ void EventStepping::predict_wall(int i, double t) {
         case Motion::riding: return;  // start_ride set the launch
         case Motion::sustained: {
             // Contacts are looked for at the substep's end only, so a substep may not carry the
-            // shot (or a turning part's surface) further than a quarter radius: nothing can be
-            // crossed unseen, as with time stepping's travel limit.
-            const double speed = velocity(i, t).norm() + moving_part_speed_;
+            // shot (or a turning part's surface, or the vibrating sonotrode's when the shot is
+            // near it) further than a quarter radius: nothing can be crossed unseen, as with time
+            // stepping's travel limit.
+            const Vec3 p = position(i, t);
+            const Component& sono = model_->sonotrode_component();
+            const Vec3 reach = Vec3::Constant(2.0 * R_ + sono.kinematics.amplitude_m);
+            const bool near_sonotrode = ((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all();
+            const double speed = velocity(i, t).norm() + moving_part_speed_ + (near_sonotrode ? surface_speed_[static_cast<std::size_t>(model_->sonotrode)] : 0.0);
             s.substep_s = speed > 0.0 ? std::clamp(kSubstepTravel * R_ / speed, kMinBoxHorizon, substep_) : substep_;
             w.time = t + s.substep_s;
             w.kind = WallKind::substep;
