@@ -282,15 +282,24 @@ TEST_P(EngineTubeLong, MatchesTheExactReferenceOverTheWholeRunAndEvery100sWindow
     // Whole run.
     const std::vector<Comparison> whole = compare(engine.tally.whole, reference.whole, seconds);
     std::cout << "[ tube long] " << label << ", " << seconds << " s, engine wall " << engine.wall_s << " s\n";
+    // One line for tests/extremes/run.sh: every whole-run difference in % and in SE.
+    std::ostringstream brief;
+    brief << std::fixed << std::setprecision(1) << label << ", " << seconds << " s (engine wall " << engine.wall_s << " s): whole run";
     for (const Comparison& c : whole) {
         std::cout << "[ tube long] " << label << " whole run, " << describe(c) << "\n";
+        brief << (&c == &whole.front() ? " " : ", ") << c.quantity.substr(0, c.quantity.find(" (")) << " "
+              << std::showpos << 100.0 * (c.engine.mean - c.reference.mean) / c.reference.mean << std::noshowpos << " % ("
+              << std::setprecision(2) << c.z << " SE)" << std::setprecision(1);
         EXPECT_GT(c.engine.mean, 0.0) << c.quantity;
         EXPECT_LE(c.z, kWholeRunSE) << label << " whole run, " << describe(c);
     }
 
     // Every 100 s window.
     const std::size_t windows = engine.tally.windows.size();
-    if (windows == 0) return;
+    if (windows == 0) {
+        std::cout << "[ tube sum] " << brief.str() << "; no windows (run < " << kMinWindowedRun << " s)\n";
+        return;
+    }
     const double k_window = two_sided_quantile(kSingleComparisonChance / (4.0 * static_cast<double>(windows)));
     int beyond_3se = 0;
     double worst = 0.0;
@@ -309,6 +318,8 @@ TEST_P(EngineTubeLong, MatchesTheExactReferenceOverTheWholeRunAndEvery100sWindow
     }
     std::cout << "[ tube long] " << label << " " << windows << " windows of 100 s: bound " << std::setprecision(3) << k_window
               << " SE; comparisons beyond 3 SE " << beyond_3se << " of " << 4 * windows << "; worst " << worst_text << "\n";
+    std::cout << "[ tube sum] " << brief.str() << "; " << windows << " windows of 100 s: worst " << std::setprecision(2) << worst
+              << " SE (bound " << k_window << " SE), " << beyond_3se << " of " << 4 * windows << " comparisons beyond 3 SE\n";
 }
 
 std::vector<Param> params() {
