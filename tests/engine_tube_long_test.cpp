@@ -265,6 +265,9 @@ struct Param {
     std::string scheme;
 };
 
+// gtest's name for a parameter in failure messages.
+void PrintTo(const Param& p, std::ostream* os) { *os << p.tube.name << " " << p.scheme; }
+
 class EngineTubeLong : public ::testing::TestWithParam<Param> {};
 
 TEST_P(EngineTubeLong, MatchesTheExactReferenceOverTheWholeRunAndEvery100sWindow) {
@@ -316,10 +319,12 @@ TEST_P(EngineTubeLong, MatchesTheExactReferenceOverTheWholeRunAndEvery100sWindow
             EXPECT_LE(c.z, k_window) << where << describe(c) << " (window bound " << k_window << " SE)";
         }
     }
-    std::cout << "[ tube long] " << label << " " << windows << " windows of 100 s: bound " << std::setprecision(3) << k_window
-              << " SE; comparisons beyond 3 SE " << beyond_3se << " of " << 4 * windows << "; worst " << worst_text << "\n";
-    std::cout << "[ tube sum] " << brief.str() << "; " << windows << " windows of 100 s: worst " << std::setprecision(2) << worst
-              << " SE (bound " << k_window << " SE), " << beyond_3se << " of " << 4 * windows << " comparisons beyond 3 SE\n";
+    std::ostringstream text;
+    text << "[ tube long] " << label << " " << windows << " windows of 100 s: bound " << std::setprecision(3) << k_window
+         << " SE; comparisons beyond 3 SE " << beyond_3se << " of " << 4 * windows << "; worst " << worst_text << "\n";
+    text << "[ tube sum] " << brief.str() << "; " << windows << " windows of 100 s: worst " << std::setprecision(2) << worst
+         << " SE (bound " << k_window << " SE), " << beyond_3se << " of " << 4 * windows << " comparisons beyond 3 SE\n";
+    std::cout << text.str();
 }
 
 std::vector<Param> params() {

@@ -13,6 +13,9 @@ Impact statistics on the logged part follow `peensim bench` (src/app/bench_job.c
 errors by batch means over 10 equal time batches, the mean normal speed's by the ratio estimator,
 and a difference within noise when it is at most 3 combined standard errors
 (3 sqrt(SE_step^2 + SE_event^2)); a mean speed without impacts in one run is not compared (n/a).
+Batch means estimate the noise only when the impacts spread over the run: when either run has
+impacts in fewer than MIN_BATCHES of the 10 batches (a lone shot that hits the part a few times),
+the schemes are not compared ("too few impacts"; the counts are in the row).
 """
 import argparse
 import json
@@ -23,6 +26,7 @@ import sys
 
 BATCHES = 10        # time batches for the batch-means standard errors (kBenchBatches)
 NOISE_SE = 3.0      # -, bound of a difference in combined standard errors
+MIN_BATCHES = 5     # batches with impacts each run needs before its noise is estimated
 
 
 class Batched:
@@ -44,6 +48,9 @@ class Batched:
 
     def rate(self):
         return self.count / self.duration
+
+    def batches_with_impacts(self):
+        return sum(1 for n in self.n if n > 0)
 
     def rate_se(self):
         b = self.duration / BATCHES
@@ -126,7 +133,7 @@ def read_scheme(directory, duration_s, cylinder_segments):
         "wall_s": wall,
         "wall_per_sim_s": wall / summary["simulated_time_s"] if summary["simulated_time_s"] > 0 else math.nan,
         "logged": logged,
-        "impacts": stats.count,
+        "impacts": stats.count, "batches_with_impacts": stats.batches_with_impacts(),
         "rate": stats.rate(), "rate_se": stats.rate_se(),
         "mean_vn": stats.mean(), "mean_vn_se": stats.mean_se(),
         "lost": health["shot_lost"], "non_finite": health["non_finite"],
@@ -188,6 +195,10 @@ def make_row(a):
         row["verdict"] = "within noise" if within else "DIFFERS"
         if s["impacts"] == 0 and e["impacts"] == 0:
             row["verdict"] = "no impacts"
+        elif min(s["batches_with_impacts"], e["batches_with_impacts"]) < MIN_BATCHES:
+            row["verdict"] = "too few impacts"
+            row["difference"] = (f"not compared: {s['impacts']} / {e['impacts']} impacts in "
+                                 f"{s['batches_with_impacts']} / {e['batches_with_impacts']} of {BATCHES} batches")
     else:
         row["speedup"] = math.nan
         row["difference"] = "-"
@@ -271,6 +282,14 @@ def cmd_report(a):
     for f in failures:
         print("FAILED " + f)
     verdict = "PASS" if not failures else f"FAIL ({len(failures)} failed assertions)"
+    estimate = ""
+    if a.to_full:
+        # The stepping loops scale with simulated time; setup (meshes, placement) does not, and is small.
+        loops = sum(r[s]["wall_s"] for r in rows for s in ("step", "event") if r.get(s))
+        full_s = loops * a.to_full + a.tube_wall * a.tube_to_full
+        estimate = (f"estimated wall time of --full: {full_s:.0f} s = {full_s / 3600:.1f} h (stepping loops {loops:.0f} s x {a.to_full:g}"
+                    + (f", tube {a.tube_wall:.0f} s x {a.tube_to_full:g}" if a.tube_wall else "") + ")")
+        print(estimate)
     print(f"{verdict}: {len(rows)} cases x 2 schemes" + (f", {a.mode}" if a.mode else "") +
           (f", wall {a.wall:.0f} s" if a.wall else ""))
     if a.md:
@@ -289,6 +308,8 @@ def cmd_report(a):
             for fl in failures:
                 f.write(f"- FAILED {fl}\n")
             f.write(f"\n{verdict}\n")
+            if estimate:
+                f.write(f"\n{estimate}\n")
     return 0 if not failures else 1
 
 
@@ -313,6 +334,9 @@ def main():
     t.add_argument("--md", default="")
     t.add_argument("--mode", default="")
     t.add_argument("--wall", type=float, default=0.0)
+    t.add_argument("--tube-wall", type=float, default=0.0, help="s, wall time of the tube test")
+    t.add_argument("--to-full", type=float, default=0.0, help="simulated time of --full over this run's (cases)")
+    t.add_argument("--tube-to-full", type=float, default=0.0, help="the same for the tube")
     sub.add_parser("header")
     a = p.parse_args()
     if a.command == "header":

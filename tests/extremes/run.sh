@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The extremes matrix (issue 10, "Trust at the extremes"; README, "Extremes matrix").
 #   tests/extremes/run.sh [--quick | --full] [--jobs N] [--md FILE] [--out DIR] [--cases REGEX]
+#                         [--build-dir DIR] [--no-build]
 #
 # A base case (rod chamber, 512 shot of 2 mm, A0 25 um, static rod) varied one factor at a time
 # over every level of the issue (shot 0.3 / 1 / 3 mm; A0 0 / 100 um; the part a 128-facet cylinder
@@ -16,12 +17,17 @@
 # run of the normal test suite), a smoke test.
 # --jobs N runs N cases at once (default 1; wall times are only comparable with 1).
 # --cases REGEX runs only the cases whose name matches (and skips the tube unless 'tube' matches).
+# --build-dir DIR: where peensim and peensim_tests are (default build/); --no-build uses them as
+# they are (the normal test suite runs a subset so: tests/CMakeLists.txt).
+# --out DIR keeps every run's summary.json there; without it a temporary directory is used and
+# removed when everything passed.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 here="$root/tests/extremes"
 build="${PEENSIM_BUILD_DIR:-$root/build}"
 
 mode=default
+do_build=1
 jobs=1
 md=""
 out=""
@@ -34,23 +40,28 @@ while [[ $# -gt 0 ]]; do
         --md) md="$2"; shift ;;
         --out) out="$2"; shift ;;
         --cases) only="$2"; shift ;;
-        -h|--help) sed -n '2,20p' "${BASH_SOURCE[0]}"; exit 0 ;;
+        --build-dir) build="$2"; shift ;;
+        --no-build) do_build=0 ;;
+        -h|--help) sed -n '2,26p' "${BASH_SOURCE[0]}"; exit 0 ;;
         *) echo "run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
     esac
     shift
 done
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh: --jobs needs a positive integer" >&2; exit 2; }
 case "$mode" in
-    full) d_normal=60; d_large=10; tube_seconds=3000 ;;
-    default) d_normal=6; d_large=1; tube_seconds=300 ;;
-    quick) d_normal=0.6; d_large=0.1; tube_seconds="" ;;
+    full) d_normal=60; d_large=10; tube_seconds=3000; to_full=1; tube_to_full=1 ;;
+    default) d_normal=6; d_large=1; tube_seconds=300; to_full=10; tube_to_full=10 ;;
+    quick) d_normal=0.6; d_large=0.1; tube_seconds=""; to_full=100; tube_to_full=1500 ;;
 esac
 [[ -n "$md" && "$md" != /* ]] && md="$PWD/$md"
 
-echo "# run.sh: building peensim and peensim_tests in $build"
-cmake --build "$build" -j2 --target peensim peensim_tests >/dev/null
+if (( do_build )); then
+    echo "# run.sh: building peensim and peensim_tests in $build"
+    cmake --build "$build" -j2 --target peensim peensim_tests >/dev/null
+fi
 peensim="$build/peensim"
 tests_bin="$build/tests/peensim_tests"
+[[ -x "$peensim" && -x "$tests_bin" ]] || { echo "run.sh: $peensim or $tests_bin missing: build them first" >&2; exit 2; }
 
 work="${out:-$(mktemp -d -t peensim-extremes.XXXXXX)}"
 mkdir -p "$work"
@@ -147,6 +158,7 @@ wait
 tube_log="$work/tube.log"
 if [[ -z "$only" || "tube" =~ $only ]]; then
     echo "# tube against the exact reference: EngineTubeLong, ${tube_seconds:-2 (the short run of the test suite)} s"
+    tube_start=$(date +%s)
     set +e
     if [[ -n "$tube_seconds" ]]; then
         PEENSIM_TUBE_SECONDS="$tube_seconds" "$tests_bin" --gtest_filter='*TubeLong*' >"$tube_log" 2>&1
@@ -154,7 +166,7 @@ if [[ -z "$only" || "tube" =~ $only ]]; then
         "$tests_bin" --gtest_filter='*TubeLong*' >"$tube_log" 2>&1
     fi
     set -e
-    tube_args=(--tube "$tube_log")
+    tube_args=(--tube "$tube_log" --tube-wall "$(( $(date +%s) - tube_start ))")
 else
     tube_args=()
 fi
@@ -162,6 +174,11 @@ fi
 wall=$(( $(date +%s) - start ))
 order_csv=$(IFS=,; echo "${order[*]}")
 echo "# report"
+status=0
 python3 "$here/extremes.py" report "$rows" --order "$order_csv" "${tube_args[@]}" \
     --mode "$mode mode ($d_normal s of peening, $d_large s for 3072 shot; tube ${tube_seconds:-2} s), $(date -u +%Y-%m-%d)" \
-    --wall "$wall" ${md:+--md "$md"}
+    --wall "$wall" --to-full "$to_full" --tube-to-full "$tube_to_full" ${md:+--md "$md"} || status=$?
+if [[ -z "$out" ]]; then
+    if (( status == 0 )); then rm -rf "$work"; else echo "# the runs' summaries: $work"; fi
+fi
+exit "$status"
