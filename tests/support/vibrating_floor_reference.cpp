@@ -417,6 +417,7 @@ private:
 
     void record(const VibratingFloorEvent& e) {
         ++stats_.events_total;
+        if (c_.on_event) c_.on_event(e);
         if (stats_.first_events.size() < c_.max_recorded_events) stats_.first_events.push_back(e);
     }
 

@@ -14,9 +14,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace peensim::testing {
+
+struct VibratingFloorEvent;
 
 struct VibratingFloorCase {
     double R;      // shot radius (m)
@@ -43,6 +46,10 @@ struct VibratingFloorCase {
     double contact_tolerance = 1e-12;
     std::size_t max_recorded_events = 0;     // events kept in VibratingFloorStats::first_events
     std::uint64_t max_events = 100'000'000;  // cap on flights + rides; exceeding it throws
+    // Called with every event of the whole run as it happens (impacts of any speed down to
+    // chatter_speed, captures, releases), before and after statistics_start: lets a caller bin
+    // impacts by time window or speed without keeping them all.
+    std::function<void(const VibratingFloorEvent&)> on_event{};
 };
 
 enum class VibratingFloorEventKind {
