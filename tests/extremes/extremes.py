@@ -138,6 +138,7 @@ def read_scheme(directory, duration_s, cylinder_segments):
         "mean_vn": stats.mean(), "mean_vn_se": stats.mean_se(),
         "lost": health["shot_lost"], "non_finite": health["non_finite"],
         "deep": health["deep_penetrations"], "unresolved": health["unresolved_contacts"],
+        "engine_errors": health.get("engine_errors", 0),  # serious; in builds that count it
         "inside": inside if cylinder_segments else None, "inside_worst": inside_worst, "cap_impacts": caps,
     }
 
@@ -160,8 +161,8 @@ def row_failures(row):
             continue
         if not s["finished"]:
             out.append(f"{scheme} did not finish")
-        for key in ("lost", "non_finite", "deep", "unresolved"):
-            if s[key]:
+        for key in ("lost", "non_finite", "engine_errors", "deep", "unresolved"):
+            if s.get(key):
                 out.append(f"{scheme} {key} {s[key]}")
         if s["inside"]:
             out.append(f"{scheme} inside {s['inside']} (worst outward radial part {s['inside_worst']:.3f} of the speed)")
@@ -247,21 +248,26 @@ def cmd_row(a):
 TUBE_LINE = re.compile(r"^\[ tube sum\] ")
 
 
-def tube_summary(log_path):
+def tube_summary(log_path, exit_code):
     """(lines for the report, failures) from the EngineTubeLong output."""
-    lines, failures = [], []
+    lines, failed = [], []
     if not log_path or not os.path.exists(log_path):
         return lines, ["tube: no output"]
     text = open(log_path).read()
     for line in text.splitlines():
         if TUBE_LINE.match(line):
             lines.append(line[len("[ tube sum] "):])
-        m = re.match(r"^\[  FAILED  \] (\S+EngineTubeLong\S+)", line)
-        if m and m.group(1) not in failures:
-            failures.append(m.group(1))
-    if "[  PASSED  ]" not in text and not failures:
-        failures.append("tube: the test binary did not complete")
-    return lines, ["tube " + f for f in failures]
+        m = re.match(r"^\[  FAILED  \] (\S+EngineTubeLong[^\s,]+)", line)
+        if m and m.group(1) not in failed:
+            failed.append(m.group(1))
+    failures = ["tube " + f for f in failed]
+    if not re.search(r"^\[==========\] \d+ tests? from .* ran\.", text, re.M):
+        running = re.findall(r"^\[ RUN      \] (\S+)", text, re.M)
+        failures.append(f"tube: the test binary stopped (exit {exit_code}) before finishing"
+                        + (f", in {running[-1]}" if running else ""))
+    elif exit_code not in (0, None) and not failed:
+        failures.append(f"tube: the test binary exited with {exit_code}")
+    return lines, failures
 
 
 def cmd_report(a):
@@ -273,7 +279,7 @@ def cmd_report(a):
     for r in rows:
         print(text_line(cells(r), WIDTHS))
         failures += [f"{r['case']}: {f}" for f in r["failures"]]
-    tube_lines, tube_failures = tube_summary(a.tube) if a.tube else ([], [])
+    tube_lines, tube_failures = tube_summary(a.tube, a.tube_exit) if a.tube else ([], [])
     if tube_lines:
         print("# tube against the exact reference (EngineTubeLong):")
         for line in tube_lines:
@@ -334,6 +340,7 @@ def main():
     t.add_argument("--md", default="")
     t.add_argument("--mode", default="")
     t.add_argument("--wall", type=float, default=0.0)
+    t.add_argument("--tube-exit", type=int, default=None, help="exit code of the tube test binary")
     t.add_argument("--tube-wall", type=float, default=0.0, help="s, wall time of the tube test")
     t.add_argument("--to-full", type=float, default=0.0, help="simulated time of --full over this run's (cases)")
     t.add_argument("--tube-to-full", type=float, default=0.0, help="the same for the tube")

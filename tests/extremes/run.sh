@@ -165,8 +165,9 @@ if [[ -z "$only" || "tube" =~ $only ]]; then
     else
         "$tests_bin" --gtest_filter='*TubeLong*' >"$tube_log" 2>&1
     fi
+    tube_exit=$?
     set -e
-    tube_args=(--tube "$tube_log" --tube-wall "$(( $(date +%s) - tube_start ))")
+    tube_args=(--tube "$tube_log" --tube-exit "$tube_exit" --tube-wall "$(( $(date +%s) - tube_start ))")
 else
     tube_args=()
 fi
