@@ -95,14 +95,18 @@ double DistanceGate::outside_bound(const Vec3& p) const {
 DistanceGate DistanceGate::for_shot(const TriangleMesh& mesh, double shot_radius_m, double swing_m) {
     // Half a shot radius resolves "can this shot touch it" sharply; on very large meshes the grid
     // is coarsened to stay within ~8 M cells (still exact as a lower bound, just less sharp).
+    const double cell = cell_within(mesh, 0.5 * shot_radius_m, 4.0 * shot_radius_m, 8.0e6);
+    return DistanceGate(mesh, cell, 2.0 * shot_radius_m + swing_m);
+}
+
+double DistanceGate::cell_within(const TriangleMesh& mesh, double finest_m, double margin_m, double max_cells) {
     Vec3 lo = mesh.vertices.front(), hi = lo;
     for (const Vec3& v : mesh.vertices) {
         lo = lo.cwiseMin(v);
         hi = hi.cwiseMax(v);
     }
-    const Vec3 extent = (hi - lo) + Vec3::Constant(8.0 * shot_radius_m);
-    const double cell = std::max(0.5 * shot_radius_m, std::cbrt(extent.prod() / 8.0e6));
-    return DistanceGate(mesh, cell, 2.0 * shot_radius_m + swing_m);
+    const Vec3 extent = (hi - lo) + Vec3::Constant(2.0 * margin_m);
+    return std::max(finest_m, std::cbrt(extent.prod() / max_cells));
 }
 
 }  // namespace peensim

@@ -29,6 +29,11 @@ public:
     // (m, how far the surface moves: twice a sonotrode's amplitude).
     static DistanceGate for_shot(const TriangleMesh& mesh, double shot_radius_m, double swing_m);
 
+    // The finest cell size (m) at or above finest_m whose grid over the mesh's bounds grown by
+    // margin_m on every side has at most max_cells cells: fine meshes and small shot in a large
+    // assembly coarsen the grid instead of exhausting memory.
+    static double cell_within(const TriangleMesh& mesh, double finest_m, double margin_m, double max_cells);
+
     // Lower bound (m) of the distance from p (mesh frame) to the mesh.
     double lower_bound(const Vec3& p) const {
         const Vec3 q = (p - origin_) * inv_cell_;

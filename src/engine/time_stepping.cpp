@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "collision/closest_point.h"
+#include "collision/surface_clearance.h"
 #include "engine/contact_time.h"
 #include "engine/moving_mesh_gap.h"
 
@@ -277,9 +278,15 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
     const TriangleMesh& mesh = *comp.mesh;
     const int best_triangle = closest.triangle;
     const Vec3 best_point = closest.point;
-    const double d = closest.distance;
+    double d = closest.distance;
     Vec3 n_local;
-    if (d > 1e-9 * model_->shot_radius_m) {
+    const SurfaceClearance clear = comp.solid ? surface_clearance(mesh, true, p, closest) : SurfaceClearance{};
+    if (comp.solid && clear.distance_m < 0.0) {
+        // The centre is behind a face of a closed part: the nearest-point normal points further
+        // in, so the shot is pushed back out through the face it crossed (surface_clearance.h).
+        d = clear.distance_m;
+        n_local = clear.normal;
+    } else if (d > 1e-9 * model_->shot_radius_m) {
         n_local = (p - best_point) / d;
     } else {
         // Centre on the surface: take the face normal on the side the shot came from.

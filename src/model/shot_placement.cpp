@@ -27,6 +27,18 @@ bool clear_of_meshes(const Model& model, const Vec3& p, double r) {
     return true;
 }
 
+// Exact distance (m) from p (world) to the nearest component at t = 0, or `within` (m) if none is closer.
+double clearance(const Model& model, const Vec3& p, double within) {
+    const SimTime t0;
+    double nearest = within;
+    for (const Component& c : model.components) {
+        MeshCollider::Closest closest;
+        MeshCollider::QueryCounters counters;
+        if (c.collider->closest_within(c.kinematics.pose(t0).to_component(p), nearest, closest, counters)) nearest = std::min(nearest, closest.distance);
+    }
+    return nearest;
+}
+
 // Shot already placed, hashed by cells one diameter wide.
 class PlacedShots {
 public:
@@ -167,6 +179,25 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
         throw InputError(sono_where, "components", "expected a chamber above the sonotrode, found nothing above its upper face");
 }
 
+// The enclosed region the shot start in: the one most points of the first layer on the sonotrode
+// lie in. Above the first layer, a point may lie inside a closed part (a rod hanging over the
+// sonotrode) or a sealed pocket, which the enclosure also counts as enclosed: such a shot would
+// start inside the part. Sampled with its own generator, so the placement's draws are unchanged.
+int shot_cavity(const Model& model, Enclosure& enclosure, const FaceSampler& faces, const Vec3& up) {
+    const double R = model.shot_radius_m;
+    Random probe(model.seed ^ 0x9e3779b97f4a7c15ULL);
+    std::unordered_map<int, int> votes;
+    for (int k = 0; k < 256; ++k) {
+        const Vec3 p = faces.sample(probe) + up * (R * (1.0 + kClearance));
+        const int region = enclosure.region(p);
+        if (region >= 0 && clear_of_meshes(model, p, R)) ++votes[region];
+    }
+    int best = -1, most = 0;
+    for (const auto& [region, n] : votes)
+        if (n > most || (n == most && region < best)) best = region, most = n;
+    return best;
+}
+
 }  // namespace
 
 Vec3 sonotrode_up(const Model& model) {
@@ -187,17 +218,18 @@ InitialShots place_shots(const Model& model) {
         throw InputError(sono_where, "components[" + std::to_string(model.sonotrode) + "].mesh",
                          "expected the sonotrode mesh to have an upper face pointing into the chamber (against gravity), found none");
 
-    const Enclosure enclosure(world_mesh(model), std::max(0.5 * R, 1e-5), R);
+    Enclosure enclosure(world_mesh(model), 0.5 * R, R, [&model](const Vec3& p, double within) { return clearance(model, p, within); });
     Random rng(model.seed);
 
     require_closed_chamber(model, enclosure, faces, up, rng);
+    const int cavity = shot_cavity(model, enclosure, faces, up);
 
     InitialShots out;
     PlacedShots placed(D);
     int layer = 0, in_layer = 0, rejections = 0;
     while (static_cast<int>(out.positions.size()) < model.shot_count) {
         const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance) + layer * D * (1.0 + kClearance));
-        const bool ok = enclosure.inside(p) && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kClearance));
+        const bool ok = enclosure.region(p) == cavity && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kClearance));
         if (ok) {
             placed.add(p);
             out.positions.push_back(p);

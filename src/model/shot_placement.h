@@ -1,8 +1,9 @@
 // Initial shot positions and velocities (reference sec. 2: random, non-overlapping, on the
 // sonotrode at t = 0). Shot are dropped at random points of the sonotrode's upper faces, one
-// radius (plus 1 %) above them, rejected if outside the chamber or touching a mesh or another
-// shot; when a layer is full (400 rejections in a row) the next layer is filled one diameter
-// higher, until the shot are placed or no layer takes any more.
+// radius (plus 1 %) above them, rejected if outside the chamber's cavity (beyond the walls, inside
+// a closed part, in a sealed pocket) or touching a mesh or another shot; when a layer is full (400
+// rejections in a row) the next layer is filled one diameter higher, until the shot are placed or
+// no layer takes any more.
 #pragma once
 
 #include <vector>
