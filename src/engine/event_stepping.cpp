@@ -75,7 +75,6 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
         if (&c != &sono) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
     }
     shots_.resize(static_cast<std::size_t>(m.shot_count));
-    work_budget_ = std::max(kMinWorkBudget, kWorkBudgetPerShot * static_cast<std::uint64_t>(m.shot_count));
     active_.assign(shots_.size(), 0);
     queue_.reset(shots_.size());
     neighbours_.reserve(64);
@@ -119,14 +118,20 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         if (handed_over_) {
             if (!time_stepping_) time_stepping_ = std::make_unique<TimeStepping>(model_);
             ++stats_.hand_overs;
+            work_budget_ = std::max(kMinWorkBudget, kWorkPerRestart * kWorkPerShotStep * static_cast<std::uint64_t>(model_->shot_count));
         } else {
+            // The budget follows from the restart's own work, which depends on the state alone: a
+            // resumed run restarts where the uninterrupted one does.
+            const std::uint64_t before = work_units();
             start(state);
+            work_counted_ = work_units();
+            work_budget_ = std::max(kMinWorkBudget, kWorkPerRestart * (work_counted_ - before));
         }
     }
     if (handed_over_) {
         const std::uint64_t steps_before = state.shot_steps;
         time_stepping_->advance(state, std::min(t_end_s, next_restart_), pause_at_s, impacts);
-        count_work(state.shot_steps - steps_before, state.time.seconds());
+        count_work(kWorkPerShotStep * (state.shot_steps - steps_before), state.time.seconds());
         if (state.time.seconds() >= next_restart_) started_ = false;
         return;
     }
@@ -156,7 +161,10 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         ++stats_.events;
         ++events_since_sync_;
         process(i, state, impacts);
-        if (count_work(1, absolute_seconds(t)) && next_restart_ < stop_s) {
+        const std::uint64_t done = work_units();
+        const bool due = count_work(done - work_counted_, absolute_seconds(t));
+        work_counted_ = done;
+        if (due && next_restart_ < stop_s) {
             stop_s = next_restart_;
             t_stop = std::max(now, since_epoch(stop_s));
         }

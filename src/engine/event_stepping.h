@@ -62,17 +62,19 @@ public:
     // flight re-predicted, modes and neighbour tree rebuilt), exactly as a run resumed from a
     // checkpoint of that state does: so a resumed run equals the uninterrupted one, byte for byte.
     // Restart points come every kRestartInterval of simulated time, and at the next point of the
-    // sync grid after every work budget of events (so at least every few tenths of a second of
-    // wall time: checkpoints and interrupts wait for one).
+    // sync grid after every work budget (so at least every few tenths of a second of wall time:
+    // checkpoints and interrupts wait for one).
     bool at_restart_point() const override { return !started_; }
     static constexpr double kRestartInterval = 0.1;  // s
 
     // Simulated time (s) one advance() covers at most: it stops on a grid of this spacing (absolute
     // multiples), where the state is brought up to date for progress, checkpoints and interrupts.
     static constexpr double kSyncInterval = 1e-3;
-    // Events between restart points at least (more with many shot: a restart re-predicts each).
-    static constexpr std::uint64_t kMinWorkBudget = 200000;
-    static constexpr std::uint64_t kWorkBudgetPerShot = 16;
+    // Work between restart points, in work units (work_units(): ~0.25 us of wall time each): at
+    // least kMinWorkBudget, and kWorkPerRestart times what the last restart cost (re-predicting
+    // every shot), so restarts take at most ~1/16 of the run.
+    static constexpr std::uint64_t kMinWorkBudget = 800000;
+    static constexpr std::uint64_t kWorkPerRestart = 16;
 
 private:
     enum class Motion : unsigned char { flying, riding, sustained, sleeping };
@@ -129,7 +131,14 @@ private:
     };
 
     void start(SimulationState& state);
-    // Adds work done (events, or time-stepped shot steps) since the last restart point; once it
+    // Work done so far, weighted by what it costs: a shot-shot time-of-impact test is one unit, an
+    // event or a shot x component prediction four. Events alone were a poor clock: in a dense load
+    // (3072 shot of 2 mm) an event tests ~37 neighbour pairs and costs ~9 us, against ~1 us for a
+    // lone small shot, and restart points came 1.5 s of wall time apart. Only differences are
+    // used, so the counters' values before a resume do not matter.
+    std::uint64_t work_units() const { return 4 * (stats_.events + stats_.mesh_predictions) + stats_.pair_tests; }
+    static constexpr std::uint64_t kWorkPerShotStep = 4;  // a time-stepped shot step (hand-over)
+    // Adds work done (work units) since the last restart point; once it
     // reaches the budget, brings the next restart point forward to the next point of the sync grid
     // (returns true then). now_s: absolute s.
     bool count_work(std::uint64_t units, double now_s);
@@ -194,7 +203,8 @@ private:
     SimTime epoch_;
     double face_phase_at_zero_ = 0.0;  // rad, the face's phase at t = 0 (face_.plane is rebased to epoch_)
     std::uint64_t work_since_restart_ = 0;
-    std::uint64_t work_budget_ = 0;    // events between restart points, at most (then the next grid point)
+    std::uint64_t work_budget_ = 0;    // work units between restart points, at most (then the next grid point)
+    std::uint64_t work_counted_ = 0;   // work_units() already counted
     double same_time_ = -1.0;          // s, the time of the latest event, and how many came at it (forced progress)
     std::uint64_t at_same_time_ = 0;
     std::vector<Shot> shots_;
