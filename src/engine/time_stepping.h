@@ -15,6 +15,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "collision/sharp_distance.h"
@@ -60,6 +61,15 @@ private:
     // Returns true if an impact happened (the shot's trajectory changed within the step).
     bool handle_component(SimulationState& state, std::size_t shot, std::size_t component, double dt,
                           std::vector<ImpactRecord>& impacts);
+    // The first touch (s into the step, at or after u_lo) of the shot ending the step at p1 with
+    // velocity v1 on the vibrating surface whose contact at the step end is `contact`.
+    std::optional<double> vibrating_touch(const Kinematics& kin, const Contact& contact, const Vec3& p1, const Vec3& v1, double dt,
+                                          double u_lo, bool leaving) const;
+    // A shot that starts riding the vibrating plate at u (s into the step) with velocity v_after
+    // and centre `centre`: launched where the plate pulls away faster than gravity, if that comes
+    // before the step end (its state at the step end set accordingly).
+    void launch_within_step(SimulationState& state, std::size_t shot, std::size_t component, const Vec3& n, const Vec3& centre,
+                            const Vec3& v_after, double u, double dt);
     bool closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world, double query_radius,
                          Contact& out);
     void sustain_contact(SimulationState& state, std::size_t shot, std::size_t component, const Contact& contact, const Vec3& v1,
