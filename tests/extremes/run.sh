@@ -75,6 +75,9 @@ base=("shot.count=512" "shot.diameter=2 mm" "components[sonotrode].vibration.amp
 cyl_motion() { echo "components[rod].motion={type: rotating, axis_point: [0, 0, 20 mm], axis_direction: [0, 1, 0], speed: $1 rpm}"; }
 gear_motion() { echo "components[gear].motion={type: rotating, axis_point: [0, 0, 42 mm], axis_direction: [0, 1, 0], speed: $1 rpm}"; }
 amp() { echo "components[sonotrode].vibration.amplitude=$1 um"; }
+# A lone shot dropped on the flat sonotrode bounces on one vertical line between flat faces for
+# ever (no impact on the rod, nothing to compare): thrown in a random upward direction instead.
+throw() { echo "shot.initial_speed=1 m/s"; }
 cylinder=("components[rod].mesh=$cyl")
 
 # name | scene | duration (n: normal, l: 3072 shot) | part check (cyl96: the shipped rod, 96 facets;
@@ -91,16 +94,16 @@ cases=(
     "gear-static|gear|n|gear|gear chamber, gear static|"
     "gear-300rpm|gear|n|gear|gear at 300 rpm|$(gear_motion 300)"
     "gear-1000rpm|gear|n|gear|gear at 1000 rpm|$(gear_motion 1000)"
-    "N-1|rod|n|cyl96|one shot|shot.count=1"
+    "N-1|rod|n|cyl96|one shot, thrown at 1 m/s|shot.count=1|$(throw)"
     "N-3072|rod|l|cyl96|3072 shot|shot.count=3072"
     "0.3mm-100um-cyl1000|rod|n|cyl128|0.3 mm, A0 100 um, cylinder at 1000 rpm|shot.diameter=0.3 mm|$(amp 100)|${cylinder[0]}|$(cyl_motion 1000)"
     "3mm-100um-gear1000|gear|n|gear|3 mm, A0 100 um, gear at 1000 rpm|shot.diameter=3 mm|$(amp 100)|$(gear_motion 1000)"
     "3072x1mm-80um|rod|l|cyl96|3072 x 1 mm, A0 80 um|shot.count=3072|shot.diameter=1 mm|$(amp 80)"
     "3072x1mm-100um|rod|l|cyl96|3072 x 1 mm, A0 100 um|shot.count=3072|shot.diameter=1 mm|$(amp 100)"
-    "N1-0.3mm-100um|rod|n|cyl96|1 shot of 0.3 mm, A0 100 um|shot.count=1|shot.diameter=0.3 mm|$(amp 100)"
-    "N1-1mm-100um|rod|n|cyl96|1 shot of 1 mm, A0 100 um|shot.count=1|shot.diameter=1 mm|$(amp 100)"
-    "N1-2mm-100um|rod|n|cyl96|1 shot of 2 mm, A0 100 um|shot.count=1|$(amp 100)"
-    "N1-3mm-100um|rod|n|cyl96|1 shot of 3 mm, A0 100 um|shot.count=1|shot.diameter=3 mm|$(amp 100)"
+    "N1-0.3mm-100um|rod|n|cyl96|1 shot of 0.3 mm, A0 100 um, thrown|shot.count=1|$(throw)|shot.diameter=0.3 mm|$(amp 100)"
+    "N1-1mm-100um|rod|n|cyl96|1 shot of 1 mm, A0 100 um, thrown|shot.count=1|$(throw)|shot.diameter=1 mm|$(amp 100)"
+    "N1-2mm-100um|rod|n|cyl96|1 shot of 2 mm, A0 100 um, thrown|shot.count=1|$(throw)|$(amp 100)"
+    "N1-3mm-100um|rod|n|cyl96|1 shot of 3 mm, A0 100 um, thrown|shot.count=1|$(throw)|shot.diameter=3 mm|$(amp 100)"
 )
 
 run_case() {
