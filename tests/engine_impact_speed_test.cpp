@@ -177,7 +177,7 @@ TEST(EngineImpactSpeed, BadThresholdsAreInputErrors) {
     const std::string dir = std::string(PEENSIM_SOURCE_DIR) + "/tests/scenes_bad/";
     for (const char* file : {"impact_speed_zero.yaml", "impact_speed_negative.yaml", "impact_speed_not_a_speed.yaml"}) {
         std::ostringstream out, err;
-        EXPECT_EQ(check_job(dir + file, {}, out, err), kExitInputError) << file;
+        EXPECT_EQ(check_job(dir + file, {}, false, out, err), kExitInputError) << file;
         EXPECT_NE(err.str().find(std::string(file) + ":3:"), std::string::npos) << err.str();
         EXPECT_NE(err.str().find("accuracy.impact_speed: "), std::string::npos) << err.str();
     }

@@ -49,6 +49,10 @@ const BadScene catalogue[] = {
     {"impact_speed_zero.yaml", 3, "accuracy.impact_speed", "expected a speed > 0 m/s, got '0 m/s'"},
     {"impact_speed_negative.yaml", 3, "accuracy.impact_speed", "expected a speed > 0 m/s, got '-5 cm/s'"},
     {"impact_speed_not_a_speed.yaml", 3, "accuracy.impact_speed", "'cm' is a unit of length, but a speed"},
+    {"rotating_without_axis_point.yaml", 19, "components[2].motion.axis_point", "missing required key 'axis_point'"},
+    {"region_count_wraps.yaml", 19, "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '4294967296'"},
+    {"travel_fraction_tiny.yaml", 3, "accuracy.travel_fraction", "in [0.001, 1]"},
+    {"render_frames_unbounded.yaml", 18, "render.slow_motion", "the render block plans 300000000 frames"},
 };
 
 class SceneBadFiles : public ::testing::TestWithParam<BadScene> {};

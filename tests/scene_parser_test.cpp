@@ -273,8 +273,8 @@ TEST(SceneParser, OverridesApplyBeforeValidation) {
 TEST(SceneParser, OverridesCanAddKeysAndSections) {
     const SceneDescription s = parse_scene_text(
         minimal_scene, virtual_path,
-        {"accuracy.travel_fraction=0.1", "components[rod].motion={type: rotating, axis_direction: [1, 0, 0], "
-                                         "speed: 10 rpm}",
+        {"accuracy.travel_fraction=0.1", "components[rod].motion={type: rotating, axis_point: [0, 0, 0], "
+                                         "axis_direction: [1, 0, 0], speed: 10 rpm}",
          "materials.copper.density=8.96 g/cm3", "shot.density=8960", "process.duration=1", "process.duration=2"});
     EXPECT_EQ(s.accuracy.travel_fraction, 0.1);
     ASSERT_TRUE(component(s, "rod").rotation_motion.has_value());
@@ -503,7 +503,9 @@ TEST(SceneParser, BadRegionsNameLineAndField) {
         {"{name: a, sector: {axis_direction: [0, 1, 0], from: 0, to: 1, reference: [0, 2, 0]}}",
          "components[2].regions[0].sector.reference", "not along the axis"},
         {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 0, width: 1 deg, reference: [1, 0, 0]}}",
-         "components[2].regions[0].sectors.count", "expected a whole number >= 1, got '0'"},
+         "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '0'"},
+        {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 4294967296, width: 1 deg, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '4294967296'"},
         {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 2, width: 361 deg, reference: [1, 0, 0]}}",
          "components[2].regions[0].sectors.width", "at most 360 deg"},
         {"{name: a}", "components[2].regions[0]", "expected exactly one of sector, sectors, box, half_space, group"},

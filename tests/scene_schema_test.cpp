@@ -49,7 +49,7 @@ TEST(SceneSchema, ChildKeysComeFromTheTable) {
 }
 
 TEST(SceneSchema, RangesReadAsText) {
-    EXPECT_EQ(find_schema_entry("accuracy.travel_fraction")->range.text(), "(0, 1]");
+    EXPECT_EQ(find_schema_entry("accuracy.travel_fraction")->range.text(), "[0.001, 1]");
     EXPECT_EQ(find_schema_entry("contacts.*.mu")->range.text(), "[0, 1]");
     EXPECT_EQ(find_schema_entry("process.duration")->range.text(), "> 0");
     EXPECT_EQ(find_schema_entry("contacts.*.f")->range.text(), ">= 0");

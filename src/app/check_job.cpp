@@ -1,12 +1,15 @@
 #include "app/check_job.h"
 
+#include <cmath>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "common/input_error.h"
 #include "engine/time_stepping.h"
+#include "model/assembly_checks.h"
 #include "model/model.h"
 #include "model/shot_placement.h"
 #include "scene/scene_parser.h"
@@ -16,14 +19,49 @@ namespace peensim {
 namespace {
 
 
-void print_report(const Model& model, const InitialShots& shots, std::ostream& out) {
-    out << "# peensim check: the scene is valid.\n";
+std::string mm(double m) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(3) << m * 1e3;
+    return s.str();
+}
+
+void print_assembly(const Model& model, const AssemblyReport& report, std::ostream& out) {
+    out << "# assembly at t = 0 (world frame, mm):\n";
+    for (std::size_t i = 0; i < model.components.size(); ++i) {
+        const Component& c = model.components[i];
+        const ComponentFacts& f = report.components[i];
+        const Vec3 size = f.hi - f.lo;
+        out << "#   " << std::left << std::setw(14) << c.name << std::setw(10) << role_name(c.role) << std::right << " from ("
+            << mm(f.lo.x()) << ", " << mm(f.lo.y()) << ", " << mm(f.lo.z()) << ") to (" << mm(f.hi.x()) << ", " << mm(f.hi.y()) << ", "
+            << mm(f.hi.z()) << "), size " << mm(size.x()) << " x " << mm(size.y()) << " x " << mm(size.z()) << ", " << f.triangles
+            << " triangles, " << (f.closed ? "closed" : "open") << "\n";
+        if (std::isfinite(f.reachable_fraction))
+            out << "#   " << std::setw(24) << "" << " clearance to the sonotrode (less A0) " << mm(f.clearance_to_sonotrode_m)
+                << ", to the chamber " << mm(f.clearance_to_chamber_m) << "; shot reach " << std::setprecision(0) << std::fixed
+                << 100.0 * f.reachable_fraction << " % of its surface\n"
+                << std::defaultfloat << std::setprecision(6);
+        if (c.kinematics.kind == Kinematics::Kind::vibrating)
+            out << "#   " << std::setw(24) << "" << " vibrates along (" << c.kinematics.axis.x() << ", " << c.kinematics.axis.y() << ", "
+                << c.kinematics.axis.z() << "), A0 " << c.kinematics.amplitude_m * 1e6 << " um, " << c.kinematics.frequency_hz * 1e-3 << " kHz\n";
+        if (c.kinematics.kind == Kinematics::Kind::rotating) {
+            const Vec3& p = c.kinematics.axis_point_m;
+            const Vec3& u = c.kinematics.axis_direction;
+            out << "#   " << std::setw(24) << "" << " turns about the axis through (" << mm(p.x()) << ", " << mm(p.y()) << ", " << mm(p.z())
+                << ") along (" << u.x() << ", " << u.y() << ", " << u.z() << ") at " << c.kinematics.omega_rad_per_s * 30.0 / M_PI
+                << " rpm\n";
+        }
+    }
+}
+
+void print_report(const Model& model, const AssemblyReport& assembly, const InitialShots& shots, std::ostream& out) {
+    out << "# peensim check: the scene is valid" << (assembly.warnings() ? " (with warnings, above)" : "") << ".\n";
     out << "# components:\n";
     for (const Component& c : model.components) {
         out << "#   " << std::left << std::setw(14) << c.name << std::setw(10) << role_name(c.role) << std::right
             << std::setw(8) << c.mesh->triangle_count() << " triangles, contact '" << c.coefficients_source << "'"
             << (c.logged ? ", impacts logged" : "") << "\n";
     }
+    print_assembly(model, assembly, out);
     const double dt_rest = TimeStepping::time_step(model, model.peak_surface_speed_m_per_s);
     out << "# shot: " << model.shot_count << " placed in " << shots.layers << " layer(s) on the sonotrode\n";
     out << "# fastest surface: " << model.peak_surface_speed_m_per_s << " m/s; eq. 7 step with still shot: " << dt_rest * 1e6
@@ -34,12 +72,16 @@ void print_report(const Model& model, const InitialShots& shots, std::ostream& o
 
 }  // namespace
 
-int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, std::ostream& out, std::ostream& err) {
+int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err) {
     return report_errors(err, [&] {
         const SceneDescription scene = parse_scene_file(scene_path, overrides);
         const auto model = compile_model(scene);
-        const InitialShots shots = place_shots(*model);
-        print_report(*model, shots, out);
+        Random rng(model->seed);
+        ShotCavity cavity(*model, rng);
+        const AssemblyReport assembly = check_assembly(*model, cavity);
+        report_assembly_issues(assembly, strict, err);
+        const InitialShots shots = place_shots(*model, cavity, rng);
+        print_report(*model, assembly, shots, out);
         return static_cast<int>(kExitOk);
     });
 }

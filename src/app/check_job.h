@@ -1,5 +1,8 @@
-// `peensim check`: validate a scene completely (parse, load meshes, build the model, place the
-// shot) without running it, and print the resolved scene with every default filled in.
+// `peensim check`: validate a scene completely (parse, load meshes, build the model, check the
+// assembly, place the shot) without running it, and print the assembly (every component's world
+// bounds, size, triangles, closed or open, clearances to the sonotrode and the chamber, the share
+// of its surface the shot can reach, the axes) and the resolved scene with every default filled in.
+// Assembly warnings are printed; with `strict` they are errors.
 #pragma once
 
 #include <iosfwd>
@@ -8,6 +11,6 @@
 
 namespace peensim {
 
-int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, std::ostream& out, std::ostream& err);
+int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err);
 
 }  // namespace peensim

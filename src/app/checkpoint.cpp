@@ -1,11 +1,13 @@
 #include "app/checkpoint.h"
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "common/byte_stream.h"
+#include "common/input_error.h"
 #include "output/atomic_file.h"
 
 namespace peensim {
@@ -13,8 +15,24 @@ namespace peensim {
 namespace {
 
 // The last character is the format version: 2 added the slow-contact counters and the per-shot
-// in-flight flags.
-constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '2'};
+// in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes).
+constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '3'};
+
+// FNV-1a, 64 bit: any single flipped bit (and almost any damage) changes it.
+std::uint64_t checksum(std::string_view bytes) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (unsigned char c : bytes) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+InputError damaged(const std::string& path, const std::string& what) {
+    return InputError(SourceLocation{path, 0, 0}, "checkpoint", what + "; run without --resume to start over");
+}
+
+bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
 
 }  // namespace
 
@@ -53,6 +71,7 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
     w.put<std::uint64_t>(c.normal_speeds.size());
     for (const SpeedHistogram& h : c.normal_speeds) w.put_string(h.serialize());
     w.put(c.wall_time_s);
+    w.put(checksum(w.bytes()));
     write_file_atomically(path, w.bytes());
 }
 
@@ -62,9 +81,18 @@ Checkpoint load_checkpoint(const std::string& path) {
     std::ostringstream buffer;
     buffer << in.rdbuf();
     const std::string bytes = buffer.str();
-    if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
-        throw std::runtime_error(path + ": not a peensim checkpoint of this version");
-    ByteReader r(std::string_view(bytes).substr(sizeof(kMagic)), path + ": checkpoint");
+    if (bytes.size() < sizeof(kMagic) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic) - 1) != 0)
+        throw damaged(path, "not a peensim checkpoint");
+    if (bytes[sizeof(kMagic) - 1] != kMagic[sizeof(kMagic) - 1])
+        throw damaged(path, std::string("written by another version of peensim (checkpoint format ") + bytes[sizeof(kMagic) - 1] +
+                                ", this one reads " + kMagic[sizeof(kMagic) - 1] + ")");
+    constexpr std::size_t kSum = sizeof(std::uint64_t);
+    if (bytes.size() < sizeof(kMagic) + kSum) throw damaged(path, "the file is truncated");
+    const std::string_view body = std::string_view(bytes).substr(0, bytes.size() - kSum);
+    std::uint64_t stored = 0;
+    std::memcpy(&stored, bytes.data() + body.size(), kSum);
+    if (stored != checksum(body)) throw damaged(path, "the file is damaged (its checksum does not match its contents)");
+    ByteReader r(body.substr(sizeof(kMagic)), path + ": checkpoint");
     Checkpoint c;
     c.scene_hash = r.get<std::uint64_t>();
     SimulationState& s = c.state;
@@ -100,8 +128,36 @@ Checkpoint load_checkpoint(const std::string& path) {
     const auto histograms = r.get<std::uint64_t>();
     for (std::uint64_t k = 0; k < histograms; ++k) c.normal_speeds.push_back(SpeedHistogram::deserialize(r.get_string()));
     c.wall_time_s = r.get<double>();
-    if (!r.at_end()) throw std::runtime_error(path + ": checkpoint has trailing bytes");
+    if (!r.at_end()) throw damaged(path, "the file has trailing bytes");
     return c;
+}
+
+void check_resumable(const std::string& path, const Checkpoint& c, const Model& model, std::size_t logged_components) {
+    if (c.scene_hash != model.scene_hash)
+        throw InputError(SourceLocation{path, 0, 0}, "checkpoint",
+                         "the scene changed since this checkpoint was written (only output.checkpoint_interval and render "
+                         "settings may change on resume); run without --resume to start over");
+    const SimulationState& s = c.state;
+    const double t = s.time.seconds();
+    if (!std::isfinite(s.time.hi) || !std::isfinite(s.time.lo) || t < 0.0 || t > model.duration_s)
+        throw damaged(path, "expected a time in [0, " + std::to_string(model.duration_s) + "] s, got " + std::to_string(t));
+    const auto n = static_cast<std::size_t>(model.shot_count);
+    for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz})
+        if (v->size() != n) throw damaged(path, "expected " + std::to_string(n) + " shot, got " + std::to_string(v->size()));
+    if (s.shots.active.size() != n || s.shots.in_flight.size() != n) throw damaged(path, "shot flags of the wrong length");
+    if (s.impacts_per_component.size() != model.components.size() || s.slow_contacts_per_component.size() != model.components.size())
+        throw damaged(path, "impact counters for " + std::to_string(s.impacts_per_component.size()) + " components, the scene has " +
+                                std::to_string(model.components.size()));
+    if (c.normal_speeds.size() != logged_components) throw damaged(path, "logged components differ from the scene");
+    for (std::size_t i = 0; i < n; ++i) {
+        if (s.shots.active[i] > 1 || s.shots.in_flight[i] > 1) throw damaged(path, "shot " + std::to_string(i) + ": flags not 0 or 1");
+        if (!s.shots.active[i]) continue;
+        const Vec3 p = s.shots.position(i), v = s.shots.velocity(i);
+        if (!finite(p) || !finite(v)) throw damaged(path, "shot " + std::to_string(i) + ": a position or velocity that is not a number");
+        if ((p.array() < model.world_lo.array()).any() || (p.array() > model.world_hi.array()).any())
+            throw damaged(path, "shot " + std::to_string(i) + ": active but outside the assembly");
+    }
+    if (!std::isfinite(c.wall_time_s) || c.wall_time_s < 0.0) throw damaged(path, "a wall time that is not a non-negative number");
 }
 
 }  // namespace peensim

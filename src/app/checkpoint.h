@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/simulation_state.h"
+#include "model/model.h"
 #include "output/speed_histogram.h"
 
 namespace peensim {
@@ -23,8 +24,14 @@ struct Checkpoint {
     double wall_time_s = 0.0;           // s, wall time spent before this checkpoint
 };
 
+// The file ends with a checksum of everything before it.
 void save_checkpoint(const std::string& path, const Checkpoint& checkpoint);
-// Throws std::runtime_error if the file is missing, truncated or of another version.
+// Throws std::runtime_error if the file is missing; InputError (exit 2) if it is not a checkpoint,
+// of another version, truncated or damaged (checksum).
 Checkpoint load_checkpoint(const std::string& path);
+// Throws InputError unless `checkpoint` can resume `model`: the same scene (settings that do not
+// change the physics aside), a time within the run, every shot's state finite and inside the
+// assembly, counters and statistics for the scene's components.
+void check_resumable(const std::string& path, const Checkpoint& checkpoint, const Model& model, std::size_t logged_components);
 
 }  // namespace peensim

@@ -19,10 +19,12 @@
 #include "app/summary_builder.h"
 #include "common/input_error.h"
 #include "engine/simulation.h"
+#include "model/assembly_checks.h"
 #include "model/model.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
 #include "output/progress_reporter.h"
+#include "output/run_directory.h"
 #include "output/summary_json.h"
 #include "output/summary_text.h"
 #include "scene/scene_parser.h"
@@ -62,8 +64,23 @@ public:
     int run() {
         const SceneDescription scene = parse_scene_file(options_.scene_path, options_.overrides);
         model_ = compile_model(scene);
+        {
+            // The assembly is checked before anything is written (the placement builds its own cavity).
+            Random rng(model_->seed);
+            ShotCavity cavity(*model_, rng);
+            report_assembly_issues(check_assembly(*model_, cavity), options_.strict, err_);
+        }
         dir_ = output_directory(options_, scene);
         fs::create_directories(dir_);
+        lock_ = std::make_unique<RunDirectoryLock>(dir_);
+        if (!options_.resume) {
+            const std::vector<std::string> removed = clear_previous_outputs(dir_);
+            if (!removed.empty()) {
+                err_ << "note: replaced a previous run's outputs in " << dir_ << " (";
+                for (std::size_t k = 0; k < removed.size(); ++k) err_ << (k ? ", " : "") << removed[k];
+                err_ << ")\n";
+            }
+        }
         write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
         slots_ = logged_slots(*model_);
         start();
@@ -94,14 +111,11 @@ private:
         const std::size_t logged = static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), [](int s) { return s >= 0; }));
         if (options_.resume) {
             Checkpoint c = load_checkpoint(checkpoint_path());
-            if (c.scene_hash != model_->scene_hash)
-                throw std::runtime_error(checkpoint_path() + ": the scene changed since this checkpoint was written; "
-                                         "run without --resume to start over");
+            check_resumable(checkpoint_path(), c, *model_, logged);
             sim_ = std::make_unique<Simulation>(model_, std::move(c.state));
             writer_ = std::make_unique<ImpactCsvWriter>(ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows));
             speeds_ = std::move(c.normal_speeds);
             wall_before_ = c.wall_time_s;
-            if (speeds_.size() != logged) throw std::runtime_error(checkpoint_path() + ": logged components differ from the scene");
         } else {
             fs::remove(checkpoint_path());
             fs::remove(fs::path(dir_) / kImpactCsvFileName);
@@ -206,7 +220,12 @@ private:
         for (const LostShot& l : sim_->state().lost) err_ << describe_loss(*model_, l) << "\n";
         if (options_.analyze) {
             const int code = analyze_job(dir_, out_, err_);
-            if (code != kExitOk) err_ << "warning: the run finished but its analysis failed (exit " << code << ")\n";
+            if (code != kExitOk) {
+                err_ << "error: the run finished (its outputs are complete) but its analysis failed; fix the cause above and run "
+                        "'peensim analyze "
+                     << dir_ << "'\n";
+                return code;
+            }
         }
         if (options_.strict && sim_->state().health.serious() > 0) {
             err_ << "error: --strict: the run had numerical trouble (see health counters in summary.json)\n";
@@ -220,6 +239,7 @@ private:
     std::ostream& err_;
     std::shared_ptr<const Model> model_;
     std::string dir_;
+    std::unique_ptr<RunDirectoryLock> lock_;  // held for the whole run
     std::vector<int> slots_;
     std::unique_ptr<Simulation> sim_;
     std::unique_ptr<ImpactCsvWriter> writer_;

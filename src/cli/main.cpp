@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false);
     run_cmd->add_flag("-q,--quiet", quiet, "no progress bar and no summary on stdout");
     run_cmd->add_flag("--resume", run.resume, "continue an interrupted run from its checkpoint in the output directory");
-    run_cmd->add_flag("--strict", run.strict, "exit 3 if any shot was lost or the numerics went wrong");
+    run_cmd->add_flag("--strict", run.strict, "assembly warnings are errors (exit 2), and exit 3 if any shot was lost or the numerics went wrong");
     bool no_analyze = false;
     run_cmd->add_flag("--no-analyze", no_analyze, "do not analyse the impacts when the run finishes");
     bool render_on = false, render_off = false;
@@ -42,6 +42,8 @@ int main(int argc, char** argv) {
     auto* check_cmd = app.add_subcommand("check", "validate a scene and print it resolved (defaults filled in, SI units)");
     check_cmd->add_option("scene", check_scene, "scene file (YAML)")->required();
     check_cmd->add_option("--set", check_overrides, "override a scene field")->allow_extra_args(false);
+    bool check_strict = false;
+    check_cmd->add_flag("--strict", check_strict, "treat assembly warnings (a part through a chamber wall, dropped facets) as errors");
 
     std::string analyze_dir;
     auto* analyze_cmd = app.add_subcommand("analyze", "analyse a run's impacts: coverage, per-triangle fields, histograms, report.md");
@@ -87,7 +89,7 @@ int main(int argc, char** argv) {
         if (render_off) run.render = false;
         return run_job(run, quiet ? null_stream : std::cout, std::cerr);
     }
-    if (*check_cmd) return check_job(check_scene, check_overrides, std::cout, std::cerr);
+    if (*check_cmd) return check_job(check_scene, check_overrides, check_strict, std::cout, std::cerr);
     if (*analyze_cmd) return analyze_job(analyze_dir, std::cout, std::cerr);
     if (*render_impacts_cmd) {
         try {

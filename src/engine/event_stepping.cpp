@@ -10,7 +10,7 @@
 #include "engine/time_stepping.h"
 #include "event/sphere_pair_toi.h"
 #include "event/swept_sphere_box.h"
-#include "model/shot_placement.h"
+#include "model/shot_cavity.h"
 
 namespace peensim {
 

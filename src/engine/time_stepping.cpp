@@ -478,8 +478,21 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
                 impacts.push_back(rec);
             }
         }
-        if (rides) ++stats_.rides;
-        if (rides) launch_within_step(state, i, c, n, centre_touch, r.v_shot, u, dt);
+        if (rides) {
+            ++stats_.rides;
+            if (!launch_within_step(state, i, c, n, centre_touch, r.v_shot, u, dt)) {
+                // Riding on to the step end: sustained contact acts there, on the step-end contact
+                // plane moved by the ride's change of course. (Searching again from the touch would
+                // find the plate a rounding later, ride again, and so on, pass after pass.)
+                Contact riding = at_step_end;
+                riding.gap += riding.normal.dot(dv * back);
+                if (riding.gap < 0.0) {
+                    state.shots.in_flight[i] = 0;
+                    sustain_contact(state, i, c, riding, v1 + dv, p1 + dv * back, dt);
+                }
+                return false;
+            }
+        }
         return true;
     }
     // Slower than the impact speed: sustained contact, not an impact (contact_law.h).
@@ -489,7 +502,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     return false;
 }
 
-void TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std::size_t c, const Vec3& n, const Vec3& centre,
+bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std::size_t c, const Vec3& n, const Vec3& centre,
                                       const Vec3& v_after, double u, double dt) {
     // The plate's acceleration along n is -A w^2 k sin(phase) (k = a.n); it presses the shot while
     // that exceeds g.n, i.e. until sin(phase) rises through eps = -g.n / (A w^2 k): the launch, as
@@ -501,15 +514,15 @@ void TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     const Vec3 g = model_->gravity_m_per_s2;
     const double w = kin.angular_frequency();
     const double w2a = kin.amplitude_m * w * w * kin.axis.dot(n);
-    if (!(w2a > 0.0)) return;
+    if (!(w2a > 0.0)) return false;
     const double eps = -g.dot(n) / w2a;
-    if (!(eps < 1.0)) return;  // the plate never pulls away faster than gravity: it holds the shot
+    if (!(eps < 1.0)) return false;  // the plate never pulls away faster than gravity: it holds the shot
     const double target = std::asin(std::max(-1.0, eps));
     const double phase = 2.0 * M_PI * t0_.cycle_fraction(kin.frequency_hz, u) + kin.phase_rad;
     double dphi = std::fmod(target - phase, 2.0 * M_PI);
     if (dphi <= 0.0) dphi += 2.0 * M_PI;
     const double u_launch = u + dphi / w + kLaunchDelayPeriods / kin.frequency_hz;
-    if (!(u_launch < dt)) return;
+    if (!(u_launch < dt)) return false;
     const double ride = u_launch - u;
     const Vec3 plate_v0 = kin.axis * kin.displacement_rate(t0_, u);
     const Vec3 plate_v1 = kin.axis * kin.displacement_rate(t0_, u_launch);
@@ -528,6 +541,7 @@ void TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     s.set_position(i, c_launch + v_launch * fly + 0.5 * g * fly * fly);
     s.in_flight[i] = 1;
     last_touch_[i] = u_launch;
+    return true;
 }
 
 bool TimeStepping::ends_a_flight(SimulationState& state, std::size_t i) {

@@ -28,7 +28,7 @@ struct SonotrodeFace {
     bool contains(const Component& sonotrode, const Vec3& point_component, double tolerance, int& triangle) const;
 };
 
-// up: unit, world, from the sonotrode into the chamber (shot_placement's sonotrode_up). The face is
+// up: unit, world, from the sonotrode into the chamber (shot_cavity's sonotrode_up). The face is
 // every triangle whose normal is parallel to `up` (within 1e-6 rad) in the highest such plane.
 SonotrodeFace build_sonotrode_face(const Component& sonotrode, const Vec3& up);
 

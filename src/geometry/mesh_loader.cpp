@@ -3,6 +3,7 @@
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -10,6 +11,7 @@
 
 #include "common/input_error.h"
 #include "geometry/mesh_builder.h"
+#include "geometry/mesh_file_precheck.h"
 
 namespace peensim {
 
@@ -59,9 +61,16 @@ TriangleMesh without_degenerate_triangles(const TriangleMesh& welded, double uni
     TriangleMesh out;
     out.group_names = welded.group_names;
     std::vector<int> new_index(welded.vertices.size(), -1);
+    // Facets with a triangle dropped, and with one kept: a facet is lost when it has none kept
+    // (a quad with a repeated corner only loses a sliver of its fan, and is not counted).
+    std::vector<int> dropped_from, kept_from;
     for (std::size_t t = 0; t < welded.triangles.size(); ++t) {
         const auto& tri = welded.triangles[t];
-        if (is_degenerate(welded, tri[0], tri[1], tri[2])) continue;
+        if (is_degenerate(welded, tri[0], tri[1], tri[2])) {
+            dropped_from.push_back(welded.source_facet[t]);
+            continue;
+        }
+        kept_from.push_back(welded.source_facet[t]);
         std::array<int, 3> renumbered{};
         for (std::size_t k = 0; k < 3; ++k) {
             int& index = new_index[static_cast<std::size_t>(tri[k])];
@@ -75,6 +84,10 @@ TriangleMesh without_degenerate_triangles(const TriangleMesh& welded, double uni
         out.source_facet.push_back(welded.source_facet[t]);
         out.group_of_triangle.push_back(welded.group_of_triangle[t]);
     }
+    std::sort(dropped_from.begin(), dropped_from.end());
+    dropped_from.erase(std::unique(dropped_from.begin(), dropped_from.end()), dropped_from.end());
+    std::sort(kept_from.begin(), kept_from.end());
+    for (int f : dropped_from) out.dropped_degenerate_facets += !std::binary_search(kept_from.begin(), kept_from.end(), f);
     return out;
 }
 
@@ -86,6 +99,7 @@ TriangleMesh load_mesh(const std::string& path, double unit_m) {
     if (!std::filesystem::exists(path, error)) fail(path, "mesh file not found");
     if (!std::filesystem::is_regular_file(path, error)) fail(path, "not a regular file");
 
+    precheck_mesh_file(path);
     Assimp::Importer importer;
     // No post-processing: assimp's triangulation and vertex joining would lose the facet map
     // (and joining compares normals); both are done here instead.

@@ -4,9 +4,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "collision/closest_point.h"
-#include "common/random.h"
-#include "model/enclosure.h"
+#include "common/input_error.h"
 
 namespace peensim {
 
@@ -14,30 +12,6 @@ namespace {
 
 constexpr int kRejectionsPerLayer = 400;
 constexpr double kClearance = 0.01;  // -, gap left between placed shot and surfaces, fraction of R
-
-// Exact clearance of a sphere of radius r at p (world) from every component at t = 0.
-bool clear_of_meshes(const Model& model, const Vec3& p, double r) {
-    const SimTime t0;
-    for (const Component& c : model.components) {
-        const Vec3 q = c.kinematics.pose(t0).to_component(p);
-        MeshCollider::Closest closest;
-        MeshCollider::QueryCounters counters;
-        if (c.collider->closest_within(q, r, closest, counters)) return false;
-    }
-    return true;
-}
-
-// Exact distance (m) from p (world) to the nearest component at t = 0, or `within` (m) if none is closer.
-double clearance(const Model& model, const Vec3& p, double within) {
-    const SimTime t0;
-    double nearest = within;
-    for (const Component& c : model.components) {
-        MeshCollider::Closest closest;
-        MeshCollider::QueryCounters counters;
-        if (c.collider->closest_within(c.kinematics.pose(t0).to_component(p), nearest, closest, counters)) nearest = std::min(nearest, closest.distance);
-    }
-    return nearest;
-}
 
 // Shot already placed, hashed by cells one diameter wide.
 class PlacedShots {
@@ -69,167 +43,26 @@ private:
     std::unordered_map<long long, std::vector<Vec3>> cells_;
 };
 
-// Area-weighted sampler of the sonotrode's upward faces (world frame at t = 0).
-struct FaceSampler {
-    std::vector<std::array<Vec3, 3>> faces;
-    std::vector<double> cumulative_area;
-
-    Vec3 sample(Random& rng) const {
-        const double u = rng.uniform() * cumulative_area.back();
-        const std::size_t f = static_cast<std::size_t>(std::upper_bound(cumulative_area.begin(), cumulative_area.end(), u) - cumulative_area.begin());
-        const auto& tri = faces[std::min(f, faces.size() - 1)];
-        const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
-        return (1.0 - r1) * tri[0] + r1 * (1.0 - r2) * tri[1] + r1 * r2 * tri[2];
-    }
-};
-
-FaceSampler upward_faces(const Component& sonotrode, const Vec3& up) {
-    FaceSampler s;
-    const Pose pose = sonotrode.kinematics.pose(SimTime{});
-    double total = 0.0;
-    for (std::size_t t = 0; t < sonotrode.mesh->triangle_count(); ++t) {
-        const std::array<Vec3, 3> w{pose.to_world(sonotrode.mesh->corner(t, 0)), pose.to_world(sonotrode.mesh->corner(t, 1)),
-                                    pose.to_world(sonotrode.mesh->corner(t, 2))};
-        const Vec3 n2a = (w[1] - w[0]).cross(w[2] - w[0]);
-        if (n2a.norm() == 0.0 || n2a.normalized().dot(up) < 0.9) continue;
-        total += 0.5 * n2a.norm();
-        s.faces.push_back(w);
-        s.cumulative_area.push_back(total);
-    }
-    return s;
-}
-
-// True if the ray from p (world) along `dir` meets any component: p lies under a roof, so it
-// belongs inside the chamber; if the enclosure says it is outside, the chamber leaks.
-bool has_roof(const Model& model, const Vec3& p, const Vec3& dir, std::vector<int>& scratch) {
-    const double length = (model.world_hi - model.world_lo).norm();
-    for (const Component& c : model.components) {
-        const Pose pose = c.kinematics.pose(SimTime{});
-        const Vec3 o = pose.to_component(p), d = pose.rotation.transpose() * dir;
-        const Vec3 end = o + d * length;
-        c.collider->triangles_overlapping(o.cwiseMin(end), o.cwiseMax(end), scratch);
-        for (int t : scratch) {
-            const auto tt = static_cast<std::size_t>(t);
-            // Moller-Trumbore ray-triangle intersection.
-            const Vec3 a = c.mesh->corner(tt, 0), e1 = c.mesh->corner(tt, 1) - a, e2 = c.mesh->corner(tt, 2) - a;
-            const Vec3 h = d.cross(e2);
-            const double det = e1.dot(h);
-            if (std::abs(det) < 1e-300) continue;
-            const Vec3 sv = o - a;
-            const double u = sv.dot(h) / det;
-            if (u < 0.0 || u > 1.0) continue;
-            const Vec3 q = sv.cross(e1);
-            const double v = d.dot(q) / det;
-            if (v < 0.0 || u + v > 1.0) continue;
-            if (e2.dot(q) / det > 0.0) return true;
-        }
-    }
-    return false;
-}
-
-TriangleMesh world_mesh(const Model& model) {
-    TriangleMesh all;
-    for (const Component& c : model.components) {
-        const Pose pose = c.kinematics.pose(SimTime{});
-        const int base = static_cast<int>(all.vertices.size());
-        for (const Vec3& v : c.mesh->vertices) all.vertices.push_back(pose.to_world(v));
-        for (const auto& t : c.mesh->triangles) all.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-    }
-    return all;
-}
-
-std::string mm_point(const Vec3& p) {
-    std::ostringstream s;
-    s.precision(4);
-    s << "(" << p.x() * 1e3 << ", " << p.y() * 1e3 << ", " << p.z() * 1e3 << ") mm";
-    return s.str();
-}
-
-// Closed-chamber check: a point on the sonotrode with something above it (under the chamber's
-// roof) must be enclosed; if it is not, the chamber leaks. Points with nothing above them lie
-// beyond the chamber (a horn wider than the chamber) and are simply not used for placement.
-void require_closed_chamber(const Model& model, const Enclosure& enclosure, const FaceSampler& faces, const Vec3& up, Random& rng) {
-    const SceneDescription& scene = model.description;
-    const double R = model.shot_radius_m;
-    const SourceLocation sono_where = scene.components[static_cast<std::size_t>(model.sonotrode)].where;
-    std::vector<int> scratch;
-    int roofed = 0;
-    for (int k = 0; k < 256 && roofed < 64; ++k) {
-        const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance));
-        // Only points where a shot fits (a point hugging a wall may sit in a cell the walls mark).
-        if (!clear_of_meshes(model, p, R) || !has_roof(model, p, up, scratch)) continue;
-        ++roofed;
-        if (enclosure.inside(p)) continue;
-        Vec3 lo = Vec3::Constant(1e300), hi = -lo;
-        for (const Component& c : model.components)
-            if (c.role == ComponentRole::chamber) {
-                lo = lo.cwiseMin(c.world_lo);
-                hi = hi.cwiseMax(c.world_hi);
-            }
-        Vec3 where = p;
-        enclosure.escape_point(p, lo, hi, where);
-        SourceLocation at{scene.source_file, 0, 0};
-        for (const ComponentDesc& c : scene.components)
-            if (c.role == ComponentRole::chamber) { at = c.where; break; }
-        throw InputError(at, "components", "the chamber is not closed around the sonotrode: a shot placed on the sonotrode at " +
-                                               mm_point(p) + " can leave the assembly near " + mm_point(where) +
-                                               " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
-    }
-    if (roofed == 0)
-        throw InputError(sono_where, "components", "expected a chamber above the sonotrode, found nothing above its upper face");
-}
-
-// The enclosed region the shot start in: the one most points of the first layer on the sonotrode
-// lie in. Above the first layer, a point may lie inside a closed part (a rod hanging over the
-// sonotrode) or a sealed pocket, which the enclosure also counts as enclosed: such a shot would
-// start inside the part. Sampled with its own generator, so the placement's draws are unchanged.
-int shot_cavity(const Model& model, Enclosure& enclosure, const FaceSampler& faces, const Vec3& up) {
-    const double R = model.shot_radius_m;
-    Random probe(model.seed ^ 0x9e3779b97f4a7c15ULL);
-    std::unordered_map<int, int> votes;
-    for (int k = 0; k < 256; ++k) {
-        const Vec3 p = faces.sample(probe) + up * (R * (1.0 + kClearance));
-        const int region = enclosure.region(p);
-        if (region >= 0 && clear_of_meshes(model, p, R)) ++votes[region];
-    }
-    int best = -1, most = 0;
-    for (const auto& [region, n] : votes)
-        if (n > most || (n == most && region < best)) best = region, most = n;
-    return best;
-}
-
 }  // namespace
 
-Vec3 sonotrode_up(const Model& model) {
-    const Vec3 up = model.gravity_m_per_s2.norm() > 0.0 ? Vec3(-model.gravity_m_per_s2.normalized()) : Vec3::UnitZ();
-    const Vec3 axis = model.sonotrode_component().kinematics.axis;
-    return axis.dot(up) >= 0.0 ? axis : Vec3(-axis);
+InitialShots place_shots(const Model& model) {
+    Random rng(model.seed);
+    ShotCavity cavity(model, rng);
+    return place_shots(model, cavity, rng);
 }
 
-InitialShots place_shots(const Model& model) {
+InitialShots place_shots(const Model& model, ShotCavity& cavity, Random& rng) {
     const SceneDescription& scene = model.description;
     const double R = model.shot_radius_m, D = 2.0 * R;
-    const Vec3 up = sonotrode_up(model);
-    const Component& sono = model.sonotrode_component();
-    const SourceLocation sono_where = scene.components[static_cast<std::size_t>(model.sonotrode)].where;
-
-    const FaceSampler faces = upward_faces(sono, up);
-    if (faces.faces.empty())
-        throw InputError(sono_where, "components[" + std::to_string(model.sonotrode) + "].mesh",
-                         "expected the sonotrode mesh to have an upper face pointing into the chamber (against gravity), found none");
-
-    Enclosure enclosure(world_mesh(model), 0.5 * R, R, [&model](const Vec3& p, double within) { return clearance(model, p, within); });
-    Random rng(model.seed);
-
-    require_closed_chamber(model, enclosure, faces, up, rng);
-    const int cavity = shot_cavity(model, enclosure, faces, up);
+    const Vec3& up = cavity.up();
+    const SonotrodeFaces& faces = cavity.sonotrode_faces();
 
     InitialShots out;
     PlacedShots placed(D);
     int layer = 0, in_layer = 0, rejections = 0;
     while (static_cast<int>(out.positions.size()) < model.shot_count) {
         const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance) + layer * D * (1.0 + kClearance));
-        const bool ok = enclosure.region(p) == cavity && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kClearance));
+        const bool ok = cavity.contains(p) && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kClearance));
         if (ok) {
             placed.add(p);
             out.positions.push_back(p);

@@ -10,6 +10,7 @@
 
 #include "common/vec.h"
 #include "model/model.h"
+#include "model/shot_cavity.h"
 
 namespace peensim {
 
@@ -21,8 +22,7 @@ struct InitialShots {
 
 // Throws InputError if the chamber is not closed around the sonotrode or the shot do not fit.
 InitialShots place_shots(const Model& model);
-
-// The direction "up" from the sonotrode into the chamber (unit, world).
-Vec3 sonotrode_up(const Model& model);
+// The same in a cavity already built, drawing from the generator it was built with.
+InitialShots place_shots(const Model& model, ShotCavity& cavity, Random& rng);
 
 }  // namespace peensim

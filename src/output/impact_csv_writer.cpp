@@ -123,6 +123,11 @@ ImpactCsvWriter::ImpactCsvWriter(std::string dir, std::vector<std::string> compo
 ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string> component_names,
                                         std::uint64_t bytes, std::uint64_t rows) {
     const std::string partial = join_path(dir, kImpactCsvPartialFileName);
+    // A run that failed after finish() (a full disk while writing its summary) has its rows in
+    // impacts.csv already and a checkpoint still: they go back to the .partial to be continued.
+    const std::string final_path = join_path(dir, kImpactCsvFileName);
+    if (::access(partial.c_str(), F_OK) != 0 && ::access(final_path.c_str(), F_OK) == 0)
+        posix_file::rename_or_throw(final_path, partial);
     const int fd = ::open(partial.c_str(), O_RDWR | O_CLOEXEC);
     if (fd < 0) {
         posix_file::throw_errno("cannot resume impacts from checkpoint: cannot open", partial);

@@ -43,7 +43,8 @@ public:
 
     // Continues a killed run from a checkpoint that recorded bytes_written() == bytes and
     // rows_written() == rows after flush_durable(). The .partial is truncated to exactly
-    // `bytes` (dropping rows written after the checkpoint) and appended to. Throws
+    // `bytes` (dropping rows written after the checkpoint) and appended to. A run that failed
+    // after finish() (impacts.csv but no .partial) is continued from its impacts.csv. Throws
     // std::runtime_error if the .partial is missing, shorter than `bytes`, does not start
     // with the header, or `bytes` does not fall at the end of a row.
     static ImpactCsvWriter resume(std::string dir, std::vector<std::string> component_names,

@@ -67,7 +67,8 @@ bool is_index(const std::string& s) {
 std::size_t select_item(const OverrideWalk& w, const YAML::Node& list, const std::string& sel,
                         const std::string& field_path) {
     if (is_index(sel)) {
-        const std::size_t index = std::stoul(sel);
+        // Compared as text first: an index of 20 digits must not overflow on its way to a range error.
+        const std::size_t index = sel.size() <= 9 ? std::stoul(sel) : list.size();
         if (index >= list.size())
             w.fail("index " + sel + " is out of range: " + field_path + " has " + std::to_string(list.size()) + " items");
         return index;

@@ -93,7 +93,10 @@ std::optional<RotationDesc> read_motion(const Cursor& c, const ComponentDesc& k)
     if (k.role != ComponentRole::part)
         fail(c, "a rotating motion is only for role part; '" + k.name + "' is not a part");
     RotationDesc r;
-    r.axis_point_m = read_vector(c.child("axis_point"));
+    // No default: left at the world origin, a gear 42 mm up orbited through the sonotrode and a wall.
+    const Cursor point = c.child("axis_point");
+    if (!point.present()) fail(point, "missing required key 'axis_point' (a rotating motion needs a point on its axis, world frame)");
+    r.axis_point_m = read_vector(point);
     const Cursor direction = c.child("axis_direction");
     if (!direction.present()) fail(direction, "missing required key 'axis_direction' (a rotating motion needs it)");
     r.axis_direction = *read_optional_direction(direction);

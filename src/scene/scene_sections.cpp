@@ -94,6 +94,8 @@ OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& compon
     return d;
 }
 
+constexpr double kMaxRenderFrames = 100000;  // ~55 min of video at 30 fps
+
 std::optional<RenderDesc> read_render(const Cursor& c) {
     if (!c.present()) return std::nullopt;
     RenderDesc d;
@@ -103,6 +105,14 @@ std::optional<RenderDesc> read_render(const Cursor& c) {
     d.slow_motion_s = read_quantity(c.child("slow_motion"));
     d.start_s = read_quantity(c.child("start"));
     d.duration_s = read_quantity(c.child("duration"));
+    // Work a render block plans: a frame every slow_motion / fps of simulated time. A slip of the
+    // unit (slow_motion: 1e-9) planned 3e8 frames and ran until the disk was full.
+    const double frames = d.duration_s * d.fps / d.slow_motion_s;
+    if (!(frames <= kMaxRenderFrames))
+        fail(c.child("slow_motion"), "the render block plans " + std::to_string(static_cast<long long>(std::min(frames, 1e18))) +
+                                         " frames (duration x fps / slow_motion); expected at most " +
+                                         std::to_string(static_cast<long long>(kMaxRenderFrames)) +
+                                         ": raise slow_motion or shorten render.duration");
     const Cursor camera = c.child("camera");
     if (camera.child("position").present()) d.camera_position_m = read_vector(camera.child("position"));
     if (camera.child("look_at").present()) d.camera_look_at_m = read_vector(camera.child("look_at"));

@@ -1,0 +1,118 @@
+#include "geometry/mesh_file_precheck.h"
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "common/input_error.h"
+
+namespace peensim {
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& path, const std::string& problem) {
+    throw InputError(SourceLocation{path, 0, 0}, "mesh", problem);
+}
+
+// Bytes of a PLY scalar type, 0 if unknown.
+std::uint64_t ply_type_bytes(const std::string& type) {
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+    if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" || type == "float32") return 4;
+    if (type == "double" || type == "float64") return 8;
+    return 0;
+}
+
+void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file_bytes) {
+    struct Element {
+        std::string name;
+        std::uint64_t count = 0;
+        std::uint64_t min_bytes = 0;  // per element, binary
+        std::uint64_t values = 0;     // per element, at least (ASCII)
+    };
+    std::vector<Element> elements;
+    bool binary = false;
+    std::string line;
+    int lines = 0;
+    while (std::getline(in, line)) {
+        if (++lines > 10000) refuse(path, "a PLY header of more than 10000 lines");
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream words(line);
+        std::string word;
+        words >> word;
+        if (word == "end_header") break;
+        if (word == "format") {
+            std::string kind;
+            words >> kind;
+            binary = kind != "ascii";
+        } else if (word == "element") {
+            Element e;
+            std::string count;
+            words >> e.name >> count;
+            if (count.empty() || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 19)
+                refuse(path, "PLY element '" + e.name + "': expected a count, got '" + count + "'");
+            e.count = std::stoull(count);
+            elements.push_back(e);
+        } else if (word == "property" && !elements.empty()) {
+            std::string type;
+            words >> type;
+            Element& e = elements.back();
+            ++e.values;
+            // A list holds at least its length field.
+            e.min_bytes += ply_type_bytes(type == "list" ? (words >> type, type) : type);
+        }
+    }
+    const std::streamoff position = in.tellg();
+    const std::uint64_t header_bytes = position < 0 ? file_bytes : static_cast<std::uint64_t>(position);
+    const std::uint64_t body = file_bytes > header_bytes ? file_bytes - header_bytes : 0;
+    for (const Element& e : elements) {
+        // ASCII: every value takes a digit and a separator at least.
+        const std::uint64_t per = binary ? e.min_bytes : 2 * e.values;
+        if (per == 0 || e.count == 0) continue;
+        if (e.count > body / per)
+            refuse(path, "the PLY header declares " + std::to_string(e.count) + " " + e.name + " elements, but the file (" +
+                             std::to_string(file_bytes) + " bytes) can hold at most " + std::to_string(body / per) +
+                             ": a damaged or truncated file");
+    }
+}
+
+void precheck_binary_stl(const std::string& path, std::ifstream& in, std::uint64_t file_bytes) {
+    // 80-byte header, a 32-bit facet count, 50 bytes per facet. An ASCII STL starts with "solid"
+    // and has no count; a binary one may too (in its free header), so it is told by its length.
+    char header[84];
+    if (!in.read(header, sizeof(header))) return;
+    std::uint32_t count = 0;
+    std::memcpy(&count, header + 80, sizeof(count));
+    const bool looks_ascii = std::strncmp(header, "solid", 5) == 0 && 84 + 50ull * count != file_bytes;
+    if (looks_ascii) return;
+    if (84 + 50ull * count > file_bytes)
+        refuse(path, "the binary STL declares " + std::to_string(count) + " facets, but the file (" + std::to_string(file_bytes) +
+                         " bytes) holds at most " + std::to_string((file_bytes - 84) / 50) + ": a damaged or truncated file");
+}
+
+}  // namespace
+
+void precheck_mesh_file(const std::string& path) {
+    std::error_code error;
+    const auto size = std::filesystem::file_size(path, error);
+    if (error) return;  // the reader reports what is wrong
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return;
+    char magic[4] = {};
+    in.read(magic, 4);
+    in.clear();
+    in.seekg(0);
+    if (std::strncmp(magic, "ply", 3) == 0 && (magic[3] == '\n' || magic[3] == '\r')) {
+        precheck_ply(path, in, size);
+        return;
+    }
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".stl" && size >= 84) precheck_binary_stl(path, in, size);
+}
+
+}  // namespace peensim

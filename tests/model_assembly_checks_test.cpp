@@ -1,0 +1,157 @@
+// The catalogue of assembly mistakes users made that passed `check` and ran with exit 0: each is
+// now an error (or a warning) naming the component, where it is, and what to check; and a sound
+// assembly passes without a word. The scenes are the test scene (a 20 mm box chamber closed by a
+// plate sonotrode at z = 0, its ceiling at z = 20 mm) with a part placed wrongly.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/check_job.h"
+#include "app/run_job.h"
+#include "geometry/box_mesh.h"
+#include "geometry/stl_writer.h"
+#include "model/assembly_checks.h"
+#include "scene/scene_parser.h"
+#include "support/test_scene.h"
+
+namespace peensim::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Checked {
+    AssemblyReport report;
+    std::string text;  // every issue, one per line
+};
+
+Checked check(const TestScene& scene, const std::string& yaml_path = "") {
+    const auto model = yaml_path.empty() ? scene.compile() : compile_model(parse_scene_file(yaml_path));
+    Random rng(model->seed);
+    ShotCavity cavity(*model, rng);
+    Checked c{check_assembly(*model, cavity), ""};
+    for (const AssemblyIssue& i : c.report.issues) c.text += (i.error ? "error: " : "warning: ") + i.field + ": " + i.message + "\n";
+    return c;
+}
+
+TestSceneSpec with_box(const Vec3& centre_m, const Vec3& size_m = Vec3(4e-3, 4e-3, 4e-3)) {
+    TestSceneSpec spec;
+    spec.amplitude_m = 25e-6;
+    PartSpec box;
+    box.shape = PartShape::box;
+    box.size_m = size_m;
+    box.center_m = centre_m;
+    spec.part = box;
+    return spec;
+}
+
+// The scene with one more component (yaml lines appended to its components list).
+std::string with_extra_component(const TestScene& scene, const std::string& component_yaml) {
+    const fs::path path = fs::path(scene.directory()) / "scene-extra.yaml";
+    std::ofstream(path) << scene.yaml() << component_yaml;
+    return path.string();
+}
+
+TEST(AssemblyChecks, ASoundAssemblyPassesWithoutAWord) {
+    const TestScene scene(small_rod_scene("event", 0.1));
+    const Checked c = check(scene);
+    EXPECT_TRUE(c.report.issues.empty()) << c.text;
+    EXPECT_GT(c.report.components[2].reachable_fraction, 0.75);  // the end caps, 2 mm from the walls, have no room for a 2 mm shot
+    EXPECT_NEAR(c.report.components[2].clearance_to_sonotrode_m, 5e-3 - 25e-6, 1e-6);  // rod r 3 mm, axis 8 mm up
+}
+
+TEST(AssemblyChecks, APartWhollyOutsideTheChamberIsAnError) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 60e-3)));  // 40 mm above the ceiling
+    const Checked c = check(scene);
+    EXPECT_EQ(c.report.errors(), 1u) << c.text;
+    EXPECT_NE(c.text.find("components[2]: no part of its surface can be reached by the shot"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("it spans (-2, -2, 58) mm to (2, 2, 62) mm"), std::string::npos) << c.text;
+}
+
+TEST(AssemblyChecks, APartInTheSonotrodeIsAnError) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 1e-3)));  // from -1 mm to 3 mm: through the plate's face
+    const Checked c = check(scene);
+    EXPECT_NE(c.text.find("components[2]: intersects the sonotrode near"), std::string::npos) << c.text;
+}
+
+TEST(AssemblyChecks, APartWithinTheSonotrodesTravelIsAnError) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 2e-3 + 10e-6)));  // 10 um above the plate at rest, A0 25 um
+    const Checked c = check(scene);
+    EXPECT_NE(c.text.find("intersects the sonotrode within its vibration travel (+-A0)"), std::string::npos) << c.text;
+}
+
+TEST(AssemblyChecks, APartThroughTheLidIsAWarningAndAnErrorWhenStrict) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 20e-3)));  // half above the ceiling
+    const Checked c = check(scene);
+    EXPECT_EQ(c.report.errors(), 0u) << c.text;
+    EXPECT_EQ(c.report.warnings(), 1u) << c.text;
+    EXPECT_NE(c.text.find("warning: components[2]: passes through the wall of components[1] (chamber)"), std::string::npos) << c.text;
+    std::ostringstream out, err;
+    EXPECT_EQ(check_job(scene.scene_path(), {}, false, out, err), kExitOk) << err.str();
+    EXPECT_NE(err.str().find("warning: "), std::string::npos);
+    std::ostringstream out2, err2;
+    EXPECT_EQ(check_job(scene.scene_path(), {}, true, out2, err2), kExitInputError);
+    EXPECT_NE(err2.str().find("(an error with --strict)"), std::string::npos) << err2.str();
+}
+
+TEST(AssemblyChecks, TwoOverlappingPartsAreAnError) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 10e-3)));
+    const std::string path = with_extra_component(scene,
+                                                  "  - name: second\n"
+                                                  "    role: part\n"
+                                                  "    mesh: part.stl\n"
+                                                  "    mesh_unit: mm\n"
+                                                  "    material: copper\n"
+                                                  "    translation: [1 mm, 1 mm, 0]\n");
+    const Checked c = check(scene, path);
+    EXPECT_NE(c.text.find("components[2]: intersects components[3] (second)"), std::string::npos) << c.text;
+}
+
+TEST(AssemblyChecks, ARotatingPartSweepingThroughTheSonotrodeIsAnError) {
+    TestSceneSpec spec = with_box(Vec3(0.0, 0.0, 8e-3));
+    // Turning about an axis 4 mm up: its corners sweep down to 4 - hypot(2, 6) < 0 mm.
+    spec.part->speed_rad_per_s = 10.0;
+    spec.part->axis_point_m = Vec3(0.0, 0.0, 4e-3);
+    spec.part->axis_direction = Vec3::UnitY();
+    const TestScene scene(spec);
+    const Checked c = check(scene);
+    EXPECT_NE(c.text.find("components[2].motion: turning, it sweeps through components[0] (sonotrode)"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("check motion.axis_point"), std::string::npos) << c.text;
+}
+
+TEST(AssemblyChecks, ARotatingPartTurningClearIsFine) {
+    TestSceneSpec spec = with_box(Vec3(0.0, 0.0, 10e-3));
+    spec.part->speed_rad_per_s = 10.0;
+    spec.part->axis_point_m = Vec3(0.0, 0.0, 10e-3);
+    spec.part->axis_direction = Vec3::UnitY();
+    const TestScene scene(spec);
+    const Checked c = check(scene);
+    EXPECT_TRUE(c.report.issues.empty()) << c.text;
+}
+
+TEST(AssemblyChecks, APartWithAMissingCapIsAnError) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 10e-3)));
+    BoxSpec open;
+    open.size_m = Vec3(4e-3, 4e-3, 4e-3);
+    open.center_m = Vec3(0.0, 0.0, 10e-3);
+    write_binary_stl(box_open(open, BoxFace::plus_z, Facing::outward), (fs::path(scene.directory()) / "part.stl").string(), 1e-3, "part");
+    const Checked c = check(scene);
+    EXPECT_NE(c.text.find("components[2].mesh: the mesh is open (4 boundary edges) and shot can reach an opening"), std::string::npos)
+        << c.text;
+}
+
+TEST(AssemblyChecks, ARunRefusesAnAssemblyWithAnError) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 1e-3)));
+    RunOptions o;
+    o.scene_path = scene.scene_path();
+    o.output_dir = scene.make_subdirectory("out");
+    o.progress = false;
+    std::ostringstream out, err;
+    EXPECT_EQ(run_job(o, out, err), kExitInputError);
+    EXPECT_NE(err.str().find("intersects the sonotrode"), std::string::npos) << err.str();
+    EXPECT_FALSE(fs::exists(fs::path(o.output_dir) / "summary.json"));
+}
+
+}  // namespace
+}  // namespace peensim::testing
