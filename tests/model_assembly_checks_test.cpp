@@ -13,6 +13,7 @@
 #include "geometry/box_mesh.h"
 #include "geometry/stl_writer.h"
 #include "model/assembly_checks.h"
+#include "model/shot_cavity.h"
 #include "scene/scene_parser.h"
 #include "support/test_scene.h"
 
@@ -151,6 +152,49 @@ TEST(AssemblyChecks, ARunRefusesAnAssemblyWithAnError) {
     EXPECT_EQ(run_job(o, out, err), kExitInputError);
     EXPECT_NE(err.str().find("intersects the sonotrode"), std::string::npos) << err.str();
     EXPECT_FALSE(fs::exists(fs::path(o.output_dir) / "summary.json"));
+}
+
+// Plausibility: values a valid scene may hold by a slip are warnings naming what was meant.
+std::string setup_warnings(const TestScene& scene, const std::vector<std::string>& overrides) {
+    std::ostringstream out, err;
+    const int code = check_job(scene.scene_path(), overrides, false, out, err);
+    EXPECT_EQ(code, kExitOk) << err.str();
+    return err.str();
+}
+
+TEST(SetupPlausibility, AnAmplitudeWithoutItsUnitIsNamed) {
+    const TestScene scene(small_rod_scene("event", 0.1));
+    const std::string w = setup_warnings(scene, {"components[sonotrode].vibration.amplitude=25"});
+    EXPECT_NE(w.find("components[0].vibration.amplitude: the plain number 25 is read in SI units: 25 m, while this scene gives "
+                     "units elsewhere; did you mean 25 um?"),
+              std::string::npos)
+        << w;
+    EXPECT_NE(w.find("A0 2.5e+04 mm is far above ultrasonic peening's 10-100 um"), std::string::npos) << w;
+    std::ostringstream out, err;
+    EXPECT_EQ(check_job(scene.scene_path(), {"components[sonotrode].vibration.amplitude=25"}, true, out, err), kExitInputError);
+}
+
+TEST(SetupPlausibility, FrequencyGravityShotSizeAndMeshUnitOutsideTheWindow) {
+    const TestScene scene(small_rod_scene("event", 0.1));
+    EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20"}).find("20 Hz is outside 1-100 kHz"), std::string::npos);
+    EXPECT_NE(setup_warnings(scene, {"process.gravity=[0, 0, -98.1]"}).find("98.1 m/s2: expected ~9.81 m/s2"), std::string::npos);
+    EXPECT_EQ(setup_warnings(scene, {"process.gravity=[0, 0, 0]"}).find("gravity"), std::string::npos);  // weightless is fine
+    EXPECT_NE(setup_warnings(scene, {"shot.count=1", "shot.diameter=2.5 mm"}).find("more than a tenth of it"), std::string::npos);
+    // The test scene's meshes are in mm: read as metres, the chamber (walls included) is 25 m across.
+    std::ostringstream out, err;
+    check_job(scene.scene_path(), {"components[chamber].mesh_unit=m", "components[sonotrode].mesh_unit=m", "components[part].mesh_unit=m"},
+              false, out, err);
+    EXPECT_NE(err.str().find("'chamber' is 25 m across (1 m per file unit): implausible for a peening chamber; in mm it would be 25 mm (mesh_unit: mm)"),
+              std::string::npos)
+        << err.str();
+}
+
+TEST(SetupPlausibility, TheShippedScenesPassWithoutAWarning) {
+    for (const char* name : {"rod.yaml", "gear.yaml", "rotating-gear.yaml", "almen.yaml"}) {
+        std::ostringstream out, err;
+        EXPECT_EQ(check_job(std::string(PEENSIM_SOURCE_DIR) + "/scenes/" + name, {}, true, out, err), kExitOk) << name << ": " << err.str();
+        EXPECT_EQ(err.str(), "") << name;
+    }
 }
 
 }  // namespace

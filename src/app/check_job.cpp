@@ -7,6 +7,7 @@
 
 #include "app/report_errors.h"
 #include "app/run_job.h"
+#include "app/setup_checks.h"
 #include "common/input_error.h"
 #include "engine/time_stepping.h"
 #include "model/assembly_checks.h"
@@ -53,8 +54,8 @@ void print_assembly(const Model& model, const AssemblyReport& report, std::ostre
     }
 }
 
-void print_report(const Model& model, const AssemblyReport& assembly, const InitialShots& shots, std::ostream& out) {
-    out << "# peensim check: the scene is valid" << (assembly.warnings() ? " (with warnings, above)" : "") << ".\n";
+void print_report(const Model& model, const AssemblyReport& assembly, std::size_t warnings, const InitialShots& shots, std::ostream& out) {
+    out << "# peensim check: the scene is valid" << (warnings ? " (with " + std::to_string(warnings) + " warning(s), above)" : std::string()) << ".\n";
     out << "# components:\n";
     for (const Component& c : model.components) {
         out << "#   " << std::left << std::setw(14) << c.name << std::setw(10) << role_name(c.role) << std::right
@@ -76,12 +77,9 @@ int check_job(const std::string& scene_path, const std::vector<std::string>& ove
     return report_errors(err, [&] {
         const SceneDescription scene = parse_scene_file(scene_path, overrides);
         const auto model = compile_model(scene);
-        Random rng(model->seed);
-        ShotCavity cavity(*model, rng);
-        const AssemblyReport assembly = check_assembly(*model, cavity);
-        report_assembly_issues(assembly, strict, err);
-        const InitialShots shots = place_shots(*model, cavity, rng);
-        print_report(*model, assembly, shots, out);
+        SetupCheck setup = check_setup(*model, strict, err);
+        const InitialShots shots = place_shots(*model, *setup.cavity, setup.rng);
+        print_report(*model, setup.assembly, setup.warnings, shots, out);
         return static_cast<int>(kExitOk);
     });
 }

@@ -13,6 +13,7 @@
 #include "app/checkpoint.h"
 #include "app/checkpoint_cadence.h"
 #include "app/render_module.h"
+#include "app/setup_checks.h"
 #include "app/interrupt.h"
 #include "app/loss_report.h"
 #include "app/report_errors.h"
@@ -64,12 +65,7 @@ public:
     int run() {
         const SceneDescription scene = parse_scene_file(options_.scene_path, options_.overrides);
         model_ = compile_model(scene);
-        {
-            // The assembly is checked before anything is written (the placement builds its own cavity).
-            Random rng(model_->seed);
-            ShotCavity cavity(*model_, rng);
-            report_assembly_issues(check_assembly(*model_, cavity), options_.strict, err_);
-        }
+        check_setup(*model_, options_.strict, err_);  // before anything is written (the placement builds its own cavity)
         dir_ = output_directory(options_, scene);
         fs::create_directories(dir_);
         lock_ = std::make_unique<RunDirectoryLock>(dir_);

@@ -362,12 +362,4 @@ AssemblyReport check_assembly(const Model& m, ShotCavity& cavity) {
     return report;
 }
 
-std::size_t report_assembly_issues(const AssemblyReport& report, bool strict, std::ostream& err) {
-    for (const AssemblyIssue& i : report.issues)
-        err << (i.error ? "error: " : "warning: ") << InputError::format(i.where, i.field, i.message) << "\n";
-    for (const AssemblyIssue& i : report.issues)
-        if (i.error || strict) throw InputError(i.where, i.field, i.message + (i.error ? "" : " (an error with --strict)"));
-    return report.warnings();
-}
-
 }  // namespace peensim

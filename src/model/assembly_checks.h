@@ -58,8 +58,4 @@ inline constexpr double kMinReachable = 0.2;  // -, of a part's surface (a strip
 
 AssemblyReport check_assembly(const Model& model, ShotCavity& cavity);
 
-// Writes every issue ("error: ..." / "warning: ..."), then throws InputError (the first error, or
-// with `strict` the first warning) if there is one. Returns the number of warnings written.
-std::size_t report_assembly_issues(const AssemblyReport& report, bool strict, std::ostream& err);
-
 }  // namespace peensim

@@ -200,6 +200,14 @@ struct SceneDescription {
     std::vector<ComponentDesc> components;
     OutputDesc output;
     std::optional<RenderDesc> render;  // present when the scene has a `render` block
+    // Values to look at again (a plain number where units are given elsewhere): warnings, errors
+    // with --strict.
+    struct Warning {
+        SourceLocation where;
+        std::string field;
+        std::string message;
+    };
+    std::vector<Warning> warnings;
 };
 
 }  // namespace peensim

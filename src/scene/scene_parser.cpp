@@ -1,12 +1,16 @@
 #include "scene/scene_parser.h"
 
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "common/units.h"
 #include "scene/overrides.h"
 #include "scene/schema_validation.h"
 #include "scene/scene_sections.h"
+#include "scene/yaml_access.h"
 
 namespace peensim {
 namespace {
@@ -35,6 +39,21 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     return d;
 }
 
+// "amplitude: 25 is 25 m; did you mean 25 um?": the unit a slip most likely dropped.
+SceneDescription::Warning plain_number_warning(const PlainQuantity& q) {
+    const std::string si(si_unit(q.dimension));
+    std::string meant;
+    double value = 0.0;
+    std::from_chars(q.text.data(), q.text.data() + q.text.size(), value);
+    if (q.dimension == Dimension::length && std::abs(value) >= 1.0) {  // 25 or 18: mm or um dropped; 0.02 may be meant in m
+        const bool small = q.field.find("amplitude") != std::string::npos;
+        meant = "; did you mean " + q.text + (small ? " um" : " mm") + "?";
+    }
+    return {q.where, q.field,
+            "the plain number " + q.text + " is read in SI units: " + q.text + " " + si + ", while this scene gives units elsewhere" +
+                meant + " (write the unit to silence this)"};
+}
+
 }  // namespace
 
 SceneDescription parse_scene_text(const std::string& yaml_text, const std::string& virtual_path,
@@ -49,6 +68,8 @@ SceneDescription parse_scene_text(const std::string& yaml_text, const std::strin
         const std::filesystem::path scene_dir = std::filesystem::absolute(virtual_path).parent_path();
         SceneDescription d = build(top, scene_dir);
         d.source_file = virtual_path;
+        if (context.units_given)
+            for (const PlainQuantity& q : context.plain_quantities) d.warnings.push_back(plain_number_warning(q));
         return d;
     } catch (const YAML::Exception& e) {
         // The checks above should leave yaml-cpp nothing to throw; never let it escape as a crash.

@@ -43,8 +43,28 @@ std::string range_phrase(const Range& r) {
     return (!t.empty() && (t.front() == '(' || t.front() == '[')) ? "in " + t : t;
 }
 
+// Notes whether a dimensioned value was written with a unit (SceneContext::plain_quantities).
+void note_unit_use(const Cursor& c, const std::string& text, std::string_view unit_for_plain) {
+    const SchemaEntry& e = c.entry();
+    // Only what the file says (not defaults); only lengths: a plain gravity or duration in SI is
+    // natural, a plain length in a scene written in mm is the slip users made.
+    if (c.context == nullptr || !c.present() || e.dimension == Dimension::dimensionless) return;
+    std::string_view t(text);
+    while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.remove_suffix(1);
+    while (!t.empty() && (t.front() == ' ' || t.front() == '+')) t.remove_prefix(1);
+    double number = 0.0;
+    const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), number);
+    const bool plain = !t.empty() && ec == std::errc() && ptr == t.data() + t.size();
+    if (!plain) {
+        c.context->units_given = true;
+    } else if (unit_for_plain.empty() && number != 0.0 && e.dimension == Dimension::length) {
+        c.context->plain_quantities.push_back({location_of(c), c.field_path, std::string(t), e.dimension});
+    }
+}
+
 double parse_element(const Cursor& c, const std::string& text, std::string_view unit_for_plain) {
     const SchemaEntry& e = c.entry();
+    note_unit_use(c, text, unit_for_plain);
     try {
         return parse_quantity(text, e.dimension, unit_for_plain);
     } catch (const QuantityError& err) {

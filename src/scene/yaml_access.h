@@ -23,9 +23,21 @@ struct OverrideOrigin {
     std::string text;        // the override as given: "components[gear].motion.speed=60 rpm"
 };
 
+// A quantity with a dimension written as a plain number (read in SI): with units given elsewhere
+// in the scene, most likely a forgotten unit ("amplitude: 25" is 25 m).
+struct PlainQuantity {
+    SourceLocation where;
+    std::string field;
+    std::string text;
+    Dimension dimension = Dimension::dimensionless;
+};
+
 struct SceneContext {
     std::string file;                       // the scene file as given (for messages)
     std::vector<OverrideOrigin> overrides;  // filled by apply_overrides
+    // Noted while reading (the cursors see the context as const).
+    mutable std::vector<PlainQuantity> plain_quantities;
+    mutable bool units_given = false;       // some quantity was written with a unit
 };
 
 // A direction whose length is already 1 within this tolerance is kept as written instead of being

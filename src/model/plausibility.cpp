@@ -1,0 +1,85 @@
+#include "model/plausibility.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace peensim {
+
+namespace {
+
+std::string field_of(std::size_t i) { return "components[" + std::to_string(i) + "]"; }
+
+std::string num(double v) {
+    std::ostringstream s;
+    s.precision(4);
+    s << v;
+    return s.str();
+}
+
+}  // namespace
+
+std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
+    std::vector<AssemblyIssue> out;
+    const SceneDescription& scene = m.description;
+    auto warn = [&](const SourceLocation& where, std::string field, std::string message) {
+        out.push_back({false, where, std::move(field), std::move(message)});
+    };
+    for (const SceneDescription::Warning& w : scene.warnings) warn(w.where, w.field, w.message);
+
+    const auto sono = static_cast<std::size_t>(m.sonotrode);
+    const Kinematics& vib = m.sonotrode_component().kinematics;
+    const SourceLocation& sono_where = scene.components[sono].where;
+    if (vib.amplitude_m > 1e-3)
+        warn(sono_where, field_of(sono) + ".vibration.amplitude",
+             "A0 " + num(vib.amplitude_m * 1e3) + " mm is far above ultrasonic peening's 10-100 um; did you mean " + num(vib.amplitude_m) +
+                 " um?");
+    if (vib.frequency_hz > 0.0 && (vib.frequency_hz < 1e3 || vib.frequency_hz > 1e5))
+        warn(sono_where, field_of(sono) + ".vibration.frequency",
+             num(vib.frequency_hz) + " Hz is outside 1-100 kHz (ultrasonic sonotrodes run at ~20 kHz); did you mean " +
+                 num(vib.frequency_hz) + " kHz?");
+
+    // The chamber: the union of the chamber components' bounds.
+    Vec3 lo = Vec3::Constant(1e300), hi = -lo;
+    for (const Component& c : m.components)
+        if (c.role == ComponentRole::chamber) lo = lo.cwiseMin(c.world_lo), hi = hi.cwiseMax(c.world_hi);
+    const Vec3 chamber = hi - lo;
+    const double D = 2.0 * m.shot_radius_m;
+    if (D > 0.1 * chamber.minCoeff())
+        warn(scene.shot.where, "shot.diameter",
+             "shot of " + num(D * 1e3) + " mm in a chamber " + num(chamber.minCoeff() * 1e3) +
+                 " mm across at its narrowest: more than a tenth of it; check shot.diameter and the chamber's mesh_unit");
+
+    const double g = m.gravity_m_per_s2.norm();
+    if (g != 0.0 && std::abs(g - 9.81) > 0.1)
+        warn(scene.process.where, "process.gravity",
+             num(g) + " m/s2: expected ~9.81 m/s2 (or zero for a weightless test); gravity is in m/s2");
+
+    for (std::size_t i = 0; i < m.components.size(); ++i) {
+        const Component& c = m.components[i];
+        const ComponentDesc& desc = scene.components[i];
+        Vec3 clo = Vec3::Constant(1e300), chi = -clo;
+        for (const Vec3& v : c.mesh->vertices) clo = clo.cwiseMin(v), chi = chi.cwiseMax(v);
+        const double size = (chi - clo).maxCoeff();  // m, in the component's own frame (not swept)
+        const std::string unit_now = num(desc.mesh_unit_m) + " m per file unit";
+        const std::string field = field_of(i) + ".mesh_unit";
+        if (size > 2.0) {
+            const double mm = size / desc.mesh_unit_m * 1e-3;
+            warn(desc.where, field,
+                 "'" + c.name + "' is " + num(size) + " m across (" + unit_now + "): implausible for a peening chamber" +
+                     (mm <= 2.0 && mm >= 1e-3 ? "; in mm it would be " + num(mm * 1e3) + " mm (mesh_unit: mm)" : std::string()));
+        } else if (size < 1e-3) {
+            const double in_mm = size / desc.mesh_unit_m * 1e-3;
+            warn(desc.where, field,
+                 "'" + c.name + "' is " + num(size * 1e3) + " mm across (" + unit_now + "): implausibly small" +
+                     (in_mm >= 1e-3 ? "; in mm it would be " + num(in_mm * 1e3) + " mm (mesh_unit: mm)" : std::string()));
+        } else if ((c.role == ComponentRole::part || c.role == ComponentRole::fixture) && size < chamber.maxCoeff() / 20.0 &&
+                   size * 25.4 <= chamber.maxCoeff() && desc.mesh_unit_m == 1e-3) {
+            warn(desc.where, field,
+                 "'" + c.name + "' is " + num(size * 1e3) + " mm across, small beside the chamber (" + num(chamber.maxCoeff() * 1e3) +
+                     " mm): if the file is in inches, set mesh_unit: in (" + num(size * 25.4 * 1e3) + " mm)");
+        }
+    }
+    return out;
+}
+
+}  // namespace peensim
