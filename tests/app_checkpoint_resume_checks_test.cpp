@@ -16,17 +16,13 @@
 #include "app/run_job.h"
 #include "common/input_error.h"
 #include "engine/simulation.h"
+#include "support/files.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 TestSceneSpec small_spec() {
     TestSceneSpec spec;

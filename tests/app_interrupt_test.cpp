@@ -22,6 +22,7 @@
 #include "app/run_job.h"
 #include "output/impact_csv_writer.h"
 #include "support/child_process.h"
+#include "support/files.h"
 #include "support/temp_dir.h"
 
 namespace peensim::testing {
@@ -32,11 +33,6 @@ namespace fs = std::filesystem;
 constexpr double kStopLimitS = 1.0;        // s of wall time from a signal to the end of the process
 constexpr double kStartLimitS = 60.0;      // s, generous: the machine may be busy with builds
 constexpr double kRunLimitS = 300.0;       // s, for runs that must finish
-
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -17,6 +17,7 @@
 #include "app/checkpoint.h"
 #include "app/run_job.h"
 #include "output/impact_csv_writer.h"
+#include "support/files.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -43,11 +44,6 @@ TestSceneSpec small_scene(std::uint64_t seed, std::string scheme = "step") {
     spec.part = rod;
     spec.log = {"part", "sonotrode"};
     return spec;
-}
-
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 std::size_t rows(const std::string& csv) { return static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) - 1; }

@@ -16,17 +16,13 @@
 #include "output/impact_csv_writer.h"
 #include "output/run_directory.h"
 #include "support/temp_dir.h"
+#include "support/files.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 TEST(RunDirectory, ASecondRunIntoTheSameDirectoryIsRefusedNamingTheFirst) {
     TempDir dir;

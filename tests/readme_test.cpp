@@ -1,9 +1,14 @@
-// The README's scene file reference is generated from the one schema: it must stay identical.
+// The README's scene file reference is generated from the one schema: it must stay identical; and
+// its example commands must stay valid.
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iostream>
 #include <sstream>
+#include <string>
+#include <vector>
 
+#include "app/check_job.h"
 #include "scene/schema.h"
 
 namespace {
@@ -27,4 +32,73 @@ TEST(Readme, SceneReferenceIsTheGeneratedOne) {
     ASSERT_NE(e, std::string::npos);
     EXPECT_EQ(readme.substr(b + begin.size(), e - b - begin.size()), peensim::scene_reference_markdown())
         << "regenerate it: build/peensim schema, and paste between the markers";
+}
+
+// Every example command of the README (a `peensim` or `build/peensim` line in a code block, not the
+// synopsis) is valid: `run` and `bench` examples are checked as `check` of their scenes with their
+// --set options (users found `--set components[gear].motion.speed="60 rpm"` failing on the scene
+// the README used it with).
+namespace {
+
+std::vector<std::string> shell_words(const std::string& line) {
+    std::vector<std::string> words;
+    std::string word;
+    bool quoted = false, any = false;
+    for (char c : line) {
+        if (c == '"') {
+            quoted = !quoted;
+            any = true;
+        } else if (c == ' ' && !quoted) {
+            if (any) words.push_back(word);
+            word.clear();
+            any = false;
+        } else {
+            word += c;
+            any = true;
+        }
+    }
+    if (any) words.push_back(word);
+    return words;
+}
+
+}  // namespace
+
+TEST(Readme, ExampleCommandsAreValidScenesAndOverrides) {
+    const std::string source = PEENSIM_SOURCE_DIR;
+    std::istringstream readme(read_file(source + "/README.md"));
+    std::string line;
+    int checked = 0;
+    while (std::getline(readme, line)) {
+        const std::size_t start = line.find_first_not_of(' ');
+        if (start == std::string::npos || start < 4) continue;  // code blocks are indented
+        // The last command of a chain (the quick start's `... && build/peensim run scenes/gear.yaml`).
+        std::string command = line.substr(start);
+        if (const std::size_t chain = command.rfind("&& "); chain != std::string::npos) command = command.substr(chain + 3);
+        if (command.rfind("build/peensim ", 0) != 0 && command.rfind("peensim ", 0) != 0) continue;
+        if (command.find(" [") != std::string::npos || command.find("SCENE") != std::string::npos || command.find('|') != std::string::npos)
+            continue;  // the synopsis
+        const std::vector<std::string> words = shell_words(command);
+        if (words.size() < 2 || (words[1] != "run" && words[1] != "check" && words[1] != "bench")) continue;
+        std::vector<std::string> scenes, overrides;
+        for (std::size_t k = 2; k < words.size(); ++k) {
+            if (words[k] == "--set" && k + 1 < words.size()) {
+                overrides.push_back(words[++k]);
+            } else if (words[k] == "-o" || words[k] == "--scheme" || words[k] == "--duration" || words[k] == "--schemes" ||
+                       words[k] == "--csv" || words[k] == "--stop-after-steps") {
+                ++k;
+            } else if (words[k].size() > 5 && words[k].substr(words[k].size() - 5) == ".yaml") {
+                scenes.push_back(words[k]);
+            }
+        }
+        if (words[1] == "bench" && scenes.empty())
+            for (const char* s : {"scenes/rod.yaml", "scenes/gear.yaml", "scenes/rotating-gear.yaml", "scenes/almen.yaml"}) scenes.push_back(s);
+        for (const std::string& scene : scenes) {
+            std::ostringstream out, err;
+            EXPECT_EQ(peensim::check_job(source + "/" + scene, overrides, false, out, err), 0) << command << "\n" << err.str();
+            EXPECT_EQ(err.str().find("warning"), std::string::npos) << command << "\n" << err.str();
+            ++checked;
+        }
+    }
+    EXPECT_GE(checked, 4);  // the quick start, the what-if example, the render example, bench
+    std::cout << "[ readme   ] " << checked << " example commands checked\n";
 }
