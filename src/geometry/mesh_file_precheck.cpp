@@ -35,37 +35,71 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
         std::uint64_t values = 0;     // per element, at least (ASCII)
     };
     std::vector<Element> elements;
-    bool binary = false;
+    bool binary = false, has_format = false;
     std::string line;
     int lines = 0;
+    bool ended = false;
+    // The header's grammar, strictly: the reader loops for ever on some broken headers (found by
+    // fuzzing: an unknown property type, a stray character in a keyword line).
+    const auto bad_line = [&](const std::string& what) {
+        refuse(path, "PLY header line " + std::to_string(lines) + ": " + what + ": a damaged file");
+    };
+    std::getline(in, line);  // "ply"
+    lines = 1;
     while (std::getline(in, line)) {
         if (++lines > 10000) refuse(path, "a PLY header of more than 10000 lines");
         if (!line.empty() && line.back() == '\r') line.pop_back();
         std::istringstream words(line);
-        std::string word;
+        std::string word, extra;
         words >> word;
-        if (word == "end_header") break;
+        if (word == "comment" || word == "obj_info") continue;
+        if (word == "end_header") {
+            if (line != "end_header") bad_line("expected 'end_header' alone");
+            ended = true;
+            break;
+        }
         if (word == "format") {
-            std::string kind;
-            words >> kind;
+            std::string kind, version;
+            words >> kind >> version;
+            if ((kind != "ascii" && kind != "binary_little_endian" && kind != "binary_big_endian") || version != "1.0" || (words >> extra))
+                bad_line("expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
             binary = kind != "ascii";
+            has_format = true;
         } else if (word == "element") {
             Element e;
             std::string count;
             words >> e.name >> count;
-            if (count.empty() || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 19)
-                refuse(path, "PLY element '" + e.name + "': expected a count, got '" + count + "'");
+            if (e.name.empty() || count.empty() || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 19 || (words >> extra))
+                bad_line("expected 'element NAME COUNT'");
             e.count = std::stoull(count);
             elements.push_back(e);
-        } else if (word == "property" && !elements.empty()) {
-            std::string type;
+        } else if (word == "property") {
+            if (elements.empty()) bad_line("a property before any element");
+            std::string type, name;
             words >> type;
             Element& e = elements.back();
             ++e.values;
-            // A list holds at least its length field.
-            e.min_bytes += ply_type_bytes(type == "list" ? (words >> type, type) : type);
+            if (type == "list") {
+                std::string length_type, item_type;
+                words >> length_type >> item_type >> name;
+                if (ply_type_bytes(length_type) == 0 || ply_type_bytes(item_type) == 0 || name.empty() || (words >> extra))
+                    bad_line("expected 'property list TYPE TYPE NAME' with known types");
+                e.min_bytes += ply_type_bytes(length_type);  // a list holds at least its length field
+            } else {
+                words >> name;
+                if (ply_type_bytes(type) == 0 || name.empty() || (words >> extra)) bad_line("expected 'property TYPE NAME' with a known type");
+                e.min_bytes += ply_type_bytes(type);
+            }
+        } else {
+            bad_line("unknown keyword '" + word + "'");
         }
     }
+    if (ended && !has_format) refuse(path, "the PLY header has no format line: a damaged file");
+    // The reader loops for ever on some malformed headers (found by fuzzing): refuse them first.
+    if (!ended) refuse(path, "the PLY header has no end_header line: a damaged or truncated file");
+    for (const Element& e : elements)
+        if (e.count > 0 && e.values == 0)
+            refuse(path, "PLY element '" + e.name + "' has " + std::to_string(e.count) + " entries but no properties: a damaged file");
     const std::streamoff position = in.tellg();
     const std::uint64_t header_bytes = position < 0 ? file_bytes : static_cast<std::uint64_t>(position);
     const std::uint64_t body = file_bytes > header_bytes ? file_bytes - header_bytes : 0;
@@ -106,12 +140,15 @@ void precheck_mesh_file(const std::string& path) {
     in.read(magic, 4);
     in.clear();
     in.seekg(0);
-    if (std::strncmp(magic, "ply", 3) == 0 && (magic[3] == '\n' || magic[3] == '\r')) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".ply" || std::strncmp(magic, "ply", 3) == 0) {
+        // The reader takes either for a PLY file, and loops for ever on some broken ones.
+        if (std::strncmp(magic, "ply", 3) != 0 || (magic[3] != '\n' && magic[3] != '\r'))
+            refuse(path, "not a PLY file: its first line is not 'ply'");
         precheck_ply(path, in, size);
         return;
     }
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".stl" && size >= 84) precheck_binary_stl(path, in, size);
 }
 
