@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
+#include "app/render_module.h"
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "app/setup_checks.h"
@@ -73,13 +75,31 @@ void print_report(const Model& model, const AssemblyReport& assembly, std::size_
 
 }  // namespace
 
-int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err) {
+int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err,
+              const std::string& picture_png) {
     return report_errors(err, [&] {
         const SceneDescription scene = parse_scene_file(scene_path, overrides);
         const auto model = compile_model(scene);
-        SetupCheck setup = check_setup(*model, strict, err);
-        const InitialShots shots = place_shots(*model, *setup.cavity, setup.rng);
-        print_report(*model, setup.assembly, setup.warnings, shots, out);
+        // The picture is drawn whatever the checks find: a misplaced part is what it is for.
+        const auto draw = [&](const std::vector<Vec3>& shot_positions, const char* what) {
+            if (picture_png.empty()) return;
+            SimulationState start;
+            start.shots.resize(shot_positions.size());
+            for (std::size_t i = 0; i < shot_positions.size(); ++i) start.shots.set_position(i, shot_positions[i]);
+            render_module().draw_assembly(*model, start, picture_png, 1280, 720);
+            out << "# picture of the assembly" << what << ": " << picture_png << "\n";
+        };
+        std::optional<SetupCheck> setup;
+        InitialShots shots;
+        try {
+            setup.emplace(check_setup(*model, strict, err));
+            shots = place_shots(*model, *setup->cavity, setup->rng);
+        } catch (const InputError&) {
+            draw({}, " (without shot: the setup has an error)");
+            throw;
+        }
+        print_report(*model, setup->assembly, setup->warnings, shots, out);
+        draw(shots.positions, "");
         return static_cast<int>(kExitOk);
     });
 }

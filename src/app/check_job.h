@@ -11,6 +11,8 @@
 
 namespace peensim {
 
-int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err);
+// picture_png: also draw the assembly with the placed shot into this PNG (loads the render module).
+int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err,
+              const std::string& picture_png = "");
 
 }  // namespace peensim

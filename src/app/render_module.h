@@ -44,6 +44,8 @@ struct RenderModule {
     std::unique_ptr<FrameSink> (*make_recorder)(const Model& model, const RenderDesc& desc, const std::string& dir,
                                                 const SimulationState& now);
     int (*render_impacts)(const RenderImpactsOptions& options, std::ostream& out, std::ostream& err);
+    // `check --render`: the assembly at t = 0 with the placed shot, into a PNG (throws on failure).
+    void (*draw_assembly)(const Model& model, const SimulationState& start, const std::string& png_path, int width_px, int height_px);
 };
 
 // Loads the module on first use: $PEENSIM_RENDER_MODULE, else libpeensim_render.so next to the

@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
     check_cmd->add_option("--set", check_overrides, "override a scene field")->allow_extra_args(false);
     bool check_strict = false;
     check_cmd->add_flag("--strict", check_strict, "treat assembly warnings (a part through a chamber wall, dropped facets) as errors");
+    std::string check_picture;
+    check_cmd->add_option("--render", check_picture, "also draw the assembly with the placed shot into this PNG (1280x720)");
 
     std::string analyze_dir;
     auto* analyze_cmd = app.add_subcommand("analyze", "analyse a run's impacts: coverage, per-triangle fields, histograms, report.md");
@@ -89,7 +91,7 @@ int main(int argc, char** argv) {
         if (render_off) run.render = false;
         return run_job(run, quiet ? null_stream : std::cout, std::cerr);
     }
-    if (*check_cmd) return check_job(check_scene, check_overrides, check_strict, std::cout, std::cerr);
+    if (*check_cmd) return check_job(check_scene, check_overrides, check_strict, std::cout, std::cerr, check_picture);
     if (*analyze_cmd) return analyze_job(analyze_dir, std::cout, std::cerr);
     if (*render_impacts_cmd) {
         try {
