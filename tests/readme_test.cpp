@@ -9,7 +9,14 @@
 #include <string>
 #include <vector>
 
+#include <regex>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
 #include "app/check_job.h"
+#include "app/run_job.h"
+#include "support/temp_dir.h"
 #include "scene/schema.h"
 
 namespace {
@@ -107,4 +114,55 @@ TEST(Readme, ExampleCommandsAreValidScenesAndOverrides) {
     }
     EXPECT_GE(checked, 4);  // the quick start, the what-if example, the render example, bench
     std::cout << "[ readme   ] " << checked << " example commands checked\n";
+}
+
+// The README's list of summary.json keys and health counters, and its Almen figures, are the
+// program's (users found both out of date).
+namespace {
+
+// `names` in backticks in the README paragraph that starts with `start`.
+std::set<std::string> backticked(const std::string& readme, const std::string& start) {
+    const std::size_t a = readme.find(start);
+    EXPECT_NE(a, std::string::npos) << start;
+    const std::size_t b = readme.find("\n\n", a);
+    const std::string para = readme.substr(a, b - a);
+    std::set<std::string> names;
+    for (std::size_t i = para.find('`'); i != std::string::npos; i = para.find('`', i + 1)) {
+        const std::size_t j = para.find('`', i + 1);
+        if (j == std::string::npos) break;
+        names.insert(para.substr(i + 1, j - i - 1));
+        i = j;
+    }
+    return names;
+}
+
+}  // namespace
+
+TEST(Readme, SummaryKeysHealthCountersAndAlmenFiguresAreTheProgramsOwn) {
+    const std::string source = PEENSIM_SOURCE_DIR;
+    const std::string readme = read_file(source + "/README.md");
+    peensim::testing::TempDir dir;
+    peensim::RunOptions o;
+    o.scene_path = source + "/scenes/almen.yaml";
+    o.output_dir = (dir.path / "almen").string();
+    o.progress = false;
+    std::ostringstream out, err;
+    ASSERT_EQ(peensim::run_job(o, out, err), peensim::kExitOk) << err.str();
+
+    const nlohmann::json summary = nlohmann::json::parse(read_file(o.output_dir + "/summary.json"));
+    const std::set<std::string> documented = backticked(readme, "`summary.json`: ");
+    for (const auto& [key, value] : summary.items()) EXPECT_TRUE(documented.count(key)) << "summary key '" << key << "' not in the README";
+    const std::set<std::string> counters = backticked(readme, "Health counters (never fatal");
+    for (const auto& [key, value] : summary["health_counters"].items())
+        EXPECT_TRUE(counters.count(key)) << "health counter '" << key << "' not in the README";
+
+    // "5 s, 3492 impacts on the face at 4.216 m/s mean normal speed, dose 878.4 J/m2, r = 151.8 J/(m2 s)"
+    const std::regex readme_figures(R"(([0-9]+) impacts on the face at ([0-9.]+) m/s mean normal speed, dose ([0-9.]+) J/m2, r = ([0-9.]+) J/\(m2 s\))");
+    std::smatch r;
+    ASSERT_TRUE(std::regex_search(readme, r, readme_figures)) << "the Almen figures of the README";
+    const std::string report = read_file(o.output_dir + "/analysis/report.md");
+    const std::regex report_figures(R"(Peened face: [0-9]+ mm2, ([0-9]+) impacts at a mean normal speed of ([0-9.]+) m/s\. .*: ([0-9.]+) J/m2 after .* r = ([0-9.]+) J/\(m2 s\))");
+    std::smatch p;
+    ASSERT_TRUE(std::regex_search(report, p, report_figures)) << report;
+    for (int k = 1; k <= 4; ++k) EXPECT_EQ(r[k].str(), p[k].str()) << "figure " << k << " of the README's Almen sentence";
 }
