@@ -158,7 +158,7 @@ TEST(RunInterruptTwice, SecondSignalAbandonsAtOnceAndTheLastCheckpointResumes) {
     }
     const Checkpoint c = load_checkpoint((parts / kCheckpointFileName).string());  // whole, not cut
     std::cout << "[ abandon  ] the checkpoint left holds t = " << c.state.time.seconds() << " s\n";
-    EXPECT_GT(c.state.time.seconds(), 0.0);
+    EXPECT_GE(c.state.time.seconds(), 0.0);  // a run checkpoints its start: this may be that one
     EXPECT_LT(c.state.time.seconds(), 3.0);
     {
         std::vector<std::string> args = rod_run(parts, "event", "3");

@@ -80,14 +80,24 @@ public:
         write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
         slots_ = logged_slots(*model_);
         start();
-        start_rendering();
-        {
-            // Signals are caught until the final checkpoint of an interrupted run is written; a
-            // finished run's outputs and analysis are left to Ctrl-C's default (the run is complete).
-            InterruptGuard guard(abandon_message());
-            if (!loop()) return interrupted();
+        // A checkpoint from the start: whatever fails later (a full disk while streaming impacts,
+        // before the first periodic checkpoint), --resume has a state to continue from.
+        if (!options_.resume) checkpoint();
+        try {
+            start_rendering();
+            {
+                // Signals are caught until the final checkpoint of an interrupted run is written; a
+                // finished run's outputs and analysis are left to Ctrl-C's default (the run is complete).
+                InterruptGuard guard(abandon_message());
+                if (!loop()) return interrupted();
+            }
+            return complete();
+        } catch (const std::exception&) {
+            if (fs::exists(checkpoint_path()))
+                err_ << "the run stopped on the error below; once it is fixed, " << resume_command()
+                     << " continues from its last checkpoint\n";
+            throw;
         }
-        return complete();
     }
 
 private:
