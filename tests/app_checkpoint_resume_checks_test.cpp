@@ -25,11 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TestSceneSpec small_spec() {
-    TestSceneSpec spec;
-    spec.shot_count = 16;
-    spec.initial_speed_m_per_s = 1.0;
-    spec.amplitude_m = 25e-6;
-    spec.duration_s = 0.05;
+    TestSceneSpec spec = thrown_shot_scene(16, 0.05);
     return spec;
 }
 

@@ -190,13 +190,18 @@ std::string TestScene::make_subdirectory(const std::string& name) const {
     return p.string();
 }
 
-TestSceneSpec small_rod_scene(const std::string& scheme, double duration_s) {
+TestSceneSpec thrown_shot_scene(int shot_count, double duration_s) {
     TestSceneSpec spec;
-    spec.scheme = scheme;
-    spec.shot_count = 64;
+    spec.shot_count = shot_count;
     spec.initial_speed_m_per_s = 1.0;
     spec.amplitude_m = 25e-6;
     spec.duration_s = duration_s;
+    return spec;
+}
+
+TestSceneSpec small_rod_scene(const std::string& scheme, double duration_s) {
+    TestSceneSpec spec = thrown_shot_scene(64, duration_s);
+    spec.scheme = scheme;
     PartSpec rod;
     rod.shape = PartShape::cylinder;
     rod.radius_m = 3e-3;

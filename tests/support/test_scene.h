@@ -115,6 +115,10 @@ private:
 // placement put there, and raises the speed the next step's size is computed from (eq. 7).
 void set_shot(SimulationState& state, std::size_t i, const Vec3& position_m, const Vec3& velocity_m_per_s);
 
+// `shot_count` shot of 2 mm thrown up at 1 m/s in random directions from the plate (A0 25 um), no
+// part: the smallest busy run (outputs, checkpoints, resumes).
+TestSceneSpec thrown_shot_scene(int shot_count, double duration_s);
+
 // 64 shot of 2 mm thrown up at 1 m/s in random directions from the plate (A0 25 um) onto a static
 // rod (r 3 mm, 16 mm along y, axis 8 mm up): a small, busy scene for determinism and run tests.
 TestSceneSpec small_rod_scene(const std::string& scheme, double duration_s);
