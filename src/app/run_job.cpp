@@ -80,15 +80,16 @@ public:
         write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
         slots_ = logged_slots(*model_);
         start();
-        // A checkpoint from the start: whatever fails later (a full disk while streaming impacts,
-        // before the first periodic checkpoint), --resume has a state to continue from.
-        if (!options_.resume) checkpoint();
         try {
-            start_rendering();
             {
-                // Signals are caught until the final checkpoint of an interrupted run is written; a
+                // Signals are caught from before the start's checkpoint (so a checkpoint on disk means
+                // Ctrl-C is handled) until the final checkpoint of an interrupted run is written; a
                 // finished run's outputs and analysis are left to Ctrl-C's default (the run is complete).
                 InterruptGuard guard(abandon_message());
+                // A checkpoint from the start: whatever fails later (a full disk while streaming
+                // impacts, before the first periodic checkpoint), --resume has a state to continue from.
+                if (!options_.resume) checkpoint();
+                start_rendering();
                 if (!loop()) return interrupted();
             }
             return complete();
