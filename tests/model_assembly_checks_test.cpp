@@ -66,14 +66,14 @@ TEST(AssemblyChecks, APartWhollyOutsideTheChamberIsAnError) {
     const TestScene scene(with_box(Vec3(0.0, 0.0, 60e-3)));  // 40 mm above the ceiling
     const Checked c = check(scene);
     EXPECT_EQ(c.report.errors(), 1u) << c.text;
-    EXPECT_NE(c.text.find("components[2]: no part of its surface can be reached by the shot"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("components[2]: part 'part': no part of its surface can be reached by the shot"), std::string::npos) << c.text;
     EXPECT_NE(c.text.find("it spans (-2, -2, 58) mm to (2, 2, 62) mm"), std::string::npos) << c.text;
 }
 
 TEST(AssemblyChecks, APartInTheSonotrodeIsAnError) {
     const TestScene scene(with_box(Vec3(0.0, 0.0, 1e-3)));  // from -1 mm to 3 mm: through the plate's face
     const Checked c = check(scene);
-    EXPECT_NE(c.text.find("components[2]: intersects the sonotrode near"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("components[2]: part 'part': intersects the sonotrode near"), std::string::npos) << c.text;
 }
 
 TEST(AssemblyChecks, APartWithinTheSonotrodesTravelIsAnError) {
@@ -87,7 +87,7 @@ TEST(AssemblyChecks, APartThroughTheLidIsAWarningAndAnErrorWhenStrict) {
     const Checked c = check(scene);
     EXPECT_EQ(c.report.errors(), 0u) << c.text;
     EXPECT_EQ(c.report.warnings(), 1u) << c.text;
-    EXPECT_NE(c.text.find("warning: components[2]: passes through the wall of components[1] (chamber)"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("warning: components[2]: part 'part': passes through the wall of components[1] (chamber)"), std::string::npos) << c.text;
     std::ostringstream out, err;
     EXPECT_EQ(check_job(scene.scene_path(), {}, false, out, err), kExitOk) << err.str();
     EXPECT_NE(err.str().find("warning: "), std::string::npos);
@@ -106,7 +106,7 @@ TEST(AssemblyChecks, TwoOverlappingPartsAreAnError) {
                                                   "    material: copper\n"
                                                   "    translation: [1 mm, 1 mm, 0]\n");
     const Checked c = check(scene, path);
-    EXPECT_NE(c.text.find("components[2]: intersects components[3] (second)"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("components[2]: part 'part': intersects components[3] (second)"), std::string::npos) << c.text;
 }
 
 TEST(AssemblyChecks, ARotatingPartSweepingThroughTheSonotrodeIsAnError) {
@@ -117,7 +117,7 @@ TEST(AssemblyChecks, ARotatingPartSweepingThroughTheSonotrodeIsAnError) {
     spec.part->axis_direction = Vec3::UnitY();
     const TestScene scene(spec);
     const Checked c = check(scene);
-    EXPECT_NE(c.text.find("components[2].motion: turning, it sweeps through components[0] (sonotrode)"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("components[2].motion: part 'part': turning, it sweeps through components[0] (sonotrode)"), std::string::npos) << c.text;
     EXPECT_NE(c.text.find("check motion.axis_point"), std::string::npos) << c.text;
 }
 
@@ -138,7 +138,7 @@ TEST(AssemblyChecks, APartWithAMissingCapIsAnError) {
     open.center_m = Vec3(0.0, 0.0, 10e-3);
     write_binary_stl(box_open(open, BoxFace::plus_z, Facing::outward), (fs::path(scene.directory()) / "part.stl").string(), 1e-3, "part");
     const Checked c = check(scene);
-    EXPECT_NE(c.text.find("components[2].mesh: the mesh is open (4 boundary edges) and shot can reach an opening"), std::string::npos)
+    EXPECT_NE(c.text.find("components[2].mesh: part 'part': the mesh is open (4 boundary edges) and shot can reach an opening"), std::string::npos)
         << c.text;
 }
 
@@ -177,6 +177,15 @@ TEST(SetupPlausibility, AnAmplitudeWithoutItsUnitIsNamed) {
 TEST(SetupPlausibility, FrequencyGravityShotSizeAndMeshUnitOutsideTheWindow) {
     const TestScene scene(small_rod_scene("event", 0.1));
     EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20"}).find("20 Hz is outside 1-100 kHz"), std::string::npos);
+    // A hint only where the number in the usual unit lands in the window.
+    EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20"}).find("did you mean 20 kHz?"), std::string::npos);
+    EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20000 kHz"}).find("did you mean 2e+04 Hz?"), std::string::npos);
+    const std::string at_200khz = setup_warnings(scene, {"components[sonotrode].vibration.frequency=200 kHz"});
+    EXPECT_NE(at_200khz.find("2e+05 Hz is outside 1-100 kHz"), std::string::npos) << at_200khz;
+    EXPECT_EQ(at_200khz.find("did you mean"), std::string::npos) << at_200khz;
+    const std::string at_2mm = setup_warnings(scene, {"components[sonotrode].vibration.amplitude=2 mm"});
+    EXPECT_NE(at_2mm.find("A0 2 mm is far above"), std::string::npos) << at_2mm;
+    EXPECT_EQ(at_2mm.find("did you mean"), std::string::npos) << at_2mm;
     EXPECT_NE(setup_warnings(scene, {"process.gravity=[0, 0, -98.1]"}).find("98.1 m/s2: expected ~9.81 m/s2"), std::string::npos);
     EXPECT_EQ(setup_warnings(scene, {"process.gravity=[0, 0, 0]"}).find("gravity"), std::string::npos);  // weightless is fine
     EXPECT_NE(setup_warnings(scene, {"shot.count=1", "shot.diameter=2.5 mm"}).find("more than a tenth of it"), std::string::npos);

@@ -8,6 +8,7 @@
 #include "collision/surface_clearance.h"
 #include "engine/loss_diagnosis.h"
 #include "engine/time_stepping.h"
+#include "event/plate_release.h"
 #include "event/sphere_pair_toi.h"
 #include "event/swept_sphere_box.h"
 #include "model/shot_cavity.h"
@@ -35,7 +36,6 @@ constexpr int kMaxQuickGrazes = 4;          // grazes each within kCollapseWindo
 // counted). Below this the gap would open by less than ~1e-12 m (u^2 / 2a at a plate acceleration
 // a ~ 4e5 m/s2), the rounding of a contact time, so nothing slower can be resolved anyway.
 constexpr double kRideSpeed = 1e-3;
-constexpr double kLaunchDelay = 1e-4;       // periods after the plate's deceleration passes g (launch)
 constexpr double kTouchTolerance = 1e-9;    // of R: conservative advancement stops this close
 constexpr double kContactSlack = 1e-6;      // of R: a shot this close to a surface or a shot touches it
 // of R: a shot in sustained contact this close to a surface stays on it. Rolling over a curved
@@ -857,14 +857,8 @@ void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& 
     s.ride_tangential = rel - rel.dot(n) * n;
     // The plate's acceleration along n is -A w^2 k sin(phase); it presses the shot while that
     // exceeds g.n, i.e. until sin(phase) rises through eps = -g.n / (A w^2 k).
-    const double eps = -g_.dot(n) / w2a;
-    double launch_time = kInf;
-    if (eps < 1.0) {
-        const double target = std::asin(std::max(-1.0, eps));
-        double dphi = std::fmod(target - plane.phase(t), 2.0 * M_PI);
-        if (dphi <= 0.0) dphi += 2.0 * M_PI;
-        launch_time = t + dphi / plane.angular_frequency() + kLaunchDelay / plane.frequency_hz;
-    }
+    const double to_release = seconds_to_release(plane.phase(t), -g_.dot(n) / w2a, plane.angular_frequency());
+    const double launch_time = t + to_release + kReleaseDelayPeriods / plane.frequency_hz;
     set_flight(i, p, s.ride_tangential, t, Motion::riding);
     s.wall = WallEvent{};
     s.wall.time = launch_time;
@@ -877,16 +871,20 @@ void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& 
 void EventStepping::launch(int i, double t) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
     const VibratingPlane& plane = face_.plane;
-    const Vec3 p = position(i, t);
-    const Vec3 v_plate = plane.velocity(t);
+    // The shot left the plate at the release, kReleaseDelayPeriods before this event
+    // (plate_release.h): it flies from the plate's state there.
+    const double delay = kReleaseDelayPeriods / plane.frequency_hz;
+    const double t_release = t - delay;
+    const Vec3 v_plate = plane.velocity(t_release);
     // Coulomb friction over the ride: the normal impulse per unit mass is what the plate gave the
     // shot beyond gravity, and the tangential slip loses f times that (not below zero).
-    const double impulse = std::max(0.0, (v_plate - plane.velocity(s.ride_start)).dot(s.ride_normal) - g_.dot(s.ride_normal) * (t - s.ride_start));
+    const double impulse = std::max(0.0, (v_plate - plane.velocity(s.ride_start)).dot(s.ride_normal) - g_.dot(s.ride_normal) * (t_release - s.ride_start));
     const double slip = s.ride_tangential.norm();
     const double f = model_->sonotrode_component().coefficients.f;
     const Vec3 tangential = slip > 0.0 ? Vec3(s.ride_tangential * std::max(0.0, 1.0 - f * impulse / slip)) : Vec3(Vec3::Zero());
+    const FlightState flight = after_release({position(i, t_release), v_plate + tangential}, g_, delay);
     s.in_flight = true;
-    set_flight(i, p, v_plate + tangential, t, Motion::flying);
+    set_flight(i, flight.position_m, flight.velocity_m_per_s, t, Motion::flying);
     predict(i, t);
 }
 

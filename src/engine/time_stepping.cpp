@@ -7,6 +7,7 @@
 #include "collision/surface_clearance.h"
 #include "engine/contact_time.h"
 #include "engine/moving_mesh_gap.h"
+#include "event/plate_release.h"
 #include "event/vibrating_plane_toi.h"
 
 namespace peensim {
@@ -26,9 +27,6 @@ constexpr double kTouchTolerance = 1e-14;      // s, precision of sampled touch 
 // prototype. A re-catch between two samples that the search misses ends the step in sustained
 // contact with the plate, which is what a ride is.
 constexpr double kRideFraction = 3200.0;
-// Periods after the plate's deceleration passes gravity's pull that a riding shot is launched (as
-// in the event-driven scheme): the gap then opens at once.
-constexpr double kLaunchDelayPeriods = 1e-4;
 constexpr double kCorrectionWorthCounting = 0.01;  // -, overlaps corrected beyond this fraction of R are counted
 // Bound on how far a shot can move relative to a component in one step, in units of the eq. 7
 // travel: the shot's own travel (1) plus the surface's (1: V_max includes surface speeds). A shot
@@ -515,17 +513,14 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     const double w = kin.angular_frequency();
     const double w2a = kin.amplitude_m * w * w * kin.axis.dot(n);
     if (!(w2a > 0.0)) return false;
-    const double eps = -g.dot(n) / w2a;
-    if (!(eps < 1.0)) return false;  // the plate never pulls away faster than gravity: it holds the shot
-    const double target = std::asin(std::max(-1.0, eps));
     const double phase = 2.0 * M_PI * t0_.cycle_fraction(kin.frequency_hz, u) + kin.phase_rad;
-    double dphi = std::fmod(target - phase, 2.0 * M_PI);
-    if (dphi <= 0.0) dphi += 2.0 * M_PI;
-    const double u_launch = u + dphi / w + kLaunchDelayPeriods / kin.frequency_hz;
-    if (!(u_launch < dt)) return false;
-    const double ride = u_launch - u;
+    // Infinite when the plate never pulls away faster than gravity: it holds the shot.
+    const double u_release = u + seconds_to_release(phase, -g.dot(n) / w2a, w);
+    // The flight is started kReleaseDelayPeriods after the release, as the event scheme does.
+    if (!(u_release + kReleaseDelayPeriods / kin.frequency_hz < dt)) return false;
+    const double ride = u_release - u;
     const Vec3 plate_v0 = kin.axis * kin.displacement_rate(t0_, u);
-    const Vec3 plate_v1 = kin.axis * kin.displacement_rate(t0_, u_launch);
+    const Vec3 plate_v1 = kin.axis * kin.displacement_rate(t0_, u_release);
     const Vec3 rel = v_after - plate_v0;
     const Vec3 slip = rel - rel.dot(n) * n;
     // The normal impulse per unit mass is what the plate gave the shot beyond gravity.
@@ -533,14 +528,15 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     const double f = comp.coefficients.f;
     const double slip_speed = slip.norm();
     const Vec3 kept = slip_speed > 0.0 ? Vec3(slip * std::max(0.0, 1.0 - f * impulse / slip_speed)) : Vec3(Vec3::Zero());
-    const Vec3 c_launch = centre + kin.axis * (kin.displacement(t0_, u_launch) - kin.displacement(t0_, u)) + slip * ride;
+    const Vec3 c_release = centre + kin.axis * (kin.displacement(t0_, u_release) - kin.displacement(t0_, u)) + slip * ride;
     const Vec3 v_launch = plate_v1 + kept;
-    const double fly = dt - u_launch;
+    const double fly = dt - u_release;
     ShotArrays& s = state.shots;
-    s.set_velocity(i, v_launch + g * fly);
-    s.set_position(i, c_launch + v_launch * fly + 0.5 * g * fly * fly);
+    const FlightState at_step_end = after_release({c_release, v_launch}, g, fly);
+    s.set_velocity(i, at_step_end.velocity_m_per_s);
+    s.set_position(i, at_step_end.position_m);
     s.in_flight[i] = 1;
-    last_touch_[i] = u_launch;
+    last_touch_[i] = u_release + kReleaseDelayPeriods / kin.frequency_hz;
     return true;
 }
 

@@ -261,7 +261,9 @@ bool hits_swept(const Component& f, const Vec3& offset, const SweptProfile& s, c
 }
 
 void add(AssemblyReport& r, const Model& m, std::size_t i, bool error, std::string field_suffix, std::string message) {
-    r.issues.push_back({error, m.description.components[i].where, field_of(i) + field_suffix, std::move(message)});
+    // Named as the user knows it: the field path says where in the file, the name which part.
+    const ComponentDesc& d = m.description.components[i];
+    r.issues.push_back({error, d.where, field_of(i) + field_suffix, std::string(role_name(d.role)) + " '" + d.name + "': " + message});
 }
 
 }  // namespace

@@ -29,14 +29,21 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     const auto sono = static_cast<std::size_t>(m.sonotrode);
     const Kinematics& vib = m.sonotrode_component().kinematics;
     const SourceLocation& sono_where = scene.components[sono].where;
-    if (vib.amplitude_m > 1e-3)
+    // A hint only where the slip is plain: the number meant in the usual unit lands in the window.
+    if (vib.amplitude_m > 1e-3) {
+        const bool in_um = vib.amplitude_m * 1e-6 >= 1e-6 && vib.amplitude_m * 1e-6 <= 1e-3;
         warn(sono_where, field_of(sono) + ".vibration.amplitude",
-             "A0 " + num(vib.amplitude_m * 1e3) + " mm is far above ultrasonic peening's 10-100 um; did you mean " + num(vib.amplitude_m) +
-                 " um?");
-    if (vib.frequency_hz > 0.0 && (vib.frequency_hz < 1e3 || vib.frequency_hz > 1e5))
+             "A0 " + num(vib.amplitude_m * 1e3) + " mm is far above ultrasonic peening's 10-100 um" +
+                 (in_um ? "; did you mean " + num(vib.amplitude_m) + " um?" : std::string()));
+    }
+    if (vib.frequency_hz > 0.0 && (vib.frequency_hz < 1e3 || vib.frequency_hz > 1e5)) {
+        const auto in_window = [](double f) { return f >= 1e3 && f <= 1e5; };
+        std::string hint;
+        if (in_window(vib.frequency_hz * 1e3)) hint = "; did you mean " + num(vib.frequency_hz) + " kHz?";
+        else if (in_window(vib.frequency_hz * 1e-3)) hint = "; did you mean " + num(vib.frequency_hz * 1e-3) + " Hz?";
         warn(sono_where, field_of(sono) + ".vibration.frequency",
-             num(vib.frequency_hz) + " Hz is outside 1-100 kHz (ultrasonic sonotrodes run at ~20 kHz); did you mean " +
-                 num(vib.frequency_hz) + " kHz?");
+             num(vib.frequency_hz) + " Hz is outside 1-100 kHz (ultrasonic sonotrodes run at ~20 kHz)" + hint);
+    }
 
     // The chamber: the union of the chamber components' bounds.
     Vec3 lo = Vec3::Constant(1e300), hi = -lo;

@@ -279,7 +279,11 @@ def cmd_report(a):
     for r in rows:
         print(text_line(cells(r), WIDTHS))
         failures += [f"{r['case']}: {f}" for f in r["failures"]]
-    tube_lines, tube_failures = tube_summary(a.tube, a.tube_exit) if a.tube else ([], [])
+    tube_lines, tube_failures = [], []
+    for k, log in enumerate(a.tube):
+        lines, fails = tube_summary(log, a.tube_exit[k] if k < len(a.tube_exit) else None)
+        tube_lines += lines
+        tube_failures += fails
     if tube_lines:
         print("# tube against the exact reference (EngineTubeLong):")
         for line in tube_lines:
@@ -336,12 +340,12 @@ def main():
     t = sub.add_parser("report")
     t.add_argument("rows")
     t.add_argument("--order", default="")
-    t.add_argument("--tube", default="")
+    t.add_argument("--tube", action="append", default=[], help="an EngineTubeLong log (repeat per tube process)")
     t.add_argument("--md", default="")
     t.add_argument("--mode", default="")
     t.add_argument("--wall", type=float, default=0.0)
-    t.add_argument("--tube-exit", type=int, default=None, help="exit code of the tube test binary")
-    t.add_argument("--tube-wall", type=float, default=0.0, help="s, wall time of the tube test")
+    t.add_argument("--tube-exit", type=int, action="append", default=[], help="exit code of each --tube's process, in order")
+    t.add_argument("--tube-wall", type=float, default=0.0, help="s, wall time of the tube processes, summed")
     t.add_argument("--to-full", type=float, default=0.0, help="simulated time of --full over this run's (cases)")
     t.add_argument("--tube-to-full", type=float, default=0.0, help="the same for the tube")
     sub.add_parser("header")
