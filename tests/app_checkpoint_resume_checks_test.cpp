@@ -17,6 +17,7 @@
 #include "common/input_error.h"
 #include "engine/simulation.h"
 #include "support/files.h"
+#include "support/run_in_process.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -113,18 +114,9 @@ TEST(CheckpointResumeChecks, TheCheckpointIntervalMayChangeOnResumeTheShotCountM
     const TestScene scene(small_spec());
     const std::string dir = scene.make_subdirectory("out");
     auto run = [&](bool resume, std::vector<std::string> overrides, std::optional<std::uint64_t> stop_after, std::string& err_text) {
-        RunOptions o;
-        o.scene_path = scene.scene_path();
-        o.output_dir = dir;
-        o.progress = false;
-        o.analyze = false;
-        o.resume = resume;
-        o.overrides = std::move(overrides);
-        o.stop_after_steps = stop_after;
-        std::ostringstream out, err;
-        const int code = run_job(o, out, err);
-        err_text = err.str();
-        return code;
+        const InProcessResult r = run_in_process({scene.scene_path(), dir, resume, false, stop_after, std::move(overrides)});
+        err_text = r.err;
+        return r.code;
     };
     std::string err;
     ASSERT_EQ(run(false, {}, 50, err), kExitInterrupted) << err;

@@ -18,6 +18,7 @@
 #include "app/run_job.h"
 #include "output/impact_csv_writer.h"
 #include "support/files.h"
+#include "support/run_in_process.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -49,16 +50,9 @@ TestSceneSpec small_scene(std::uint64_t seed, std::string scheme = "step") {
 std::size_t rows(const std::string& csv) { return static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) - 1; }
 
 int run(const TestScene& scene, const std::string& dir, bool resume = false, std::optional<std::uint64_t> stop_after = {}) {
-    RunOptions o;
-    o.scene_path = scene.scene_path();
-    o.output_dir = dir;
-    o.progress = false;
-    o.resume = resume;
-    o.stop_after_steps = stop_after;
-    std::ostringstream out, err;
-    const int code = run_job(o, out, err);
-    EXPECT_TRUE(code == kExitOk || code == kExitInterrupted) << err.str();
-    return code;
+    const InProcessResult r = run_in_process({scene.scene_path(), dir, resume, true, stop_after, {}});
+    EXPECT_TRUE(r.code == kExitOk || r.code == kExitInterrupted) << r.err;
+    return r.code;
 }
 
 class EngineDeterminismSchemes : public ::testing::TestWithParam<std::string> {};

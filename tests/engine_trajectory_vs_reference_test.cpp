@@ -19,6 +19,7 @@
 
 #include "engine/simulation.h"
 #include "support/test_scene.h"
+#include "support/tube_scene.h"
 #include "support/vibrating_floor_reference.h"
 
 namespace peensim::testing {
@@ -26,8 +27,8 @@ namespace {
 
 constexpr double kRadius = 0.5e-3;      // m
 constexpr double kAmplitude = 80e-6;    // m
-constexpr double kFrequency = 20e3;     // Hz
-constexpr double kGravity = 9.81;       // m/s2
+constexpr double kFrequency = kTubeFrequencyHz;
+constexpr double kGravity = kTubeGravity;
 constexpr double kHeight = 20e-3;       // m, ceiling above the floor's rest position
 constexpr double kStartZ = 0.01910358;  // m, centre height at t = 0 (falling from the ceiling)
 constexpr double kStartV = -10.18466;   // m/s
@@ -35,8 +36,8 @@ constexpr double kDuration = 0.03;      // s, well past the 26 compared impacts
 constexpr std::size_t kCompared = 26;
 constexpr double kTimeTolerance = 1e-11;   // s
 constexpr double kSpeedTolerance = 1e-9;   // relative
-const PairSpec kFloorPair{0.9, 1.5, 0.71, 0.1};
-const PairSpec kCeilingPair{0.95, 2.0, 0.71, 0.1};
+const PairSpec& kFloorPair = kTubeFloorPair;
+const PairSpec& kCeilingPair = kTubeCeilingPair;
 
 struct Impact {
     double time_s;
@@ -45,19 +46,7 @@ struct Impact {
 };
 
 std::vector<Impact> engine_impacts(const std::string& scheme, std::uint64_t& rides) {
-    TestSceneSpec spec;
-    spec.scheme = scheme;
-    spec.chamber_size_m = Vec3(4e-3, 4e-3, kHeight);
-    spec.shot_count = 1;
-    spec.shot_diameter_m = 2.0 * kRadius;
-    spec.amplitude_m = kAmplitude;
-    spec.frequency_hz = kFrequency;
-    spec.gravity_m_per_s2 = Vec3(0, 0, -kGravity);
-    spec.duration_s = kDuration;
-    spec.sonotrode = kFloorPair;
-    spec.chamber = kCeilingPair;
-    spec.log = {"sonotrode", "chamber"};
-    const TestScene scene(spec);
+    const TestScene scene(tube_scene(scheme, 4e-3, kHeight, 1, kRadius, kAmplitude, kDuration));
     Simulation sim(scene.compile());
     set_shot(sim.mutable_state(), 0, Vec3(0, 0, kStartZ), Vec3(0, 0, kStartV));
     std::vector<Impact> out;

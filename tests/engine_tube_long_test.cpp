@@ -40,13 +40,14 @@
 
 #include "engine/simulation.h"
 #include "support/test_scene.h"
+#include "support/tube_scene.h"
 #include "support/vibrating_floor_reference.h"
 
 namespace peensim::testing {
 namespace {
 
-constexpr double kFrequency = 20e3;      // Hz
-constexpr double kGravity = 9.81;        // m/s2
+constexpr double kFrequency = kTubeFrequencyHz;
+constexpr double kGravity = kTubeGravity;
 constexpr int kGrid = 4;                 // 4 x 4 columns
 constexpr int kColumns = kGrid * kGrid;
 constexpr double kShortSeconds = 2.0;    // s, run length when PEENSIM_TUBE_SECONDS is unset (~2.5 s of wall at most)
@@ -56,9 +57,8 @@ constexpr double kWholeRunSE = 3.0;      // -, bound over the whole run, in comb
 // Chance that one comparison at 3 SE (normal) exceeds it without a real difference.
 const double kSingleComparisonChance = std::erfc(kWholeRunSE / std::sqrt(2.0));
 
-// Contact coefficients of the vibrating floor test: titanium floor, steel ceiling.
-const PairSpec kFloorPair{0.9, 1.5, 0.71, 0.1};
-const PairSpec kCeilingPair{0.95, 2.0, 0.71, 0.1};
+const PairSpec& kFloorPair = kTubeFloorPair;
+const PairSpec& kCeilingPair = kTubeCeilingPair;
 
 struct TubeCase {
     const char* name;
@@ -133,19 +133,7 @@ struct EngineTube {
 };
 
 EngineTube run_engine(const TubeCase& c, const std::string& scheme, double seconds) {
-    TestSceneSpec spec;
-    spec.scheme = scheme;
-    spec.chamber_size_m = Vec3(kGrid * spacing_m(c), kGrid * spacing_m(c), c.height_m);
-    spec.shot_count = kColumns;
-    spec.shot_diameter_m = 2.0 * c.radius_m;
-    spec.amplitude_m = c.amplitude_m;
-    spec.frequency_hz = kFrequency;
-    spec.gravity_m_per_s2 = Vec3(0, 0, -kGravity);
-    spec.duration_s = seconds;
-    spec.sonotrode = kFloorPair;
-    spec.chamber = kCeilingPair;
-    spec.log = {"sonotrode", "chamber"};
-    const TestScene scene(spec);
+    const TestScene scene(tube_scene(scheme, kGrid * spacing_m(c), c.height_m, kColumns, c.radius_m, c.amplitude_m, seconds));
     Simulation sim(scene.compile());
     for (int i = 0; i < kColumns; ++i) set_shot(sim.mutable_state(), static_cast<std::size_t>(i), start_position(c, i), Vec3::Zero());
 

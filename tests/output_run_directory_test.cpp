@@ -17,6 +17,7 @@
 #include "output/run_directory.h"
 #include "support/temp_dir.h"
 #include "support/files.h"
+#include "support/run_in_process.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -60,17 +61,9 @@ TestSceneSpec small_spec() {
 }
 
 int run(const TestScene& scene, const std::string& dir, bool resume, std::optional<std::uint64_t> stop_after, std::string* err_text = nullptr) {
-    RunOptions o;
-    o.scene_path = scene.scene_path();
-    o.output_dir = dir;
-    o.progress = false;
-    o.analyze = false;
-    o.resume = resume;
-    o.stop_after_steps = stop_after;
-    std::ostringstream out, err;
-    const int code = run_job(o, out, err);
-    if (err_text) *err_text = err.str();
-    return code;
+    const InProcessResult r = run_in_process({scene.scene_path(), dir, resume, false, stop_after, {}});
+    if (err_text) *err_text = r.err;
+    return r.code;
 }
 
 TEST(RunDirectory, AFreshRunKilledEarlyLeavesNothingOfThePreviousRun) {

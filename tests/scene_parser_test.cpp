@@ -455,6 +455,13 @@ TEST(SceneParser, RegionsAreReadInSi) {
     EXPECT_EQ(region_names(r[5]), (std::vector<std::string>{"rim-0", "rim-1"}));
 }
 
+TEST(SceneParser, AWholeNumberMayBeWrittenWithAnExponent) {
+    std::string text = regions_scene;
+    const std::string twenty = "count: 20, width: 18 deg";
+    text.replace(text.find(twenty), twenty.size(), "count: 2e1, width: 18 deg");
+    EXPECT_EQ(parse_scene_text(text, virtual_path).components[2].regions[1].count, 20);
+}
+
 TEST(SceneParser, RegionsReadBackTheSame) {
     const SceneDescription first = parse_scene_text(regions_scene, virtual_path);
     const std::string resolved = resolved_scene_yaml(first);
@@ -506,6 +513,13 @@ TEST(SceneParser, BadRegionsNameLineAndField) {
          "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '0'"},
         {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 4294967296, width: 1 deg, reference: [1, 0, 0]}}",
          "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '4294967296'"},
+        // A whole number may be written with an exponent, but is range-checked before it is converted.
+        {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 4e3, width: 1 deg, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '4e3'"},
+        {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 1e400, width: 1 deg, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '1e400'"},
+        {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 2.5e0, width: 1 deg, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '2.5e0'"},
         {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 2, width: 361 deg, reference: [1, 0, 0]}}",
          "components[2].regions[0].sectors.width", "at most 360 deg"},
         {"{name: a}", "components[2].regions[0]", "expected exactly one of sector, sectors, box, half_space, group"},

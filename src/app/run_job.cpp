@@ -65,7 +65,8 @@ public:
     int run() {
         const SceneDescription scene = parse_scene_file(options_.scene_path, options_.overrides);
         model_ = compile_model(scene);
-        check_setup(*model_, options_.strict, err_);  // before anything is written (the placement builds its own cavity)
+        // Before anything is written; a fresh run places its shot in the cavity the check built.
+        SetupCheck setup = check_setup(*model_, options_.strict, err_);
         dir_ = output_directory(options_, scene);
         fs::create_directories(dir_);
         lock_ = std::make_unique<RunDirectoryLock>(dir_);
@@ -79,7 +80,7 @@ public:
         }
         write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
         slots_ = logged_slots(*model_);
-        start();
+        start(setup);
         try {
             {
                 // Signals are caught from before the start's checkpoint (so a checkpoint on disk means
@@ -114,7 +115,9 @@ private:
         return "\ninterrupted again: run abandoned; " + resume_command() + " continues from the last checkpoint (if one was written)\n";
     }
 
-    void start() {
+    void start(SetupCheck& setup) {
+        // The cavity (up to ~8 M cells) is only for placing the shot: freed once they are placed.
+        const std::unique_ptr<ShotCavity> cavity = std::move(setup.cavity);
         const std::size_t logged = static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), [](int s) { return s >= 0; }));
         if (options_.resume) {
             Checkpoint c = load_checkpoint(checkpoint_path());
@@ -126,7 +129,7 @@ private:
         } else {
             fs::remove(checkpoint_path());
             fs::remove(fs::path(dir_) / kImpactCsvFileName);
-            sim_ = std::make_unique<Simulation>(model_);
+            sim_ = std::make_unique<Simulation>(model_, place_shots(*model_, *cavity, setup.rng));
             writer_ = std::make_unique<ImpactCsvWriter>(dir_, component_names(*model_));
             speeds_.assign(logged, SpeedHistogram());
         }

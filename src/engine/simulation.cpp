@@ -2,7 +2,6 @@
 
 #include "engine/event_stepping.h"
 #include "engine/time_stepping.h"
-#include "model/shot_placement.h"
 
 namespace peensim {
 
@@ -16,9 +15,8 @@ std::unique_ptr<Stepper> make_scheme(const std::shared_ptr<const Model>& model) 
     return std::make_unique<TimeStepping>(model);
 }
 
-SimulationState initial_state(const Model& model) {
+SimulationState initial_state(const Model& model, const InitialShots& shots) {
     SimulationState state;
-    const InitialShots shots = place_shots(model);
     state.shots.resize(static_cast<std::size_t>(model.shot_count));
     for (std::size_t i = 0; i < shots.positions.size(); ++i) {
         state.shots.set_position(i, shots.positions[i]);
@@ -33,7 +31,10 @@ SimulationState initial_state(const Model& model) {
 }  // namespace
 
 Simulation::Simulation(std::shared_ptr<const Model> model)
-    : model_(std::move(model)), state_(initial_state(*model_)), scheme_(make_scheme(model_)) {}
+    : model_(std::move(model)), state_(initial_state(*model_, place_shots(*model_))), scheme_(make_scheme(model_)) {}
+
+Simulation::Simulation(std::shared_ptr<const Model> model, const InitialShots& shots)
+    : model_(std::move(model)), state_(initial_state(*model_, shots)), scheme_(make_scheme(model_)) {}
 
 Simulation::Simulation(std::shared_ptr<const Model> model, SimulationState state)
     : model_(std::move(model)), state_(std::move(state)), scheme_(make_scheme(model_)) {}

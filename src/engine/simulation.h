@@ -9,6 +9,7 @@
 #include "engine/simulation_state.h"
 #include "engine/stepper.h"
 #include "model/model.h"
+#include "model/shot_placement.h"
 
 namespace peensim {
 
@@ -17,6 +18,8 @@ public:
     // A fresh run: shot placed on the sonotrode from the model's seed (throws InputError if they
     // do not fit or the chamber is open).
     explicit Simulation(std::shared_ptr<const Model> model);
+    // A fresh run from shot already placed (a run places them in the cavity its setup check built).
+    Simulation(std::shared_ptr<const Model> model, const InitialShots& shots);
     // A resumed run from a saved state.
     Simulation(std::shared_ptr<const Model> model, SimulationState state);
 

@@ -21,9 +21,8 @@ constexpr int kMaxSweepBins = 4096;      // axial bins of a rotating part's (r, 
 
 bool is_solid_role(ComponentRole r) { return r == ComponentRole::part || r == ComponentRole::fixture || r == ComponentRole::almen; }
 
-std::string field_of(std::size_t i) { return "components[" + std::to_string(i) + "]"; }
 
-std::string label(const Model& m, std::size_t i) { return field_of(i) + " (" + m.components[i].name + ")"; }
+std::string label(const Model& m, std::size_t i) { return component_field(i) + " (" + m.components[i].name + ")"; }
 
 // World corners of triangle t of component c in its rest pose at t = 0 (plus `offset`, m).
 std::array<Vec3, 3> world_triangle(const Component& c, const Pose& pose, std::size_t t, const Vec3& offset) {
@@ -90,12 +89,6 @@ void sample_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double spacing
 }
 
 // Exact nearest distance (m) from p (world) to component c at t = 0 (or `within` if farther).
-double distance_to(const Component& c, const Vec3& p, double within) {
-    MeshCollider::Closest closest;
-    MeshCollider::QueryCounters counters;
-    return c.collider->closest_within(c.kinematics.pose(SimTime{}).to_component(p), within, closest, counters) ? closest.distance : within;
-}
-
 // Nearest distance between the vertices of one and the surface of the other, both ways (m).
 double vertex_clearance(const Component& a, const Component& b, double within) {
     double best = within;
@@ -263,7 +256,7 @@ bool hits_swept(const Component& f, const Vec3& offset, const SweptProfile& s, c
 void add(AssemblyReport& r, const Model& m, std::size_t i, bool error, std::string field_suffix, std::string message) {
     // Named as the user knows it: the field path says where in the file, the name which part.
     const ComponentDesc& d = m.description.components[i];
-    r.issues.push_back({error, d.where, field_of(i) + field_suffix, std::string(role_name(d.role)) + " '" + d.name + "': " + message});
+    r.issues.push_back({error, d.where, component_field(i) + field_suffix, std::string(role_name(d.role)) + " '" + d.name + "': " + message});
 }
 
 }  // namespace

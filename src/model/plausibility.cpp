@@ -3,11 +3,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "model/shot_cavity.h"
+
 namespace peensim {
 
 namespace {
-
-std::string field_of(std::size_t i) { return "components[" + std::to_string(i) + "]"; }
 
 std::string num(double v) {
     std::ostringstream s;
@@ -32,7 +32,7 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     // A hint only where the slip is plain: the number meant in the usual unit lands in the window.
     if (vib.amplitude_m > 1e-3) {
         const bool in_um = vib.amplitude_m * 1e-6 >= 1e-6 && vib.amplitude_m * 1e-6 <= 1e-3;
-        warn(sono_where, field_of(sono) + ".vibration.amplitude",
+        warn(sono_where, component_field(sono) + ".vibration.amplitude",
              "A0 " + num(vib.amplitude_m * 1e3) + " mm is far above ultrasonic peening's 10-100 um" +
                  (in_um ? "; did you mean " + num(vib.amplitude_m) + " um?" : std::string()));
     }
@@ -41,7 +41,7 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
         std::string hint;
         if (in_window(vib.frequency_hz * 1e3)) hint = "; did you mean " + num(vib.frequency_hz) + " kHz?";
         else if (in_window(vib.frequency_hz * 1e-3)) hint = "; did you mean " + num(vib.frequency_hz * 1e-3) + " Hz?";
-        warn(sono_where, field_of(sono) + ".vibration.frequency",
+        warn(sono_where, component_field(sono) + ".vibration.frequency",
              num(vib.frequency_hz) + " Hz is outside 1-100 kHz (ultrasonic sonotrodes run at ~20 kHz)" + hint);
     }
 
@@ -68,7 +68,7 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
         for (const Vec3& v : c.mesh->vertices) clo = clo.cwiseMin(v), chi = chi.cwiseMax(v);
         const double size = (chi - clo).maxCoeff();  // m, in the component's own frame (not swept)
         const std::string unit_now = num(desc.mesh_unit_m) + " m per file unit";
-        const std::string field = field_of(i) + ".mesh_unit";
+        const std::string field = component_field(i) + ".mesh_unit";
         if (size > 2.0) {
             const double mm = size / desc.mesh_unit_m * 1e-3;
             warn(desc.where, field,

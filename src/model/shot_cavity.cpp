@@ -143,15 +143,16 @@ bool clear_of_meshes(const Model& model, const Vec3& p, double r) {
     return true;
 }
 
-// Exact distance (m) from p (world) to the nearest component at t = 0, or `within` (m) if none is closer.
+double distance_to(const Component& c, const Vec3& p, double within) {
+    MeshCollider::Closest closest;
+    MeshCollider::QueryCounters counters;
+    return c.collider->closest_within(c.kinematics.pose(SimTime{}).to_component(p), within, closest, counters) ? std::min(within, closest.distance)
+                                                                                                              : within;
+}
+
 double clearance(const Model& model, const Vec3& p, double within) {
-    const SimTime t0;
     double nearest = within;
-    for (const Component& c : model.components) {
-        MeshCollider::Closest closest;
-        MeshCollider::QueryCounters counters;
-        if (c.collider->closest_within(c.kinematics.pose(t0).to_component(p), nearest, closest, counters)) nearest = std::min(nearest, closest.distance);
-    }
+    for (const Component& c : model.components) nearest = distance_to(c, p, nearest);
     return nearest;
 }
 
@@ -161,6 +162,8 @@ std::string mm_point(const Vec3& p) {
     s << "(" << p.x() * 1e3 << ", " << p.y() * 1e3 << ", " << p.z() * 1e3 << ") mm";
     return s.str();
 }
+
+std::string component_field(std::size_t i) { return "components[" + std::to_string(i) + "]"; }
 
 Vec3 sonotrode_up(const Model& model) {
     const Vec3 up = model.gravity_m_per_s2.norm() > 0.0 ? Vec3(-model.gravity_m_per_s2.normalized()) : Vec3::UnitZ();
@@ -177,7 +180,7 @@ ShotCavity::ShotCavity(const Model& model, Random& rng)
     const SceneDescription& scene = model.description;
     if (faces_.faces.empty())
         throw InputError(scene.components[static_cast<std::size_t>(model.sonotrode)].where,
-                         "components[" + std::to_string(model.sonotrode) + "].mesh",
+                         component_field(static_cast<std::size_t>(model.sonotrode)) + ".mesh",
                          "expected the sonotrode mesh to have an upper face pointing into the chamber (against gravity), found none");
     require_closed_chamber(model, enclosure_, faces_, up_, rng);
     region_ = cavity_region(model, enclosure_, faces_, up_);

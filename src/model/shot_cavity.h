@@ -45,6 +45,9 @@ private:
 // The direction "up" from the sonotrode into the chamber (unit, world).
 Vec3 sonotrode_up(const Model& model);
 
+// Exact distance (m) from p (world) to component c at t = 0, or `within` (m) if it is not closer.
+double distance_to(const Component& c, const Vec3& p, double within);
+
 // Exact distance (m) from p (world) to the nearest component at t = 0, or `within` (m) if none is closer.
 double clearance(const Model& model, const Vec3& p, double within);
 
@@ -53,5 +56,8 @@ bool clear_of_meshes(const Model& model, const Vec3& p, double r);
 
 // "(x, y, z) mm", for messages.
 std::string mm_point(const Vec3& p);
+
+// "components[i]": a component's field path in messages.
+std::string component_field(std::size_t i);
 
 }  // namespace peensim

@@ -216,8 +216,16 @@ long long read_integer(const Cursor& c) {
     long long v = 0;
     const char* first = text.data() + (!text.empty() && text.front() == '+' ? 1 : 0);
     const auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
-    if (ec != std::errc() || ptr != text.data() + text.size())
-        fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "'");
+    if (ec != std::errc() || ptr != text.data() + text.size()) {
+        // Also a whole number written with an exponent (count: 1e5), checked against the range
+        // before it is converted, so nothing out of range wraps.
+        double d = 0.0;
+        const auto [dptr, dec] = std::from_chars(first, text.data() + text.size(), d);
+        if (dec != std::errc() || dptr != text.data() + text.size() || !std::isfinite(d) || d != std::floor(d) ||
+            !e.range.contains(d))
+            fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "'");
+        return static_cast<long long>(d);
+    }
     if (!e.range.contains(static_cast<double>(v)))
         fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "'");
     return v;
