@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/byte_stream.h"
+#include "common/fnv_hash.h"
 #include "common/input_error.h"
 #include "output/atomic_file.h"
 
@@ -18,15 +19,8 @@ namespace {
 // in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes).
 constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '3'};
 
-// FNV-1a, 64 bit: any single flipped bit (and almost any damage) changes it.
-std::uint64_t checksum(std::string_view bytes) {
-    std::uint64_t h = 14695981039346656037ull;
-    for (unsigned char c : bytes) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    return h;
-}
+// Any single flipped bit (and almost any damage) changes it.
+std::uint64_t checksum(std::string_view bytes) { return fnv1a64(bytes); }
 
 InputError damaged(const std::string& path, const std::string& what) {
     return InputError(SourceLocation{path, 0, 0}, "checkpoint", what + "; run without --resume to start over");

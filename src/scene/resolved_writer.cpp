@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/fnv_hash.h"
 #include "common/units.h"
 #include "scene/schema.h"
 
@@ -225,19 +226,12 @@ std::string resolved_scene_yaml(const SceneDescription& s) {
 }
 
 std::uint64_t scene_hash(const SceneDescription& s) {
-    constexpr std::uint64_t fnv_offset_basis = 14695981039346656037ull;
-    constexpr std::uint64_t fnv_prime = 1099511628211ull;
     // Rendering and the checkpoint interval do not change what is simulated: a run may be resumed
     // with other settings for them.
     SceneDescription simulated = s;
     simulated.render.reset();
     simulated.output.checkpoint_interval_s = 0.0;
-    std::uint64_t h = fnv_offset_basis;
-    for (unsigned char c : resolved_scene_yaml(simulated)) {
-        h ^= c;
-        h *= fnv_prime;
-    }
-    return h;
+    return fnv1a64(resolved_scene_yaml(simulated));
 }
 
 }  // namespace peensim
