@@ -55,10 +55,17 @@ void ShotPairFinder::update(const double* x, const double* y, const double* z, c
     }
     impl_->broadphase.calculateOverlappingPairs(&impl_->dispatcher);
     pairs_.clear();
+    // Bullet's cache is a superset: it drops pairs that stopped overlapping a tenth of the cache per
+    // update (btDbvtBroadphase's cleanup), so stale pairs (lost shot parked together with their
+    // old neighbours' pairs) are filtered here by the boxes as they are now.
+    const double reach = 2.0 * (r + m);
     const btBroadphasePairArray& cache = impl_->broadphase.getOverlappingPairCache()->getOverlappingPairArray();
     for (int k = 0; k < cache.size(); ++k) {
         int a = static_cast<int>(reinterpret_cast<std::intptr_t>(cache[k].m_pProxy0->m_clientObject));
         int b = static_cast<int>(reinterpret_cast<std::intptr_t>(cache[k].m_pProxy1->m_clientObject));
+        if (!active[a] || !active[b]) continue;
+        const btVector3 apart = (impl_->anchor[static_cast<std::size_t>(a)] - impl_->anchor[static_cast<std::size_t>(b)]).absolute();
+        if (apart.x() > reach || apart.y() > reach || apart.z() > reach) continue;
         if (a > b) std::swap(a, b);
         pairs_.emplace_back(a, b);
     }

@@ -1,7 +1,7 @@
 // Candidate shot-shot pairs from Bullet's dynamic AABB tree broad phase (btDbvtBroadphase).
 // Each shot is a proxy whose box is its sphere's; the broad phase keeps the boxes fattened by
-// a margin so that most steps move no leaf. Only pairs whose boxes overlap come back; the
-// engine tests the spheres exactly.
+// a margin so that most steps move no leaf. Only pairs of active shot whose boxes overlap come
+// back (every pair of spheres within a diameter among them); the engine tests the spheres exactly.
 #pragma once
 
 #include <memory>

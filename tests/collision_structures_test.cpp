@@ -1,0 +1,251 @@
+// Unit tests of the data structures the schemes rest on, each against brute force on random
+// input: the event queue (its tie order is a determinism guarantee), the shot box tree, the shot
+// pair finder, the distance gate and the enclosure.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "collision/closest_point.h"
+#include "collision/distance_gate.h"
+#include "collision/shot_box_tree.h"
+#include "collision/shot_pair_finder.h"
+#include "common/random.h"
+#include "event/event_queue.h"
+#include "geometry/box_mesh.h"
+#include "model/enclosure.h"
+
+namespace peensim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Vec3 random_point(Random& rng, const Vec3& lo, const Vec3& hi) {
+    return lo + Vec3(rng.uniform(), rng.uniform(), rng.uniform()).cwiseProduct(hi - lo);
+}
+
+// ---------------------------------------------------------------------------------------------
+// EventQueue
+
+TEST(EventQueue, TopIsTheEarliestEventAndTiesGoToTheLowerShot) {
+    constexpr int n = 64;
+    EventQueue q;
+    q.reset(n);
+    std::vector<double> key(n, kInf);
+    Random rng(7);
+    for (int step = 0; step < 20000; ++step) {
+        const int shot = static_cast<int>(rng.uniform() * n);
+        // Times from a small set, so that ties are frequent; some events removed (infinity).
+        const double r = rng.uniform();
+        const double t = r < 0.1 ? kInf : std::floor(r * 8.0) * 0.25;
+        q.set(shot, t);
+        key[static_cast<std::size_t>(shot)] = t;
+        int best = 0;
+        for (int i = 1; i < n; ++i)
+            if (key[static_cast<std::size_t>(i)] < key[static_cast<std::size_t>(best)]) best = i;
+        ASSERT_EQ(q.top(), best) << "step " << step;
+        ASSERT_EQ(q.top_time(), key[static_cast<std::size_t>(best)]);
+        ASSERT_EQ(q.time_of(shot), t);
+    }
+}
+
+TEST(EventQueue, PopsInTimeThenShotOrder) {
+    EventQueue q;
+    q.reset(5);
+    for (const auto& [shot, t] : std::vector<std::pair<int, double>>{{3, 1.0}, {1, 1.0}, {4, 0.5}, {0, 2.0}, {2, 1.0}}) q.set(shot, t);
+    std::vector<int> order;
+    for (int k = 0; k < 5; ++k) {
+        order.push_back(q.top());
+        q.set(q.top(), kInf);  // taken: no event pending
+    }
+    EXPECT_EQ(order, (std::vector<int>{4, 1, 2, 3, 0}));
+    EXPECT_EQ(q.top_time(), kInf);
+}
+
+// ---------------------------------------------------------------------------------------------
+// ShotBoxTree
+
+bool boxes_overlap(const Vec3& alo, const Vec3& ahi, const Vec3& blo, const Vec3& bhi) {
+    return (alo.array() <= bhi.array()).all() && (blo.array() <= ahi.array()).all();
+}
+
+TEST(ShotBoxTree, OverlapQueriesAreBruteForces) {
+    constexpr int n = 200;
+    ShotBoxTree tree(n);
+    std::vector<Vec3> lo(n), hi(n);
+    std::vector<bool> present(n, false);
+    Random rng(11);
+    const Vec3 world_lo(0, 0, 0), world_hi(0.05, 0.03, 0.04);
+    auto random_box = [&](Vec3& a, Vec3& b) {
+        a = random_point(rng, world_lo, world_hi);
+        b = a + Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 0.006;
+    };
+    std::vector<int> found;
+    for (int step = 0; step < 3000; ++step) {
+        const int shot = static_cast<int>(rng.uniform() * n);
+        if (rng.uniform() < 0.1 && present[static_cast<std::size_t>(shot)]) {
+            tree.remove(shot);
+            present[static_cast<std::size_t>(shot)] = false;
+        } else {
+            random_box(lo[static_cast<std::size_t>(shot)], hi[static_cast<std::size_t>(shot)]);
+            tree.set(shot, lo[static_cast<std::size_t>(shot)], hi[static_cast<std::size_t>(shot)]);
+            present[static_cast<std::size_t>(shot)] = true;
+        }
+        Vec3 qlo, qhi;
+        random_box(qlo, qhi);
+        tree.overlapping(qlo, qhi, found);
+        std::set<int> expected;
+        for (int i = 0; i < n; ++i)
+            if (present[static_cast<std::size_t>(i)] && boxes_overlap(lo[static_cast<std::size_t>(i)], hi[static_cast<std::size_t>(i)], qlo, qhi))
+                expected.insert(i);
+        ASSERT_EQ(std::set<int>(found.begin(), found.end()), expected) << "step " << step;
+        ASSERT_EQ(found.size(), expected.size()) << "a shot reported twice";
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// ShotPairFinder
+
+TEST(ShotPairFinder, EveryTouchingPairOnceNeverALostShotSameOrderEveryTime) {
+    constexpr int n = 300;
+    constexpr double R = 1e-3;  // m
+    ShotPairFinder a(n, R, 0.2 * R), b(n, R, 0.2 * R);
+    std::vector<double> x(n), y(n), z(n);
+    std::vector<unsigned char> active(n, 1);
+    Random rng(5);
+    for (int round = 0; round < 30; ++round) {
+        for (int i = 0; i < n; ++i) {
+            const auto k = static_cast<std::size_t>(i);
+            if (round == 0 || rng.uniform() < 0.3) {  // some shot move, some stay
+                const Vec3 p = random_point(rng, Vec3::Zero(), Vec3(0.03, 0.03, 0.03));
+                x[k] = p.x(), y[k] = p.y(), z[k] = p.z();
+            }
+            active[k] = rng.uniform() < 0.95;
+        }
+        a.update(x.data(), y.data(), z.data(), active.data());
+        b.update(x.data(), y.data(), z.data(), active.data());
+        std::vector<std::pair<int, int>> pa, pb;
+        a.for_each_pair([&](int i, int j) { pa.emplace_back(i, j); });
+        b.for_each_pair([&](int i, int j) { pb.emplace_back(i, j); });
+        EXPECT_EQ(pa, pb) << "round " << round << ": the order of pairs is not deterministic";
+        std::set<std::pair<int, int>> seen;
+        for (const auto& [i, j] : pa) {
+            ASSERT_LT(i, j);
+            ASSERT_TRUE(seen.insert({i, j}).second) << "pair reported twice";
+            ASSERT_TRUE(active[static_cast<std::size_t>(i)] && active[static_cast<std::size_t>(j)]) << "a lost shot in a pair";
+        }
+        for (int i = 0; i < n; ++i)
+            for (int j = i + 1; j < n; ++j) {
+                const auto ki = static_cast<std::size_t>(i), kj = static_cast<std::size_t>(j);
+                if (!active[ki] || !active[kj]) continue;
+                const double d = Vec3(x[ki] - x[kj], y[ki] - y[kj], z[ki] - z[kj]).norm();
+                if (d <= 2.0 * R) {
+                    ASSERT_TRUE(seen.count({i, j})) << "touching pair " << i << ", " << j << " missed (round " << round << ")";
+                }
+            }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// DistanceGate
+
+double exact_distance(const TriangleMesh& mesh, const Vec3& p) {
+    double best = kInf;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+        best = std::min(best, (closest_point_on_triangle(p, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2)).point - p).norm());
+    return best;
+}
+
+TEST(DistanceGate, ALowerBoundOfTheDistanceAndATightOne) {
+    BoxSpec spec;
+    spec.size_m = Vec3(0.02, 0.01, 0.015);
+    spec.divisions = Eigen::Vector3i(3, 2, 2);
+    const TriangleMesh mesh = box(spec);
+    const double cell = 5e-4, reach = 6e-3;  // m
+    const DistanceGate gate(mesh, cell, reach);
+    Random rng(3);
+    int resolved = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const Vec3 p = random_point(rng, Vec3(-0.02, -0.015, -0.02), Vec3(0.02, 0.015, 0.02));
+        const double exact = exact_distance(mesh, p);
+        const double bound = gate.lower_bound(p);
+        ASSERT_LE(bound, exact + 1e-15) << "not a lower bound at (" << p.transpose() << ")";
+        // Within the resolved reach the bound is within two cell diagonals of the truth.
+        if (exact < reach - 4.0 * cell) {
+            ++resolved;
+            ASSERT_GE(bound, exact - 4.0 * std::sqrt(3.0) * cell) << "too loose at (" << p.transpose() << ")";
+        }
+    }
+    EXPECT_GT(resolved, 1000);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Enclosure
+
+struct Assembly {
+    TriangleMesh mesh;
+    double clearance(const Vec3& p, double within) const { return std::min(within, exact_distance(mesh, p)); }
+};
+
+void append(TriangleMesh& to, const TriangleMesh& from) {
+    const int base = static_cast<int>(to.vertices.size());
+    to.vertices.insert(to.vertices.end(), from.vertices.begin(), from.vertices.end());
+    for (const auto& t : from.triangles) to.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+}
+
+// A closed 40 x 30 x 30 mm chamber (inward faces) around a closed 10 mm cube, optionally with
+// the chamber's lid left out.
+Assembly chamber_with_cube(bool open_lid) {
+    BoxSpec chamber;
+    chamber.size_m = Vec3(0.04, 0.03, 0.03);
+    chamber.center_m = Vec3(0, 0, 0.015);
+    BoxSpec cube;
+    cube.size_m = Vec3(0.01, 0.01, 0.01);
+    cube.center_m = Vec3(0, 0, 0.015);
+    Assembly a;
+    if (open_lid) {
+        a.mesh = box_open(chamber, BoxFace::plus_z, Facing::inward);
+    } else {
+        a.mesh = box(chamber);  // a closed box; which way its normals face does not matter here
+    }
+    append(a.mesh, box(cube));
+    return a;
+}
+
+TEST(Enclosure, TheCavityIsOneRegionTheCubesInsideAnotherTheOutsideNone) {
+    const Assembly a = chamber_with_cube(false);
+    const double R = 1e-3;
+    Enclosure e(a.mesh, 0.5 * R, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
+    const Vec3 cavity_1(-0.015, 0.0, 0.005), cavity_2(0.015, 0.01, 0.025), in_cube(0, 0, 0.015), outside(0.05, 0, 0.015);
+    EXPECT_TRUE(e.inside(cavity_1));
+    EXPECT_TRUE(e.inside(cavity_2));
+    EXPECT_FALSE(e.inside(outside));
+    const int cavity = e.region(cavity_1);
+    EXPECT_GE(cavity, 0);
+    EXPECT_EQ(e.region(cavity_2), cavity);
+    EXPECT_GE(e.region(in_cube), 0);
+    EXPECT_NE(e.region(in_cube), cavity);
+    EXPECT_EQ(e.region(outside), -1);
+    // A point hugging a wall (a shot centre one radius from it) is read from the free space it sees.
+    EXPECT_EQ(e.region(Vec3(-0.02 + R, 0.0, 0.01)), cavity);
+    EXPECT_EQ(e.region(Vec3(-0.005 - R, 0.0, 0.015)), cavity);
+}
+
+TEST(Enclosure, AChamberWithoutItsLidEnclosesOnlyTheCube) {
+    const Assembly a = chamber_with_cube(true);
+    const double R = 1e-3;
+    Enclosure e(a.mesh, 0.5 * R, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
+    EXPECT_FALSE(e.inside(Vec3(-0.015, 0.0, 0.005)));
+    EXPECT_EQ(e.region(Vec3(-0.015, 0.0, 0.005)), -1);
+    Vec3 where;
+    EXPECT_TRUE(e.escape_point(Vec3(-0.015, 0.0, 0.005), Vec3(-0.02, -0.015, 0.0), Vec3(0.02, 0.015, 0.03), where));
+    EXPECT_GE(where.z(), 0.03) << "it escapes through the missing lid, at (" << where.transpose() << ")";
+    EXPECT_TRUE(e.inside(Vec3(0, 0, 0.015)));  // the cube is still closed
+}
+
+}  // namespace
+}  // namespace peensim
