@@ -11,8 +11,12 @@
 
 Impact statistics on the logged part follow `peensim bench` (src/app/bench_job.cpp): standard
 errors by batch means over 10 equal time batches, the mean normal speed's by the ratio estimator,
-and a difference within noise when it is at most 3 combined standard errors
-(3 sqrt(SE_step^2 + SE_event^2)); a mean speed without impacts in one run is not compared (n/a).
+and a difference within noise when it is at most k combined standard errors (k sqrt(SE_step^2 +
+SE_event^2)). The standard errors are estimated from 10 batches each, so the difference in SE
+follows Student's t with Welch-Satterthwaite degrees of freedom (~18), not the normal law: k is
+its quantile with the chance a 3 SE comparison has under the normal law (0.27 %), ~3.6 for 18
+degrees of freedom (`peensim bench` still prints 3 SE). A mean speed without impacts in one run is
+not compared (n/a).
 Batch means estimate the noise only when the impacts spread over the run: when either run has
 impacts in fewer than MIN_BATCHES of the 10 batches (a lone shot that hits the part a few times),
 the schemes are not compared ("too few impacts"; the counts are in the row).
@@ -25,7 +29,7 @@ import re
 import sys
 
 BATCHES = 10        # time batches for the batch-means standard errors (kBenchBatches)
-NOISE_SE = 3.0      # -, bound of a difference in combined standard errors
+NORMAL_SE = 3.0     # -, the normal-law bound whose chance (0.27 %) the t bound keeps
 MIN_BATCHES = 5     # batches with impacts each run needs before its noise is estimated
 
 
@@ -69,11 +73,61 @@ class Batched:
         return math.sqrt(BATCHES / (BATCHES - 1.0) * sq) / self.count
 
 
+def incomplete_beta(x, a, b):
+    """Regularized incomplete beta I_x(a, b) by its continued fraction (modified Lentz)."""
+    if x <= 0.0:
+        return 0.0
+    if x >= 1.0:
+        return 1.0
+    if x > (a + 1.0) / (a + b + 2.0):
+        return 1.0 - incomplete_beta(1.0 - x, b, a)
+    log_front = a * math.log(x) + b * math.log1p(-x) - (math.lgamma(a) + math.lgamma(b) - math.lgamma(a + b))
+    tiny = 1e-300
+    c, d = 1.0, 1.0 - (a + b) * x / (a + 1.0)
+    d = 1.0 / (d if abs(d) > tiny else tiny)
+    f = d
+    for m in range(1, 1001):
+        for coefficient in (m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m)),
+                            -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1))):
+            d = 1.0 + coefficient * d
+            d = 1.0 / (d if abs(d) > tiny else tiny)
+            c = 1.0 + coefficient / c
+            c = c if abs(c) > tiny else tiny
+            f *= c * d
+        if abs(c * d - 1.0) < 1e-15:
+            break
+    return math.exp(log_front) * f / a
+
+
+def t_quantile(p, dof):
+    """The t with P(|T| > t) = p for Student's T with dof degrees of freedom."""
+    if not dof < 1e7:
+        tail = lambda t: math.erfc(t / math.sqrt(2.0))
+    else:
+        tail = lambda t: incomplete_beta(dof / (dof + t * t), 0.5 * dof, 0.5)
+    lo, hi = 0.0, 1e3
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if tail(mid) > p:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def noise_bound(se_a, se_b):
+    """k: the bound in combined standard errors of two batch-means estimates (see the docstring)."""
+    va, vb = se_a * se_a, se_b * se_b
+    denominator = (va * va + vb * vb) / (BATCHES - 1.0)
+    dof = (va + vb) ** 2 / denominator if denominator > 0.0 else math.inf
+    return t_quantile(math.erfc(NORMAL_SE / math.sqrt(2.0)), dof)
+
+
 def difference(a, se_a, b, se_b):
     """(percent, bound percent, within noise) of b against a; None when there is nothing to compare."""
     if not all(math.isfinite(x) for x in (a, se_a, b, se_b)):
         return None
-    bound = NOISE_SE * math.hypot(se_a, se_b)
+    bound = noise_bound(se_a, se_b) * math.hypot(se_a, se_b)
     within = abs(b - a) <= bound
     if a != 0.0:
         return 100.0 * (b - a) / abs(a), 100.0 * bound / abs(a), within
@@ -171,19 +225,10 @@ def row_failures(row):
     return out
 
 
-def make_row(a):
-    row = {"case": a.case, "what": a.what, "duration_s": a.duration, "closed_part": a.closed_part,
-           "cylinder_segments": a.cylinder}
-    runs = {}
-    for scheme, directory, code in (("step", a.step, a.step_exit), ("event", a.event, a.event_exit)):
-        row[scheme + "_exit"] = code
-        try:
-            runs[scheme] = read_scheme(directory, a.duration, a.cylinder) if code == 0 else None
-        except (OSError, KeyError, ValueError) as e:
-            print(f"extremes.py: {a.case} {scheme}: cannot read {directory}: {e}", file=sys.stderr)
-            runs[scheme] = None
-        row[scheme] = runs[scheme]
-    s, e = runs["step"], runs["event"]
+def judge(row):
+    """The schemes' comparison, verdict and failed assertions of a row, from its runs' figures
+    (the report judges again, so rows written by an older rule are judged by this one)."""
+    s, e = row.get("step"), row.get("event")
     if s and e:
         row["speedup"] = s["wall_s"] / e["wall_s"] if e["wall_s"] > 0 else math.nan
         rate = difference(s["rate"], s["rate_se"], e["rate"], e["rate_se"])
@@ -191,7 +236,7 @@ def make_row(a):
         within = all(d is None or d[2] for d in (rate, speed))
         parts = []
         for name, d in (("rate", rate), ("mean vn", speed)):
-            parts.append(f"{name} n/a" if d is None else f"{name} {d[0]:+.1f} % (3 SE {d[1]:.1f} %)")
+            parts.append(f"{name} n/a" if d is None else f"{name} {d[0]:+.1f} % (bound {d[1]:.1f} %)")
         row["difference"] = ", ".join(parts)
         row["verdict"] = "within noise" if within else "DIFFERS"
         if s["impacts"] == 0 and e["impacts"] == 0:
@@ -205,6 +250,21 @@ def make_row(a):
         row["difference"] = "-"
         row["verdict"] = "-"
     row["failures"] = row_failures(row)
+
+
+def make_row(a):
+    row = {"case": a.case, "what": a.what, "duration_s": a.duration, "closed_part": a.closed_part,
+           "cylinder_segments": a.cylinder}
+    runs = {}
+    for scheme, directory, code in (("step", a.step, a.step_exit), ("event", a.event, a.event_exit)):
+        row[scheme + "_exit"] = code
+        try:
+            runs[scheme] = read_scheme(directory, a.duration, a.cylinder) if code == 0 else None
+        except (OSError, KeyError, ValueError) as e:
+            print(f"extremes.py: {a.case} {scheme}: cannot read {directory}: {e}", file=sys.stderr)
+            runs[scheme] = None
+        row[scheme] = runs[scheme]
+    judge(row)
     return row
 
 
@@ -272,6 +332,8 @@ def tube_summary(log_path, exit_code):
 
 def cmd_report(a):
     rows = [json.loads(line) for line in open(a.rows) if line.strip()]
+    for r in rows:
+        judge(r)
     order = {name: i for i, name in enumerate(a.order.split(","))} if a.order else {}
     rows.sort(key=lambda r: order.get(r["case"], len(order)))
     failures = []
