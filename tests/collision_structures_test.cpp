@@ -10,12 +10,12 @@
 #include <utility>
 #include <vector>
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 #include "collision/distance_gate.h"
 #include "collision/shot_box_tree.h"
 #include "collision/shot_pair_finder.h"
 #include "common/random.h"
-#include "event/event_queue.h"
+#include "engine/event/event_queue.h"
 #include "geometry/box_mesh.h"
 #include "model/enclosure.h"
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 #include "engine/simulation.h"
 #include "support/sonotrode_crossing.h"
 #include "support/test_scene.h"

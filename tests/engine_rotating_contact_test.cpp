@@ -15,7 +15,7 @@
 #include <random>
 #include <vector>
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 #include "engine/simulation.h"
 #include "support/test_scene.h"
 

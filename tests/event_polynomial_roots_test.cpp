@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "event/polynomial_roots.h"
+#include "kernels/polynomial_roots.h"
 
 namespace peensim {
 namespace {

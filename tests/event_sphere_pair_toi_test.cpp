@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "event/sphere_pair_toi.h"
+#include "kernels/sphere_pair_toi.h"
 
 namespace peensim {
 namespace {

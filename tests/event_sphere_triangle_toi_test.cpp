@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "event/sphere_triangle_toi.h"
+#include "kernels/sphere_triangle_toi.h"
 
 namespace peensim {
 namespace {

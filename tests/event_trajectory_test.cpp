@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "event/swept_sphere_box.h"
-#include "event/trajectory.h"
+#include "kernels/swept_sphere_box.h"
+#include "kernels/trajectory.h"
 
 namespace peensim {
 namespace {

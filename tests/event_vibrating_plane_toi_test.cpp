@@ -13,7 +13,7 @@
 #include <random>
 
 #include "common/sim_time.h"
-#include "event/vibrating_plane_toi.h"
+#include "kernels/vibrating_plane_toi.h"
 #include "model/kinematics.h"
 
 namespace peensim {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 
 namespace peensim {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 
 namespace peensim {
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "collision/closest_point.h"
-#include "event/swept_sphere_box.h"
+#include "kernels/closest_point.h"
+#include "kernels/swept_sphere_box.h"
 
 namespace peensim {
 

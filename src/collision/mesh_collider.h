@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "common/vec.h"
-#include "event/sphere_triangle_toi.h"
-#include "event/toi_status.h"
-#include "event/trajectory.h"
+#include "kernels/sphere_triangle_toi.h"
+#include "kernels/toi_status.h"
+#include "kernels/trajectory.h"
 #include "geometry/triangle_mesh.h"
 
 namespace peensim {

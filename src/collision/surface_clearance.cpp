@@ -1,6 +1,6 @@
 #include "collision/surface_clearance.h"
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 
 namespace peensim {
 

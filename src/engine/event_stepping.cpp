@@ -4,13 +4,13 @@
 #include <cmath>
 #include <limits>
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 #include "collision/surface_clearance.h"
 #include "engine/loss_diagnosis.h"
 #include "engine/time_stepping.h"
-#include "event/plate_release.h"
-#include "event/sphere_pair_toi.h"
-#include "event/swept_sphere_box.h"
+#include "kernels/plate_release.h"
+#include "kernels/sphere_pair_toi.h"
+#include "kernels/swept_sphere_box.h"
 #include "model/shot_cavity.h"
 
 namespace peensim {

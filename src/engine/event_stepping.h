@@ -40,9 +40,9 @@
 #include "collision/shot_box_tree.h"
 #include "engine/stepper.h"
 #include "engine/time_stepping.h"
-#include "event/event_queue.h"
-#include "event/sonotrode_face.h"
-#include "event/trajectory.h"
+#include "engine/event/event_queue.h"
+#include "engine/event/sonotrode_face.h"
+#include "kernels/trajectory.h"
 #include "model/model.h"
 
 namespace peensim {

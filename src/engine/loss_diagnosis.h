@@ -9,7 +9,7 @@
 
 #include "common/sim_time.h"
 #include "engine/simulation_state.h"
-#include "event/trajectory.h"
+#include "kernels/trajectory.h"
 #include "model/model.h"
 
 namespace peensim {

@@ -8,7 +8,7 @@
 
 #include "engine/simulation_state.h"
 #include "engine/step_stats.h"
-#include "output/impact_record.h"
+#include "engine/impact_record.h"
 
 namespace peensim {
 

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 #include "collision/surface_clearance.h"
 #include "engine/contact_time.h"
 #include "engine/moving_mesh_gap.h"
-#include "event/plate_release.h"
-#include "event/vibrating_plane_toi.h"
+#include "kernels/plate_release.h"
+#include "kernels/vibrating_plane_toi.h"
 
 namespace peensim {
 

@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "output/impact_record.h"
+#include "engine/impact_record.h"
 
 namespace peensim {
 

@@ -20,7 +20,7 @@
 
 #include "common/vec.h"
 #include "geometry/triangle_mesh.h"
-#include "output/impact_record.h"
+#include "engine/impact_record.h"
 
 namespace peensim {
 

@@ -18,7 +18,7 @@
 #include "app/render_module.h"
 #include "engine/simulation_state.h"
 #include "model/model.h"
-#include "output/impact_record.h"
+#include "engine/impact_record.h"
 
 namespace peensim {
 

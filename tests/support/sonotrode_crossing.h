@@ -16,7 +16,7 @@
 
 #include "engine/simulation_state.h"
 #include "model/model.h"
-#include "output/impact_record.h"
+#include "engine/impact_record.h"
 
 namespace peensim::testing {
 

@@ -5,10 +5,10 @@
 // valid root of all is the first contact. Pure computation, no allocation.
 #pragma once
 
-#include "collision/closest_point.h"
+#include "kernels/closest_point.h"
 #include "common/vec.h"
-#include "event/toi_status.h"
-#include "event/trajectory.h"
+#include "kernels/toi_status.h"
+#include "kernels/trajectory.h"
 
 namespace peensim {
 

@@ -1,4 +1,4 @@
-#include "event/sonotrode_face.h"
+#include "engine/event/sonotrode_face.h"
 
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "event/polynomial_roots.h"
+#include "kernels/polynomial_roots.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "event/plate_release.h"
+#include "kernels/plate_release.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "common/vec.h"
-#include "event/trajectory.h"
+#include "kernels/trajectory.h"
 
 namespace peensim {
 

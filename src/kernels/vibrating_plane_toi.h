@@ -9,8 +9,8 @@
 #pragma once
 
 #include "common/vec.h"
-#include "event/toi_status.h"
-#include "event/trajectory.h"
+#include "kernels/toi_status.h"
+#include "kernels/trajectory.h"
 
 namespace peensim {
 

@@ -1,10 +1,10 @@
-#include "event/sphere_triangle_toi.h"
+#include "kernels/sphere_triangle_toi.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "event/polynomial_roots.h"
+#include "kernels/polynomial_roots.h"
 
 namespace peensim {
 

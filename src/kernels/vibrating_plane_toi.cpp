@@ -1,4 +1,4 @@
-#include "event/vibrating_plane_toi.h"
+#include "kernels/vibrating_plane_toi.h"
 
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "common/sim_time.h"
-#include "event/polynomial_roots.h"
+#include "kernels/polynomial_roots.h"
 
 namespace peensim {
 

@@ -1,9 +1,9 @@
-#include "event/sphere_pair_toi.h"
+#include "kernels/sphere_pair_toi.h"
 
 #include <cmath>
 #include <limits>
 
-#include "event/polynomial_roots.h"
+#include "kernels/polynomial_roots.h"
 
 namespace peensim {
 

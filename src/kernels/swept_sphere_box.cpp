@@ -1,4 +1,4 @@
-#include "event/swept_sphere_box.h"
+#include "kernels/swept_sphere_box.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "collision/mesh_collider.h"
-#include "event/vibrating_plane_toi.h"
+#include "kernels/vibrating_plane_toi.h"
 #include "geometry/triangle_mesh.h"
 #include "model/model.h"
 
