@@ -3,6 +3,8 @@
 // and a law decides the rebound. Reference: shot-peening-model.md eq. 2-5.
 #pragma once
 
+#include "contact/contact_policy.h"
+
 #include <memory>
 #include <string>
 #include <string_view>
@@ -51,13 +53,7 @@ struct ShotShotResponse {
     bool approaching = false;
 };
 
-// Whether a contact is an impact or sustained contact (rolling, sliding, resting) is decided from
-// the normal approach speed (m/s) with one threshold, the scene's `accuracy.impact_speed` (m/s,
-// Model::impact_speed_m_per_s), the same for every scheme and every pair: an approach at least that
-// fast is an impact, a slower one sustained contact. Without such a line a resting shot would
-// bounce forever in ever smaller hops (a Zeno sequence) and jitter on the surface; a fixed speed,
-// unlike one tied to a scheme's step, puts it at the same place whatever the scheme and the step.
-inline bool is_impact(double approach_speed, double impact_speed) { return approach_speed >= impact_speed; }
+// The impact line (contact::is_impact) and the other rules both schemes follow: contact_policy.h.
 
 // A law for shot-surface contacts (static or moving mesh). Laws are immutable values.
 class SurfaceLaw {

@@ -43,7 +43,6 @@ constexpr double kContactSlack = 1e-6;      // of R: a shot this close to a surf
 // radius); flying off it between substeps would leave a gap of a few nm to close by conservative
 // advancement, whose steps (gap / speed) crawl there.
 constexpr double kSustainSlack = 1e-3;
-constexpr double kCorrectionWorthCounting = 0.01;  // of R, as time stepping counts overlap corrections
 constexpr int kMaxAdvancement = 2000;       // conservative-advancement iterations per search (then it resumes later)
 constexpr std::uint64_t kMaxEventsAtOneTime = 10000;  // then the shot is forced into substeps
 
@@ -739,8 +738,8 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
     } else if (w.overlapping) {
         // Found inside the surface (an approximated rider, a rounding): moved out, no energy added.
         p += w.depth * w.normal;
-        if (w.depth > kCorrectionWorthCounting * R_) ++state.health.mesh_overlap_corrections;
-        if (w.depth > 0.5 * R_) ++state.health.deep_penetrations;
+        if (w.depth > contact::kOverlapWorthCounting * R_) ++state.health.mesh_overlap_corrections;
+        if (w.depth > contact::kDeepPenetration * R_) ++state.health.deep_penetrations;
     }
     const Vec3& n = w.normal;
     const Vec3& vs = w.surface_velocity;
@@ -924,7 +923,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
             // At most a tenth of R per substep: a jammed pile relaxes over a few substeps instead of
             // pushing a shot through a wall at once.
             p += std::min(2.0 * R_ - dist, 0.1 * R_) * n;
-            if (2.0 * R_ - dist > kCorrectionWorthCounting * R_) ++state.health.shot_overlap_corrections;
+            if (2.0 * R_ - dist > contact::kOverlapWorthCounting * R_) ++state.health.shot_overlap_corrections;
         }
         // A neighbour still moving (not asleep, not as still as this shot must be) keeps it awake.
         const Shot& o = shots_[static_cast<std::size_t>(j)];
@@ -940,7 +939,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
         if (!(closest.distance > 0.0)) continue;
         const SurfaceClearance clear = surface_clearance(*comp.mesh, comp.solid, local, closest);
         const double gap = clear.distance_m - R_;
-        if (gap < -0.5 * R_) ++state.health.deep_penetrations;
+        if (gap < -contact::kDeepPenetration * R_) ++state.health.deep_penetrations;
         touching = true;
         const Vec3 n = pose.rotation * clear.normal;
         const Vec3 point = pose.to_world(closest.point);
@@ -968,7 +967,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
         }
         if (gap < 0.0) {
             p -= gap * n;
-            if (-gap > kCorrectionWorthCounting * R_) ++state.health.mesh_overlap_corrections;
+            if (-gap > contact::kOverlapWorthCounting * R_) ++state.health.mesh_overlap_corrections;
         }
     }
     if (!touching) {
@@ -1004,7 +1003,7 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state)
             if (depth > kTouchTolerance * 2.0 * R_) {
                 pi -= 0.5 * depth * n;
                 pj += 0.5 * depth * n;
-                if (depth > kCorrectionWorthCounting * R_) ++state.health.shot_overlap_corrections;
+                if (depth > contact::kOverlapWorthCounting * R_) ++state.health.shot_overlap_corrections;
             }
         }
         const double approach = -(vj - vi).dot(n);

@@ -27,7 +27,6 @@ constexpr double kTouchTolerance = 1e-14;      // s, precision of sampled touch 
 // prototype. A re-catch between two samples that the search misses ends the step in sustained
 // contact with the plate, which is what a ride is.
 constexpr double kRideFraction = 3200.0;
-constexpr double kCorrectionWorthCounting = 0.01;  // -, overlaps corrected beyond this fraction of R are counted
 // Bound on how far a shot can move relative to a component in one step, in units of the eq. 7
 // travel: the shot's own travel (1) plus the surface's (1: V_max includes surface speeds). A shot
 // kicked within a step can go further; its skip counters are reset at every kick.
@@ -209,7 +208,7 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             kicked_by_shot_[i] = kicked_by_shot_[j] = 1;
             forget_clearances(i);
             forget_clearances(j);
-            if (D - d > kCorrectionWorthCounting * R) ++state.health.shot_overlap_corrections;
+            if (D - d > contact::kOverlapWorthCounting * R) ++state.health.shot_overlap_corrections;
         }
     }
 }
@@ -377,7 +376,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         // A static plane: the gap is exactly quadratic in time.
         touch = first_touch_quadratic(contact.gap, -n.dot(v1), 0.5 * n.dot(g), u_lo, dt);
     }
-    if (contact.gap < -0.5 * R) ++state.health.deep_penetrations;
+    if (contact.gap < -contact::kDeepPenetration * R) ++state.health.deep_penetrations;
     if (!touch) {
         // No new touch: either no contact at all, or the surface never let go of a shot that just
         // rebounded from it (a slow rebound on an accelerating plate): that shot rides the surface.
@@ -569,7 +568,7 @@ void TimeStepping::sustain_contact(SimulationState& state, std::size_t i, std::s
     ShotArrays& s = state.shots;
     s.set_velocity(i, r.v_shot);
     s.set_position(i, p1 - contact.gap * n);
-    if (-contact.gap > kCorrectionWorthCounting * model_->shot_radius_m) ++state.health.mesh_overlap_corrections;
+    if (-contact.gap > contact::kOverlapWorthCounting * model_->shot_radius_m) ++state.health.mesh_overlap_corrections;
 }
 
 void TimeStepping::check_health(SimulationState& state) {
