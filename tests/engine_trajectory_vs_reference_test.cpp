@@ -15,8 +15,10 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "support/test_scene.h"
 #include "support/tube_scene.h"
@@ -49,13 +51,16 @@ std::vector<Impact> engine_impacts(const std::string& scheme, std::uint64_t& rid
     const TestScene scene(tube_scene(scheme, 4e-3, kHeight, 1, kRadius, kAmplitude, kDuration));
     Simulation sim(scene.compile());
     set_shot(sim.mutable_state(), 0, Vec3(0, 0, kStartZ), Vec3(0, 0, kStartV));
-    std::vector<Impact> out;
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts) out.push_back({r.time_s, r.component == sim.model().sonotrode, r.vn_in_m_per_s});
-        impacts.clear();
-    }
+    struct Collect final : RunListener {
+        std::vector<Impact> out;
+        void after_step(const Simulation& s, const std::vector<ImpactRecord>& impacts) override {
+            for (const ImpactRecord& r : impacts) out.push_back({r.time_s, r.component == s.model().sonotrode, r.vn_in_m_per_s});
+        }
+    } collect;
+    RunLoop loop(sim);
+    loop.add(collect);
+    loop.run();
+    std::vector<Impact> out = std::move(collect.out);
     rides = sim.scheme().stats().rides;
     return out;
 }

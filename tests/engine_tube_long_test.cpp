@@ -42,6 +42,7 @@
 #include <tuple>
 #include <vector>
 
+#include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "support/student_t.h"
 #include "support/test_scene.h"
@@ -145,21 +146,28 @@ EngineTube run_engine(const TubeCase& c, const std::string& scheme, double secon
     EngineTube run(window_count(seconds));
     run.impact_speed_m_per_s = sim.model().impact_speed_m_per_s;
     const int sonotrode = sim.model().sonotrode;
-    std::vector<ImpactRecord> impacts;
-    const auto t0 = std::chrono::steady_clock::now();
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts) {
-            if (r.component == sonotrode) {
-                run.tally.add(r.time_s, true, r.shot, r.vn_in_m_per_s);
-            } else if (std::abs(r.point_m.z() - c.height_m) < 1e-9) {
-                run.tally.add(r.time_s, false, r.shot, r.vn_in_m_per_s);
-            } else {
-                ++run.wall_hits;
+    // Floor, ceiling and (none expected) wall impacts, tallied per column as they come.
+    struct Tallying final : RunListener {
+        EngineTube& run;
+        int sonotrode;
+        double height_m;
+        Tallying(EngineTube& r, int s, double h) : run(r), sonotrode(s), height_m(h) {}
+        void after_step(const Simulation&, const std::vector<ImpactRecord>& impacts) override {
+            for (const ImpactRecord& r : impacts) {
+                if (r.component == sonotrode) {
+                    run.tally.add(r.time_s, true, r.shot, r.vn_in_m_per_s);
+                } else if (std::abs(r.point_m.z() - height_m) < 1e-9) {
+                    run.tally.add(r.time_s, false, r.shot, r.vn_in_m_per_s);
+                } else {
+                    ++run.wall_hits;
+                }
             }
         }
-        impacts.clear();
-    }
+    } tallying(run, sonotrode, c.height_m);
+    RunLoop loop(sim);
+    loop.add(tallying);
+    const auto t0 = std::chrono::steady_clock::now();
+    loop.run();
     run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     run.shot_shot = sim.state().shot_shot_impacts;
     run.serious = sim.state().health.serious();

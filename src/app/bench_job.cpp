@@ -15,6 +15,7 @@
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "common/input_error.h"
+#include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "model/model.h"
 #include "output/atomic_file.h"
@@ -205,17 +206,22 @@ SchemeRun run_scheme(const SceneDescription& scene, const SchemeSpec& spec) {
             logged.emplace_back(model->duration_s);
         }
 
-    std::vector<ImpactRecord> impacts;  // consumed after every step, never kept
-    impacts.reserve(4096);
-    const auto t0 = Clock::now();
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts) {
-            const int s = slot[static_cast<std::size_t>(r.component)];
-            if (s >= 0) logged[static_cast<std::size_t>(s)].add(r.time_s, r.vn_in_m_per_s);
+    // Each logged component's impacts, binned by time batch as they come (none is kept).
+    struct Binning final : RunListener {
+        const std::vector<int>& slot;
+        std::vector<BatchedImpactStats>& logged;
+        Binning(const std::vector<int>& s, std::vector<BatchedImpactStats>& l) : slot(s), logged(l) {}
+        void after_step(const Simulation&, const std::vector<ImpactRecord>& impacts) override {
+            for (const ImpactRecord& r : impacts) {
+                const int s = slot[static_cast<std::size_t>(r.component)];
+                if (s >= 0) logged[static_cast<std::size_t>(s)].add(r.time_s, r.vn_in_m_per_s);
+            }
         }
-        impacts.clear();
-    }
+    } binning(slot, logged);
+    RunLoop loop(sim);
+    loop.add(binning);
+    const auto t0 = Clock::now();
+    loop.run();
     const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
 
     const SimulationState& st = sim.state();

@@ -19,6 +19,7 @@
 #include "app/report_errors.h"
 #include "app/summary_builder.h"
 #include "common/input_error.h"
+#include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "model/assembly_checks.h"
 #include "model/model.h"
@@ -147,40 +148,45 @@ private:
 
     // Returns true when the scene's duration was reached, false when interrupted.
     bool loop() {
-        ProgressReporter progress(err_, options_.progress && isatty(STDERR_FILENO));
-        CheckpointCadence cadence(model_->description.output.checkpoint_interval_s, options_.checkpoint_clock);
+        // What the run does with each step, in this order: the impacts to impacts.csv and the speed
+        // histograms, the recorder's frames, the progress bar; at restart points, checkpoints.
+        struct Listener final : RunListener {
+            Job& job;
+            ProgressReporter progress;
+            CheckpointCadence cadence;
+            Listener(Job& j, bool show_progress)
+                : job(j), progress(j.err_, show_progress),
+                  cadence(j.model_->description.output.checkpoint_interval_s, j.options_.checkpoint_clock) {}
+            double pause_at_s() const override {
+                return job.recorder_ ? job.recorder_->next_frame_s() : std::numeric_limits<double>::infinity();
+            }
+            void after_step(const Simulation& sim, const std::vector<ImpactRecord>& impacts) override {
+                if (!impacts.empty()) {
+                    const auto t = Clock::now();
+                    job.writer_->write(impacts);
+                    for (const ImpactRecord& r : impacts)
+                        job.speeds_[static_cast<std::size_t>(job.slots_[static_cast<std::size_t>(r.component)])].add(r.vn_in_m_per_s);
+                    job.logged_impacts_ += impacts.size();
+                    job.output_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
+                }
+                if (job.recorder_) job.recorder_->after_step(sim.state(), impacts, job.logged_impacts_);
+                progress.update(sim.state().time.seconds(), job.model_->duration_s, job.logged_impacts_);
+            }
+            // The clock is read only here: reading it at every unit of work would decide the same.
+            void at_restart_point(const Simulation&) override {
+                if (cadence.due()) job.checkpoint();
+            }
+        } listener(*this, options_.progress && isatty(STDERR_FILENO));
         started_ = Clock::now();
-        std::vector<ImpactRecord> impacts;
-        impacts.reserve(1024);
-        std::uint64_t steps = 0;
-        bool stopping = false;
-        while (!sim_->finished()) {
-            sim_->step(impacts, recorder_ ? recorder_->next_frame_s() : std::numeric_limits<double>::infinity());
-            if (!impacts.empty()) {
-                const auto t = Clock::now();
-                writer_->write(impacts);
-                for (const ImpactRecord& r : impacts)
-                    speeds_[static_cast<std::size_t>(slots_[static_cast<std::size_t>(r.component)])].add(r.vn_in_m_per_s);
-                logged_impacts_ += impacts.size();
-                output_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
-            }
-            if (recorder_) recorder_->after_step(sim_->state(), impacts, logged_impacts_);
-            impacts.clear();
-            progress.update(sim_->state().time.seconds(), model_->duration_s, logged_impacts_);
-            ++steps;
-            // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
-            // step, the event-driven scheme at its restart interval. The clock is read only there:
-            // reading it at every unit of work would decide the same (it only acts there) for nothing.
-            stopping |= InterruptGuard::requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps);
-            if (!sim_->at_restart_point()) continue;
-            if (stopping) {
-                progress.finish();
-                return false;
-            }
-            if (cadence.due()) checkpoint();
-        }
-        progress.finish();
-        return true;
+        RunLoop run(*sim_);
+        run.add(listener);
+        // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
+        // step, the event-driven scheme at its restart interval.
+        const bool finished = run.run([this](std::uint64_t steps) {
+            return InterruptGuard::requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps);
+        });
+        listener.progress.finish();
+        return finished;
     }
 
     double wall_time() const { return wall_before_ + std::chrono::duration<double>(Clock::now() - started_).count(); }

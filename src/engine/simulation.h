@@ -25,8 +25,10 @@ public:
 
     // One unit of work of the scheme (a time step, or a stretch of events); impacts on logged
     // components are appended to `impacts`. An event-driven scheme stops exactly at `pause_at_s`
-    // (s) if it comes first (see Stepper::advance).
+    // (s) if it comes first (see Stepper::advance); a pause not after the present is ignored.
     void step(std::vector<ImpactRecord>& impacts, double pause_at_s = std::numeric_limits<double>::infinity()) {
+        // A pause at or before the present is no pause (asked again and again, it would stall the run).
+        if (!(pause_at_s > state_.time.seconds())) pause_at_s = std::numeric_limits<double>::infinity();
         scheme_->advance(state_, model_->duration_s, pause_at_s, impacts);
     }
     bool finished() const { return !(state_.time.seconds() < model_->duration_s); }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/render_module.h"
+#include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "model/model.h"
 #include "output/peak_memory.h"
@@ -43,22 +44,28 @@ int main(int argc, char** argv) {
         const auto model = compile_model(parse_scene_file(scene_path, overrides));
         Simulation sim(model);
         const double load_s = std::chrono::duration<double>(Clock::now() - t_load).count();
-        std::vector<ImpactRecord> impacts;
-        impacts.reserve(1024);
-        std::uint64_t logged = 0;
-        double speed_sum = 0.0;  // m/s, normal impact speeds on logged components
         std::unique_ptr<FrameSink> recorder;
         if (!render_dir.empty())
             recorder = render_module().make_recorder(*model, model->description.render.value_or(RenderDesc{}), render_dir, sim.state());
+        // The logged impacts' count and mean speed, and the recorder's frames, step by step.
+        struct Tally final : RunListener {
+            FrameSink* recorder = nullptr;
+            std::uint64_t logged = 0;
+            double speed_sum = 0.0;  // m/s, normal impact speeds on logged components
+            void after_step(const Simulation& s, const std::vector<ImpactRecord>& impacts) override {
+                logged += impacts.size();
+                for (const ImpactRecord& r : impacts) speed_sum += r.vn_in_m_per_s;
+                if (recorder) recorder->after_step(s.state(), impacts, logged);
+            }
+        } tally;
+        tally.recorder = recorder.get();
+        RunLoop loop(sim);
+        loop.add(tally);
         const auto t0 = Clock::now();
         if (recorder) recorder->after_step(sim.state(), {}, 0);
-        while (!sim.finished()) {
-            sim.step(impacts);
-            logged += impacts.size();
-            for (const ImpactRecord& r : impacts) speed_sum += r.vn_in_m_per_s;
-            if (recorder) recorder->after_step(sim.state(), impacts, logged);
-            impacts.clear();
-        }
+        loop.run();
+        const std::uint64_t logged = tally.logged;
+        const double speed_sum = tally.speed_sum;
         if (recorder) recorder->flush();
         const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
         const SimulationState& st = sim.state();
