@@ -25,6 +25,7 @@
 #include "engine/simulation.h"
 #include "support/sonotrode_crossing.h"
 #include "support/test_scene.h"
+#include "support/tube_scene.h"
 #include "support/vibrating_floor_reference.h"
 
 namespace peensim::testing {
@@ -32,9 +33,9 @@ namespace {
 
 constexpr double kR = 1e-3;            // m, shot radius (D = 2 mm)
 constexpr double kA = 25e-6;           // m, sonotrode amplitude
-constexpr double kF = 20e3;            // Hz
+constexpr double kF = kTubeFrequencyHz;  // Hz
 constexpr double kH = 20e-3;           // m, ceiling height above the plate's rest position
-constexpr double kG = 9.81;            // m/s2
+constexpr double kG = kTubeGravity;      // m/s2
 constexpr double kStart = 0.5;         // s, statistics start (after the start-up transient)
 constexpr double kEngineEnd = 3.0;     // s, engine run length (~0.8 s of wall time)
 constexpr double kReferenceEnd = 60.0; // s, reference run length per start (~0.05 s of wall time)
@@ -83,19 +84,7 @@ Vec3 start_position(int i) {
 }
 
 EngineRun run_engine(const std::string& scheme) {
-    TestSceneSpec spec;
-    spec.scheme = scheme;
-    spec.chamber_size_m = Vec3(kGrid * kSpacing, kGrid * kSpacing, kH);
-    spec.shot_count = kShots;
-    spec.shot_diameter_m = 2.0 * kR;
-    spec.amplitude_m = kA;
-    spec.frequency_hz = kF;
-    spec.gravity_m_per_s2 = Vec3(0, 0, -kG);
-    spec.duration_s = kEngineEnd;
-    spec.sonotrode = {0.9, 1.5, 0.71, 0.1};  // titanium floor
-    spec.chamber = {0.95, 2.0, 0.71, 0.1};   // steel ceiling
-    spec.log = {"sonotrode", "chamber"};
-    const TestScene scene(spec);
+    const TestScene scene(tube_scene(scheme, kGrid * kSpacing, kH, kShots, kR, kA, kEngineEnd));
     const auto model = scene.compile();
     Simulation sim(model);
     for (int i = 0; i < kShots; ++i) set_shot(sim.mutable_state(), static_cast<std::size_t>(i), start_position(i), Vec3::Zero());
