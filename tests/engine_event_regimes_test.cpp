@@ -44,6 +44,15 @@ protected:
     bool exact() const { return GetParam() == "event"; }
 };
 
+// Which regime of which scheme ran (the event scheme hands a restart interval over to time stepping
+// when a load lies still): printed with every case, asserted where a case is about one regime.
+std::string regime_text(const Simulation& sim) {
+    const StepStats& st = sim.scheme().stats();
+    return "regime: " + std::to_string(st.events) + " events, " + std::to_string(st.rides) + " rides, " + std::to_string(st.grazes) +
+           " grazes, " + std::to_string(st.substeps) + " substeps, " + std::to_string(st.sleeps) + " sleeps, " +
+           std::to_string(st.hand_overs) + " hand-overs to time stepping";
+}
+
 std::uint64_t impacts_on(const Model& model, const SimulationState& state, const std::string& component) {
     return state.impacts_per_component[static_cast<std::size_t>(model.component_index(component))];
 }
@@ -103,8 +112,13 @@ TEST_P(EngineEventRegimes, ChatteringShotOnTheVibratingSonotrodeIsThrown) {
         std::cout << "[ chatter  ] " << GetParam() << " scheme, " << c.name << " (" << seconds_since(t0) << " s wall): "
                   << st.steps << " units, " << impacts_on(*model, st, "sonotrode") << " sonotrode and "
                   << impacts_on(*model, st, "chamber") << " chamber impacts, max height " << max_height << " m; "
-                  << audit.summary() << "; health " << health_text(st.health) << "\n";
+                  << audit.summary() << "; health " << health_text(st.health) << "; " << regime_text(sim) << "\n";
         EXPECT_GT(max_height, c.min_height_m) << c.name;
+        if (exact()) {
+            // Event-driven throughout: a lone shot is never a load at rest to hand over.
+            EXPECT_GT(sim.scheme().stats().events, 0u) << c.name;
+            EXPECT_EQ(sim.scheme().stats().hand_overs, 0u) << c.name;
+        }
         EXPECT_GT(impacts_on(*model, st, "sonotrode"), 0u) << c.name;
         EXPECT_EQ(logged, impacts_on(*model, st, "sonotrode") + impacts_on(*model, st, "chamber")) << c.name;
         if (exact()) {
@@ -173,7 +187,11 @@ TEST_P(EngineEventRegimes, ShotDroppedOnTheStillSonotrodeComeToRest) {
               << impacts_on(*model, st, "sonotrode") << " sonotrode and " << st.shot_shot_impacts
               << " shot-shot impacts; at 1 s: " << on_plate << " on the plate (worst |z - R| " << worst_plate << " m), "
               << on_shot << " on another shot, fastest " << fastest << " m/s; " << audit.summary() << "; health "
-              << health_text(st.health) << "\n";
+              << health_text(st.health) << "; " << regime_text(sim) << "\n";
+    if (exact()) {
+        // Coming to rest is the sustained-contact regime: substeps, then sleep.
+        EXPECT_GT(sim.scheme().stats().substeps, 0u);
+    }
     EXPECT_GT(st.shot_shot_impacts, 0u);  // the upper shot did hit the lower ones
     if (exact()) {
         EXPECT_EQ(audit.report().pair_overlaps, 0u) << "first: " << audit.report().first_pair << "; deepest: " << audit.report().worst_pair;
@@ -213,7 +231,7 @@ TEST_P(EngineEventRegimes, DenseLoadOnTheVibratingSonotrode) {
     std::cout << "[ dense    ] " << GetParam() << " scheme (" << seconds_since(t0) << " s wall): placed up to z = " << top
               << " m; " << st.steps << " units, " << impacts_on(*model, st, "sonotrode") << " sonotrode, "
               << impacts_on(*model, st, "chamber") << " chamber, " << st.shot_shot_impacts << " shot-shot impacts; "
-              << audit.summary() << "; health " << health_text(st.health) << "\n";
+              << audit.summary() << "; health " << health_text(st.health) << "; " << regime_text(sim) << "\n";
     if (!audit.report().first_pair.empty())
         std::cout << "[ dense    ] pair overlaps: first " << audit.report().first_pair << "; deepest " << audit.report().worst_pair << "\n";
     if (!audit.report().first_mesh.empty())
@@ -288,7 +306,13 @@ TEST_P(EngineEventRegimes, GrazingFlightsWithoutGravityLogNoImpacts) {
               << " units; impacts: box " << impacts_on(*model, st, "part") << ", plate " << impacts_on(*model, st, "sonotrode")
               << ", walls " << impacts_on(*model, st, "chamber") << "; passes over the box seen " << box_passes
               << "; largest departure from the lines " << off_line << " m; final speeds " << st.shots.velocity(0).norm() << ", "
-              << st.shots.velocity(1).norm() << " m/s; " << audit.summary() << "; health " << health_text(st.health) << "\n";
+              << st.shots.velocity(1).norm() << " m/s; " << audit.summary() << "; health " << health_text(st.health) << "; "
+              << regime_text(sim) << "\n";
+    if (exact()) {
+        // Flights exactly tangent to a face: grazes (no impact), all event-driven.
+        EXPECT_GT(sim.scheme().stats().grazes, 0u);
+        EXPECT_EQ(sim.scheme().stats().hand_overs, 0u);
+    }
     if (!graze_impacts.empty()) std::cout << "[ grazing  ] logged on the box or plate:" << graze_impacts << "\n";
     if (exact()) {
         EXPECT_EQ(impacts_on(*model, st, "part"), 0u);
