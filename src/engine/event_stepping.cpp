@@ -4,10 +4,11 @@
 #include <cmath>
 #include <limits>
 
-#include "kernels/closest_point.h"
 #include "collision/surface_clearance.h"
+#include "engine/impact_recording.h"
 #include "engine/loss_diagnosis.h"
 #include "engine/time_stepping.h"
+#include "kernels/closest_point.h"
 #include "kernels/plate_release.h"
 #include "kernels/sphere_pair_toi.h"
 #include "kernels/swept_sphere_box.h"
@@ -813,19 +814,7 @@ void EventStepping::record_impact(int i, int c, double t, const WallEvent& w, co
     const Component& comp = model_->components[static_cast<std::size_t>(c)];
     ++state.impacts_per_component[static_cast<std::size_t>(c)];
     if (!comp.logged) return;
-    const Pose pose = comp.kinematics.pose(epoch_, t);
-    ImpactRecord rec;
-    rec.time_s = absolute_seconds(t);
-    rec.shot = static_cast<std::int32_t>(i);
-    rec.component = static_cast<std::int32_t>(c);
-    rec.triangle = w.triangle;
-    rec.point_m = pose.to_component(w.point);
-    rec.v_in_m_per_s = pose.rotation.transpose() * (v - w.surface_velocity);
-    rec.v_out_m_per_s = pose.rotation.transpose() * (r.v_shot - w.surface_velocity);
-    rec.vn_in_m_per_s = r.vn_in;
-    rec.vt_in_m_per_s = r.vt_in;
-    rec.vn_out_m_per_s = r.vn_out;
-    impacts.push_back(rec);
+    impacts.push_back(make_impact_record(absolute_seconds(t), i, c, w.triangle, comp.kinematics.pose(epoch_, t), w.point, v, w.surface_velocity, r));
 }
 
 void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after) {

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/closest_point.h"
 #include "collision/surface_clearance.h"
 #include "engine/contact_time.h"
+#include "engine/impact_recording.h"
 #include "engine/moving_mesh_gap.h"
+#include "kernels/closest_point.h"
 #include "kernels/plate_release.h"
 #include "kernels/vibrating_plane_toi.h"
 
@@ -459,21 +460,9 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         forget_clearances(i);
         if (impact) {
             ++state.impacts_per_component[c];
-            if (comp.logged) {
-                const Pose pose = kin.pose(t0_, u);
-                ImpactRecord rec;
-                rec.time_s = t0_.hi + (t0_.lo + u);
-                rec.shot = static_cast<std::int32_t>(i);
-                rec.component = static_cast<std::int32_t>(c);
-                rec.triangle = contact.triangle;
-                rec.point_m = pose.to_component(x_touch);
-                rec.v_in_m_per_s = pose.rotation.transpose() * (v_touch - v_surface);
-                rec.v_out_m_per_s = pose.rotation.transpose() * (r.v_shot - v_surface);
-                rec.vn_in_m_per_s = r.vn_in;
-                rec.vt_in_m_per_s = r.vt_in;
-                rec.vn_out_m_per_s = r.vn_out;
-                impacts.push_back(rec);
-            }
+            if (comp.logged)
+                impacts.push_back(make_impact_record(t0_.hi + (t0_.lo + u), static_cast<int>(i), static_cast<int>(c), contact.triangle,
+                                                     kin.pose(t0_, u), x_touch, v_touch, v_surface, r));
         }
         if (rides) {
             ++stats_.rides;

@@ -1,0 +1,33 @@
+// How both stepping schemes turn an impact into the record the writers read: the contact point
+// and the relative velocities in the component's own frame at its pose then. One place, so the
+// two schemes' logs cannot drift apart in frame or sign.
+#pragma once
+
+#include <cstdint>
+
+#include "contact/contact_law.h"
+#include "engine/impact_record.h"
+#include "model/kinematics.h"
+
+namespace peensim {
+
+// time_s: absolute simulated time (s); pose: the component's pose at the impact; point_world: the
+// contact point (m, world); v_shot_in: the shot's velocity before (m/s, world); v_surface: the
+// surface's velocity there (m/s, world); r: the law's response (v_shot after, speeds).
+inline ImpactRecord make_impact_record(double time_s, int shot, int component, int triangle, const Pose& pose, const Vec3& point_world,
+                                       const Vec3& v_shot_in, const Vec3& v_surface, const contact::SurfaceContactResponse& r) {
+    ImpactRecord rec;
+    rec.time_s = time_s;
+    rec.shot = static_cast<std::int32_t>(shot);
+    rec.component = static_cast<std::int32_t>(component);
+    rec.triangle = static_cast<std::int32_t>(triangle);
+    rec.point_m = pose.to_component(point_world);
+    rec.v_in_m_per_s = pose.rotation.transpose() * (v_shot_in - v_surface);
+    rec.v_out_m_per_s = pose.rotation.transpose() * (r.v_shot - v_surface);
+    rec.vn_in_m_per_s = r.vn_in;
+    rec.vt_in_m_per_s = r.vt_in;
+    rec.vn_out_m_per_s = r.vn_out;
+    return rec;
+}
+
+}  // namespace peensim
