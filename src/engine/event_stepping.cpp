@@ -86,18 +86,7 @@ EventStepping::~EventStepping() = default;
 
 const StepStats& EventStepping::stats() const {
     combined_ = stats_;
-    if (time_stepping_) {
-        const StepStats& ts = time_stepping_->stats();
-        for (std::size_t k = 0; k < combined_.seconds.size(); ++k) combined_.seconds[k] += ts.seconds[k];
-        combined_.gate_checks += ts.gate_checks;
-        combined_.gate_skips += ts.gate_skips;
-        combined_.memo_skips += ts.memo_skips;
-        combined_.bvh_queries += ts.bvh_queries;
-        combined_.bvh_hits += ts.bvh_hits;
-        combined_.triangles_returned += ts.triangles_returned;
-        combined_.triangle_tests += ts.triangle_tests;
-        combined_.touch_searches += ts.touch_searches;
-    }
+    if (hand_over_) combined_ += hand_over_->stats();
     return combined_;
 }
 
@@ -116,7 +105,7 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         // shot by shot. Decided from the state alone, so a resumed run decides the same.
         handed_over_ = resting_fraction(state) > kHandOverFraction;
         if (handed_over_) {
-            if (!time_stepping_) time_stepping_ = std::make_unique<TimeStepping>(model_);
+            if (!hand_over_) hand_over_ = std::make_unique<TimeStepping>(model_);
             ++stats_.hand_overs;
             work_budget_ = std::max(kMinWorkBudget, kWorkPerRestart * kWorkPerShotStep * static_cast<std::uint64_t>(model_->shot_count));
         } else {
@@ -130,7 +119,7 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
     }
     if (handed_over_) {
         const std::uint64_t steps_before = state.shot_steps;
-        time_stepping_->advance(state, std::min(t_end_s, next_restart_), pause_at_s, impacts);
+        hand_over_->advance(state, std::min(t_end_s, next_restart_), pause_at_s, impacts);
         count_work(kWorkPerShotStep * (state.shot_steps - steps_before), state.time.seconds());
         if (state.time.seconds() >= next_restart_) started_ = false;
         return;

@@ -39,7 +39,6 @@
 #include "collision/mesh_collider.h"
 #include "collision/shot_box_tree.h"
 #include "engine/stepper.h"
-#include "engine/time_stepping.h"
 #include "engine/event/event_queue.h"
 #include "engine/event/sonotrode_face.h"
 #include "kernels/trajectory.h"
@@ -196,7 +195,7 @@ private:
     mutable StepStats combined_;  // stats(): stats_ plus the handed-over time stepping's
     bool started_ = false;
     bool handed_over_ = false;                       // this interval is time-stepped
-    std::unique_ptr<TimeStepping> time_stepping_;    // built at the first hand-over
+    std::unique_ptr<Stepper> hand_over_;             // the scheme a load at rest is handed to (time stepping), built at the first hand-over
     double next_restart_ = 0.0;  // s (absolute), the next restart point
     // The scheme's clock: every time below (flights, events, rides) is seconds since epoch_, the
     // state's time at the last restart point.

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <string_view>
+#include <utility>
 
 namespace peensim {
 
@@ -38,6 +39,20 @@ struct StepStats {
     std::uint64_t sleeps = 0;           // shot put to sleep at rest
     std::uint64_t collapse_guards = 0;  // shot-shot collisions made elastic by the TC rule
     std::uint64_t hand_overs = 0;       // restart intervals handed over to time stepping (a load at rest)
+    // Adds another scheme's figures (the event scheme's hand-over to time stepping): every stage
+    // time and every counter, so a new counter cannot be forgotten in the sum.
+    StepStats& operator+=(const StepStats& o) {
+        for (std::size_t k = 0; k < seconds.size(); ++k) seconds[k] += o.seconds[k];
+        for (auto [mine, theirs] : {std::pair{&gate_checks, &o.gate_checks}, {&gate_skips, &o.gate_skips}, {&memo_skips, &o.memo_skips},
+                                    {&bvh_queries, &o.bvh_queries}, {&bvh_hits, &o.bvh_hits}, {&triangles_returned, &o.triangles_returned},
+                                    {&triangle_tests, &o.triangle_tests}, {&touch_searches, &o.touch_searches}, {&events, &o.events},
+                                    {&stale_events, &o.stale_events}, {&box_renewals, &o.box_renewals}, {&pair_tests, &o.pair_tests},
+                                    {&mesh_predictions, &o.mesh_predictions}, {&rides, &o.rides}, {&search_resumes, &o.search_resumes},
+                                    {&grazes, &o.grazes}, {&substeps, &o.substeps}, {&sleeps, &o.sleeps},
+                                    {&collapse_guards, &o.collapse_guards}, {&hand_overs, &o.hand_overs}})
+            *mine += *theirs;
+        return *this;
+    }
     double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
     double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }
 };
