@@ -37,7 +37,7 @@ constexpr int kMaxQuickGrazes = 4;          // grazes each within kCollapseWindo
 // counted). Below this the gap would open by less than ~1e-12 m (u^2 / 2a at a plate acceleration
 // a ~ 4e5 m/s2), the rounding of a contact time, so nothing slower can be resolved anyway.
 constexpr double kRideSpeed = 1e-3;
-constexpr double kTouchTolerance = 1e-9;    // of R: conservative advancement stops this close
+constexpr double kTouchDistance = 1e-9;     // of R: a gap this small is a touch (conservative advancement stops there)
 constexpr double kContactSlack = 1e-6;      // of R: a shot this close to a surface or a shot touches it
 // of R: a shot in sustained contact this close to a surface stays on it. Rolling over a curved
 // surface opens a gap of (v dt)^2 / 2r per substep (6e-5 R for a 1 mm shot at 0.5 m/s on a 5 mm
@@ -430,7 +430,7 @@ void EventStepping::predict_wall(int i, double t) {
     // surfaces are searched from a hair later: the touch itself, read again at the same instant,
     // would be found again (its approach sign is rounding), forever. Within the hair the shot moves
     // 1e-9 R: anything it could enter meanwhile is found overlapping by this search.
-    const double t_search = t == s.graze_at ? t + kTouchTolerance * R_ / std::max(path.v0.norm(), resting_speed_) : t;
+    const double t_search = t == s.graze_at ? t + kTouchDistance * R_ / std::max(path.v0.norm(), resting_speed_) : t;
     // The window's sphere bounds: a component whose (swept) bounds they miss cannot be reached.
     Vec3 reach_lo, reach_hi;
     path.bounds(t, w.time, reach_lo, reach_hi);
@@ -544,7 +544,7 @@ bool EventStepping::face_contact(const Trajectory& path, double t, double t_end,
     const Component& sono = model_->sonotrode_component();
     const Pose pose = sono.kinematics.pose(epoch_, pc.time);
     int triangle = -1;
-    if (!face_.contains(sono, pose.to_component(pc.point), kTouchTolerance * R_ + 1e-12, triangle)) return false;
+    if (!face_.contains(sono, pose.to_component(pc.point), kTouchDistance * R_ + 1e-12, triangle)) return false;
     out.time = pc.time;
     out.point = pc.point;
     out.normal = pc.normal;
@@ -569,7 +569,7 @@ EventStepping::AdvancementResult EventStepping::advance_to_contact(int c, const 
     const bool solid = comp.solid && &collider == comp.collider.get();
     const double V = path.max_speed(t, t_end) + surface_speed;
     if (!(V > 0.0)) return {};
-    const double look = 2.0 * R_, tolerance = kTouchTolerance * R_;
+    const double look = 2.0 * R_, tolerance = kTouchDistance * R_;
     double u = t;
     bool at_start = true;
     for (int it = 0; it < kMaxAdvancement; ++it) {
@@ -978,7 +978,7 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state)
         if (d < 2.0 * R_) {
             // Overlap (a rider's approximated path, or a rounding): removed symmetrically, positions only.
             const double depth = 2.0 * R_ - d;
-            if (depth > kTouchTolerance * 2.0 * R_) {
+            if (depth > kTouchDistance * 2.0 * R_) {
                 pi -= 0.5 * depth * n;
                 pj += 0.5 * depth * n;
                 if (depth > contact::kOverlapWorthCounting * R_) ++state.health.shot_overlap_corrections;

@@ -21,7 +21,7 @@ double s_velocity_norm(const ShotArrays& s, std::size_t i) { return std::sqrt(s.
 // rebounds (C = 0.9) from 0.3 m/s, the fastest rebound the plate catches within a gap sample, down
 // to kRideFraction's limit.
 constexpr int kMaxContactPasses = 64;
-constexpr double kTouchTolerance = 1e-14;      // s, precision of sampled touch times
+constexpr double kTouchTimeTolerance = 1e-14;      // s, precision of sampled touch times
 // -, rebounds the plate re-catches within 1/3200 of a period (16 ns at 20 kHz: below ~3 mm/s at its
 // peak acceleration) are rides. One gap sample (1/32) was too coarse: turning rebounds up to 0.3 m/s
 // into rides made the rod's mean normal speed 1.5-2 % low against the event-driven scheme and the
@@ -372,7 +372,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     } else if (kin.kind == Kinematics::Kind::rotating) {
         // A turning mesh: the true gap, the mesh in its pose at each trial time (moving_mesh_gap.h).
         turning_gap.emplace(comp, t0_, StepArc{p1, v1, g, dt}, R, u_lo, stats_);
-        touch = first_touch_sampled(*turning_gap, u_lo, dt, turning_gap->sample_interval(), kTouchTolerance, leaving);
+        touch = first_touch_sampled(*turning_gap, u_lo, dt, turning_gap->sample_interval(), kTouchTimeTolerance, leaving);
     } else {
         // A static plane: the gap is exactly quadratic in time.
         touch = first_touch_quadratic(contact.gap, -n.dot(v1), 0.5 * n.dot(g), u_lo, dt);
