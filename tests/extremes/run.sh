@@ -157,32 +157,30 @@ tubes=(Shot2mmA25umGap30mm Shot1mmA80umGap20mm Shot03mmA100umGap20mm)
 run_tubes=0
 [[ -z "$only" || "tube" =~ $only ]] && run_tubes=1
 
+# Runs "$@" as one job of the pool (at most --jobs at once), or in the foreground with --jobs 1.
+submit() {
+    if (( jobs > 1 )); then
+        while (( $(jobs -rp | wc -l) >= jobs )); do wait -n || true; done
+        "$@" &
+    else
+        "$@"
+    fi
+}
+
 start=$(date +%s)
 echo "# extremes matrix, $mode mode ($d_normal s; $d_large s for 3072 shot), $(date -u +%Y-%m-%d), $(nproc) cores, --jobs $jobs; work dir $work"
 python3 "$here/extremes.py" header
 # The tube first: its cases are the longest jobs.
 if (( run_tubes )); then
     echo "# tube against the exact reference: EngineTubeLong, ${tube_seconds:-2 (the short run of the test suite)} s"
-    for tube in "${tubes[@]}"; do
-        if (( jobs > 1 )); then
-            while (( $(jobs -rp | wc -l) >= jobs )); do wait -n || true; done
-            run_tube "$tube" &
-        else
-            run_tube "$tube"
-        fi
-    done
+    for tube in "${tubes[@]}"; do submit run_tube "$tube"; done
 fi
 order=()
 for spec in "${cases[@]}"; do
     name="${spec%%|*}"
     [[ -n "$only" && ! "$name" =~ $only ]] && continue
     order+=("$name")
-    if (( jobs > 1 )); then
-        while (( $(jobs -rp | wc -l) >= jobs )); do wait -n || true; done
-        run_case "$spec" &
-    else
-        run_case "$spec"
-    fi
+    submit run_case "$spec"
 done
 wait
 
