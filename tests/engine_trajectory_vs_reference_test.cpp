@@ -38,8 +38,6 @@ constexpr double kDuration = 0.03;      // s, well past the 26 compared impacts
 constexpr std::size_t kCompared = 26;
 constexpr double kTimeTolerance = 1e-11;   // s
 constexpr double kSpeedTolerance = 1e-9;   // relative
-const PairSpec& kFloorPair = kTubeFloorPair;
-const PairSpec& kCeilingPair = kTubeCeilingPair;
 
 struct Impact {
     double time_s;
@@ -73,8 +71,8 @@ struct ReferenceRun {
 ReferenceRun reference_impacts(double impact_speed_m_per_s) {
     ReferenceRun run;
     VibratingFloorCase c{.R = kRadius, .g = kGravity, .A = kAmplitude, .F = kFrequency, .phase = 0.0, .H = kHeight,
-                         .z0 = kStartZ, .v0 = kStartV, .C0_floor = kFloorPair.C0, .V0_floor = kFloorPair.V0_m_per_s,
-                         .C0_ceiling = kCeilingPair.C0, .V0_ceiling = kCeilingPair.V0_m_per_s, .duration = kDuration};
+                         .z0 = kStartZ, .v0 = kStartV, .C0_floor = kTubeFloorPair.C0, .V0_floor = kTubeFloorPair.V0_m_per_s,
+                         .C0_ceiling = kTubeCeilingPair.C0, .V0_ceiling = kTubeCeilingPair.V0_m_per_s, .duration = kDuration};
     c.on_event = [&](const VibratingFloorEvent& e) {
         const bool floor = e.kind == VibratingFloorEventKind::floor_impact;
         if ((floor || e.kind == VibratingFloorEventKind::ceiling_impact) && e.speed >= impact_speed_m_per_s)

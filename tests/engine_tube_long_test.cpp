@@ -63,8 +63,6 @@ constexpr double kWholeRunSE = 3.0;      // -, the normal-law bound whose chance
 // Chance that one comparison at 3 SE (normal) exceeds it without a real difference.
 const double kSingleComparisonChance = std::erfc(kWholeRunSE / std::sqrt(2.0));
 
-const PairSpec& kFloorPair = kTubeFloorPair;
-const PairSpec& kCeilingPair = kTubeCeilingPair;
 
 struct TubeCase {
     const char* name;
@@ -182,8 +180,8 @@ Tally compute_reference(const TubeCase& c, double seconds, double impact_speed_m
     for (int i = 0; i < kColumns; ++i) {
         VibratingFloorCase r{.R = c.radius_m, .g = kGravity, .A = c.amplitude_m, .F = kFrequency, .phase = 0.0,
                              .H = c.height_m, .z0 = start_position(c, i).z(), .v0 = 0.0,
-                             .C0_floor = kFloorPair.C0, .V0_floor = kFloorPair.V0_m_per_s,
-                             .C0_ceiling = kCeilingPair.C0, .V0_ceiling = kCeilingPair.V0_m_per_s, .duration = seconds};
+                             .C0_floor = kTubeFloorPair.C0, .V0_floor = kTubeFloorPair.V0_m_per_s,
+                             .C0_ceiling = kTubeCeilingPair.C0, .V0_ceiling = kTubeCeilingPair.V0_m_per_s, .duration = seconds};
         r.max_events = 4'000'000'000;
         r.on_event = [&](const VibratingFloorEvent& e) {
             const bool floor = e.kind == VibratingFloorEventKind::floor_impact;

@@ -5,6 +5,7 @@
 // sweep runner, a language binding) adds a listener instead of another loop.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <limits>

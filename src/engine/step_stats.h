@@ -40,7 +40,7 @@ struct StepStats {
     std::uint64_t collapse_guards = 0;  // shot-shot collisions made elastic by the TC rule
     std::uint64_t hand_overs = 0;       // restart intervals handed over to time stepping (a load at rest)
     // Adds another scheme's figures (the event scheme's hand-over to time stepping): every stage
-    // time and every counter, so a new counter cannot be forgotten in the sum.
+    // time and every counter (a counter added to StepStats must be added here too).
     StepStats& operator+=(const StepStats& o) {
         for (std::size_t k = 0; k < seconds.size(); ++k) seconds[k] += o.seconds[k];
         for (auto [mine, theirs] : {std::pair{&gate_checks, &o.gate_checks}, {&gate_skips, &o.gate_skips}, {&memo_skips, &o.memo_skips},

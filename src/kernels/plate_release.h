@@ -14,7 +14,7 @@
 
 namespace peensim {
 
-// s: free flight from the release before the schemes look for the next contact (1e-4 period).
+// Periods of free flight from the release before the schemes look for the next contact.
 constexpr double kReleaseDelayPeriods = 1e-4;
 
 // Seconds from a plate phase (rad) to the next release, where sin(phase) rises through
