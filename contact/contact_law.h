@@ -6,6 +6,7 @@
 #include "contact/contact_policy.h"
 
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,21 +15,25 @@
 
 namespace peensim::contact {
 
-// Coefficients of one contact pair (reference tables 1 and 2).
-struct PairCoefficients {
-    double C0 = 0.9;          // -, normal restitution in the elastic regime, 0 < C0 <= 1
-    double V0_m_per_s = 0.5;  // m/s, impact speed where the plastic regime starts, > 0
-    double mu = 0.71;         // -, tangential restitution, 0 <= mu <= 1
-    double f = 0.1;           // -, Coulomb friction coefficient in sustained contact, >= 0
-};
-
-// A shot touching a (possibly moving) surface. All vectors in one frame.
+// A shot touching a (possibly moving) surface. All vectors in one frame (world).
 struct SurfaceContactInput {
     Vec3 v_shot;              // m/s, shot velocity just before the contact
     Vec3 v_surface;           // m/s, velocity of the surface material point at the contact
     Vec3 normal;              // unit, from the surface towards the shot centre
-    double pressing_accel;    // m/s2, acceleration pressing the shot onto the surface (>= 0), for friction
-    double dt;                // s, the step over which sustained-contact friction acts
+    double pressing_accel = 0.0;  // m/s2, acceleration pressing the shot onto the surface (>= 0), for friction
+    double dt = 0.0;          // s, the time over which sustained-contact friction acts
+    // The contact's identity, for laws that keep state or look at geometry (the engine fills all).
+    int shot = -1;            // index of the shot
+    int component = -1;       // index of the component touched
+    int triangle = -1;        // index of the mesh triangle touched (indexes the per-triangle state)
+    Vec3 point_local = Vec3::Zero();  // m, contact point in the component's own frame
+    double overlap_m = 0.0;   // m, how far the shot is into the surface (0 at an exact touch)
+    double shot_radius_m = 0.0;  // m
+    double shot_mass_kg = 0.0;   // kg
+    double time_s = 0.0;      // s, simulated time of the contact
+    // The contact policy's verdict (contact_policy.h): an impact (counted and logged) or a slower
+    // contact the scheme resolves as a rebound. A law with a memory of hits counts only impacts.
+    bool impact = false;
 };
 
 struct SurfaceContactResponse {
@@ -44,6 +49,12 @@ struct ShotShotInput {
     Vec3 v_i;                 // m/s
     Vec3 v_j;                 // m/s
     Vec3 normal;              // unit, from the centre of i to the centre of j
+    ShotShotMode mode = ShotShotMode::law;
+    int shot_i = -1, shot_j = -1;  // indices of the two shot
+    double overlap_m = 0.0;   // m, 2 R - distance between the centres (0 at an exact touch)
+    double shot_radius_m = 0.0;  // m, both shot
+    double shot_mass_kg = 0.0;   // kg, both shot
+    double time_s = 0.0;      // s
 };
 
 struct ShotShotResponse {
@@ -55,23 +66,31 @@ struct ShotShotResponse {
 
 // The impact line (contact::is_impact) and the other rules both schemes follow: contact_policy.h.
 
-// A law for shot-surface contacts (static or moving mesh). Laws are immutable values.
+// A law for shot-surface contacts (static or moving mesh), built for one pair (its parameters
+// bound) and immutable: what it must remember between contacts it keeps in the per-triangle state
+// the engine stores for it (in the simulation state and the checkpoint), never in itself.
 class SurfaceLaw {
 public:
     virtual ~SurfaceLaw() = default;
     virtual std::string_view name() const = 0;
-    // An impact: the rebound. Leaves the velocity unchanged if the pair is separating.
-    virtual SurfaceContactResponse impact(const SurfaceContactInput& in, const PairCoefficients& k) const = 0;
-    // Sustained contact over dt: no normal approach remains; friction acts on the tangential part.
-    virtual SurfaceContactResponse sustain(const SurfaceContactInput& in, const PairCoefficients& k) const = 0;
+    // Doubles of state per mesh triangle of the component (0: none, and the scene stores nothing).
+    virtual int state_per_triangle() const { return 0; }
+    // A rebound: the shot's velocity after the contact. Leaves it unchanged if the pair is separating.
+    // triangle_state: the component's whole state (state_per_triangle() doubles per triangle).
+    virtual SurfaceContactResponse impact(const SurfaceContactInput& in, std::span<double> triangle_state) const = 0;
+    // Sustained contact over in.dt (resting, sliding, riding): no normal approach remains; friction
+    // acts on the tangential part.
+    virtual SurfaceContactResponse sustain(const SurfaceContactInput& in, std::span<double> triangle_state) const = 0;
 };
 
-// A law for shot-shot contacts.
+// A law for shot-shot contacts, built with its parameters bound. (Per-contact state, for laws
+// whose contacts last, such as Hertz-Mindlin's tangential spring, comes with a scheme in which
+// contacts last: in the rigid schemes every shot-shot contact is instantaneous.)
 class ShotShotLaw {
 public:
     virtual ~ShotShotLaw() = default;
     virtual std::string_view name() const = 0;
-    virtual ShotShotResponse respond(const ShotShotInput& in, const PairCoefficients& k) const = 0;
+    virtual ShotShotResponse respond(const ShotShotInput& in) const = 0;
 };
 
 }  // namespace peensim::contact

@@ -1,17 +1,61 @@
 #include "contact/law_registry.h"
 
+#include <array>
 #include <stdexcept>
 
+#include "contact/impact_history_law.h"
 #include "contact/impulse_laws.h"
 
 namespace peensim::contact {
 
-std::vector<std::string> law_names() { return {"impulse"}; }
+namespace {
 
-LawSet make_laws(std::string_view name) {
-    if (name == "impulse")
-        return {std::make_shared<ImpulseShotShotLaw>(), std::make_shared<ImpulseSurfaceLaw>()};
-    throw std::invalid_argument("unknown contact law '" + std::string(name) + "' (known: impulse)");
+std::shared_ptr<const SurfaceLaw> make_impulse_surface(const ParameterValues& v, const SurfacePair&) {
+    return std::make_shared<ImpulseSurfaceLaw>(impulse_coefficients(v));
+}
+
+std::shared_ptr<const ShotShotLaw> make_impulse_shot_shot(const ParameterValues& v) {
+    return std::make_shared<ImpulseShotShotLaw>(impulse_coefficients(v));
+}
+
+std::shared_ptr<const SurfaceLaw> make_impact_history(const ParameterValues& v, const SurfacePair& pair) {
+    if (!pair.yield_stress_pa)
+        throw std::invalid_argument("law 'impact-history' sizes its marks by the dent diameter (eq. 10), which needs the yield "
+                                    "stress of material '" + pair.material + "': add materials." + pair.material + ".yield_stress");
+    ImpactHistoryGeometry g;
+    g.corners_m = pair.triangle_corners_m();
+    g.shot_diameter_m = pair.shot_diameter_m;
+    g.shot_density_kg_per_m3 = pair.shot_density_kg_per_m3;
+    g.yield_stress_pa = *pair.yield_stress_pa;
+    return std::make_shared<ImpactHistoryLaw>(v.list(0), v.scalar(1), v.scalar(2), g);
+}
+
+const std::array kCatalogue{
+    LawEntry{"impulse",
+             "Rigid-sphere impulses (reference eq. 2-5): restitution C0 below V0, C0 (V/V0)^-1/4 above; tangential "
+             "restitution mu; Coulomb friction f in sustained contact.",
+             impulse_parameters(), impulse_parameters().first(2), make_impulse_surface, make_impulse_shot_shot},
+    LawEntry{"impact-history",
+             "Impact-history restitution (reference section 4): each impact marks the triangles within one dent "
+             "diameter (eq. 10) of its point; the next impact there rebounds with restitution_by_hits[marks]. For "
+             "`shot-<material>` pairs whose material has a yield stress.",
+             impact_history_parameters(), {}, make_impact_history, nullptr},
+};
+
+}  // namespace
+
+std::span<const LawEntry> law_catalogue() { return kCatalogue; }
+
+const LawEntry* find_law(std::string_view name) {
+    for (const LawEntry& e : kCatalogue)
+        if (e.name == name) return &e;
+    return nullptr;
+}
+
+std::string law_names_text() {
+    std::string out;
+    for (const LawEntry& e : kCatalogue) out += (out.empty() ? "" : ", ") + std::string(e.name);
+    return out;
 }
 
 }  // namespace peensim::contact

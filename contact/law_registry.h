@@ -1,25 +1,49 @@
-// Maps scene names of contact laws to law instances, so that later laws (soft-sphere
-// Hertz-Mindlin, impact-history restitution) plug in without touching the engine.
+// The one place contact laws are registered: their scene names, the parameters each declares for
+// the pairs it serves, and how each is built for a pair. A scene selects a law per pair
+// (`contacts.<pair>.law`); the engine only sees the built laws (contact_law.h).
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "contact/contact_law.h"
+#include "contact/law_parameters.h"
 
 namespace peensim::contact {
 
-struct LawSet {
-    std::shared_ptr<const ShotShotLaw> shot_shot;
-    std::shared_ptr<const SurfaceLaw> surface;
+// What a surface law may be built from besides its parameter values: the pair it serves.
+struct SurfacePair {
+    // Three corners per mesh triangle of the component, its own frame (m); built only for a law
+    // that asks (the impulse law does not: a scene pays only for what it uses).
+    std::function<std::vector<Vec3>()> triangle_corners_m;
+    double shot_diameter_m = 0.0;           // m
+    double shot_density_kg_per_m3 = 0.0;    // kg/m3
+    std::optional<double> yield_stress_pa;  // Pa, of the component's material, if the scene gives it
+    std::string material;                   // the component's material (for messages)
 };
 
-// Names a scene may use; the first is the default.
-std::vector<std::string> law_names();
+struct LawEntry {
+    std::string_view name;
+    std::string_view doc;
+    std::span<const LawParameter> surface_parameters;    // for `shot-<material>` pairs
+    std::span<const LawParameter> shot_shot_parameters;  // for `shot-shot`; empty: not a shot-shot law
+    // Throw std::invalid_argument saying what the pair lacks (the caller adds the scene location).
+    std::shared_ptr<const SurfaceLaw> (*make_surface)(const ParameterValues&, const SurfacePair&);
+    std::shared_ptr<const ShotShotLaw> (*make_shot_shot)(const ParameterValues&);  // nullptr when not a shot-shot law
+};
 
-// Throws std::invalid_argument for an unknown name (the caller adds the scene location).
-LawSet make_laws(std::string_view name);
+// Every law, the default ("impulse") first.
+std::span<const LawEntry> law_catalogue();
+
+// The entry of a law name, or nullptr.
+const LawEntry* find_law(std::string_view name);
+
+// "impulse, impact-history".
+std::string law_names_text();
 
 }  // namespace peensim::contact

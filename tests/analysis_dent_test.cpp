@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "analysis/dent.h"
+#include "contact/dent.h"
 
 namespace peensim {
 namespace {

@@ -1,6 +1,6 @@
 // The contact laws of contact/ against hand-computed values (reference eq. 2-5): restitution in
 // both regimes, shot-shot impulses, static and moving surface impacts, sustained-contact friction,
-// and the law registry.
+// (the law catalogue and the stateful laws: contact_law_catalogue_test.cpp).
 //
 // Tolerances: the hand values below are chosen so that the laws' arithmetic is exact or a few
 // roundings away from it; 1e-15 m/s (a few ulp of speeds of order 1 m/s) is the bound used
@@ -48,8 +48,7 @@ TEST(ContactRestitution, PlasticFromV0On) {
 
 TEST(ContactShotShot, HeadOnElastic) {
     // dV = (v_j - v_i).n = -3; C = 0.5 (V0 10 m/s: elastic): impulse/m = 0.5 (1.5) (-3) n = -2.25 n.
-    const ImpulseShotShotLaw law;
-    const ShotShotResponse r = law.respond({Vec3(2, 0, 0), Vec3(-1, 0, 0), Vec3(1, 0, 0)}, {0.5, 10.0, 0.0, 0.0});
+    const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.5, 10.0, 0.0, 0.0}).respond({Vec3(2, 0, 0), Vec3(-1, 0, 0), Vec3(1, 0, 0)});
     EXPECT_TRUE(r.approaching);
     EXPECT_EQ(r.vn_in, 3.0);
     EXPECT_EQ(r.v_i, Vec3(-0.25, 0, 0));
@@ -58,8 +57,7 @@ TEST(ContactShotShot, HeadOnElastic) {
 
 TEST(ContactShotShot, HeadOnPlastic) {
     // dV = -8 = 16 V0: C = 0.45; impulse/m = 0.5 (1.45) (-8) = -5.8.
-    const ImpulseShotShotLaw law;
-    const ShotShotResponse r = law.respond({Vec3(4, 0, 0), Vec3(-4, 0, 0), Vec3(1, 0, 0)}, {0.9, 0.5, 0.0, 0.0});
+    const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({Vec3(4, 0, 0), Vec3(-4, 0, 0), Vec3(1, 0, 0)});
     EXPECT_EQ(r.vn_in, 8.0);
     expect_vec_near(r.v_i, Vec3(-1.8, 0, 0), kUlpSpeed, "v_i");
     expect_vec_near(r.v_j, Vec3(1.8, 0, 0), kUlpSpeed, "v_j");
@@ -68,8 +66,7 @@ TEST(ContactShotShot, HeadOnPlastic) {
 TEST(ContactShotShot, Oblique) {
     // n = (0.6, 0.8, 0); v_i = (1, 0, 0.5), v_j = (0, -1, 0.25): dV = -0.6 - 0.8 = -1.4.
     // C = 1: impulse/m = -1.4 n = (-0.84, -1.12, 0). Tangential parts (z here) unchanged.
-    const ImpulseShotShotLaw law;
-    const ShotShotResponse r = law.respond({Vec3(1, 0, 0.5), Vec3(0, -1, 0.25), Vec3(0.6, 0.8, 0)}, {1.0, 100.0, 0.0, 0.0});
+    const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{1.0, 100.0, 0.0, 0.0}).respond({Vec3(1, 0, 0.5), Vec3(0, -1, 0.25), Vec3(0.6, 0.8, 0)});
     EXPECT_NEAR(r.vn_in, 1.4, kUlpSpeed);
     expect_vec_near(r.v_i, Vec3(0.16, -1.12, 0.5), kUlpSpeed, "v_i");
     expect_vec_near(r.v_j, Vec3(0.84, 0.12, 0.25), kUlpSpeed, "v_j");
@@ -80,14 +77,13 @@ TEST(ContactShotShot, Oblique) {
 TEST(ContactShotShot, MomentumConservedToRoundOff) {
     // Random pairs in both regimes: the sum of velocities is unchanged to a few roundings of the
     // largest velocity involved (|error| <= ~4 ulp; asserted 1e-15 relative).
-    const ImpulseShotShotLaw law;
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(-10.0, 10.0);
     int approaching = 0;
     for (int k = 0; k < 10000; ++k) {
         const Vec3 vi(u(rng), u(rng), u(rng)), vj(u(rng), u(rng), u(rng));
         const Vec3 n = Vec3(u(rng), u(rng), u(rng)).normalized();
-        const ShotShotResponse r = law.respond({vi, vj, n}, {0.9, 0.5, 0.0, 0.0});
+        const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({vi, vj, n});
         const double scale = std::max({vi.norm(), vj.norm(), r.v_i.norm(), r.v_j.norm()});
         EXPECT_LE(((r.v_i + r.v_j) - (vi + vj)).norm(), 1e-15 * scale) << "case " << k;
         approaching += r.approaching;
@@ -103,22 +99,20 @@ TEST(ContactShotShot, MomentumConservedToRoundOff) {
 }
 
 TEST(ContactShotShot, SeparatingPairUnchanged) {
-    const ImpulseShotShotLaw law;
     const Vec3 vi(-1, 0.3, 0), vj(2, 0, 1);
-    const ShotShotResponse r = law.respond({vi, vj, Vec3(1, 0, 0)}, {0.9, 0.5, 0.0, 0.0});
+    const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({vi, vj, Vec3(1, 0, 0)});
     EXPECT_FALSE(r.approaching);
     EXPECT_EQ(r.v_i, vi);
     EXPECT_EQ(r.v_j, vj);
     EXPECT_EQ(r.vn_in, 0.0);
     // Grazing (dV . n == 0) is not an approach either.
-    const ShotShotResponse g = law.respond({Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(1, 0, 0)}, {0.9, 0.5, 0.0, 0.0});
+    const ShotShotResponse g = ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(1, 0, 0)});
     EXPECT_FALSE(g.approaching);
 }
 
 TEST(ContactSurfaceImpact, StaticEq4Elastic) {
     // V = (1, 0, -2), n = +z, mu 0.5, C = 0.8 (V0 5 m/s): V' = (0.5, 0, 1.6).
-    const ImpulseSurfaceLaw law;
-    const SurfaceContactResponse r = law.impact({Vec3(1, 0, -2), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {0.8, 5.0, 0.5, 0.1});
+    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.8, 5.0, 0.5, 0.1}).impact({Vec3(1, 0, -2), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
     EXPECT_TRUE(r.approaching);
     EXPECT_EQ(r.v_shot, Vec3(0.5, 0, 1.6));
     EXPECT_EQ(r.vn_in, 2.0);
@@ -128,8 +122,7 @@ TEST(ContactSurfaceImpact, StaticEq4Elastic) {
 
 TEST(ContactSurfaceImpact, StaticEq4Plastic) {
     // V = (0, 3, -8): vn 8 = 16 V0 -> C = 0.45; mu 0.5: V' = (0, 1.5, 3.6).
-    const ImpulseSurfaceLaw law;
-    const SurfaceContactResponse r = law.impact({Vec3(0, 3, -8), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {0.9, 0.5, 0.5, 0.1});
+    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.5, 0.1}).impact({Vec3(0, 3, -8), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
     expect_vec_near(r.v_shot, Vec3(0, 1.5, 3.6), kUlpSpeed, "v'");
     EXPECT_EQ(r.vn_in, 8.0);
     EXPECT_EQ(r.vt_in, 3.0);
@@ -139,8 +132,7 @@ TEST(ContactSurfaceImpact, StaticEq4Plastic) {
 TEST(ContactSurfaceImpact, StaticEq4TiltedNormal) {
     // n = (0, 0.6, 0.8), V = (0, 0, -5): V.n = -4, normal part (0, -2.4, -3.2), tangential
     // (0, 2.4, -1.8); mu 0.5, C 0.5: V' = (0, 1.2, -0.9) + 2 (0, 0.6, 0.8) = (0, 2.4, 0.7).
-    const ImpulseSurfaceLaw law;
-    const SurfaceContactResponse r = law.impact({Vec3(0, 0, -5), Vec3::Zero(), Vec3(0, 0.6, 0.8), 0.0, 1e-4}, {0.5, 100.0, 0.5, 0.1});
+    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.5, 100.0, 0.5, 0.1}).impact({Vec3(0, 0, -5), Vec3::Zero(), Vec3(0, 0.6, 0.8), 0.0, 1e-4}, {});
     expect_vec_near(r.v_shot, Vec3(0, 2.4, 0.7), 4 * kUlpSpeed, "v'");
     EXPECT_NEAR(r.vn_in, 4.0, kUlpSpeed);
     EXPECT_NEAR(r.vt_in, 3.0, kUlpSpeed);
@@ -149,8 +141,7 @@ TEST(ContactSurfaceImpact, StaticEq4TiltedNormal) {
 TEST(ContactSurfaceImpact, MovingSurfaceEq5) {
     // Sonotrode moving up at 2 m/s, V = (1, 0, -6): dV = (1, 0, -8), 16 V0 -> C = 0.45,
     // mu 0.71: V' = (0, 0, 2) + 0.71 (1, 0, 0) + 0.45 * 8 (0, 0, 1) = (0.71, 0, 5.6).
-    const ImpulseSurfaceLaw law;
-    const SurfaceContactResponse r = law.impact({Vec3(1, 0, -6), Vec3(0, 0, 2), Vec3::UnitZ(), 0.0, 1e-4}, {0.9, 0.5, 0.71, 0.1});
+    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).impact({Vec3(1, 0, -6), Vec3(0, 0, 2), Vec3::UnitZ(), 0.0, 1e-4}, {});
     EXPECT_TRUE(r.approaching);
     expect_vec_near(r.v_shot, Vec3(0.71, 0, 5.6), kUlpSpeed, "v'");
     EXPECT_EQ(r.vn_in, 8.0);
@@ -159,22 +150,21 @@ TEST(ContactSurfaceImpact, MovingSurfaceEq5) {
 
     // A surface moving along itself (a rotating part's rim): V = (0, 0, -1), V_s = (0.5, 0.2, 0),
     // dV_t = (-0.5, -0.2, 0); mu 0.8, C 0.9: V' = V_s + 0.8 dV_t + 0.9 (0, 0, 1) = (0.1, 0.04, 0.9).
-    const SurfaceContactResponse s = law.impact({Vec3(0, 0, -1), Vec3(0.5, 0.2, 0), Vec3::UnitZ(), 0.0, 1e-4}, {0.9, 10.0, 0.8, 0.1});
+    const SurfaceContactResponse s = ImpulseSurfaceLaw(PairCoefficients{0.9, 10.0, 0.8, 0.1}).impact({Vec3(0, 0, -1), Vec3(0.5, 0.2, 0), Vec3::UnitZ(), 0.0, 1e-4}, {});
     expect_vec_near(s.v_shot, Vec3(0.1, 0.04, 0.9), kUlpSpeed, "v' (tangential surface motion)");
     EXPECT_NEAR(s.vt_in, std::sqrt(0.29), kUlpSpeed);
     EXPECT_EQ(s.vn_in, 1.0);
 }
 
 TEST(ContactSurfaceImpact, SeparatingUnchanged) {
-    const ImpulseSurfaceLaw law;
     const PairCoefficients k{0.9, 0.5, 0.71, 0.1};
     // Moving away from a still surface.
-    const SurfaceContactResponse a = law.impact({Vec3(1, 0, 2), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, k);
+    const SurfaceContactResponse a = ImpulseSurfaceLaw(PairCoefficients(k)).impact({Vec3(1, 0, 2), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
     EXPECT_FALSE(a.approaching);
     EXPECT_EQ(a.v_shot, Vec3(1, 0, 2));
     EXPECT_EQ(a.vn_out, 0.0);
     // Falling, but the surface falls faster (the sonotrode's downstroke): separating.
-    const SurfaceContactResponse b = law.impact({Vec3(0, 0, -1), Vec3(0, 0, -2), Vec3::UnitZ(), 0.0, 1e-4}, k);
+    const SurfaceContactResponse b = ImpulseSurfaceLaw(PairCoefficients(k)).impact({Vec3(0, 0, -1), Vec3(0, 0, -2), Vec3::UnitZ(), 0.0, 1e-4}, {});
     EXPECT_FALSE(b.approaching);
     EXPECT_EQ(b.v_shot, Vec3(0, 0, -1));
 }
@@ -183,8 +173,7 @@ TEST(ContactSurfaceSustain, ApproachStoppedAndCoulombSlowdown) {
     // Sliding at 0.5 m/s along (0.6, 0.8, 0), pressed by g = 9.81 m/s2 for dt = 0.01 s, f = 0.1:
     // the tangential speed drops by f g dt = 0.00981 m/s exactly in its own direction; the
     // approach (-0.1 m/s) is removed.
-    const ImpulseSurfaceLaw law;
-    const SurfaceContactResponse r = law.sustain({Vec3(0.3, 0.4, -0.1), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {0.9, 0.5, 0.71, 0.1});
+    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).sustain({Vec3(0.3, 0.4, -0.1), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
     const double vt = 0.5 - 0.1 * 9.81 * 0.01;
     expect_vec_near(r.v_shot, Vec3(0.6 * vt, 0.8 * vt, 0.0), kUlpSpeed, "v'");
     EXPECT_EQ(r.v_shot.z(), 0.0);
@@ -196,20 +185,18 @@ TEST(ContactSurfaceSustain, ApproachStoppedAndCoulombSlowdown) {
 
 TEST(ContactSurfaceSustain, FrictionNeverReverses) {
     // 0.005 m/s of sliding against a possible slowdown of 0.00981 m/s: it stops, it does not turn back.
-    const ImpulseSurfaceLaw law;
-    const SurfaceContactResponse r = law.sustain({Vec3(0.005, 0, 0), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {0.9, 0.5, 0.71, 0.1});
+    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).sustain({Vec3(0.005, 0, 0), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
     EXPECT_EQ(r.v_shot, Vec3::Zero());
 }
 
 TEST(ContactSurfaceSustain, SeparationKeptNoPullNoFrictionWithoutPressing) {
-    const ImpulseSurfaceLaw law;
     const PairCoefficients k{0.9, 0.5, 0.71, 0.1};
     // Leaving the surface at 0.2 m/s: kept.
-    const SurfaceContactResponse a = law.sustain({Vec3(0.1, 0, 0.2), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, k);
+    const SurfaceContactResponse a = ImpulseSurfaceLaw(PairCoefficients(k)).sustain({Vec3(0.1, 0, 0.2), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
     EXPECT_EQ(a.v_shot.z(), 0.2);
     EXPECT_FALSE(a.approaching);
     // A negative pressing acceleration (the surface pulling away faster than g) gives no friction.
-    const SurfaceContactResponse b = law.sustain({Vec3(0.1, 0, 0), Vec3::Zero(), Vec3::UnitZ(), -5.0, 0.01}, k);
+    const SurfaceContactResponse b = ImpulseSurfaceLaw(PairCoefficients(k)).sustain({Vec3(0.1, 0, 0), Vec3::Zero(), Vec3::UnitZ(), -5.0, 0.01}, {});
     EXPECT_EQ(b.v_shot, Vec3(0.1, 0, 0));
 }
 
@@ -217,8 +204,7 @@ TEST(ContactSurfaceSustain, MovingSurface) {
     // The surface rises at 1 m/s, the shot at 0.5 m/s with 0.1 m/s sideways: relative (0.1, 0, -0.5).
     // The approach is stopped (shot rides at the surface's 1 m/s) and friction f a dt = 0.1 * 20 * 0.01
     // = 0.02 m/s is taken off the relative sliding speed.
-    const ImpulseSurfaceLaw law;
-    const SurfaceContactResponse r = law.sustain({Vec3(0.1, 0, 0.5), Vec3(0, 0, 1), Vec3::UnitZ(), 20.0, 0.01}, {0.9, 0.5, 0.71, 0.1});
+    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).sustain({Vec3(0.1, 0, 0.5), Vec3(0, 0, 1), Vec3::UnitZ(), 20.0, 0.01}, {});
     expect_vec_near(r.v_shot, Vec3(0.08, 0, 1.0), kUlpSpeed, "v'");
 }
 
@@ -227,26 +213,6 @@ TEST(ContactImpactRule, ApproachSpeedAgainstTheImpactSpeed) {
     EXPECT_TRUE(is_impact(0.1, 0.1));  // at the threshold: an impact; slower: sustained contact
     EXPECT_FALSE(is_impact(0.1 * (1.0 - 1e-15), 0.1));
     EXPECT_FALSE(is_impact(0.0, 0.05));
-}
-
-TEST(ContactLawRegistry, NamesAndInstances) {
-    const std::vector<std::string> names = law_names();
-    ASSERT_EQ(names.size(), 1u);
-    EXPECT_EQ(names.front(), "impulse");
-    for (const std::string& name : names) {
-        const LawSet laws = make_laws(name);
-        ASSERT_NE(laws.shot_shot, nullptr);
-        ASSERT_NE(laws.surface, nullptr);
-        EXPECT_EQ(laws.shot_shot->name(), name);
-        EXPECT_EQ(laws.surface->name(), name);
-    }
-    try {
-        make_laws("hertz");
-        FAIL() << "an unknown law name must throw";
-    } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find("hertz"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("impulse"), std::string::npos) << e.what();
-    }
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ const BadScene catalogue[] = {
     {"duplicate_component.yaml", 15, "components[2].name", "duplicate component name 'chamber'"},
     {"no_chamber.yaml", 6, "components", "expected at least one chamber"},
     {"vibration_on_chamber.yaml", 15, "components[1].vibration", "vibration is only for the sonotrode"},
-    {"shot_shot_friction.yaml", 16, "contacts.shot-shot.f", "expected only C0 and V0"},
+    {"shot_shot_friction.yaml", 16, "contacts.shot-shot.f", "not a parameter of law 'impulse' between shot; expected law, C0, V0"},
     {"contact_unknown_material.yaml", 16, "contacts.shot-steel", "unknown contact pair 'shot-steel'"},
     {"zero_axis.yaml", 11, "components[0].vibration.axis", "expected a direction, got the zero vector"},
     {"density_and_material.yaml", 3, "shot.material", "either shot.density or shot.material, not both"},

@@ -123,12 +123,12 @@ TEST(SceneParser, FullSceneReadsInSI) {
     EXPECT_EQ(*s.materials[2].yield_stress_pa, 300e6);
 
     ASSERT_EQ(s.contacts.size(), 3u);
-    EXPECT_EQ(contact(s, "shot-shot").C0, 0.95);
-    EXPECT_EQ(contact(s, "shot-shot").V0_m_per_s, 2.0);
-    EXPECT_EQ(contact(s, "shot-titanium").mu, 0.9);
-    EXPECT_EQ(contact(s, "shot-titanium").f, 0.2);
-    EXPECT_EQ(contact(s, "default").C0, 0.85);
-    EXPECT_EQ(contact(s, "default").V0_m_per_s, 0.4);
+    EXPECT_EQ(contact(s, "shot-shot").value("C0"), 0.95);
+    EXPECT_EQ(contact(s, "shot-shot").value("V0"), 2.0);
+    EXPECT_EQ(contact(s, "shot-titanium").value("mu"), 0.9);
+    EXPECT_EQ(contact(s, "shot-titanium").value("f"), 0.2);
+    EXPECT_EQ(contact(s, "default").value("C0"), 0.85);
+    EXPECT_EQ(contact(s, "default").value("V0"), 0.4);
 
     const ComponentDesc& sono = component(s, "sonotrode");
     EXPECT_EQ(sono.role, ComponentRole::sonotrode);
@@ -181,10 +181,10 @@ TEST(SceneParser, DefaultsAreFilledIn) {
     EXPECT_TRUE(s.materials.empty());
     ASSERT_EQ(s.contacts.size(), 1u);
     EXPECT_EQ(s.contacts[0].key, "default");
-    EXPECT_EQ(s.contacts[0].C0, 0.9);
-    EXPECT_EQ(s.contacts[0].V0_m_per_s, 0.5);
-    EXPECT_EQ(s.contacts[0].mu, 0.71);
-    EXPECT_EQ(s.contacts[0].f, 0.1);
+    EXPECT_EQ(s.contacts[0].value("C0"), 0.9);
+    EXPECT_EQ(s.contacts[0].value("V0"), 0.5);
+    EXPECT_EQ(s.contacts[0].value("mu"), 0.71);
+    EXPECT_EQ(s.contacts[0].value("f"), 0.1);
     const ComponentDesc& sono = component(s, "sono");
     EXPECT_EQ(sono.mesh_unit_m, 1.0);
     EXPECT_EQ(sono.translation_m, Vec3::Zero());
@@ -207,12 +207,12 @@ contacts:
 )";
     const SceneDescription s = parse_scene_text(text, virtual_path);
     ASSERT_EQ(s.contacts.size(), 3u);
-    EXPECT_EQ(contact(s, "shot-steel").C0, 0.7);
-    EXPECT_EQ(contact(s, "shot-steel").V0_m_per_s, 0.2);
-    EXPECT_EQ(contact(s, "shot-steel").mu, 0.5);
-    EXPECT_EQ(contact(s, "shot-steel").f, 0.3);
-    EXPECT_EQ(contact(s, "shot-shot").C0, 0.6);
-    EXPECT_EQ(contact(s, "shot-shot").V0_m_per_s, 3.0);
+    EXPECT_EQ(contact(s, "shot-steel").value("C0"), 0.7);
+    EXPECT_EQ(contact(s, "shot-steel").value("V0"), 0.2);
+    EXPECT_EQ(contact(s, "shot-steel").value("mu"), 0.5);
+    EXPECT_EQ(contact(s, "shot-steel").value("f"), 0.3);
+    EXPECT_EQ(contact(s, "shot-shot").value("C0"), 0.6);
+    EXPECT_EQ(contact(s, "shot-shot").value("V0"), 3.0);
 }
 
 TEST(SceneParser, RotationFormsAgree) {
@@ -266,7 +266,7 @@ TEST(SceneParser, OverridesApplyBeforeValidation) {
     EXPECT_EQ(s.output.logged_components, std::vector<std::string>{"gear"});
     EXPECT_EQ(s.process.gravity_m_per_s2, Vec3(0, 0, -1.62));
     EXPECT_EQ(*s.materials[1].density_kg_per_m3, 4430.0);
-    EXPECT_EQ(contact(s, "shot-shot").C0, 0.5);
+    EXPECT_EQ(contact(s, "shot-shot").value("C0"), 0.5);
     EXPECT_EQ(s.name, "renamed");
 }
 
@@ -335,7 +335,12 @@ TEST(SceneParser, ResolvedSceneReadsBackTheSame) {
         ASSERT_EQ(second.contacts.size(), first.contacts.size());
         for (std::size_t i = 0; i < first.contacts.size(); ++i) {
             EXPECT_EQ(second.contacts[i].key, first.contacts[i].key);
-            EXPECT_EQ(second.contacts[i].mu, first.contacts[i].mu);
+            EXPECT_EQ(second.contacts[i].law, first.contacts[i].law);
+            ASSERT_EQ(second.contacts[i].parameters.size(), first.contacts[i].parameters.size());
+            for (std::size_t k = 0; k < first.contacts[i].parameters.size(); ++k) {
+                EXPECT_EQ(second.contacts[i].parameters[k].name, first.contacts[i].parameters[k].name);
+                EXPECT_EQ(second.contacts[i].parameters[k].values, first.contacts[i].parameters[k].values);
+            }
         }
         EXPECT_EQ(second.output.logged_components, first.output.logged_components);
     }

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
-#include "analysis/dent.h"
+#include "contact/dent.h"
 #include "analysis/impact_stream.h"
 #include "app/analysis_plots.h"
 #include "app/analysis_report.h"

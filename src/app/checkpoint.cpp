@@ -9,6 +9,7 @@
 #include "common/byte_stream.h"
 #include "common/fnv_hash.h"
 #include "common/input_error.h"
+#include "engine/law_input.h"
 #include "output/atomic_file.h"
 
 namespace peensim {
@@ -16,8 +17,9 @@ namespace peensim {
 namespace {
 
 // The last character is the format version: 2 added the slow-contact counters and the per-shot
-// in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes).
-constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '3'};
+// in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes); 4 the contact
+// laws' per-triangle state.
+constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '4'};
 
 // Any single flipped bit (and almost any damage) changes it.
 std::uint64_t checksum(std::string_view bytes) { return fnv1a64(bytes); }
@@ -45,6 +47,8 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
     w.put_vector(s.impacts_per_component);
     w.put_vector(s.slow_contacts_per_component);
     w.put(s.shot_shot_slow_contacts);
+    w.put<std::uint64_t>(s.law_state.size());
+    for (const std::vector<double>& v : s.law_state) w.put_vector(v);
     w.put<std::uint64_t>(s.lost.size());
     for (const LostShot& l : s.lost) {
         w.put(l.shot);
@@ -100,6 +104,9 @@ Checkpoint load_checkpoint(const std::string& path) {
     s.impacts_per_component = r.get_vector<std::uint64_t>();
     s.slow_contacts_per_component = r.get_vector<std::uint64_t>();
     s.shot_shot_slow_contacts = r.get<std::uint64_t>();
+    const auto law_components = r.get<std::uint64_t>();
+    if (law_components > bytes.size()) throw damaged(path, "a law state for more components than the file has bytes");
+    for (std::uint64_t k = 0; k < law_components; ++k) s.law_state.push_back(r.get_vector<double>());
     const auto lost = r.get<std::uint64_t>();
     for (std::uint64_t k = 0; k < lost; ++k) {
         LostShot l;
@@ -143,6 +150,14 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
         throw damaged(path, "impact counters for " + std::to_string(s.impacts_per_component.size()) + " components, the scene has " +
                                 std::to_string(model.components.size()));
     if (c.normal_speeds.size() != logged_components) throw damaged(path, "logged components differ from the scene");
+    const std::vector<std::vector<double>> fresh = fresh_law_state(model);
+    if (s.law_state.size() != fresh.size()) throw damaged(path, "contact law state for the wrong number of components");
+    for (std::size_t k = 0; k < fresh.size(); ++k) {
+        if (s.law_state[k].size() != fresh[k].size())
+            throw damaged(path, "component " + model.components[k].name + ": contact law state of the wrong length");
+        for (double x : s.law_state[k])
+            if (!std::isfinite(x)) throw damaged(path, "component " + model.components[k].name + ": contact law state that is not a number");
+    }
     for (std::size_t i = 0; i < n; ++i) {
         if (s.shots.active[i] > 1 || s.shots.in_flight[i] > 1) throw damaged(path, "shot " + std::to_string(i) + ": flags not 0 or 1");
         if (!s.shots.active[i]) continue;

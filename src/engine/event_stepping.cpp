@@ -6,6 +6,7 @@
 
 #include "collision/surface_clearance.h"
 #include "engine/impact_recording.h"
+#include "engine/law_input.h"
 #include "engine/loss_diagnosis.h"
 #include "engine/time_stepping.h"
 #include "kernels/closest_point.h"
@@ -32,11 +33,6 @@ constexpr double kMaxWindowTravel = 64.0;   // radii: windows double up to this 
 constexpr double kMinBoxHorizon = 1e-7;     // s, a box horizon moves time on at least this much
 constexpr double kCollapseWindow = 1e-6;    // s, TC rule: a shot-shot collision this soon after one is elastic
 constexpr int kMaxQuickGrazes = 4;          // grazes each within kCollapseWindow of the last, then sustained contact
-// m/s: a rebound from the accelerating plate slower than this is a ride. Every faster rebound is
-// followed exactly, however soon the plate catches it again (the chatter sequence, each impact
-// counted). Below this the gap would open by less than ~1e-12 m (u^2 / 2a at a plate acceleration
-// a ~ 4e5 m/s2), the rounding of a contact time, so nothing slower can be resolved anyway.
-constexpr double kRideSpeed = 1e-3;
 constexpr double kTouchDistance = 1e-9;     // of R: a gap this small is a touch (conservative advancement stops there)
 constexpr double kContactSlack = 1e-6;      // of R: a shot this close to a surface or a shot touches it
 // of R: a shot in sustained contact this close to a surface stays on it. Rolling over a curved
@@ -707,7 +703,7 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
             predict(i, t);
             return;
         case WallKind::leave: lose(i, t, state, false); return;
-        case WallKind::launch: launch(i, t); return;
+        case WallKind::launch: launch(i, t, state); return;
         case WallKind::substep: substep(i, t, state, impacts); return;
         case WallKind::contact: break;
     }
@@ -738,8 +734,11 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         // A rebound, followed exactly however slow (down to the resting speed). Only an approach at
         // least the impact speed is an impact (logged); a slower one is a slow contact, counted once
         // if it ends a flight, like time stepping's (which stops such a shot instead of following it).
-        const contact::SurfaceContactResponse r = model_->laws.surface->impact({v, vs, n, 0.0, 0.0}, comp.coefficients);
-        if (contact::is_impact(approach, impact_speed_)) {
+        const bool impact = contact::is_impact(approach, impact_speed_);
+        const Pose pose = comp.kinematics.pose(epoch_, t);
+        const ContactSite site{i, w.component, w.mesh_triangle, &pose, w.point, absolute_seconds(t), 0.0};
+        const contact::SurfaceContactResponse r = comp.law->impact(surface_input(*model_, site, v, vs, n, impact), law_state(state, c));
+        if (impact) {
             record_impact(i, w.component, t, w, v, r, state, impacts);
             s.in_flight = true;  // sent off by an impact (time stepping's rule: whatever the rebound)
         } else {
@@ -749,7 +748,7 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         if (w.face) {
             // Riding (pitfall 1): the chatter sequence ends in a ride instead of a Zeno sequence.
             const double closing = (w.surface_acceleration - g_).dot(n);
-            if (closing > 0.0 && r.vn_out < std::max(kRideSpeed, resting_speed_)) {
+            if (contact::rebound_rides(closing, r.vn_out, resting_speed_)) {
                 start_ride(i, t, w, p, r.v_shot);
                 return;
             }
@@ -845,7 +844,7 @@ void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& 
     pairs_and_schedule(i, t);
 }
 
-void EventStepping::launch(int i, double t) {
+void EventStepping::launch(int i, double t, SimulationState& state) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
     const VibratingPlane& plane = face_.plane;
     // The shot left the plate at the release, kReleaseDelayPeriods before this event
@@ -856,9 +855,17 @@ void EventStepping::launch(int i, double t) {
     // Coulomb friction over the ride: the normal impulse per unit mass is what the plate gave the
     // shot beyond gravity, and the tangential slip loses f times that (not below zero).
     const double impulse = std::max(0.0, (v_plate - plane.velocity(s.ride_start)).dot(s.ride_normal) - g_.dot(s.ride_normal) * (t_release - s.ride_start));
-    const double slip = s.ride_tangential.norm();
-    const double f = model_->sonotrode_component().coefficients.f;
-    const Vec3 tangential = slip > 0.0 ? Vec3(s.ride_tangential * std::max(0.0, 1.0 - f * impulse / slip)) : Vec3(Vec3::Zero());
+    // Through the pair's law: its sustained contact with the plate pressing the shot by
+    // impulse / ride on average over the ride.
+    const double ride = t_release - s.ride_start;
+    const auto c = static_cast<std::size_t>(model_->sonotrode);
+    const Component& comp = model_->components[c];
+    const Pose pose = comp.kinematics.pose(epoch_, s.ride_start);
+    const ContactSite site{i, model_->sonotrode, -1, &pose, position(i, s.ride_start) - R_ * s.ride_normal, absolute_seconds(s.ride_start), 0.0};
+    const Vec3 v0 = plane.velocity(s.ride_start);
+    const contact::SurfaceContactResponse r = comp.law->sustain(
+        surface_input(*model_, site, v0 + s.ride_tangential, v0, s.ride_normal, false, ride > 0.0 ? impulse / ride : 0.0, ride), law_state(state, c));
+    const Vec3 tangential = r.v_shot - v0 - (r.v_shot - v0).dot(s.ride_normal) * s.ride_normal;
     const FlightState flight = after_release({position(i, t_release), v_plate + tangential}, g_, delay);
     s.in_flight = true;
     set_flight(i, flight.position_m, flight.velocity_m_per_s, t, Motion::flying);
@@ -931,7 +938,8 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
             const bool impact = contact::is_impact(approach, impact_speed_);
             if (!impact && s.in_flight) ++state.slow_contacts_per_component[c];
             s.in_flight = impact;
-            const contact::SurfaceContactResponse r = m.laws.surface->impact({v, vs, n, 0.0, 0.0}, comp.coefficients);
+            const ContactSite site{i, static_cast<int>(c), closest.triangle, &pose, point, absolute_seconds(t), std::max(0.0, -gap)};
+            const contact::SurfaceContactResponse r = comp.law->impact(surface_input(m, site, v, vs, n, impact), law_state(state, c));
             WallEvent w;
             w.point = point;
             w.normal = n;
@@ -941,7 +949,8 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
             v = r.v_shot;
         } else {
             const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, epoch_, t).dot(n));
-            v = m.laws.surface->sustain({v, vs, n, pressing, s.substep_s}, comp.coefficients).v_shot;
+            const ContactSite site{i, static_cast<int>(c), closest.triangle, &pose, point, absolute_seconds(t), std::max(0.0, -gap)};
+            v = comp.law->sustain(surface_input(m, site, v, vs, n, false, pressing, s.substep_s), law_state(state, c)).v_shot;
         }
         if (gap < 0.0) {
             p -= gap * n;
@@ -986,18 +995,14 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state)
         }
         const double approach = -(vj - vi).dot(n);
         if (approach > 0.0) {
-            contact::PairCoefficients k = model_->shot_shot;
-            slow = approach <= resting_speed_;
             impact = contact::is_impact(approach, impact_speed_);
             if (!impact && (a.in_flight || b.in_flight)) ++state.shot_shot_slow_contacts;
-            if (slow) {
-                k.C0 = 0.0;  // sustained contact: the approach stops, nothing bounces
-            }
-            else if (t - a.last_pair_time < kCollapseWindow || t - b.last_pair_time < kCollapseWindow) {
-                k.C0 = 1.0;  // TC rule
-                ++stats_.collapse_guards;
-            }
-            const contact::ShotShotResponse resp = model_->laws.shot_shot->respond({vi, vj, n}, k);
+            const bool right_after = t - a.last_pair_time < kCollapseWindow || t - b.last_pair_time < kCollapseWindow;
+            const contact::ShotShotMode mode = contact::shot_shot_mode(approach, resting_speed_, right_after);
+            slow = mode == contact::ShotShotMode::sustained;
+            if (mode == contact::ShotShotMode::collapse_guard) ++stats_.collapse_guards;
+            const contact::ShotShotResponse resp =
+                model_->shot_shot_law->respond(shot_shot_input(*model_, i, j, vi, vj, n, mode, (pj - pi).norm(), absolute_seconds(t)));
             vi = resp.v_i;
             vj = resp.v_j;
             if (impact) ++state.shot_shot_impacts;

@@ -173,7 +173,7 @@ private:
     void collide_wall(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
     void collide_pair(int i, int j, double t, SimulationState& state);
     void start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after);
-    void launch(int i, double t);
+    void launch(int i, double t, SimulationState& state);
     // A touch without approach (v_kept: the velocity with the approach removed): sustained contact
     // if the surface presses the shot, else a graze that flies on.
     void touch(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_kept);

@@ -1,6 +1,7 @@
 #include "engine/simulation.h"
 
 #include "engine/event_stepping.h"
+#include "engine/law_input.h"
 #include "engine/time_stepping.h"
 
 namespace peensim {
@@ -25,6 +26,7 @@ SimulationState initial_state(const Model& model, const InitialShots& shots) {
     }
     state.impacts_per_component.assign(model.components.size(), 0);
     state.slow_contacts_per_component.assign(model.components.size(), 0);
+    state.law_state = fresh_law_state(model);
     return state;
 }
 

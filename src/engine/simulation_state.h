@@ -87,6 +87,9 @@ struct SimulationState {
     std::vector<std::uint64_t> slow_contacts_per_component;
     std::uint64_t shot_shot_slow_contacts = 0;
     double fastest_shot_m_per_s = 0.0;       // m/s, after the last step (feeds eq. 7)
+    // What the contact laws remember between contacts (contact_law.h): per component, its law's
+    // state_per_triangle() doubles per mesh triangle; empty for a law that keeps none.
+    std::vector<std::vector<double>> law_state;
     HealthCounters health;
     std::vector<LostShot> lost;              // one entry per lost shot (bounded by the shot count)
 };

@@ -6,6 +6,7 @@
 #include "collision/surface_clearance.h"
 #include "engine/contact_time.h"
 #include "engine/impact_recording.h"
+#include "engine/law_input.h"
 #include "engine/moving_mesh_gap.h"
 #include "kernels/closest_point.h"
 #include "kernels/plate_release.h"
@@ -17,17 +18,12 @@ namespace {
 
 double s_velocity_norm(const ShotArrays& s, std::size_t i) { return std::sqrt(s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]); }
 
-// Impacts of one shot within one step before giving up. A shot chattering on the plate takes ~45
-// rebounds (C = 0.9) from 0.3 m/s, the fastest rebound the plate catches within a gap sample, down
-// to kRideFraction's limit.
-constexpr int kMaxContactPasses = 64;
+// Contact passes of one shot within one step before giving up (health: unresolved_contacts). A
+// shot chattering on the plate is followed rebound by rebound down to contact::kRideSpeed: ~70
+// rebounds (C = 0.9) from 2 m/s, the fastest the plate catches within a step at the default travel,
+// ~700 at C = 0.99. Only a chattering shot takes more than two passes.
+constexpr int kMaxContactPasses = 1024;
 constexpr double kTouchTimeTolerance = 1e-14;      // s, precision of sampled touch times
-// -, rebounds the plate re-catches within 1/3200 of a period (16 ns at 20 kHz: below ~3 mm/s at its
-// peak acceleration) are rides. One gap sample (1/32) was too coarse: turning rebounds up to 0.3 m/s
-// into rides made the rod's mean normal speed 1.5-2 % low against the event-driven scheme and the
-// prototype. A re-catch between two samples that the search misses ends the step in sustained
-// contact with the plate, which is what a ride is.
-constexpr double kRideFraction = 3200.0;
 // Bound on how far a shot can move relative to a component in one step, in units of the eq. 7
 // travel: the shot's own travel (1) plus the surface's (1: V_max includes surface speeds). A shot
 // kicked within a step can go further; its skip counters are reset at every kick.
@@ -149,9 +145,7 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
     }
     StageTimer timer(stats_, Stage::shot_contacts);
     const double R = model_->shot_radius_m, D = 2.0 * R;
-    const contact::ShotShotLaw& law = *model_->laws.shot_shot;
-    contact::PairCoefficients plastic = model_->shot_shot;
-    plastic.C0 = 0.0;  // sustained shot-shot contact: the approach is stopped, nothing bounces
+    const contact::ShotShotLaw& law = *model_->shot_shot_law;
     // Only pairs that overlap now, in a fixed order: the result must not depend on the history
     // inside Bullet's pair cache (a resumed run continues exactly like an uninterrupted one).
     touching_.clear();
@@ -178,7 +172,11 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
         touched_[i] = touched_[j] = 1;
         if (approach > 0.0) {
             const bool impact = contact::is_impact(approach, model_->impact_speed_m_per_s);
-            const contact::ShotShotResponse r = law.respond({vi, vj, n}, impact ? model_->shot_shot : plastic);
+            // Time stepping cannot follow a rebound slower than the impact speed: sustained (the
+            // approach stops). It has no TC window: a step resolves each pair once.
+            const contact::ShotShotMode mode = contact::shot_shot_mode(approach, model_->impact_speed_m_per_s, false);
+            const double time_s = t0_.hi + (t0_.lo + u);
+            const contact::ShotShotResponse r = law.respond(shot_shot_input(*model_, a, b, vi, vj, n, mode, std::sqrt(d2), time_s));
             const Vec3 dvi = r.v_i - vi, dvj = r.v_j - vj;
             // After a velocity change at time u the rest of the flight shifts by dv * (dt - u): exact.
             s.set_velocity(i, r.v_i);
@@ -411,7 +409,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     }
     const Vec3 v_surface = kin.point_velocity(x_touch, t0_, u);
     const double approach = -(v_touch - v_surface).dot(n);
-    const contact::SurfaceLaw& law = *model_->laws.surface;
+    const contact::SurfaceLaw& law = *comp.law;
 
     touched_[i] = 1;
     if (vibrating && leaving && !(u > u_lo)) {
@@ -429,18 +427,20 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         // does: the plate that touched the shot may press it along (a ride) or come back within the
         // step. Stopping such a shot at the step end let the plate pass through it in between when
         // the step ended with the two apart.
-        contact::SurfaceContactResponse r = law.impact({v_touch, v_surface, n, 0.0, dt}, comp.coefficients);
+        const Pose pose_touch = kin.pose(t0_, u);
+        const ContactSite site{static_cast<int>(i), static_cast<int>(c), contact.mesh_triangle, &pose_touch, x_touch,
+                               t0_.hi + (t0_.lo + u), 0.0};
+        contact::SurfaceContactResponse r = law.impact(surface_input(*model_, site, v_touch, v_surface, n, impact), law_state(state, c));
         bool rides = false;
         double closing_accel = 0.0;  // m/s2
         if (vibrating) {
             // Riding the plate: while the plate accelerates into the shot faster than gravity, a slow
-            // rebound is caught again within microseconds, then again, ever slower (a Zeno sequence
-            // that never ends a step). A rebound the plate would catch within 1/kRideFraction of a
-            // period is taken as zero, and so is any rebound from a touch below the impact speed:
-            // the shot leaves with the plate and rides it until the plate decelerates faster than
-            // gravity, as the real shot does.
+            // rebound is caught again within microseconds, then again, ever slower (a Zeno sequence).
+            // Each rebound is followed, pass after pass, until one is slower than the ride speed: the
+            // shot then leaves with the plate and rides it until the plate decelerates faster than
+            // gravity, as the real shot does (the contact policy both schemes follow).
             closing_accel = kin.point_acceleration(x_touch, t0_, u).dot(n) - g.dot(n);
-            if (closing_accel > 0.0 && (!impact || r.vn_out < 0.5 * closing_accel / (kin.frequency_hz * kRideFraction))) {
+            if (contact::rebound_rides(closing_accel, r.vn_out)) {
                 r.v_shot -= r.vn_out * n;
                 r.vn_out = 0.0;
                 rides = true;
@@ -462,7 +462,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
             ++state.impacts_per_component[c];
             if (comp.logged)
                 impacts.push_back(make_impact_record(t0_.hi + (t0_.lo + u), static_cast<int>(i), static_cast<int>(c), contact.triangle,
-                                                     kin.pose(t0_, u), x_touch, v_touch, v_surface, r));
+                                                     pose_touch, x_touch, v_touch, v_surface, r));
         }
         if (rides) {
             ++stats_.rides;
@@ -513,9 +513,13 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     const Vec3 slip = rel - rel.dot(n) * n;
     // The normal impulse per unit mass is what the plate gave the shot beyond gravity.
     const double impulse = std::max(0.0, (plate_v1 - plate_v0).dot(n) - g.dot(n) * ride);
-    const double f = comp.coefficients.f;
-    const double slip_speed = slip.norm();
-    const Vec3 kept = slip_speed > 0.0 ? Vec3(slip * std::max(0.0, 1.0 - f * impulse / slip_speed)) : Vec3(Vec3::Zero());
+    // Friction over the ride through the pair's law: its sustained contact with the plate pressing
+    // the shot by impulse / ride on average over the ride.
+    const Pose pose_touch = kin.pose(t0_, u);
+    const ContactSite site{static_cast<int>(i), static_cast<int>(c), -1, &pose_touch, centre - model_->shot_radius_m * n, t0_.hi + (t0_.lo + u), 0.0};
+    const contact::SurfaceContactResponse r =
+        comp.law->sustain(surface_input(*model_, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0, ride), law_state(state, c));
+    const Vec3 kept = r.v_shot - plate_v0 - (r.v_shot - plate_v0).dot(n) * n;
     const Vec3 c_release = centre + kin.axis * (kin.displacement(t0_, u_release) - kin.displacement(t0_, u)) + slip * ride;
     const Vec3 v_launch = plate_v1 + kept;
     const double fly = dt - u_release;
@@ -553,7 +557,11 @@ void TimeStepping::sustain_contact(SimulationState& state, std::size_t i, std::s
     const Vec3 g = model_->gravity_m_per_s2;
     const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
     const double pressing = std::max(0.0, -g.dot(n) + kin.point_acceleration(contact.point, t0_, dt).dot(n));
-    const contact::SurfaceContactResponse r = model_->laws.surface->sustain({v1, v_surface_end, n, pressing, dt}, comp.coefficients);
+    const Pose pose_end = kin.pose(t0_, dt);
+    const ContactSite site{static_cast<int>(i), static_cast<int>(c), contact.mesh_triangle, &pose_end, contact.point,
+                           t0_.hi + (t0_.lo + dt), std::max(0.0, -contact.gap)};
+    const contact::SurfaceContactResponse r =
+        comp.law->sustain(surface_input(*model_, site, v1, v_surface_end, n, false, pressing, dt), law_state(state, c));
     ShotArrays& s = state.shots;
     s.set_velocity(i, r.v_shot);
     s.set_position(i, p1 - contact.gap * n);

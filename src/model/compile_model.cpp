@@ -87,7 +87,43 @@ const ContactPairDesc& contact_for(const SceneDescription& scene, const std::str
     return *fallback;
 }
 
-contact::PairCoefficients coefficients_of(const ContactPairDesc& c) { return {c.C0, c.V0_m_per_s, c.mu, c.f}; }
+// The values of the parameters a law declares, in its order, from the scene's resolved pair.
+contact::ParameterValues parameter_values(const ContactPairDesc& pair, std::span<const contact::LawParameter> declared) {
+    contact::ParameterValues v;
+    for (const contact::LawParameter& p : declared) v.values.push_back(pair.values(p.name));
+    return v;
+}
+
+std::shared_ptr<const contact::ShotShotLaw> shot_shot_law_of(const ContactPairDesc& pair) {
+    const contact::LawEntry* law = contact::find_law(pair.law);
+    if (law == nullptr || law->make_shot_shot == nullptr)
+        throw InputError(pair.where, "contacts." + pair.key + ".law", "'" + pair.law + "' is not a shot-shot law");
+    return law->make_shot_shot(parameter_values(pair, law->shot_shot_parameters));
+}
+
+std::shared_ptr<const contact::SurfaceLaw> surface_law_of(const ContactPairDesc& pair, const SceneDescription& scene, const Component& c) {
+    const contact::LawEntry* law = contact::find_law(pair.law);
+    if (law == nullptr) throw InputError(pair.where, "contacts." + pair.key + ".law", "unknown law '" + pair.law + "'");
+    contact::SurfacePair what;
+    const TriangleMesh& mesh = *c.mesh;
+    what.triangle_corners_m = [&mesh] {
+        std::vector<Vec3> corners;
+        corners.reserve(3 * mesh.triangle_count());
+        for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+            for (int k = 0; k < 3; ++k) corners.push_back(mesh.corner(t, k));
+        return corners;
+    };
+    what.shot_diameter_m = scene.shot.diameter_m;
+    what.shot_density_kg_per_m3 = scene.shot.density_kg_per_m3;
+    what.material = c.material;
+    for (const MaterialDesc& m : scene.materials)
+        if (m.name == c.material) what.yield_stress_pa = m.yield_stress_pa;
+    try {
+        return law->make_surface(parameter_values(pair, law->surface_parameters), what);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(pair.where, "contacts." + pair.key + ".law", std::string(e.what()) + " (component '" + c.name + "')");
+    }
+}
 
 }  // namespace
 
@@ -110,8 +146,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
     model->seed = scene.process.seed;
     model->travel_fraction = scene.accuracy.travel_fraction;
     model->impact_speed_m_per_s = scene.accuracy.impact_speed_m_per_s;
-    model->laws = contact::make_laws("impulse");
-    model->shot_shot = coefficients_of(contact_for(scene, "shot-shot"));
+    model->shot_shot_law = shot_shot_law_of(contact_for(scene, "shot-shot"));
 
     const double R = model->shot_radius_m;
     const Vec3 up = model->gravity_m_per_s2.norm() > 0.0 ? Vec3(-model->gravity_m_per_s2.normalized()) : Vec3::UnitZ();
@@ -131,7 +166,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         c.collider = std::make_shared<const MeshCollider>(*c.mesh);
         c.kinematics = build_kinematics(desc, *c.mesh, up);
         const ContactPairDesc& pair = contact_for(scene, "shot-" + desc.material);
-        c.coefficients = coefficients_of(pair);
+        c.law = surface_law_of(pair, scene, c);
         c.coefficients_source = pair.key;
         c.logged = logged.empty() ? logged_by_default(desc.role)
                                   : std::find(logged.begin(), logged.end(), desc.name) != logged.end();

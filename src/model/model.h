@@ -1,5 +1,5 @@
 // The compiled model: immutable, checked, everything resolved (meshes loaded in their own
-// frames, Bullet BVHs built, contact coefficients per component, SI). What only one stepping
+// frames, Bullet BVHs built, the contact law of each pair built with its parameters, SI). What only one stepping
 // scheme needs (time stepping's distance gates) that scheme builds.
 // The engine reads it; only the simulation state changes during a run.
 #pragma once
@@ -25,8 +25,9 @@ struct Component {
     std::shared_ptr<const TriangleMesh> mesh;        // component frame, m
     std::shared_ptr<const MeshCollider> collider;    // Bullet BVH over `mesh`
     Kinematics kinematics;
-    contact::PairCoefficients coefficients;          // shot against this component's material
-    std::string coefficients_source;                 // "shot-<material>" or "default"
+    // Shot against this component's material: the pair's law, its parameters bound (law_registry.h).
+    std::shared_ptr<const contact::SurfaceLaw> law;
+    std::string coefficients_source;                 // the scene's pair: "shot-<material>" or "default"
     bool logged = false;                             // impacts written to impacts.csv
     double max_axis_distance_m = 0.0;                // m, largest distance of a vertex from the rotation axis
     Vec3 world_lo, world_hi;                         // m, bounds at t = 0 (rotating: swept about the axis)
@@ -47,8 +48,7 @@ struct Model {
     int shot_count = 0;
     double shot_radius_m = 0.0;                      // m, R = D / 2
     double shot_mass_kg = 0.0;                       // kg
-    contact::PairCoefficients shot_shot;
-    contact::LawSet laws;
+    std::shared_ptr<const contact::ShotShotLaw> shot_shot_law;  // the `shot-shot` pair's law, bound
 
     Vec3 gravity_m_per_s2 = Vec3::Zero();            // m/s2
     double duration_s = 0.0;                         // s

@@ -99,11 +99,15 @@ void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
     y += "contacts:\n";
     for (const ContactPairDesc& c : s.contacts) {
         y += "  " + yaml_text(c.key) + ":\n";
-        y += "    C0: " + num(c.C0) + "\n";
-        y += "    V0: " + num(c.V0_m_per_s) + unit_comment(Dimension::speed) + "\n";
-        if (c.key == "shot-shot") continue;  // mu and f do not apply between shot
-        y += "    mu: " + num(c.mu) + "\n";
-        y += "    f: " + num(c.f) + "\n";
+        y += "    law: " + c.law + "\n";
+        for (const LawParameterValue& p : c.parameters) {
+            const SchemaEntry* e = find_schema_entry("contacts.*." + p.name);
+            const Dimension d = e != nullptr ? e->dimension : Dimension::dimensionless;
+            std::string text;
+            for (double v : p.values) text += (text.empty() ? "" : ", ") + num(v);
+            if (e != nullptr && e->kind == ValueKind::quantity_list) text = "[" + text + "]";
+            y += "    " + p.name + ": " + text + (d == Dimension::dimensionless ? "" : unit_comment(d)) + "\n";
+        }
     }
 }
 

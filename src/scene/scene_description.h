@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/input_error.h"
@@ -124,14 +125,24 @@ struct MaterialDesc {
     SourceLocation where;
 };
 
-// Coefficients of one contact pair (shot-shot, or shot against one material), reference eq. 2-5.
+// One parameter of a pair's contact law, resolved (written, taken from `default`, or the law's own).
+struct LawParameterValue {
+    std::string name;            // as the law declares it
+    std::vector<double> values;  // SI; one value, or a table
+    SourceLocation where;        // where it was written (the pair's or the default's), or the pair
+};
+
+// One contact pair (shot-shot, or shot against one material): its law (contact/law_registry.h)
+// and every parameter that law declares, in the law's order.
 struct ContactPairDesc {
-    std::string key;           // "shot-shot", "shot-<material>" or "default"
-    double C0 = 0.9;           // -, normal restitution in the elastic regime
-    double V0_m_per_s = 0.5;   // m/s, onset of the plastic regime
-    double mu = 0.71;          // -, tangential restitution (not used for shot-shot)
-    double f = 0.1;            // -, Coulomb friction in sustained contact (not used for shot-shot)
+    std::string key;             // "shot-shot", "shot-<material>" or "default"
+    std::string law = "impulse";
+    std::vector<LawParameterValue> parameters;
     SourceLocation where;
+
+    // The values of a parameter; throws std::out_of_range if the law has no such parameter.
+    const std::vector<double>& values(std::string_view name) const;
+    double value(std::string_view name) const { return values(name).at(0); }
 };
 
 enum class InitialVelocityKind { rest, vector, random_upward };

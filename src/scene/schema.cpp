@@ -1,16 +1,15 @@
 #include "scene/schema.h"
 
 #include <array>
+#include <deque>
+#include <string>
+
+#include "contact/law_registry.h"
 #include <cmath>
 
 namespace peensim {
 namespace {
 
-constexpr Range above(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), true, false}; }
-constexpr Range at_least(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), false, false}; }
-constexpr Range open_closed(double lo, double hi) { return Range{lo, hi, true, false}; }
-constexpr Range closed(double lo, double hi) { return Range{lo, hi, false, false}; }
-constexpr Range open_open(double lo, double hi) { return Range{lo, hi, true, true}; }
 
 using K = ValueKind;
 using D = Dimension;
@@ -76,15 +75,9 @@ const std::array schema_table{
                 "Contact coefficients by pair: `shot-shot`, `shot-<material>` or `default` (every pair not "
                 "listed)."},
     SchemaEntry{"contacts.*", K::map, D::dimensionless, false, "", "", {}, "", "", "",
-                "One pair; a coefficient left out takes the value of the `default` pair."},
-    SchemaEntry{"contacts.*.C0", K::quantity, D::dimensionless, false, "0.9", "", open_closed(0, 1), "", "", "",
-                "Normal restitution in the elastic regime (eq. 2)."},
-    SchemaEntry{"contacts.*.V0", K::quantity, D::speed, false, "0.5", "", above(0), "", "", "",
-                "Impact speed where the plastic regime starts (eq. 2)."},
-    SchemaEntry{"contacts.*.mu", K::quantity, D::dimensionless, false, "0.71", "", closed(0, 1), "", "", "",
-                "Tangential restitution (eq. 4, 5); not for `shot-shot`."},
-    SchemaEntry{"contacts.*.f", K::quantity, D::dimensionless, false, "0.1", "", at_least(0), "", "", "",
-                "Coulomb friction in sustained contact; not for `shot-shot`."},
+                "One pair: its contact law and that law's parameters. A key left out takes the `default` pair's "
+                "value when the `default` pair's law has it, else the law's own default."},
+    // contacts.*.law and each law's parameters: generated from the law catalogue (law_entries).
 
     SchemaEntry{"components", K::list, D::dimensionless, true, "", "", {}, "", "", "",
                 "The meshes: exactly one `sonotrode`, at least one `chamber`."},
@@ -241,12 +234,6 @@ const std::array schema_table{
                 "`mp4`: assemble the frames into animation.mp4 with ffmpeg (if installed); `none`: frames only."},
 };
 
-std::string number_text(double v) {
-    if (v == std::numeric_limits<double>::infinity()) return "inf";
-    if (v == -std::numeric_limits<double>::infinity()) return "-inf";
-    return format_si(v);
-}
-
 std::string_view kind_name(const SchemaEntry& e) {
     switch (e.kind) {
         case K::map: return e.choices.empty() ? "map" : "map or word";
@@ -259,6 +246,7 @@ std::string_view kind_name(const SchemaEntry& e) {
         case K::text: return "text";
         case K::choice: return "word";
         case K::name_list: return "list of names";
+        case K::quantity_list: return "list of numbers";
     }
     return "";
 }
@@ -272,28 +260,55 @@ std::string markdown_cell(std::string_view text) {
     return out;
 }
 
+// The schema entries of the contact laws (contact/law_registry.h): `contacts.*.law`, then every
+// parameter any law declares, once (laws that share a parameter declare it alike).
+std::vector<SchemaEntry> law_entries() {
+    static const std::string choices = [] {
+        std::string c;
+        for (const contact::LawEntry& law : contact::law_catalogue()) c += (c.empty() ? "" : "|") + std::string(law.name);
+        return c;
+    }();
+    static const std::string law_doc = [] {
+        std::string d = "The contact law of this pair (a `default` left out: `impulse`):";
+        for (const contact::LawEntry& law : contact::law_catalogue())
+            d += " `" + std::string(law.name) + "`: " + std::string(law.doc);
+        return d;
+    }();
+    std::vector<SchemaEntry> out{SchemaEntry{"contacts.*.law", K::choice, D::dimensionless, false, "impulse", "", {}, choices, "", "", law_doc}};
+    static std::deque<std::string> paths;  // storage for the generated paths (entries hold views; a deque never moves them)
+    for (const contact::LawEntry& law : contact::law_catalogue()) {
+        for (const contact::LawParameter& p : law.surface_parameters) {
+            const std::string path = "contacts.*." + std::string(p.name);
+            bool known = false;
+            for (const SchemaEntry& e : out) known |= e.path == path;
+            if (known) continue;
+            paths.push_back(path);
+            out.push_back(SchemaEntry{paths.back(), p.list ? K::quantity_list : K::quantity, p.dimension, false, p.default_value,
+                                      p.default_value.empty() ? "none (needed by the law)" : "", p.range, "", "", "", p.doc});
+        }
+    }
+    return out;
+}
+
+const std::vector<SchemaEntry>& full_schema() {
+    static const std::vector<SchemaEntry> table = [] {
+        std::vector<SchemaEntry> t;
+        for (const SchemaEntry& e : schema_table) {
+            t.push_back(e);
+            if (e.path == "contacts.*")
+                for (const SchemaEntry& l : law_entries()) t.push_back(l);
+        }
+        return t;
+    }();
+    return table;
+}
+
 }  // namespace
 
-bool Range::contains(double v) const {
-    if (lo_open ? !(v > lo) : !(v >= lo)) return false;
-    if (hi_open ? !(v < hi) : !(v <= hi)) return false;
-    return true;
-}
-
-std::string Range::text() const {
-    const bool has_lo = lo != -std::numeric_limits<double>::infinity();
-    const bool has_hi = hi != std::numeric_limits<double>::infinity();
-    if (has_lo && has_hi)
-        return std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + (hi_open ? ")" : "]");
-    if (has_lo) return std::string(lo_open ? "> " : ">= ") + number_text(lo);
-    if (has_hi) return std::string(hi_open ? "< " : "<= ") + number_text(hi);
-    return "";
-}
-
-std::span<const SchemaEntry> scene_schema() { return schema_table; }
+std::span<const SchemaEntry> scene_schema() { return full_schema(); }
 
 const SchemaEntry* find_schema_entry(std::string_view path) {
-    for (const SchemaEntry& e : schema_table)
+    for (const SchemaEntry& e : full_schema())
         if (e.path == path) return &e;
     return nullptr;
 }
@@ -306,7 +321,7 @@ std::string schema_child_path(std::string_view parent, std::string_view key) {
 std::vector<std::string_view> schema_child_keys(std::string_view map_path) {
     std::vector<std::string_view> keys;
     const std::string prefix = map_path.empty() ? std::string() : std::string(map_path) + ".";
-    for (const SchemaEntry& e : schema_table) {
+    for (const SchemaEntry& e : full_schema()) {
         if (e.path.empty() || e.path.size() <= prefix.size() || e.path.substr(0, prefix.size()) != prefix) continue;
         const std::string_view rest = e.path.substr(prefix.size());
         if (rest.find_first_of(".[*") == std::string_view::npos) keys.push_back(rest);
@@ -361,6 +376,7 @@ std::string expected_text(const SchemaEntry& e) {
         case K::text: return "a text";
         case K::choice: return "one of " + join_names(split_choices(e.choices));
         case K::name_list: return "a list of names, e.g. [a, b]";
+        case K::quantity_list: return "a list of one or more " + std::string(dimension_noun(e.dimension)) + "s, e.g. [0.4, 0.5]";
     }
     return "a value";
 }
@@ -374,9 +390,9 @@ std::string scene_reference_markdown() {
           "(e.g. `--set shot.diameter=\"1 mm\"`, `--set components[gear].motion.speed=\"60 rpm\"`).\n\n";
     md += "| Key | Type | Unit (SI) | Default | Range | Description |\n";
     md += "|---|---|---|---|---|---|\n";
-    for (const SchemaEntry& e : schema_table) {
+    for (const SchemaEntry& e : full_schema()) {
         if (e.path.empty()) continue;
-        const bool has_unit = e.kind == K::quantity || e.kind == K::vector3;
+        const bool has_unit = e.kind == K::quantity || e.kind == K::quantity_list || e.kind == K::vector3;
         const std::string unit = has_unit ? std::string(si_unit(e.dimension)) : std::string();
         std::string deflt;
         if (e.required) deflt = "required";

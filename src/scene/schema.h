@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/range.h"
 #include "common/units.h"
 
 namespace peensim {
@@ -27,19 +28,7 @@ enum class ValueKind {
     text,       // free text, a name or a path
     choice,     // one word out of `choices`
     name_list,  // a list of names
-};
-
-// Allowed values of a quantity or integer (SI). Open ends are excluded, closed ends included.
-struct Range {
-    double lo = -std::numeric_limits<double>::infinity();
-    double hi = std::numeric_limits<double>::infinity();
-    bool lo_open = false;
-    bool hi_open = false;
-
-    bool unbounded() const { return lo == -std::numeric_limits<double>::infinity() &&
-                                    hi == std::numeric_limits<double>::infinity(); }
-    bool contains(double v) const;
-    std::string text() const;  // "> 0", ">= 0", "(0, 1]", "[0, 1]", "" if unbounded
+    quantity_list,  // a list of one or more numbers with a unit of `dimension` (a table)
 };
 
 struct SchemaEntry {

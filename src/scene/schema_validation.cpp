@@ -97,6 +97,9 @@ void check_node(const Cursor& c) {
         case ValueKind::name_list:
             if (!c.node.IsSequence() || !all_scalars(c.node)) fail_shape(c);
             return;
+        case ValueKind::quantity_list:
+            if (!c.node.IsSequence() || c.node.size() == 0 || !all_scalars(c.node)) fail_shape(c);
+            return;
     }
 }
 

@@ -208,6 +208,23 @@ std::optional<double> read_optional_quantity(const Cursor& c) {
     return parse_checked_quantity(c, *value);
 }
 
+std::vector<double> read_quantity_list(const Cursor& c) {
+    const std::optional<YAML::Node> value = value_or_default(c);
+    std::vector<double> out;
+    if (!value) return out;
+    if (!value->IsSequence() || value->size() == 0) fail(c, "expected " + expected_text(c.entry()) + ", got " + describe_node(*value));
+    for (std::size_t k = 0; k < value->size(); ++k) {
+        const YAML::Node item = (*value)[k];
+        // The list's entry (unit, range), the item's place in the file. A new Cursor, not an
+        // assignment to a copy's node: assigning a yaml-cpp Node overwrites the tree it refers to.
+        const Cursor at{c.context, item, c.schema_path, c.field_path + "[" + std::to_string(k) + "]",
+                        item.IsScalar() ? item.Mark() : c.mark};
+        if (!item.IsScalar() || item.IsNull()) fail(at, "expected " + std::string(dimension_noun(c.entry().dimension)) + ", got " + describe_node(item));
+        out.push_back(parse_checked_quantity(at, item));
+    }
+    return out;
+}
+
 long long read_integer(const Cursor& c) {
     const std::optional<YAML::Node> value = value_or_default(c);
     if (!value) fail(c, "missing required key '" + last_key(c.field_path) + "' (a whole number)");

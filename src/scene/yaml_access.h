@@ -88,5 +88,7 @@ Mat3 read_matrix(const Cursor& c);
 std::string read_text(const Cursor& c);    // "" if absent and no default
 std::string read_choice(const Cursor& c);  // one of the entry's choices
 std::vector<std::string> read_names(const Cursor& c);
+// A table: one or more quantities, each checked against the entry's range. Empty if absent and no default.
+std::vector<double> read_quantity_list(const Cursor& c);
 
 }  // namespace peensim

@@ -1,0 +1,59 @@
+#include "contact/impact_history_law.h"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include "contact/dent.h"
+#include "contact/impulse_laws.h"
+
+namespace peensim::contact {
+
+namespace {
+
+const std::array<LawParameter, 3> kImpactHistoryParameters{
+    LawParameter{"restitution_by_hits", Dimension::dimensionless, "", open_closed(0, 1), true,
+                 "Normal restitution of an impact on a spot hit 0, 1, 2, ... times before (a table; the last "
+                 "value holds for every later hit). Law `impact-history` only."},
+    impulse_parameters()[2],  // mu
+    impulse_parameters()[3],  // f
+};
+
+}  // namespace
+
+std::span<const LawParameter> impact_history_parameters() { return kImpactHistoryParameters; }
+
+ImpactHistoryLaw::ImpactHistoryLaw(std::vector<double> restitution_by_hits, double mu, double f, const ImpactHistoryGeometry& g)
+    : restitution_by_hits_(std::move(restitution_by_hits)),
+      mu_(mu),
+      f_(f),
+      shot_diameter_m_(g.shot_diameter_m),
+      shot_density_kg_per_m3_(g.shot_density_kg_per_m3),
+      yield_stress_pa_(g.yield_stress_pa),
+      // Dents are of the order of the shot diameter: a cell that size keeps the scan to a few cells.
+      facets_(g.corners_m, g.shot_diameter_m) {
+    if (restitution_by_hits_.empty()) throw std::invalid_argument("impact-history: an empty restitution table");
+}
+
+double ImpactHistoryLaw::restitution_after(double hits) const {
+    const auto last = static_cast<double>(restitution_by_hits_.size() - 1);
+    return restitution_by_hits_[static_cast<std::size_t>(std::min(std::max(hits, 0.0), last))];
+}
+
+SurfaceContactResponse ImpactHistoryLaw::impact(const SurfaceContactInput& in, std::span<double> marks) const {
+    const auto t = static_cast<std::size_t>(in.triangle);
+    const double C = restitution_after(t < marks.size() ? marks[t] : 0.0);
+    const SurfaceContactResponse r = impulse_surface_rebound(in, C, mu_);
+    if (in.impact && r.approaching && !marks.empty()) {
+        // The dent of this impact (eq. 10) work-hardens the surface within one diameter of its centre.
+        const double dent = dent_diameter(shot_diameter_m_, shot_density_kg_per_m3_, r.vn_in, yield_stress_pa_);
+        facets_.for_each_within(in.point_local, dent, [&](std::size_t k) { marks[k] += 1.0; });
+    }
+    return r;
+}
+
+SurfaceContactResponse ImpactHistoryLaw::sustain(const SurfaceContactInput& in, std::span<double>) const {
+    return impulse_surface_sustain(in, f_);
+}
+
+}  // namespace peensim::contact

@@ -1,0 +1,72 @@
+// How both stepping schemes describe a contact to a law (contact_law.h): velocities, the contact's
+// identity and place in the component's own frame, and the law's state. One place, so the two
+// schemes hand laws the same facts.
+#pragma once
+
+#include <span>
+
+#include "contact/contact_law.h"
+#include "engine/simulation_state.h"
+#include "model/model.h"
+
+namespace peensim {
+
+// Where a shot touches a component. mesh_triangle: index into the component's mesh (the index
+// of the per-triangle law state); pose: the component's pose at the contact.
+struct ContactSite {
+    int shot = -1;
+    int component = -1;
+    int mesh_triangle = -1;
+    const Pose* pose = nullptr;
+    Vec3 point_world = Vec3::Zero();  // m
+    double time_s = 0.0;              // s, absolute simulated time
+    double overlap_m = 0.0;           // m, depth of the shot in the surface (0 at an exact touch)
+};
+
+// v_shot, v_surface: m/s, world; n: unit normal towards the shot; impact: the contact policy's
+// verdict; pressing_accel (m/s2) and dt (s): for friction in sustained contact.
+inline contact::SurfaceContactInput surface_input(const Model& model, const ContactSite& site, const Vec3& v_shot, const Vec3& v_surface,
+                                                  const Vec3& n, bool impact, double pressing_accel = 0.0, double dt = 0.0) {
+    contact::SurfaceContactInput in{v_shot, v_surface, n, pressing_accel, dt};
+    in.shot = site.shot;
+    in.component = site.component;
+    in.triangle = site.mesh_triangle;
+    in.point_local = site.pose != nullptr ? site.pose->to_component(site.point_world) : site.point_world;
+    in.overlap_m = site.overlap_m;
+    in.shot_radius_m = model.shot_radius_m;
+    in.shot_mass_kg = model.shot_mass_kg;
+    in.time_s = site.time_s;
+    in.impact = impact;
+    return in;
+}
+
+// The per-triangle state of a component's law (empty when its law keeps none).
+inline std::span<double> law_state(SimulationState& state, std::size_t component) {
+    return component < state.law_state.size() ? std::span<double>(state.law_state[component]) : std::span<double>();
+}
+
+// A fresh state for every component's law: state_per_triangle() zeros per mesh triangle.
+inline std::vector<std::vector<double>> fresh_law_state(const Model& model) {
+    std::vector<std::vector<double>> out(model.components.size());
+    for (std::size_t c = 0; c < model.components.size(); ++c) {
+        const Component& comp = model.components[c];
+        const auto per = static_cast<std::size_t>(comp.law ? comp.law->state_per_triangle() : 0);
+        out[c].assign(per * comp.mesh->triangle_count(), 0.0);
+    }
+    return out;
+}
+
+// The shot-shot law's input; mode: the contact policy's (contact_policy.h).
+inline contact::ShotShotInput shot_shot_input(const Model& model, int i, int j, const Vec3& vi, const Vec3& vj, const Vec3& n,
+                                              contact::ShotShotMode mode, double distance_m, double time_s) {
+    contact::ShotShotInput in{vi, vj, n, mode};
+    in.shot_i = i;
+    in.shot_j = j;
+    in.overlap_m = std::max(0.0, 2.0 * model.shot_radius_m - distance_m);
+    in.shot_radius_m = model.shot_radius_m;
+    in.shot_mass_kg = model.shot_mass_kg;
+    in.time_s = time_s;
+    return in;
+}
+
+}  // namespace peensim
