@@ -48,7 +48,7 @@ DropErrors drop(double travel_fraction, const std::string& scheme = "step") {
     Simulation sim(model);
     const double R = model->shot_radius_m;
     // Centre of the chamber: 9 mm from every wall, 18 mm below the ceiling at the start.
-    set_shot(sim.mutable_state(), 0, Vec3(0.0, 0.0, R + kH0), Vec3::Zero());
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + kH0), Vec3::Zero()); });
 
     std::vector<ImpactRecord> impacts, step_impacts;
     while (!sim.finished()) {

@@ -95,7 +95,7 @@ TEST_P(EngineConservation, ShotShotImpactsConserveMomentum) {
     for (std::size_t i = 0; i < 8; ++i) {
         const Vec3 p = centre + 2e-3 * offsets[i] + Vec3(0.1e-3 * i, 0.05e-3 * i * i, 0.0);  // m, broken symmetry
         const double speed = 0.5 + 0.07 * i;                                                   // m/s
-        set_shot(sim.mutable_state(), i, p, -speed * (p - centre).normalized());
+        sim.edit_state([&](SimulationState& edited) { set_shot(edited, i, p, -speed * (p - centre).normalized()); });
     }
     const Vec3 p0 = momentum_per_mass(sim.state().shots);
     const double e0 = kinetic_energy_per_mass(sim.state().shots);

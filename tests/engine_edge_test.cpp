@@ -42,7 +42,7 @@ TEST_P(EngineEdge, SlidingAcrossInternalEdgesKeepsHeightAndSpeed) {
     Simulation sim(model);
     const double R = model->shot_radius_m;
     const Vec3 u = path.direction.normalized();
-    set_shot(sim.mutable_state(), 0, path.start_m + Vec3(0, 0, R), speed * u);
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, path.start_m + Vec3(0, 0, R), speed * u); });
 
     std::vector<ImpactRecord> impacts;
     std::size_t logged = 0;

@@ -95,7 +95,7 @@ TEST_P(EngineEventRegimes, ChatteringShotOnTheVibratingSonotrodeIsThrown) {
         const auto t0 = std::chrono::steady_clock::now();
         Simulation sim(model);
         const double R = model->shot_radius_m;
-        set_shot(sim.mutable_state(), 0, Vec3(0.0, 0.0, R + c.amplitude_m * std::sin(c.phase_rad)), Vec3::Zero());
+        sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + c.amplitude_m * std::sin(c.phase_rad)), Vec3::Zero()); });
         OverlapAudit audit(*model, kOverlapTolerance);
         std::vector<ImpactRecord> impacts;
         std::size_t logged = 0;
@@ -150,10 +150,10 @@ TEST_P(EngineEventRegimes, ShotDroppedOnTheStillSonotrodeComeToRest) {
     const double R = model->shot_radius_m;
     for (int i = 0; i < 20; ++i) {
         const Vec3 p((i % 5 - 2) * 3.5e-3, (i / 5 - 1.5) * 3.5e-3, R + 0.5e-3 + 0.5e-3 * (i % 4));
-        set_shot(sim.mutable_state(), static_cast<std::size_t>(i), p, Vec3::Zero());
+        sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), p, Vec3::Zero()); });
         if (i % 2 == 0) {
             const Vec3 above = p + Vec3(0.4e-3 * (i % 4 == 0 ? 1.0 : -1.0), 0.2e-3, 2.0 * R + 1e-3 + 0.5e-3 * (i % 3));
-            set_shot(sim.mutable_state(), static_cast<std::size_t>(20 + i / 2), above, Vec3::Zero());
+            sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(20 + i / 2), above, Vec3::Zero()); });
         }
     }
     OverlapAudit audit(*model, kOverlapTolerance);
@@ -277,8 +277,8 @@ TEST_P(EngineEventRegimes, GrazingFlightsWithoutGravityLogNoImpacts) {
     const auto t0 = std::chrono::steady_clock::now();
     Simulation sim(model);
     const double R = model->shot_radius_m;
-    set_shot(sim.mutable_state(), 0, Vec3(-8e-3, 0.0, kBoxTop + R), Vec3(0.5, 0.0, 0.0));
-    set_shot(sim.mutable_state(), 1, Vec3(-4e-3, -6e-3, R), Vec3(0.3, 0.0, 0.0));
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(-8e-3, 0.0, kBoxTop + R), Vec3(0.5, 0.0, 0.0)); });
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 1, Vec3(-4e-3, -6e-3, R), Vec3(0.3, 0.0, 0.0)); });
     OverlapAudit audit(*model, kOverlapTolerance);
     std::vector<ImpactRecord> impacts;
     double off_line = 0.0;  // m, largest departure of either shot from its line
@@ -349,8 +349,8 @@ TEST_P(EngineEventRegimes, ShotSlidingOnTheFloorAndOffABoxTopLogNoSpuriousImpact
     const double R = model->shot_radius_m;
     const double f = spec.sonotrode.f;
     const Vec3 start0(-4e-3, -6e-3, R);
-    set_shot(sim.mutable_state(), 0, start0, Vec3(0.1, 0.0, 0.0));
-    set_shot(sim.mutable_state(), 1, Vec3(-1.5e-3, 0.0, kBoxTop + R), Vec3(0.2, 0.0, 0.0));
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start0, Vec3(0.1, 0.0, 0.0)); });
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 1, Vec3(-1.5e-3, 0.0, kBoxTop + R), Vec3(0.2, 0.0, 0.0)); });
     OverlapAudit audit(*model, kOverlapTolerance);
     std::vector<ImpactRecord> impacts;
     std::size_t floor_impacts_of_0 = 0, box_top_impacts = 0;

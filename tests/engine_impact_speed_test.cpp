@@ -63,7 +63,7 @@ Drop drop(const std::vector<std::string>& overrides, const std::string& scheme =
     d.scheme = scheme;
     d.R = model->shot_radius_m;
     d.sonotrode = static_cast<std::size_t>(model->sonotrode);
-    set_shot(sim.mutable_state(), 0, Vec3(0.0, 0.0, d.R + kH0), Vec3::Zero());
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, d.R + kH0), Vec3::Zero()); });
     std::vector<ImpactRecord> step_impacts;
     while (!sim.finished()) {
         const double before = sim.state().time.seconds();

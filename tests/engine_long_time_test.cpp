@@ -56,11 +56,11 @@ TubeRun run_tube(const TubeCase& c, double start_s) {
     spec.log = {"sonotrode", "chamber"};
     const TestScene scene(spec);
     Simulation sim(scene.compile());
-    sim.mutable_state().time = SimTime{start_s, 0.0};
+    sim.edit_state([&](SimulationState& edited) { edited.time = SimTime{start_s, 0.0}; });
     for (int i = 0; i < kShots; ++i) {
         const Vec3 p((i % kGrid - 0.5 * (kGrid - 1)) * spacing, (i / kGrid - 0.5 * (kGrid - 1)) * spacing,
                      c.radius_m + (0.1 + 0.05 * i) * c.height_m);
-        set_shot(sim.mutable_state(), static_cast<std::size_t>(i), p, Vec3::Zero());
+        sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), p, Vec3::Zero()); });
     }
     std::vector<double> floor(kShots, 0.0), ceiling(kShots, 0.0);
     double floor_speed = 0.0, ceiling_speed = 0.0;

@@ -24,7 +24,7 @@ TEST(EngineLossDiagnosis, AShotThroughAGapBesideThePlateIsALeakShownWhereItLeft)
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    set_shot(sim.mutable_state(), 0, Vec3(8.9e-3, 0.0, 10e-3), Vec3(0.0, 0.0, -1.0));
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(8.9e-3, 0.0, 10e-3), Vec3(0.0, 0.0, -1.0)); });
     std::vector<ImpactRecord> impacts;
     while (!sim.finished()) {
         sim.step(impacts);

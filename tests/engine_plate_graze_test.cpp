@@ -43,7 +43,7 @@ TEST_P(EnginePlateGraze, AOneMicrosecondTouchAtTheTopOfTheStrokeIsOneImpactAtThe
         const TestScene scene(spec);
         Simulation sim(scene.compile());
         const double R = 0.5 * spec.shot_diameter_m;
-        set_shot(sim.mutable_state(), 0, Vec3(0.0, 0.0, R + kA - kDelta), Vec3::Zero());
+        sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + kA - kDelta), Vec3::Zero()); });
         std::vector<ImpactRecord> impacts, all;
         while (!sim.finished()) {
             sim.step(impacts);

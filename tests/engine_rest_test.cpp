@@ -66,7 +66,7 @@ TEST(EngineRest, SlidingShotSlowsDownByCoulombFriction) {
     Simulation sim(model);
     const double R = model->shot_radius_m;
     const Vec3 direction(0.8, 0.6, 0.0);
-    set_shot(sim.mutable_state(), 0, Vec3(0.0, 0.0, R), v0 * direction);
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R), v0 * direction); });
 
     std::vector<ImpactRecord> impacts;
     double t_a = -1.0, v_a = 0.0, t_b = 0.0, v_b = 0.0;

@@ -141,7 +141,7 @@ Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
         const Vec3 start = target + (R + 1e-3 + 7e-3 * uni(rng)) * out;
         const Vec3 v0 = -(0.3 + 2.7 * uni(rng)) * out;
         Simulation sim(model);
-        set_shot(sim.mutable_state(), 0, start, v0);
+        sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start, v0); });
         std::vector<ImpactRecord> impacts;
         while (!sim.finished() && impacts.empty()) sim.step(impacts);
         std::uint64_t first_elsewhere = sim.state().shot_shot_impacts;

@@ -30,7 +30,7 @@ FirstImpact first_part_impact(const TestSceneSpec& spec, const Vec3& shot_start_
     FirstImpact out;
     out.model = scene.compile();
     Simulation sim(out.model);
-    set_shot(sim.mutable_state(), 0, shot_start_m, Vec3::Zero());
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, shot_start_m, Vec3::Zero()); });
     std::vector<ImpactRecord> impacts;
     while (!sim.finished() && out.part_impacts == 0) {
         sim.step(impacts);

@@ -32,7 +32,7 @@ TEST_P(EngineSolidSides, ACentreBehindATopFaceIsPutOutThroughIt) {
     const TestScene scene(spec);
     Simulation sim(scene.compile());
     // 0.3 R below the top face, 3 mm from the sides: the nearest point is on the top face, behind it.
-    set_shot(sim.mutable_state(), 0, Vec3(0.2e-3, -0.1e-3, kTopZ - 0.3 * kShotR), Vec3::Zero());
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.2e-3, -0.1e-3, kTopZ - 0.3 * kShotR), Vec3::Zero()); });
     std::vector<ImpactRecord> impacts;
     std::size_t from_inside = 0;
     double lowest_after_first_step = 1.0;

@@ -48,7 +48,7 @@ struct Impact {
 std::vector<Impact> engine_impacts(const std::string& scheme, std::uint64_t& rides) {
     const TestScene scene(tube_scene(scheme, 4e-3, kHeight, 1, kRadius, kAmplitude, kDuration));
     Simulation sim(scene.compile());
-    set_shot(sim.mutable_state(), 0, Vec3(0, 0, kStartZ), Vec3(0, 0, kStartV));
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0, 0, kStartZ), Vec3(0, 0, kStartV)); });
     struct Collect final : RunListener {
         std::vector<Impact> out;
         void after_step(const Simulation& s, const std::vector<ImpactRecord>& impacts) override {

@@ -139,7 +139,7 @@ struct EngineTube {
 EngineTube run_engine(const TubeCase& c, const std::string& scheme, double seconds) {
     const TestScene scene(tube_scene(scheme, kGrid * spacing_m(c), c.height_m, kColumns, c.radius_m, c.amplitude_m, seconds));
     Simulation sim(scene.compile());
-    for (int i = 0; i < kColumns; ++i) set_shot(sim.mutable_state(), static_cast<std::size_t>(i), start_position(c, i), Vec3::Zero());
+    for (int i = 0; i < kColumns; ++i) sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), start_position(c, i), Vec3::Zero()); });
 
     EngineTube run(window_count(seconds));
     run.impact_speed_m_per_s = sim.model().impact_speed_m_per_s;

@@ -87,7 +87,7 @@ EngineRun run_engine(const std::string& scheme) {
     const TestScene scene(tube_scene(scheme, kGrid * kSpacing, kH, kShots, kR, kA, kEngineEnd));
     const auto model = scene.compile();
     Simulation sim(model);
-    for (int i = 0; i < kShots; ++i) set_shot(sim.mutable_state(), static_cast<std::size_t>(i), start_position(i), Vec3::Zero());
+    for (int i = 0; i < kShots; ++i) sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), start_position(i), Vec3::Zero()); });
 
     EngineRun run;
     run.shots.resize(kShots);

@@ -192,6 +192,11 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         started_ = false;
 }
 
+void EventStepping::state_changed() {
+    started_ = false;
+    if (hand_over_) hand_over_->state_changed();
+}
+
 bool EventStepping::count_work(std::uint64_t units, double now_s) {
     const bool was_due = work_since_restart_ >= work_budget_;
     work_since_restart_ += units;

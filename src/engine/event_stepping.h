@@ -64,6 +64,8 @@ public:
     // sync grid after every work budget (so at least every few tenths of a second of wall time:
     // checkpoints and interrupts wait for one).
     bool at_restart_point() const override { return !started_; }
+    // Starts afresh from the edited state at the next advance(), as at a restart point.
+    void state_changed() override;
     static constexpr double kRestartInterval = 0.1;  // s
 
     // Simulated time (s) one advance() covers at most: it stops on a grid of this spacing (absolute

@@ -37,7 +37,14 @@ public:
 
     const Model& model() const { return *model_; }
     const SimulationState& state() const { return state_; }
-    SimulationState& mutable_state() { return state_; }
+    // Changes the state (place a shot, set the time) between steps: edit(SimulationState&) runs on
+    // the true state, and the scheme goes on from the result. The only way to change the state:
+    // a scheme that keeps flights beside it (event-driven) would otherwise overwrite an edit.
+    template <class Edit>
+    void edit_state(Edit&& edit) {
+        edit(state_);
+        scheme_->state_changed();
+    }
     const Stepper& scheme() const { return *scheme_; }
 
 private:

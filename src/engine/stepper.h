@@ -27,6 +27,9 @@ public:
     // of this state continues exactly as this one does. Checkpoints are written only at such
     // points. Time stepping keeps nothing else, so every step end is one.
     virtual bool at_restart_point() const { return true; }
+    // The caller changed the state (Simulation::edit_state): whatever the scheme keeps besides it
+    // (flights, caches) is dropped, and it goes on from the state as it now is.
+    virtual void state_changed() = 0;
 };
 
 }  // namespace peensim

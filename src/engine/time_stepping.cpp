@@ -75,6 +75,11 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     touched_.assign(static_cast<std::size_t>(model_->shot_count), 0);
 }
 
+void TimeStepping::state_changed() {
+    std::fill(skip_until_.begin(), skip_until_.end(), 0);
+    std::fill(memo_.begin(), memo_.end(), DistanceMemo{});
+}
+
 void TimeStepping::advance(SimulationState& state, double t_end_s, double /*pause_at_s*/, std::vector<ImpactRecord>& impacts) {
     const double now = state.time.seconds();
     const double remaining = t_end_s - now;

@@ -34,6 +34,9 @@ public:
     // that recording an animation cannot change a run.
     void advance(SimulationState& state, double t_end_s, double pause_at_s, std::vector<ImpactRecord>& impacts) override;
     const StepStats& stats() const override { return stats_; }
+    // A shot moved by hand may be anywhere: the skip counters (which assume bounded travel per
+    // step) and distance memos are dropped.
+    void state_changed() override;
 
     // Eq. 7 generalised to a travel fraction: the step in which the fastest thing (speed v, m/s)
     // travels at most fraction * R under gravity g (m/s2).
