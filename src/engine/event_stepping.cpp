@@ -33,20 +33,18 @@ constexpr double kMaxWindowTravel = 64.0;   // radii: windows double up to this 
 constexpr double kMinBoxHorizon = 1e-7;     // s, a box horizon moves time on at least this much
 constexpr double kCollapseWindow = 1e-6;    // s, TC rule: a shot-shot collision this soon after one is elastic
 constexpr int kMaxQuickGrazes = 4;          // grazes each within kCollapseWindow of the last, then sustained contact
-constexpr double kTouchDistance = 1e-9;     // of R: a gap this small is a touch (conservative advancement stops there)
 constexpr double kContactSlack = 1e-6;      // of R: a shot this close to a surface or a shot touches it
 // of R: a shot in sustained contact this close to a surface stays on it. Rolling over a curved
 // surface opens a gap of (v dt)^2 / 2r per substep (6e-5 R for a 1 mm shot at 0.5 m/s on a 5 mm
 // radius); flying off it between substeps would leave a gap of a few nm to close by conservative
 // advancement, whose steps (gap / speed) crawl there.
 constexpr double kSustainSlack = 1e-3;
-constexpr int kMaxAdvancement = 2000;       // conservative-advancement iterations per search (then it resumes later)
 constexpr std::uint64_t kMaxEventsAtOneTime = 10000;  // then the shot is forced into substeps
 
 }  // namespace
 
 EventStepping::EventStepping(std::shared_ptr<const Model> model)
-    : model_(std::move(model)) {
+    : model_(model), walls_(std::move(model)) {
     const Model& m = *model_;
     R_ = m.shot_radius_m;
     g_ = m.gravity_m_per_s2;
@@ -57,19 +55,6 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
     resting_speed_ = std::max(kMinImpactSpeed, 2.0 * g_.norm() * substep_);
     impact_speed_ = m.impact_speed_m_per_s;
     box_travel_ = kBoxTravel * R_;
-    const Component& sono = m.sonotrode_component();
-    sonotrode_vibrates_ = sono.kinematics.kind == Kinematics::Kind::vibrating && sono.kinematics.moves();
-    if (sonotrode_vibrates_) {
-        face_ = build_sonotrode_face(sono, sonotrode_up(m));
-        face_phase_at_zero_ = face_.plane.phase_rad;
-    }
-    for (const Component& c : m.components) {
-        std::vector<int> facets(c.mesh->triangle_count());
-        for (std::size_t t = 0; t < facets.size(); ++t) facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
-        facets_.push_back(std::move(facets));
-        surface_speed_.push_back(c.kinematics.peak_surface_speed(c.max_axis_distance_m));
-        if (&c != &sono) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
-    }
     shots_.resize(static_cast<std::size_t>(m.shot_count));
     active_.assign(shots_.size(), 0);
     queue_.reset(shots_.size());
@@ -226,7 +211,7 @@ void EventStepping::start(SimulationState& state) {
     // time is resolved to ~1e-17 s however long the run (an absolute double at 2048 s resolves only
     // 4.5e-13 s, which at a few m/s is a position error above the touch tolerances).
     epoch_ = state.time;
-    if (sonotrode_vibrates_) face_.plane.phase_rad = face_phase_at_zero_ + 2.0 * M_PI * epoch_.cycle_fraction(face_.plane.frequency_hz);
+    walls_.set_epoch(epoch_);
     same_time_ = -1.0;
     at_same_time_ = 0;
     const double t = 0.0;
@@ -336,14 +321,14 @@ void EventStepping::set_flight(int i, const Vec3& p, const Vec3& v, double t, Mo
 Vec3 EventStepping::position(int i, double t) const {
     const Shot& s = shots_[static_cast<std::size_t>(i)];
     if (s.motion == Motion::riding)
-        return s.ride_point + face_.plane.axis * (face_.plane.displacement(t) - face_.plane.displacement(s.ride_start)) +
+        return s.ride_point + walls_.face().plane.axis * (walls_.face().plane.displacement(t) - walls_.face().plane.displacement(s.ride_start)) +
                s.ride_tangential * (t - s.ride_start);
     return s.path.position(t);
 }
 
 Vec3 EventStepping::velocity(int i, double t) const {
     const Shot& s = shots_[static_cast<std::size_t>(i)];
-    if (s.motion == Motion::riding) return face_.plane.velocity(t) + s.ride_tangential;
+    if (s.motion == Motion::riding) return walls_.face().plane.velocity(t) + s.ride_tangential;
     return s.path.velocity(t);
 }
 
@@ -364,31 +349,6 @@ void EventStepping::pairs_and_schedule(int i, double t) {
     schedule(i);
 }
 
-double EventStepping::leave_time(const Trajectory& path, double t) const {
-    // The first time after t the centre leaves the world box: per axis x0 + v u + h u^2 = bound.
-    const Vec3 p = path.position(t), v = path.velocity(t), h = 0.5 * path.g;
-    double first = kInf;
-    for (int k = 0; k < 3; ++k) {
-        for (const double bound : {model_->world_lo[k], model_->world_hi[k]}) {
-            const double c = p[k] - bound;
-            if ((bound == model_->world_lo[k] && c < 0.0) || (bound == model_->world_hi[k] && c > 0.0)) return t;
-            double u = kInf;
-            if (h[k] == 0.0) {
-                if (v[k] != 0.0 && -c / v[k] > 0.0) u = -c / v[k];
-            } else {
-                const double disc = v[k] * v[k] - 4.0 * h[k] * c;
-                if (disc >= 0.0) {
-                    const double q = -0.5 * (v[k] + std::copysign(std::sqrt(disc), v[k]));
-                    for (const double r : {q / h[k], q != 0.0 ? c / q : kInf})
-                        if (r > 0.0) u = std::min(u, r);
-                }
-            }
-            first = std::min(first, t + u);
-        }
-    }
-    return first;
-}
-
 void EventStepping::predict_wall(int i, double t) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
     WallEvent& w = s.wall;
@@ -404,7 +364,7 @@ void EventStepping::predict_wall(int i, double t) {
             const Component& sono = model_->sonotrode_component();
             const Vec3 reach = Vec3::Constant(2.0 * R_ + sono.kinematics.amplitude_m);
             const bool near_sonotrode = ((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all();
-            const double speed = velocity(i, t).norm() + moving_part_speed_ + (near_sonotrode ? surface_speed_[static_cast<std::size_t>(model_->sonotrode)] : 0.0);
+            const double speed = velocity(i, t).norm() + walls_.moving_part_speed() + (near_sonotrode ? walls_.surface_speed(static_cast<std::size_t>(model_->sonotrode)) : 0.0);
             s.substep_s = speed > 0.0 ? std::clamp(kSubstepTravel * R_ / speed, kMinBoxHorizon, substep_) : substep_;
             w.time = t + s.substep_s;
             w.kind = WallKind::substep;
@@ -422,203 +382,13 @@ void EventStepping::predict_wall(int i, double t) {
     // the window's end is an event that searches the next one (and renews the neighbour box).
     // Windows double while nothing is found (a long free flight costs a few searches, not many).
     const double window = std::max(kMinBoxHorizon, TimeStepping::step_for(s.path.velocity(t).norm(), g_.norm(), s.window_travel));
-    const double t_leave = leave_time(s.path, t);
-    w.time = std::min(t_leave, t + window);
-    w.kind = t_leave <= t + window ? WallKind::leave : WallKind::none;
     const Trajectory path = s.path.rebased(t);
-    const Model& m = *model_;
     // Right after a graze (a touch with no approach on a surface that does not press the shot), the
     // surfaces are searched from a hair later: the touch itself, read again at the same instant,
     // would be found again (its approach sign is rounding), forever. Within the hair the shot moves
     // 1e-9 R: anything it could enter meanwhile is found overlapping by this search.
     const double t_search = t == s.graze_at ? t + kTouchDistance * R_ / std::max(path.v0.norm(), resting_speed_) : t;
-    // The window's sphere bounds: a component whose (swept) bounds they miss cannot be reached.
-    Vec3 reach_lo, reach_hi;
-    path.bounds(t, w.time, reach_lo, reach_hi);
-    reach_lo -= Vec3::Constant(1.001 * R_);
-    reach_hi += Vec3::Constant(1.001 * R_);
-    for (std::size_t k = 0; k < m.components.size(); ++k) {
-        const int c = static_cast<int>(k);
-        const Component& comp = m.components[k];
-        if ((reach_hi.array() < comp.world_lo.array()).any() || (reach_lo.array() > comp.world_hi.array()).any()) continue;
-        ++stats_.mesh_predictions;
-        WallEvent found;
-        bool hit = false;
-        if (c == m.sonotrode && sonotrode_vibrates_) {
-            hit = face_contact(path, t_search, w.time, found);
-            if (face_.rest_collider && !(hit && found.overlapping)) {
-                // The sonotrode's other triangles move by at most A: a static sweep with the radius
-                // grown by A finds when the shot can first reach them, advancement settles it.
-                MeshCollider::Hit near;
-                MeshCollider::SweepCounters counters;
-                const Pose& rest = comp.kinematics.rest;
-                const Trajectory local{rest.to_component(path.p0), rest.rotation.transpose() * path.v0, rest.rotation.transpose() * path.g, t};
-                const double t_limit = hit ? found.time : w.time;
-                const ToiStatus st = face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
-                if (st != ToiStatus::miss) {
-                    WallEvent side;
-                    const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, face_.rest_mesh->source_facet, surface_speed_[k], path,
-                                                                   near.contact.time, t_limit, side);
-                    if (r.exhausted) resume_search_at(w, r.searched_until);
-                    if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
-                }
-            }
-        } else if (comp.kinematics.moves()) {
-            SweptSphere sweep(path, R_, t_search, w.time);
-            TimeSpan span;
-            if (sweep.span(comp.world_lo, comp.world_hi, span)) {
-                const AdvancementResult r = advance_to_contact(c, *comp.collider, facets_[k], surface_speed_[k], path,
-                                                               std::max(t_search, span.first), std::min(w.time, span.last), found);
-                if (r.exhausted) resume_search_at(w, r.searched_until);
-                hit = r.found;
-            }
-        } else {
-            hit = static_contact(c, path, t_search, w.time, found);
-        }
-        if (!hit) continue;
-        if (found.overlapping || found.time < w.time) {
-            w = found;
-            w.kind = WallKind::contact;
-            w.component = c;
-            if (found.overlapping) break;  // nothing can come first
-        }
-    }
-}
-
-void EventStepping::resume_search_at(WallEvent& w, double t) {
-    ++stats_.search_resumes;
-    if (!(t < w.time)) return;
-    w = WallEvent{};
-    w.time = t;
-    w.kind = WallKind::none;
-}
-
-bool EventStepping::put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const {
-    const Component& comp = model_->components[c];
-    const Pose pose = comp.kinematics.pose(epoch_, t);
-    const auto tri = static_cast<std::size_t>(w.mesh_triangle);
-    const Vec3& a = comp.mesh->corner(tri, 0);
-    const Vec3& b = comp.mesh->corner(tri, 1);
-    const Vec3& e = comp.mesh->corner(tri, 2);
-    const Vec3 local = pose.to_component(p);
-    const ClosestPoint foot = closest_point_on_triangle(local, a, b, e);
-    const Vec3 face = (b - a).cross(e - a);
-    // Behind the face itself (at an edge or a vertex the side of one face does not decide).
-    if (foot.feature != TriangleFeature::face || !(face.dot(local - foot.point) < 0.0)) return false;
-    w.normal = pose.rotation * face.normalized();
-    w.point = pose.to_world(foot.point);
-    p = w.point + R_ * w.normal;
-    if (comp.kinematics.moves()) {
-        w.surface_velocity = comp.kinematics.point_velocity(w.point, epoch_, t);
-        w.surface_acceleration = comp.kinematics.point_acceleration(w.point, epoch_, t);
-    }
-    return true;
-}
-
-bool EventStepping::static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out) {
-    const Component& comp = model_->components[static_cast<std::size_t>(c)];
-    const Pose& rest = comp.kinematics.rest;
-    const Mat3 to_local = rest.rotation.transpose();
-    const Trajectory local{rest.to_component(path.p0), to_local * path.v0, to_local * path.g, path.t0};
-    MeshCollider::Hit hit;
-    MeshCollider::SweepCounters counters;
-    const ToiStatus st = comp.collider->first_hit(local, R_, t, t_end, hit, counters);
-    stats_.bvh_queries += 1;
-    stats_.triangle_tests += counters.leaves_visited;
-    if (st == ToiStatus::miss) return false;
-    out.time = st == ToiStatus::overlapping ? t : hit.contact.time;
-    out.point = rest.to_world(hit.contact.point);
-    out.normal = rest.rotation * hit.contact.normal;
-    out.triangle = facets_[static_cast<std::size_t>(c)][static_cast<std::size_t>(hit.triangle)];
-    out.mesh_triangle = hit.triangle;
-    out.overlapping = st == ToiStatus::overlapping;
-    if (out.overlapping) out.depth = std::max(0.0, R_ - (path.position(t) - out.point).norm());
-    return true;
-}
-
-bool EventStepping::face_contact(const Trajectory& path, double t, double t_end, WallEvent& out) {
-    PlaneContact pc;
-    const ToiStatus st = vibrating_plane_toi(path, R_, face_.plane, t, t_end, pc);
-    ++stats_.touch_searches;
-    if (st == ToiStatus::miss) return false;
-    // Only where the plane is the face: the foot of the centre must lie on one of its triangles.
-    const Component& sono = model_->sonotrode_component();
-    const Pose pose = sono.kinematics.pose(epoch_, pc.time);
-    int triangle = -1;
-    if (!face_.contains(sono, pose.to_component(pc.point), kTouchDistance * R_ + 1e-12, triangle)) return false;
-    out.time = pc.time;
-    out.point = pc.point;
-    out.normal = pc.normal;
-    out.surface_velocity = pc.plate_velocity;
-    out.surface_acceleration = pc.plate_acceleration;
-    out.face = true;
-    out.triangle = facets_[static_cast<std::size_t>(model_->sonotrode)][static_cast<std::size_t>(triangle)];
-    out.overlapping = st == ToiStatus::overlapping;
-    if (out.overlapping) out.depth = std::max(0.0, -vibrating_plane_gap(path, R_, face_.plane, t));
-    return true;
-}
-
-EventStepping::AdvancementResult EventStepping::advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets,
-                                                                   double surface_speed, const Trajectory& path, double t,
-                                                                   double t_end, WallEvent& out) {
-    // Conservative advancement: the distance from the centre to the moving mesh changes no faster
-    // than the shot's speed plus the fastest surface point's, so after measuring a gap d the shot
-    // cannot touch for d / (that speed). Converges on the touch from outside; exact distances
-    // come from the BVH in the component's frame at its pose at each time.
-    const Component& comp = model_->components[static_cast<std::size_t>(c)];
-    const Kinematics& kin = comp.kinematics;
-    const bool solid = comp.solid && &collider == comp.collider.get();
-    const double V = path.max_speed(t, t_end) + surface_speed;
-    if (!(V > 0.0)) return {};
-    const double look = 2.0 * R_, tolerance = kTouchDistance * R_;
-    double u = t;
-    bool at_start = true;
-    for (int it = 0; it < kMaxAdvancement; ++it) {
-        if (u > t_end) return {};
-        const Pose pose = kin.pose(epoch_, u);
-        const Vec3 centre = path.position(u);
-        const Vec3 local = pose.to_component(centre);
-        MeshCollider::Closest closest;
-        MeshCollider::QueryCounters counters;
-        if (!collider.closest_within(local, R_ + look, closest, counters)) {
-            u += look / V;
-            at_start = false;
-            continue;
-        }
-        const SurfaceClearance clear = surface_clearance(solid ? *comp.mesh : collider_mesh(c, collider), solid, local, closest);
-        const double d = clear.distance_m - R_;
-        if (d > tolerance) {
-            u += d / V;
-            at_start = false;
-            continue;
-        }
-        out.point = pose.to_world(closest.point);
-        out.normal = pose.rotation * clear.normal;
-        out.surface_velocity = kin.point_velocity(out.point, epoch_, u);
-        out.surface_acceleration = kin.point_acceleration(out.point, epoch_, u);
-        out.overlapping = d < -tolerance;
-        const double approach = -(path.velocity(u) - out.surface_velocity).dot(out.normal);
-        if (!out.overlapping && approach <= 0.0) {
-            // Touching but separating (the shot has just left this surface): not a contact; move on
-            // by a hair so that time progresses, and keep watching for the return.
-            u += (at_start ? 1e-3 : 1e-6) * R_ / V;
-            at_start = false;
-            continue;
-        }
-        out.time = u;
-        out.depth = std::max(0.0, -d);
-        out.triangle = facets[static_cast<std::size_t>(closest.triangle)];
-        out.mesh_triangle = closest.triangle;
-        return {true, false, u};
-    }
-    // Out of iterations (a shot skimming a moving surface): nothing was found up to u, and the search
-    // resumes from there (an event), so no contact after u can be missed.
-    return {false, true, u};
-}
-
-const TriangleMesh& EventStepping::collider_mesh(int c, const MeshCollider& collider) const {
-    const Component& comp = model_->components[static_cast<std::size_t>(c)];
-    return &collider == comp.collider.get() ? *comp.mesh : *face_.rest_mesh;
+    w = walls_.first_event(path, t, t_search, t + window, stats_);
 }
 
 void EventStepping::renew_box(int i, double t) {
@@ -634,7 +404,7 @@ void EventStepping::renew_box(int i, double t) {
         s.box_until = s.motion == Motion::flying ? s.wall.time : std::min(s.wall.time, t + horizon);
         if (s.motion == Motion::riding) {
             s.path.bounds(t, s.box_until, lo, hi);
-            const Vec3 swing = Vec3::Constant(2.0 * face_.plane.amplitude_m);
+            const Vec3 swing = Vec3::Constant(2.0 * walls_.face().plane.amplitude_m);
             lo -= swing, hi += swing;  // riders follow the plate; their path leaves it out
         } else {
             s.path.bounds(t, s.box_until, lo, hi);
@@ -721,7 +491,7 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
     WallEvent w = s.wall;
     const auto c = static_cast<std::size_t>(w.component);
     const Component& comp = model_->components[c];
-    if (comp.solid && w.mesh_triangle >= 0 && put_out_of_solid(c, t, w, p)) {
+    if (comp.solid && w.mesh_triangle >= 0 && walls_.put_out_of_solid(c, t, w, p)) {
         // The centre was inside the solid (it reached its surface from within): put back out
         // through the face it lies behind; never a rebound that keeps it inside.
         ++state.health.deep_penetrations;
@@ -812,7 +582,7 @@ void EventStepping::record_impact(int i, int c, double t, const WallEvent& w, co
 
 void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
-    const VibratingPlane& plane = face_.plane;
+    const VibratingPlane& plane = walls_.face().plane;
     const Vec3& n = w.normal;
     const double k = plane.axis.dot(n);
     const double w2a = plane.amplitude_m * plane.angular_frequency() * plane.angular_frequency() * k;
@@ -851,7 +621,7 @@ void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& 
 
 void EventStepping::launch(int i, double t, SimulationState& state) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
-    const VibratingPlane& plane = face_.plane;
+    const VibratingPlane& plane = walls_.face().plane;
     // The shot left the plate at the release, kReleaseDelayPeriods before this event
     // (plate_release.h): it flies from the plate's state there.
     const double delay = kReleaseDelayPeriods / plane.frequency_hz;
@@ -949,7 +719,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
             w.point = point;
             w.normal = n;
             w.surface_velocity = vs;
-            w.triangle = facets_[c][static_cast<std::size_t>(closest.triangle)];
+            w.triangle = walls_.source_facet(c, closest.triangle);
             if (impact) record_impact(i, static_cast<int>(c), t, w, v, r, state, impacts);
             v = r.v_shot;
         } else {

@@ -41,6 +41,8 @@
 #include "engine/stepper.h"
 #include "engine/event/event_queue.h"
 #include "engine/event/sonotrode_face.h"
+#include "engine/event/wall_event.h"
+#include "engine/event/wall_predictor.h"
 #include "kernels/trajectory.h"
 #include "model/model.h"
 
@@ -79,23 +81,6 @@ public:
 
 private:
     enum class Motion : unsigned char { flying, riding, sustained, sleeping };
-    enum class WallKind : unsigned char { none, contact, launch, substep, leave };
-
-    // The next contact of a shot with a component, world frame, at `time`.
-    struct WallEvent {
-        double time = 0.0;            // s
-        WallKind kind = WallKind::none;
-        int component = -1;
-        int triangle = -1;            // facet of the mesh file (impact record)
-        int mesh_triangle = -1;       // triangle of the component's mesh (static and moving meshes)
-        bool overlapping = false;     // found inside the surface at the prediction's start
-        bool face = false;            // on the sonotrode's vibrating face
-        Vec3 point = Vec3::Zero();    // m, surface point
-        Vec3 normal = Vec3::UnitZ();  // unit, from the surface towards the centre
-        Vec3 surface_velocity = Vec3::Zero();      // m/s
-        Vec3 surface_acceleration = Vec3::Zero();  // m/s2
-        double depth = 0.0;           // m, overlap depth if overlapping
-    };
 
     struct Shot {
         Trajectory path;              // world; for a sleeping or riding shot: g = 0 (see ride_*)
@@ -122,13 +107,6 @@ private:
         Vec3 ride_point = Vec3::Zero();
         Vec3 ride_tangential = Vec3::Zero();
         Vec3 ride_normal = Vec3::UnitZ();
-    };
-
-    // Moving-mesh contact by conservative advancement, with a per-call iteration budget.
-    struct AdvancementResult {
-        bool found = false;
-        bool exhausted = false;        // out of iterations: nothing found up to searched_until
-        double searched_until = 0.0;   // s
     };
 
     void start(SimulationState& state);
@@ -158,19 +136,6 @@ private:
     // A component that does not move within R (plus the contact slack) of p.
     bool touches_surface(const Vec3& p) const;
     double resting_fraction(const SimulationState& state) const;  // of the active shot, still on a surface
-
-    bool static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out);
-    bool face_contact(const Trajectory& path, double t, double t_end, WallEvent& out);
-    AdvancementResult advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets, double surface_speed,
-                                         const Trajectory& path, double t, double t_end, WallEvent& out);
-    double leave_time(const Trajectory& path, double t) const;
-    // The search found nothing up to t and must go on from there: the event becomes a window end at t
-    // if that comes before what `w` holds.
-    void resume_search_at(WallEvent& w, double t);
-    const TriangleMesh& collider_mesh(int c, const MeshCollider& collider) const;
-    // If the centre p (world) lies behind the face of w.mesh_triangle of solid component c at time
-    // t, moves p out to touch that face and sets w's point, normal and surface motion: true.
-    bool put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const;  // the mesh `collider` was built over
 
     void collide_wall(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
     void collide_pair(int i, int j, double t, SimulationState& state);
@@ -202,7 +167,6 @@ private:
     // The scheme's clock: every time below (flights, events, rides) is seconds since epoch_, the
     // state's time at the last restart point.
     SimTime epoch_;
-    double face_phase_at_zero_ = 0.0;  // rad, the face's phase at t = 0 (face_.plane is rebased to epoch_)
     std::uint64_t work_since_restart_ = 0;
     std::uint64_t work_budget_ = 0;    // work units between restart points, at most (then the next grid point)
     std::uint64_t work_counted_ = 0;   // work_units() already counted
@@ -215,11 +179,7 @@ private:
     std::vector<int> neighbours_;                 // scratch of predict_pairs
     std::vector<int> wake_stack_;                 // scratch of wake_neighbours: shot whose neighbours to wake
     std::vector<int> woken_;                      // scratch of wake_neighbours: shot woken so far
-    SonotrodeFace face_;
-    bool sonotrode_vibrates_ = false;
-    std::vector<std::vector<int>> facets_;        // per component: source facet per mesh triangle
-    std::vector<double> surface_speed_;           // m/s, per component: fastest surface point
-    double moving_part_speed_ = 0.0;              // m/s, fastest surface point of any moving part but the sonotrode
+    WallPredictor walls_;                          // where a flight first meets a surface
 
     double R_ = 0.0;                 // m
     Vec3 g_ = Vec3::Zero();          // m/s2

@@ -1,0 +1,264 @@
+#include "engine/event/wall_predictor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "collision/surface_clearance.h"
+#include "kernels/closest_point.h"
+#include "kernels/swept_sphere_box.h"
+#include "kernels/vibrating_plane_toi.h"
+#include "model/shot_cavity.h"
+
+namespace peensim {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr int kMaxAdvancement = 2000;  // conservative-advancement iterations per search (then it resumes later)
+}  // namespace
+
+WallPredictor::WallPredictor(std::shared_ptr<const Model> model) : model_(std::move(model)) {
+    const Model& m = *model_;
+    R_ = m.shot_radius_m;
+    const Component& sono = m.sonotrode_component();
+    sonotrode_vibrates_ = sono.kinematics.kind == Kinematics::Kind::vibrating && sono.kinematics.moves();
+    if (sonotrode_vibrates_) {
+        face_ = build_sonotrode_face(sono, sonotrode_up(m));
+        face_phase_at_zero_ = face_.plane.phase_rad;
+    }
+    for (const Component& c : m.components) {
+        std::vector<int> facets(c.mesh->triangle_count());
+        for (std::size_t t = 0; t < facets.size(); ++t) facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
+        facets_.push_back(std::move(facets));
+        surface_speed_.push_back(c.kinematics.peak_surface_speed(c.max_axis_distance_m));
+        if (&c != &sono) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
+    }
+}
+
+void WallPredictor::set_epoch(const SimTime& epoch) {
+    epoch_ = epoch;
+    if (sonotrode_vibrates_) face_.plane.phase_rad = face_phase_at_zero_ + 2.0 * M_PI * epoch_.cycle_fraction(face_.plane.frequency_hz);
+}
+
+WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_search, double window_end, StepStats& stats) const {
+    WallEvent w;
+    const double t_leave = leave_time(path, t);
+    w.time = std::min(t_leave, window_end);
+    w.kind = t_leave <= window_end ? WallKind::leave : WallKind::none;
+    const Model& m = *model_;
+    // The window's sphere bounds: a component whose (swept) bounds they miss cannot be reached.
+    Vec3 reach_lo, reach_hi;
+    path.bounds(t, w.time, reach_lo, reach_hi);
+    reach_lo -= Vec3::Constant(1.001 * R_);
+    reach_hi += Vec3::Constant(1.001 * R_);
+    for (std::size_t k = 0; k < m.components.size(); ++k) {
+        const int c = static_cast<int>(k);
+        const Component& comp = m.components[k];
+        if ((reach_hi.array() < comp.world_lo.array()).any() || (reach_lo.array() > comp.world_hi.array()).any()) continue;
+        ++stats.mesh_predictions;
+        WallEvent found;
+        bool hit = false;
+        if (c == m.sonotrode && sonotrode_vibrates_) {
+            hit = face_contact(path, t_search, w.time, found, stats);
+            if (face_.rest_collider && !(hit && found.overlapping)) {
+                // The sonotrode's other triangles move by at most A: a static sweep with the radius
+                // grown by A finds when the shot can first reach them, advancement settles it.
+                MeshCollider::Hit near;
+                MeshCollider::SweepCounters counters;
+                const Pose& rest = comp.kinematics.rest;
+                const Trajectory local{rest.to_component(path.p0), rest.rotation.transpose() * path.v0, rest.rotation.transpose() * path.g, t};
+                const double t_limit = hit ? found.time : w.time;
+                const ToiStatus st = face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
+                if (st != ToiStatus::miss) {
+                    WallEvent side;
+                    const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, face_.rest_mesh->source_facet, surface_speed_[k], path,
+                                                                   near.contact.time, t_limit, side);
+                    if (r.exhausted) resume_search_at(w, r.searched_until, stats);
+                    if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
+                }
+            }
+        } else if (comp.kinematics.moves()) {
+            SweptSphere sweep(path, R_, t_search, w.time);
+            TimeSpan span;
+            if (sweep.span(comp.world_lo, comp.world_hi, span)) {
+                const AdvancementResult r = advance_to_contact(c, *comp.collider, facets_[k], surface_speed_[k], path,
+                                                               std::max(t_search, span.first), std::min(w.time, span.last), found);
+                if (r.exhausted) resume_search_at(w, r.searched_until, stats);
+                hit = r.found;
+            }
+        } else {
+            hit = static_contact(c, path, t_search, w.time, found, stats);
+        }
+        if (!hit) continue;
+        if (found.overlapping || found.time < w.time) {
+            w = found;
+            w.kind = WallKind::contact;
+            w.component = c;
+            if (found.overlapping) break;  // nothing can come first
+        }
+    }
+    return w;
+}
+
+double WallPredictor::leave_time(const Trajectory& path, double t) const {
+    // The first time after t the centre leaves the world box: per axis x0 + v u + h u^2 = bound.
+    const Vec3 p = path.position(t), v = path.velocity(t), h = 0.5 * path.g;
+    double first = kInf;
+    for (int k = 0; k < 3; ++k) {
+        for (const double bound : {model_->world_lo[k], model_->world_hi[k]}) {
+            const double c = p[k] - bound;
+            if ((bound == model_->world_lo[k] && c < 0.0) || (bound == model_->world_hi[k] && c > 0.0)) return t;
+            double u = kInf;
+            if (h[k] == 0.0) {
+                if (v[k] != 0.0 && -c / v[k] > 0.0) u = -c / v[k];
+            } else {
+                const double disc = v[k] * v[k] - 4.0 * h[k] * c;
+                if (disc >= 0.0) {
+                    const double q = -0.5 * (v[k] + std::copysign(std::sqrt(disc), v[k]));
+                    for (const double r : {q / h[k], q != 0.0 ? c / q : kInf})
+                        if (r > 0.0) u = std::min(u, r);
+                }
+            }
+            first = std::min(first, t + u);
+        }
+    }
+    return first;
+}
+
+void WallPredictor::resume_search_at(WallEvent& w, double t, StepStats& stats) {
+    ++stats.search_resumes;
+    if (!(t < w.time)) return;
+    w = WallEvent{};
+    w.time = t;
+    w.kind = WallKind::none;
+}
+
+bool WallPredictor::put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const {
+    const Component& comp = model_->components[c];
+    const Pose pose = comp.kinematics.pose(epoch_, t);
+    const auto tri = static_cast<std::size_t>(w.mesh_triangle);
+    const Vec3& a = comp.mesh->corner(tri, 0);
+    const Vec3& b = comp.mesh->corner(tri, 1);
+    const Vec3& e = comp.mesh->corner(tri, 2);
+    const Vec3 local = pose.to_component(p);
+    const ClosestPoint foot = closest_point_on_triangle(local, a, b, e);
+    const Vec3 face = (b - a).cross(e - a);
+    // Behind the face itself (at an edge or a vertex the side of one face does not decide).
+    if (foot.feature != TriangleFeature::face || !(face.dot(local - foot.point) < 0.0)) return false;
+    w.normal = pose.rotation * face.normalized();
+    w.point = pose.to_world(foot.point);
+    p = w.point + R_ * w.normal;
+    if (comp.kinematics.moves()) {
+        w.surface_velocity = comp.kinematics.point_velocity(w.point, epoch_, t);
+        w.surface_acceleration = comp.kinematics.point_acceleration(w.point, epoch_, t);
+    }
+    return true;
+}
+
+bool WallPredictor::static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const {
+    const Component& comp = model_->components[static_cast<std::size_t>(c)];
+    const Pose& rest = comp.kinematics.rest;
+    const Mat3 to_local = rest.rotation.transpose();
+    const Trajectory local{rest.to_component(path.p0), to_local * path.v0, to_local * path.g, path.t0};
+    MeshCollider::Hit hit;
+    MeshCollider::SweepCounters counters;
+    const ToiStatus st = comp.collider->first_hit(local, R_, t, t_end, hit, counters);
+    stats.bvh_queries += 1;
+    stats.triangle_tests += counters.leaves_visited;
+    if (st == ToiStatus::miss) return false;
+    out.time = st == ToiStatus::overlapping ? t : hit.contact.time;
+    out.point = rest.to_world(hit.contact.point);
+    out.normal = rest.rotation * hit.contact.normal;
+    out.triangle = facets_[static_cast<std::size_t>(c)][static_cast<std::size_t>(hit.triangle)];
+    out.mesh_triangle = hit.triangle;
+    out.overlapping = st == ToiStatus::overlapping;
+    if (out.overlapping) out.depth = std::max(0.0, R_ - (path.position(t) - out.point).norm());
+    return true;
+}
+
+bool WallPredictor::face_contact(const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const {
+    PlaneContact pc;
+    const ToiStatus st = vibrating_plane_toi(path, R_, face_.plane, t, t_end, pc);
+    ++stats.touch_searches;
+    if (st == ToiStatus::miss) return false;
+    // Only where the plane is the face: the foot of the centre must lie on one of its triangles.
+    const Component& sono = model_->sonotrode_component();
+    const Pose pose = sono.kinematics.pose(epoch_, pc.time);
+    int triangle = -1;
+    if (!face_.contains(sono, pose.to_component(pc.point), kTouchDistance * R_ + 1e-12, triangle)) return false;
+    out.time = pc.time;
+    out.point = pc.point;
+    out.normal = pc.normal;
+    out.surface_velocity = pc.plate_velocity;
+    out.surface_acceleration = pc.plate_acceleration;
+    out.face = true;
+    out.triangle = facets_[static_cast<std::size_t>(model_->sonotrode)][static_cast<std::size_t>(triangle)];
+    out.overlapping = st == ToiStatus::overlapping;
+    if (out.overlapping) out.depth = std::max(0.0, -vibrating_plane_gap(path, R_, face_.plane, t));
+    return true;
+}
+
+WallPredictor::AdvancementResult WallPredictor::advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets,
+                                                                   double surface_speed, const Trajectory& path, double t,
+                                                                   double t_end, WallEvent& out) const {
+    // Conservative advancement: the distance from the centre to the moving mesh changes no faster
+    // than the shot's speed plus the fastest surface point's, so after measuring a gap d the shot
+    // cannot touch for d / (that speed). Converges on the touch from outside; exact distances
+    // come from the BVH in the component's frame at its pose at each time.
+    const Component& comp = model_->components[static_cast<std::size_t>(c)];
+    const Kinematics& kin = comp.kinematics;
+    const bool solid = comp.solid && &collider == comp.collider.get();
+    const double V = path.max_speed(t, t_end) + surface_speed;
+    if (!(V > 0.0)) return {};
+    const double look = 2.0 * R_, tolerance = kTouchDistance * R_;
+    double u = t;
+    bool at_start = true;
+    for (int it = 0; it < kMaxAdvancement; ++it) {
+        if (u > t_end) return {};
+        const Pose pose = kin.pose(epoch_, u);
+        const Vec3 centre = path.position(u);
+        const Vec3 local = pose.to_component(centre);
+        MeshCollider::Closest closest;
+        MeshCollider::QueryCounters counters;
+        if (!collider.closest_within(local, R_ + look, closest, counters)) {
+            u += look / V;
+            at_start = false;
+            continue;
+        }
+        const SurfaceClearance clear = surface_clearance(solid ? *comp.mesh : collider_mesh(c, collider), solid, local, closest);
+        const double d = clear.distance_m - R_;
+        if (d > tolerance) {
+            u += d / V;
+            at_start = false;
+            continue;
+        }
+        out.point = pose.to_world(closest.point);
+        out.normal = pose.rotation * clear.normal;
+        out.surface_velocity = kin.point_velocity(out.point, epoch_, u);
+        out.surface_acceleration = kin.point_acceleration(out.point, epoch_, u);
+        out.overlapping = d < -tolerance;
+        const double approach = -(path.velocity(u) - out.surface_velocity).dot(out.normal);
+        if (!out.overlapping && approach <= 0.0) {
+            // Touching but separating (the shot has just left this surface): not a contact; move on
+            // by a hair so that time progresses, and keep watching for the return.
+            u += (at_start ? 1e-3 : 1e-6) * R_ / V;
+            at_start = false;
+            continue;
+        }
+        out.time = u;
+        out.depth = std::max(0.0, -d);
+        out.triangle = facets[static_cast<std::size_t>(closest.triangle)];
+        out.mesh_triangle = closest.triangle;
+        return {true, false, u};
+    }
+    // Out of iterations (a shot skimming a moving surface): nothing was found up to u, and the search
+    // resumes from there (an event), so no contact after u can be missed.
+    return {false, true, u};
+}
+
+const TriangleMesh& WallPredictor::collider_mesh(int c, const MeshCollider& collider) const {
+    const Component& comp = model_->components[static_cast<std::size_t>(c)];
+    return &collider == comp.collider.get() ? *comp.mesh : *face_.rest_mesh;
+}
+
+}  // namespace peensim

@@ -1,0 +1,77 @@
+// Where a flying shot first meets a surface: the event-driven scheme's wall prediction, a const
+// function of the model, the scheme's clock and a flight (model and collision in, a WallEvent
+// out). Static meshes by MeshCollider::first_hit (a time-ordered swept-sphere walk of the BVH),
+// the sonotrode's face by its exact vibrating plane (vibrating_plane_toi), moving meshes (a
+// rotating part, the sonotrode's sides) by conservative advancement on exact distances.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "common/sim_time.h"
+#include "engine/event/sonotrode_face.h"
+#include "engine/event/wall_event.h"
+#include "engine/step_stats.h"
+#include "kernels/trajectory.h"
+#include "model/model.h"
+
+namespace peensim {
+
+class WallPredictor {
+public:
+    explicit WallPredictor(std::shared_ptr<const Model> model);
+
+    // The scheme's clock restarts at `epoch` (absolute): every time passed in or out is seconds
+    // since it (the face's phase is rebased to it).
+    void set_epoch(const SimTime& epoch);
+
+    // The first event of the flight `path` (rebased at t) with a surface, searched over
+    // [t_search, window_end]: a contact (kind contact; overlapping if the shot is already in a
+    // surface at t_search), leaving the world box (kind leave), or nothing found (kind none) at
+    // the window's end or where a moving-mesh search ran out of iterations (the search goes on
+    // from there). Counts its work in `stats`.
+    WallEvent first_event(const Trajectory& path, double t, double t_search, double window_end, StepStats& stats) const;
+
+    // The first time after t the centre leaves the world box (t if it is outside already).
+    double leave_time(const Trajectory& path, double t) const;
+
+    // If the centre p (world) lies behind the face of w.mesh_triangle of solid component c at time
+    // t, moves p out to touch that face and sets w's point, normal and surface motion: true.
+    bool put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const;
+
+    bool sonotrode_vibrates() const { return sonotrode_vibrates_; }
+    const SonotrodeFace& face() const { return face_; }
+    // The mesh file's facet of a triangle of component c's mesh (impact records).
+    int source_facet(std::size_t c, int mesh_triangle) const { return facets_[c][static_cast<std::size_t>(mesh_triangle)]; }
+    double surface_speed(std::size_t c) const { return surface_speed_[c]; }  // m/s, fastest surface point of c
+    double moving_part_speed() const { return moving_part_speed_; }          // m/s, of any moving part but the sonotrode
+
+private:
+    // Moving-mesh contact by conservative advancement, with a per-call iteration budget.
+    struct AdvancementResult {
+        bool found = false;
+        bool exhausted = false;        // out of iterations: nothing found up to searched_until
+        double searched_until = 0.0;   // s
+    };
+
+    bool static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const;
+    bool face_contact(const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const;
+    AdvancementResult advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets, double surface_speed,
+                                         const Trajectory& path, double t, double t_end, WallEvent& out) const;
+    // The search found nothing up to t and must go on from there: the event becomes a window end at t
+    // if that comes before what `w` holds.
+    static void resume_search_at(WallEvent& w, double t, StepStats& stats);
+    const TriangleMesh& collider_mesh(int c, const MeshCollider& collider) const;  // the mesh `collider` was built over
+
+    std::shared_ptr<const Model> model_;
+    double R_ = 0.0;                              // m
+    SimTime epoch_;
+    SonotrodeFace face_;
+    bool sonotrode_vibrates_ = false;
+    double face_phase_at_zero_ = 0.0;             // rad, the face's phase at t = 0
+    std::vector<std::vector<int>> facets_;        // per component: source facet per mesh triangle
+    std::vector<double> surface_speed_;           // m/s, per component: fastest surface point
+    double moving_part_speed_ = 0.0;              // m/s
+};
+
+}  // namespace peensim
