@@ -41,18 +41,22 @@ constexpr double kContactSlack = 1e-6;      // of R: a shot this close to a surf
 constexpr double kSustainSlack = 1e-3;
 constexpr std::uint64_t kMaxEventsAtOneTime = 10000;  // then the shot is forced into substeps
 
+// Slower approaches than gravity adds over two substeps are sustained contact (time stepping's rule).
+// Never zero: a touch at a rounding-level speed (a flight exactly tangent to a face, without
+// gravity) is not an impact either.
+double resting_speed_for(const Model& m) { return std::max(kMinImpactSpeed, 2.0 * m.gravity_m_per_s2.norm() * kSubstep); }
+
 }  // namespace
 
 EventStepping::EventStepping(std::shared_ptr<const Model> model)
-    : model_(model), walls_(std::move(model)) {
+    : model_(model),
+      pairs_(model->shot_count, model->shot_radius_m, resting_speed_for(*model)),
+      walls_(std::move(model)) {
     const Model& m = *model_;
     R_ = m.shot_radius_m;
     g_ = m.gravity_m_per_s2;
     substep_ = kSubstep;
-    // Slower approaches than gravity adds over two substeps are sustained contact (time stepping's rule).
-    // Never zero: a touch at a rounding-level speed (a flight exactly tangent to a face, without
-    // gravity) is not an impact either.
-    resting_speed_ = std::max(kMinImpactSpeed, 2.0 * g_.norm() * substep_);
+    resting_speed_ = resting_speed_for(m);
     impact_speed_ = m.impact_speed_m_per_s;
     box_travel_ = kBoxTravel * R_;
     shots_.resize(static_cast<std::size_t>(m.shot_count));
@@ -216,7 +220,7 @@ void EventStepping::start(SimulationState& state) {
     at_same_time_ = 0;
     const double t = 0.0;
     // Everything from the state alone, as after a resume: fresh tree, queue and per-shot records.
-    boxes_ = std::make_unique<ShotBoxTree>(model_->shot_count);
+    pairs_.reset();
     queue_.reset(shots_.size());
     std::fill(shots_.begin(), shots_.end(), Shot{});
     // Two passes: every flight and its box first, so that the pair predictions see every neighbour.
@@ -339,7 +343,7 @@ void EventStepping::predict(int i, double t) {
 }
 
 void EventStepping::pairs_and_schedule(int i, double t) {
-    if (predict_pairs(i, t)) {
+    if (pairs_.predict(i, t, shots_, active_, queue_, stats_)) {
         // Pressed into a pile (shot in sustained contact or asleep): it joins the pile's sustained
         // contact, which resolves it with the others substep by substep.
         set_flight(i, position(i, t), velocity(i, t), t, Motion::sustained);
@@ -412,58 +416,9 @@ void EventStepping::renew_box(int i, double t) {
     }
     s.box_lo = lo - Vec3::Constant(R_ + pad);
     s.box_hi = hi + Vec3::Constant(R_ + pad);
-    boxes_->set(i, s.box_lo, s.box_hi);
+    pairs_.set_box(i, s.box_lo, s.box_hi);
 }
 
-bool EventStepping::predict_pairs(int i, double t) {
-    Shot& s = shots_[static_cast<std::size_t>(i)];
-    s.pair_time = kInf;
-    s.partner = -1;
-    bool joins_pile = false;
-    // One timer for the neighbour query and the pair tests: both are short, and reading the clock
-    // around each was a visible cost.
-    StageTimer timer(stats_, Stage::shot_contacts);
-    boxes_->overlapping(s.box_lo, s.box_hi, neighbours_);
-    // Ties between partners go to the lowest index, whatever order the tree returns them in.
-    for (const int j : neighbours_) {
-        if (j == i || !active_[static_cast<std::size_t>(j)]) continue;
-        const Shot& o = shots_[static_cast<std::size_t>(j)];
-        // The partner's flight is known up to its own next event; after that it re-predicts.
-        const double end = std::min(s.box_until, queue_.time_of(j));
-        if (end < t) continue;
-        ++stats_.pair_tests;
-        PairContact pc;
-        const ToiStatus st = sphere_pair_toi(s.path, R_, o.path, R_, t, end, pc);
-        if (st == ToiStatus::miss) continue;
-        // Riding shots' paths leave out the plate's motion: their exact positions are checked in collide_pair.
-        if (st == ToiStatus::overlapping || pc.time == t) {
-            if (st == ToiStatus::impact && j == s.last_partner && s.last_pair_time == t) continue;  // just collided
-            if (t == s.no_pairs_at || t == o.no_pairs_at) continue;     // forced progress (see advance)
-            // Touching (or overlapping) now, with a shot in sustained contact or asleep: a contact
-            // within a pile, which the substeps resolve. As events, shot touching several others at
-            // once pass the approach (or the overlap) round among themselves forever at the same
-            // instant: a pile jams. A flying shot pressed into a pile (overlapping it, or touching
-            // it slower than the resting speed) joins it; a faster one bounces off it (an event).
-            const bool s_rests = s.motion == Motion::sustained || s.motion == Motion::sleeping;
-            const bool o_rests = o.motion == Motion::sustained || o.motion == Motion::sleeping;
-            if (s_rests && o_rests) continue;
-            if (s_rests || o_rests) {
-                const double approach = -(o.path.velocity(t) - s.path.velocity(t)).dot(pc.normal);
-                if (st == ToiStatus::overlapping || approach <= resting_speed_) {
-                    joins_pile |= !s_rests;
-                    continue;
-                }
-            }
-        }
-        const double when = st == ToiStatus::overlapping ? t : pc.time;
-        if (when < s.pair_time || (when == s.pair_time && j < s.partner)) {
-            s.pair_time = when;
-            s.partner = j;
-            s.partner_version = o.version;
-        }
-    }
-    return joins_pile;
-}
 
 // ---------------------------------------------------------------------------------------------
 // Collisions
@@ -667,7 +622,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
     };
     // Shot it rests on or leans against: held like a wall (only this shot's motion changes). Shot
     // first, surfaces last, so that a push from a neighbour never leaves the shot inside a surface.
-    boxes_->overlapping(p - Vec3::Constant(2.0 * R_ + slack), p + Vec3::Constant(2.0 * R_ + slack), neighbours_);
+    pairs_.overlapping(p - Vec3::Constant(2.0 * R_ + slack), p + Vec3::Constant(2.0 * R_ + slack), neighbours_);
     for (const int j : neighbours_) {
         if (j == i || !active_[static_cast<std::size_t>(j)]) continue;
         const Vec3 pj = position(j, t);
@@ -806,7 +761,7 @@ void EventStepping::wake_neighbours(int i, double t) {
         wake_stack_.pop_back();
         const Vec3 p = position(k, t);
         const Vec3 reach = Vec3::Constant(2.0 * R_ + kContactSlack * R_);
-        boxes_->overlapping(p - reach, p + reach, neighbours_);
+        pairs_.overlapping(p - reach, p + reach, neighbours_);
         const std::size_t first_woken = woken_.size();
         for (const int j : neighbours_) {
             Shot& o = shots_[static_cast<std::size_t>(j)];
@@ -840,7 +795,7 @@ void EventStepping::lose(int i, double t, SimulationState& state, bool non_finit
         if (l.cause == LossCause::engine_error) ++state.health.engine_errors;
         state.lost.push_back(l);
     }
-    boxes_->remove(i);
+    pairs_.remove(i);
     Shot& s = shots_[k];
     s.wall = WallEvent{};
     s.wall.time = kInf;

@@ -42,6 +42,8 @@
 #include "engine/event/event_queue.h"
 #include "engine/event/sonotrode_face.h"
 #include "engine/event/wall_event.h"
+#include "engine/event/pair_predictor.h"
+#include "engine/event/shot_record.h"
 #include "engine/event/wall_predictor.h"
 #include "kernels/trajectory.h"
 #include "model/model.h"
@@ -80,34 +82,8 @@ public:
     static constexpr std::uint64_t kWorkPerRestart = 16;
 
 private:
-    enum class Motion : unsigned char { flying, riding, sustained, sleeping };
-
-    struct Shot {
-        Trajectory path;              // world; for a sleeping or riding shot: g = 0 (see ride_*)
-        Motion motion = Motion::flying;
-        std::uint32_t version = 0;    // bumped whenever `path` changes
-        WallEvent wall;
-        double pair_time = 0.0;       // s, +inf: none
-        int partner = -1;
-        std::uint32_t partner_version = 0;
-        double box_until = 0.0;       // s, the neighbour box holds the shot up to this time
-        Vec3 box_lo = Vec3::Zero(), box_hi = Vec3::Zero();  // m, that box
-        double last_pair_time = -1.0; // s, latest shot-shot collision (TC rule)
-        int last_partner = -1;
-        double no_pairs_at = -1.0;    // s, an instant at which this shot takes no more pair events
-        double graze_at = -1.0;       // s, the instant of its latest graze (no wall contact then)
-        int quick_grazes = 0;         // grazes in a row, each within the TC window of the one before
-        bool in_flight = false;       // SimulationState's in_flight (a slow contact ending it is counted)
-        double substep_s = 0.0;       // s, length of the current sustained-contact substep
-        int quiet_substeps = 0;       // consecutive still substeps (sleep)
-        double window_travel = 0.0;   // m, travel the next search window of this flight covers
-        // Riding the sonotrode since ride_start (s): centre at ride_point + a (s(t) - s(ride_start))
-        // + ride_tangential (t - ride_start).
-        double ride_start = 0.0;
-        Vec3 ride_point = Vec3::Zero();
-        Vec3 ride_tangential = Vec3::Zero();
-        Vec3 ride_normal = Vec3::UnitZ();
-    };
+    using Motion = EventMotion;
+    using Shot = EventShot;
 
     void start(SimulationState& state);
     // Work done so far, weighted by what it costs: a shot-shot time-of-impact test is one unit, an
@@ -127,9 +103,7 @@ private:
     void process(int i, SimulationState& state, std::vector<ImpactRecord>& impacts);
     void predict(int i, double t);                 // wall, box and pairs
     void predict_wall(int i, double t);
-    // The earliest neighbour contact; true if shot i is pressed into a pile and should join it.
-    bool predict_pairs(int i, double t);
-    void pairs_and_schedule(int i, double t);  // predict_pairs, then the pile or the queue
+    void pairs_and_schedule(int i, double t);  // the pair predictor, then the pile or the queue
     void renew_box(int i, double t);
     void schedule(int i);
     double key(const Shot& s) const;
@@ -175,8 +149,8 @@ private:
     std::vector<Shot> shots_;
     std::vector<unsigned char> active_;
     EventQueue queue_;
-    std::unique_ptr<ShotBoxTree> boxes_;
-    std::vector<int> neighbours_;                 // scratch of predict_pairs
+    PairPredictor pairs_;                         // neighbours by flight box, their first contacts
+    std::vector<int> neighbours_;                 // scratch of substep and wake_neighbours
     std::vector<int> wake_stack_;                 // scratch of wake_neighbours: shot whose neighbours to wake
     std::vector<int> woken_;                      // scratch of wake_neighbours: shot woken so far
     WallPredictor walls_;                          // where a flight first meets a surface
