@@ -1,6 +1,6 @@
 #include "engine/simulation.h"
 
-#include "engine/event_stepping.h"
+#include "engine/event/event_stepping.h"
 #include "engine/law_input.h"
 #include "engine/time_stepping.h"
 

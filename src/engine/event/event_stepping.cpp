@@ -1,4 +1,4 @@
-#include "engine/event_stepping.h"
+#include "engine/event/event_stepping.h"
 
 #include <algorithm>
 #include <cmath>
