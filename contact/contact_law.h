@@ -17,50 +17,50 @@ namespace peensim::contact {
 
 // A shot touching a (possibly moving) surface. All vectors in one frame (world).
 struct SurfaceContactInput {
-    Vec3 v_shot;              // m/s, shot velocity just before the contact
-    Vec3 v_surface;           // m/s, velocity of the surface material point at the contact
-    Vec3 normal;              // unit, from the surface towards the shot centre
+    Vec3 v_shot;                  // m/s, shot velocity just before the contact
+    Vec3 v_surface;               // m/s, velocity of the surface material point at the contact
+    Vec3 normal;                  // unit, from the surface towards the shot centre
     double pressing_accel = 0.0;  // m/s2, acceleration pressing the shot onto the surface (>= 0), for friction
-    double dt = 0.0;          // s, the time over which sustained-contact friction acts
+    double dt = 0.0;              // s, the time over which sustained-contact friction acts
     // The contact's identity, for laws that keep state or look at geometry (the engine fills all).
-    int shot = -1;            // index of the shot
-    int component = -1;       // index of the component touched
-    int triangle = -1;        // index of the mesh triangle touched (indexes the per-triangle state)
+    int shot = -1;                    // index of the shot
+    int component = -1;               // index of the component touched
+    int triangle = -1;                // index of the mesh triangle touched (indexes the per-triangle state)
     Vec3 point_local = Vec3::Zero();  // m, contact point in the component's own frame
-    double overlap_m = 0.0;   // m, how far the shot is into the surface (0 at an exact touch)
-    double shot_radius_m = 0.0;  // m
-    double shot_mass_kg = 0.0;   // kg
-    double time_s = 0.0;      // s, simulated time of the contact
+    double overlap_m = 0.0;           // m, how far the shot is into the surface (0 at an exact touch)
+    double shot_radius_m = 0.0;       // m
+    double shot_mass_kg = 0.0;        // kg
+    double time_s = 0.0;              // s, simulated time of the contact
     // The contact policy's verdict (contact_policy.h): an impact (counted and logged) or a slower
     // contact the scheme resolves as a rebound. A law with a memory of hits counts only impacts.
     bool impact = false;
 };
 
 struct SurfaceContactResponse {
-    Vec3 v_shot;              // m/s, shot velocity after the contact
-    double vn_in = 0.0;       // m/s, normal approach speed relative to the surface (>= 0)
-    double vt_in = 0.0;       // m/s, tangential speed relative to the surface before
-    double vn_out = 0.0;      // m/s, normal separation speed relative to the surface after (>= 0)
-    bool approaching = false; // false: the pair was separating and nothing changed
+    Vec3 v_shot;               // m/s, shot velocity after the contact
+    double vn_in = 0.0;        // m/s, normal approach speed relative to the surface (>= 0)
+    double vt_in = 0.0;        // m/s, tangential speed relative to the surface before
+    double vn_out = 0.0;       // m/s, normal separation speed relative to the surface after (>= 0)
+    bool approaching = false;  // false: the pair was separating and nothing changed
 };
 
 // Two shots of equal mass in contact.
 struct ShotShotInput {
-    Vec3 v_i;                 // m/s
-    Vec3 v_j;                 // m/s
-    Vec3 normal;              // unit, from the centre of i to the centre of j
+    Vec3 v_i;     // m/s
+    Vec3 v_j;     // m/s
+    Vec3 normal;  // unit, from the centre of i to the centre of j
     ShotShotMode mode = ShotShotMode::law;
     int shot_i = -1, shot_j = -1;  // indices of the two shot
-    double overlap_m = 0.0;   // m, 2 R - distance between the centres (0 at an exact touch)
-    double shot_radius_m = 0.0;  // m, both shot
-    double shot_mass_kg = 0.0;   // kg, both shot
-    double time_s = 0.0;      // s
+    double overlap_m = 0.0;        // m, 2 R - distance between the centres (0 at an exact touch)
+    double shot_radius_m = 0.0;    // m, both shot
+    double shot_mass_kg = 0.0;     // kg, both shot
+    double time_s = 0.0;           // s
 };
 
 struct ShotShotResponse {
-    Vec3 v_i;                 // m/s, after
-    Vec3 v_j;                 // m/s, after
-    double vn_in = 0.0;       // m/s, normal approach speed (>= 0)
+    Vec3 v_i;            // m/s, after
+    Vec3 v_j;            // m/s, after
+    double vn_in = 0.0;  // m/s, normal approach speed (>= 0)
     bool approaching = false;
 };
 

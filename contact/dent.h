@@ -14,8 +14,7 @@ namespace peensim {
 //   yield_stress_pa          sigma_y, yield stress of the part's material (Pa)
 // Throws std::invalid_argument for a non-positive diameter, density or yield stress: those are
 // programming errors upstream (the scene checks its values), not something to round away.
-inline double dent_diameter(double shot_diameter_m, double shot_density_kg_per_m3,
-                            double normal_speed_m_per_s, double yield_stress_pa) {
+inline double dent_diameter(double shot_diameter_m, double shot_density_kg_per_m3, double normal_speed_m_per_s, double yield_stress_pa) {
     if (!(shot_diameter_m > 0.0) || !(shot_density_kg_per_m3 > 0.0) || !(yield_stress_pa > 0.0))
         throw std::invalid_argument("dent_diameter: diameter, density and yield stress must be positive");
     const double v2 = normal_speed_m_per_s * normal_speed_m_per_s;  // m^2/s^2

@@ -31,9 +31,9 @@ private:
     long long cell_of(double x) const;
     double distance_to(std::size_t triangle, const Vec3& p) const;
 
-    std::vector<Vec3> corners_;                           // m
-    double cell_m_ = 0.0;                                 // m
-    double reach_m_ = 0.0;                                // m, largest centroid-to-corner distance
+    std::vector<Vec3> corners_;                             // m
+    double cell_m_ = 0.0;                                   // m
+    double reach_m_ = 0.0;                                  // m, largest centroid-to-corner distance
     std::vector<std::pair<CellKey, std::uint32_t>> cells_;  // (cell of the centroid, triangle), sorted
 };
 

@@ -11,18 +11,15 @@ namespace {
 
 // Reference tables 1 and 2; the defaults are the reference's shot-sonotrode-like values.
 constexpr std::array kImpulseParameters{
-    LawParameter{"C0", Dimension::dimensionless, "0.9", open_closed(0, 1), false,
-                 "Normal restitution in the elastic regime (eq. 2)."},
+    LawParameter{"C0", Dimension::dimensionless, "0.9", open_closed(0, 1), false, "Normal restitution in the elastic regime (eq. 2)."},
     LawParameter{"V0", Dimension::speed, "0.5", above(0), false, "Impact speed where the plastic regime starts (eq. 2)."},
-    LawParameter{"mu", Dimension::dimensionless, "0.71", closed(0, 1), false,
-                 "Tangential restitution (eq. 4, 5); not for `shot-shot`."},
-    LawParameter{"f", Dimension::dimensionless, "0.1", at_least(0), false,
-                 "Coulomb friction in sustained contact; not for `shot-shot`."},
+    LawParameter{"mu", Dimension::dimensionless, "0.71", closed(0, 1), false, "Tangential restitution (eq. 4, 5); not for `shot-shot`."},
+    LawParameter{"f", Dimension::dimensionless, "0.1", at_least(0), false, "Coulomb friction in sustained contact; not for `shot-shot`."},
 };
 
 struct RelativeParts {
-    double vn;    // m/s, normal relative velocity (< 0 approaching)
-    Vec3 vt;      // m/s, tangential relative velocity
+    double vn;  // m/s, normal relative velocity (< 0 approaching)
+    Vec3 vt;    // m/s, tangential relative velocity
 };
 
 RelativeParts split(const SurfaceContactInput& in) {

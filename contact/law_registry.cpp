@@ -20,8 +20,10 @@ std::shared_ptr<const ShotShotLaw> make_impulse_shot_shot(const ParameterValues&
 
 std::shared_ptr<const SurfaceLaw> make_impact_history(const ParameterValues& v, const SurfacePair& pair) {
     if (!pair.yield_stress_pa)
-        throw std::invalid_argument("law 'impact-history' sizes its marks by the dent diameter (eq. 10), which needs the yield "
-                                    "stress of material '" + pair.material + "': add materials." + pair.material + ".yield_stress");
+        throw std::invalid_argument(
+            "law 'impact-history' sizes its marks by the dent diameter (eq. 10), which needs the yield "
+            "stress of material '" +
+            pair.material + "': add materials." + pair.material + ".yield_stress");
     ImpactHistoryGeometry g;
     g.corners_m = pair.triangle_corners_m();
     g.shot_diameter_m = pair.shot_diameter_m;
@@ -39,7 +41,10 @@ const std::array kCatalogue{
              "Impact-history restitution (reference section 4): each impact marks the triangles within one dent "
              "diameter (eq. 10) of its point; the next impact there rebounds with restitution_by_hits[marks]. For "
              "`shot-<material>` pairs whose material has a yield stress.",
-             impact_history_parameters(), {}, make_impact_history, nullptr},
+             impact_history_parameters(),
+             {},
+             make_impact_history,
+             nullptr},
 };
 
 }  // namespace

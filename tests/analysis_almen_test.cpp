@@ -13,7 +13,7 @@ using namespace peensim;
 
 TEST(Almen, DoseCountsTheFaceOnlyAndIsHalfMVSquaredPerArea) {
     const TriangleMesh strip = peensim::testing::square(0.02);  // 2 triangles facing +z, 4e-4 m2
-    const double mass = 3.2e-5;                         // kg
+    const double mass = 3.2e-5;                                 // kg
     AlmenDose dose(strip, Vec3(0, 0, 1), mass);
     EXPECT_DOUBLE_EQ(dose.face_area_m2(), 4e-4);
     dose.add(0, 2.0);
@@ -55,8 +55,8 @@ TEST(Almen, SteadyRateIgnoresTheStartOfTheRun) {
 }
 
 TEST(Almen, SaturationObeysTheJ443Rule) {
-    const AlmenCalibration cal{0.3e-3, 400.0};  // a = 0.3 mm, E_c = 400 J/m2
-    const double rate = 25.0;                   // J/(m2 s)
+    const AlmenCalibration cal{0.3e-3, 400.0};           // a = 0.3 mm, E_c = 400 J/m2
+    const double rate = 25.0;                            // J/(m2 s)
     const auto sat = almen_saturation(rate, cal, 80.0);  // T = 36.8 s: 2T within 80 s
     ASSERT_TRUE(sat.has_value());
     EXPECT_DOUBLE_EQ(sat->rate_constant_per_s, rate / 400.0);

@@ -6,9 +6,9 @@
 #include <random>
 #include <stdexcept>
 
-#include "support/test_meshes.h"
 #include "analysis/avrami.h"
 #include "analysis/coverage_map.h"
+#include "support/test_meshes.h"
 
 namespace peensim {
 namespace {
@@ -25,15 +25,14 @@ TEST(AnalysisAvrami, RecoversKFromExactCurve) {
     EXPECT_NEAR(fit.k_per_s, 0.7, 1e-10);
     EXPECT_LT(fit.k_standard_error_per_s, 1e-8);
     EXPECT_NEAR(fit.time_to_98_percent_s, std::log(50.0) / 0.7, 1e-8);
-    EXPECT_TRUE(fit.extrapolated);  // 5.59 s > 3 s
+    EXPECT_TRUE(fit.extrapolated);   // 5.59 s > 3 s
     EXPECT_EQ(fit.points_used, 10);  // t = 0 carries nothing
 }
 
 TEST(AnalysisAvrami, FullCoveragePointsDoNotBreakTheFit) {
     // Saturated samples (C = 1, as a finite map reports late on) are skipped in the log fit and
     // pull the refinement only by their tiny residual exp(-k t).
-    std::vector<CoveragePoint> points{{1.0, 1.0 - std::exp(-2.0)}, {2.0, 1.0 - std::exp(-4.0)},
-                                      {10.0, 1.0}, {12.0, 1.0}};
+    std::vector<CoveragePoint> points{{1.0, 1.0 - std::exp(-2.0)}, {2.0, 1.0 - std::exp(-4.0)}, {10.0, 1.0}, {12.0, 1.0}};
     const AvramiFit fit = fit_avrami(points);
     EXPECT_NEAR(fit.k_per_s, 2.0, 1e-3);
     EXPECT_FALSE(fit.extrapolated);  // 1.96 s < 12 s
@@ -49,8 +48,7 @@ TEST(AnalysisAvrami, ThrowsWithoutAnInformativePoint) {
 // Centres are uniform over the square grown by one dent radius on each side, so every point of the
 // square sees the same dent density and C(t) = 1 - exp(-k t) exactly, with
 // k = rate * (pi d^2 / 4) / (grown area).
-std::vector<CoveragePoint> peen(double duration_s, double rate_per_s, double side_m, double d_m,
-                                std::uint64_t seed) {
+std::vector<CoveragePoint> peen(double duration_s, double rate_per_s, double side_m, double d_m, std::uint64_t seed) {
     CoverageMap map(square(side_m), d_m / 8.0, d_m);
     std::mt19937_64 rng(seed);
     std::exponential_distribution<double> gap(rate_per_s);
@@ -65,15 +63,15 @@ std::vector<CoveragePoint> peen(double duration_s, double rate_per_s, double sid
 }
 
 TEST(AnalysisAvrami, RecoversKFromSyntheticPoissonPeening) {
-    const double side = 40e-3, d = 1e-3;                            // m
+    const double side = 40e-3, d = 1e-3;                             // m
     const double grown_area = (side + d) * (side + d);               // m^2
     const double k_true = 1.0;                                       // 1/s
     const double rate = k_true * grown_area / (M_PI * d * d / 4.0);  // dents/s (~2140)
 
     // 4.5 s: coverage reaches ~99 %; the 98 % time (3.91 s) lies inside the run.
     const AvramiFit full = fit_avrami(peen(4.5, rate, side, d, 11));
-    std::printf("[ avrami ] k = %.4f +- %.4f 1/s (true 1), t98 = %.3f s\n", full.k_per_s,
-                full.k_standard_error_per_s, full.time_to_98_percent_s);
+    std::printf("[ avrami ] k = %.4f +- %.4f 1/s (true 1), t98 = %.3f s\n", full.k_per_s, full.k_standard_error_per_s,
+                full.time_to_98_percent_s);
     // Tolerance 3 %: the coverage of a 40 d square scatters by 0.2-1 % (Boolean-model sigma,
     // see analysis_coverage_test.cpp), which moves k by ~1-2 % (measured 1.8 %).
     EXPECT_NEAR(full.k_per_s, k_true, 0.03 * k_true);
@@ -81,8 +79,8 @@ TEST(AnalysisAvrami, RecoversKFromSyntheticPoissonPeening) {
 
     // 1 s: coverage ~63 %, so the 98 % time is an extrapolation, and flagged as one.
     const AvramiFit short_run = fit_avrami(peen(1.0, rate, side, d, 12));
-    std::printf("[ avrami ] short run: k = %.4f +- %.4f 1/s, t98 = %.3f s (extrapolated)\n",
-                short_run.k_per_s, short_run.k_standard_error_per_s, short_run.time_to_98_percent_s);
+    std::printf("[ avrami ] short run: k = %.4f +- %.4f 1/s, t98 = %.3f s (extrapolated)\n", short_run.k_per_s,
+                short_run.k_standard_error_per_s, short_run.time_to_98_percent_s);
     EXPECT_NEAR(short_run.k_per_s, k_true, 0.05 * k_true);
     EXPECT_TRUE(short_run.extrapolated);
     EXPECT_GT(short_run.time_to_98_percent_s, 1.0);

@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <random>
 
-#include "support/test_meshes.h"
 #include "analysis/coverage_map.h"
 #include "geometry/box_mesh.h"
 #include "geometry/cylinder_mesh.h"
+#include "support/test_meshes.h"
 
 namespace peensim {
 namespace {
@@ -56,7 +56,7 @@ TEST(AnalysisCoverage, SingleDentAreaWithinTheSamplingBound) {
     EXPECT_LE(coarse_max, 8.0 / 5.0);
     EXPECT_LE(fine_max, 8.0 / 20.0);
     EXPECT_LT(fine_rms, coarse_rms);  // the error shrinks with the spacing
-    EXPECT_LT(fine_max, 0.02);       // measured: well inside the worst-case bound
+    EXPECT_LT(fine_max, 0.02);        // measured: well inside the worst-case bound
 }
 
 TEST(AnalysisCoverage, LatticeOfSeparateDents) {
@@ -67,8 +67,8 @@ TEST(AnalysisCoverage, LatticeOfSeparateDents) {
         for (int j = 0; j < 6; ++j, ++count) map.add_dent(Vec3(0.75e-3 + pitch * i, 0.8e-3 + pitch * j, 0.0), d);
     const double exact = count * M_PI * d * d / 4.0 / (side * side);
     const double bound = 2.0 * h * count * M_PI * d / (side * side);
-    std::printf("[ coverage ] lattice of %d dents: %.5f vs %.5f (error %.2e, bound %.2e)\n", count,
-                map.coverage(), exact, std::abs(map.coverage() - exact), bound);
+    std::printf("[ coverage ] lattice of %d dents: %.5f vs %.5f (error %.2e, bound %.2e)\n", count, map.coverage(), exact,
+                std::abs(map.coverage() - exact), bound);
     EXPECT_NEAR(map.coverage(), exact, bound);
     EXPECT_NEAR(map.coverage(), exact, 0.01 * exact);
 }
@@ -124,16 +124,16 @@ TEST(AnalysisCoverage, RandomDentsFollowTheExactAvramiRelation) {
         // Sampling adds no bias for random dents (see coverage_map.h); its scatter, ~sqrt(dents)
         // per-dent errors of ~1 % of a dent's area (h = d/8), is ~5e-4 here: allow 1e-3.
         const double tolerance = 4.0 * sigma + 1e-3;
-        std::printf("[ coverage ] A_r = %.2f: %.5f vs %.5f (diff %+.5f, sigma %.5f, %ld dents)\n", area_ratio,
-                    map.coverage(), expected, map.coverage() - expected, sigma, dents);
+        std::printf("[ coverage ] A_r = %.2f: %.5f vs %.5f (diff %+.5f, sigma %.5f, %ld dents)\n", area_ratio, map.coverage(), expected,
+                    map.coverage() - expected, sigma, dents);
         EXPECT_NEAR(map.coverage(), expected, tolerance) << "A_r = " << area_ratio;
     }
 }
 
 TEST(AnalysisCoverage, TimingOfAMillionDentsOnAMillionSamples) {
-    const double side = 10e-3;                                     // m
-    const double h = side * std::sqrt(2.0) / 707.0;               // m: 707 per edge, 2 * 707^2 samples
-    const double d = 0.2e-3;                                      // m: a dent of a 1 mm shot at ~40 m/s
+    const double side = 10e-3;                       // m
+    const double h = side * std::sqrt(2.0) / 707.0;  // m: 707 per edge, 2 * 707^2 samples
+    const double d = 0.2e-3;                         // m: a dent of a 1 mm shot at ~40 m/s
     CoverageMap map(square(side), h, d);
     EXPECT_NEAR(static_cast<double>(map.sample_count()), 1.0e6, 1.0e3);
     std::mt19937_64 rng(5);
@@ -143,10 +143,11 @@ TEST(AnalysisCoverage, TimingOfAMillionDentsOnAMillionSamples) {
     const auto start = std::chrono::steady_clock::now();
     for (const Vec3& c : centres) map.add_dent(c, d);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("[ coverage ] 1e6 dents (d = %.0f um, ~%.0f samples each) on %lld samples: %.3f s, %.0f ns/dent, "
-                "coverage %.4f, memory %.1f MB\n", d * 1e6, M_PI * d * d / 4.0 / (side * side) * 1e6,
-                static_cast<long long>(map.sample_count()), seconds, seconds * 1e3, map.coverage(),
-                map.memory_bytes() / 1e6);
+    std::printf(
+        "[ coverage ] 1e6 dents (d = %.0f um, ~%.0f samples each) on %lld samples: %.3f s, %.0f ns/dent, "
+        "coverage %.4f, memory %.1f MB\n",
+        d * 1e6, M_PI * d * d / 4.0 / (side * side) * 1e6, static_cast<long long>(map.sample_count()), seconds, seconds * 1e3,
+        map.coverage(), map.memory_bytes() / 1e6);
     EXPECT_GT(map.coverage(), 0.999);  // A_r = 1e6 * pi (0.1 mm)^2 / 100 mm^2 = 314: saturated
 }
 
@@ -158,7 +159,7 @@ TEST(AnalysisCoverage, TimingOnAManyTriangleCylinder) {
     spec.height_m = 20e-3;
     spec.segments = 256;
     spec.axial_subdivisions = 40;
-    spec.cap_rings = 20;  // no 10 mm-long fan slivers: see "Slender triangles" in coverage_map.h
+    spec.cap_rings = 20;      // no 10 mm-long fan slivers: see "Slender triangles" in coverage_map.h
     const double d = 0.1e-3;  // m: the gear case's 20 um spacing, dents of ~20 samples across
     const TriangleMesh mesh = cylinder(spec);
     std::vector<int> wall;
@@ -178,10 +179,11 @@ TEST(AnalysisCoverage, TimingOnAManyTriangleCylinder) {
     double wall_area = 0.0;  // m^2
     for (int t : wall) wall_area += map.triangle_area(static_cast<std::size_t>(t));
     const double area_ratio = 1e6 * M_PI * d * d / 4.0 / wall_area;
-    std::printf("[ coverage ] cylinder, %zu triangles, %lld samples: 1e6 dents in %.3f s, %.0f ns/dent, "
-                "memory %.1f MB, wall coverage %.4f (A_r %.3f -> %.4f)\n", map.triangle_count(),
-                static_cast<long long>(map.sample_count()), seconds, seconds * 1e3, map.memory_bytes() / 1e6,
-                map.coverage_of(wall), area_ratio, -std::expm1(-area_ratio));
+    std::printf(
+        "[ coverage ] cylinder, %zu triangles, %lld samples: 1e6 dents in %.3f s, %.0f ns/dent, "
+        "memory %.1f MB, wall coverage %.4f (A_r %.3f -> %.4f)\n",
+        map.triangle_count(), static_cast<long long>(map.sample_count()), seconds, seconds * 1e3, map.memory_bytes() / 1e6,
+        map.coverage_of(wall), area_ratio, -std::expm1(-area_ratio));
     // Dents are centred on the wall: its coverage follows the exact relation (wall edges aside).
     EXPECT_NEAR(map.coverage_of(wall), -std::expm1(-area_ratio), 0.01);
 }
@@ -197,8 +199,8 @@ TEST(AnalysisCoverage, FacesOnGridCellBoundariesAreCovered) {
     spec.center_m = peensim::Vec3(0.5, 0.5, 0.5);
     const peensim::TriangleMesh cube = peensim::box(spec);
     peensim::CoverageMap map(cube, 0.01, 0.1);
-    map.add_dent(peensim::Vec3(0.5, 0.5, 1.0), 0.1);  // the middle of the top face (z = 1)
-    map.add_dent(peensim::Vec3(0.5, 0.0, 0.5), 0.1);  // the middle of the y = 0 face
+    map.add_dent(peensim::Vec3(0.5, 0.5, 1.0), 0.1);         // the middle of the top face (z = 1)
+    map.add_dent(peensim::Vec3(0.5, 0.0, 0.5), 0.1);         // the middle of the y = 0 face
     const double expected = 2.0 * M_PI * 0.05 * 0.05 / 6.0;  // two discs on a 6 m2 surface
     EXPECT_NEAR(map.coverage(), expected, 0.1 * expected);
 }

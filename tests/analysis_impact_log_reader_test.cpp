@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "support/temp_dir.h"
 #include "analysis/impact_log_reader.h"
 #include "output/impact_csv_writer.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 using peensim::testing::TempDir;
@@ -116,8 +116,7 @@ TEST(ImpactLogReader, EmptyForeignAndDamagedLogsAreClearErrors) {
     ImpactLogReader reader(path);
     ImpactRow row;
     try {
-        while (reader.next(row)) {
-        }
+        while (reader.next(row)) {}
         FAIL() << "a damaged row must be refused";
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find(path + ":4:"), std::string::npos) << e.what();
@@ -133,8 +132,8 @@ TEST(ImpactLogReader, StreamsFast) {
     double sum = 0.0;
     while (reader.next(row)) sum += row.vn_in_m_per_s;
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::cout << "[ reader   ] " << reader.rows() << " rows (" << fs::file_size(path) / 1e6 << " MB) in " << s << " s: "
-              << reader.rows() / s / 1e6 << " M rows/s\n";
+    std::cout << "[ reader   ] " << reader.rows() << " rows (" << fs::file_size(path) / 1e6 << " MB) in " << s
+              << " s: " << reader.rows() / s / 1e6 << " M rows/s\n";
     EXPECT_EQ(reader.rows(), 200000u);
     EXPECT_GT(sum, 0.0);
 }

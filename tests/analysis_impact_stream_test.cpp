@@ -71,9 +71,7 @@ TEST(ImpactStream, DeliversEveryRowInOrderWithComponentIndices) {
 TEST(ImpactStream, ADamagedRowIsRethrownAfterTheRowsBeforeIt) {
     TempDir dir;
     const std::string path = write_log(dir.path, kRows);
-    {
-        std::ofstream(path, std::ios::app) << "0.5,1,gear,oops\n";
-    }
+    { std::ofstream(path, std::ios::app) << "0.5,1,gear,oops\n"; }
     ImpactStream stream(path, {"gear"});
     int rows = 0;
     try {

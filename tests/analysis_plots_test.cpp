@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "support/temp_dir.h"
 #include "app/analysis_plots.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 using peensim::testing::TempDir;
@@ -23,19 +23,20 @@ namespace {
 // Sets PATH for the scope of the object, restoring it after.
 struct PathOverride {
     std::string saved;
-    explicit PathOverride(const std::string& path) : saved(std::getenv("PATH") ? std::getenv("PATH") : "") { setenv("PATH", path.c_str(), 1); }
+    explicit PathOverride(const std::string& path) : saved(std::getenv("PATH") ? std::getenv("PATH") : "") {
+        setenv("PATH", path.c_str(), 1);
+    }
     ~PathOverride() { setenv("PATH", saved.c_str(), 1); }
 };
 
-void write(const fs::path& path, const std::string& text) {
-    std::ofstream(path) << text;
-}
+void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 void write_csvs(const fs::path& dir, const std::string& component, bool with_dents) {
     write(dir / (component + "_coverage.csv"), "time_s,coverage\n0,0\n0.1,0.3\n0.2,0.55\n0.3,0.7\n0.4,0.81\n");
-    std::string h = "region,quantity,bin_low,bin_high,unit,count\n"
-                    "all,normal_speed,0,0.25,m/s,3\nall,normal_speed,0.25,0.5,m/s,12\nall,normal_speed,0.5,0.75,m/s,7\n"
-                    "all,impact_angle,0,5,deg,4\nall,impact_angle,5,10,deg,9\nall,impact_angle,10,15,deg,9\n";
+    std::string h =
+        "region,quantity,bin_low,bin_high,unit,count\n"
+        "all,normal_speed,0,0.25,m/s,3\nall,normal_speed,0.25,0.5,m/s,12\nall,normal_speed,0.5,0.75,m/s,7\n"
+        "all,impact_angle,0,5,deg,4\nall,impact_angle,5,10,deg,9\nall,impact_angle,10,15,deg,9\n";
     if (with_dents) h += "all,dent_diameter,100,110,um,5\nall,dent_diameter,110,120,um,17\n";
     h += "tooth0,normal_speed,0,0.25,m/s,3\n";  // a region's rows: not in the whole-component panels
     write(dir / (component + "_histograms.csv"), h);
@@ -53,15 +54,15 @@ PngInfo read_png_info(const fs::path& path) {
     if (b.size() < 24) return info;
     const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     info.signature_ok = std::equal(signature, signature + 8, b.begin()) && std::string(b.begin() + 12, b.begin() + 16) == "IHDR";
-    auto be32 = [&](std::size_t at) { return std::uint32_t{b[at]} << 24 | std::uint32_t{b[at + 1]} << 16 | std::uint32_t{b[at + 2]} << 8 | b[at + 3]; };
+    auto be32 = [&](std::size_t at) {
+        return std::uint32_t{b[at]} << 24 | std::uint32_t{b[at + 1]} << 16 | std::uint32_t{b[at + 2]} << 8 | b[at + 3];
+    };
     info.width = be32(16);
     info.height = be32(20);
     return info;
 }
 
-bool gnuplot_installed() {
-    return std::system("command -v gnuplot >/dev/null 2>&1") == 0;
-}
+bool gnuplot_installed() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
 }  // namespace
 

@@ -9,10 +9,10 @@
 #include <map>
 #include <sstream>
 
-#include "support/temp_dir.h"
 #include "analysis/impact_log_reader.h"
 #include "app/analyze_job.h"
 #include "app/run_job.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 using peensim::testing::TempDir;

@@ -48,12 +48,18 @@ std::vector<std::string> split_csv_line(const std::string& line) {
     for (std::size_t i = 0; i < line.size(); ++i) {
         const char c = line[i];
         if (quoted) {
-            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') field += '"', ++i;
-            else if (c == '"') quoted = false;
-            else field += c;
-        } else if (c == '"') quoted = true;
-        else if (c == ',') fields.push_back(field), field.clear();
-        else field += c;
+            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"')
+                field += '"', ++i;
+            else if (c == '"')
+                quoted = false;
+            else
+                field += c;
+        } else if (c == '"')
+            quoted = true;
+        else if (c == ',')
+            fields.push_back(field), field.clear();
+        else
+            field += c;
     }
     fields.push_back(field);
     return fields;
@@ -121,12 +127,32 @@ TEST(BenchJob, SameSchemeTwiceGivesIdenticalStatisticsAndATable) {
     EXPECT_NE(text.find("): within noise\n"), std::string::npos);
 
     const std::vector<std::string> header = csv_header(o.csv_path);
-    for (const char* column : {"scene", "scheme_label", "scheme", "compared_with", "component", "logged", "duration_s",
-                               "simulated_s", "wall_s", "wall_s_per_simulated_s", "steps", "impacts", "impact_rate_per_s",
-                               "impact_rate_se_per_s", "mean_normal_speed_m_per_s", "mean_normal_speed_se_m_per_s",
-                               "shot_shot_impacts_per_s", "serious_health", "health_shot_lost", "stage_mesh_queries_s",
-                               "speed_ratio", "impact_rate_difference_percent", "impact_rate_bound_percent",
-                               "mean_normal_speed_difference_percent", "mean_normal_speed_bound_percent", "verdict"})
+    for (const char* column : {"scene",
+                               "scheme_label",
+                               "scheme",
+                               "compared_with",
+                               "component",
+                               "logged",
+                               "duration_s",
+                               "simulated_s",
+                               "wall_s",
+                               "wall_s_per_simulated_s",
+                               "steps",
+                               "impacts",
+                               "impact_rate_per_s",
+                               "impact_rate_se_per_s",
+                               "mean_normal_speed_m_per_s",
+                               "mean_normal_speed_se_m_per_s",
+                               "shot_shot_impacts_per_s",
+                               "serious_health",
+                               "health_shot_lost",
+                               "stage_mesh_queries_s",
+                               "speed_ratio",
+                               "impact_rate_difference_percent",
+                               "impact_rate_bound_percent",
+                               "mean_normal_speed_difference_percent",
+                               "mean_normal_speed_bound_percent",
+                               "verdict"})
         EXPECT_NE(std::find(header.begin(), header.end(), column), header.end()) << column;
 
     const std::vector<CsvRow> rows = read_csv(o.csv_path);

@@ -30,9 +30,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kStopLimitS = 1.0;        // s of wall time from a signal to the end of the process
-constexpr double kStartLimitS = 60.0;      // s, generous: the machine may be busy with builds
-constexpr double kRunLimitS = 300.0;       // s, for runs that must finish
+constexpr double kStopLimitS = 1.0;    // s of wall time from a signal to the end of the process
+constexpr double kStartLimitS = 60.0;  // s, generous: the machine may be busy with builds
+constexpr double kRunLimitS = 300.0;   // s, for runs that must finish
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -73,7 +73,8 @@ TEST(InterruptGuard, FirstSignalOnlyRaisesTheFlag) {
 }
 
 TEST(InterruptGuard, PreviousHandlersComeBack) {
-    struct sigaction before_int {}, before_term {}, after_int {}, after_term {};
+    struct sigaction before_int {
+    }, before_term{}, after_int{}, after_term{};
     sigaction(SIGINT, nullptr, &before_int);
     sigaction(SIGTERM, nullptr, &before_term);
     { InterruptGuard guard("abandoned\n"); }

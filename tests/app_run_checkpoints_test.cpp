@@ -26,8 +26,8 @@ constexpr double kIntervalS = 0.1;  // s of (fake) wall time, output.checkpoint_
 // checkpoint the run wrote since the previous one (loading it: it must be whole), noting when.
 struct CheckpointWatch {
     struct Seen {
-        double clock_s;     // s, fake wall time when it was found
-        double simulated_s; // s, simulated time it holds
+        double clock_s;      // s, fake wall time when it was found
+        double simulated_s;  // s, simulated time it holds
     };
     CheckpointWatch(fs::path checkpoint, double tick) : file(std::move(checkpoint)), tick_s(tick) {}
 

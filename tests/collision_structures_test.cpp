@@ -10,13 +10,13 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/closest_point.h"
 #include "collision/distance_gate.h"
 #include "collision/shot_box_tree.h"
 #include "collision/shot_pair_finder.h"
 #include "common/random.h"
 #include "engine/event/event_queue.h"
 #include "geometry/box_mesh.h"
+#include "kernels/closest_point.h"
 #include "model/enclosure.h"
 
 namespace peensim {
@@ -100,7 +100,8 @@ TEST(ShotBoxTree, OverlapQueriesAreBruteForces) {
         tree.overlapping(qlo, qhi, found);
         std::set<int> expected;
         for (int i = 0; i < n; ++i)
-            if (present[static_cast<std::size_t>(i)] && boxes_overlap(lo[static_cast<std::size_t>(i)], hi[static_cast<std::size_t>(i)], qlo, qhi))
+            if (present[static_cast<std::size_t>(i)] &&
+                boxes_overlap(lo[static_cast<std::size_t>(i)], hi[static_cast<std::size_t>(i)], qlo, qhi))
                 expected.insert(i);
         ASSERT_EQ(std::set<int>(found.begin(), found.end()), expected) << "step " << step;
         ASSERT_EQ(found.size(), expected.size()) << "a shot reported twice";

@@ -52,7 +52,8 @@ std::vector<Vec3> flat_grid(int n, double cell_m) {
 std::set<std::size_t> brute_force_within(const std::vector<Vec3>& corners, const Vec3& p, double radius_m) {
     std::set<std::size_t> out;
     for (std::size_t t = 0; t < corners.size() / 3; ++t)
-        if ((closest_point_on_triangle(p, corners[3 * t], corners[3 * t + 1], corners[3 * t + 2]).point - p).norm() <= radius_m) out.insert(t);
+        if ((closest_point_on_triangle(p, corners[3 * t], corners[3 * t + 1], corners[3 * t + 2]).point - p).norm() <= radius_m)
+            out.insert(t);
     return out;
 }
 
@@ -60,7 +61,7 @@ TEST(ContactPolicy, RidesOnlyWhenThePlatePressesAndTheReboundIsBelowTheRideSpeed
     EXPECT_TRUE(contact::rebound_rides(1e5, 0.0));
     EXPECT_TRUE(contact::rebound_rides(1e5, 0.999e-3));
     EXPECT_FALSE(contact::rebound_rides(1e5, 1e-3));
-    EXPECT_FALSE(contact::rebound_rides(0.0, 0.0));     // the plate does not press: no ride
+    EXPECT_FALSE(contact::rebound_rides(0.0, 0.0));  // the plate does not press: no ride
     EXPECT_FALSE(contact::rebound_rides(-1.0, 0.0));
     EXPECT_TRUE(contact::rebound_rides(1e5, 1.5e-3, 2e-3));  // a scheme whose resolution is coarser
 }
@@ -189,8 +190,7 @@ TEST(ImpactHistoryLaw, RestitutionByHitCountAndMarksWithinOneDentDiameter) {
         EXPECT_EQ(law.impact(in, marks).vn_out, 2.0);
     }
     // Sustained contact is the impulse law's Coulomb friction (f = 0.1, 9.81 m/s2, 0.01 s).
-    const contact::SurfaceContactResponse s =
-        law.sustain({Vec3(0.3, 0, 0), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, marks);
+    const contact::SurfaceContactResponse s = law.sustain({Vec3(0.3, 0, 0), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, marks);
     EXPECT_NEAR(s.v_shot.x(), 0.3 - 0.1 * 9.81 * 0.01, 1e-15);
 }
 
@@ -230,21 +230,26 @@ struct BadLawCase {
 TEST(SceneContactLaws, BadLawSettingsAreRefusedWithFieldAndExpectation) {
     const BadLawCase cases[] = {
         {{"contacts.shot-steel.law=hertz"}, "contacts.shot-steel.law", "one of impulse, impact-history"},
-        {{"contacts.shot-shot={law: impact-history, restitution_by_hits: [0.5]}"}, "contacts.shot-shot.law",
+        {{"contacts.shot-shot={law: impact-history, restitution_by_hits: [0.5]}"},
+         "contacts.shot-shot.law",
          "is for shot-<material> pairs, not between shot"},
-        {{"contacts.shot-steel.restitution_by_hits=[0.5]"}, "contacts.shot-steel.restitution_by_hits",
+        {{"contacts.shot-steel.restitution_by_hits=[0.5]"},
+         "contacts.shot-steel.restitution_by_hits",
          "not a parameter of law 'impulse'; expected law, C0, V0, mu, f"},
-        {{"contacts.shot-aluminium-2000={law: impact-history}"}, "contacts.shot-aluminium-2000",
+        {{"contacts.shot-aluminium-2000={law: impact-history}"},
+         "contacts.shot-aluminium-2000",
          "law 'impact-history' needs 'restitution_by_hits'"},
         {{"contacts.shot-aluminium-2000={law: impact-history, restitution_by_hits: [0.5, 1.2]}"},
-         "contacts.shot-aluminium-2000.restitution_by_hits[1]", "in (0, 1]"},
+         "contacts.shot-aluminium-2000.restitution_by_hits[1]",
+         "in (0, 1]"},
         {{"contacts.shot-aluminium-2000={law: impact-history, restitution_by_hits: []}"},
-         "contacts.shot-aluminium-2000.restitution_by_hits", "a list of one or more"},
+         "contacts.shot-aluminium-2000.restitution_by_hits",
+         "a list of one or more"},
         {{"contacts.shot-aluminium-2000={law: impact-history, restitution_by_hits: [0.5], C0: 0.9}"},
-         "contacts.shot-aluminium-2000.C0", "expected law, restitution_by_hits, mu, f"},
+         "contacts.shot-aluminium-2000.C0",
+         "expected law, restitution_by_hits, mu, f"},
         // The law needs the yield stress: found when the model is built.
-        {{"contacts.shot-HDPE={law: impact-history, restitution_by_hits: [0.5]}"}, "contacts.shot-HDPE.law",
-         "materials.HDPE.yield_stress"},
+        {{"contacts.shot-HDPE={law: impact-history, restitution_by_hits: [0.5]}"}, "contacts.shot-HDPE.law", "materials.HDPE.yield_stress"},
     };
     for (const BadLawCase& c : cases) {
         try {
@@ -298,7 +303,8 @@ public:
         EXPECT_GE(in.time_s, 0.0);
         if (in.impact) {
             EXPECT_TRUE(in.triangle >= 0 && static_cast<std::size_t>(in.triangle) < counts.size()) << in.triangle;
-            if (in.triangle >= 0 && static_cast<std::size_t>(in.triangle) < counts.size()) counts[static_cast<std::size_t>(in.triangle)] += 1.0;
+            if (in.triangle >= 0 && static_cast<std::size_t>(in.triangle) < counts.size())
+                counts[static_cast<std::size_t>(in.triangle)] += 1.0;
         }
         return contact::impulse_surface_impact(in, k_);
     }
@@ -316,8 +322,8 @@ TEST(SceneContactLaws, ALawFromOutsideContactPlugsInWithoutTouchingTheSchemes) {
         auto model = std::make_shared<Model>(
             *compile_model(parse_scene_file(kGear, {"process.duration=0.2 s", std::string("accuracy.scheme=") + scheme})));
         const auto gear = static_cast<std::size_t>(model->component_index("gear"));
-        model->components[gear].law = std::make_shared<CountingLaw>(contact::PairCoefficients{0.95, 0.5, 0.8, 0.1}, static_cast<int>(gear),
-                                                                    model->shot_count);
+        model->components[gear].law =
+            std::make_shared<CountingLaw>(contact::PairCoefficients{0.95, 0.5, 0.8, 0.1}, static_cast<int>(gear), model->shot_count);
         Simulation sim(model);
         std::vector<ImpactRecord> impacts;
         while (!sim.finished()) sim.step(impacts);

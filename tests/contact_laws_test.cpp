@@ -48,7 +48,8 @@ TEST(ContactRestitution, PlasticFromV0On) {
 
 TEST(ContactShotShot, HeadOnElastic) {
     // dV = (v_j - v_i).n = -3; C = 0.5 (V0 10 m/s: elastic): impulse/m = 0.5 (1.5) (-3) n = -2.25 n.
-    const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.5, 10.0, 0.0, 0.0}).respond({Vec3(2, 0, 0), Vec3(-1, 0, 0), Vec3(1, 0, 0)});
+    const ShotShotResponse r =
+        ImpulseShotShotLaw(PairCoefficients{0.5, 10.0, 0.0, 0.0}).respond({Vec3(2, 0, 0), Vec3(-1, 0, 0), Vec3(1, 0, 0)});
     EXPECT_TRUE(r.approaching);
     EXPECT_EQ(r.vn_in, 3.0);
     EXPECT_EQ(r.v_i, Vec3(-0.25, 0, 0));
@@ -57,7 +58,8 @@ TEST(ContactShotShot, HeadOnElastic) {
 
 TEST(ContactShotShot, HeadOnPlastic) {
     // dV = -8 = 16 V0: C = 0.45; impulse/m = 0.5 (1.45) (-8) = -5.8.
-    const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({Vec3(4, 0, 0), Vec3(-4, 0, 0), Vec3(1, 0, 0)});
+    const ShotShotResponse r =
+        ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({Vec3(4, 0, 0), Vec3(-4, 0, 0), Vec3(1, 0, 0)});
     EXPECT_EQ(r.vn_in, 8.0);
     expect_vec_near(r.v_i, Vec3(-1.8, 0, 0), kUlpSpeed, "v_i");
     expect_vec_near(r.v_j, Vec3(1.8, 0, 0), kUlpSpeed, "v_j");
@@ -66,7 +68,8 @@ TEST(ContactShotShot, HeadOnPlastic) {
 TEST(ContactShotShot, Oblique) {
     // n = (0.6, 0.8, 0); v_i = (1, 0, 0.5), v_j = (0, -1, 0.25): dV = -0.6 - 0.8 = -1.4.
     // C = 1: impulse/m = -1.4 n = (-0.84, -1.12, 0). Tangential parts (z here) unchanged.
-    const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{1.0, 100.0, 0.0, 0.0}).respond({Vec3(1, 0, 0.5), Vec3(0, -1, 0.25), Vec3(0.6, 0.8, 0)});
+    const ShotShotResponse r =
+        ImpulseShotShotLaw(PairCoefficients{1.0, 100.0, 0.0, 0.0}).respond({Vec3(1, 0, 0.5), Vec3(0, -1, 0.25), Vec3(0.6, 0.8, 0)});
     EXPECT_NEAR(r.vn_in, 1.4, kUlpSpeed);
     expect_vec_near(r.v_i, Vec3(0.16, -1.12, 0.5), kUlpSpeed, "v_i");
     expect_vec_near(r.v_j, Vec3(0.84, 0.12, 0.25), kUlpSpeed, "v_j");
@@ -106,13 +109,15 @@ TEST(ContactShotShot, SeparatingPairUnchanged) {
     EXPECT_EQ(r.v_j, vj);
     EXPECT_EQ(r.vn_in, 0.0);
     // Grazing (dV . n == 0) is not an approach either.
-    const ShotShotResponse g = ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(1, 0, 0)});
+    const ShotShotResponse g =
+        ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(1, 0, 0)});
     EXPECT_FALSE(g.approaching);
 }
 
 TEST(ContactSurfaceImpact, StaticEq4Elastic) {
     // V = (1, 0, -2), n = +z, mu 0.5, C = 0.8 (V0 5 m/s): V' = (0.5, 0, 1.6).
-    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.8, 5.0, 0.5, 0.1}).impact({Vec3(1, 0, -2), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
+    const SurfaceContactResponse r =
+        ImpulseSurfaceLaw(PairCoefficients{0.8, 5.0, 0.5, 0.1}).impact({Vec3(1, 0, -2), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
     EXPECT_TRUE(r.approaching);
     EXPECT_EQ(r.v_shot, Vec3(0.5, 0, 1.6));
     EXPECT_EQ(r.vn_in, 2.0);
@@ -122,7 +127,8 @@ TEST(ContactSurfaceImpact, StaticEq4Elastic) {
 
 TEST(ContactSurfaceImpact, StaticEq4Plastic) {
     // V = (0, 3, -8): vn 8 = 16 V0 -> C = 0.45; mu 0.5: V' = (0, 1.5, 3.6).
-    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.5, 0.1}).impact({Vec3(0, 3, -8), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
+    const SurfaceContactResponse r =
+        ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.5, 0.1}).impact({Vec3(0, 3, -8), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
     expect_vec_near(r.v_shot, Vec3(0, 1.5, 3.6), kUlpSpeed, "v'");
     EXPECT_EQ(r.vn_in, 8.0);
     EXPECT_EQ(r.vt_in, 3.0);
@@ -132,7 +138,8 @@ TEST(ContactSurfaceImpact, StaticEq4Plastic) {
 TEST(ContactSurfaceImpact, StaticEq4TiltedNormal) {
     // n = (0, 0.6, 0.8), V = (0, 0, -5): V.n = -4, normal part (0, -2.4, -3.2), tangential
     // (0, 2.4, -1.8); mu 0.5, C 0.5: V' = (0, 1.2, -0.9) + 2 (0, 0.6, 0.8) = (0, 2.4, 0.7).
-    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.5, 100.0, 0.5, 0.1}).impact({Vec3(0, 0, -5), Vec3::Zero(), Vec3(0, 0.6, 0.8), 0.0, 1e-4}, {});
+    const SurfaceContactResponse r =
+        ImpulseSurfaceLaw(PairCoefficients{0.5, 100.0, 0.5, 0.1}).impact({Vec3(0, 0, -5), Vec3::Zero(), Vec3(0, 0.6, 0.8), 0.0, 1e-4}, {});
     expect_vec_near(r.v_shot, Vec3(0, 2.4, 0.7), 4 * kUlpSpeed, "v'");
     EXPECT_NEAR(r.vn_in, 4.0, kUlpSpeed);
     EXPECT_NEAR(r.vt_in, 3.0, kUlpSpeed);
@@ -141,7 +148,8 @@ TEST(ContactSurfaceImpact, StaticEq4TiltedNormal) {
 TEST(ContactSurfaceImpact, MovingSurfaceEq5) {
     // Sonotrode moving up at 2 m/s, V = (1, 0, -6): dV = (1, 0, -8), 16 V0 -> C = 0.45,
     // mu 0.71: V' = (0, 0, 2) + 0.71 (1, 0, 0) + 0.45 * 8 (0, 0, 1) = (0.71, 0, 5.6).
-    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).impact({Vec3(1, 0, -6), Vec3(0, 0, 2), Vec3::UnitZ(), 0.0, 1e-4}, {});
+    const SurfaceContactResponse r =
+        ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).impact({Vec3(1, 0, -6), Vec3(0, 0, 2), Vec3::UnitZ(), 0.0, 1e-4}, {});
     EXPECT_TRUE(r.approaching);
     expect_vec_near(r.v_shot, Vec3(0.71, 0, 5.6), kUlpSpeed, "v'");
     EXPECT_EQ(r.vn_in, 8.0);
@@ -150,7 +158,8 @@ TEST(ContactSurfaceImpact, MovingSurfaceEq5) {
 
     // A surface moving along itself (a rotating part's rim): V = (0, 0, -1), V_s = (0.5, 0.2, 0),
     // dV_t = (-0.5, -0.2, 0); mu 0.8, C 0.9: V' = V_s + 0.8 dV_t + 0.9 (0, 0, 1) = (0.1, 0.04, 0.9).
-    const SurfaceContactResponse s = ImpulseSurfaceLaw(PairCoefficients{0.9, 10.0, 0.8, 0.1}).impact({Vec3(0, 0, -1), Vec3(0.5, 0.2, 0), Vec3::UnitZ(), 0.0, 1e-4}, {});
+    const SurfaceContactResponse s =
+        ImpulseSurfaceLaw(PairCoefficients{0.9, 10.0, 0.8, 0.1}).impact({Vec3(0, 0, -1), Vec3(0.5, 0.2, 0), Vec3::UnitZ(), 0.0, 1e-4}, {});
     expect_vec_near(s.v_shot, Vec3(0.1, 0.04, 0.9), kUlpSpeed, "v' (tangential surface motion)");
     EXPECT_NEAR(s.vt_in, std::sqrt(0.29), kUlpSpeed);
     EXPECT_EQ(s.vn_in, 1.0);
@@ -159,12 +168,14 @@ TEST(ContactSurfaceImpact, MovingSurfaceEq5) {
 TEST(ContactSurfaceImpact, SeparatingUnchanged) {
     const PairCoefficients k{0.9, 0.5, 0.71, 0.1};
     // Moving away from a still surface.
-    const SurfaceContactResponse a = ImpulseSurfaceLaw(PairCoefficients(k)).impact({Vec3(1, 0, 2), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
+    const SurfaceContactResponse a =
+        ImpulseSurfaceLaw(PairCoefficients(k)).impact({Vec3(1, 0, 2), Vec3::Zero(), Vec3::UnitZ(), 0.0, 1e-4}, {});
     EXPECT_FALSE(a.approaching);
     EXPECT_EQ(a.v_shot, Vec3(1, 0, 2));
     EXPECT_EQ(a.vn_out, 0.0);
     // Falling, but the surface falls faster (the sonotrode's downstroke): separating.
-    const SurfaceContactResponse b = ImpulseSurfaceLaw(PairCoefficients(k)).impact({Vec3(0, 0, -1), Vec3(0, 0, -2), Vec3::UnitZ(), 0.0, 1e-4}, {});
+    const SurfaceContactResponse b =
+        ImpulseSurfaceLaw(PairCoefficients(k)).impact({Vec3(0, 0, -1), Vec3(0, 0, -2), Vec3::UnitZ(), 0.0, 1e-4}, {});
     EXPECT_FALSE(b.approaching);
     EXPECT_EQ(b.v_shot, Vec3(0, 0, -1));
 }
@@ -173,7 +184,8 @@ TEST(ContactSurfaceSustain, ApproachStoppedAndCoulombSlowdown) {
     // Sliding at 0.5 m/s along (0.6, 0.8, 0), pressed by g = 9.81 m/s2 for dt = 0.01 s, f = 0.1:
     // the tangential speed drops by f g dt = 0.00981 m/s exactly in its own direction; the
     // approach (-0.1 m/s) is removed.
-    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).sustain({Vec3(0.3, 0.4, -0.1), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
+    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1})
+                                         .sustain({Vec3(0.3, 0.4, -0.1), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
     const double vt = 0.5 - 0.1 * 9.81 * 0.01;
     expect_vec_near(r.v_shot, Vec3(0.6 * vt, 0.8 * vt, 0.0), kUlpSpeed, "v'");
     EXPECT_EQ(r.v_shot.z(), 0.0);
@@ -185,18 +197,21 @@ TEST(ContactSurfaceSustain, ApproachStoppedAndCoulombSlowdown) {
 
 TEST(ContactSurfaceSustain, FrictionNeverReverses) {
     // 0.005 m/s of sliding against a possible slowdown of 0.00981 m/s: it stops, it does not turn back.
-    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).sustain({Vec3(0.005, 0, 0), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
+    const SurfaceContactResponse r =
+        ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).sustain({Vec3(0.005, 0, 0), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
     EXPECT_EQ(r.v_shot, Vec3::Zero());
 }
 
 TEST(ContactSurfaceSustain, SeparationKeptNoPullNoFrictionWithoutPressing) {
     const PairCoefficients k{0.9, 0.5, 0.71, 0.1};
     // Leaving the surface at 0.2 m/s: kept.
-    const SurfaceContactResponse a = ImpulseSurfaceLaw(PairCoefficients(k)).sustain({Vec3(0.1, 0, 0.2), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
+    const SurfaceContactResponse a =
+        ImpulseSurfaceLaw(PairCoefficients(k)).sustain({Vec3(0.1, 0, 0.2), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, {});
     EXPECT_EQ(a.v_shot.z(), 0.2);
     EXPECT_FALSE(a.approaching);
     // A negative pressing acceleration (the surface pulling away faster than g) gives no friction.
-    const SurfaceContactResponse b = ImpulseSurfaceLaw(PairCoefficients(k)).sustain({Vec3(0.1, 0, 0), Vec3::Zero(), Vec3::UnitZ(), -5.0, 0.01}, {});
+    const SurfaceContactResponse b =
+        ImpulseSurfaceLaw(PairCoefficients(k)).sustain({Vec3(0.1, 0, 0), Vec3::Zero(), Vec3::UnitZ(), -5.0, 0.01}, {});
     EXPECT_EQ(b.v_shot, Vec3(0.1, 0, 0));
 }
 
@@ -204,7 +219,8 @@ TEST(ContactSurfaceSustain, MovingSurface) {
     // The surface rises at 1 m/s, the shot at 0.5 m/s with 0.1 m/s sideways: relative (0.1, 0, -0.5).
     // The approach is stopped (shot rides at the surface's 1 m/s) and friction f a dt = 0.1 * 20 * 0.01
     // = 0.02 m/s is taken off the relative sliding speed.
-    const SurfaceContactResponse r = ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).sustain({Vec3(0.1, 0, 0.5), Vec3(0, 0, 1), Vec3::UnitZ(), 20.0, 0.01}, {});
+    const SurfaceContactResponse r =
+        ImpulseSurfaceLaw(PairCoefficients{0.9, 0.5, 0.71, 0.1}).sustain({Vec3(0.1, 0, 0.5), Vec3(0, 0, 1), Vec3::UnitZ(), 20.0, 0.01}, {});
     expect_vec_near(r.v_shot, Vec3(0.08, 0, 1.0), kUlpSpeed, "v'");
 }
 

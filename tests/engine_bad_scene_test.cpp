@@ -36,8 +36,7 @@ int line_of(const std::string& text, const std::string& prefix) {
     std::istringstream in(text);
     std::string line;
     for (int n = 1; std::getline(in, line); ++n)
-        if (line.find_first_not_of(' ') != std::string::npos && line.substr(line.find_first_not_of(' ')).rfind(prefix, 0) == 0)
-            return n;
+        if (line.find_first_not_of(' ') != std::string::npos && line.substr(line.find_first_not_of(' ')).rfind(prefix, 0) == 0) return n;
     return 0;
 }
 

@@ -22,15 +22,15 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kG = 9.81;       // m/s2
-constexpr double kH0 = 10e-3;     // m, drop height of the centre above its height at contact
-constexpr double kC = 0.8;        // -, shot-sonotrode restitution (V0 1000 m/s: always elastic regime)
+constexpr double kG = 9.81;    // m/s2
+constexpr double kH0 = 10e-3;  // m, drop height of the centre above its height at contact
+constexpr double kC = 0.8;     // -, shot-sonotrode restitution (V0 1000 m/s: always elastic regime)
 constexpr int kImpactsChecked = 8;
 
 struct DropErrors {
-    double time = 0.0;     // largest relative error of an impact time
-    double speed_in = 0.0; // ... of an impact speed
-    double apex = 0.0;     // ... of an apex height (from the rebound speed)
+    double time = 0.0;      // largest relative error of an impact time
+    double speed_in = 0.0;  // ... of an impact speed
+    double apex = 0.0;      // ... of an apex height (from the rebound speed)
     int impacts = 0;
 };
 
@@ -87,8 +87,8 @@ TEST(EngineBounce, DropOnStillSonotrodeMatchesClosedFormAndConverges) {
     for (double f : fractions) {
         errors.push_back(drop(f));
         const DropErrors& e = errors.back();
-        std::cout << "[ bounce   ] travel fraction " << f << ": " << e.impacts << " impacts; max relative error time "
-                  << e.time << ", impact speed " << e.speed_in << ", apex " << e.apex << "\n";
+        std::cout << "[ bounce   ] travel fraction " << f << ": " << e.impacts << " impacts; max relative error time " << e.time
+                  << ", impact speed " << e.speed_in << ", apex " << e.apex << "\n";
         // Bounces continue until the approach falls below the resting speed 2 g dt: at least the 8 checked.
         EXPECT_GE(e.impacts, kImpactsChecked) << "travel fraction " << f;
         EXPECT_LT(e.time, 1e-9) << "travel fraction " << f;
@@ -108,8 +108,8 @@ TEST(EngineBounce, DropOnStillSonotrodeMatchesClosedFormAndConverges) {
 TEST(EngineBounce, DropOnStillSonotrodeMatchesClosedFormWithEventScheme) {
     // travel_fraction plays no part in the event scheme: each flight ends at the plane's exact touch.
     const DropErrors e = drop(0.25, "event");
-    std::cout << "[ bounce   ] event scheme: " << e.impacts << " impacts; max relative error time " << e.time
-              << ", impact speed " << e.speed_in << ", apex " << e.apex << "\n";
+    std::cout << "[ bounce   ] event scheme: " << e.impacts << " impacts; max relative error time " << e.time << ", impact speed "
+              << e.speed_in << ", apex " << e.apex << "\n";
     EXPECT_GE(e.impacts, kImpactsChecked);
     EXPECT_LT(e.time, 1e-9);
     EXPECT_LT(e.speed_in, 1e-9);

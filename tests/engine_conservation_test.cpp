@@ -66,8 +66,8 @@ TEST_P(EngineConservation, ElasticBoxKeepsItsKineticEnergy) {
         worst = std::max(worst, std::abs(kinetic_energy_per_mass(sim.state().shots) - e0) / e0);
     }
     const SimulationState& st = sim.state();
-    std::cout << "[ energy   ] " << GetParam() << " scheme: " << st.steps << " steps, " << st.shot_shot_impacts << " shot-shot and " << wall_impacts
-              << " wall impacts; worst relative energy change " << worst << "; overlap corrections: mesh "
+    std::cout << "[ energy   ] " << GetParam() << " scheme: " << st.steps << " steps, " << st.shot_shot_impacts << " shot-shot and "
+              << wall_impacts << " wall impacts; worst relative energy change " << worst << "; overlap corrections: mesh "
               << st.health.mesh_overlap_corrections << ", shot " << st.health.shot_overlap_corrections << "\n";
     EXPECT_GT(st.shot_shot_impacts, 200u);  // collisions really happened
     EXPECT_GT(wall_impacts, 500u);
@@ -94,7 +94,7 @@ TEST_P(EngineConservation, ShotShotImpactsConserveMomentum) {
     const Vec3 offsets[8] = {{1, 1, 1}, {-1, 1, 1}, {1, -1, 1}, {-1, -1, 1}, {1, 1, -1}, {-1, 1, -1}, {1, -1, -1}, {-1, -1, -1}};
     for (std::size_t i = 0; i < 8; ++i) {
         const Vec3 p = centre + 2e-3 * offsets[i] + Vec3(0.1e-3 * i, 0.05e-3 * i * i, 0.0);  // m, broken symmetry
-        const double speed = 0.5 + 0.07 * i;                                                   // m/s
+        const double speed = 0.5 + 0.07 * i;                                                 // m/s
         sim.edit_state([&](SimulationState& edited) { set_shot(edited, i, p, -speed * (p - centre).normalized()); });
     }
     const Vec3 p0 = momentum_per_mass(sim.state().shots);
@@ -104,8 +104,8 @@ TEST_P(EngineConservation, ShotShotImpactsConserveMomentum) {
     const SimulationState& st = sim.state();
     const Vec3 p1 = momentum_per_mass(st.shots);
     const double e1 = kinetic_energy_per_mass(st.shots);
-    std::cout << "[ momentum ] " << GetParam() << " scheme: " << st.shot_shot_impacts << " shot-shot impacts; momentum change " << (p1 - p0).norm()
-              << " m/s, energy " << e0 << " -> " << e1 << " J/kg\n";
+    std::cout << "[ momentum ] " << GetParam() << " scheme: " << st.shot_shot_impacts << " shot-shot impacts; momentum change "
+              << (p1 - p0).norm() << " m/s, energy " << e0 << " -> " << e1 << " J/kg\n";
     EXPECT_GE(st.shot_shot_impacts, 8u);
     EXPECT_EQ(std::accumulate(st.impacts_per_component.begin(), st.impacts_per_component.end(), std::uint64_t{0}), 0u);
     EXPECT_LT((p1 - p0).norm(), 8 * 1e-15);

@@ -18,15 +18,15 @@
 #include <string>
 #include <vector>
 
-#include "kernels/closest_point.h"
 #include "engine/simulation.h"
+#include "kernels/closest_point.h"
 #include "support/sonotrode_crossing.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
 namespace {
 
-constexpr double kTolerance_m = 1e-9;       // m, allowed overlap with the plate and the chamber
+constexpr double kTolerance_m = 1e-9;  // m, allowed overlap with the plate and the chamber
 // m, allowed overlap with the rotating part at a step end. The engine resolves contacts with a
 // moving part against the surface velocity at the step end (linear over the step), so an overlap
 // of order omega^2 r dt^2 (~1e-11 m here) may remain; 1e-9 m keeps the same bound as elsewhere
@@ -57,7 +57,8 @@ public:
         if (largest_plane < 0.0 || largest_plane > near_m) return largest_plane;
         double best2 = std::numeric_limits<double>::infinity();
         for (std::size_t t = 0; t < mesh_.triangle_count(); ++t)
-            best2 = std::min(best2, (closest_point_on_triangle(q, mesh_.corner(t, 0), mesh_.corner(t, 1), mesh_.corner(t, 2)).point - q).squaredNorm());
+            best2 = std::min(
+                best2, (closest_point_on_triangle(q, mesh_.corner(t, 0), mesh_.corner(t, 1), mesh_.corner(t, 2)).point - q).squaredNorm());
         return std::sqrt(best2);
     }
 
@@ -141,7 +142,8 @@ TEST_P(EngineContainment, ShotStayInsideAtTheExtremes) {
                   << " m/s; centre - plate - R = " << above_plate << " m";
                 first_plate_violation = e.str();
             }
-            const double wall = std::min({half.x() - std::abs(p.x()) - R, half.y() - std::abs(p.y()) - R, spec.chamber_size_m.z() - p.z() - R});
+            const double wall =
+                std::min({half.x() - std::abs(p.x()) - R, half.y() - std::abs(p.y()) - R, spec.chamber_size_m.z() - p.z() - R});
             worst_wall = std::min(worst_wall, wall);
             wall_violations += wall < -kTolerance_m;
             if (part_pose) {
@@ -152,13 +154,12 @@ TEST_P(EngineContainment, ShotStayInsideAtTheExtremes) {
         }
     }
     const SimulationState& st = sim.state();
-    std::cout << "[ contain  ] " << param.name << ": " << st.steps << " steps; worst clearance: plate " << worst_plate
-              << " m, walls " << worst_wall << " m, part " << (part >= 0 ? worst_part : 0.0) << " m; part impacts "
-              << part_impacts << "; shot-shot " << st.shot_shot_impacts << "; free flights checked "
-              << crossings.report().flights_checked << ", crossing the plate " << crossings.report().missed_contacts
-              << " (deepest " << crossings.report().deepest_m << " m); health: lost " << st.health.shot_lost << ", deep "
-              << st.health.deep_penetrations << ", unresolved " << st.health.unresolved_contacts << ", non-finite "
-              << st.health.non_finite << "\n";
+    std::cout << "[ contain  ] " << param.name << ": " << st.steps << " steps; worst clearance: plate " << worst_plate << " m, walls "
+              << worst_wall << " m, part " << (part >= 0 ? worst_part : 0.0) << " m; part impacts " << part_impacts << "; shot-shot "
+              << st.shot_shot_impacts << "; free flights checked " << crossings.report().flights_checked << ", crossing the plate "
+              << crossings.report().missed_contacts << " (deepest " << crossings.report().deepest_m << " m); health: lost "
+              << st.health.shot_lost << ", deep " << st.health.deep_penetrations << ", unresolved " << st.health.unresolved_contacts
+              << ", non-finite " << st.health.non_finite << "\n";
     EXPECT_EQ(st.health.shot_lost, 0u);
     EXPECT_EQ(st.health.deep_penetrations, 0u);
     EXPECT_EQ(st.health.non_finite, 0u);

@@ -93,8 +93,8 @@ TEST(EngineDeterminism, InterruptedAndResumedRunEqualsUninterrupted) {
 
     const std::string expected = read_file(fs::path(whole) / kImpactCsvFileName);
     const std::string resumed = read_file(fs::path(parts) / kImpactCsvFileName);
-    std::cout << "[ resume   ] uninterrupted " << rows(expected) << " rows, interrupted at step " << K << " and resumed "
-              << rows(resumed) << " rows\n";
+    std::cout << "[ resume   ] uninterrupted " << rows(expected) << " rows, interrupted at step " << K << " and resumed " << rows(resumed)
+              << " rows\n";
     ASSERT_GT(rows(expected), 100u);
     EXPECT_TRUE(expected == resumed) << "the resumed run differs from the uninterrupted one";
 }

@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "engine/simulation.h"
@@ -19,8 +19,8 @@ namespace {
 
 struct SlidePath {
     const char* name;
-    Vec3 start_m;      // m, centre at z = 0 (R is added)
-    Vec3 direction;    // unit after normalisation, horizontal
+    Vec3 start_m;    // m, centre at z = 0 (R is added)
+    Vec3 direction;  // unit after normalisation, horizontal
 };
 
 void PrintTo(const SlidePath& p, std::ostream* os) { *os << p.name; }
@@ -63,8 +63,8 @@ TEST_P(EngineEdge, SlidingAcrossInternalEdgesKeepsHeightAndSpeed) {
         previous = p;
     }
     std::cout << "[ edges    ] " << path.name << ": " << sim.state().steps << " steps, " << grid_lines_crossed
-              << " grid lines crossed; worst |z - R| " << worst_height << " m, |vz| " << worst_vz << " m/s, speed change "
-              << worst_speed << " m/s, plate impacts " << logged << "\n";
+              << " grid lines crossed; worst |z - R| " << worst_height << " m, |vz| " << worst_vz << " m/s, speed change " << worst_speed
+              << " m/s, plate impacts " << logged << "\n";
     EXPECT_GE(grid_lines_crossed, 6);  // the path really crosses internal edges
     // Bounds: 1e-9 m of height (the rest test's bound); 1e-9 m/s of vertical speed (a spurious
     // normal tilted by even 1e-6 rad would give ~1e-7 m/s at 0.2 m/s); speed kept to 1e-12 m/s
@@ -76,16 +76,15 @@ TEST_P(EngineEdge, SlidingAcrossInternalEdgesKeepsHeightAndSpeed) {
     EXPECT_EQ(sim.state().health.serious(), 0u);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Paths, EngineEdge,
-    ::testing::Values(
-        // Oblique: crosses x and y grid lines and the quads' diagonals at generic points.
-        SlidePath{"oblique", Vec3(-8e-3, -6e-3, 0.0), Vec3(1.0, 0.6, 0.0)},
-        // Along the diagonal through grid vertices: exactly on internal edges, through vertices.
-        SlidePath{"on_diagonal_edges", Vec3(-7.5e-3, -7.5e-3, 0.0), Vec3(1.0, 1.0, 0.0)},
-        // Along a grid line (x = 0): on internal edges lengthwise.
-        SlidePath{"on_grid_line", Vec3(0.0, -8e-3, 0.0), Vec3(0.0, 1.0, 0.0)}),
-    [](const ::testing::TestParamInfo<SlidePath>& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Paths, EngineEdge,
+                         ::testing::Values(
+                             // Oblique: crosses x and y grid lines and the quads' diagonals at generic points.
+                             SlidePath{"oblique", Vec3(-8e-3, -6e-3, 0.0), Vec3(1.0, 0.6, 0.0)},
+                             // Along the diagonal through grid vertices: exactly on internal edges, through vertices.
+                             SlidePath{"on_diagonal_edges", Vec3(-7.5e-3, -7.5e-3, 0.0), Vec3(1.0, 1.0, 0.0)},
+                             // Along a grid line (x = 0): on internal edges lengthwise.
+                             SlidePath{"on_grid_line", Vec3(0.0, -8e-3, 0.0), Vec3(0.0, 1.0, 0.0)}),
+                         [](const ::testing::TestParamInfo<SlidePath>& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace peensim::testing

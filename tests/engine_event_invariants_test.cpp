@@ -34,7 +34,7 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kPause = 50e-6;  // s, between audited states (one sonotrode period at 20 kHz)
+constexpr double kPause = 50e-6;            // s, between audited states (one sonotrode period at 20 kHz)
 constexpr double kOverlapTolerance = 1e-9;  // m
 
 TEST(EngineEventExact, NoOverlapsAndNoLostShotInTheRodScene) {
@@ -42,8 +42,8 @@ TEST(EngineEventExact, NoOverlapsAndNoLostShotInTheRodScene) {
     // the bed leaves the plate and the first shot reach the rod (measured: ~3500 shot-shot impacts
     // and ~170 rod impacts in that time).
     const std::string scheme = "event";
-    const auto model = compile_model(parse_scene_file(std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml",
-                                                      {"accuracy.scheme=" + scheme, "process.duration=0.06 s"}));
+    const auto model = compile_model(
+        parse_scene_file(std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml", {"accuracy.scheme=" + scheme, "process.duration=0.06 s"}));
     const auto t0 = std::chrono::steady_clock::now();
     Simulation sim(model);
     OverlapAudit audit(*model, kOverlapTolerance);
@@ -59,9 +59,9 @@ TEST(EngineEventExact, NoOverlapsAndNoLostShotInTheRodScene) {
     const SimulationState& st = sim.state();
     std::uint64_t wall = 0;
     for (std::uint64_t n : st.impacts_per_component) wall += n;
-    std::cout << "[ overlaps ] " << scheme << " scheme, rod scene 0.06 s (" << seconds_since(t0) << " s wall): "
-              << st.shot_shot_impacts << " shot-shot, " << wall << " mesh impacts (" << rod_impacts << " on the rod); "
-              << audit.summary() << "; health " << health_text(st.health) << "\n";
+    std::cout << "[ overlaps ] " << scheme << " scheme, rod scene 0.06 s (" << seconds_since(t0) << " s wall): " << st.shot_shot_impacts
+              << " shot-shot, " << wall << " mesh impacts (" << rod_impacts << " on the rod); " << audit.summary() << "; health "
+              << health_text(st.health) << "\n";
     EXPECT_GT(st.shot_shot_impacts, 1000u);
     EXPECT_GT(rod_impacts, 0u);
     EXPECT_EQ(audit.report().pair_overlaps, 0u) << "first: " << audit.report().first_pair << "; deepest: " << audit.report().worst_pair;
@@ -114,9 +114,8 @@ TEST(EngineEventExact, ElasticBoxWithGravityKeepsItsMechanicalEnergy) {
     }
     const SimulationState& st = sim.state();
     std::cout << "[ energy g ] " << spec.scheme << " scheme (" << seconds_since(t0) << " s wall): " << st.steps << " units, "
-              << st.shot_shot_impacts << " shot-shot and " << wall_impacts << " wall impacts; E0 " << e0
-              << " J/kg, worst relative change " << worst << " at t = " << worst_at << " s; health " << health_text(st.health)
-              << "\n";
+              << st.shot_shot_impacts << " shot-shot and " << wall_impacts << " wall impacts; E0 " << e0 << " J/kg, worst relative change "
+              << worst << " at t = " << worst_at << " s; health " << health_text(st.health) << "\n";
     EXPECT_GT(st.shot_shot_impacts, 200u);
     EXPECT_GT(wall_impacts, 500u);
     EXPECT_LT(worst, 1e-9);
@@ -139,9 +138,9 @@ std::vector<ImpactRecord> run_logging(const std::shared_ptr<const Model>& model,
 }
 
 bool same(const ImpactRecord& a, const ImpactRecord& b) {
-    return a.time_s == b.time_s && a.shot == b.shot && a.component == b.component && a.triangle == b.triangle &&
-           a.point_m == b.point_m && a.v_in_m_per_s == b.v_in_m_per_s && a.vn_in_m_per_s == b.vn_in_m_per_s &&
-           a.vt_in_m_per_s == b.vt_in_m_per_s && a.v_out_m_per_s == b.v_out_m_per_s && a.vn_out_m_per_s == b.vn_out_m_per_s;
+    return a.time_s == b.time_s && a.shot == b.shot && a.component == b.component && a.triangle == b.triangle && a.point_m == b.point_m &&
+           a.v_in_m_per_s == b.v_in_m_per_s && a.vn_in_m_per_s == b.vn_in_m_per_s && a.vt_in_m_per_s == b.vt_in_m_per_s &&
+           a.v_out_m_per_s == b.v_out_m_per_s && a.vn_out_m_per_s == b.vn_out_m_per_s;
 }
 
 class EngineEventInvariants : public ::testing::TestWithParam<std::string> {};

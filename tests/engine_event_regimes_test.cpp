@@ -95,11 +95,12 @@ TEST_P(EngineEventRegimes, ChatteringShotOnTheVibratingSonotrodeIsThrown) {
         const auto t0 = std::chrono::steady_clock::now();
         Simulation sim(model);
         const double R = model->shot_radius_m;
-        sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + c.amplitude_m * std::sin(c.phase_rad)), Vec3::Zero()); });
+        sim.edit_state(
+            [&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + c.amplitude_m * std::sin(c.phase_rad)), Vec3::Zero()); });
         OverlapAudit audit(*model, kOverlapTolerance);
         std::vector<ImpactRecord> impacts;
         std::size_t logged = 0;
-        double max_height = 0.0;  // m, centre above R over the plate's rest top face
+        double max_height = 0.0;                     // m, centre above R over the plate's rest top face
         const double pause = 0.05 / c.frequency_hz;  // s, 20 audits a period
         while (!sim.finished()) {
             sim.step(impacts, sim.state().time.seconds() + pause);
@@ -109,10 +110,10 @@ TEST_P(EngineEventRegimes, ChatteringShotOnTheVibratingSonotrodeIsThrown) {
             audit.audit(sim.state());
         }
         const SimulationState& st = sim.state();
-        std::cout << "[ chatter  ] " << GetParam() << " scheme, " << c.name << " (" << seconds_since(t0) << " s wall): "
-                  << st.steps << " units, " << impacts_on(*model, st, "sonotrode") << " sonotrode and "
-                  << impacts_on(*model, st, "chamber") << " chamber impacts, max height " << max_height << " m; "
-                  << audit.summary() << "; health " << health_text(st.health) << "; " << regime_text(sim) << "\n";
+        std::cout << "[ chatter  ] " << GetParam() << " scheme, " << c.name << " (" << seconds_since(t0) << " s wall): " << st.steps
+                  << " units, " << impacts_on(*model, st, "sonotrode") << " sonotrode and " << impacts_on(*model, st, "chamber")
+                  << " chamber impacts, max height " << max_height << " m; " << audit.summary() << "; health " << health_text(st.health)
+                  << "; " << regime_text(sim) << "\n";
         EXPECT_GT(max_height, c.min_height_m) << c.name;
         if (exact()) {
             // Event-driven throughout: a lone shot is never a load at rest to hand over.
@@ -185,9 +186,9 @@ TEST_P(EngineEventRegimes, ShotDroppedOnTheStillSonotrodeComeToRest) {
     }
     std::cout << "[ resting  ] " << GetParam() << " scheme (" << seconds_since(t0) << " s wall): " << st.steps << " units, "
               << impacts_on(*model, st, "sonotrode") << " sonotrode and " << st.shot_shot_impacts
-              << " shot-shot impacts; at 1 s: " << on_plate << " on the plate (worst |z - R| " << worst_plate << " m), "
-              << on_shot << " on another shot, fastest " << fastest << " m/s; " << audit.summary() << "; health "
-              << health_text(st.health) << "; " << regime_text(sim) << "\n";
+              << " shot-shot impacts; at 1 s: " << on_plate << " on the plate (worst |z - R| " << worst_plate << " m), " << on_shot
+              << " on another shot, fastest " << fastest << " m/s; " << audit.summary() << "; health " << health_text(st.health) << "; "
+              << regime_text(sim) << "\n";
     if (exact()) {
         // Coming to rest is the sustained-contact regime: substeps, then sleep.
         EXPECT_GT(sim.scheme().stats().substeps, 0u);
@@ -228,10 +229,10 @@ TEST_P(EngineEventRegimes, DenseLoadOnTheVibratingSonotrode) {
         audit.audit(sim.state());
     }
     const SimulationState& st = sim.state();
-    std::cout << "[ dense    ] " << GetParam() << " scheme (" << seconds_since(t0) << " s wall): placed up to z = " << top
-              << " m; " << st.steps << " units, " << impacts_on(*model, st, "sonotrode") << " sonotrode, "
-              << impacts_on(*model, st, "chamber") << " chamber, " << st.shot_shot_impacts << " shot-shot impacts; "
-              << audit.summary() << "; health " << health_text(st.health) << "; " << regime_text(sim) << "\n";
+    std::cout << "[ dense    ] " << GetParam() << " scheme (" << seconds_since(t0) << " s wall): placed up to z = " << top << " m; "
+              << st.steps << " units, " << impacts_on(*model, st, "sonotrode") << " sonotrode, " << impacts_on(*model, st, "chamber")
+              << " chamber, " << st.shot_shot_impacts << " shot-shot impacts; " << audit.summary() << "; health " << health_text(st.health)
+              << "; " << regime_text(sim) << "\n";
     if (!audit.report().first_pair.empty())
         std::cout << "[ dense    ] pair overlaps: first " << audit.report().first_pair << "; deepest " << audit.report().worst_pair << "\n";
     if (!audit.report().first_mesh.empty())
@@ -294,8 +295,7 @@ TEST_P(EngineEventRegimes, GrazingFlightsWithoutGravityLogNoImpacts) {
                                  std::to_string(r.vn_in_m_per_s) + " m/s]";
         impacts.clear();
         const ShotArrays& s = sim.state().shots;
-        off_line = std::max({off_line, std::abs(s.z[0] - (kBoxTop + R)), std::abs(s.y[0]), std::abs(s.z[1] - R),
-                             std::abs(s.y[1] + 6e-3)});
+        off_line = std::max({off_line, std::abs(s.z[0] - (kBoxTop + R)), std::abs(s.y[0]), std::abs(s.z[1] - R), std::abs(s.y[1] + 6e-3)});
         const bool over = std::abs(s.x[0]) < 2e-3;
         box_passes += over && !over_box;
         over_box = over;
@@ -372,15 +372,14 @@ TEST_P(EngineEventRegimes, ShotSlidingOnTheFloorAndOffABoxTopLogNoSpuriousImpact
     std::cout << "[ grazing  ] " << GetParam() << " scheme, gravity (" << seconds_since(t0) << " s wall): " << st.steps
               << " units; impacts: box " << impacts_on(*model, st, "part") << " (on its top " << box_top_impacts << "), plate "
               << impacts_on(*model, st, "sonotrode") << ", walls " << impacts_on(*model, st, "chamber")
-              << "; sliding shot: " << floor_impacts_of_0
-              << " impacts, slid " << slid << " m (v0^2 / 2 f g = " << expected << " m), worst |z - R| " << sink
-              << " m, final speed " << s.velocity(0).norm() << " m/s; shot off the box ends at " << s.position(1).transpose()
-              << " m; " << audit.summary() << "; health " << health_text(st.health) << "\n";
+              << "; sliding shot: " << floor_impacts_of_0 << " impacts, slid " << slid << " m (v0^2 / 2 f g = " << expected
+              << " m), worst |z - R| " << sink << " m, final speed " << s.velocity(0).norm() << " m/s; shot off the box ends at "
+              << s.position(1).transpose() << " m; " << audit.summary() << "; health " << health_text(st.health) << "\n";
     EXPECT_EQ(box_top_impacts, 0u);
     EXPECT_EQ(floor_impacts_of_0, 0u);
     EXPECT_LT(sink, 1e-9);
     EXPECT_LT(s.velocity(0).norm(), 1e-3);
-    EXPECT_LT(s.z[1], kBoxTop - 4e-3);  // it left the box top and fell below the box's bottom face
+    EXPECT_LT(s.z[1], kBoxTop - 4e-3);                 // it left the box top and fell below the box's bottom face
     EXPECT_GT(impacts_on(*model, st, "chamber"), 0u);  // on the +x wall
     if (exact()) {
         EXPECT_EQ(audit.report().mesh_overlaps, 0u) << "first: " << audit.report().first_mesh << "; deepest: " << audit.report().worst_mesh;
@@ -435,10 +434,10 @@ TEST_P(EngineEventRegimes, RotatingPartImpactsLieOnItsSurface) {
         audit.audit(sim.state());
     }
     const SimulationState& st = sim.state();
-    std::cout << "[ rotating ] " << GetParam() << " scheme, 1000 rpm (" << seconds_since(t0) << " s wall): " << st.steps
-              << " units, " << logged << " part impacts, farthest point from the part surface " << worst_distance << " m ("
-              << off_surface << " beyond 1e-9 m); " << st.shot_shot_impacts << " shot-shot impacts; " << audit.summary()
-              << "; health " << health_text(st.health) << "\n";
+    std::cout << "[ rotating ] " << GetParam() << " scheme, 1000 rpm (" << seconds_since(t0) << " s wall): " << st.steps << " units, "
+              << logged << " part impacts, farthest point from the part surface " << worst_distance << " m (" << off_surface
+              << " beyond 1e-9 m); " << st.shot_shot_impacts << " shot-shot impacts; " << audit.summary() << "; health "
+              << health_text(st.health) << "\n";
     EXPECT_GT(logged, 50u);
     EXPECT_EQ(logged, impacts_on(*model, st, "part"));
     EXPECT_EQ(st.health.shot_lost, 0u);

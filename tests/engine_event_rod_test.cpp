@@ -26,20 +26,20 @@
 #include <string>
 #include <vector>
 
-#include "support/rod_prototype.h"
-#include "support/run_report.h"
 #include "engine/simulation.h"
 #include "engine/time_stepping.h"
 #include "model/model.h"
 #include "scene/scene_parser.h"
+#include "support/rod_prototype.h"
+#include "support/run_report.h"
 
 namespace peensim::testing {
 namespace {
 
-constexpr double kSettle = 0.1;         // s, left out: the bed fluidising from rest
-constexpr double kEventEnd = 1.1;       // s, event run (1.0 s measured)
-constexpr double kFineEnd = 0.6;        // s, fine time stepping from the settled state (0.5 s measured)
-constexpr double kBatch = 0.05;         // s, batch length of the batch means
+constexpr double kSettle = 0.1;    // s, left out: the bed fluidising from rest
+constexpr double kEventEnd = 1.1;  // s, event run (1.0 s measured)
+constexpr double kFineEnd = 0.6;   // s, fine time stepping from the settled state (0.5 s measured)
+constexpr double kBatch = 0.05;    // s, batch length of the batch means
 // -, travel per step over R of the fine time stepping: with the plate's peak speed (3.14 m/s) as the
 // least v_max of eq. 7, steps are at most 2.39 us, under 1/20 of the 50 us period (asserted below).
 constexpr double kFineTravelFraction = 0.0075;
@@ -54,7 +54,8 @@ std::shared_ptr<const Model> rod_model(const std::vector<std::string>& extra) {
 struct Batches {
     std::vector<double> count;      // rod impacts
     std::vector<double> speed_sum;  // m/s, summed normal impact speeds
-    explicit Batches(double end) : count(static_cast<std::size_t>(std::llround((end - kSettle) / kBatch)), 0.0), speed_sum(count.size(), 0.0) {}
+    explicit Batches(double end)
+        : count(static_cast<std::size_t>(std::llround((end - kSettle) / kBatch)), 0.0), speed_sum(count.size(), 0.0) {}
     void add(const std::vector<ImpactRecord>& impacts) {
         for (const ImpactRecord& r : impacts) {
             if (r.time_s < kSettle) continue;
@@ -141,7 +142,8 @@ TEST(EngineEventRod, EventSchemeMatchesPeriodResolvingTimeStepping) {
     const double period = 1.0 / fine_model->sonotrode_component().kinematics.frequency_hz;
     const double g = fine_model->gravity_m_per_s2.norm();
     // v_max of eq. 7 is never below the plate's peak speed, so no step is longer than this:
-    const double dt_bound = TimeStepping::step_for(fine_model->peak_surface_speed_m_per_s, g, kFineTravelFraction * fine_model->shot_radius_m);
+    const double dt_bound =
+        TimeStepping::step_for(fine_model->peak_surface_speed_m_per_s, g, kFineTravelFraction * fine_model->shot_radius_m);
     ASSERT_LE(dt_bound, period / 20.0);
     const auto t_fine = std::chrono::steady_clock::now();
     Simulation fine(fine_model, settled);
@@ -161,21 +163,18 @@ TEST(EngineEventRod, EventSchemeMatchesPeriodResolvingTimeStepping) {
     const RodFigures e = figures(event_batches), f = figures(fine_batches);
     std::cout << "[ event rod] event scheme " << kSettle << "-" << kEventEnd << " s (" << event_wall << " s wall incl. settling, "
               << event.state().steps << " units of work): " << e.impacts << " rod impacts, rate " << e.rate.mean << " +- "
-              << e.rate.standard_error << " /s, mean normal speed " << e.speed.mean << " +- " << e.speed.standard_error
-              << " m/s\n";
+              << e.rate.standard_error << " /s, mean normal speed " << e.speed.mean << " +- " << e.speed.standard_error << " m/s\n";
     std::cout << "[ event rod] fine time stepping " << kSettle << "-" << kFineEnd << " s (" << fine_wall << " s wall, "
-              << fine.state().steps - settled.steps << " steps, longest " << longest_step << " s, bound " << dt_bound
-              << " s, period/20 " << period / 20.0 << " s): " << f.impacts << " rod impacts, rate " << f.rate.mean << " +- "
-              << f.rate.standard_error << " /s, mean normal speed " << f.speed.mean << " +- " << f.speed.standard_error
-              << " m/s\n";
+              << fine.state().steps - settled.steps << " steps, longest " << longest_step << " s, bound " << dt_bound << " s, period/20 "
+              << period / 20.0 << " s): " << f.impacts << " rod impacts, rate " << f.rate.mean << " +- " << f.rate.standard_error
+              << " /s, mean normal speed " << f.speed.mean << " +- " << f.speed.standard_error << " m/s\n";
     std::cout << "[ event rod] batches of " << kBatch << " s (rate /s / mean speed m/s): event" << batch_series(event_batches)
               << "\n[ event rod] fine time stepping" << batch_series(fine_batches) << "\n";
     const double rate_bound = 3.0 * std::hypot(e.rate.standard_error, f.rate.standard_error);
     const double speed_bound = 3.0 * std::hypot(e.speed.standard_error, f.speed.standard_error);
-    std::cout << "[ event rod] difference event - fine: rate " << (e.rate.mean - f.rate.mean) / f.rate.mean * 100.0
-              << " % (bound 3 SE " << rate_bound / f.rate.mean * 100.0 << " %), speed "
-              << (e.speed.mean - f.speed.mean) / f.speed.mean * 100.0 << " % (bound 3 SE " << speed_bound / f.speed.mean * 100.0
-              << " %)\n";
+    std::cout << "[ event rod] difference event - fine: rate " << (e.rate.mean - f.rate.mean) / f.rate.mean * 100.0 << " % (bound 3 SE "
+              << rate_bound / f.rate.mean * 100.0 << " %), speed " << (e.speed.mean - f.speed.mean) / f.speed.mean * 100.0
+              << " % (bound 3 SE " << speed_bound / f.speed.mean * 100.0 << " %)\n";
     EXPECT_LE(std::abs(e.rate.mean - f.rate.mean), rate_bound);
     EXPECT_LE(std::abs(e.speed.mean - f.speed.mean), speed_bound);
 }

@@ -25,9 +25,9 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kG = 9.81;    // m/s2
-constexpr double kH0 = 2e-3;   // m, drop height of the centre above its height at contact
-constexpr double kC = 0.8;     // -, shot-sonotrode restitution (V0 1000 m/s: always elastic)
+constexpr double kG = 9.81;   // m/s2
+constexpr double kH0 = 2e-3;  // m, drop height of the centre above its height at contact
+constexpr double kC = 0.8;    // -, shot-sonotrode restitution (V0 1000 m/s: always elastic)
 
 TestSceneSpec still_plate(const std::string& scheme = "step") {
     TestSceneSpec spec;

@@ -20,8 +20,8 @@ namespace {
 struct Pinned {
     const char* scene;
     const char* scheme;
-    std::uint64_t rows;          // impacts logged in the first 0.5 s
-    const char* impacts_fnv1a;   // of impacts.csv, hex
+    std::uint64_t rows;         // impacts logged in the first 0.5 s
+    const char* impacts_fnv1a;  // of impacts.csv, hex
 };
 
 // Last moved by: time stepping follows slow touches on the pressing plate as rebounds down to the
@@ -41,8 +41,12 @@ class PinnedOutputs : public ::testing::TestWithParam<Pinned> {};
 TEST_P(PinnedOutputs, ImpactsOfTheFirstHalfSecondAreThePinnedBytes) {
     const Pinned& p = GetParam();
     TempDir dir;
-    const InProcessResult r = run_in_process({std::string(PEENSIM_SOURCE_DIR) + "/scenes/" + p.scene + ".yaml", (dir.path / "out").string(),
-                                              false, false, {}, {"process.duration=0.5 s", std::string("accuracy.scheme=") + p.scheme}});
+    const InProcessResult r = run_in_process({std::string(PEENSIM_SOURCE_DIR) + "/scenes/" + p.scene + ".yaml",
+                                              (dir.path / "out").string(),
+                                              false,
+                                              false,
+                                              {},
+                                              {"process.duration=0.5 s", std::string("accuracy.scheme=") + p.scheme}});
     ASSERT_EQ(r.code, kExitOk) << r.err;
     const std::string csv = read_file((dir.path / "out" / "impacts.csv").string());
     std::uint64_t rows = 0;

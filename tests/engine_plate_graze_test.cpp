@@ -17,10 +17,10 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kA = 80e-6;      // m, amplitude
-constexpr double kF = 20e3;       // Hz
-constexpr double kDelta = 0.16e-6;// m, how far the top of the stroke reaches above the shot's underside
-constexpr int kOffsets = 40;      // phases tried across one gap sample (1/32 period)
+constexpr double kA = 80e-6;        // m, amplitude
+constexpr double kF = 20e3;         // Hz
+constexpr double kDelta = 0.16e-6;  // m, how far the top of the stroke reaches above the shot's underside
+constexpr int kOffsets = 40;        // phases tried across one gap sample (1/32 period)
 
 class EnginePlateGraze : public ::testing::TestWithParam<std::string> {};
 

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "engine/simulation.h"
@@ -46,8 +46,8 @@ TEST(EngineRest, ShotSettleOnStillSonotrodeWithoutSinkingOrJitter) {
         EXPECT_LT(speed, 1e-3) << "shot " << i;  // no jitter: a resting shot stays (nearly) still
         fastest = std::max(fastest, speed);
     }
-    std::cout << "[ rest     ] " << sim.state().steps << " steps; worst |z - R| " << worst_height << " m, fastest "
-              << fastest << " m/s, logged sonotrode impacts " << logged << "\n";
+    std::cout << "[ rest     ] " << sim.state().steps << " steps; worst |z - R| " << worst_height << " m, fastest " << fastest
+              << " m/s, logged sonotrode impacts " << logged << "\n";
     EXPECT_EQ(logged, 0u);  // settling is sustained contact, not a Zeno sequence of impacts
     EXPECT_EQ(sim.state().shot_shot_impacts, 0u);
     EXPECT_EQ(sim.state().slow_contacts_per_component[static_cast<std::size_t>(model->sonotrode)], 20u);
@@ -96,8 +96,8 @@ TEST(EngineRest, SlidingShotSlowsDownByCoulombFriction) {
     }
     ASSERT_GT(sliding_steps, 10);
     const double deceleration = (v_a - v_b) / (t_b - t_a);
-    std::cout << "[ friction ] " << sliding_steps << " sliding steps; deceleration " << deceleration << " m/s2 (f g = "
-              << f * kG << "), worst speed deviation " << worst << " m/s\n";
+    std::cout << "[ friction ] " << sliding_steps << " sliding steps; deceleration " << deceleration << " m/s2 (f g = " << f * kG
+              << "), worst speed deviation " << worst << " m/s\n";
     // Measured deceleration f g within 1e-9 relative (differences of speeds exact to ~1e-16 m/s
     // over 0.1 s).
     EXPECT_NEAR(deceleration, f * kG, 1e-9 * f * kG);

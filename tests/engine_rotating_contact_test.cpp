@@ -15,8 +15,8 @@
 #include <random>
 #include <vector>
 
-#include "kernels/closest_point.h"
 #include "engine/simulation.h"
+#include "kernels/closest_point.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -97,10 +97,10 @@ double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b
 
 struct Errors {
     int throws = 0;
-    double normal_rad = 0.0;        // largest angle between the logged and the exact contact normal
-    double facet_rad = 0.0;         // largest angle between the logged normal and the exact facet's
-    double vn_relative = 0.0;       // largest |vn logged - vn exact| / vn exact
-    double time_s = 0.0;            // largest |t logged - t exact|
+    double normal_rad = 0.0;   // largest angle between the logged and the exact contact normal
+    double facet_rad = 0.0;    // largest angle between the logged normal and the exact facet's
+    double vn_relative = 0.0;  // largest |vn logged - vn exact| / vn exact
+    double time_s = 0.0;       // largest |t logged - t exact|
 };
 
 Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
@@ -164,9 +164,9 @@ Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
         e.time_s = std::max(e.time_s, std::abs(r.time_s - exact->time_s));
         EXPECT_NEAR(r.vn_out_m_per_s, C * r.vn_in_m_per_s, 1e-12) << "throw " << k;
     }
-    std::cout << "[ rotating contact ] " << rpm << " rpm: " << e.throws << " throws; largest normal error "
-              << e.normal_rad * 180.0 / M_PI << " deg (to the facet " << e.facet_rad * 180.0 / M_PI << " deg), vn "
-              << e.vn_relative << " relative, time " << e.time_s << " s\n";
+    std::cout << "[ rotating contact ] " << rpm << " rpm: " << e.throws << " throws; largest normal error " << e.normal_rad * 180.0 / M_PI
+              << " deg (to the facet " << e.facet_rad * 180.0 / M_PI << " deg), vn " << e.vn_relative << " relative, time " << e.time_s
+              << " s\n";
     return e;
 }
 

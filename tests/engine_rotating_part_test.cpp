@@ -98,8 +98,8 @@ TEST(EngineRotatingPart, ShotDroppedOnAPlatformSpinningAboutTheVerticalAxis) {
 
     std::cout.precision(12);
     std::cout << "[ rotating ] vertical axis: t " << r.time_s << " (expected " << t_star << "), point " << r.point_m.transpose()
-              << " (expected " << point.transpose() << "), v_in " << r.v_in_m_per_s.transpose() << " (expected "
-              << v_rel.transpose() << ")\n";
+              << " (expected " << point.transpose() << "), v_in " << r.v_in_m_per_s.transpose() << " (expected " << v_rel.transpose()
+              << ")\n";
     std::cout.precision(6);
     EXPECT_NEAR(r.time_s, t_star, 1e-12 * t_star);
     for (int k = 0; k < 3; ++k) {
@@ -111,7 +111,8 @@ TEST(EngineRotatingPart, ShotDroppedOnAPlatformSpinningAboutTheVerticalAxis) {
     EXPECT_NEAR(r.vt_in_m_per_s, v_surface.norm(), 1e-12);
     EXPECT_NEAR(r.vn_out_m_per_s, C * kG * t_star, 1e-12);
     // The logged facet is on the top face (normal +z in the part frame).
-    EXPECT_NEAR(facet_normal(*hit.model->components[static_cast<std::size_t>(hit.model->component_index("part"))].mesh, r.triangle).z(), 1.0, 1e-12);
+    EXPECT_NEAR(facet_normal(*hit.model->components[static_cast<std::size_t>(hit.model->component_index("part"))].mesh, r.triangle).z(),
+                1.0, 1e-12);
 }
 
 TEST(EngineRotatingPart, ShotDroppedOnAPlateTiltingAboutAHorizontalAxis) {
@@ -169,8 +170,8 @@ TEST(EngineRotatingPart, ShotDroppedOnAPlateTiltingAboutAHorizontalAxis) {
 
     std::cout.precision(12);
     std::cout << "[ rotating ] horizontal axis: t " << r.time_s << " (expected " << t_star << "), point " << r.point_m.transpose()
-              << " (expected " << point.transpose() << "), v_in " << r.v_in_m_per_s.transpose() << " (expected "
-              << v_rel.transpose() << ")\n";
+              << " (expected " << point.transpose() << "), v_in " << r.v_in_m_per_s.transpose() << " (expected " << v_rel.transpose()
+              << ")\n";
     std::cout.precision(6);
     EXPECT_NEAR(r.time_s, t_star, 1e-12 * t_star);
     for (int k = 0; k < 3; ++k) {

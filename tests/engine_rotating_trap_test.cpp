@@ -23,10 +23,10 @@ struct TrapCase {
     double rpm;
 };
 
-constexpr double kRadius = 5e-3;     // m, cylinder
+constexpr double kRadius = 5e-3;  // m, cylinder
 constexpr int kSegments = 128;
-constexpr double kShotR = 1e-3;      // m
-constexpr double kAxisZ = 14e-3;     // m, cylinder axis height above the plate
+constexpr double kShotR = 1e-3;   // m
+constexpr double kAxisZ = 14e-3;  // m, cylinder axis height above the plate
 
 class EngineRotatingTrap : public ::testing::TestWithParam<TrapCase> {};
 
@@ -87,8 +87,7 @@ TEST_P(EngineRotatingTrap, ShotStayOutsideATurningCylinder) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Speeds, EngineRotatingTrap,
-                         ::testing::Values(TrapCase{"plus300rpm", 300.0}, TrapCase{"minus300rpm", -300.0},
-                                           TrapCase{"plus1000rpm", 1000.0}),
+                         ::testing::Values(TrapCase{"plus300rpm", 300.0}, TrapCase{"minus300rpm", -300.0}, TrapCase{"plus1000rpm", 1000.0}),
                          [](const ::testing::TestParamInfo<TrapCase>& info) { return info.param.name; });
 
 }  // namespace

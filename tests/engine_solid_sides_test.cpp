@@ -14,8 +14,8 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kShotR = 1e-3;        // m
-constexpr double kTopZ = 12e-3;        // m, the box part's top face above the plate
+constexpr double kShotR = 1e-3;  // m
+constexpr double kTopZ = 12e-3;  // m, the box part's top face above the plate
 
 class EngineSolidSides : public ::testing::TestWithParam<std::string> {};
 

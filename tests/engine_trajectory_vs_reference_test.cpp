@@ -27,8 +27,8 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kRadius = 0.5e-3;      // m
-constexpr double kAmplitude = 80e-6;    // m
+constexpr double kRadius = 0.5e-3;    // m
+constexpr double kAmplitude = 80e-6;  // m
 constexpr double kFrequency = kTubeFrequencyHz;
 constexpr double kGravity = kTubeGravity;
 constexpr double kHeight = 20e-3;       // m, ceiling above the floor's rest position
@@ -36,8 +36,8 @@ constexpr double kStartZ = 0.01910358;  // m, centre height at t = 0 (falling fr
 constexpr double kStartV = -10.18466;   // m/s
 constexpr double kDuration = 0.03;      // s, well past the 26 compared impacts
 constexpr std::size_t kCompared = 26;
-constexpr double kTimeTolerance = 1e-11;   // s
-constexpr double kSpeedTolerance = 1e-9;   // relative
+constexpr double kTimeTolerance = 1e-11;  // s
+constexpr double kSpeedTolerance = 1e-9;  // relative
 
 struct Impact {
     double time_s;
@@ -70,9 +70,19 @@ struct ReferenceRun {
 
 ReferenceRun reference_impacts(double impact_speed_m_per_s) {
     ReferenceRun run;
-    VibratingFloorCase c{.R = kRadius, .g = kGravity, .A = kAmplitude, .F = kFrequency, .phase = 0.0, .H = kHeight,
-                         .z0 = kStartZ, .v0 = kStartV, .C0_floor = kTubeFloorPair.C0, .V0_floor = kTubeFloorPair.V0_m_per_s,
-                         .C0_ceiling = kTubeCeilingPair.C0, .V0_ceiling = kTubeCeilingPair.V0_m_per_s, .duration = kDuration};
+    VibratingFloorCase c{.R = kRadius,
+                         .g = kGravity,
+                         .A = kAmplitude,
+                         .F = kFrequency,
+                         .phase = 0.0,
+                         .H = kHeight,
+                         .z0 = kStartZ,
+                         .v0 = kStartV,
+                         .C0_floor = kTubeFloorPair.C0,
+                         .V0_floor = kTubeFloorPair.V0_m_per_s,
+                         .C0_ceiling = kTubeCeilingPair.C0,
+                         .V0_ceiling = kTubeCeilingPair.V0_m_per_s,
+                         .duration = kDuration};
     c.on_event = [&](const VibratingFloorEvent& e) {
         const bool floor = e.kind == VibratingFloorEventKind::floor_impact;
         if ((floor || e.kind == VibratingFloorEventKind::ceiling_impact) && e.speed >= impact_speed_m_per_s)

@@ -54,15 +54,14 @@ namespace {
 
 constexpr double kFrequency = kTubeFrequencyHz;
 constexpr double kGravity = kTubeGravity;
-constexpr int kGrid = 4;                 // 4 x 4 columns
+constexpr int kGrid = 4;  // 4 x 4 columns
 constexpr int kColumns = kGrid * kGrid;
-constexpr double kShortSeconds = 2.0;    // s, run length when PEENSIM_TUBE_SECONDS is unset (~2.5 s of wall at most)
-constexpr double kWindowSeconds = 100.0; // s
-constexpr double kMinWindowedRun = 200.0;// s, shorter runs are compared as a whole only
-constexpr double kWholeRunSE = 3.0;      // -, the normal-law bound whose chance every bound keeps
+constexpr double kShortSeconds = 2.0;      // s, run length when PEENSIM_TUBE_SECONDS is unset (~2.5 s of wall at most)
+constexpr double kWindowSeconds = 100.0;   // s
+constexpr double kMinWindowedRun = 200.0;  // s, shorter runs are compared as a whole only
+constexpr double kWholeRunSE = 3.0;        // -, the normal-law bound whose chance every bound keeps
 // Chance that one comparison at 3 SE (normal) exceeds it without a real difference.
 const double kSingleComparisonChance = std::erfc(kWholeRunSE / std::sqrt(2.0));
-
 
 struct TubeCase {
     const char* name;
@@ -91,8 +90,7 @@ double spacing_m(const TubeCase& c) { return std::max(8.0 * c.radius_m, 2e-3); }
 
 Vec3 start_position(const TubeCase& c, int i) {
     const double s = spacing_m(c);
-    return {(i % kGrid - 0.5 * (kGrid - 1)) * s, (i / kGrid - 0.5 * (kGrid - 1)) * s,
-            c.radius_m + (0.1 + 0.05 * i) * c.height_m};
+    return {(i % kGrid - 0.5 * (kGrid - 1)) * s, (i / kGrid - 0.5 * (kGrid - 1)) * s, c.radius_m + (0.1 + 0.05 * i) * c.height_m};
 }
 
 // Impact counts and summed normal speeds per column, for one time span.
@@ -121,25 +119,24 @@ struct Tally {
     }
 };
 
-int window_count(double seconds) {
-    return seconds >= kMinWindowedRun ? static_cast<int>(std::floor(seconds / kWindowSeconds + 1e-9)) : 0;
-}
+int window_count(double seconds) { return seconds >= kMinWindowedRun ? static_cast<int>(std::floor(seconds / kWindowSeconds + 1e-9)) : 0; }
 
 struct EngineTube {
     explicit EngineTube(int window_count) : tally(window_count) {}
     Tally tally;
-    std::size_t wall_hits = 0;   // impacts on the side walls (the columns are vertical: none)
+    std::size_t wall_hits = 0;  // impacts on the side walls (the columns are vertical: none)
     std::uint64_t shot_shot = 0;
     std::uint64_t serious = 0;
-    std::string health;          // the non-zero health counters
-    double wall_s = 0.0;         // s, stepping loop
+    std::string health;                 // the non-zero health counters
+    double wall_s = 0.0;                // s, stepping loop
     double impact_speed_m_per_s = 0.0;  // m/s, the model's accuracy.impact_speed
 };
 
 EngineTube run_engine(const TubeCase& c, const std::string& scheme, double seconds) {
     const TestScene scene(tube_scene(scheme, kGrid * spacing_m(c), c.height_m, kColumns, c.radius_m, c.amplitude_m, seconds));
     Simulation sim(scene.compile());
-    for (int i = 0; i < kColumns; ++i) sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), start_position(c, i), Vec3::Zero()); });
+    for (int i = 0; i < kColumns; ++i)
+        sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), start_position(c, i), Vec3::Zero()); });
 
     EngineTube run(window_count(seconds));
     run.impact_speed_m_per_s = sim.model().impact_speed_m_per_s;
@@ -178,10 +175,19 @@ EngineTube run_engine(const TubeCase& c, const std::string& scheme, double secon
 Tally compute_reference(const TubeCase& c, double seconds, double impact_speed_m_per_s) {
     Tally tally(window_count(seconds));
     for (int i = 0; i < kColumns; ++i) {
-        VibratingFloorCase r{.R = c.radius_m, .g = kGravity, .A = c.amplitude_m, .F = kFrequency, .phase = 0.0,
-                             .H = c.height_m, .z0 = start_position(c, i).z(), .v0 = 0.0,
-                             .C0_floor = kTubeFloorPair.C0, .V0_floor = kTubeFloorPair.V0_m_per_s,
-                             .C0_ceiling = kTubeCeilingPair.C0, .V0_ceiling = kTubeCeilingPair.V0_m_per_s, .duration = seconds};
+        VibratingFloorCase r{.R = c.radius_m,
+                             .g = kGravity,
+                             .A = c.amplitude_m,
+                             .F = kFrequency,
+                             .phase = 0.0,
+                             .H = c.height_m,
+                             .z0 = start_position(c, i).z(),
+                             .v0 = 0.0,
+                             .C0_floor = kTubeFloorPair.C0,
+                             .V0_floor = kTubeFloorPair.V0_m_per_s,
+                             .C0_ceiling = kTubeCeilingPair.C0,
+                             .V0_ceiling = kTubeCeilingPair.V0_m_per_s,
+                             .duration = seconds};
         r.max_events = 4'000'000'000;
         r.on_event = [&](const VibratingFloorEvent& e) {
             const bool floor = e.kind == VibratingFloorEventKind::floor_impact;
@@ -265,10 +271,9 @@ std::vector<Comparison> compare(const Span& e, const Span& r, double span_s, dou
 
 std::string describe(const Comparison& c) {
     std::ostringstream s;
-    s << std::setprecision(5) << c.quantity << ": engine " << c.engine.mean << " +- " << c.engine.se << ", reference "
-      << c.reference.mean << " +- " << c.reference.se << ", difference "
-      << std::setprecision(3) << 100.0 * (c.engine.mean - c.reference.mean) / c.reference.mean << " % = " << c.z << " SE (bound "
-      << c.bound << " SE)";
+    s << std::setprecision(5) << c.quantity << ": engine " << c.engine.mean << " +- " << c.engine.se << ", reference " << c.reference.mean
+      << " +- " << c.reference.se << ", difference " << std::setprecision(3)
+      << 100.0 * (c.engine.mean - c.reference.mean) / c.reference.mean << " % = " << c.z << " SE (bound " << c.bound << " SE)";
     return s.str();
 }
 
@@ -302,9 +307,9 @@ TEST_P(EngineTubeLong, MatchesTheExactReferenceOverTheWholeRunAndEvery100sWindow
     brief << std::fixed << std::setprecision(1) << label << ", " << seconds << " s (engine wall " << engine.wall_s << " s): whole run";
     for (const Comparison& c : whole) {
         std::cout << "[ tube long] " << label << " whole run, " << describe(c) << "\n";
-        brief << (&c == &whole.front() ? " " : ", ") << c.quantity.substr(0, c.quantity.find(" (")) << " "
-              << std::showpos << 100.0 * (c.engine.mean - c.reference.mean) / c.reference.mean << std::noshowpos << " % ("
-              << std::setprecision(2) << c.z << " SE)" << std::setprecision(1);
+        brief << (&c == &whole.front() ? " " : ", ") << c.quantity.substr(0, c.quantity.find(" (")) << " " << std::showpos
+              << 100.0 * (c.engine.mean - c.reference.mean) / c.reference.mean << std::noshowpos << " % (" << std::setprecision(2) << c.z
+              << " SE)" << std::setprecision(1);
         EXPECT_GT(c.engine.mean, 0.0) << c.quantity;
         EXPECT_LE(c.z, c.bound) << label << " whole run, " << describe(c);
     }
@@ -346,10 +351,9 @@ std::vector<Param> params() {
     return v;
 }
 
-INSTANTIATE_TEST_SUITE_P(Tubes, EngineTubeLong, ::testing::ValuesIn(params()),
-                         [](const ::testing::TestParamInfo<Param>& info) {
-                             return std::string(info.param.tube.name) + "_" + info.param.scheme;
-                         });
+INSTANTIATE_TEST_SUITE_P(Tubes, EngineTubeLong, ::testing::ValuesIn(params()), [](const ::testing::TestParamInfo<Param>& info) {
+    return std::string(info.param.tube.name) + "_" + info.param.scheme;
+});
 
 }  // namespace
 }  // namespace peensim::testing

@@ -31,17 +31,17 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kR = 1e-3;            // m, shot radius (D = 2 mm)
-constexpr double kA = 25e-6;           // m, sonotrode amplitude
+constexpr double kR = 1e-3;              // m, shot radius (D = 2 mm)
+constexpr double kA = 25e-6;             // m, sonotrode amplitude
 constexpr double kF = kTubeFrequencyHz;  // Hz
-constexpr double kH = 20e-3;           // m, ceiling height above the plate's rest position
+constexpr double kH = 20e-3;             // m, ceiling height above the plate's rest position
 constexpr double kG = kTubeGravity;      // m/s2
-constexpr double kStart = 0.5;         // s, statistics start (after the start-up transient)
-constexpr double kEngineEnd = 3.0;     // s, engine run length (~0.8 s of wall time)
-constexpr double kReferenceEnd = 60.0; // s, reference run length per start (~0.05 s of wall time)
-constexpr int kGrid = 4;               // 4 x 4 shot
+constexpr double kStart = 0.5;           // s, statistics start (after the start-up transient)
+constexpr double kEngineEnd = 3.0;       // s, engine run length (~0.8 s of wall time)
+constexpr double kReferenceEnd = 60.0;   // s, reference run length per start (~0.05 s of wall time)
+constexpr int kGrid = 4;                 // 4 x 4 shot
 constexpr int kShots = kGrid * kGrid;
-constexpr double kSpacing = 5e-3;      // m, between shot centres
+constexpr double kSpacing = 5e-3;  // m, between shot centres
 
 // Per-shot statistics over [kStart, end].
 struct ShotStats {
@@ -53,11 +53,11 @@ struct ShotStats {
 
 struct EngineRun {
     std::vector<ShotStats> shots;
-    std::size_t wall_hits = 0;        // impacts on the chamber's side walls (must be none)
+    std::size_t wall_hits = 0;  // impacts on the chamber's side walls (must be none)
     std::uint64_t shot_shot = 0;
     std::uint64_t serious_health = 0;
-    std::string health;               // the non-zero health counters, for the report
-    double worst_drift_m = 0.0;       // m, largest horizontal drift of a shot from its start
+    std::string health;                 // the non-zero health counters, for the report
+    double worst_drift_m = 0.0;         // m, largest horizontal drift of a shot from its start
     double worst_step_end_gap_m = 0.0;  // m, most negative (centre - plate - R) at a step end
     std::size_t step_end_overlaps = 0;  // step ends with a shot more than 1e-9 m inside the plate
     CrossingReport crossings;
@@ -87,7 +87,8 @@ EngineRun run_engine(const std::string& scheme) {
     const TestScene scene(tube_scene(scheme, kGrid * kSpacing, kH, kShots, kR, kA, kEngineEnd));
     const auto model = scene.compile();
     Simulation sim(model);
-    for (int i = 0; i < kShots; ++i) sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), start_position(i), Vec3::Zero()); });
+    for (int i = 0; i < kShots; ++i)
+        sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), start_position(i), Vec3::Zero()); });
 
     EngineRun run;
     run.shots.resize(kShots);
@@ -154,8 +155,18 @@ class EngineVibratingFloor : public ::testing::TestWithParam<std::string> {};
 std::vector<ShotStats> reference_statistics() {
     std::vector<ShotStats> stats;
     for (int i = 0; i < kShots; ++i) {
-        VibratingFloorCase c{.R = kR, .g = kG, .A = kA, .F = kF, .phase = 0.0, .H = kH, .z0 = start_height(i),
-                             .v0 = 0.0, .C0_floor = 0.9, .V0_floor = 1.5, .C0_ceiling = 0.95, .V0_ceiling = 2.0,
+        VibratingFloorCase c{.R = kR,
+                             .g = kG,
+                             .A = kA,
+                             .F = kF,
+                             .phase = 0.0,
+                             .H = kH,
+                             .z0 = start_height(i),
+                             .v0 = 0.0,
+                             .C0_floor = 0.9,
+                             .V0_floor = 1.5,
+                             .C0_ceiling = 0.95,
+                             .V0_ceiling = 2.0,
                              .duration = kReferenceEnd};
         c.statistics_start = kStart;
         const VibratingFloorStats r = simulate_vibrating_floor(c);
@@ -179,8 +190,8 @@ TEST_P(EngineVibratingFloor, NoFloorContactIsMissedWithinAStep) {
     // closed-form position, stays out of it but for grazes shallower than 0.5 % of A (125 nm), which
     // the engine's sampled touch search may miss by design (event scheme: none deeper than 1e-9 m).
     const EngineRun& run = engine_run(GetParam());
-    std::cout << "[ vib floor] " << GetParam() << " scheme: step ends inside the plate " << run.step_end_overlaps << " (worst " << run.worst_step_end_gap_m
-              << " m); free flights checked " << run.crossings.flights_checked << ", missed floor contacts "
+    std::cout << "[ vib floor] " << GetParam() << " scheme: step ends inside the plate " << run.step_end_overlaps << " (worst "
+              << run.worst_step_end_gap_m << " m); free flights checked " << run.crossings.flights_checked << ", missed floor contacts "
               << run.crossings.missed_contacts << ", deepest " << run.crossings.deepest_m << " m\n";
     EXPECT_EQ(run.step_end_overlaps, 0u) << "worst " << run.worst_step_end_gap_m << " m";
     EXPECT_GT(run.crossings.flights_checked, 100000u);
@@ -202,8 +213,8 @@ TEST_P(EngineVibratingFloor, RatesAndSpeedsMatchTheExactReference) {
         const auto field = [&](const ShotStats& s) { return s.*(q.field); };
         const MeanAndError e = over_shots(engine, field), r = over_shots(reference, field);
         const double bound = 3.0 * std::hypot(e.standard_error, r.standard_error);
-        std::cout << "[ vib floor] " << GetParam() << " scheme, " << q.name << ": engine " << e.mean << " +- " << e.standard_error << ", reference "
-                  << r.mean << " +- " << r.standard_error << "; difference " << (e.mean - r.mean) / r.mean * 100.0
+        std::cout << "[ vib floor] " << GetParam() << " scheme, " << q.name << ": engine " << e.mean << " +- " << e.standard_error
+                  << ", reference " << r.mean << " +- " << r.standard_error << "; difference " << (e.mean - r.mean) / r.mean * 100.0
                   << " %, bound (3 SE) " << bound / r.mean * 100.0 << " %\n";
         EXPECT_GT(e.mean, 0.0) << q.name;
         EXPECT_LE(std::abs(e.mean - r.mean), bound) << q.name;

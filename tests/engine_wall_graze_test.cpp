@@ -19,9 +19,9 @@ namespace {
 
 struct GrazeCase {
     std::string scheme;
-    double radius_m;       // m
-    double up_speed_m_s;   // m/s, along the wall towards the lid
-    double drift_m_s;      // m/s, into the wall (rounding-level)
+    double radius_m;      // m
+    double up_speed_m_s;  // m/s, along the wall towards the lid
+    double drift_m_s;     // m/s, into the wall (rounding-level)
 };
 
 class EngineWallGraze : public ::testing::TestWithParam<GrazeCase> {};
@@ -39,7 +39,8 @@ TEST_P(EngineWallGraze, AShotSlidingUpAWallHitsTheLid) {
     const TestScene scene(spec);
     Simulation sim(scene.compile());
     const double z0 = 5e-3;
-    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(kHalf - c.radius_m, 0.0, z0), Vec3(c.drift_m_s, 0.0, c.up_speed_m_s)); });
+    sim.edit_state(
+        [&](SimulationState& edited) { set_shot(edited, 0, Vec3(kHalf - c.radius_m, 0.0, z0), Vec3(c.drift_m_s, 0.0, c.up_speed_m_s)); });
     std::vector<ImpactRecord> impacts, lid;
     while (!sim.finished()) {
         sim.step(impacts);

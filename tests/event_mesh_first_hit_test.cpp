@@ -30,11 +30,9 @@ Reference brute_force(const TriangleMesh& mesh, const Trajectory& path, double t
     Reference best;
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
         TriangleContact c;
-        const ToiStatus s = sphere_triangle_toi(path, kR, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2),
-                                                t_begin, t_end, c);
+        const ToiStatus s = sphere_triangle_toi(path, kR, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2), t_begin, t_end, c);
         if (s == ToiStatus::overlapping) return {s, static_cast<int>(t), c};
-        if (s == ToiStatus::impact && (best.status == ToiStatus::miss || c.time < best.contact.time))
-            best = {s, static_cast<int>(t), c};
+        if (s == ToiStatus::impact && (best.status == ToiStatus::miss || c.time < best.contact.time)) best = {s, static_cast<int>(t), c};
     }
     return best;
 }
@@ -127,8 +125,7 @@ Agreement compare_with_brute_force(const TriangleMesh& mesh, const std::vector<Q
         if (hit.triangle != want.triangle) {
             // Another triangle touched at the same moment (a shared edge or vertex).
             ++a.other_triangle;
-            EXPECT_NEAR(distance_to(mesh, hit.triangle, query.path.position(hit.contact.time)), kR, 1e-9 * kR)
-                << "query " << q;
+            EXPECT_NEAR(distance_to(mesh, hit.triangle, query.path.position(hit.contact.time)), kR, 1e-9 * kR) << "query " << q;
         } else {
             EXPECT_EQ(hit.contact.feature, want.contact.feature) << "query " << q;
             EXPECT_NEAR((hit.contact.point - want.contact.point).norm(), 0.0, 1e-12) << "query " << q;
@@ -146,8 +143,8 @@ TEST(EventMeshFirstHit, BoxMatchesBruteForce) {
     const TriangleMesh mesh = box(spec);
     const Agreement a = compare_with_brute_force(mesh, random_queries(mesh, 2000, 1));
     std::cout << "[ box      ] " << mesh.triangle_count() << " triangles: " << a.impacts << " impacts (" << a.other_triangle
-              << " on an equally near triangle), " << a.misses << " misses, " << a.overlaps << " overlaps; "
-              << a.leaves << " leaves per query\n";
+              << " on an equally near triangle), " << a.misses << " misses, " << a.overlaps << " overlaps; " << a.leaves
+              << " leaves per query\n";
     EXPECT_GT(a.impacts, 1000);
     EXPECT_GT(a.misses, 50);
 }
@@ -164,8 +161,8 @@ TEST(EventMeshFirstHit, FineCylinderMatchesBruteForce) {
     const TriangleMesh mesh = cylinder(spec);
     const Agreement a = compare_with_brute_force(mesh, random_queries(mesh, 1200, 2));
     std::cout << "[ cylinder ] " << mesh.triangle_count() << " triangles: " << a.impacts << " impacts (" << a.other_triangle
-              << " on an equally near triangle), " << a.misses << " misses, " << a.overlaps << " overlaps; "
-              << a.leaves << " leaves per query\n";
+              << " on an equally near triangle), " << a.misses << " misses, " << a.overlaps << " overlaps; " << a.leaves
+              << " leaves per query\n";
     EXPECT_GT(a.impacts, 800);
     EXPECT_GT(a.misses, 50);
 }
@@ -236,7 +233,7 @@ const TriangleMesh& cost_cylinder(bool fine) {
         spec.axial_subdivisions = axial;
         return cylinder(spec);
     };
-    static const TriangleMesh coarse = make(100, 24);    // 5 000 triangles
+    static const TriangleMesh coarse = make(100, 24);       // 5 000 triangles
     static const TriangleMesh fine_mesh = make(2000, 124);  // 500 000 triangles
     return fine ? fine_mesh : coarse;
 }
@@ -325,12 +322,10 @@ TEST(EventMeshFirstHit, LeavesVisitedStayFlatFromCoarseToFineMesh) {
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
             const double n = static_cast<double>(queries.size());
             leaves_per_query[fine] = static_cast<double>(counters.leaves_visited) / n;
-            std::cout << "[ cost     ] " << (short_steps ? "2 ms steps near the wall, " : "30 ms throws, ")
-                      << mesh.triangle_count() << " triangles: " << hits << " of " << queries.size()
-                      << " hit; per query " << leaves_per_query[fine] << " leaves, "
-                      << static_cast<double>(counters.nodes_visited) / n << " nodes, "
-                      << static_cast<double>(counters.boxes_tested) / n << " boxes, " << 1e9 * seconds / n << " ns; "
-                      << counters.heap_overflows << " queue overflows\n";
+            std::cout << "[ cost     ] " << (short_steps ? "2 ms steps near the wall, " : "30 ms throws, ") << mesh.triangle_count()
+                      << " triangles: " << hits << " of " << queries.size() << " hit; per query " << leaves_per_query[fine] << " leaves, "
+                      << static_cast<double>(counters.nodes_visited) / n << " nodes, " << static_cast<double>(counters.boxes_tested) / n
+                      << " boxes, " << 1e9 * seconds / n << " ns; " << counters.heap_overflows << " queue overflows\n";
             EXPECT_GT(hits, short_steps ? 10000 : 19000);
         }
         EXPECT_LT(leaves_per_query[0], 50.0);

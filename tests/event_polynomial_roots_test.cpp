@@ -96,7 +96,7 @@ TEST(EventPolynomialRoots, TripleRootChangesSign) {
     const Polynomial p = from_roots({0.4, 0.4, 0.4, 5.0});  // (t - 0.4)^3 (t - 5): + to - at 0.4... mirrored
     const auto r = roots_of(p, 0.0, 1.0);
     ASSERT_EQ(r.size(), 1u);
-    EXPECT_NEAR(r[0].t, 0.4, 1e-5);  // a triple root is only defined to about eps^(1/3)
+    EXPECT_NEAR(r[0].t, 0.4, 1e-5);           // a triple root is only defined to about eps^(1/3)
     EXPECT_EQ(r[0].kind, RootKind::falling);  // (t-0.4)^3 (t-5): positive before, negative after
 }
 

@@ -12,8 +12,8 @@
 namespace peensim {
 namespace {
 
-constexpr double kG = 9.81;        // m/s^2
-constexpr double kR = 1e-3;        // m, shot radius
+constexpr double kG = 9.81;  // m/s^2
+constexpr double kR = 1e-3;  // m, shot radius
 const Vec3 kGravity(0, 0, -kG);
 
 double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -28,7 +28,7 @@ struct Floor {
 TEST(EventSphereTriangle, DropFromRestMatchesFreeFall) {
     const Floor f;
     for (double h : {1e-4, 0.02, 0.5}) {  // m, fall to contact
-        const double t0 = 0.37;            // s, an arbitrary start
+        const double t0 = 0.37;           // s, an arbitrary start
         const Trajectory path{Vec3(0.001, -0.002, h + kR), Vec3::Zero(), kGravity, t0};
         TriangleContact contact;
         ASSERT_EQ(sphere_triangle_toi(path, kR, f.a, f.b, f.c, t0, t0 + 1.0, contact), ToiStatus::impact);
@@ -82,8 +82,7 @@ TEST(EventSphereTriangle, StraightRunIntoAnEdge) {
         for (double z : {0.0, 0.6 * kR, -0.3 * kR}) {
             const Trajectory path{Vec3(d, y, z), Vec3(-v, 0, 0), Vec3::Zero(), 0.0};
             TriangleContact contact;
-            ASSERT_EQ(sphere_triangle_toi(path, kR, tri.corner[0], tri.corner[1], tri.corner[2], 0.0, 1.0, contact),
-                      ToiStatus::impact);
+            ASSERT_EQ(sphere_triangle_toi(path, kR, tri.corner[0], tri.corner[1], tri.corner[2], 0.0, 1.0, contact), ToiStatus::impact);
             const double x = std::sqrt(kR * kR - z * z);
             const double t = (d - x) / v;
             EXPECT_NEAR(contact.time, t, 1e-12 * t) << k << " " << z;
@@ -102,8 +101,7 @@ TEST(EventSphereTriangle, StraightRunIntoAVertex) {
         for (double z : {0.0, 0.3 * kR}) {
             const Trajectory path{Vec3(d, 0, z), Vec3(-v, 0, 0), Vec3::Zero(), 0.0};
             TriangleContact contact;
-            ASSERT_EQ(sphere_triangle_toi(path, kR, tri.corner[0], tri.corner[1], tri.corner[2], 0.0, 1.0, contact),
-                      ToiStatus::impact);
+            ASSERT_EQ(sphere_triangle_toi(path, kR, tri.corner[0], tri.corner[1], tri.corner[2], 0.0, 1.0, contact), ToiStatus::impact);
             const double x = std::sqrt(kR * kR - z * z);
             const double t = (d - x) / v;
             EXPECT_NEAR(contact.time, t, 1e-12 * t) << k << " " << z;
@@ -121,8 +119,7 @@ TEST(EventSphereTriangle, VertexHitUnderGravity) {
     const double h = 0.03;
     const Trajectory path{Vec3(0, 0, h), Vec3::Zero(), kGravity, 0.0};
     TriangleContact contact;
-    ASSERT_EQ(sphere_triangle_toi(path, kR, tri.corner[0], tri.corner[1], tri.corner[2], 0.0, 1.0, contact),
-              ToiStatus::impact);
+    ASSERT_EQ(sphere_triangle_toi(path, kR, tri.corner[0], tri.corner[1], tri.corner[2], 0.0, 1.0, contact), ToiStatus::impact);
     const double t = std::sqrt(2.0 * (h - kR) / kG);
     EXPECT_NEAR(contact.time, t, 1e-12 * t);
     EXPECT_EQ(contact.feature, TriangleFeature::vertex_b);
@@ -229,8 +226,7 @@ TEST(EventSphereTriangle, DegenerateTrianglesActAsSegmentsAndPoints) {
     const double d = 0.01, v = 2.0;
     const Trajectory path{Vec3(d, 0.001, 0), Vec3(-v, 0, 0), Vec3::Zero(), 0.0};
     TriangleContact contact;
-    ASSERT_EQ(sphere_triangle_toi(path, kR, Vec3(0, -0.01, 0), Vec3(0, 0.01, 0), Vec3(0, 0.002, 0), 0.0, 1.0, contact),
-              ToiStatus::impact);
+    ASSERT_EQ(sphere_triangle_toi(path, kR, Vec3(0, -0.01, 0), Vec3(0, 0.01, 0), Vec3(0, 0.002, 0), 0.0, 1.0, contact), ToiStatus::impact);
     EXPECT_NEAR(contact.time, (d - kR) / v, 1e-12 * (d - kR) / v);
     EXPECT_NE(contact.feature, TriangleFeature::face);
     EXPECT_NEAR((contact.point - Vec3(0, 0.001, 0)).norm(), 0.0, 1e-15);

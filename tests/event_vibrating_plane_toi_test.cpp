@@ -19,10 +19,10 @@
 namespace peensim {
 namespace {
 
-constexpr double kG = 9.81;    // m/s^2
-constexpr double kR = 1e-3;    // m, shot radius
-constexpr double kA = 25e-6;   // m, sonotrode amplitude
-constexpr double kF = 20e3;    // Hz
+constexpr double kG = 9.81;   // m/s^2
+constexpr double kR = 1e-3;   // m, shot radius
+constexpr double kA = 25e-6;  // m, sonotrode amplitude
+constexpr double kF = 20e3;   // Hz
 const Vec3 kGravity(0, 0, -kG);
 
 using Real = long double;
@@ -163,8 +163,8 @@ struct Tally {
 };
 
 // One query against the reference; `from` is where the reference search starts (after leaving).
-void check_against_reference(const Trajectory& path, const VibratingPlane& plane, double t_begin, double t_end,
-                             Real from, long samples, Tally& tally, const char* what, int trial) {
+void check_against_reference(const Trajectory& path, const VibratingPlane& plane, double t_begin, double t_end, Real from, long samples,
+                             Tally& tally, const char* what, int trial) {
     const Exact exact(path, kR, plane);
     const Real expected = reference_contact(exact, from, t_end, samples);
     PlaneContact contact;
@@ -209,10 +209,12 @@ TEST(EventVibratingPlane, StillPlateMatchesFreeFall) {
     for (int sliding = 0; sliding < 2; ++sliding) {
         VibratingPlane plane = sonotrode(0.3);
         plane.point_m = Vec3(0.002, -0.001, 0.004);
-        if (sliding) plane.axis = Vec3::UnitX();
-        else plane.amplitude_m = 0.0;
+        if (sliding)
+            plane.axis = Vec3::UnitX();
+        else
+            plane.amplitude_m = 0.0;
         for (double h : {1e-4, 0.02, 0.5}) {  // m, fall to contact
-            const double t0 = 0.37;            // s
+            const double t0 = 0.37;           // s
             const Trajectory path{Vec3(0.001, -0.002, 0.004 + h + kR), Vec3::Zero(), kGravity, t0};
             PlaneContact contact;
             ASSERT_EQ(vibrating_plane_toi(path, kR, plane, t0, t0 + 1.0, contact), ToiStatus::impact) << h;
@@ -247,14 +249,12 @@ TEST(EventVibratingPlane, TouchingAndApproachingIsAnImpactNow) {
         PlaneContact contact;
         // Approaching, at a gap of 0 and of +-half the start band.
         for (double offset : {0.0, 0.5e-12, -0.5e-12}) {
-            ASSERT_EQ(vibrating_plane_toi(on_the_plate(plane, t, -0.1, offset), kR, plane, t, t + 0.01, contact),
-                      ToiStatus::impact);
+            ASSERT_EQ(vibrating_plane_toi(on_the_plate(plane, t, -0.1, offset), kR, plane, t, t + 0.01, contact), ToiStatus::impact);
             EXPECT_EQ(contact.time, t);
             EXPECT_NEAR((contact.plate_velocity - plane.velocity(t)).norm(), 0.0, 1e-15);
         }
         // Overlapping beyond the band.
-        ASSERT_EQ(vibrating_plane_toi(on_the_plate(plane, t, 0.5, -1e-9), kR, plane, t, t + 0.01, contact),
-                  ToiStatus::overlapping);
+        ASSERT_EQ(vibrating_plane_toi(on_the_plate(plane, t, 0.5, -1e-9), kR, plane, t, t + 0.01, contact), ToiStatus::overlapping);
         EXPECT_EQ(contact.time, t);
     }
 }
@@ -316,8 +316,7 @@ TEST(EventVibratingPlane, NoRedetectionRightAfterABounce) {
         check_against_reference(path, plane, t, t + 1.5, leave(exact, t), 4096, tally, "launch", trial);
     }
     EXPECT_GT(tally.impacts, 900);
-    std::printf("[ launches ] %d impacts, %d misses, worst |t - reference| %.3g s\n", tally.impacts, tally.misses,
-                tally.worst);
+    std::printf("[ launches ] %d impacts, %d misses, worst |t - reference| %.3g s\n", tally.impacts, tally.misses, tally.worst);
 }
 
 TEST(EventVibratingPlane, AShotThatNeverReallyLeftIsAnImpactNotAMiss) {
@@ -363,8 +362,7 @@ TEST(EventVibratingPlane, FindsAGrazingDoubleRoot) {
         const Graze exact = graze_at(theta, t_star, 0.0);
         const double t_begin = t_star - 20.5 * period, t_end = t_star + 0.02 * period;
         PlaneContact contact;
-        ASSERT_EQ(vibrating_plane_toi(exact.path, kR, exact.plane, t_begin, t_end, contact), ToiStatus::impact)
-            << theta;
+        ASSERT_EQ(vibrating_plane_toi(exact.path, kR, exact.plane, t_begin, t_end, contact), ToiStatus::impact) << theta;
         // A double root is ill-conditioned: the ~1e-19 m rounding of the constructed gap moves it
         // by sqrt(2e-19 / h''), below 1e-12 s.
         EXPECT_NEAR(contact.time, t_star, 2e-12) << theta;
@@ -420,8 +418,7 @@ TEST(EventVibratingPlane, ContactAfterThousandsOfPeriodsFromInsideTheBand) {
     EXPECT_EQ(work.windows, 2);
     EXPECT_LE(work.pieces, 12);
     const Exact exact(path, kR, plane);
-    EXPECT_NEAR(contact.time, static_cast<double>(reference_contact(exact, leave(exact, t), t + 1.0, 1 << 20)),
-                1e-12);
+    EXPECT_NEAR(contact.time, static_cast<double>(reference_contact(exact, leave(exact, t), t + 1.0, 1 << 20)), 1e-12);
 }
 
 // Random drops: a shot above a random plate, thrown anywhere from 2 m/s down to 1 m/s up.
@@ -440,12 +437,10 @@ void random_drops(std::uint64_t seed, int trials, double t_min, double t_span, l
         const Vec3 centre = foot + (kR + height - plane.normal.dot(foot - plane.point_m)) * plane.normal;
         const Trajectory path{centre, v, kGravity, t_begin};
         const double t_end = t_begin + (u(rng) < 0.1 ? 0.02 : 0.8) * u(rng);
-        check_against_reference(path, plane, t_begin, t_end, t_begin, trial < dense_trials ? (1L << 20) : 64, tally,
-                                what, trial);
+        check_against_reference(path, plane, t_begin, t_end, t_begin, trial < dense_trials ? (1L << 20) : 64, tally, what, trial);
     }
     EXPECT_GT(tally.impacts, trials / 2);
-    std::printf("[ %s ] %d impacts, %d misses, worst |t - reference| %.3g s\n", what, tally.impacts, tally.misses,
-                tally.worst);
+    std::printf("[ %s ] %d impacts, %d misses, worst |t - reference| %.3g s\n", what, tally.impacts, tally.misses, tally.worst);
 }
 
 TEST(EventVibratingPlane, RandomDropsMatchTheDenseReference) { random_drops(1, 3000, 0.0, 2.0, 200, "drops"); }

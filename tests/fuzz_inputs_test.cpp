@@ -41,8 +41,8 @@ std::uint64_t seed_offset() {
     return n ? std::strtoull(n, nullptr, 10) : 0;
 }
 
-const char* const kExtremes[] = {"0", "-1", "1e308", "-1e308", "nan", "inf", "4294967296", "99999999999999999999", "1e-300",
-                                 "\"\"", "[]", "{}", "~", "2 mm", "0.0 um", "1e9 rpm", "-0"};
+const char* const kExtremes[] = {"0",  "-1", "1e308", "-1e308", "nan",    "inf",     "4294967296", "99999999999999999999", "1e-300", "\"\"",
+                                 "[]", "{}", "~",     "2 mm",   "0.0 um", "1e9 rpm", "-0"};
 
 std::string mutate(const std::string& text, std::mt19937_64& rng) {
     std::string s = text;
@@ -51,17 +51,17 @@ std::string mutate(const std::string& text, std::mt19937_64& rng) {
     for (int e = 0; e < edits && !s.empty(); ++e) {
         const std::size_t at = rng() % s.size();
         switch (kind(rng)) {
-            case 0: s[at] = static_cast<char>(s[at] ^ (1 << (rng() % 8))); break;            // a flipped bit
-            case 1: s.insert(at, 1, static_cast<char>(rng() % 256)); break;                   // a stray byte
-            case 2: s.erase(at, 1 + rng() % 16); break;                                       // bytes lost
-            case 3: {                                                                         // a line twice
+            case 0: s[at] = static_cast<char>(s[at] ^ (1 << (rng() % 8))); break;  // a flipped bit
+            case 1: s.insert(at, 1, static_cast<char>(rng() % 256)); break;        // a stray byte
+            case 2: s.erase(at, 1 + rng() % 16); break;                            // bytes lost
+            case 3: {                                                              // a line twice
                 const std::size_t b = s.rfind('\n', at), end = s.find('\n', at);
                 const std::size_t from = b == std::string::npos ? 0 : b + 1;
                 s.insert(from, s.substr(from, (end == std::string::npos ? s.size() : end + 1) - from));
                 break;
             }
-            case 4: s.resize(at); break;                                                      // cut short
-            case 5: {                                                                         // an extreme number
+            case 4: s.resize(at); break;  // cut short
+            case 5: {                     // an extreme number
                 std::size_t d = at;
                 while (d < s.size() && !std::isdigit(static_cast<unsigned char>(s[d]))) ++d;
                 std::size_t end = d;
@@ -69,7 +69,7 @@ std::string mutate(const std::string& text, std::mt19937_64& rng) {
                 if (d < s.size()) s.replace(d, end - d, kExtremes[rng() % std::size(kExtremes)]);
                 break;
             }
-            default: s.insert(at, s.substr(rng() % s.size(), 1 + rng() % 64)); break;        // a chunk copied
+            default: s.insert(at, s.substr(rng() % s.size(), 1 + rng() % 64)); break;  // a chunk copied
         }
     }
     return s;

@@ -17,9 +17,7 @@ namespace {
 
 constexpr double kMm = 1e-3;  // m per mm (the assets' unit)
 
-TriangleMesh asset(const std::string& name) {
-    return load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/" + name, kMm);
-}
+TriangleMesh asset(const std::string& name) { return load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/" + name, kMm); }
 
 void expect_bounds_mm(const TriangleMesh& m, Vec3 lo, Vec3 hi) {
     const Bounds b = bounds(m);

@@ -44,13 +44,12 @@ TEST_P(GeometryBadMeshes, IsRefusedAtOnceNamingTheFile) {
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Catalogue, GeometryBadMeshes, ::testing::ValuesIn(catalogue),
-                         [](const ::testing::TestParamInfo<BadMesh>& info) {
-                             std::string name = info.param.file;
-                             for (char& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Catalogue, GeometryBadMeshes, ::testing::ValuesIn(catalogue), [](const ::testing::TestParamInfo<BadMesh>& info) {
+    std::string name = info.param.file;
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+});
 
 }  // namespace
 }  // namespace peensim

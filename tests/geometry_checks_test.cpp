@@ -108,9 +108,9 @@ TEST(GeometryMeshBuilder, WeldsExactlyEqualPositionsOnly) {
     MeshBuilder b;
     const int g = b.group("plate");
     b.add_quad(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), g);
-    EXPECT_EQ(b.mesh().vertices.size(), 4u);  // the diagonal's two ends are shared
+    EXPECT_EQ(b.mesh().vertices.size(), 4u);        // the diagonal's two ends are shared
     EXPECT_EQ(b.vertex(Vec3(-0.0, 0.0, -0.0)), 0);  // -0 welds with +0
-    EXPECT_EQ(b.vertex(Vec3(1e-300, 0, 0)), 4);   // any other value is a new vertex
+    EXPECT_EQ(b.vertex(Vec3(1e-300, 0, 0)), 4);     // any other value is a new vertex
     EXPECT_EQ(b.group("plate"), g);
     EXPECT_EQ(b.group("other"), 1);
     const TriangleMesh m = b.take();

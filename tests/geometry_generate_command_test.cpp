@@ -102,8 +102,8 @@ TEST_F(GeometryGenerateCommand, RegenerateScriptReproducesTheShippedAssets) {
                   "/assets/regenerate.sh'"),
               0)
         << output();
-    for (const char* name : {"rod-chamber.stl", "rod-sonotrode.stl", "rod.stl", "gear-chamber.stl", "gear-sonotrode.stl",
-                             "gear.stl", "axle.stl"}) {
+    for (const char* name :
+         {"rod-chamber.stl", "rod-sonotrode.stl", "rod.stl", "gear-chamber.stl", "gear-sonotrode.stl", "gear.stl", "axle.stl"}) {
         SCOPED_TRACE(name);
         const TriangleMesh fresh = load_mesh(path(name), 1e-3);
         const TriangleMesh shipped = load_mesh(source + "/assets/" + name, 1e-3);

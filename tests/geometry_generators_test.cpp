@@ -165,7 +165,8 @@ TEST(GeometryGenerators, SteppedChamberFacesItsCavity) {
         }
         vertex_of.push_back(index);
     }
-    const int cap_high = static_cast<int>(std::find(floor.group_names.begin(), floor.group_names.end(), "cap-high") - floor.group_names.begin());
+    const int cap_high =
+        static_cast<int>(std::find(floor.group_names.begin(), floor.group_names.end(), "cap-high") - floor.group_names.begin());
     for (std::size_t t = 0; t < floor.triangle_count(); ++t) {
         if (floor.group_of_triangle[t] != cap_high) continue;
         const auto& tri = floor.triangles[t];

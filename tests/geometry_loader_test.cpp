@@ -3,10 +3,10 @@
 // sees for missing, garbage and empty files; the STL writers' file format.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "common/input_error.h"
 #include "geometry/mesh_checks.h"
@@ -77,7 +77,7 @@ TEST_F(GeometryLoader, AsciiStlSolidsBecomeGroups) {
     write_ascii_stl(written, path("rod.stl"), 1e-3);
     const TriangleMesh read = load_mesh(path("rod.stl"), 1e-3);
     ASSERT_EQ(read.triangle_count(), written.triangle_count());
-    EXPECT_EQ(read.group_names, written.group_names);  // "wall", "cap-low", "cap-high"
+    EXPECT_EQ(read.group_names, written.group_names);              // "wall", "cap-low", "cap-high"
     EXPECT_EQ(read.group_of_triangle, written.group_of_triangle);  // groups were contiguous
     EXPECT_TRUE(is_closed(read));
     EXPECT_NEAR(enclosed_volume(read), enclosed_volume(written), 1e-6 * enclosed_volume(written));
@@ -91,16 +91,17 @@ TEST_F(GeometryLoader, ScalesByTheUnit) {
 }
 
 TEST_F(GeometryLoader, StlFacetNormalsAreIgnoredAndDegenerateFacetsDropped) {
-    const std::string file = write_text("three.stl",
-        "solid three\n"
-        "facet normal 0 0 -1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n"
-        "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 2 0 0\n endloop\nendfacet\n"
-        "facet normal 0 0 1\n outer loop\n  vertex 1 0 0\n  vertex 1 1 0\n  vertex 0 1 0\n endloop\nendfacet\n"
-        "endsolid three\n");
+    const std::string file =
+        write_text("three.stl",
+                   "solid three\n"
+                   "facet normal 0 0 -1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n"
+                   "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 2 0 0\n endloop\nendfacet\n"
+                   "facet normal 0 0 1\n outer loop\n  vertex 1 0 0\n  vertex 1 1 0\n  vertex 0 1 0\n endloop\nendfacet\n"
+                   "endsolid three\n");
     const TriangleMesh m = load_mesh(file, 1e-3);
     ASSERT_EQ(m.triangle_count(), 2u);
-    EXPECT_EQ(m.source_facet, (std::vector<int>{0, 2}));  // facet 1 is a line, dropped
-    EXPECT_EQ(m.vertices.size(), 4u);                       // the unused (2, 0, 0) is gone
+    EXPECT_EQ(m.source_facet, (std::vector<int>{0, 2}));         // facet 1 is a line, dropped
+    EXPECT_EQ(m.vertices.size(), 4u);                            // the unused (2, 0, 0) is gone
     EXPECT_TRUE(triangle_normal(m, 0).isApprox(Vec3(0, 0, 1)));  // winding, not the file's -z
     EXPECT_EQ(m.group_names, (std::vector<std::string>{"three"}));
     EXPECT_DOUBLE_EQ(m.corner(1, 1).x(), 1e-3);
@@ -108,10 +109,10 @@ TEST_F(GeometryLoader, StlFacetNormalsAreIgnoredAndDegenerateFacetsDropped) {
 
 TEST_F(GeometryLoader, ObjPolygonsKeepTheirFacetNumberAcrossGroups) {
     const std::string file = write_text("parts.obj",
-        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n"
-        "g alpha\nf 1 2 3 4\nf 1 2 5\n"
-        "g beta\nf 1 3 5\nl 1 2\n"
-        "g alpha\nf 2 3 5\n");
+                                        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\n"
+                                        "g alpha\nf 1 2 3 4\nf 1 2 5\n"
+                                        "g beta\nf 1 3 5\nl 1 2\n"
+                                        "g alpha\nf 2 3 5\n");
     const TriangleMesh m = load_mesh(file, 1.0);
     ASSERT_EQ(m.triangle_count(), 5u);
     EXPECT_EQ(m.source_facet, (std::vector<int>{0, 0, 1, 2, 3}));  // the quad is facet 0, the line not counted
@@ -123,9 +124,9 @@ TEST_F(GeometryLoader, ObjPolygonsKeepTheirFacetNumberAcrossGroups) {
 
 TEST_F(GeometryLoader, PlyPolygonsAreFanned) {
     const std::string file = write_text("square.ply",
-        "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
-        "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
-        "0 0 0\n2 0 0\n2 2 0\n0 2 0\n0 0 2\n4 0 1 2 3\n3 0 4 1\n");
+                                        "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+                                        "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+                                        "0 0 0\n2 0 0\n2 2 0\n0 2 0\n0 0 2\n4 0 1 2 3\n3 0 4 1\n");
     const TriangleMesh m = load_mesh(file, 1e-3);
     ASSERT_EQ(m.triangle_count(), 3u);
     EXPECT_EQ(m.source_facet, (std::vector<int>{0, 0, 1}));
@@ -146,7 +147,8 @@ TEST_F(GeometryLoader, MissingGarbageAndEmptyFilesAreInputErrors) {
     const std::string no_facets = write_text("nothing.stl", "solid nothing\nendsolid nothing\n");
     EXPECT_NE(error_of(no_facets).find("no triangles"), std::string::npos);
 
-    const std::string all_degenerate = write_text("flat.stl",
+    const std::string all_degenerate = write_text(
+        "flat.stl",
         "solid flat\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 1 0 0\n endloop\nendfacet\nendsolid flat\n");
     EXPECT_NE(error_of(all_degenerate).find("degenerate"), std::string::npos);
 

@@ -87,7 +87,8 @@ TEST(AssemblyChecks, APartThroughTheLidIsAWarningAndAnErrorWhenStrict) {
     const Checked c = check(scene);
     EXPECT_EQ(c.report.errors(), 0u) << c.text;
     EXPECT_EQ(c.report.warnings(), 1u) << c.text;
-    EXPECT_NE(c.text.find("warning: components[2]: part 'part': passes through the wall of components[1] (chamber)"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("warning: components[2]: part 'part': passes through the wall of components[1] (chamber)"), std::string::npos)
+        << c.text;
     std::ostringstream out, err;
     EXPECT_EQ(check_job(scene.scene_path(), {}, false, out, err), kExitOk) << err.str();
     EXPECT_NE(err.str().find("warning: "), std::string::npos);
@@ -117,7 +118,8 @@ TEST(AssemblyChecks, ARotatingPartSweepingThroughTheSonotrodeIsAnError) {
     spec.part->axis_direction = Vec3::UnitY();
     const TestScene scene(spec);
     const Checked c = check(scene);
-    EXPECT_NE(c.text.find("components[2].motion: part 'part': turning, it sweeps through components[0] (sonotrode)"), std::string::npos) << c.text;
+    EXPECT_NE(c.text.find("components[2].motion: part 'part': turning, it sweeps through components[0] (sonotrode)"), std::string::npos)
+        << c.text;
     EXPECT_NE(c.text.find("check motion.axis_point"), std::string::npos) << c.text;
 }
 
@@ -138,7 +140,8 @@ TEST(AssemblyChecks, APartWithAMissingCapIsAnError) {
     open.center_m = Vec3(0.0, 0.0, 10e-3);
     write_binary_stl(box_open(open, BoxFace::plus_z, Facing::outward), (fs::path(scene.directory()) / "part.stl").string(), 1e-3, "part");
     const Checked c = check(scene);
-    EXPECT_NE(c.text.find("components[2].mesh: part 'part': the mesh is open (4 boundary edges) and shot can reach an opening"), std::string::npos)
+    EXPECT_NE(c.text.find("components[2].mesh: part 'part': the mesh is open (4 boundary edges) and shot can reach an opening"),
+              std::string::npos)
         << c.text;
 }
 
@@ -176,10 +179,12 @@ TEST(SetupPlausibility, AnAmplitudeWithoutItsUnitIsNamed) {
 
 TEST(SetupPlausibility, FrequencyGravityShotSizeAndMeshUnitOutsideTheWindow) {
     const TestScene scene(small_rod_scene("event", 0.1));
-    EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20"}).find("20 Hz is outside 1-100 kHz"), std::string::npos);
+    EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20"}).find("20 Hz is outside 1-100 kHz"),
+              std::string::npos);
     // A hint only where the number in the usual unit lands in the window.
     EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20"}).find("did you mean 20 kHz?"), std::string::npos);
-    EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20000 kHz"}).find("did you mean 2e+04 Hz?"), std::string::npos);
+    EXPECT_NE(setup_warnings(scene, {"components[sonotrode].vibration.frequency=20000 kHz"}).find("did you mean 2e+04 Hz?"),
+              std::string::npos);
     const std::string at_200khz = setup_warnings(scene, {"components[sonotrode].vibration.frequency=200 kHz"});
     EXPECT_NE(at_200khz.find("2e+05 Hz is outside 1-100 kHz"), std::string::npos) << at_200khz;
     EXPECT_EQ(at_200khz.find("did you mean"), std::string::npos) << at_200khz;
@@ -193,8 +198,10 @@ TEST(SetupPlausibility, FrequencyGravityShotSizeAndMeshUnitOutsideTheWindow) {
     std::ostringstream out, err;
     check_job(scene.scene_path(), {"components[chamber].mesh_unit=m", "components[sonotrode].mesh_unit=m", "components[part].mesh_unit=m"},
               false, out, err);
-    EXPECT_NE(err.str().find("'chamber' is 25 m across (1 m per file unit): implausible for a peening chamber; in mm it would be 25 mm (mesh_unit: mm)"),
-              std::string::npos)
+    EXPECT_NE(
+        err.str().find(
+            "'chamber' is 25 m across (1 m per file unit): implausible for a peening chamber; in mm it would be 25 mm (mesh_unit: mm)"),
+        std::string::npos)
         << err.str();
 }
 

@@ -66,9 +66,7 @@ double to_double(const std::string& text) {
 }
 
 // Bitwise equality: -0.0 must come back as -0.0.
-void expect_same(double a, double b) {
-    EXPECT_TRUE(std::signbit(a) == std::signbit(b) && a == b) << a << " vs " << b;
-}
+void expect_same(double a, double b) { EXPECT_TRUE(std::signbit(a) == std::signbit(b) && a == b) << a << " vs " << b; }
 
 class ImpactCsvWriterTest : public ::testing::Test {
 protected:
@@ -153,8 +151,7 @@ TEST_F(ImpactCsvWriterTest, ShortestFormIsUsed) {
     ImpactCsvWriter writer(dir_.string(), kNames);
     writer.write(r);
     writer.finish();
-    EXPECT_EQ(read_file(final_path()), std::string(kImpactCsvHeader) +
-                                           "\n0.1,7,rod,42,1,0.5,-0.0025,0,0,-3,3,0,0,0,2.1,2.1\n");
+    EXPECT_EQ(read_file(final_path()), std::string(kImpactCsvHeader) + "\n0.1,7,rod,42,1,0.5,-0.0025,0,0,-3,3,0,0,0,2.1,2.1\n");
 }
 
 TEST_F(ImpactCsvWriterTest, NamesWithCommasAreQuoted) {

@@ -40,8 +40,7 @@ TEST(PeakMemoryTest, GrowsWhenMoreMemoryIsTouched) {
     const std::uint64_t before = peak_resident_bytes();
     const std::uint64_t current = proc_status_bytes("VmRSS:");
     // Touch enough pages to lift the resident set 64 MiB above the earlier peak.
-    const std::uint64_t extra =
-        (before > current ? before - current : 0) + (std::uint64_t{64} << 20);
+    const std::uint64_t extra = (before > current ? before - current : 0) + (std::uint64_t{64} << 20);
     std::vector<char> block(static_cast<std::size_t>(extra), 1);
     volatile char sink = block[block.size() / 2];
     (void)sink;

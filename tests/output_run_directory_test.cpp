@@ -15,9 +15,9 @@
 #include "common/input_error.h"
 #include "output/impact_csv_writer.h"
 #include "output/run_directory.h"
-#include "support/temp_dir.h"
 #include "support/files.h"
 #include "support/run_in_process.h"
+#include "support/temp_dir.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -60,7 +60,8 @@ TestSceneSpec small_spec() {
     return spec;
 }
 
-int run(const TestScene& scene, const std::string& dir, bool resume, std::optional<std::uint64_t> stop_after, std::string* err_text = nullptr) {
+int run(const TestScene& scene, const std::string& dir, bool resume, std::optional<std::uint64_t> stop_after,
+        std::string* err_text = nullptr) {
     const InProcessResult r = run_in_process({scene.scene_path(), dir, resume, false, stop_after, {}});
     if (err_text) *err_text = r.err;
     return r.code;

@@ -15,8 +15,7 @@ namespace {
 // The nearest-rank percentile the histogram approximates: the ceil(p/100 n)-th smallest.
 double nearest_rank(std::vector<double> values, double p) {
     std::sort(values.begin(), values.end());
-    const auto rank =
-        static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(values.size())));
+    const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * static_cast<double>(values.size())));
     return values[std::max<std::size_t>(rank, 1) - 1];
 }
 
@@ -146,8 +145,7 @@ TEST(SpeedHistogramTest, SerializationRoundTripsExactly) {
     EXPECT_EQ(back.percentile(90.0), h.percentile(90.0));
     EXPECT_EQ(back.serialize(), bytes);
 
-    const SpeedHistogram empty_back =
-        SpeedHistogram::deserialize(SpeedHistogram(0.01, 50.0).serialize());
+    const SpeedHistogram empty_back = SpeedHistogram::deserialize(SpeedHistogram(0.01, 50.0).serialize());
     EXPECT_EQ(empty_back.count(), 0u);
     EXPECT_EQ(empty_back.bin_width_m_per_s(), 0.01);
     EXPECT_DOUBLE_EQ(empty_back.upper_m_per_s(), 50.0);
@@ -158,8 +156,7 @@ TEST(SpeedHistogramTest, CorruptBytesAreRejected) {
     h.add(3.0);
     const std::string bytes = h.serialize();
     EXPECT_THROW(SpeedHistogram::deserialize(""), std::runtime_error);
-    EXPECT_THROW(SpeedHistogram::deserialize(bytes.substr(0, bytes.size() - 1)),
-                 std::runtime_error);
+    EXPECT_THROW(SpeedHistogram::deserialize(bytes.substr(0, bytes.size() - 1)), std::runtime_error);
     EXPECT_THROW(SpeedHistogram::deserialize(bytes + "x"), std::runtime_error);
     std::string wrong_magic = bytes;
     wrong_magic[0] = 'X';

@@ -37,8 +37,7 @@ RunSummary example_summary() {
     s.impact_speed_m_per_s = 0.05;
     SpeedHistogram gear;
     for (int i = 1; i <= 100; ++i) gear.add(0.1 * i);  // m/s
-    s.normal_speed = {normal_speed_stats("gear", gear),
-                      normal_speed_stats("chamber", SpeedHistogram())};
+    s.normal_speed = {normal_speed_stats("gear", gear), normal_speed_stats("chamber", SpeedHistogram())};
     s.health_counters = {{"escaped_shots", 3}, {"non_finite_velocity", 0}};
     s.stage_times = {{"detectContacts", 7.5}, {"integrateShots", 1.25}};
     s.peak_memory_bytes = 123456789;

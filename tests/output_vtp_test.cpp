@@ -96,12 +96,11 @@ bool vtk_python_available(std::string& why) {
     return status == 0;
 }
 
-#define ASSERT_VTK_PYTHON()                                                                          \
-    do {                                                                                             \
-        std::string why;                                                                             \
-        ASSERT_TRUE(vtk_python_available(why))                                                       \
-            << "python3-vtk9 is missing (needed to check .vtp files with a real VTK reader): "       \
-            << "install it with `apt-get install python3-vtk9` (.ci/install-deps does). " << why;   \
+#define ASSERT_VTK_PYTHON()                                                                                                          \
+    do {                                                                                                                             \
+        std::string why;                                                                                                             \
+        ASSERT_TRUE(vtk_python_available(why)) << "python3-vtk9 is missing (needed to check .vtp files with a real VTK reader): "    \
+                                               << "install it with `apt-get install python3-vtk9` (.ci/install-deps does). " << why; \
     } while (0)
 
 // `indices`: "all" or a comma list of the point/cell/tuple indices to print.
@@ -109,8 +108,7 @@ VtkDump read_with_vtk(const fs::path& dir, const fs::path& vtp, const std::strin
     const fs::path script = dir / "vtk_dump.py";
     std::ofstream(script) << kVtkDumpScript;
     VtkDump dump;
-    dump.output = run(std::string(kSystemPython) + " " + script.string() + " " + vtp.string() + " " + indices,
-                      dump.exit_status);
+    dump.output = run(std::string(kSystemPython) + " " + script.string() + " " + vtp.string() + " " + indices, dump.exit_status);
     std::istringstream lines(dump.output);
     std::string line;
     while (std::getline(lines, line)) {
@@ -125,8 +123,10 @@ VtkDump read_with_vtk(const fs::path& dir, const fs::path& vtp, const std::strin
             std::vector<double> numbers;
             std::string word;
             while (words >> word) numbers.push_back(std::strtod(word.c_str(), nullptr));
-            if (key == "point") dump.points[index] = numbers;
-            else dump.values[name][index] = numbers;
+            if (key == "point")
+                dump.points[index] = numbers;
+            else
+                dump.values[name][index] = numbers;
         } else if (key == "cell") {
             std::uint64_t index = 0;
             words >> index;
@@ -168,9 +168,7 @@ protected:
 };
 
 // Value of cell field `field` (of `components`) for triangle t, component c: distinct for all.
-double cell_value(int field, std::uint64_t t, int c) {
-    return 1000.0 * field + static_cast<double>(t) + 0.125 * c + 1.0 / 3.0;
-}
+double cell_value(int field, std::uint64_t t, int c) { return 1000.0 * field + static_cast<double>(t) + 0.125 * c + 1.0 / 3.0; }
 
 TEST_F(VtpWriterTest, MeshWithTwoCellFieldsReadsBackExactlyInVtk) {
     ASSERT_VTK_PYTHON();
@@ -238,8 +236,7 @@ TEST_F(VtpWriterTest, StreamedImpactPointsReadBackExactlyInVtk) {
         for (std::uint64_t i = 0; i < kSingles; ++i) writer.add(impact_number(i));
         // A chunk of the same impacts, through the generic chunk API.
         std::vector<Vec3> points;
-        std::vector<PointField> chunk = {{"velocity_in_m_per_s", 3, {}}, {"normal_speed_in_m_per_s", 1, {}},
-                                         {"time_s", 1, {}}};
+        std::vector<PointField> chunk = {{"velocity_in_m_per_s", 3, {}}, {"normal_speed_in_m_per_s", 1, {}}, {"time_s", 1, {}}};
         for (std::uint64_t i = kSingles; i < kSingles + kChunk; ++i) {
             const ImpactRecord r = impact_number(i);
             points.push_back(r.point_m);
@@ -263,8 +260,7 @@ TEST_F(VtpWriterTest, StreamedImpactPointsReadBackExactlyInVtk) {
     EXPECT_EQ(dump.counts.at("cells"), n);
     EXPECT_EQ(dump.counts.at("verts"), n);
     EXPECT_EQ(dump.counts.at("polys"), 0u);
-    EXPECT_EQ(dump.array_names,
-              (std::vector<std::string>{"velocity_in_m_per_s", "normal_speed_in_m_per_s", "time_s"}));
+    EXPECT_EQ(dump.array_names, (std::vector<std::string>{"velocity_in_m_per_s", "normal_speed_in_m_per_s", "time_s"}));
     EXPECT_EQ(dump.arrays.at("velocity_in_m_per_s").section, "PointData");
     EXPECT_EQ(dump.arrays.at("velocity_in_m_per_s").components, 3);
     EXPECT_EQ(dump.arrays.at("time_s").tuples, n);
@@ -295,13 +291,12 @@ TEST_F(VtpWriterTest, UnfinishedPointWriterLeavesNothingBehind) {
 TEST_F(VtpWriterTest, RejectsFieldsThatDoNotFit) {
     const TriangleMesh mesh = box(BoxSpec{});
     const std::string path = (dir_ / "m.vtp").string();
-    EXPECT_THROW(write_mesh_vtp(path, mesh, {{"count", 1, std::vector<double>(mesh.triangle_count() + 1)}}),
-                 std::invalid_argument);
-    EXPECT_THROW(write_mesh_vtp(path, mesh, {{"a<b", 1, std::vector<double>(mesh.triangle_count())}}),
-                 std::invalid_argument);
-    EXPECT_THROW(write_mesh_vtp(path, mesh, {{"c", 1, std::vector<double>(mesh.triangle_count())},
-                                             {"c", 1, std::vector<double>(mesh.triangle_count())}}),
-                 std::invalid_argument);
+    EXPECT_THROW(write_mesh_vtp(path, mesh, {{"count", 1, std::vector<double>(mesh.triangle_count() + 1)}}), std::invalid_argument);
+    EXPECT_THROW(write_mesh_vtp(path, mesh, {{"a<b", 1, std::vector<double>(mesh.triangle_count())}}), std::invalid_argument);
+    EXPECT_THROW(
+        write_mesh_vtp(path, mesh,
+                       {{"c", 1, std::vector<double>(mesh.triangle_count())}, {"c", 1, std::vector<double>(mesh.triangle_count())}}),
+        std::invalid_argument);
     EXPECT_TRUE(files().empty());
 
     ImpactPointsVtpWriter writer((dir_ / "p.vtp").string(), {{"speed", 1}});
@@ -321,9 +316,12 @@ TEST_F(VtpWriterTest, HalfMillionTriangleMeshWriteTimeAndSize) {
     const std::uint64_t n = mesh.triangle_count();
     ASSERT_EQ(n, 504300u);
     // The six impact-analysis fields the next issue writes.
-    std::vector<CellField> fields = {{"impact_count", 1, {}},       {"impacts_per_mm2_per_s", 1, {}},
-                                     {"mean_normal_speed_m_per_s", 1, {}}, {"max_normal_speed_m_per_s", 1, {}},
-                                     {"energy_J_per_m2", 1, {}},    {"coverage", 1, {}}};
+    std::vector<CellField> fields = {{"impact_count", 1, {}},
+                                     {"impacts_per_mm2_per_s", 1, {}},
+                                     {"mean_normal_speed_m_per_s", 1, {}},
+                                     {"max_normal_speed_m_per_s", 1, {}},
+                                     {"energy_J_per_m2", 1, {}},
+                                     {"coverage", 1, {}}};
     for (int f = 0; f < 6; ++f) {
         fields[static_cast<std::size_t>(f)].values.resize(n);
         for (std::uint64_t t = 0; t < n; ++t) fields[static_cast<std::size_t>(f)].values[t] = cell_value(f, t, 0);
@@ -333,8 +331,8 @@ TEST_F(VtpWriterTest, HalfMillionTriangleMeshWriteTimeAndSize) {
     write_mesh_vtp(vtp.string(), mesh, fields);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::uintmax_t bytes = fs::file_size(vtp);
-    std::printf("[ vtp      ] %llu triangles, %zu vertices, 6 cell fields: wrote %.1f MB in %.3f s\n",
-                static_cast<unsigned long long>(n), mesh.vertices.size(), static_cast<double>(bytes) / 1e6, seconds);
+    std::printf("[ vtp      ] %llu triangles, %zu vertices, 6 cell fields: wrote %.1f MB in %.3f s\n", static_cast<unsigned long long>(n),
+                mesh.vertices.size(), static_cast<double>(bytes) / 1e6, seconds);
     // Raw binary: 24 B per vertex, 8 B per connectivity entry (3 per triangle) and offset, 8 B per field value.
     const std::uint64_t data = 24 * mesh.vertices.size() + (3 + 1 + 6) * 8 * n + 9 * 8;
     EXPECT_GT(bytes, data);
@@ -393,13 +391,14 @@ TEST_F(VtpWriterTest, MillionImpactsStreamWithBoundedMemory) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::uint64_t growth = vm_hwm_bytes() - hwm_before;
     const std::uintmax_t bytes = fs::file_size(vtp);
-    std::printf("[ vtp      ] %llu impacts streamed: %.1f MB in %.3f s, peak RSS growth %.1f MiB, "
-                "process peak RSS %.1f MiB\n",
-                static_cast<unsigned long long>(kImpacts), static_cast<double>(bytes) / 1e6, seconds,
-                static_cast<double>(growth) / 1048576.0, static_cast<double>(peak_resident_bytes()) / 1048576.0);
+    std::printf(
+        "[ vtp      ] %llu impacts streamed: %.1f MB in %.3f s, peak RSS growth %.1f MiB, "
+        "process peak RSS %.1f MiB\n",
+        static_cast<unsigned long long>(kImpacts), static_cast<double>(bytes) / 1e6, seconds, static_cast<double>(growth) / 1048576.0,
+        static_cast<double>(peak_resident_bytes()) / 1048576.0);
     // Holding the impacts would take 64 MB (8 doubles each); the writer's buffers are 5 MiB.
     EXPECT_LT(growth, std::uint64_t{16} << 20);
-    {   // Control: the same measurement does see the 64 MB the impacts would take if held.
+    {  // Control: the same measurement does see the 64 MB the impacts would take if held.
         ASSERT_TRUE(reset_peak_rss());
         const std::uint64_t hwm = vm_hwm_bytes();
         std::vector<double> held(kImpacts * 8, 1.0);

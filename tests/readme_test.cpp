@@ -16,8 +16,8 @@
 
 #include "app/check_job.h"
 #include "app/run_job.h"
-#include "support/temp_dir.h"
 #include "scene/schema.h"
+#include "support/temp_dir.h"
 
 namespace {
 
@@ -104,7 +104,8 @@ TEST(Readme, ExampleCommandsAreValidScenesAndOverrides) {
             }
         }
         if (words[1] == "bench" && scenes.empty())
-            for (const char* s : {"scenes/rod.yaml", "scenes/gear.yaml", "scenes/rotating-gear.yaml", "scenes/almen.yaml"}) scenes.push_back(s);
+            for (const char* s : {"scenes/rod.yaml", "scenes/gear.yaml", "scenes/rotating-gear.yaml", "scenes/almen.yaml"})
+                scenes.push_back(s);
         for (const std::string& scene : scenes) {
             std::ostringstream out, err;
             EXPECT_EQ(peensim::check_job(source + "/" + scene, overrides, false, out, err), fails ? 2 : 0) << command << "\n" << err.str();
@@ -157,11 +158,13 @@ TEST(Readme, SummaryKeysHealthCountersAndAlmenFiguresAreTheProgramsOwn) {
         EXPECT_TRUE(counters.count(key)) << "health counter '" << key << "' not in the README";
 
     // "5 s, 3492 impacts on the face at 4.216 m/s mean normal speed, dose 878.4 J/m2, r = 151.8 J/(m2 s)"
-    const std::regex readme_figures(R"(([0-9]+) impacts on the face at ([0-9.]+) m/s mean normal speed, dose ([0-9.]+) J/m2, r = ([0-9.]+) J/\(m2 s\))");
+    const std::regex readme_figures(
+        R"(([0-9]+) impacts on the face at ([0-9.]+) m/s mean normal speed, dose ([0-9.]+) J/m2, r = ([0-9.]+) J/\(m2 s\))");
     std::smatch r;
     ASSERT_TRUE(std::regex_search(readme, r, readme_figures)) << "the Almen figures of the README";
     const std::string report = read_file(o.output_dir + "/analysis/report.md");
-    const std::regex report_figures(R"(Peened face: [0-9]+ mm2, ([0-9]+) impacts at a mean normal speed of ([0-9.]+) m/s\. .*: ([0-9.]+) J/m2 after .* r = ([0-9.]+) J/\(m2 s\))");
+    const std::regex report_figures(
+        R"(Peened face: [0-9]+ mm2, ([0-9]+) impacts at a mean normal speed of ([0-9.]+) m/s\. .*: ([0-9.]+) J/m2 after .* r = ([0-9.]+) J/\(m2 s\))");
     std::smatch p;
     ASSERT_TRUE(std::regex_search(report, p, report_figures)) << report;
     for (int k = 1; k <= 4; ++k) EXPECT_EQ(r[k].str(), p[k].str()) << "figure " << k << " of the README's Almen sentence";

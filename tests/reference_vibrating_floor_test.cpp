@@ -20,9 +20,7 @@ namespace {
 using Kind = VibratingFloorEventKind;
 constexpr double kPi = std::numbers::pi;
 
-double relative_error(double value, double expected) {
-    return std::abs(value - expected) / std::abs(expected);
-}
+double relative_error(double value, double expected) { return std::abs(value - expected) / std::abs(expected); }
 
 std::vector<VibratingFloorEvent> events_of_kind(const VibratingFloorStats& s, Kind kind) {
     std::vector<VibratingFloorEvent> out;
@@ -35,9 +33,18 @@ std::vector<VibratingFloorEvent> events_of_kind(const VibratingFloorStats& s, Ki
 // The typical USP case of the brief: 1 mm shot, 25 um at 20 kHz, ceiling at 20 mm, titanium floor
 // (C0 0.9, V0 1.5 m/s), steel ceiling (C0 0.95, V0 2 m/s), shot at rest on the floor at t = 0.
 VibratingFloorCase typical_usp_case(double duration) {
-    return VibratingFloorCase{.R = 1e-3, .g = 9.81, .A = 25e-6, .F = 20e3, .phase = 0.0,
-                              .H = 20e-3, .z0 = 1e-3, .v0 = 0.0, .C0_floor = 0.9,
-                              .V0_floor = 1.5, .C0_ceiling = 0.95, .V0_ceiling = 2.0,
+    return VibratingFloorCase{.R = 1e-3,
+                              .g = 9.81,
+                              .A = 25e-6,
+                              .F = 20e3,
+                              .phase = 0.0,
+                              .H = 20e-3,
+                              .z0 = 1e-3,
+                              .v0 = 0.0,
+                              .C0_floor = 0.9,
+                              .V0_floor = 1.5,
+                              .C0_ceiling = 0.95,
+                              .V0_ceiling = 2.0,
                               .duration = duration};
 }
 
@@ -46,9 +53,19 @@ TEST(VibratingFloorReference, StillFloorDropMatchesClosedForm) {
     // impact k (from 0) at speed C^k v1, v1 = sqrt(2 g h0), first at sqrt(2 h0 / g), then every
     // 2 C^k v1 / g; the apex after impact k is C^(2(k+1)) h0.
     const double R = 1e-3, g = 9.81, h0 = 0.1, C = 0.8;
-    VibratingFloorCase c{.R = R, .g = g, .A = 0.0, .F = 20e3, .phase = 0.0, .H = 10.0,
-                         .z0 = R + h0, .v0 = 0.0, .C0_floor = C, .V0_floor = 1e3,
-                         .C0_ceiling = 0.9, .V0_ceiling = 1e3, .duration = 2.0};
+    VibratingFloorCase c{.R = R,
+                         .g = g,
+                         .A = 0.0,
+                         .F = 20e3,
+                         .phase = 0.0,
+                         .H = 10.0,
+                         .z0 = R + h0,
+                         .v0 = 0.0,
+                         .C0_floor = C,
+                         .V0_floor = 1e3,
+                         .C0_ceiling = 0.9,
+                         .V0_ceiling = 1e3,
+                         .duration = 2.0};
     c.max_recorded_events = 200;
     const VibratingFloorStats s = simulate_vibrating_floor(c);
 
@@ -89,9 +106,19 @@ TEST(VibratingFloorReference, WeightlessShotShuttlesBetweenFloorAndCeiling) {
     // starts mid-way going up, so impact k is at 4.5 ms + k * 9 ms, on the ceiling for even k.
     // In 1 s: k = 0..110, i.e. 56 ceiling and 55 floor impacts.
     const double R = 1e-3;
-    VibratingFloorCase c{.R = R, .g = 0.0, .A = 0.0, .F = 1.0, .phase = 0.0, .H = 11e-3,
-                         .z0 = R + 4.5e-3, .v0 = 1.0, .C0_floor = 1.0, .V0_floor = 10.0,
-                         .C0_ceiling = 1.0, .V0_ceiling = 10.0, .duration = 1.0};
+    VibratingFloorCase c{.R = R,
+                         .g = 0.0,
+                         .A = 0.0,
+                         .F = 1.0,
+                         .phase = 0.0,
+                         .H = 11e-3,
+                         .z0 = R + 4.5e-3,
+                         .v0 = 1.0,
+                         .C0_floor = 1.0,
+                         .V0_floor = 10.0,
+                         .C0_ceiling = 1.0,
+                         .V0_ceiling = 10.0,
+                         .duration = 1.0};
     c.max_recorded_events = 200;
     const VibratingFloorStats s = simulate_vibrating_floor(c);
 
@@ -122,8 +149,8 @@ TEST(VibratingFloorReference, ElasticVibratingFloorPumpsEnergyWithoutPenetration
 
     const double w = 2.0 * kPi * c.F;  // rad/s
     const double floor_peak_speed = c.A * w;
-    std::cout << "[ elastic  ] floor impacts " << s.floor.count << ", mean speed " << s.floor.mean
-              << " m/s (floor peak " << floor_peak_speed << " m/s)\n";
+    std::cout << "[ elastic  ] floor impacts " << s.floor.count << ", mean speed " << s.floor.mean << " m/s (floor peak "
+              << floor_peak_speed << " m/s)\n";
     EXPECT_GT(s.floor.count, 1000u);
     EXPECT_GT(s.floor.mean, 5.0 * floor_peak_speed);
     EXPECT_GT(s.ceiling.mean, 5.0 * floor_peak_speed);
@@ -178,8 +205,7 @@ TEST(VibratingFloorReference, RidingShotLeavesWhenTheFloorDeceleratesFasterThanG
     const VibratingFloorEvent& release = s.first_events[1];
     EXPECT_EQ(release.kind, Kind::floor_release);
     EXPECT_LT(relative_error(release.time, (theta_release - c.phase) / w), 1e-12);
-    EXPECT_LT(relative_error(release.v_after, c.A * w * std::sqrt(1.0 - sin_release * sin_release)),
-              1e-12);
+    EXPECT_LT(relative_error(release.v_after, c.A * w * std::sqrt(1.0 - sin_release * sin_release)), 1e-12);
     EXPECT_EQ(s.first_events[2].kind, Kind::ceiling_impact);  // 3.14 m/s reaches the ceiling
 }
 
@@ -214,18 +240,15 @@ TEST(VibratingFloorReference, RejectsInconsistentCasesAndRunaways) {
 TEST(VibratingFloorReference, TypicalUspCaseHasStableRates) {
     const auto clock_start = std::chrono::steady_clock::now();
     const VibratingFloorStats s = simulate_vibrating_floor(typical_usp_case(10.0));
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
-    std::cout << "[ USP 10 s ] floor " << s.floor_rate() << " /s, mean " << s.floor.mean
-              << " m/s, rms " << s.floor.rms << " m/s; ceiling " << s.ceiling_rate()
-              << " /s, mean " << s.ceiling.mean << " m/s, rms " << s.ceiling.rms
-              << " m/s; captures " << s.floor_captures << "; " << seconds << " s wall\n";
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+    std::cout << "[ USP 10 s ] floor " << s.floor_rate() << " /s, mean " << s.floor.mean << " m/s, rms " << s.floor.rms << " m/s; ceiling "
+              << s.ceiling_rate() << " /s, mean " << s.ceiling.mean << " m/s, rms " << s.ceiling.rms << " m/s; captures "
+              << s.floor_captures << "; " << seconds << " s wall\n";
     RecordProperty("usp_floor_rate_per_s", std::to_string(s.floor_rate()));
     RecordProperty("usp_floor_mean_speed_m_per_s", std::to_string(s.floor.mean));
     RecordProperty("usp_ceiling_rate_per_s", std::to_string(s.ceiling_rate()));
     RecordProperty("usp_ceiling_mean_speed_m_per_s", std::to_string(s.ceiling.mean));
-    for (const double x : {s.floor_rate(), s.ceiling_rate(), s.floor.mean, s.ceiling.mean,
-                           s.floor.rms, s.ceiling.rms}) {
+    for (const double x : {s.floor_rate(), s.ceiling_rate(), s.floor.mean, s.ceiling.mean, s.floor.rms, s.ceiling.rms}) {
         EXPECT_TRUE(std::isfinite(x));
         EXPECT_GT(x, 0.0);
     }
@@ -238,11 +261,9 @@ TEST(VibratingFloorReference, TypicalUspCaseHasStableRates) {
     VibratingFloorCase second_case = typical_usp_case(2.0 * half);
     second_case.statistics_start = half;
     const VibratingFloorStats second = simulate_vibrating_floor(second_case);
-    std::cout << "[ USP 2x" << half << " s ] floor " << first.floor_rate() << " | "
-              << second.floor_rate() << " /s, mean " << first.floor.mean << " | "
-              << second.floor.mean << " m/s; ceiling " << first.ceiling_rate() << " | "
-              << second.ceiling_rate() << " /s, mean " << first.ceiling.mean << " | "
-              << second.ceiling.mean << " m/s\n";
+    std::cout << "[ USP 2x" << half << " s ] floor " << first.floor_rate() << " | " << second.floor_rate() << " /s, mean "
+              << first.floor.mean << " | " << second.floor.mean << " m/s; ceiling " << first.ceiling_rate() << " | "
+              << second.ceiling_rate() << " /s, mean " << first.ceiling.mean << " | " << second.ceiling.mean << " m/s\n";
     const double tolerance = 0.04;
     EXPECT_LT(relative_error(second.floor_rate(), first.floor_rate()), tolerance);
     EXPECT_LT(relative_error(second.ceiling_rate(), first.ceiling_rate()), tolerance);

@@ -3,9 +3,9 @@
 
 #include <array>
 #include <cmath>
-#include <vector>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include "render/camera.h"
 
@@ -16,7 +16,8 @@ constexpr int kW = 160, kH = 120;
 
 std::array<Vec3, 8> box_corners(const Vec3& lo, const Vec3& hi) {
     std::array<Vec3, 8> c;
-    for (int i = 0; i < 8; ++i) c[static_cast<std::size_t>(i)] = Vec3(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+    for (int i = 0; i < 8; ++i)
+        c[static_cast<std::size_t>(i)] = Vec3(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
     return c;
 }
 
@@ -69,8 +70,7 @@ TEST(RenderCamera, FramingShowsTheWholeBoxAndFillsTheFrame) {
         EXPECT_LE(x_max, 0.95 * kW + 1e-6);
         EXPECT_GE(y_min, 0.05 * kH - 1e-6);
         EXPECT_LE(y_max, 0.95 * kH + 1e-6);
-        const bool tight = x_min < 0.05 * kW + 1.0 || x_max > 0.95 * kW - 1.0 || y_min < 0.05 * kH + 1.0 ||
-                           y_max > 0.95 * kH - 1.0;
+        const bool tight = x_min < 0.05 * kW + 1.0 || x_max > 0.95 * kW - 1.0 || y_min < 0.05 * kH + 1.0 || y_max > 0.95 * kH - 1.0;
         EXPECT_TRUE(tight) << "framing leaves the box small: x " << x_min << ".." << x_max << ", y " << y_min << ".." << y_max;
         EXPECT_GT(camera.near_m, 0.0);
     }
@@ -107,8 +107,8 @@ TEST(RenderCamera, FramingRejectsADegenerateView) {
 
 TEST(RenderCamera, DefaultViewIsFromFrontAndAbove) {
     const Vec3 d = Camera::default_view_direction();
-    EXPECT_GT(d.y(), 0.0);   // the camera stands at -y, looking toward +y
-    EXPECT_LT(d.z(), 0.0);   // looking down
+    EXPECT_GT(d.y(), 0.0);  // the camera stands at -y, looking toward +y
+    EXPECT_LT(d.z(), 0.0);  // looking down
     EXPECT_NEAR(d.norm(), 1.0, 1e-12);
 }
 
@@ -118,7 +118,7 @@ TEST(RenderCamera, DepthRangeEnclosesTheBoxFromInsideToo) {
     camera.look_at_m = Vec3(0.0, 1.0, 0.0);
     camera.fit_depth_range(Vec3(-1, -1, -1), Vec3(1, 1, 1));
     EXPECT_GT(camera.near_m, 0.0);
-    EXPECT_GT(camera.far_m, 1.0);   // depth is along the view axis: the far face is at y = 1
+    EXPECT_GT(camera.far_m, 1.0);  // depth is along the view axis: the far face is at y = 1
     EXPECT_LT(camera.near_m, 0.01);
 }
 

@@ -12,12 +12,12 @@
 #include <fstream>
 #include <sstream>
 
-#include "render/render_impacts_job.h"
-#include "render/render_view.h"
 #include "app/run_job.h"
 #include "engine/simulation.h"
 #include "model/model.h"
 #include "render/png_io.h"
+#include "render/render_impacts_job.h"
+#include "render/render_view.h"
 #include "render/video_encoder.h"
 #include "scene/scene_parser.h"
 #include "support/temp_dir.h"
@@ -70,8 +70,10 @@ RodView rod_view() {
 }
 
 std::string ffprobe(const fs::path& mp4) {
-    const std::string command = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                                "stream=nb_read_frames,width,height -of csv=p=0 '" + mp4.string() + "' 2>&1";
+    const std::string command =
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=nb_read_frames,width,height -of csv=p=0 '" +
+        mp4.string() + "' 2>&1";
     FILE* pipe = ::popen(command.c_str(), "r");
     std::string text;
     std::array<char, 256> buffer{};

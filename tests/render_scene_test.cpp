@@ -207,9 +207,8 @@ TEST_F(RenderScene, ImpactMarkersBlendByTheirAlpha) {
     const Camera camera = front_camera();
     const ColourMap map = ColourMap::viridis();
     const Vec3 full(-0.25, -0.5, 0.0), half(0.25, -0.5, 0.0), gone(0.0, -0.5, 0.3);
-    const std::vector<ImpactMarker> markers = {{full, 0.08, map.map(5.0, 0.0, 5.0)},
-                                               {half, 0.08, {1.0f, 1.0f, 1.0f, 0.5f}},
-                                               {gone, 0.08, {1.0f, 1.0f, 1.0f, 0.0f}}};
+    const std::vector<ImpactMarker> markers = {
+        {full, 0.08, map.map(5.0, 0.0, 5.0)}, {half, 0.08, {1.0f, 1.0f, 1.0f, 0.5f}}, {gone, 0.08, {1.0f, 1.0f, 1.0f, 0.0f}}};
     renderer.render(camera, {.markers = markers}, image);
     const Rgba8 yellow = pixel_at(image, camera, full);  // top of viridis, lit ~flat at the centre
     EXPECT_TRUE(near(yellow, map.map8(5.0, 0.0, 5.0), 3)) << int(yellow.r) << "," << int(yellow.g) << "," << int(yellow.b);

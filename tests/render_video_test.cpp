@@ -29,7 +29,8 @@ std::optional<std::string> ffprobe() {
 std::string probe(const std::string& ffprobe_path, const std::string& video) {
     const std::string command = ffprobe_path +
                                 " -v error -count_frames -select_streams v:0 -show_entries stream=width,height,nb_read_frames"
-                                " -of csv=p=0 '" + video + "'";
+                                " -of csv=p=0 '" +
+                                video + "'";
     std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen(command.c_str(), "r"), ::pclose);
     std::string out;
     std::array<char, 256> buffer{};
@@ -127,8 +128,7 @@ TEST(RenderVideo, FailingEncoderReportsItsStatus) {
 TEST(RenderVideo, MissingExecutableAndBadFramesArePlainErrors) {
     testing::TempDir dir;
     const std::string path = (dir.path / "x.mp4").string();
-    EXPECT_THROW(VideoEncoder(path, {.width = 4, .height = 4, .ffmpeg = (dir.path / "no-ffmpeg").string()}),
-                 std::runtime_error);
+    EXPECT_THROW(VideoEncoder(path, {.width = 4, .height = 4, .ffmpeg = (dir.path / "no-ffmpeg").string()}), std::runtime_error);
     EXPECT_THROW(VideoEncoder(path, {.width = 0, .height = 4}), std::invalid_argument);
     if (!ffmpeg_available()) return;
     VideoEncoder encoder(path, {.width = 8, .height = 8});

@@ -42,8 +42,8 @@ TEST_P(RodScene, MatchesTheEventDrivenPrototype) {
     }
     const double rate = static_cast<double>(count) / (model->duration_s - kSettle);
     const double mean = speed_sum / static_cast<double>(count);
-    std::cout << "[ rod      ] " << GetParam() << " scheme: rod impact rate " << rate << " /s (prototype 8100-8500), mean normal speed " << mean
-              << " m/s (prototype 2.73-2.78)\n";
+    std::cout << "[ rod      ] " << GetParam() << " scheme: rod impact rate " << rate << " /s (prototype 8100-8500), mean normal speed "
+              << mean << " m/s (prototype 2.73-2.78)\n";
     // Bands: the prototype's range widened by ~5 % for the chaos of one 0.5 s run (~4000 impacts:
     // 1.6 % counting noise, and run-to-run spread of a few % seen between seeds).
     EXPECT_GT(rate, 7700.0);

@@ -18,9 +18,9 @@ const std::string bad_dir = std::string(PEENSIM_SOURCE_DIR) + "/tests/scenes_bad
 
 struct BadScene {
     const char* file;
-    int line;             // 1-based line the message must point at
-    const char* field;    // "" when no field applies (YAML syntax)
-    const char* expected; // a phrase of what was expected
+    int line;              // 1-based line the message must point at
+    const char* field;     // "" when no field applies (YAML syntax)
+    const char* expected;  // a phrase of what was expected
 };
 
 const BadScene catalogue[] = {
@@ -77,14 +77,13 @@ TEST_P(SceneBadFiles, IsRefusedWithFileLineFieldAndExpectation) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Catalogue, SceneBadFiles, ::testing::ValuesIn(catalogue),
-                         [](const ::testing::TestParamInfo<BadScene>& info) {
-                             std::string name = info.param.file;
-                             name = name.substr(0, name.find('.'));
-                             for (char& c : name)
-                                 if (c == '-') c = '_';
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Catalogue, SceneBadFiles, ::testing::ValuesIn(catalogue), [](const ::testing::TestParamInfo<BadScene>& info) {
+    std::string name = info.param.file;
+    name = name.substr(0, name.find('.'));
+    for (char& c : name)
+        if (c == '-') c = '_';
+    return name;
+});
 
 // Each bad file is the same small scene with one thing broken; the unbroken scene parses.
 TEST(SceneBadFilesCatalogue, TheUnbrokenSceneParses) {

@@ -94,9 +94,7 @@ const ContactPairDesc& contact(const SceneDescription& s, const std::string& key
     throw std::runtime_error("no contact " + key);
 }
 
-std::string tetrahedron_path() {
-    return std::filesystem::path(scene_dir + "/tetrahedron.stl").lexically_normal().string();
-}
+std::string tetrahedron_path() { return std::filesystem::path(scene_dir + "/tetrahedron.stl").lexically_normal().string(); }
 
 TEST(SceneParser, FullSceneReadsInSI) {
     const SceneDescription s = parse_scene_text(full_scene, virtual_path);
@@ -217,16 +215,17 @@ contacts:
 
 TEST(SceneParser, RotationFormsAgree) {
     const auto rotation_of = [](const std::string& rotation) {
-        const std::string text = std::string(minimal_scene) + "  - {name: r, role: fixture, mesh: tetrahedron.stl, "
-                                                              "rotation: " + rotation + "}\n";
+        const std::string text = std::string(minimal_scene) +
+                                 "  - {name: r, role: fixture, mesh: tetrahedron.stl, "
+                                 "rotation: " +
+                                 rotation + "}\n";
         return component(parse_scene_text(text, virtual_path), "r").rotation;
     };
-    const Mat3 expected = (Eigen::AngleAxisd(pi / 2, Vec3::UnitX()) * Eigen::AngleAxisd(pi / 6, Vec3::UnitZ()))
-                              .toRotationMatrix();
+    const Mat3 expected = (Eigen::AngleAxisd(pi / 2, Vec3::UnitX()) * Eigen::AngleAxisd(pi / 6, Vec3::UnitZ())).toRotationMatrix();
     EXPECT_TRUE(rotation_of("{euler_xyz: [90, 0, 30]}").isApprox(expected, 1e-15));
     EXPECT_TRUE(rotation_of("{euler_xyz: [90 deg, 0, 0.5235987755982988 rad]}").isApprox(expected, 1e-15));
-    EXPECT_TRUE(rotation_of("{axis: [0, 0, 1], angle: 90 deg}")
-                    .isApprox(Eigen::AngleAxisd(pi / 2, Vec3::UnitZ()).toRotationMatrix(), 1e-15));
+    EXPECT_TRUE(
+        rotation_of("{axis: [0, 0, 1], angle: 90 deg}").isApprox(Eigen::AngleAxisd(pi / 2, Vec3::UnitZ()).toRotationMatrix(), 1e-15));
     EXPECT_EQ(rotation_of("{matrix: [[0, -1, 0], [1, 0, 0], [0, 0, 1]]}"),
               Eigen::AngleAxisd(pi / 2, Vec3::UnitZ()).toRotationMatrix().array().round().matrix());
     EXPECT_NE(error_of(std::string(minimal_scene) +
@@ -238,26 +237,27 @@ TEST(SceneParser, RotationFormsAgree) {
 
 TEST(SceneParser, VectorsAsOneString) {
     const auto translation_of = [](const std::string& t) {
-        const std::string text = std::string(minimal_scene) + "  - {name: t, role: fixture, mesh: tetrahedron.stl, "
-                                                              "translation: \"" + t + "\"}\n";
+        const std::string text = std::string(minimal_scene) +
+                                 "  - {name: t, role: fixture, mesh: tetrahedron.stl, "
+                                 "translation: \"" +
+                                 t + "\"}\n";
         return component(parse_scene_text(text, virtual_path), "t").translation_m;
     };
     EXPECT_EQ(translation_of("0 0 -5 mm"), Vec3(0, 0, -0.005));
     EXPECT_EQ(translation_of("1 2 3"), Vec3(1, 2, 3));
     EXPECT_EQ(translation_of("1 mm 2 cm 3 m"), Vec3(0.001, 0.02, 3));
     EXPECT_EQ(translation_of("1, 2, 3mm"), Vec3(0.001, 0.002, 0.003));
-    EXPECT_NE(error_of(std::string(minimal_scene) +
-                       "  - {name: t, role: fixture, mesh: tetrahedron.stl, translation: \"1 2\"}\n")
+    EXPECT_NE(error_of(std::string(minimal_scene) + "  - {name: t, role: fixture, mesh: tetrahedron.stl, translation: \"1 2\"}\n")
                   .find("expected a vector of 3 numbers"),
               std::string::npos);
 }
 
 TEST(SceneParser, OverridesApplyBeforeValidation) {
-    const SceneDescription s = parse_scene_text(
-        full_scene, virtual_path,
-        {"process.duration=0.2", "process.seed=7", "shot.diameter=1 mm", "components[gear].motion.speed=60 rpm",
-         "components[1].translation=[1 mm, 2 mm, 3 mm]", "output.log=[gear]", "process.gravity=[0,0,-1.62]",
-         "materials.titanium.density=4.43 g/cm3", "contacts.shot-shot.C0=0.5", "name=renamed"});
+    const SceneDescription s =
+        parse_scene_text(full_scene, virtual_path,
+                         {"process.duration=0.2", "process.seed=7", "shot.diameter=1 mm", "components[gear].motion.speed=60 rpm",
+                          "components[1].translation=[1 mm, 2 mm, 3 mm]", "output.log=[gear]", "process.gravity=[0,0,-1.62]",
+                          "materials.titanium.density=4.43 g/cm3", "contacts.shot-shot.C0=0.5", "name=renamed"});
     EXPECT_EQ(s.process.duration_s, 0.2);
     EXPECT_EQ(s.process.seed, 7u);
     EXPECT_EQ(s.shot.diameter_m, 0.001);
@@ -271,11 +271,12 @@ TEST(SceneParser, OverridesApplyBeforeValidation) {
 }
 
 TEST(SceneParser, OverridesCanAddKeysAndSections) {
-    const SceneDescription s = parse_scene_text(
-        minimal_scene, virtual_path,
-        {"accuracy.travel_fraction=0.1", "components[rod].motion={type: rotating, axis_point: [0, 0, 0], "
-                                         "axis_direction: [1, 0, 0], speed: 10 rpm}",
-         "materials.copper.density=8.96 g/cm3", "shot.density=8960", "process.duration=1", "process.duration=2"});
+    const SceneDescription s =
+        parse_scene_text(minimal_scene, virtual_path,
+                         {"accuracy.travel_fraction=0.1",
+                          "components[rod].motion={type: rotating, axis_point: [0, 0, 0], "
+                          "axis_direction: [1, 0, 0], speed: 10 rpm}",
+                          "materials.copper.density=8.96 g/cm3", "shot.density=8960", "process.duration=1", "process.duration=2"});
     EXPECT_EQ(s.accuracy.travel_fraction, 0.1);
     ASSERT_TRUE(component(s, "rod").rotation_motion.has_value());
     EXPECT_EQ(component(s, "rod").rotation_motion->axis_direction, Vec3(1, 0, 0));
@@ -295,8 +296,7 @@ TEST(SceneParser, OverrideOfUnknownPathNamesIt) {
             EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
         }
     }
-    EXPECT_NE(error_of(minimal_scene, {"process.dration=1"}).find("valid keys: duration, gravity, seed"),
-              std::string::npos);
+    EXPECT_NE(error_of(minimal_scene, {"process.dration=1"}).find("valid keys: duration, gravity, seed"), std::string::npos);
     EXPECT_NE(error_of(minimal_scene, {"process.duration"}).find("expected path=value"), std::string::npos);
     EXPECT_NE(error_of(minimal_scene, {"process.duration="}).find("missing value"), std::string::npos);
 }
@@ -311,8 +311,7 @@ TEST(SceneParser, BadOverriddenValueBlamesTheOverride) {
         EXPECT_NE(e.problem().find("unknown material 'unobtainium'"), std::string::npos) << e.what();
         EXPECT_NE(e.problem().find("from --set 'components[rod].material=unobtainium'"), std::string::npos);
     }
-    EXPECT_NE(error_of(minimal_scene, {"shot.diameter=-1 mm"}).find("<--set>: shot.diameter: expected a length"),
-              std::string::npos);
+    EXPECT_NE(error_of(minimal_scene, {"shot.diameter=-1 mm"}).find("<--set>: shot.diameter: expected a length"), std::string::npos);
 }
 
 TEST(SceneParser, ResolvedSceneReadsBackTheSame) {
@@ -501,11 +500,9 @@ TEST(SceneParser, BadRegionsNameLineAndField) {
         std::string problem;
     };
     const Bad bad[] = {
-        {"{name: a, box: {min: [0, 0, 0], max: [1, 1, 1], mid: [0, 0, 0]}}", "components[2].regions[0].box.mid",
-         "unknown key 'mid'"},
+        {"{name: a, box: {min: [0, 0, 0], max: [1, 1, 1], mid: [0, 0, 0]}}", "components[2].regions[0].box.mid", "unknown key 'mid'"},
         {"{name: a, box: {min: [0, 0, 0]}}", "components[2].regions[0].box.max", "missing required key 'max'"},
-        {"{name: a, box: {min: [0, 0, 0], max: [1, -1, 1]}}", "components[2].regions[0].box.max",
-         "expected a corner >= min"},
+        {"{name: a, box: {min: [0, 0, 0], max: [1, -1, 1]}}", "components[2].regions[0].box.max", "expected a corner >= min"},
         {"{name: a, half_space: {normal: [0, 0, 0]}}", "components[2].regions[0].half_space.normal",
          "expected a direction, got the zero vector"},
         {"{name: a, sector: {axis_direction: [0, 0, 0], from: 0, to: 1, reference: [1, 0, 0]}}",
@@ -528,8 +525,7 @@ TEST(SceneParser, BadRegionsNameLineAndField) {
         {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 2, width: 361 deg, reference: [1, 0, 0]}}",
          "components[2].regions[0].sectors.width", "at most 360 deg"},
         {"{name: a}", "components[2].regions[0]", "expected exactly one of sector, sectors, box, half_space, group"},
-        {"{name: a, group: A, half_space: {normal: [0, 0, 1]}}", "components[2].regions[0]",
-         "expected exactly one of"},
+        {"{name: a, group: A, half_space: {normal: [0, 0, 1]}}", "components[2].regions[0]", "expected exactly one of"},
         {"{name: a b, group: A}", "components[2].regions[0].name", "invalid name 'a b'"},
     };
     for (const Bad& b : bad) {
@@ -547,8 +543,9 @@ TEST(SceneParser, BadRegionsNameLineAndField) {
 
 TEST(SceneParser, DuplicateRegionNamesAreRefused) {
     std::string text = scene_with_region("{name: tooth-3, group: A}");
-    text += "      - {name: teeth, sectors: {axis_direction: [0, 1, 0], count: 20, width: 18 deg, reference: [0, 0, 1], "
-            "name_prefix: tooth-}}\n";
+    text +=
+        "      - {name: teeth, sectors: {axis_direction: [0, 1, 0], count: 20, width: 18 deg, reference: [0, 0, 1], "
+        "name_prefix: tooth-}}\n";
     try {
         parse_scene_text(text, virtual_path);
         ADD_FAILURE() << "accepted";
@@ -558,7 +555,6 @@ TEST(SceneParser, DuplicateRegionNamesAreRefused) {
         EXPECT_NE(e.problem().find("duplicate region name 'tooth-3'"), std::string::npos) << e.what();
     }
 }
-
 
 TEST(SceneParser, RenderBlockReadsInSIAndIsLeftOutOfTheSceneHash) {
     const SceneDescription plain = parse_scene_text(minimal_scene, virtual_path);
@@ -575,12 +571,12 @@ TEST(SceneParser, RenderBlockReadsInSIAndIsLeftOutOfTheSceneHash) {
     EXPECT_DOUBLE_EQ(defaults.render->fov_rad, 40.0 * pi / 180.0);
     EXPECT_TRUE(defaults.render->video);
 
-    const SceneDescription s = parse_scene_text(
-        std::string(minimal_scene) +
-            "render: {width: 640, height: 480, fps: 25, slow_motion: 5 ms, start: 0.1 s, duration: 50 ms,\n"
-            "         camera: {position: [0, -100 mm, 50 mm], look_at: [0, 0, 20 mm], up: [0, 0, 2], fov: 30 deg},\n"
-            "         speed_scale: 3 m/s, video: none}\n",
-        virtual_path);
+    const SceneDescription s =
+        parse_scene_text(std::string(minimal_scene) +
+                             "render: {width: 640, height: 480, fps: 25, slow_motion: 5 ms, start: 0.1 s, duration: 50 ms,\n"
+                             "         camera: {position: [0, -100 mm, 50 mm], look_at: [0, 0, 20 mm], up: [0, 0, 2], fov: 30 deg},\n"
+                             "         speed_scale: 3 m/s, video: none}\n",
+                         virtual_path);
     ASSERT_TRUE(s.render.has_value());
     const RenderDesc& r = *s.render;
     EXPECT_EQ(r.width_px, 640);

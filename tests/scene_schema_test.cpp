@@ -20,8 +20,7 @@ TEST(SceneSchema, EveryEntryHasAParentAndADoc) {
         EXPECT_FALSE(e.doc.empty()) << e.path;
         const SchemaEntry* parent = find_schema_entry(parent_of(e.path));
         ASSERT_NE(parent, nullptr) << e.path;
-        const bool container = parent->kind == ValueKind::map || parent->kind == ValueKind::named_map ||
-                               parent->kind == ValueKind::list;
+        const bool container = parent->kind == ValueKind::map || parent->kind == ValueKind::named_map || parent->kind == ValueKind::list;
         EXPECT_TRUE(container) << e.path;
     }
 }

@@ -54,8 +54,8 @@ TEST_P(ShippedScene, ParsesCompilesPlacesAndRuns200StepsHealthy) {
         impacts.clear();
     }
     const SimulationState& st = sim.state();
-    std::cout << "[ scenes   ] " << GetParam() << ": " << model->shot_count << " shot in " << shots.layers << " layer(s), "
-              << st.steps << " steps to t = " << st.time.seconds() << " s, " << logged << " logged impacts\n";
+    std::cout << "[ scenes   ] " << GetParam() << ": " << model->shot_count << " shot in " << shots.layers << " layer(s), " << st.steps
+              << " steps to t = " << st.time.seconds() << " s, " << logged << " logged impacts\n";
     EXPECT_EQ(st.steps, 200u);
     EXPECT_GT(st.time.seconds(), 0.0);
     st.health.for_each([&](const char* name, std::uint64_t value) {
@@ -68,7 +68,8 @@ TEST_P(ShippedScene, ParsesCompilesPlacesAndRuns200StepsHealthy) {
 INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(shipped_scenes()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                              std::string name = fs::path(info.param).stem().string();
-                             std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+                             std::replace_if(
+                                 name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
                              return name;
                          });
 

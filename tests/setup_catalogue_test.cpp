@@ -48,10 +48,14 @@ Expectation read_expectation(const fs::path& path) {
     };
     while (std::getline(in, line) && line.rfind('#', 0) == 0) {
         std::string v;
-        if (value("expect-exit", v)) e.exit = std::stoi(v);
-        else if (value("expect-strict-exit", v)) e.strict_exit = std::stoi(v);
-        else if (value("expect", v)) e.present.push_back(v);
-        else if (value("expect-none", v)) e.absent.push_back(v);
+        if (value("expect-exit", v))
+            e.exit = std::stoi(v);
+        else if (value("expect-strict-exit", v))
+            e.strict_exit = std::stoi(v);
+        else if (value("expect", v))
+            e.present.push_back(v);
+        else if (value("expect-none", v))
+            e.absent.push_back(v);
     }
     if (e.strict_exit < 0) e.strict_exit = e.exit;
     return e;
@@ -85,13 +89,12 @@ TEST_P(SetupCatalogue, CheckSaysWhatTheFileExpects) {
     EXPECT_EQ(check_job(path, {}, true, strict_out, strict_err), e.strict_exit) << strict_err.str();
 }
 
-INSTANTIATE_TEST_SUITE_P(Files, SetupCatalogue, ::testing::ValuesIn(catalogue()),
-                         [](const ::testing::TestParamInfo<Expectation>& info) {
-                             std::string name = info.param.file.substr(0, info.param.file.size() - 5);
-                             for (char& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Files, SetupCatalogue, ::testing::ValuesIn(catalogue()), [](const ::testing::TestParamInfo<Expectation>& info) {
+    std::string name = info.param.file.substr(0, info.param.file.size() - 5);
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+});
 
 }  // namespace
 }  // namespace peensim

@@ -22,8 +22,8 @@ TEST(SimTime, TwoMillionStepsOfSixtySecondsStayExact) {
     }
     const double error = std::abs(static_cast<double>(static_cast<long double>(t.hi) + static_cast<long double>(t.lo) - exact));
     const double plain_error = std::abs(static_cast<double>(static_cast<long double>(plain) - exact));
-    std::cout << "[ sim time ] after " << t.seconds() << " s: compensated error " << error << " s, plain double sum error "
-              << plain_error << " s\n";
+    std::cout << "[ sim time ] after " << t.seconds() << " s: compensated error " << error << " s, plain double sum error " << plain_error
+              << " s\n";
     EXPECT_GT(t.seconds(), 55.0);
     EXPECT_LT(error, 1e-14);  // s: ~ an ulp of 60 s; long double carries ~1e-19 relative
 }
@@ -62,7 +62,7 @@ TEST(Kinematics, RotatingPartPoseAndSurfaceVelocity) {
     k.axis_direction = peensim::Vec3::UnitY();
     k.omega_rad_per_s = 2.0 * M_PI;  // 60 rpm
     SimTime t;
-    t.advance(0.25);  // a quarter turn about +y: +z goes to +x
+    t.advance(0.25);                                                            // a quarter turn about +y: +z goes to +x
     const peensim::Vec3 p = k.pose(t).to_world(peensim::Vec3(0.0, 0.0, 0.05));  // 10 mm above the axis at rest
     EXPECT_NEAR(p.x(), 0.01, 1e-15);
     EXPECT_NEAR(p.z(), 0.04, 1e-15);

@@ -50,8 +50,7 @@ double almen_arc_height(double dose_J_per_m2, const AlmenCalibration& calibratio
 double almen_dose_rate(const std::vector<AlmenDosePoint>& curve);
 
 // The J443 saturation point of h = a (1 - exp(-r t / E_c)); nullopt when r <= 0.
-std::optional<AlmenSaturation> almen_saturation(double dose_rate_J_per_m2_s, const AlmenCalibration& calibration,
-                                                double last_time_s);
+std::optional<AlmenSaturation> almen_saturation(double dose_rate_J_per_m2_s, const AlmenCalibration& calibration, double last_time_s);
 
 class AlmenDose {
 public:

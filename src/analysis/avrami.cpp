@@ -26,14 +26,16 @@ AvramiFit fit_avrami(const std::vector<CoveragePoint>& points) {
         sum_wtt += w * p.time_s * p.time_s;
         if (c > 0.0) ++informative;
     }
-    if (informative == 0 || !(sum_wty > 0.0))
-        throw std::invalid_argument("fit_avrami: need a point with t > 0 and 0 < coverage < 1");
+    if (informative == 0 || !(sum_wty > 0.0)) throw std::invalid_argument("fit_avrami: need a point with t > 0 and 0 < coverage < 1");
     double k = sum_wty / sum_wtt;
 
     double last_time = 0.0;
     int used = 0;
     for (const CoveragePoint& p : points)
-        if (p.time_s > 0.0) { ++used; last_time = std::max(last_time, p.time_s); }
+        if (p.time_s > 0.0) {
+            ++used;
+            last_time = std::max(last_time, p.time_s);
+        }
 
     double sum_jj = 0.0, sum_rr = 0.0;
     for (int iteration = 0; iteration < kRefinementIterations; ++iteration) {

@@ -30,8 +30,7 @@ std::int64_t set_bits(std::uint64_t* words, std::int64_t begin, std::int64_t end
 }
 
 // Cells [lo, hi] (inclusive, clamped to [0, dim - 1]) overlapped by [a, b] on one axis; false if none.
-bool cell_range(double a, double b, double origin, double cell, std::int64_t dim,
-                std::int64_t& lo, std::int64_t& hi) {
+bool cell_range(double a, double b, double origin, double cell, std::int64_t dim, std::int64_t& lo, std::int64_t& hi) {
     const double fa = std::floor((a - origin) / cell);
     const double fb = std::floor((b - origin) / cell);
     if (fb < 0.0 || fa > static_cast<double>(dim - 1)) return false;
@@ -60,8 +59,7 @@ std::int64_t CoverageMap::samples_needed(const TriangleMesh& mesh, double spacin
     return samples;
 }
 
-CoverageMap::CoverageMap(const TriangleMesh& mesh, double spacing_m, double largest_dent_diameter_m)
-    : spacing_(spacing_m) {
+CoverageMap::CoverageMap(const TriangleMesh& mesh, double spacing_m, double largest_dent_diameter_m) : spacing_(spacing_m) {
     if (!(spacing_m > 0.0) || !(largest_dent_diameter_m > 0.0))
         throw std::invalid_argument("CoverageMap: spacing and largest dent diameter must be positive");
     const std::size_t count = mesh.triangle_count();
@@ -98,7 +96,10 @@ void CoverageMap::build_grid(const TriangleMesh& mesh, double largest_dent_diame
     Vec3 lo = Vec3::Constant(0.0), hi = Vec3::Constant(0.0);
     if (!mesh.vertices.empty()) {
         lo = hi = mesh.vertices.front();
-        for (const Vec3& v : mesh.vertices) { lo = lo.cwiseMin(v); hi = hi.cwiseMax(v); }
+        for (const Vec3& v : mesh.vertices) {
+            lo = lo.cwiseMin(v);
+            hi = hi.cwiseMax(v);
+        }
     }
     grid_min_ = lo;
     const Vec3 extent = hi - lo;
@@ -137,13 +138,14 @@ void CoverageMap::build_grid(const TriangleMesh& mesh, double largest_dent_diame
             for (std::int64_t z = r0[2]; z <= r1[2]; ++z)
                 for (std::int64_t y = r0[1]; y <= r1[1]; ++y)
                     for (std::int64_t x = r0[0]; x <= r1[0]; ++x) {
-                        const Vec3 centre = grid_min_ + cell_ * Vec3(static_cast<double>(x) + 0.5,
-                                                                     static_cast<double>(y) + 0.5,
+                        const Vec3 centre = grid_min_ + cell_ * Vec3(static_cast<double>(x) + 0.5, static_cast<double>(y) + 0.5,
                                                                      static_cast<double>(z) + 0.5);
                         if (std::abs((centre - p.origin).dot(p.unit_normal)) > half_reach) continue;
                         const std::size_t c_index = cell_index(x, y, z);
-                        if (pass == 0) ++cell_start_[c_index + 1];
-                        else cell_triangles_[fill[c_index]++] = static_cast<std::uint32_t>(t);
+                        if (pass == 0)
+                            ++cell_start_[c_index + 1];
+                        else
+                            cell_triangles_[fill[c_index]++] = static_cast<std::uint32_t>(t);
                     }
         }
     }
@@ -154,8 +156,7 @@ void CoverageMap::add_dent(const Vec3& centre, double diameter_m) {
     const double radius = 0.5 * diameter_m;  // m
     std::int64_t r0[3] = {0, 0, 0}, r1[3] = {-1, -1, -1};
     for (int k = 0; k < 3; ++k)
-        if (!cell_range(centre[k] - radius, centre[k] + radius, grid_min_[k], cell_, dims_[k], r0[k], r1[k]))
-            return;
+        if (!cell_range(centre[k] - radius, centre[k] + radius, grid_min_[k], cell_, dims_[k], r0[k], r1[k])) return;
     if (++dent_stamp_ == 0) {  // wrapped after 2^32 dents: restart the stamps
         std::fill(stamp_.begin(), stamp_.end(), 0u);
         dent_stamp_ = 1;
@@ -186,7 +187,7 @@ void CoverageMap::cover_patch(std::size_t t, const Vec3& centre, double radius_m
     const double reach = p.reach + radius_m;
     if ((centre - p.centre).squaredNorm() > reach * reach) return;
     const Vec3 rel = centre - p.origin;
-    const double height = rel.dot(p.unit_normal);  // m
+    const double height = rel.dot(p.unit_normal);               // m
     const double rho2 = radius_m * radius_m - height * height;  // m^2
     if (rho2 <= 0.0) return;
     const Vec3 w = rel - height * p.unit_normal;
@@ -228,9 +229,7 @@ void CoverageMap::clear() {
     std::fill(covered_count_.begin(), covered_count_.end(), 0);
 }
 
-std::int64_t CoverageMap::samples_of_triangle(std::size_t t) const {
-    return static_cast<std::int64_t>(patches_[t].n) * patches_[t].n;
-}
+std::int64_t CoverageMap::samples_of_triangle(std::size_t t) const { return static_cast<std::int64_t>(patches_[t].n) * patches_[t].n; }
 
 double CoverageMap::coverage_of_triangle(std::size_t t) const {
     const std::int64_t samples = samples_of_triangle(t);

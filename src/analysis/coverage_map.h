@@ -61,11 +61,11 @@ public:
     // Forgets all dents.
     void clear();
 
-    double coverage() const;                                       // covered area / total area, 0..1
-    double coverage_of_triangle(std::size_t t) const;              // 0..1; 0 for a degenerate triangle
-    double coverage_of(const std::vector<int>& triangles) const;   // area-weighted over a region, 0..1
-    double covered_area() const;                                   // m^2
-    double total_area() const { return total_area_; }              // m^2
+    double coverage() const;                                                // covered area / total area, 0..1
+    double coverage_of_triangle(std::size_t t) const;                       // 0..1; 0 for a degenerate triangle
+    double coverage_of(const std::vector<int>& triangles) const;            // area-weighted over a region, 0..1
+    double covered_area() const;                                            // m^2
+    double total_area() const { return total_area_; }                       // m^2
     double triangle_area(std::size_t t) const { return patches_[t].area; }  // m^2
 
     std::size_t triangle_count() const { return patches_.size(); }
@@ -73,40 +73,40 @@ public:
     std::int64_t samples_of_triangle(std::size_t t) const;
     std::int64_t covered_samples_of_triangle(std::size_t t) const { return covered_count_[t]; }
     std::size_t memory_bytes() const;
-    double spacing() const { return spacing_; }         // m, the bound h given at construction
-    double grid_cell_size() const { return cell_; }     // m
+    double spacing() const { return spacing_; }      // m, the bound h given at construction
+    double grid_cell_size() const { return cell_; }  // m
 
 private:
     // One triangle's sample grid (bits first_sample.. of covered_): sample (i, j) of the "up" sub-triangles sits at
     // origin + (i + 1/3) step_u + (j + 1/3) step_v (i + j <= n - 1); of the "down" ones at
     // origin + (i + 2/3) step_u + (j + 2/3) step_v (i + j <= n - 2).
     struct Patch {
-        Vec3 origin;                  // corner A (m)
-        Vec3 step_u;                  // (B - A) / n (m)
-        Vec3 step_v;                  // (C - A) / n (m)
-        Vec3 unit_normal;             // (-)
-        Vec3 centre;                  // centre of the triangle's bounding sphere (m): the corners' box centre
-        double reach = 0.0;           // radius of that sphere (m)
-        double area = 0.0;            // m^2
+        Vec3 origin;         // corner A (m)
+        Vec3 step_u;         // (B - A) / n (m)
+        Vec3 step_v;         // (C - A) / n (m)
+        Vec3 unit_normal;    // (-)
+        Vec3 centre;         // centre of the triangle's bounding sphere (m): the corners' box centre
+        double reach = 0.0;  // radius of that sphere (m)
+        double area = 0.0;   // m^2
         std::int64_t first_sample = 0;
-        int n = 0;                    // subdivisions per edge; 0 = degenerate triangle, no samples
+        int n = 0;  // subdivisions per edge; 0 = degenerate triangle, no samples
     };
 
     void build_grid(const TriangleMesh& mesh, double largest_dent_diameter_m);
     void cover_patch(std::size_t t, const Vec3& centre, double radius_m);
 
-    double spacing_ = 0.0;                       // m
-    double total_area_ = 0.0;                    // m^2
+    double spacing_ = 0.0;     // m
+    double total_area_ = 0.0;  // m^2
     std::vector<Patch> patches_;
     std::int64_t sample_count_ = 0;
-    std::vector<std::uint64_t> covered_;         // one bit per sample: 1 = inside a dent
-    std::vector<std::int64_t> covered_count_;    // per triangle: covered samples
-    std::vector<std::uint32_t> stamp_;           // per triangle: last dent that visited it
+    std::vector<std::uint64_t> covered_;       // one bit per sample: 1 = inside a dent
+    std::vector<std::int64_t> covered_count_;  // per triangle: covered samples
+    std::vector<std::uint32_t> stamp_;         // per triangle: last dent that visited it
     std::uint32_t dent_stamp_ = 0;
 
     // Triangle grid: cell (x, y, z) holds triangles cell_triangles_[cell_start_[c] .. cell_start_[c+1]).
-    Vec3 grid_min_ = Vec3::Zero();               // m
-    double cell_ = 0.0;                          // m, cell side
+    Vec3 grid_min_ = Vec3::Zero();  // m
+    double cell_ = 0.0;             // m, cell side
     std::int64_t dims_[3] = {1, 1, 1};
     std::vector<std::uint32_t> cell_start_;
     std::vector<std::uint32_t> cell_triangles_;

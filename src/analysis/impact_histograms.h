@@ -9,9 +9,9 @@
 
 namespace peensim {
 
-inline constexpr double kSpeedBinWidth = 0.25;   // m/s
-inline constexpr double kAngleBinWidth = 5.0;    // degrees
-inline constexpr double kDentBinWidth = 10e-6;   // m
+inline constexpr double kSpeedBinWidth = 0.25;  // m/s
+inline constexpr double kAngleBinWidth = 5.0;   // degrees
+inline constexpr double kDentBinWidth = 10e-6;  // m
 
 // Counts of values in [b w, (b + 1) w) for b = 0, 1, ...; negative or non-finite values are ignored.
 struct Histogram {

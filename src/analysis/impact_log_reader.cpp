@@ -85,9 +85,7 @@ bool ImpactLogReader::fill() {
     return got > 0;
 }
 
-void ImpactLogReader::fail(const std::string& what) const {
-    throw std::runtime_error(path_ + ":" + std::to_string(line_) + ": " + what);
-}
+void ImpactLogReader::fail(const std::string& what) const { throw std::runtime_error(path_ + ":" + std::to_string(line_) + ": " + what); }
 
 bool ImpactLogReader::next(ImpactRow& row) {
     const char* nl = nullptr;

@@ -17,7 +17,7 @@
 namespace peensim {
 
 struct ImpactRow {
-    double time_s = 0.0;          // s
+    double time_s = 0.0;  // s
     std::int32_t shot = 0;
     std::string_view component;   // valid until the next call to next()
     std::int32_t triangle = 0;    // facet index in the component's mesh file
@@ -40,7 +40,7 @@ public:
     // Reads the next row; false at the end. Throws std::runtime_error (file:line: what) on a bad line.
     bool next(ImpactRow& row);
 
-    bool truncated() const { return truncated_; }   // the file ended inside a line
+    bool truncated() const { return truncated_; }  // the file ended inside a line
     std::uint64_t rows() const { return rows_; }
     const std::string& path() const { return path_; }
 
@@ -55,7 +55,7 @@ private:
     bool eof_ = false;
     bool truncated_ = false;
     std::uint64_t rows_ = 0;
-    std::uint64_t line_ = 1;           // 1-based line number of the header
+    std::uint64_t line_ = 1;  // 1-based line number of the header
 };
 
 }  // namespace peensim

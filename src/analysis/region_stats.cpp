@@ -6,13 +6,12 @@
 
 namespace peensim {
 
-RegionStats region_stats(const Region& region, const TriangleFields& fields, const CoverageMap* coverage,
-                         double duration_s) {
+RegionStats region_stats(const Region& region, const TriangleFields& fields, const CoverageMap* coverage, double duration_s) {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     RegionStats s;
     s.triangles = region.triangles.size();
-    double speed_sum = 0.0;   // m/s, summed over impacts
-    double energy = 0.0;      // J
+    double speed_sum = 0.0;  // m/s, summed over impacts
+    double energy = 0.0;     // J
     for (int i : region.triangles) {
         const auto t = static_cast<std::size_t>(i);
         const double area = fields.area_m2(t);

@@ -92,15 +92,13 @@ std::vector<Region> select_regions(const TriangleMesh& mesh, const std::vector<R
                 }));
                 break;
             case RegionKind::half_space:
-                out.push_back(select(mesh, r.name, [&](std::size_t t) {
-                    return (centroid(mesh, t) - r.plane_point_m).dot(r.plane_normal) >= 0.0;
-                }));
+                out.push_back(
+                    select(mesh, r.name, [&](std::size_t t) { return (centroid(mesh, t) - r.plane_point_m).dot(r.plane_normal) >= 0.0; }));
                 break;
             case RegionKind::group: {
                 const int g = group_index(mesh, r);
-                out.push_back(select(mesh, r.name, [&](std::size_t t) {
-                    return t < mesh.group_of_triangle.size() && mesh.group_of_triangle[t] == g;
-                }));
+                out.push_back(select(mesh, r.name,
+                                     [&](std::size_t t) { return t < mesh.group_of_triangle.size() && mesh.group_of_triangle[t] == g; }));
                 break;
             }
         }

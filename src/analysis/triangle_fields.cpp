@@ -43,7 +43,9 @@ int TriangleFields::add(int facet, const Vec3& point, double vn) {
         double best = std::numeric_limits<double>::infinity();
         for (int k = 0; k < n; ++k) {
             const auto tt = static_cast<std::size_t>(first_triangle_of_facet_[static_cast<std::size_t>(facet)] + k);
-            const double d2 = (closest_point_on_triangle(point, mesh_->corner(tt, 0), mesh_->corner(tt, 1), mesh_->corner(tt, 2)).point - point).squaredNorm();
+            const double d2 =
+                (closest_point_on_triangle(point, mesh_->corner(tt, 0), mesh_->corner(tt, 1), mesh_->corner(tt, 2)).point - point)
+                    .squaredNorm();
             if (d2 < best) {
                 best = d2;
                 t = static_cast<int>(tt);

@@ -24,8 +24,8 @@ public:
     std::size_t triangle_count() const { return count_.size(); }
     std::uint64_t count(std::size_t t) const { return count_[t]; }
     double area_m2(std::size_t t) const { return area_[t]; }
-    double mean_normal_speed(std::size_t t) const;          // m/s (NaN without impacts)
-    double max_normal_speed(std::size_t t) const { return max_[t]; }  // m/s (0 without impacts)
+    double mean_normal_speed(std::size_t t) const;                                 // m/s (NaN without impacts)
+    double max_normal_speed(std::size_t t) const { return max_[t]; }               // m/s (0 without impacts)
     double energy_per_area(std::size_t t) const { return energy_[t] / area_[t]; }  // J/m2, 1/2 m vn^2 summed
     // Impacts per mm2 per second over `duration_s`.
     double rate_per_mm2_s(std::size_t t, double duration_s) const { return count_[t] / (area_[t] * 1e6) / duration_s; }
@@ -38,9 +38,9 @@ private:
     std::vector<int> triangles_of_facet_;       // number of triangles per facet
     std::vector<double> area_;                  // m2
     std::vector<std::uint64_t> count_;
-    std::vector<double> sum_;                   // m/s
-    std::vector<double> max_;                   // m/s
-    std::vector<double> energy_;                // J
+    std::vector<double> sum_;     // m/s
+    std::vector<double> max_;     // m/s
+    std::vector<double> energy_;  // J
     std::uint64_t unknown_ = 0;
 };
 

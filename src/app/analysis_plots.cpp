@@ -104,8 +104,8 @@ std::string script_header(const std::string& stem) {
 std::string coverage_script(const std::string& component) {
     const std::string csv = component + "_coverage.csv";
     std::ostringstream s;
-    s << script_header(component + "_coverage")
-      << "set title " << gnuplot_quoted(enhanced_text_escaped(component) + ": coverage vs time (SAE J2277)") << "\n"
+    s << script_header(component + "_coverage") << "set title "
+      << gnuplot_quoted(enhanced_text_escaped(component) + ": coverage vs time (SAE J2277)") << "\n"
       << "set xlabel 'simulated time (s)'\n"
       << "set ylabel 'coverage (%)'\n"
       // Early in a run coverage is a few %: zoom in then, so the curve stays readable.
@@ -114,15 +114,15 @@ std::string coverage_script(const std::string& component) {
       << "set yrange [0:top]\n"
       << "set key bottom right\n"
       << "plot " << gnuplot_quoted(csv) << " using 1:(100*$2) every ::1 with linespoints lw 2 pt 7 ps 0.6 title 'coverage', \\\n"
-      << "     " << kFullCoveragePercent << " with lines dt 2 lc rgb 'gray40' title (top > " << kFullCoveragePercent << " ? 'full coverage (" << kFullCoveragePercent << " %)' : '')\n";
+      << "     " << kFullCoveragePercent << " with lines dt 2 lc rgb 'gray40' title (top > " << kFullCoveragePercent
+      << " ? 'full coverage (" << kFullCoveragePercent << " %)' : '')\n";
     return s.str();
 }
 
 std::string histograms_script(const std::string& component, const std::set<std::string>& with_counts) {
     const std::string csv = gnuplot_quoted(component + "_histograms.csv");
     std::ostringstream s;
-    s << script_header(component + "_histograms")
-      << "set style fill solid 0.6 border -1\n"
+    s << script_header(component + "_histograms") << "set style fill solid 0.6 border -1\n"
       << "set ylabel 'impacts'\n"
       << "set lmargin 12\n"  // characters: the three panels' axes line up whatever their tick labels
       << "unset key\n"
@@ -148,8 +148,7 @@ std::string histograms_script(const std::string& component, const std::set<std::
 std::string regions_script(const std::string& component) {
     const std::string csv = gnuplot_quoted(component + "_regions.csv");
     std::ostringstream s;
-    s << script_header(component + "_regions")
-      << "set style fill solid 0.6 border -1\n"
+    s << script_header(component + "_regions") << "set style fill solid 0.6 border -1\n"
       << "set lmargin 12\nunset key\n"
       << "set xtics rotate by -45 noenhanced\n"
       << "set multiplot layout 2,1 title " << gnuplot_quoted(enhanced_text_escaped(component) + ": impacts per region") << "\n"
@@ -165,8 +164,7 @@ std::string regions_script(const std::string& component) {
 std::string almen_script(const std::string& component, bool calibrated) {
     const std::string csv = gnuplot_quoted(component + "_almen.csv");
     std::ostringstream s;
-    s << script_header(component + "_almen")
-      << "set title " << gnuplot_quoted(enhanced_text_escaped(component) + ": Almen strip") << "\n"
+    s << script_header(component + "_almen") << "set title " << gnuplot_quoted(enhanced_text_escaped(component) + ": Almen strip") << "\n"
       << "set xlabel 'simulated time (s)'\nset ylabel 'impact energy dose (J/m^2)'\nset key top left\n";
     if (calibrated)
         s << "set y2label 'arc height (mm)'\nset y2tics\nset ytics nomirror\n"

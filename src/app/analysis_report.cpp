@@ -17,7 +17,8 @@ std::string region_tables(const std::vector<ComponentAnalysis>& parts, double du
     std::ostringstream r;
     for (const ComponentAnalysis& c : parts) {
         if (c.regions.empty()) continue;
-        r << "\n## Regions of " << c.name << "\n\n| region | triangles | area (mm2) | impacts | per mm2 per s | mean v_n (m/s) "
+        r << "\n## Regions of " << c.name
+          << "\n\n| region | triangles | area (mm2) | impacts | per mm2 per s | mean v_n (m/s) "
              "| max v_n (m/s) | energy (J/m2) | coverage |\n|---|---|---|---|---|---|---|---|---|\n";
         for (const Region& region : c.regions) {
             const RegionStats s = region_stats(region, *c.fields, c.coverage.get(), duration);
@@ -39,8 +40,8 @@ std::string almen_sections(const std::vector<ComponentAnalysis>& parts, double d
         r << "\n## Almen strip " << c.name << "\n\n"
           << "Peened face: " << fmt(a.dose->face_area_m2() * 1e6) << " mm2, " << a.dose->face_impacts() << " impacts at a mean "
           << "normal speed of " << fmt(a.dose->mean_normal_speed()) << " m/s. Impact energy dose (normal kinetic energy per "
-          << "area): " << fmt(a.dose->dose_J_per_m2()) << " J/m2 after " << fmt(duration) << " s; steady rate (slope over the run's second half) r = "
-          << fmt(rate) << " J/(m2 s) (`" << c.name << "_almen.csv`).\n\n"
+          << "area): " << fmt(a.dose->dose_J_per_m2()) << " J/m2 after " << fmt(duration)
+          << " s; steady rate (slope over the run's second half) r = " << fmt(rate) << " J/(m2 s) (`" << c.name << "_almen.csv`).\n\n"
           << "**Arc height needs calibration.** peensim predicts the dose, not the arc height: with h = a (1 - exp(-E / E_c)) "
              "the saturation curve is h = a (1 - exp(-b t)), b = r / E_c, saturation (SAE J443) at T = ln(10) / b with "
              "intensity 0.9 a. Set `almen.saturation_arc_height` (a) and `almen.dose_constant` (E_c) from a measured "
@@ -52,14 +53,13 @@ std::string almen_sections(const std::vector<ComponentAnalysis>& parts, double d
             continue;
         }
         const auto sat = almen_saturation(rate, *a.calibration, duration);
-        r << "\nCalibration: a = " << fmt(a.calibration->saturation_arc_height_m * 1e3) << " mm, E_c = "
-          << fmt(a.calibration->dose_constant_J_per_m2) << " J/m2. Arc height after " << fmt(duration) << " s: "
-          << fmt(almen_arc_height(a.dose->dose_J_per_m2(), *a.calibration) * 1e3) << " mm.\n";
+        r << "\nCalibration: a = " << fmt(a.calibration->saturation_arc_height_m * 1e3)
+          << " mm, E_c = " << fmt(a.calibration->dose_constant_J_per_m2) << " J/m2. Arc height after " << fmt(duration)
+          << " s: " << fmt(almen_arc_height(a.dose->dose_J_per_m2(), *a.calibration) * 1e3) << " mm.\n";
         if (sat)
             r << "Saturation curve h = " << fmt(a.calibration->saturation_arc_height_m * 1e3) << " mm (1 - exp(-"
-              << fmt(sat->rate_constant_per_s) << " t / s)); saturation time T = " << fmt(sat->saturation_time_s)
-              << " s, intensity " << fmt(sat->intensity_m * 1e3) << " mm"
-              << (sat->extrapolated ? " (extrapolated: the run is shorter than 2T)" : "") << ".\n";
+              << fmt(sat->rate_constant_per_s) << " t / s)); saturation time T = " << fmt(sat->saturation_time_s) << " s, intensity "
+              << fmt(sat->intensity_m * 1e3) << " mm" << (sat->extrapolated ? " (extrapolated: the run is shorter than 2T)" : "") << ".\n";
         else
             r << "No impact on the peened face: no saturation curve.\n";
     }
@@ -85,8 +85,8 @@ std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, 
                 t98 = fmt(fit.time_to_98_percent_s) + (fit.extrapolated ? " (extrapolated)" : "");
             }
         }
-        r << "| " << c.name << " | " << c.impacts << " | " << fmt(n / duration) << " | " << fmt(mean_v) << " | " << fmt(mean_d)
-          << " | " << cov << " | " << k << " | " << t98 << " |\n";
+        r << "| " << c.name << " | " << c.impacts << " | " << fmt(n / duration) << " | " << fmt(mean_v) << " | " << fmt(mean_d) << " | "
+          << cov << " | " << k << " | " << t98 << " |\n";
     }
     return r.str();
 }

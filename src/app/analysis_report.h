@@ -12,15 +12,14 @@ namespace peensim {
 
 struct ReportContext {
     std::filesystem::path run_dir;
-    double duration_s = 0.0;         // s, simulated time the log covers
-    bool finished = true;            // false: the run was interrupted (partial log)
-    bool truncated = false;          // the log ended inside a row
-    std::vector<std::string> pngs;   // plots written (paths)
-    std::string plot_note;           // why plots are missing, or ""
+    double duration_s = 0.0;        // s, simulated time the log covers
+    bool finished = true;           // false: the run was interrupted (partial log)
+    bool truncated = false;         // the log ended inside a row
+    std::vector<std::string> pngs;  // plots written (paths)
+    std::string plot_note;          // why plots are missing, or ""
 };
 
-std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts,
-                            const ReportContext& context);
+std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, const ReportContext& context);
 
 // The summary table of the report (what `peensim run` and `analyze` print on the terminal).
 std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, double duration_s);

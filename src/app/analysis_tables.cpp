@@ -18,9 +18,9 @@ void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double
     s << "triangle,facet,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
     for (std::size_t t = 0; t < c.fields->triangle_count(); ++t) {
         s << t << ',' << (c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t]) << ','
-          << fmt(c.fields->area_m2(t) * 1e6, 8) << ',' << c.fields->count(t) << ',' << fmt(c.fields->rate_per_mm2_s(t, duration), 6)
-          << ',' << fmt(c.fields->mean_normal_speed(t)) << ',' << fmt(c.fields->max_normal_speed(t)) << ','
-          << fmt(c.fields->energy_per_area(t), 6) << ',' << (c.coverage ? fmt(c.coverage->coverage_of_triangle(t)) : "") << '\n';
+          << fmt(c.fields->area_m2(t) * 1e6, 8) << ',' << c.fields->count(t) << ',' << fmt(c.fields->rate_per_mm2_s(t, duration), 6) << ','
+          << fmt(c.fields->mean_normal_speed(t)) << ',' << fmt(c.fields->max_normal_speed(t)) << ',' << fmt(c.fields->energy_per_area(t), 6)
+          << ',' << (c.coverage ? fmt(c.coverage->coverage_of_triangle(t)) : "") << '\n';
     }
     write_file_atomically(path.string(), s.str());
 }
@@ -28,8 +28,8 @@ void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double
 // The per-triangle fields as VTK cell data (same names and units as the CSV columns).
 std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) {
     const std::size_t n = c.fields->triangle_count();
-    std::vector<CellField> f{{"impacts", 1, {}}, {"impacts_per_mm2_s", 1, {}}, {"mean_vn_mps", 1, {}},
-                             {"max_vn_mps", 1, {}}, {"energy_J_per_m2", 1, {}}};
+    std::vector<CellField> f{
+        {"impacts", 1, {}}, {"impacts_per_mm2_s", 1, {}}, {"mean_vn_mps", 1, {}}, {"max_vn_mps", 1, {}}, {"energy_J_per_m2", 1, {}}};
     if (c.coverage) f.push_back({"coverage", 1, {}});
     for (CellField& x : f) x.values.reserve(n);
     for (std::size_t t = 0; t < n; ++t) {
@@ -49,9 +49,9 @@ void write_regions_csv(const fs::path& path, const ComponentAnalysis& c, double 
     s << "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
     for (const Region& region : c.regions) {
         const RegionStats r = region_stats(region, *c.fields, c.coverage.get(), duration);
-        s << region.name << ',' << r.triangles << ',' << fmt(r.area_m2 * 1e6, 8) << ',' << r.impacts << ','
-          << fmt(r.impacts_per_mm2_s, 6) << ',' << fmt(r.mean_normal_speed) << ',' << fmt(r.max_normal_speed) << ','
-          << fmt(r.energy_per_area, 6) << ',' << fmt(r.coverage) << '\n';
+        s << region.name << ',' << r.triangles << ',' << fmt(r.area_m2 * 1e6, 8) << ',' << r.impacts << ',' << fmt(r.impacts_per_mm2_s, 6)
+          << ',' << fmt(r.mean_normal_speed) << ',' << fmt(r.max_normal_speed) << ',' << fmt(r.energy_per_area, 6) << ',' << fmt(r.coverage)
+          << '\n';
     }
     write_file_atomically(path.string(), s.str());
 }

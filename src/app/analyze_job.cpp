@@ -9,13 +9,13 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
-#include "contact/dent.h"
 #include "analysis/impact_stream.h"
 #include "app/analysis_plots.h"
 #include "app/analysis_report.h"
 #include "app/analysis_tables.h"
 #include "app/component_analysis.h"
 #include "app/report_errors.h"
+#include "contact/dent.h"
 #include "geometry/mesh_loader.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
@@ -27,9 +27,9 @@ namespace peensim {
 
 namespace {
 
-constexpr int kCoverageSamples = 50;           // points of the coverage- and dose-vs-time curves
-constexpr double kDentsPerSpacing = 5.0;       // coverage sampling: spacing = dent at 1 m/s / 5
-constexpr double kLargestSpeed = 30.0;         // m/s, sizes the coverage map's dent grid
+constexpr int kCoverageSamples = 50;               // points of the coverage- and dose-vs-time curves
+constexpr double kDentsPerSpacing = 5.0;           // coverage sampling: spacing = dent at 1 m/s / 5
+constexpr double kLargestSpeed = 30.0;             // m/s, sizes the coverage map's dent grid
 constexpr std::int64_t kMaxSamples = 200'000'000;  // coverage samples per component at most (1 bit each: 25 MB)
 
 const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
@@ -46,8 +46,7 @@ double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& 
         try {
             const auto j = nlohmann::json::parse(in);
             if (j.contains("simulated_time_s")) return j["simulated_time_s"].get<double>();
-        } catch (const std::exception&) {
-        }
+        } catch (const std::exception&) {}
     }
     return scene.process.duration_s;
 }
@@ -93,8 +92,10 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
         try {
             almen.dose = std::make_unique<AlmenDose>(*a.mesh, c.almen->face_normal, shot_mass);
         } catch (const std::invalid_argument& e) {
-            throw InputError(c.almen->where, "almen.face_normal", std::string(e.what()) + " (expected the outward normal of "
-                             "one face of the strip, in the component's frame)");
+            throw InputError(c.almen->where, "almen.face_normal",
+                             std::string(e.what()) +
+                                 " (expected the outward normal of "
+                                 "one face of the strip, in the component's frame)");
         }
         if (c.almen->saturation_arc_height_m)
             almen.calibration = AlmenCalibration{*c.almen->saturation_arc_height_m, *c.almen->dose_constant_J_per_m2};
@@ -143,12 +144,14 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
         const double shot_mass = scene.shot.density_kg_per_m3 * M_PI / 6.0 * std::pow(scene.shot.diameter_m, 3);
         for (const ComponentDesc& c : scene.components) {
             const auto& logged = scene.output.logged_components;
-            const bool is_logged = logged.empty() ? logged_by_default(c.role) : std::find(logged.begin(), logged.end(), c.name) != logged.end();
+            const bool is_logged =
+                logged.empty() ? logged_by_default(c.role) : std::find(logged.begin(), logged.end(), c.name) != logged.end();
             if (!is_logged) continue;
             parts.push_back(analysis_of(c, scene, shot_mass));
             names.push_back(c.name);
         }
-        if (parts.empty()) throw std::runtime_error(output_dir + ": the run logged no component (output.log is empty and the scene has no part)");
+        if (parts.empty())
+            throw std::runtime_error(output_dir + ": the run logged no component (output.log is empty and the scene has no part)");
 
         const fs::path adir = dir / "analysis";
         fs::create_directories(adir);

@@ -124,9 +124,9 @@ std::vector<std::string> shipped_scenes(const std::string& executable_path) {
     }
     std::string looked;
     for (const std::string& dir : dirs) looked += (looked.empty() ? "" : ", ") + dir;
-    throw InputError(SourceLocation{"peensim bench", 0, 0}, "scene",
-                     "no scene given and no shipped scenes (*.yaml) found; looked in " + looked +
-                         " (name the scene files on the command line)");
+    throw InputError(
+        SourceLocation{"peensim bench", 0, 0}, "scene",
+        "no scene given and no shipped scenes (*.yaml) found; looked in " + looked + " (name the scene files on the command line)");
 }
 
 namespace {
@@ -144,9 +144,7 @@ struct SchemeSpec {
 };
 
 std::vector<SchemeSpec> parse_schemes(const std::vector<std::string>& texts) {
-    const auto fail = [](const std::string& problem) {
-        throw InputError(SourceLocation{"command line", 0, 0}, "--schemes", problem);
-    };
+    const auto fail = [](const std::string& problem) { throw InputError(SourceLocation{"command line", 0, 0}, "--schemes", problem); };
     if (texts.size() < 2)
         fail("expected at least two schemes to compare, e.g. --schemes step,event (got " + std::to_string(texts.size()) + ")");
     std::vector<SchemeSpec> specs;
@@ -170,20 +168,20 @@ std::vector<SchemeSpec> parse_schemes(const std::vector<std::string>& texts) {
 }
 
 struct ComponentFigures {
-    std::string name;                           // component name, or "all logged"
+    std::string name;  // component name, or "all logged"
     bool logged = false;
-    bool total = false;                         // the "all logged" row
-    std::uint64_t impacts = 0;                  // every impact on it in the run
-    std::optional<BatchedImpactStats> stats;    // logged components (and the total) only
+    bool total = false;                       // the "all logged" row
+    std::uint64_t impacts = 0;                // every impact on it in the run
+    std::optional<BatchedImpactStats> stats;  // logged components (and the total) only
 };
 
 struct SchemeRun {
     SchemeSpec spec;
-    double duration_s = 0.0;     // s, the scene's process.duration
-    double simulated_s = 0.0;    // s, reached
-    double wall_s = 0.0;         // s, the stepping loop only (not compiling the model or placing shot)
+    double duration_s = 0.0;   // s, the scene's process.duration
+    double simulated_s = 0.0;  // s, reached
+    double wall_s = 0.0;       // s, the stepping loop only (not compiling the model or placing shot)
     int shot_count = 0;
-    std::uint64_t steps = 0;     // units of work of the scheme (time steps, or event stretches)
+    std::uint64_t steps = 0;  // units of work of the scheme (time steps, or event stretches)
     std::uint64_t shot_steps = 0;
     std::uint64_t shot_shot_impacts = 0;
     HealthCounters health;
@@ -265,7 +263,7 @@ SchemeRun run_scheme(const SceneDescription& scene, const SchemeSpec& spec) {
 
 // The figures of `run` compared with those of `reference` (same scene, same component rows).
 struct Comparison {
-    double speed_ratio = kNaN;  // -, wall of the reference / wall of the run
+    double speed_ratio = kNaN;                                // -, wall of the reference / wall of the run
     std::vector<std::optional<BenchDifference>> rate, speed;  // per component row; empty for unlogged rows
     bool within_noise = true;
 };
@@ -281,9 +279,10 @@ Comparison compare(const SchemeRun& reference, const SchemeRun& run) {
             c.speed.emplace_back();
             continue;
         }
-        c.rate.push_back(bench_difference(a.stats->rate_per_s(), a.stats->rate_se_per_s(), b.stats->rate_per_s(), b.stats->rate_se_per_s()));
-        c.speed.push_back(bench_difference(a.stats->mean_speed_m_per_s(), a.stats->mean_speed_se_m_per_s(),
-                                           b.stats->mean_speed_m_per_s(), b.stats->mean_speed_se_m_per_s()));
+        c.rate.push_back(
+            bench_difference(a.stats->rate_per_s(), a.stats->rate_se_per_s(), b.stats->rate_per_s(), b.stats->rate_se_per_s()));
+        c.speed.push_back(bench_difference(a.stats->mean_speed_m_per_s(), a.stats->mean_speed_se_m_per_s(), b.stats->mean_speed_m_per_s(),
+                                           b.stats->mean_speed_se_m_per_s()));
         c.within_noise = c.within_noise && c.rate.back()->within_noise && c.speed.back()->within_noise;
     }
     return c;
@@ -359,8 +358,8 @@ void print_scene(const std::string& scene_path, const std::vector<SchemeRun>& ru
     }
     for (std::size_t i = 1; i < runs.size(); ++i) {
         const Comparison c = compare(first, runs[i]);
-        out << "  " << runs[i].spec.label << " against " << first.spec.label << ": speed ratio "
-            << format("%.3f", c.speed_ratio) << " (wall " << first.spec.label << " / wall " << runs[i].spec.label << ")\n";
+        out << "  " << runs[i].spec.label << " against " << first.spec.label << ": speed ratio " << format("%.3f", c.speed_ratio)
+            << " (wall " << first.spec.label << " / wall " << runs[i].spec.label << ")\n";
         for (std::size_t k = 0; k < runs[i].components.size(); ++k) {
             if (!c.rate[k]) continue;
             const std::string& name = runs[i].components[k].name;
@@ -406,9 +405,10 @@ std::string csv_text(const std::string& s) {
 }
 
 std::string csv_header() {
-    std::string h = "scene,scheme_label,scheme,compared_with,component,logged,duration_s,simulated_s,wall_s,"
-                    "wall_s_per_simulated_s,steps,shot_steps,impacts,impact_rate_per_s,impact_rate_se_per_s,"
-                    "mean_normal_speed_m_per_s,mean_normal_speed_se_m_per_s,shot_shot_impacts_per_s,serious_health";
+    std::string h =
+        "scene,scheme_label,scheme,compared_with,component,logged,duration_s,simulated_s,wall_s,"
+        "wall_s_per_simulated_s,steps,shot_steps,impacts,impact_rate_per_s,impact_rate_se_per_s,"
+        "mean_normal_speed_m_per_s,mean_normal_speed_se_m_per_s,shot_shot_impacts_per_s,serious_health";
     HealthCounters{}.for_each([&](const char* name, std::uint64_t) { h += std::string(",health_") + name; });
     for (std::string_view stage : kStageNames) h += ",stage_" + std::string(stage) + "_s";
     h += ",speed_ratio,impact_rate_difference_percent,impact_rate_bound_percent,mean_normal_speed_difference_percent,"
@@ -427,8 +427,9 @@ void csv_rows(const std::string& scene_path, const std::vector<SchemeRun>& runs,
             for (double v : {r.duration_s, r.simulated_s, r.wall_s, r.wall_s / r.simulated_s}) row += "," + csv_number(v);
             row += "," + std::to_string(r.steps) + "," + std::to_string(r.shot_steps) + "," + std::to_string(f.impacts);
             row += "," + csv_number(r.per_simulated_s(static_cast<double>(f.impacts)));
-            for (double v : {f.stats ? f.stats->rate_se_per_s() : kNaN, f.stats ? f.stats->mean_speed_m_per_s() : kNaN,
-                             f.stats ? f.stats->mean_speed_se_m_per_s() : kNaN, r.per_simulated_s(static_cast<double>(r.shot_shot_impacts))})
+            for (double v :
+                 {f.stats ? f.stats->rate_se_per_s() : kNaN, f.stats ? f.stats->mean_speed_m_per_s() : kNaN,
+                  f.stats ? f.stats->mean_speed_se_m_per_s() : kNaN, r.per_simulated_s(static_cast<double>(r.shot_shot_impacts))})
                 row += "," + csv_number(v);
             row += "," + std::to_string(r.health.serious());
             r.health.for_each([&](const char*, std::uint64_t v) { row += "," + std::to_string(v); });
@@ -455,9 +456,8 @@ std::string own_executable() {
 int bench(const BenchOptions& options, std::ostream& out) {
     const std::vector<SchemeSpec> schemes = parse_schemes(options.schemes);
     const std::vector<std::string> scenes =
-        options.scene_paths.empty()
-            ? shipped_scenes(options.executable_path.empty() ? own_executable() : options.executable_path)
-            : options.scene_paths;
+        options.scene_paths.empty() ? shipped_scenes(options.executable_path.empty() ? own_executable() : options.executable_path)
+                                    : options.scene_paths;
 
     // Every scene is read (with every scheme's overrides) before the first run, so a typo in the
     // last scene fails in a second, not after minutes of simulation.

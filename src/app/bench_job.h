@@ -11,14 +11,14 @@
 namespace peensim {
 
 struct BenchOptions {
-    std::vector<std::string> scene_paths;   // empty: every *.yaml of the shipped scenes/ directory
-    std::vector<std::string> overrides;     // --set path=value, applied to every scene and scheme
-    std::string duration;                   // --duration: process.duration of every scene ("0.5", "500 ms"); "" = each scene's own
+    std::vector<std::string> scene_paths;  // empty: every *.yaml of the shipped scenes/ directory
+    std::vector<std::string> overrides;    // --set path=value, applied to every scene and scheme
+    std::string duration;                  // --duration: process.duration of every scene ("0.5", "500 ms"); "" = each scene's own
     // --schemes: two or more, each `step`, `event`, or either followed by its own overrides
     // (`step:accuracy.travel_fraction=0.1`, ':'-separated); every scheme is compared with the first.
     std::vector<std::string> schemes{"step", "event"};
-    std::string csv_path;                   // --csv: also write every figure there; "" = no CSV
-    std::string executable_path;            // where the shipped scenes are looked for from; "" = /proc/self/exe
+    std::string csv_path;         // --csv: also write every figure there; "" = no CSV
+    std::string executable_path;  // where the shipped scenes are looked for from; "" = /proc/self/exe
 };
 
 // Runs every scene with every scheme and prints a table per scene, the comparisons and a summary
@@ -50,21 +50,21 @@ class BatchedImpactStats {
 public:
     explicit BatchedImpactStats(double duration_s = 1.0);
 
-    void add(double time_s, double vn_m_per_s);  // s from the start of the run, m/s normal approach speed
-    void merge(const BatchedImpactStats& other); // same duration
+    void add(double time_s, double vn_m_per_s);   // s from the start of the run, m/s normal approach speed
+    void merge(const BatchedImpactStats& other);  // same duration
 
     std::uint64_t count() const { return count_; }
-    double rate_per_s() const;                   // 1/s, impacts per simulated second
-    double rate_se_per_s() const;                // 1/s, standard error of the rate (batch means)
-    double mean_speed_m_per_s() const;           // m/s, mean normal speed; NaN without impacts
-    double mean_speed_se_m_per_s() const;        // m/s, its standard error (ratio estimator over batches); NaN without impacts
+    double rate_per_s() const;             // 1/s, impacts per simulated second
+    double rate_se_per_s() const;          // 1/s, standard error of the rate (batch means)
+    double mean_speed_m_per_s() const;     // m/s, mean normal speed; NaN without impacts
+    double mean_speed_se_m_per_s() const;  // m/s, its standard error (ratio estimator over batches); NaN without impacts
 
 private:
     double duration_s_;
     std::uint64_t count_ = 0;
-    double speed_sum_ = 0.0;                     // m/s, summed normal speeds
+    double speed_sum_ = 0.0;  // m/s, summed normal speeds
     std::uint64_t batch_count_[kBenchBatches]{};
-    double batch_speed_sum_[kBenchBatches]{};    // m/s
+    double batch_speed_sum_[kBenchBatches]{};  // m/s
 };
 
 // The relative difference of b from a and whether it is within noise: |b - a| <= 3 sqrt(se_a^2 + se_b^2).

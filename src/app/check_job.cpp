@@ -21,7 +21,6 @@ namespace peensim {
 
 namespace {
 
-
 std::string mm(double m) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(3) << m * 1e3;
@@ -39,30 +38,33 @@ void print_assembly(const Model& model, const AssemblyReport& report, std::ostre
             << mm(f.hi.z()) << "), size " << mm(size.x()) << " x " << mm(size.y()) << " x " << mm(size.z()) << ", " << f.triangles
             << " triangles, " << (f.closed ? "closed" : "open") << "\n";
         if (std::isfinite(f.reachable_fraction))
-            out << "#   " << std::setw(24) << "" << " clearance to the sonotrode (less A0) " << mm(f.clearance_to_sonotrode_m)
-                << ", to the chamber " << mm(f.clearance_to_chamber_m) << "; shot reach " << std::setprecision(0) << std::fixed
-                << 100.0 * f.reachable_fraction << " % of its surface\n"
+            out << "#   " << std::setw(24) << ""
+                << " clearance to the sonotrode (less A0) " << mm(f.clearance_to_sonotrode_m) << ", to the chamber "
+                << mm(f.clearance_to_chamber_m) << "; shot reach " << std::setprecision(0) << std::fixed << 100.0 * f.reachable_fraction
+                << " % of its surface\n"
                 << std::defaultfloat << std::setprecision(6);
         if (c.kinematics.kind == Kinematics::Kind::vibrating)
-            out << "#   " << std::setw(24) << "" << " vibrates along (" << c.kinematics.axis.x() << ", " << c.kinematics.axis.y() << ", "
-                << c.kinematics.axis.z() << "), A0 " << c.kinematics.amplitude_m * 1e6 << " um, " << c.kinematics.frequency_hz * 1e-3 << " kHz\n";
+            out << "#   " << std::setw(24) << ""
+                << " vibrates along (" << c.kinematics.axis.x() << ", " << c.kinematics.axis.y() << ", " << c.kinematics.axis.z()
+                << "), A0 " << c.kinematics.amplitude_m * 1e6 << " um, " << c.kinematics.frequency_hz * 1e-3 << " kHz\n";
         if (c.kinematics.kind == Kinematics::Kind::rotating) {
             const Vec3& p = c.kinematics.axis_point_m;
             const Vec3& u = c.kinematics.axis_direction;
-            out << "#   " << std::setw(24) << "" << " turns about the axis through (" << mm(p.x()) << ", " << mm(p.y()) << ", " << mm(p.z())
-                << ") along (" << u.x() << ", " << u.y() << ", " << u.z() << ") at " << c.kinematics.omega_rad_per_s * 30.0 / M_PI
-                << " rpm\n";
+            out << "#   " << std::setw(24) << ""
+                << " turns about the axis through (" << mm(p.x()) << ", " << mm(p.y()) << ", " << mm(p.z()) << ") along (" << u.x() << ", "
+                << u.y() << ", " << u.z() << ") at " << c.kinematics.omega_rad_per_s * 30.0 / M_PI << " rpm\n";
         }
     }
 }
 
 void print_report(const Model& model, const AssemblyReport& assembly, std::size_t warnings, const InitialShots& shots, std::ostream& out) {
-    out << "# peensim check: the scene is valid" << (warnings ? " (with " + std::to_string(warnings) + " warning(s), above)" : std::string()) << ".\n";
+    out << "# peensim check: the scene is valid"
+        << (warnings ? " (with " + std::to_string(warnings) + " warning(s), above)" : std::string()) << ".\n";
     out << "# components:\n";
     for (const Component& c : model.components) {
-        out << "#   " << std::left << std::setw(14) << c.name << std::setw(10) << role_name(c.role) << std::right
-            << std::setw(8) << c.mesh->triangle_count() << " triangles, contact '" << c.coefficients_source << "'"
-            << (c.logged ? ", impacts logged" : "") << "\n";
+        out << "#   " << std::left << std::setw(14) << c.name << std::setw(10) << role_name(c.role) << std::right << std::setw(8)
+            << c.mesh->triangle_count() << " triangles, contact '" << c.coefficients_source << "'" << (c.logged ? ", impacts logged" : "")
+            << "\n";
     }
     print_assembly(model, assembly, out);
     const double dt_rest = TimeStepping::time_step(model, model.peak_surface_speed_m_per_s);

@@ -156,7 +156,8 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
         if (s.law_state[k].size() != fresh[k].size())
             throw damaged(path, "component " + model.components[k].name + ": contact law state of the wrong length");
         for (double x : s.law_state[k])
-            if (!std::isfinite(x)) throw damaged(path, "component " + model.components[k].name + ": contact law state that is not a number");
+            if (!std::isfinite(x))
+                throw damaged(path, "component " + model.components[k].name + ": contact law state that is not a number");
     }
     for (std::size_t i = 0; i < n; ++i) {
         if (s.shots.active[i] > 1 || s.shots.in_flight[i] > 1) throw damaged(path, "shot " + std::to_string(i) + ": flags not 0 or 1");

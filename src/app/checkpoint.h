@@ -16,12 +16,12 @@ namespace peensim {
 inline constexpr const char* kCheckpointFileName = "checkpoint.bin";
 
 struct Checkpoint {
-    std::uint64_t scene_hash = 0;       // must match the scene being resumed
+    std::uint64_t scene_hash = 0;  // must match the scene being resumed
     SimulationState state;
-    std::uint64_t csv_bytes = 0;        // bytes of impacts.csv.partial that belong to this state
+    std::uint64_t csv_bytes = 0;  // bytes of impacts.csv.partial that belong to this state
     std::uint64_t csv_rows = 0;
     std::vector<SpeedHistogram> normal_speeds;  // per logged component, in component order
-    double wall_time_s = 0.0;           // s, wall time spent before this checkpoint
+    double wall_time_s = 0.0;                   // s, wall time spent before this checkpoint
 };
 
 // The file ends with a checksum of everything before it.

@@ -30,7 +30,7 @@ public:
     bool due();
 
 private:
-    double interval_s_;        // s of wall time between checkpoints
+    double interval_s_;  // s of wall time between checkpoints
     WallClock clock_;
     double interval_start_s_;  // s, clock reading when the current interval began
     double last_point_s_;      // s, clock reading at the previous restart point (or the start)

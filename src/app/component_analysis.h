@@ -36,11 +36,11 @@ struct ComponentAnalysis {
     double yield_stress_pa = 0.0;           // Pa (0: none)
     ImpactHistograms histograms;
     std::uint64_t impacts = 0;
-    double speed_sum = 0.0;                 // m/s, summed over impacts
-    double dent_sum = 0.0;                  // m, summed over impacts
+    double speed_sum = 0.0;  // m/s, summed over impacts
+    double dent_sum = 0.0;   // m, summed over impacts
     std::vector<CoveragePoint> curve;
-    std::unique_ptr<ImpactPointsVtpWriter> points;  // the impacts, for ParaView
-    std::vector<Region> regions;                    // the scene's regions of the component
+    std::unique_ptr<ImpactPointsVtpWriter> points;    // the impacts, for ParaView
+    std::vector<Region> regions;                      // the scene's regions of the component
     std::vector<ImpactHistograms> region_histograms;  // per region, same order
     // The regions holding triangle t: region_index_[region_start_[t] .. region_start_[t + 1]).
     std::vector<std::uint32_t> region_start;

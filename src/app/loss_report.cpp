@@ -29,9 +29,10 @@ std::string describe_loss(const Model& model, const LostShot& l) {
               << "assembly is open there by at least the shot diameter (" << D_mm << " mm): check the meshes and their placement";
             break;
         case LossCause::engine_error:
-            o << "error: shot " << l.shot << " was lost at t = " << l.time_s << " s by an engine error: after its last event at t = "
-              << l.from_time_s << " s at " << mm(l.from_m) << " it crossed " << name_of(model, l.component) << " at " << mm(l.where_m)
-              << " unseen and left at " << mm(l.position_m) << " (counted in engine_errors; please report this run)";
+            o << "error: shot " << l.shot << " was lost at t = " << l.time_s
+              << " s by an engine error: after its last event at t = " << l.from_time_s << " s at " << mm(l.from_m) << " it crossed "
+              << name_of(model, l.component) << " at " << mm(l.where_m) << " unseen and left at " << mm(l.position_m)
+              << " (counted in engine_errors; please report this run)";
             break;
         case LossCause::not_diagnosed:
             o << "warning: shot " << l.shot << " left the chamber at t = " << l.time_s << " s near " << mm(l.position_m)

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "engine/impact_record.h"
 #include "engine/simulation_state.h"
 #include "model/model.h"
-#include "engine/impact_record.h"
 
 namespace peensim {
 
@@ -26,10 +26,10 @@ public:
     // The simulated time (s) of the next frame to draw (infinity: none left); the run pauses the
     // event-driven scheme there, so that the frame shows the state of that very moment.
     virtual double next_frame_s() const = 0;
-    virtual void flush() = 0;                  // waits for the frames being written
-    virtual std::string finish_video() = 0;    // the MP4, and a note for the user
+    virtual void flush() = 0;                // waits for the frames being written
+    virtual std::string finish_video() = 0;  // the MP4, and a note for the user
     virtual int frames_drawn() const = 0;
-    virtual double draw_seconds() const = 0;   // wall s spent drawing
+    virtual double draw_seconds() const = 0;  // wall s spent drawing
 };
 
 struct RenderImpactsOptions {

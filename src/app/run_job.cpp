@@ -12,11 +12,11 @@
 #include "app/analyze_job.h"
 #include "app/checkpoint.h"
 #include "app/checkpoint_cadence.h"
-#include "app/render_module.h"
-#include "app/setup_checks.h"
 #include "app/interrupt.h"
 #include "app/loss_report.h"
+#include "app/render_module.h"
 #include "app/report_errors.h"
+#include "app/setup_checks.h"
 #include "app/summary_builder.h"
 #include "common/input_error.h"
 #include "engine/run_loop.h"
@@ -155,7 +155,8 @@ private:
             ProgressReporter progress;
             CheckpointCadence cadence;
             Listener(Job& j, bool show_progress)
-                : job(j), progress(j.err_, show_progress),
+                : job(j),
+                  progress(j.err_, show_progress),
                   cadence(j.model_->description.output.checkpoint_interval_s, j.options_.checkpoint_clock) {}
             double pause_at_s() const override {
                 return job.recorder_ ? job.recorder_->next_frame_s() : std::numeric_limits<double>::infinity();
@@ -214,8 +215,8 @@ private:
         if (recorder_) recorder_->flush();  // the frames drawn so far are complete files
         checkpoint();
         write_summary((fs::path(dir_) / "summary.json").string(), summary(false));
-        err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s
-             << " s; outputs in " << dir_ << " are consistent up to that time.\n"
+        err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s << " s; outputs in " << dir_
+             << " are consistent up to that time.\n"
              << "resume with: " << resume_command() << "\n";
         return kExitInterrupted;
     }

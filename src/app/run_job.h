@@ -14,14 +14,14 @@ namespace peensim {
 
 struct RunOptions {
     std::string scene_path;
-    std::vector<std::string> overrides;   // --set path=value
-    std::string output_dir;               // -o; "" = the scene's output.directory, else out/<scene name>
-    bool progress = true;                 // draw a progress bar (only on a terminal)
-    bool resume = false;                  // continue from output_dir/checkpoint.bin
-    bool strict = false;                  // fail (exit 3) if a serious health counter is non-zero
-    bool analyze = true;                  // run `peensim analyze` on the outputs when the run finishes
-    std::optional<bool> render;           // --render / --no-render; empty = as the scene's `render` block says
-    std::optional<std::uint64_t> stop_after_steps;  // interrupt after this many steps (tests, benchmarks)
+    std::vector<std::string> overrides;                // --set path=value
+    std::string output_dir;                            // -o; "" = the scene's output.directory, else out/<scene name>
+    bool progress = true;                              // draw a progress bar (only on a terminal)
+    bool resume = false;                               // continue from output_dir/checkpoint.bin
+    bool strict = false;                               // fail (exit 3) if a serious health counter is non-zero
+    bool analyze = true;                               // run `peensim analyze` on the outputs when the run finishes
+    std::optional<bool> render;                        // --render / --no-render; empty = as the scene's `render` block says
+    std::optional<std::uint64_t> stop_after_steps;     // interrupt after this many steps (tests, benchmarks)
     WallClock checkpoint_clock = steady_wall_clock();  // the clock checkpoint intervals follow (tests: a fake one)
 };
 

@@ -17,7 +17,7 @@
 namespace peensim {
 
 struct SetupCheck {
-    Random rng;                           // the placement's generator, after the cavity's probes
+    Random rng;  // the placement's generator, after the cavity's probes
     std::unique_ptr<ShotCavity> cavity;
     AssemblyReport assembly;
     std::size_t warnings = 0;

@@ -6,8 +6,8 @@
 
 namespace peensim {
 
-RunSummary build_summary(const Simulation& sim, const std::string& scene_file,
-                         const std::vector<SpeedHistogram>& normal_speeds, double wall_time_s, bool finished) {
+RunSummary build_summary(const Simulation& sim, const std::string& scene_file, const std::vector<SpeedHistogram>& normal_speeds,
+                         double wall_time_s, bool finished) {
     const Model& model = sim.model();
     const SimulationState& state = sim.state();
     RunSummary s;

@@ -12,7 +12,7 @@
 namespace peensim {
 
 // normal_speeds: one histogram per logged component, in component order.
-RunSummary build_summary(const Simulation& sim, const std::string& scene_file,
-                         const std::vector<SpeedHistogram>& normal_speeds, double wall_time_s, bool finished);
+RunSummary build_summary(const Simulation& sim, const std::string& scene_file, const std::vector<SpeedHistogram>& normal_speeds,
+                         double wall_time_s, bool finished);
 
 }  // namespace peensim

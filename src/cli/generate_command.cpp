@@ -73,7 +73,8 @@ public:
     double degrees(const std::string& key) const { return number(key) * std::numbers::pi / 180.0; }
     int count(const std::string& key) const {
         const double value = number(key);
-        if (value != std::floor(value) || value < 0 || value > 1e9) throw UsageError("--" + key + ": expected a whole number, got '" + text(key) + "'");
+        if (value != std::floor(value) || value < 0 || value > 1e9)
+            throw UsageError("--" + key + ": expected a whole number, got '" + text(key) + "'");
         return static_cast<int>(value);
     }
     Vec3 centre() const { return Vec3(millimetres("center-x-mm"), millimetres("center-y-mm"), millimetres("center-z-mm")); }
@@ -124,8 +125,8 @@ TriangleMesh build_box(const Options& o) {
         if (chosen == Facing::inward) throw UsageError("--facing inward needs an --open-face (a closed box faces outward)");
         return box(spec);
     }
-    const std::map<std::string, BoxFace> faces{{"-x", BoxFace::minus_x}, {"+x", BoxFace::plus_x}, {"-y", BoxFace::minus_y},
-                                               {"+y", BoxFace::plus_y}, {"-z", BoxFace::minus_z}, {"+z", BoxFace::plus_z}};
+    const std::map<std::string, BoxFace> faces{{"-x", BoxFace::minus_x}, {"+x", BoxFace::plus_x},  {"-y", BoxFace::minus_y},
+                                               {"+y", BoxFace::plus_y},  {"-z", BoxFace::minus_z}, {"+z", BoxFace::plus_z}};
     if (!faces.count(open)) throw UsageError("--open-face: expected none, -x, +x, -y, +y, -z or +z, got '" + open + "'");
     return box_open(spec, faces.at(open), chosen);
 }
@@ -170,9 +171,9 @@ TriangleMesh build_gear(const Options& o) {
     spec.axis = o.axis();
     spec.center_m = o.centre();
     if (o.given("edge-mm") && o.given("triangles")) throw UsageError("give --triangles or --edge-mm, not both");
-    const SpurGearResolution resolution =
-        o.given("edge-mm") ? gear_resolution_for_edge_length(spec, o.millimetres("edge-mm"))
-                           : gear_resolution_for_triangle_count(spec, static_cast<std::size_t>(o.count("triangles")));
+    const SpurGearResolution resolution = o.given("edge-mm")
+                                              ? gear_resolution_for_edge_length(spec, o.millimetres("edge-mm"))
+                                              : gear_resolution_for_triangle_count(spec, static_cast<std::size_t>(o.count("triangles")));
     return spur_gear(spec, resolution);
 }
 
@@ -197,7 +198,8 @@ const std::vector<Shape>& shapes() {
                       {"cap-rings", "1", "rings per cap (1 = a fan)"},
                       {"capped", "yes", "yes or no"}}),
          build_cylinder},
-        {"chamber", "two-section cylindrical chamber, z axis, open bottom, normals into the cavity",
+        {"chamber",
+         "two-section cylindrical chamber, z axis, open bottom, normals into the cavity",
          {{"lower-radius-mm", "", "radius of the lower section (mm)"},
           {"upper-radius-mm", "", "radius of the upper section (mm)"},
           {"bottom-z-mm", "", "z of the open bottom rim (mm)"},
@@ -232,8 +234,10 @@ void print_usage(std::ostream& out) {
         out << "\n  " << shape.name << ": " << shape.summary << "\n";
         for (const OptionSpec& o : shape.options) {
             out << "    --" << o.key << "  " << o.help;
-            if (!o.default_value.empty()) out << " [default " << o.default_value << "]";
-            else if (!o.may_be_absent) out << " [required]";
+            if (!o.default_value.empty())
+                out << " [default " << o.default_value << "]";
+            else if (!o.may_be_absent)
+                out << " [required]";
             out << "\n";
         }
     }
@@ -253,9 +257,8 @@ void report(std::ostream& out, const std::string& path, const TriangleMesh& mesh
     } else {
         out << "open (" << edge_report(mesh).boundary_edges << " boundary edges)";
     }
-    out << ", bounds x " << millimetre_range(box.min_m.x(), box.max_m.x()) << " y "
-        << millimetre_range(box.min_m.y(), box.max_m.y()) << " z " << millimetre_range(box.min_m.z(), box.max_m.z())
-        << " mm\n";
+    out << ", bounds x " << millimetre_range(box.min_m.x(), box.max_m.x()) << " y " << millimetre_range(box.min_m.y(), box.max_m.y())
+        << " z " << millimetre_range(box.min_m.z(), box.max_m.z()) << " mm\n";
 }
 
 }  // namespace

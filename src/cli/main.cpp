@@ -26,14 +26,18 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false);
     run_cmd->add_flag("-q,--quiet", quiet, "no progress bar and no summary on stdout");
     run_cmd->add_flag("--resume", run.resume, "continue an interrupted run from its checkpoint in the output directory");
-    run_cmd->add_flag("--strict", run.strict, "assembly warnings are errors (exit 2), and exit 3 if any shot was lost or the numerics went wrong");
+    run_cmd->add_flag("--strict", run.strict,
+                      "assembly warnings are errors (exit 2), and exit 3 if any shot was lost or the numerics went wrong");
     bool no_analyze = false;
     run_cmd->add_flag("--no-analyze", no_analyze, "do not analyse the impacts when the run finishes");
     bool render_on = false, render_off = false;
-    auto* render_flag = run_cmd->add_flag("--render", render_on, "record the animation (frames/ and animation.mp4) with the scene's `render` block or its defaults");
-    run_cmd->add_flag("--no-render", render_off, "do not record the animation even if the scene has a `render` block")->excludes(render_flag);
+    auto* render_flag = run_cmd->add_flag(
+        "--render", render_on, "record the animation (frames/ and animation.mp4) with the scene's `render` block or its defaults");
+    run_cmd->add_flag("--no-render", render_off, "do not record the animation even if the scene has a `render` block")
+        ->excludes(render_flag);
     std::string scheme;
-    run_cmd->add_option("--scheme", scheme, "stepping scheme, overriding the scene's accuracy.scheme")->check(CLI::IsMember({"step", "event"}));
+    run_cmd->add_option("--scheme", scheme, "stepping scheme, overriding the scene's accuracy.scheme")
+        ->check(CLI::IsMember({"step", "event"}));
     std::uint64_t stop_after = 0;
     run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
 
@@ -52,24 +56,30 @@ int main(int argc, char** argv) {
     analyze_cmd->add_option("outdir", analyze_dir, "the run's output directory")->required();
 
     RenderImpactsOptions render_impacts;
-    auto* render_impacts_cmd = app.add_subcommand("render-impacts", "stills of the logged parts coloured by impacts, mean normal speed, coverage (after analyze)");
+    auto* render_impacts_cmd =
+        app.add_subcommand("render-impacts", "stills of the logged parts coloured by impacts, mean normal speed, coverage (after analyze)");
     render_impacts_cmd->add_option("outdir", render_impacts.output_dir, "the run's output directory")->required();
     render_impacts_cmd->add_option("--field", render_impacts.fields, "impacts, speed or coverage (repeatable; default: all)");
     render_impacts_cmd->add_option("--width", render_impacts.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
     render_impacts_cmd->add_option("--height", render_impacts.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
 
     BenchOptions bench;
-    auto* bench_cmd = app.add_subcommand("bench", "run stepping schemes side by side on scenes (default: the shipped ones): speed ratio and impact statistics");
+    auto* bench_cmd = app.add_subcommand(
+        "bench", "run stepping schemes side by side on scenes (default: the shipped ones): speed ratio and impact statistics");
     bench_cmd->add_option("scene", bench.scene_paths, "scene files (YAML); default: every *.yaml of the shipped scenes/");
-    bench_cmd->add_option("--duration", bench.duration, "simulated time of every scene (s, or with a unit: \"500 ms\"); default: each scene's process.duration");
+    bench_cmd->add_option("--duration", bench.duration,
+                          "simulated time of every scene (s, or with a unit: \"500 ms\"); default: each scene's process.duration");
     bench_cmd->add_option("--set", bench.overrides, "override a scene field for every scene and scheme")->allow_extra_args(false);
-    bench_cmd->add_option("--schemes", bench.schemes, "schemes to compare with the first, e.g. step,event or step,step:accuracy.travel_fraction=0.1")
+    bench_cmd
+        ->add_option("--schemes", bench.schemes,
+                     "schemes to compare with the first, e.g. step,event or step,step:accuracy.travel_fraction=0.1")
         ->delimiter(',')
         ->allow_extra_args(false)
         ->default_str("step,event");
     bench_cmd->add_option("--csv", bench.csv_path, "also write every figure to this CSV file");
 
-    auto* generate_cmd = app.add_subcommand("generate", "write a generated mesh (gear, cylinder, box, chamber); see 'peensim generate --help'");
+    auto* generate_cmd =
+        app.add_subcommand("generate", "write a generated mesh (gear, cylinder, box, chamber); see 'peensim generate --help'");
     generate_cmd->prefix_command();
     generate_cmd->set_help_flag();
 

@@ -72,7 +72,8 @@ DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double 
                     for (int di = -1; di <= 1; ++di) {
                         const long ii = static_cast<long>(i) + di, jj = static_cast<long>(j) + dj, kk = static_cast<long>(k) + dk;
                         if (ii < 0 || jj < 0 || kk < 0 || ii >= nx_ || jj >= ny_ || kk >= nz_) continue;
-                        std::uint8_t& cell = cells_[index(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj), static_cast<std::size_t>(kk))];
+                        std::uint8_t& cell =
+                            cells_[index(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj), static_cast<std::size_t>(kk))];
                         if (cell > level) {
                             cell = static_cast<std::uint8_t>(level);
                             next.push_back(index(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj), static_cast<std::size_t>(kk)));
@@ -82,8 +83,7 @@ DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double 
         frontier.swap(next);
     }
     bound_of_level_.resize(static_cast<std::size_t>(levels) + 1);
-    for (int level = 0; level <= levels; ++level)
-        bound_of_level_[static_cast<std::size_t>(level)] = std::max(0, level - 1) * cell_;
+    for (int level = 0; level <= levels; ++level) bound_of_level_[static_cast<std::size_t>(level)] = std::max(0, level - 1) * cell_;
 }
 
 double DistanceGate::outside_bound(const Vec3& p) const {

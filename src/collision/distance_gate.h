@@ -49,7 +49,9 @@ public:
     int nz() const { return nz_; }
     // Chebyshev cell distance of cell (i, j, k) to the nearest cell a triangle may touch (0 = touched).
     int level(int i, int j, int k) const {
-        return cells_[(static_cast<std::size_t>(k) * static_cast<std::size_t>(ny_) + static_cast<std::size_t>(j)) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)];
+        return cells_[(static_cast<std::size_t>(k) * static_cast<std::size_t>(ny_) + static_cast<std::size_t>(j)) *
+                          static_cast<std::size_t>(nx_) +
+                      static_cast<std::size_t>(i)];
     }
     Vec3 cell_centre(int i, int j, int k) const { return origin_ + cell_ * Vec3(i + 0.5, j + 0.5, k + 0.5); }
     // Cell containing p, or false if p is outside the grid.
@@ -73,13 +75,13 @@ public:
 private:
     double outside_bound(const Vec3& p) const;
 
-    Vec3 origin_;                 // m, corner of cell (0,0,0)
-    double cell_ = 0.0;           // m
-    double inv_cell_ = 0.0;       // 1/m
+    Vec3 origin_;            // m, corner of cell (0,0,0)
+    double cell_ = 0.0;      // m
+    double inv_cell_ = 0.0;  // 1/m
     int nx_ = 0, ny_ = 0, nz_ = 0;
-    Vec3 mesh_lo_, mesh_hi_;      // m, mesh bounds
-    std::vector<std::uint8_t> cells_;        // Chebyshev cell distance to a marked cell, capped
-    std::vector<double> bound_of_level_;     // m, lower bound for each stored level
+    Vec3 mesh_lo_, mesh_hi_;              // m, mesh bounds
+    std::vector<std::uint8_t> cells_;     // Chebyshev cell distance to a marked cell, capped
+    std::vector<double> bound_of_level_;  // m, lower bound for each stored level
 };
 
 }  // namespace peensim

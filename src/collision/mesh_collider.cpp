@@ -32,9 +32,9 @@ private:
 }  // namespace
 
 struct MeshCollider::Impl {
-    std::vector<btScalar> vertices;   // x, y, z per vertex (m): what our exact tests use
+    std::vector<btScalar> vertices;         // x, y, z per vertex (m): what our exact tests use
     std::vector<btScalar> bullet_vertices;  // the same times kBulletScale: what Bullet's BVH is built on
-    std::vector<int> indices;         // 3 per triangle
+    std::vector<int> indices;               // 3 per triangle
     // Per triangle: unit normal and offset (n . x = d), in float to keep fine meshes small; the
     // plane test allows for their rounding (kPlaneSlack).
     struct Plane {
@@ -64,12 +64,12 @@ MeshCollider::MeshCollider(const TriangleMesh& mesh) : impl_(std::make_unique<Im
         const Vec3 a = mesh.corner(t, 0);
         Vec3 n = (mesh.corner(t, 1) - a).cross(mesh.corner(t, 2) - a);
         n = n.norm() > 0.0 ? Vec3(n.normalized()) : Vec3::Zero();  // degenerate: never rejected
-        impl_->planes.push_back({static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
-                                 static_cast<float>(n.dot(a))});
+        impl_->planes.push_back(
+            {static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()), static_cast<float>(n.dot(a))});
     }
-    impl_->arrays = std::make_unique<btTriangleIndexVertexArray>(
-        static_cast<int>(mesh.triangles.size()), impl_->indices.data(), static_cast<int>(3 * sizeof(int)),
-        static_cast<int>(mesh.vertices.size()), impl_->bullet_vertices.data(), static_cast<int>(3 * sizeof(btScalar)));
+    impl_->arrays = std::make_unique<btTriangleIndexVertexArray>(static_cast<int>(mesh.triangles.size()), impl_->indices.data(),
+                                                                 static_cast<int>(3 * sizeof(int)), static_cast<int>(mesh.vertices.size()),
+                                                                 impl_->bullet_vertices.data(), static_cast<int>(3 * sizeof(btScalar)));
     // Quantized BVH: compact nodes, the fastest traversal Bullet offers for static triangle sets.
     impl_->shape = std::make_unique<btBvhTriangleMeshShape>(impl_->arrays.get(), /*useQuantizedAabbCompression=*/true);
     // Bullet's default collision margin (0.04 m) is larger than a shot; our own tests use exact
@@ -165,8 +165,8 @@ bool MeshCollider::closest_within(const Vec3& p, double radius, Closest& out, Qu
     return true;
 }
 
-ToiStatus MeshCollider::first_hit(const Trajectory& path, double radius, double t_begin, double t_end, Hit& out,
-                                  SweepCounters& counters, int queue_capacity) const {
+ToiStatus MeshCollider::first_hit(const Trajectory& path, double radius, double t_begin, double t_end, Hit& out, SweepCounters& counters,
+                                  int queue_capacity) const {
     // Best-first in time. Leaves are tested in key order and the walk stops once the next key is
     // later than the best contact, so the cost follows the few triangles the sphere can reach
     // first, not every triangle within R of its path (what an overlap query would return).
@@ -264,8 +264,7 @@ ToiStatus MeshCollider::first_hit(const Trajectory& path, double radius, double 
             found = sphere_triangle_toi(path, radius, a, b, c, t_begin, until, contact);
         } else {
             // Clear of the triangle until the key, so the search alone is exact.
-            found = sphere_triangle_first_touch(path, radius, a, b, c, q.key, until, contact) ? ToiStatus::impact
-                                                                                              : ToiStatus::miss;
+            found = sphere_triangle_first_touch(path, radius, a, b, c, q.key, until, contact) ? ToiStatus::impact : ToiStatus::miss;
         }
         if (found == ToiStatus::overlapping) {
             out = {t, contact};
@@ -354,8 +353,7 @@ std::size_t MeshCollider::memory_bytes() const {
     btOptimizedBvh* bvh = impl_->shape->getOptimizedBvh();
     const std::size_t nodes = bvh ? static_cast<std::size_t>(bvh->getQuantizedNodeArray().size()) : 0;
     return 2 * impl_->vertices.size() * sizeof(btScalar) + impl_->indices.size() * sizeof(int) +
-           impl_->planes.size() * sizeof(Impl::Plane) +
-           nodes * sizeof(btQuantizedBvhNode);
+           impl_->planes.size() * sizeof(Impl::Plane) + nodes * sizeof(btQuantizedBvhNode);
 }
 
 }  // namespace peensim

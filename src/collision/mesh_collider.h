@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "common/vec.h"
+#include "geometry/triangle_mesh.h"
 #include "kernels/sphere_triangle_toi.h"
 #include "kernels/toi_status.h"
 #include "kernels/trajectory.h"
-#include "geometry/triangle_mesh.h"
 
 namespace peensim {
 
@@ -32,9 +32,9 @@ public:
     // far; a plane test rejects most leaves cheaply, the exact closest point decides the rest.
     // Allocates nothing.
     struct Closest {
-        int triangle = -1;     // index into the mesh's triangles
-        double distance = 0.0; // m
-        Vec3 point;            // m, mesh frame
+        int triangle = -1;      // index into the mesh's triangles
+        double distance = 0.0;  // m
+        Vec3 point;             // m, mesh frame
     };
     struct QueryCounters {
         std::uint64_t triangles_returned = 0;  // BVH leaves reached
@@ -65,8 +65,8 @@ public:
     // queue_capacity: entries of the time-ordered queue (at most kFirstHitQueueCapacity); when full,
     // a subtree is walked depth-first instead, with the same answer (tests shrink it to exercise that).
     static constexpr int kFirstHitQueueCapacity = 256;
-    ToiStatus first_hit(const Trajectory& path, double radius, double t_begin, double t_end, Hit& out,
-                        SweepCounters& counters, int queue_capacity = kFirstHitQueueCapacity) const;
+    ToiStatus first_hit(const Trajectory& path, double radius, double t_begin, double t_end, Hit& out, SweepCounters& counters,
+                        int queue_capacity = kFirstHitQueueCapacity) const;
 
     std::size_t memory_bytes() const;
 

@@ -42,9 +42,9 @@ private:
 
     const DistanceGate* gate_;
     const MeshCollider* collider_;
-    double reach_;                          // m
-    double resolve_;                        // m, radius of the centre queries
-    std::vector<float> centre_distance_;    // m, per gate cell; < 0 = not yet known
+    double reach_;                        // m
+    double resolve_;                      // m, radius of the centre queries
+    std::vector<float> centre_distance_;  // m, per gate cell; < 0 = not yet known
     std::size_t resolved_ = 0;
 };
 

@@ -11,9 +11,9 @@ struct ShotPairFinder::Impl {
     btCollisionDispatcher dispatcher{&configuration};
     btDbvtBroadphase broadphase;
     std::vector<btBroadphaseProxy*> proxies;
-    std::vector<btVector3> anchor;   // m, centre each proxy's box was last set around
-    double radius = 0.0;             // m
-    double margin = 0.0;             // m, how much each proxy's box is larger than its sphere's
+    std::vector<btVector3> anchor;  // m, centre each proxy's box was last set around
+    double radius = 0.0;            // m
+    double margin = 0.0;            // m, how much each proxy's box is larger than its sphere's
 };
 
 ShotPairFinder::ShotPairFinder(int shot_count, double radius_m, double fat_margin_m) : impl_(std::make_unique<Impl>()) {
@@ -30,10 +30,10 @@ ShotPairFinder::ShotPairFinder(int shot_count, double radius_m, double fat_margi
     impl_->proxies.resize(static_cast<std::size_t>(shot_count));
     for (int i = 0; i < shot_count; ++i) {
         const btVector3 far(1e3 + 10.0 * i * radius_m, 1e3, 1e3);  // parked until the first update
-        impl_->proxies[static_cast<std::size_t>(i)] = impl_->broadphase.createProxy(
-            far - btVector3(radius_m, radius_m, radius_m), far + btVector3(radius_m, radius_m, radius_m),
-            /*shapeType=*/SPHERE_SHAPE_PROXYTYPE, reinterpret_cast<void*>(static_cast<std::intptr_t>(i)),
-            btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter, &impl_->dispatcher);
+        impl_->proxies[static_cast<std::size_t>(i)] =
+            impl_->broadphase.createProxy(far - btVector3(radius_m, radius_m, radius_m), far + btVector3(radius_m, radius_m, radius_m),
+                                          /*shapeType=*/SPHERE_SHAPE_PROXYTYPE, reinterpret_cast<void*>(static_cast<std::intptr_t>(i)),
+                                          btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter, &impl_->dispatcher);
     }
     pairs_.reserve(static_cast<std::size_t>(shot_count) * 4);
 }

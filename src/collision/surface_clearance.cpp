@@ -11,8 +11,10 @@ SurfaceClearance surface_clearance(const TriangleMesh& mesh, bool solid, const V
     const Vec3 d = p - closest.point;
     SurfaceClearance out;
     out.distance_m = closest.distance;
-    if (closest.distance > 0.0) out.normal = d / closest.distance;
-    else if (face.norm() > 0.0) out.normal = face.normalized();
+    if (closest.distance > 0.0)
+        out.normal = d / closest.distance;
+    else if (face.norm() > 0.0)
+        out.normal = face.normalized();
     if (!solid || !(face.dot(d) < 0.0)) return out;
     if (closest_point_on_triangle(p, a, mesh.corner(t, 1), mesh.corner(t, 2)).feature != TriangleFeature::face) return out;
     out.distance_m = -closest.distance;

@@ -16,8 +16,8 @@
 namespace peensim {
 
 struct SurfaceClearance {
-    double distance_m = 0.0;       // m, centre to surface; negative: the centre is inside the solid
-    Vec3 normal = Vec3::UnitZ();   // unit, component frame, from the surface towards where the shot belongs
+    double distance_m = 0.0;      // m, centre to surface; negative: the centre is inside the solid
+    Vec3 normal = Vec3::UnitZ();  // unit, component frame, from the surface towards where the shot belongs
 };
 
 // p: the centre (component frame, m); closest: the mesh's nearest point to p (MeshCollider).

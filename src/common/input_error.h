@@ -20,15 +20,16 @@ class InputError : public std::runtime_error {
 public:
     InputError(SourceLocation where, std::string field, std::string problem)
         : std::runtime_error(format(where, field, problem)),
-          where_(std::move(where)), field_(std::move(field)), problem_(std::move(problem)) {}
+          where_(std::move(where)),
+          field_(std::move(field)),
+          problem_(std::move(problem)) {}
 
     const SourceLocation& where() const { return where_; }
     const std::string& field() const { return field_; }
     const std::string& problem() const { return problem_; }
 
     // "scene.yaml:12:5: shot.diameter: expected a positive length, got '-2 mm'"
-    static std::string format(const SourceLocation& where, const std::string& field,
-                              const std::string& problem) {
+    static std::string format(const SourceLocation& where, const std::string& field, const std::string& problem) {
         // Built with append (not operator+): GCC 12 warns falsely (-Wrestrict) on long + chains.
         std::string s;
         s.append(where.file.empty() ? std::string_view("<input>") : std::string_view(where.file));

@@ -19,8 +19,7 @@ std::string number_text(double v) {
 std::string Range::text() const {
     const bool has_lo = lo != -std::numeric_limits<double>::infinity();
     const bool has_hi = hi != std::numeric_limits<double>::infinity();
-    if (has_lo && has_hi)
-        return std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + (hi_open ? ")" : "]");
+    if (has_lo && has_hi) return std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) + (hi_open ? ")" : "]");
     if (has_lo) return std::string(lo_open ? "> " : ">= ") + number_text(lo);
     if (has_hi) return std::string(hi_open ? "< " : "<= ") + number_text(hi);
     return "";

@@ -13,8 +13,7 @@ struct Range {
     bool lo_open = false;
     bool hi_open = false;
 
-    bool unbounded() const { return lo == -std::numeric_limits<double>::infinity() &&
-                                    hi == std::numeric_limits<double>::infinity(); }
+    bool unbounded() const { return lo == -std::numeric_limits<double>::infinity() && hi == std::numeric_limits<double>::infinity(); }
     bool contains(double v) const;
     std::string text() const;  // "> 0", ">= 0", "(0, 1]", "[0, 1]", "" if unbounded
 };

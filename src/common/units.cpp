@@ -101,8 +101,7 @@ std::size_t read_leading_number(std::string_view text, double& value) {
     if (!text.empty() && text.front() == '+') skip = 1;  // from_chars does not take a '+'
     const char* first = text.data() + skip;
     const char* last = text.data() + text.size();
-    if (first == last || !(std::isdigit(static_cast<unsigned char>(*first)) || *first == '.' ||
-                           (*first == '-' && skip == 0)))
+    if (first == last || !(std::isdigit(static_cast<unsigned char>(*first)) || *first == '.' || (*first == '-' && skip == 0)))
         return 0;  // also keeps from_chars from reading "inf" / "nan"
     const auto [ptr, ec] = std::from_chars(first, last, value, std::chars_format::general);
     if (ec != std::errc()) return 0;
@@ -111,8 +110,8 @@ std::size_t read_leading_number(std::string_view text, double& value) {
 
 std::string units_hint(Dimension dim) {
     if (dim == Dimension::dimensionless) return "a plain number without unit";
-    return std::string(dimension_noun(dim)) + " (a number in " + std::string(si_unit(dim)) +
-           ", or a number with one of the units " + accepted_units_text(dim) + ")";
+    return std::string(dimension_noun(dim)) + " (a number in " + std::string(si_unit(dim)) + ", or a number with one of the units " +
+           accepted_units_text(dim) + ")";
 }
 
 }  // namespace
@@ -177,13 +176,11 @@ double parse_quantity(std::string_view text, Dimension dim, std::string_view pla
     double number = 0.0;
     const std::size_t used = read_leading_number(trimmed, number);
     if (used == 0) throw QuantityError("expected " + units_hint(dim) + ", got " + quoted);
-    if (!std::isfinite(number))
-        throw QuantityError("expected a finite number, got " + quoted);
+    if (!std::isfinite(number)) throw QuantityError("expected a finite number, got " + quoted);
     std::string_view symbol = trim(trimmed.substr(used));
     if (symbol.empty()) symbol = plain_number_unit;
     if (symbol.empty()) return number;  // SI
-    if (dim == Dimension::dimensionless)
-        throw QuantityError("expected a plain number without unit, got " + quoted);
+    if (dim == Dimension::dimensionless) throw QuantityError("expected a plain number without unit, got " + quoted);
     if (const UnitDef* u = find_unit(symbol, dim)) {
         const double si = number / u->divisor * u->multiplier;
         if (!std::isfinite(si)) throw QuantityError("value out of range: " + quoted);
@@ -191,12 +188,12 @@ double parse_quantity(std::string_view text, Dimension dim, std::string_view pla
     }
     if (const UnitDef* other = find_unit_any_dimension(symbol)) {
         std::string other_noun(dimension_noun(other->dimension));
-        throw QuantityError("'" + std::string(symbol) + "' is a unit of " + other_noun.substr(other_noun.find(' ') + 1) +
-                            ", but " + std::string(dimension_noun(dim)) + " is expected (" + quoted +
+        throw QuantityError("'" + std::string(symbol) + "' is a unit of " + other_noun.substr(other_noun.find(' ') + 1) + ", but " +
+                            std::string(dimension_noun(dim)) + " is expected (" + quoted +
                             "); accepted units: " + accepted_units_text(dim));
     }
-    throw QuantityError("unknown unit '" + std::string(symbol) + "' in " + quoted + " for " +
-                        std::string(dimension_noun(dim)) + "; accepted units: " + accepted_units_text(dim));
+    throw QuantityError("unknown unit '" + std::string(symbol) + "' in " + quoted + " for " + std::string(dimension_noun(dim)) +
+                        "; accepted units: " + accepted_units_text(dim));
 }
 
 std::string format_si(double value) {

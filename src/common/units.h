@@ -13,17 +13,17 @@
 namespace peensim {
 
 enum class Dimension {
-    length,         // m
-    time,           // s
-    frequency,      // Hz
-    speed,          // m/s
-    acceleration,   // m/s2
-    density,        // kg/m3
-    stress,         // Pa
-    angle,          // rad
-    angular_speed,  // rad/s
-    energy_per_area,// J/m2 (a kinetic-energy dose)
-    dimensionless,  // -
+    length,           // m
+    time,             // s
+    frequency,        // Hz
+    speed,            // m/s
+    acceleration,     // m/s2
+    density,          // kg/m3
+    stress,           // Pa
+    angle,            // rad
+    angular_speed,    // rad/s
+    energy_per_area,  // J/m2 (a kinetic-energy dose)
+    dimensionless,    // -
 };
 
 // Thrown for a malformed number, an unknown unit or a unit of the wrong dimension. The message

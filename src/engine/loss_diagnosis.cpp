@@ -10,8 +10,8 @@ namespace peensim {
 
 namespace {
 
-constexpr double kHair = 1e-6;      // of R: the swept sphere is this much smaller (the start touches a surface)
-constexpr double kStartSkip = 1e-9; // s, the sweep starts this long after the last event (which touched a surface)
+constexpr double kHair = 1e-6;       // of R: the swept sphere is this much smaller (the start touches a surface)
+constexpr double kStartSkip = 1e-9;  // s, the sweep starts this long after the last event (which touched a surface)
 
 // The first time in [t_from, t_to] the swept sphere overlaps component c, verified at the
 // component's pose at that very time (a moving component is swept at its pose at t_to first):
@@ -67,7 +67,8 @@ void diagnose_loss(const Model& model, const SimTime& epoch, const Trajectory& p
     lost.cause = LossCause::leak;
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
     for (const Component& comp : model.components)
-        if (comp.role == ComponentRole::chamber || comp.role == ComponentRole::sonotrode) lo = lo.cwiseMin(comp.world_lo), hi = hi.cwiseMax(comp.world_hi);
+        if (comp.role == ComponentRole::chamber || comp.role == ComponentRole::sonotrode)
+            lo = lo.cwiseMin(comp.world_lo), hi = hi.cwiseMax(comp.world_hi);
     const auto inside = [&](double t) {
         const Vec3 p = path.position(t);
         return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();

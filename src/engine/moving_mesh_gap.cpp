@@ -18,9 +18,9 @@ MovingMeshGap::MovingMeshGap(const Component& component, const SimTime& step_sta
     const Kinematics& kin = component.kinematics;
     const double span = std::max(0.0, arc.dt - u_from);  // s
     // The velocity is linear in time, so its norm is largest at an end of the span.
-    const double v_max = std::max(arc.velocity(u_from).norm(), arc.v_end.norm());  // m/s
+    const double v_max = std::max(arc.velocity(u_from).norm(), arc.v_end.norm());       // m/s
     const double axis_distance = (arc.p_end - kin.axis_point_m).norm() + v_max * span;  // m, at most, over the span
-    const double closing = v_max + std::abs(kin.omega_rad_per_s) * axis_distance;  // m/s, bound on |d gap / du|
+    const double closing = v_max + std::abs(kin.omega_rad_per_s) * axis_distance;       // m/s, bound on |d gap / du|
     reach_m_ = radius_m + closing * span + kSampleTravel * radius_m;
     sample_interval_s_ = closing > 0.0 ? kSampleTravel * radius_m / closing : std::max(span, 1e-300);
 }

@@ -19,10 +19,10 @@ namespace peensim {
 
 // A shot's free flight within a step, known by its state at the step end (offset dt, s).
 struct StepArc {
-    Vec3 p_end;   // m, world, centre at the step end
-    Vec3 v_end;   // m/s, world, velocity at the step end
-    Vec3 g;       // m/s2, gravity
-    double dt;    // s, the step
+    Vec3 p_end;  // m, world, centre at the step end
+    Vec3 v_end;  // m/s, world, velocity at the step end
+    Vec3 g;      // m/s2, gravity
+    double dt;   // s, the step
 
     Vec3 centre(double u) const {
         const double back = dt - u;

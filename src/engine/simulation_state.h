@@ -35,13 +35,13 @@ struct ShotArrays {
 
 // Numerical trouble is counted, never fatal (STYLE practice 11); `--strict` fails a run on any.
 struct HealthCounters {
-    std::uint64_t shot_lost = 0;               // shot that left the chamber (a leaky mesh)
-    std::uint64_t non_finite = 0;              // shot removed because their state became NaN/inf
-    std::uint64_t mesh_overlap_corrections = 0;// overlaps with a mesh removed by moving the shot (no energy added)
-    std::uint64_t shot_overlap_corrections = 0;// shot-shot overlaps removed the same way
-    std::uint64_t deep_penetrations = 0;       // a shot found deeper than R/2 inside a surface
-    std::uint64_t unresolved_contacts = 0;     // contact passes exhausted within one step
-    std::uint64_t engine_errors = 0;           // lost shot that crossed a surface (not through an opening)
+    std::uint64_t shot_lost = 0;                 // shot that left the chamber (a leaky mesh)
+    std::uint64_t non_finite = 0;                // shot removed because their state became NaN/inf
+    std::uint64_t mesh_overlap_corrections = 0;  // overlaps with a mesh removed by moving the shot (no energy added)
+    std::uint64_t shot_overlap_corrections = 0;  // shot-shot overlaps removed the same way
+    std::uint64_t deep_penetrations = 0;         // a shot found deeper than R/2 inside a surface
+    std::uint64_t unresolved_contacts = 0;       // contact passes exhausted within one step
+    std::uint64_t engine_errors = 0;             // lost shot that crossed a surface (not through an opening)
 
     template <class Visit>
     void for_each(Visit&& visit) const {
@@ -65,33 +65,33 @@ enum class LossCause : unsigned char { not_diagnosed, leak, engine_error };
 // Where and when a shot left the assembly, and why.
 struct LostShot {
     int shot = 0;
-    double time_s = 0.0;   // s
+    double time_s = 0.0;             // s
     Vec3 position_m = Vec3::Zero();  // m, world, where it left the world box
     LossCause cause = LossCause::not_diagnosed;
-    double from_time_s = 0.0;        // s, its last event (the flight that carried it out started there)
-    Vec3 from_m = Vec3::Zero();      // m, world, its centre then
-    int component = -1;              // engine error: the component it crossed; leak: the nearest at the opening
-    Vec3 where_m = Vec3::Zero();     // m, world, engine error: the point crossed; leak: where the centre left the chamber's bounds
-    double clearance_m = 0.0;        // m, leak: centre to the nearest surface there (the opening is at least 2 R wide)
+    double from_time_s = 0.0;     // s, its last event (the flight that carried it out started there)
+    Vec3 from_m = Vec3::Zero();   // m, world, its centre then
+    int component = -1;           // engine error: the component it crossed; leak: the nearest at the opening
+    Vec3 where_m = Vec3::Zero();  // m, world, engine error: the point crossed; leak: where the centre left the chamber's bounds
+    double clearance_m = 0.0;     // m, leak: centre to the nearest surface there (the opening is at least 2 R wide)
 };
 
 struct SimulationState {
     ShotArrays shots;
     SimTime time;
     std::uint64_t steps = 0;
-    std::uint64_t shot_steps = 0;            // active shot advanced, summed over steps
+    std::uint64_t shot_steps = 0;  // active shot advanced, summed over steps
     std::uint64_t shot_shot_impacts = 0;
     std::vector<std::uint64_t> impacts_per_component;  // every impact, logged or not
     // Flights that ended in sustained contact, approaching slower than the model's impact speed
     // (not impacts, not logged): per component, and between two shot.
     std::vector<std::uint64_t> slow_contacts_per_component;
     std::uint64_t shot_shot_slow_contacts = 0;
-    double fastest_shot_m_per_s = 0.0;       // m/s, after the last step (feeds eq. 7)
+    double fastest_shot_m_per_s = 0.0;  // m/s, after the last step (feeds eq. 7)
     // What the contact laws remember between contacts (contact_law.h): per component, its law's
     // state_per_triangle() doubles per mesh triangle; empty for a law that keeps none.
     std::vector<std::vector<double>> law_state;
     HealthCounters health;
-    std::vector<LostShot> lost;              // one entry per lost shot (bounded by the shot count)
+    std::vector<LostShot> lost;  // one entry per lost shot (bounded by the shot count)
 };
 
 }  // namespace peensim

@@ -6,9 +6,9 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/impact_record.h"
 #include "engine/simulation_state.h"
 #include "engine/step_stats.h"
-#include "engine/impact_record.h"
 
 namespace peensim {
 

@@ -23,7 +23,7 @@ double s_velocity_norm(const ShotArrays& s, std::size_t i) { return std::sqrt(s.
 // rebounds (C = 0.9) from 2 m/s, the fastest the plate catches within a step at the default travel,
 // ~700 at C = 0.99. Only a chattering shot takes more than two passes.
 constexpr int kMaxContactPasses = 1024;
-constexpr double kTouchTimeTolerance = 1e-14;      // s, precision of sampled touch times
+constexpr double kTouchTimeTolerance = 1e-14;  // s, precision of sampled touch times
 // Bound on how far a shot can move relative to a component in one step, in units of the eq. 7
 // travel: the shot's own travel (1) plus the surface's (1: V_max includes surface speeds). A shot
 // kicked within a step can go further; its skip counters are reset at every kick.
@@ -65,8 +65,10 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     for (const Component& c : model_->components) {
         // The largest query radius a step uses for this component (see handle_component).
         const double travel = model_->travel_fraction * model_->shot_radius_m;
-        max_query_radius_.push_back(model_->shot_radius_m + (c.kinematics.amplitude_m > 0.0 ? 2.0 * c.kinematics.amplitude_m + travel : 0.0));
-        gates_.push_back(std::make_unique<const DistanceGate>(DistanceGate::for_shot(*c.mesh, model_->shot_radius_m, 2.0 * c.kinematics.amplitude_m)));
+        max_query_radius_.push_back(model_->shot_radius_m +
+                                    (c.kinematics.amplitude_m > 0.0 ? 2.0 * c.kinematics.amplitude_m + travel : 0.0));
+        gates_.push_back(
+            std::make_unique<const DistanceGate>(DistanceGate::for_shot(*c.mesh, model_->shot_radius_m, 2.0 * c.kinematics.amplitude_m)));
         sharp_.emplace_back(*gates_.back(), *c.collider, max_query_radius_.back());
     }
     last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
@@ -96,8 +98,7 @@ void TimeStepping::advance(SimulationState& state, double t_end_s, double /*paus
     {
         StageTimer timer(stats_, Stage::kinematics);
         t0_ = state.time;
-        for (std::size_t c = 0; c < model_->components.size(); ++c)
-            pose_end_[c] = model_->components[c].kinematics.pose(t0_, dt);
+        for (std::size_t c = 0; c < model_->components.size(); ++c) pose_end_[c] = model_->components[c].kinematics.pose(t0_, dt);
     }
     integrate(state, dt);
     // Walls first: a shot must never end a step inside a surface. Then shot-shot contacts, and
@@ -242,8 +243,8 @@ void TimeStepping::resolve_mesh_contacts(SimulationState& state, double dt, std:
     stats_[Stage::mesh_queries] += total - (stats_[Stage::contact_laws] - laws_before);
 }
 
-bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world,
-                                   double query_radius, Contact& out) {
+bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world, double query_radius,
+                                   Contact& out) {
     const Component& comp = model_->components[component];
     const Pose& pose = pose_end_[component];
     const Vec3 p = pose.to_component(p_world);
@@ -332,8 +333,7 @@ std::optional<double> TimeStepping::vibrating_touch(const Kinematics& kin, const
     return std::nullopt;
 }
 
-bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::size_t c, double dt,
-                                    std::vector<ImpactRecord>& impacts) {
+bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::size_t c, double dt, std::vector<ImpactRecord>& impacts) {
     const Component& comp = model_->components[c];
     const Kinematics& kin = comp.kinematics;
     const double R = model_->shot_radius_m;
@@ -433,8 +433,8 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         // step. Stopping such a shot at the step end let the plate pass through it in between when
         // the step ended with the two apart.
         const Pose pose_touch = kin.pose(t0_, u);
-        const ContactSite site{static_cast<int>(i), static_cast<int>(c), contact.mesh_triangle, &pose_touch, x_touch,
-                               t0_.hi + (t0_.lo + u), 0.0};
+        const ContactSite site{
+            static_cast<int>(i), static_cast<int>(c), contact.mesh_triangle, &pose_touch, x_touch, t0_.hi + (t0_.lo + u), 0.0};
         contact::SurfaceContactResponse r = law.impact(surface_input(*model_, site, v_touch, v_surface, n, impact), law_state(state, c));
         bool rides = false;
         double closing_accel = 0.0;  // m/s2
@@ -521,9 +521,10 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     // Friction over the ride through the pair's law: its sustained contact with the plate pressing
     // the shot by impulse / ride on average over the ride.
     const Pose pose_touch = kin.pose(t0_, u);
-    const ContactSite site{static_cast<int>(i), static_cast<int>(c), -1, &pose_touch, centre - model_->shot_radius_m * n, t0_.hi + (t0_.lo + u), 0.0};
-    const contact::SurfaceContactResponse r =
-        comp.law->sustain(surface_input(*model_, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0, ride), law_state(state, c));
+    const ContactSite site{
+        static_cast<int>(i), static_cast<int>(c), -1, &pose_touch, centre - model_->shot_radius_m * n, t0_.hi + (t0_.lo + u), 0.0};
+    const contact::SurfaceContactResponse r = comp.law->sustain(
+        surface_input(*model_, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0, ride), law_state(state, c));
     const Vec3 kept = r.v_shot - plate_v0 - (r.v_shot - plate_v0).dot(n) * n;
     const Vec3 c_release = centre + kin.axis * (kin.displacement(t0_, u_release) - kin.displacement(t0_, u)) + slip * ride;
     const Vec3 v_launch = plate_v1 + kept;
@@ -563,8 +564,8 @@ void TimeStepping::sustain_contact(SimulationState& state, std::size_t i, std::s
     const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
     const double pressing = std::max(0.0, -g.dot(n) + kin.point_acceleration(contact.point, t0_, dt).dot(n));
     const Pose pose_end = kin.pose(t0_, dt);
-    const ContactSite site{static_cast<int>(i), static_cast<int>(c), contact.mesh_triangle, &pose_end, contact.point,
-                           t0_.hi + (t0_.lo + dt), std::max(0.0, -contact.gap)};
+    const ContactSite site{static_cast<int>(i), static_cast<int>(c),    contact.mesh_triangle,      &pose_end,
+                           contact.point,       t0_.hi + (t0_.lo + dt), std::max(0.0, -contact.gap)};
     const contact::SurfaceContactResponse r =
         comp.law->sustain(surface_input(*model_, site, v1, v_surface_end, n, false, pressing, dt), law_state(state, c));
     ShotArrays& s = state.shots;

@@ -50,11 +50,11 @@ public:
 
 private:
     struct Contact {
-        double gap;          // m, distance from the shot surface to the closest feature (< 0: overlap)
-        Vec3 normal;         // unit, world, from the surface towards the shot centre
-        Vec3 point;          // m, world, closest point on the surface at the step end
-        int triangle;        // facet index in the component's mesh file
-        int mesh_triangle;   // index into the component's TriangleMesh
+        double gap;         // m, distance from the shot surface to the closest feature (< 0: overlap)
+        Vec3 normal;        // unit, world, from the surface towards the shot centre
+        Vec3 point;         // m, world, closest point on the surface at the step end
+        int triangle;       // facet index in the component's mesh file
+        int mesh_triangle;  // index into the component's TriangleMesh
     };
 
     void integrate(SimulationState& state, double dt);
@@ -62,8 +62,7 @@ private:
     // only_kicked: just the shot whose flight a shot-shot contact changed in this step.
     void resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts, bool only_kicked);
     // Returns true if an impact happened (the shot's trajectory changed within the step).
-    bool handle_component(SimulationState& state, std::size_t shot, std::size_t component, double dt,
-                          std::vector<ImpactRecord>& impacts);
+    bool handle_component(SimulationState& state, std::size_t shot, std::size_t component, double dt, std::vector<ImpactRecord>& impacts);
     // The first touch (s into the step, at or after u_lo) of the shot ending the step at p1 with
     // velocity v1 on the vibrating surface whose contact at the step end is `contact`.
     std::optional<double> vibrating_touch(const Kinematics& kin, const Contact& contact, const Vec3& p1, const Vec3& v1, double dt,
@@ -90,19 +89,19 @@ private:
     ShotPairFinder pairs_;
     StepStats stats_;
     // Per step:
-    SimTime t0_;                       // step start
-    std::vector<Pose> pose_end_;       // per component, at the step end
-    std::vector<double> last_touch_;   // per shot: offset (s) of its latest contact in this step
-    std::vector<int> last_touch_component_;  // per shot: component of that contact (-1: a shot or none)
+    SimTime t0_;                                 // step start
+    std::vector<Pose> pose_end_;                 // per component, at the step end
+    std::vector<double> last_touch_;             // per shot: offset (s) of its latest contact in this step
+    std::vector<int> last_touch_component_;      // per shot: component of that contact (-1: a shot or none)
     std::vector<unsigned char> kicked_by_shot_;  // per shot: a shot-shot contact changed its flight this step
     std::vector<unsigned char> touched_;         // per shot: any contact (impact or sustained) this step
     std::vector<std::pair<int, int>> touching_;  // overlapping shot pairs of this step, reused
-    std::uint64_t step_ = 0;           // index of the current step
+    std::uint64_t step_ = 0;                     // index of the current step
     // Per component and shot: the first step at which the shot could touch the component again
     // (the distance gate's clearance divided by the most a shot can close in per step).
     std::size_t n_shots_ = 0;
     std::vector<std::uint64_t> skip_until_;
-    double max_relative_travel_ = 0.0; // m per step
+    double max_relative_travel_ = 0.0;  // m per step
     // Per component: a voxel gate of distance lower bounds (built here: only time stepping uses it)
     // and bounds sharper than the gate's.
     std::vector<std::unique_ptr<const DistanceGate>> gates_;
@@ -115,7 +114,7 @@ private:
         double distance = 0.0;
     };
     std::vector<DistanceMemo> memo_;
-    double memo_margin_ = 0.0;         // m
+    double memo_margin_ = 0.0;  // m
 };
 
 }  // namespace peensim

@@ -11,8 +11,8 @@ namespace peensim {
 enum class Axis { x, y, z };
 
 struct AxisFrame {
-    Axis axis = Axis::z;          // the world axis that local w maps to
-    Vec3 origin_m = Vec3::Zero(); // m, world position of local (0, 0, 0)
+    Axis axis = Axis::z;           // the world axis that local w maps to
+    Vec3 origin_m = Vec3::Zero();  // m, world position of local (0, 0, 0)
 
     // axis z: (u, v, w) -> (x, y, z); axis x: -> (y, z, x) = (u, v, w); axis y: -> (z, x, y) = (u, v, w).
     Vec3 to_world(double u, double v, double w) const {

@@ -58,8 +58,10 @@ TriangleMesh build(const BoxSpec& spec, std::optional<BoxFace> open_face, Facing
         for (std::size_t i = 0; i + 1 < gb.size(); ++i) {
             for (std::size_t j = 0; j + 1 < gc.size(); ++j) {
                 const Vec3 p00 = corner(i, j), p10 = corner(i + 1, j), p11 = corner(i + 1, j + 1), p01 = corner(i, j + 1);
-                if (counter_clockwise) builder.add_quad(p00, p10, p11, p01, group);
-                else builder.add_quad(p00, p01, p11, p10, group);
+                if (counter_clockwise)
+                    builder.add_quad(p00, p10, p11, p01, group);
+                else
+                    builder.add_quad(p00, p01, p11, p10, group);
             }
         }
     }
@@ -70,8 +72,6 @@ TriangleMesh build(const BoxSpec& spec, std::optional<BoxFace> open_face, Facing
 
 TriangleMesh box(const BoxSpec& spec) { return build(spec, std::nullopt, Facing::outward); }
 
-TriangleMesh box_open(const BoxSpec& spec, BoxFace open_face, Facing facing) {
-    return build(spec, open_face, facing);
-}
+TriangleMesh box_open(const BoxSpec& spec, BoxFace open_face, Facing facing) { return build(spec, open_face, facing); }
 
 }  // namespace peensim

@@ -9,9 +9,9 @@
 namespace peensim {
 
 struct BoxSpec {
-    Vec3 size_m = Vec3::Ones();                        // m, edge lengths along x, y, z
-    Vec3 center_m = Vec3::Zero();                      // m
-    Eigen::Vector3i divisions = Eigen::Vector3i::Ones();// quads along x, y, z on every face (>= 1)
+    Vec3 size_m = Vec3::Ones();                           // m, edge lengths along x, y, z
+    Vec3 center_m = Vec3::Zero();                         // m
+    Eigen::Vector3i divisions = Eigen::Vector3i::Ones();  // quads along x, y, z on every face (>= 1)
 };
 
 enum class BoxFace { minus_x, plus_x, minus_y, plus_y, minus_z, plus_z };

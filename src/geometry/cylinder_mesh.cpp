@@ -19,8 +19,7 @@ TriangleMesh cylinder(const CylinderSpec& spec) {
     const double high = 0.5 * spec.height_m;
 
     MeshBuilder builder;
-    add_tube_wall(builder, frame, circle, spec.radius_m, low, high, spec.axial_subdivisions, true,
-                  builder.group("wall"));
+    add_tube_wall(builder, frame, circle, spec.radius_m, low, high, spec.axial_subdivisions, true, builder.group("wall"));
     if (spec.capped) {
         add_flat_ring(builder, frame, circle, 0.0, spec.radius_m, spec.cap_rings, low, false, builder.group("cap-low"));
         add_flat_ring(builder, frame, circle, 0.0, spec.radius_m, spec.cap_rings, high, true, builder.group("cap-high"));

@@ -30,8 +30,7 @@ std::size_t MeshBuilder::PositionKeyHash::operator()(const PositionKey& key) con
 
 int MeshBuilder::vertex(const Vec3& position_m) {
     const PositionKey key{bits_of(position_m.x()), bits_of(position_m.y()), bits_of(position_m.z())};
-    const auto [it, inserted] =
-        vertex_of_position_.try_emplace(key, static_cast<int>(mesh_.vertices.size()));
+    const auto [it, inserted] = vertex_of_position_.try_emplace(key, static_cast<int>(mesh_.vertices.size()));
     if (inserted) mesh_.vertices.push_back(position_m + Vec3::Zero());
     return it->second;
 }
@@ -59,8 +58,7 @@ void MeshBuilder::add_triangle(const Vec3& a, const Vec3& b, const Vec3& c, int 
     add_triangle(ia, ib, ic, facet, group_index);
 }
 
-void MeshBuilder::add_quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
-                           int group_index) {
+void MeshBuilder::add_quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, int group_index) {
     add_triangle(a, b, c, group_index);
     add_triangle(a, c, d, group_index);
 }

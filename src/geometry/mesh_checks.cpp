@@ -21,9 +21,7 @@ Vec3 triangle_normal(const TriangleMesh& mesh, std::size_t t) {
     return length > 0.0 ? Vec3(n / length) : Vec3(Vec3::Zero());
 }
 
-double triangle_area(const TriangleMesh& mesh, std::size_t t) {
-    return 0.5 * doubled_area_vector(mesh, t).norm();
-}
+double triangle_area(const TriangleMesh& mesh, std::size_t t) { return 0.5 * doubled_area_vector(mesh, t).norm(); }
 
 double surface_area(const TriangleMesh& mesh) {
     double area = 0.0;

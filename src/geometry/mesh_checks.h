@@ -13,7 +13,7 @@ namespace peensim {
 Vec3 triangle_normal(const TriangleMesh& mesh, std::size_t t);
 
 double triangle_area(const TriangleMesh& mesh, std::size_t t);  // m2
-double surface_area(const TriangleMesh& mesh);                   // m2, sum over all triangles
+double surface_area(const TriangleMesh& mesh);                  // m2, sum over all triangles
 
 // m3, signed volume by the divergence theorem. For a closed mesh whose normals point out of
 // the solid it is the solid's volume (positive); inward-facing normals give minus the volume.

@@ -69,7 +69,8 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
             Element e;
             std::string count;
             words >> e.name >> count;
-            if (e.name.empty() || count.empty() || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 19 || (words >> extra))
+            if (e.name.empty() || count.empty() || count.find_first_not_of("0123456789") != std::string::npos || count.size() > 19 ||
+                (words >> extra))
                 bad_line("expected 'element NAME COUNT'");
             e.count = std::stoull(count);
             elements.push_back(e);
@@ -87,7 +88,8 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
                 e.min_bytes += ply_type_bytes(length_type);  // a list holds at least its length field
             } else {
                 words >> name;
-                if (ply_type_bytes(type) == 0 || name.empty() || (words >> extra)) bad_line("expected 'property TYPE NAME' with a known type");
+                if (ply_type_bytes(type) == 0 || name.empty() || (words >> extra))
+                    bad_line("expected 'property TYPE NAME' with a known type");
                 e.min_bytes += ply_type_bytes(type);
             }
         } else {

@@ -1,7 +1,7 @@
 #include "geometry/mesh_loader.h"
 
-#include <assimp/Importer.hpp>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <algorithm>
 #include <array>
@@ -22,14 +22,13 @@ namespace {
 }
 
 struct MeshPlacement {
-    aiMatrix4x4 transform;    // file units, node-to-scene
+    aiMatrix4x4 transform;  // file units, node-to-scene
     std::string node_name;
     bool found = false;
 };
 
 // Where each assimp mesh sits: the first node (depth first) that references it.
-void collect_placements(const aiNode* node, const aiMatrix4x4& parent,
-                        std::vector<MeshPlacement>& placements) {
+void collect_placements(const aiNode* node, const aiMatrix4x4& parent, std::vector<MeshPlacement>& placements) {
     const aiMatrix4x4 transform = parent * node->mTransformation;
     for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         MeshPlacement& placement = placements.at(node->mMeshes[i]);
@@ -39,9 +38,7 @@ void collect_placements(const aiNode* node, const aiMatrix4x4& parent,
 }
 
 // assimp names the nodes it invents "<STL_BINARY>", "<MD5_Root>", ...: not names from the file.
-bool is_assimp_placeholder(const std::string& name) {
-    return name.size() >= 2 && name.front() == '<' && name.back() == '>';
-}
+bool is_assimp_placeholder(const std::string& name) { return name.size() >= 2 && name.front() == '<' && name.back() == '>'; }
 
 std::string group_name_of(const aiMesh& mesh, const MeshPlacement& placement) {
     if (mesh.mName.length > 0) return mesh.mName.C_Str();

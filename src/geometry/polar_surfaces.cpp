@@ -26,9 +26,8 @@ double subdivision(double from, double to, int k, int count) {
     return from + (to - from) * k / count;
 }
 
-void add_tube_wall(MeshBuilder& builder, const AxisFrame& frame, const CircleSampling& circle,
-                   double radius_m, double w0_m, double w1_m, int layers, bool facing_away_from_axis,
-                   int group) {
+void add_tube_wall(MeshBuilder& builder, const AxisFrame& frame, const CircleSampling& circle, double radius_m, double w0_m, double w1_m,
+                   int layers, bool facing_away_from_axis, int group) {
     for (int l = 0; l < layers; ++l) {
         const double lo = subdivision(w0_m, w1_m, l, layers);
         const double hi = subdivision(w0_m, w1_m, l + 1, layers);
@@ -48,9 +47,8 @@ void add_tube_wall(MeshBuilder& builder, const AxisFrame& frame, const CircleSam
     }
 }
 
-void add_flat_ring(MeshBuilder& builder, const AxisFrame& frame, const CircleSampling& circle,
-                   double inner_radius_m, double outer_radius_m, int rings, double w_m, bool facing_plus_w,
-                   int group) {
+void add_flat_ring(MeshBuilder& builder, const AxisFrame& frame, const CircleSampling& circle, double inner_radius_m, double outer_radius_m,
+                   int rings, double w_m, bool facing_plus_w, int group) {
     for (int q = 0; q < rings; ++q) {
         const double r_in = subdivision(inner_radius_m, outer_radius_m, q, rings);
         const double r_out = subdivision(inner_radius_m, outer_radius_m, q + 1, rings);
@@ -60,14 +58,18 @@ void add_flat_ring(MeshBuilder& builder, const AxisFrame& frame, const CircleSam
             const Vec3 b = circle.point(frame, r_out, j + 1, w_m);
             if (r_in == 0.0) {
                 const Vec3 centre = frame.to_world(0.0, 0.0, w_m);
-                if (facing_plus_w) builder.add_triangle(centre, a, b, group);
-                else builder.add_triangle(centre, b, a, group);
+                if (facing_plus_w)
+                    builder.add_triangle(centre, a, b, group);
+                else
+                    builder.add_triangle(centre, b, a, group);
                 continue;
             }
             const Vec3 c = circle.point(frame, r_in, j + 1, w_m);
             const Vec3 d = circle.point(frame, r_in, j, w_m);
-            if (facing_plus_w) builder.add_quad(d, a, b, c, group);
-            else builder.add_quad(d, c, b, a, group);
+            if (facing_plus_w)
+                builder.add_quad(d, a, b, c, group);
+            else
+                builder.add_quad(d, c, b, a, group);
         }
     }
 }

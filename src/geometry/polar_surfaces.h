@@ -31,14 +31,12 @@ double subdivision(double from, double to, int k, int count);
 
 // Tube wall of radius_m from w0_m to w1_m in `layers` rings of quads. facing_away_from_axis:
 // normals point away from the axis (outside of a solid rod), else towards it (inside of a tube).
-void add_tube_wall(MeshBuilder& builder, const AxisFrame& frame, const CircleSampling& circle,
-                   double radius_m, double w0_m, double w1_m, int layers, bool facing_away_from_axis,
-                   int group);
+void add_tube_wall(MeshBuilder& builder, const AxisFrame& frame, const CircleSampling& circle, double radius_m, double w0_m, double w1_m,
+                   int layers, bool facing_away_from_axis, int group);
 
 // Flat annulus at height w_m from inner_radius_m (0 = a full disk, its centre a fan) to
 // outer_radius_m in `rings` rings. facing_plus_w: normals along +w, else along -w.
-void add_flat_ring(MeshBuilder& builder, const AxisFrame& frame, const CircleSampling& circle,
-                   double inner_radius_m, double outer_radius_m, int rings, double w_m, bool facing_plus_w,
-                   int group);
+void add_flat_ring(MeshBuilder& builder, const AxisFrame& frame, const CircleSampling& circle, double inner_radius_m, double outer_radius_m,
+                   int rings, double w_m, bool facing_plus_w, int group);
 
 }  // namespace peensim

@@ -56,10 +56,10 @@ std::vector<FlankRow> flank_rows(const InvoluteToothProfile& profile, const Spur
 
 // The gear's outline and end face in its plane, as indexed 2-D points.
 struct PlanarGear {
-    std::vector<Vec2> points;                  // m
-    std::vector<std::array<int, 3>> face;      // end-face triangles, counter-clockwise
-    std::vector<int> outer_loop;               // counter-clockwise around the gear
-    std::vector<int> bore_loop;                // clockwise (the bore wall faces the axis)
+    std::vector<Vec2> points;              // m
+    std::vector<std::array<int, 3>> face;  // end-face triangles, counter-clockwise
+    std::vector<int> outer_loop;           // counter-clockwise around the gear
+    std::vector<int> bore_loop;            // clockwise (the bore wall faces the axis)
 };
 
 PlanarGear plan_gear(const InvoluteToothProfile& profile, const SpurGearResolution& r, double bore_radius_m) {
@@ -87,9 +87,11 @@ PlanarGear plan_gear(const InvoluteToothProfile& profile, const SpurGearResoluti
     std::vector<double> root_angle(static_cast<std::size_t>(root_points));
     for (int k = 0; k < z; ++k) {
         const double centre = pitch * k;
-        for (int j = 0; j < c; ++j) root_angle[static_cast<std::size_t>(k * per_tooth + j)] = centre + root_half_angle * (2.0 * j / c - 1.0);
+        for (int j = 0; j < c; ++j)
+            root_angle[static_cast<std::size_t>(k * per_tooth + j)] = centre + root_half_angle * (2.0 * j / c - 1.0);
         for (int m = 0; m < s; ++m) {
-            root_angle[static_cast<std::size_t>(k * per_tooth + c + m)] = centre + root_half_angle + (pitch - 2.0 * root_half_angle) * m / s;
+            root_angle[static_cast<std::size_t>(k * per_tooth + c + m)] =
+                centre + root_half_angle + (pitch - 2.0 * root_half_angle) * m / s;
         }
     }
     // Body: rings from the bore (q = 0) to the root circle (q = body_rings).
@@ -110,7 +112,8 @@ PlanarGear plan_gear(const InvoluteToothProfile& profile, const SpurGearResoluti
         for (int j = 0; j <= c; ++j) grid[0].push_back(ring_at(root_ring, k * per_tooth + j));
         for (int i = 1; i <= top_row; ++i) {
             const FlankRow& row = rows[static_cast<std::size_t>(i)];
-            for (int j = 0; j <= c; ++j) grid[static_cast<std::size_t>(i)].push_back(add_point(row.radius_m, pitch * k + row.half_angle_rad * (2.0 * j / c - 1.0)));
+            for (int j = 0; j <= c; ++j)
+                grid[static_cast<std::size_t>(i)].push_back(add_point(row.radius_m, pitch * k + row.half_angle_rad * (2.0 * j / c - 1.0)));
         }
         auto at = [&](int i, int j) { return grid[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]; };
         for (int i = 0; i < top_row; ++i) {
@@ -151,7 +154,8 @@ TriangleMesh spur_gear(const SpurGearSpec& spec, const SpurGearResolution& resol
     const double high = 0.5 * spec.face_width_m;
     for (const auto& t : plan.face) {
         const Vec2 centroid = (plan.points[static_cast<std::size_t>(t[0])] + plan.points[static_cast<std::size_t>(t[1])] +
-                               plan.points[static_cast<std::size_t>(t[2])]) / 3.0;
+                               plan.points[static_cast<std::size_t>(t[2])]) /
+                              3.0;
         const int group = sector_of(centroid);
         builder.add_triangle(at(t[0], high), at(t[1], high), at(t[2], high), group);  // faces +w
         builder.add_triangle(at(t[0], low), at(t[2], low), at(t[1], low), group);     // faces -w

@@ -49,9 +49,7 @@ double InvoluteToothProfile::roll_angle_at(double radius_m) const {
     return std::sqrt(std::max(0.0, ratio * ratio - 1.0));
 }
 
-double InvoluteToothProfile::radius_at_roll(double roll_rad) const {
-    return base_radius_m_ * std::sqrt(1.0 + roll_rad * roll_rad);
-}
+double InvoluteToothProfile::radius_at_roll(double roll_rad) const { return base_radius_m_ * std::sqrt(1.0 + roll_rad * roll_rad); }
 
 double InvoluteToothProfile::involute_length_m() const {
     // Arc length of the involute of a circle: s(t) = r_b t^2 / 2.

@@ -14,15 +14,15 @@
 namespace peensim {
 
 struct SpurGearSpec {
-    double module_m = 2e-3;                                   // m, pitch diameter / teeth
-    int teeth = 20;                                           // -, >= 3
-    double face_width_m = 10e-3;                              // m, extent along the gear axis
+    double module_m = 2e-3;                                       // m, pitch diameter / teeth
+    int teeth = 20;                                               // -, >= 3
+    double face_width_m = 10e-3;                                  // m, extent along the gear axis
     double pressure_angle_rad = 20.0 * std::numbers::pi / 180.0;  // rad, at the pitch circle
-    double bore_radius_m = 5e-3;                              // m, central hole for the axle (> 0)
-    double addendum_coefficient = 1.0;                        // -, tip radius = pitch radius + this * module
-    double dedendum_coefficient = 1.25;                       // -, root radius = pitch radius - this * module
-    Axis axis = Axis::y;                                      // world axis of the gear
-    Vec3 center_m = Vec3::Zero();                             // m, centre of the gear (mid face width)
+    double bore_radius_m = 5e-3;                                  // m, central hole for the axle (> 0)
+    double addendum_coefficient = 1.0;                            // -, tip radius = pitch radius + this * module
+    double dedendum_coefficient = 1.25;                           // -, root radius = pitch radius - this * module
+    Axis axis = Axis::y;                                          // world axis of the gear
+    Vec3 center_m = Vec3::Zero();                                 // m, centre of the gear (mid face width)
 };
 
 class InvoluteToothProfile {

@@ -48,15 +48,17 @@ SpurGearResolution gear_resolution_for_triangle_count(const SpurGearSpec& spec, 
     // The count never grows with the edge length, so bisect (in log scale) for the two edge
     // lengths whose counts bracket the target, then take the closer one.
     const InvoluteToothProfile profile(spec);
-    double coarse_edge_m = 2.0 * profile.tip_radius_m();         // count <= target (floors only)
-    double fine_edge_m = coarse_edge_m * 1e-5;                    // count > target for any sane target
+    double coarse_edge_m = 2.0 * profile.tip_radius_m();  // count <= target (floors only)
+    double fine_edge_m = coarse_edge_m * 1e-5;            // count > target for any sane target
     auto count_at = [&](double edge_m) { return gear_triangle_count(gear_resolution_for_edge_length(spec, edge_m), spec.teeth); };
     if (count_at(coarse_edge_m) >= target) return gear_resolution_for_edge_length(spec, coarse_edge_m);
     if (count_at(fine_edge_m) <= target) return gear_resolution_for_edge_length(spec, fine_edge_m);
     for (int i = 0; i < 60; ++i) {
         const double middle = std::sqrt(coarse_edge_m * fine_edge_m);
-        if (count_at(middle) > target) fine_edge_m = middle;
-        else coarse_edge_m = middle;
+        if (count_at(middle) > target)
+            fine_edge_m = middle;
+        else
+            coarse_edge_m = middle;
     }
     const auto miss = [&](double edge_m) {
         const auto n = static_cast<long long>(count_at(edge_m));

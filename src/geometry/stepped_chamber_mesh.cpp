@@ -14,8 +14,7 @@ TriangleMesh stepped_tube_chamber(const SteppedChamberSpec& spec) {
     if (!(spec.bottom_z_m < spec.step_z_m && spec.step_z_m < spec.lid_z_m)) {
         throw InputError({}, "chamber", "heights must satisfy bottom z < step z < lid z");
     }
-    if (spec.segments < 3 || spec.lower_layers < 1 || spec.upper_layers < 1 || spec.step_rings < 1 ||
-        spec.lid_rings < 1) {
+    if (spec.segments < 3 || spec.lower_layers < 1 || spec.upper_layers < 1 || spec.step_rings < 1 || spec.lid_rings < 1) {
         throw InputError({}, "chamber", "needs at least 3 segments and 1 layer or ring per part");
     }
     const AxisFrame frame{Axis::z, Vec3::Zero()};
@@ -24,14 +23,13 @@ TriangleMesh stepped_tube_chamber(const SteppedChamberSpec& spec) {
     const bool facing_up = true;
 
     MeshBuilder builder;
-    add_tube_wall(builder, frame, circle, spec.lower_radius_m, spec.bottom_z_m, spec.step_z_m,
-                  spec.lower_layers, facing_away_from_axis, builder.group("lower-wall"));
-    add_flat_ring(builder, frame, circle, spec.lower_radius_m, spec.upper_radius_m, spec.step_rings,
-                  spec.step_z_m, facing_up, builder.group("step"));
-    add_tube_wall(builder, frame, circle, spec.upper_radius_m, spec.step_z_m, spec.lid_z_m,
-                  spec.upper_layers, facing_away_from_axis, builder.group("upper-wall"));
-    add_flat_ring(builder, frame, circle, 0.0, spec.upper_radius_m, spec.lid_rings, spec.lid_z_m,
-                  !facing_up, builder.group("lid"));
+    add_tube_wall(builder, frame, circle, spec.lower_radius_m, spec.bottom_z_m, spec.step_z_m, spec.lower_layers, facing_away_from_axis,
+                  builder.group("lower-wall"));
+    add_flat_ring(builder, frame, circle, spec.lower_radius_m, spec.upper_radius_m, spec.step_rings, spec.step_z_m, facing_up,
+                  builder.group("step"));
+    add_tube_wall(builder, frame, circle, spec.upper_radius_m, spec.step_z_m, spec.lid_z_m, spec.upper_layers, facing_away_from_axis,
+                  builder.group("upper-wall"));
+    add_flat_ring(builder, frame, circle, 0.0, spec.upper_radius_m, spec.lid_rings, spec.lid_z_m, !facing_up, builder.group("lid"));
     return builder.take();
 }
 

@@ -60,9 +60,7 @@ void put_u32(std::ofstream& out, std::uint32_t value) {
     out.write(bytes.data(), bytes.size());
 }
 
-void put_f32(std::ofstream& out, double value) {
-    put_u32(out, std::bit_cast<std::uint32_t>(static_cast<float>(value)));
-}
+void put_f32(std::ofstream& out, double value) { put_u32(out, std::bit_cast<std::uint32_t>(static_cast<float>(value))); }
 
 void put_vec(std::ofstream& out, const Vec3& v) {
     for (int k = 0; k < 3; ++k) put_f32(out, v[k]);
@@ -90,8 +88,7 @@ void write_ascii_facet(std::ofstream& out, const TriangleMesh& mesh, std::size_t
 
 }  // namespace
 
-void write_binary_stl(const TriangleMesh& mesh, const std::string& path, double unit_m,
-                      const std::string& solid_name) {
+void write_binary_stl(const TriangleMesh& mesh, const std::string& path, double unit_m, const std::string& solid_name) {
     PartialFile file(path, std::ios::binary);
     std::ofstream& out = file.stream();
 
@@ -110,8 +107,7 @@ void write_binary_stl(const TriangleMesh& mesh, const std::string& path, double 
     file.commit();
 }
 
-void write_ascii_stl(const TriangleMesh& mesh, const std::string& path, double unit_m,
-                     const std::string& solid_name) {
+void write_ascii_stl(const TriangleMesh& mesh, const std::string& path, double unit_m, const std::string& solid_name) {
     PartialFile file(path, std::ios::out);
     std::ofstream& out = file.stream();
     const bool grouped = !mesh.group_names.empty() && mesh.group_of_triangle.size() == mesh.triangle_count();

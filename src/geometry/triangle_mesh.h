@@ -12,12 +12,12 @@
 namespace peensim {
 
 struct TriangleMesh {
-    std::vector<Vec3> vertices;                   // m, component frame
-    std::vector<std::array<int, 3>> triangles;    // indices into vertices, counter-clockwise seen from the normal side
-    std::vector<int> source_facet;                // per triangle: facet index in the mesh file (0-based)
-    std::vector<std::string> group_names;         // named solids / sub-meshes of the file ("" if unnamed)
-    std::vector<int> group_of_triangle;           // per triangle: index into group_names
-    std::size_t dropped_degenerate_facets = 0;    // facets of the file dropped by the loader: zero area after welding
+    std::vector<Vec3> vertices;                 // m, component frame
+    std::vector<std::array<int, 3>> triangles;  // indices into vertices, counter-clockwise seen from the normal side
+    std::vector<int> source_facet;              // per triangle: facet index in the mesh file (0-based)
+    std::vector<std::string> group_names;       // named solids / sub-meshes of the file ("" if unnamed)
+    std::vector<int> group_of_triangle;         // per triangle: index into group_names
+    std::size_t dropped_degenerate_facets = 0;  // facets of the file dropped by the loader: zero area after welding
 
     std::size_t triangle_count() const { return triangles.size(); }
     const Vec3& corner(std::size_t t, int k) const { return vertices[static_cast<std::size_t>(triangles[t][static_cast<std::size_t>(k)])]; }

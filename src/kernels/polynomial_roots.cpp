@@ -29,9 +29,7 @@ double abs_sum(const Polynomial& p, double t) {
     return s;
 }
 
-bool is_zero_at(const Polynomial& p, double t, double value) {
-    return std::fabs(value) <= kZeroSlack * kEps * abs_sum(p, t);
-}
+bool is_zero_at(const Polynomial& p, double t, double value) { return std::fabs(value) <= kZeroSlack * kEps * abs_sum(p, t); }
 
 void value_and_slope(const Polynomial& p, double t, double& value, double& slope) {
     double v = p.c[static_cast<std::size_t>(p.degree)], d = 0.0;
@@ -74,8 +72,10 @@ double refine(const Polynomial& p, double lo, double hi, double f_lo, double f_h
         // Below Horner's own rounding, f is noise: x is as good as p allows. (Without this stop,
         // Newton dithers there and the bisection fallback then halves a wide bracket ~50 times.)
         if (std::fabs(f) <= 2.0 * kEps * abs_sum(p, x)) return x;
-        if (sign_of(f) == s_lo) lo = x;
-        else hi = x;
+        if (sign_of(f) == s_lo)
+            lo = x;
+        else
+            hi = x;
         double next = df != 0.0 ? x - f / df : lo - 1.0;
         const bool newton_inside = next > lo && next < hi;
         if (!newton_inside || std::fabs(next - x) > 0.5 * step_before_last) next = 0.5 * (lo + hi);
@@ -185,8 +185,7 @@ int solve(const Polynomial& p_in, double a, double b, PolynomialRoot* out, bool 
             if (found({x[i], classify(before, after)})) return count;
         }
         if (i + 1 < n && !zero[i] && !zero[i + 1] && sign_of(f[i]) != sign_of(f[i + 1])) {
-            if (found({refine(p, x[i], x[i + 1], f[i], f[i + 1]), f[i] > 0.0 ? RootKind::falling : RootKind::rising}))
-                return count;
+            if (found({refine(p, x[i], x[i + 1], f[i], f[i + 1]), f[i] > 0.0 ? RootKind::falling : RootKind::rising})) return count;
         }
     }
     return count;
@@ -199,8 +198,7 @@ void real_roots_in(const Polynomial& p, double a, double b, PolynomialRoots& out
     if (!(a <= b)) return;
     PolynomialRoot roots[kMaxBoundaries];
     const int n = solve(p, a, b, roots, false, RootFilter::any);
-    for (int i = 0; i < n && out.count < static_cast<int>(out.root.size()); ++i)
-        out.root[static_cast<std::size_t>(out.count++)] = roots[i];
+    for (int i = 0; i < n && out.count < static_cast<int>(out.root.size()); ++i) out.root[static_cast<std::size_t>(out.count++)] = roots[i];
 }
 
 bool first_root_in(const Polynomial& p, double a, double b, PolynomialRoot& out, RootFilter filter) {

@@ -22,8 +22,7 @@ struct Polynomial {
     Polynomial derivative() const {
         Polynomial d;
         d.degree = degree > 0 ? degree - 1 : 0;
-        for (int i = 1; i <= degree; ++i)
-            d.c[static_cast<std::size_t>(i - 1)] = i * c[static_cast<std::size_t>(i)];
+        for (int i = 1; i <= degree; ++i) d.c[static_cast<std::size_t>(i - 1)] = i * c[static_cast<std::size_t>(i)];
         return d;
     }
 };
@@ -62,7 +61,6 @@ struct PolynomialRoots {
 void real_roots_in(const Polynomial& p, double a, double b, PolynomialRoots& out);
 
 // The earliest root in [a, b] accepted by `filter`; stops refining as soon as it is found.
-bool first_root_in(const Polynomial& p, double a, double b, PolynomialRoot& out,
-                   RootFilter filter = RootFilter::any);
+bool first_root_in(const Polynomial& p, double a, double b, PolynomialRoot& out, RootFilter filter = RootFilter::any);
 
 }  // namespace peensim

@@ -15,8 +15,8 @@ namespace {
 // `touching`: the spheres touch at t_begin without approaching; the quartic then has its root
 // there, divided out, and the first entering root of the cubic left is the next contact (at
 // t_begin itself if the acceleration presses them together: a shot lying on a resting one).
-ToiStatus accelerated_pair_toi(const Vec3& dp, const Vec3& dv, const Vec3& h, double S, double t_begin, double t_end,
-                               bool touching, PairContact& out) {
+ToiStatus accelerated_pair_toi(const Vec3& dp, const Vec3& dv, const Vec3& h, double S, double t_begin, double t_end, bool touching,
+                               PairContact& out) {
     Polynomial p;
     if (touching) {
         p.degree = 3;
@@ -36,8 +36,8 @@ ToiStatus accelerated_pair_toi(const Vec3& dp, const Vec3& dv, const Vec3& h, do
 
 }  // namespace
 
-ToiStatus sphere_pair_toi(const Trajectory& p1, double r1, const Trajectory& p2, double r2, double t_begin,
-                          double t_end, PairContact& out) {
+ToiStatus sphere_pair_toi(const Trajectory& p1, double r1, const Trajectory& p2, double r2, double t_begin, double t_end,
+                          PairContact& out) {
     if (!(t_end >= t_begin)) return ToiStatus::miss;
     constexpr double kEps = std::numeric_limits<double>::epsilon();
     const double S = r1 + r2;
@@ -45,7 +45,7 @@ ToiStatus sphere_pair_toi(const Trajectory& p1, double r1, const Trajectory& p2,
     const Vec3 dp = p2.position(t_begin) - p1.position(t_begin);
     const Vec3 dv = p2.velocity(t_begin) - p1.velocity(t_begin);
     const double dist = dp.norm();
-    const double b = dp.dot(dv);  // half the rate of change of |dp|^2
+    const double b = dp.dot(dv);                   // half the rate of change of |dp|^2
     if (dist < S * (1.0 + kStartTouchFraction)) {  // touching or overlapping: see toi_status.h
         out.time = t_begin;
         out.normal = dist > 0.0 ? Vec3(dp / dist) : Vec3(Vec3::UnitZ());

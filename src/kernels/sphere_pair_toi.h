@@ -22,7 +22,6 @@ struct PairContact {
 //   (|gap| within the tolerance) counts only while approaching (spheres that separate on a line
 //   never meet again);
 // - miss: neither.
-ToiStatus sphere_pair_toi(const Trajectory& p1, double r1, const Trajectory& p2, double r2, double t_begin,
-                          double t_end, PairContact& out);
+ToiStatus sphere_pair_toi(const Trajectory& p1, double r1, const Trajectory& p2, double r2, double t_begin, double t_end, PairContact& out);
 
 }  // namespace peensim

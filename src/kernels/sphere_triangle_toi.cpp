@@ -53,8 +53,8 @@ void bounding_sphere(const Vec3& a, const Vec3& b, const Vec3& c, Vec3& centre, 
 
 }  // namespace
 
-bool sphere_triangle_first_touch(const Trajectory& path, double radius, const Vec3& a, const Vec3& b, const Vec3& c,
-                                 double t_from, double t_to, TriangleContact& out) {
+bool sphere_triangle_first_touch(const Trajectory& path, double radius, const Vec3& a, const Vec3& b, const Vec3& c, double t_from,
+                                 double t_to, TriangleContact& out) {
     if (!(t_to >= t_from)) return false;
     const double R = radius;
     const double slack = kCullSlack * R;
@@ -100,8 +100,7 @@ bool sphere_triangle_first_touch(const Trajectory& path, double radius, const Ve
         const Vec3 e0 = b - a, e1 = c - b, e2 = a - c;
         const Vec3 b_rel = b - a, c_rel = c - a;
         auto inside = [&](const Vec3& foot) {  // foot relative to a, in the plane
-            return e0.cross(foot).dot(n) >= 0.0 && e1.cross(foot - b_rel).dot(n) >= 0.0 &&
-                   e2.cross(foot - c_rel).dot(n) >= 0.0;
+            return e0.cross(foot).dot(n) >= 0.0 && e1.cross(foot - b_rel).dot(n) >= 0.0 && e2.cross(foot - c_rel).dot(n) >= 0.0;
         };
         // Face contacts: entering the slab with the foot inside. A first entry with the foot
         // outside may be followed by a second one (the parabola leaves and comes back).
@@ -183,8 +182,8 @@ bool sphere_triangle_first_touch(const Trajectory& path, double radius, const Ve
     return found;
 }
 
-ToiStatus sphere_triangle_toi(const Trajectory& path, double radius, const Vec3& a, const Vec3& b, const Vec3& c,
-                              double t_begin, double t_end, TriangleContact& out) {
+ToiStatus sphere_triangle_toi(const Trajectory& path, double radius, const Vec3& a, const Vec3& b, const Vec3& c, double t_begin,
+                              double t_end, TriangleContact& out) {
     if (!(t_end >= t_begin)) return ToiStatus::miss;
     const Vec3 P = path.position(t_begin);
     Vec3 centre;
@@ -199,8 +198,10 @@ ToiStatus sphere_triangle_toi(const Trajectory& path, double radius, const Vec3&
         // (their constant terms are differences of millimetre-sized numbers).
         if (dist < radius * (1.0 + kStartTouchFraction)) {
             Vec3 normal = (b - a).cross(c - a);
-            if (dist > 0.0) normal = d / dist;
-            else normal = normal.norm() > 0.0 ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
+            if (dist > 0.0)
+                normal = d / dist;
+            else
+                normal = normal.norm() > 0.0 ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
             out.time = t_begin;
             out.point = closest.point;
             out.normal = normal;
@@ -212,8 +213,7 @@ ToiStatus sphere_triangle_toi(const Trajectory& path, double radius, const Vec3&
             if (rate < 0.0 || (rate == 0.0 && normal.dot(path.g) < 0.0)) return ToiStatus::impact;
         }
     }
-    return sphere_triangle_first_touch(path, radius, a, b, c, t_begin, t_end, out) ? ToiStatus::impact
-                                                                                    : ToiStatus::miss;
+    return sphere_triangle_first_touch(path, radius, a, b, c, t_begin, t_end, out) ? ToiStatus::impact : ToiStatus::miss;
 }
 
 }  // namespace peensim

@@ -5,17 +5,17 @@
 // valid root of all is the first contact. Pure computation, no allocation.
 #pragma once
 
-#include "kernels/closest_point.h"
 #include "common/vec.h"
+#include "kernels/closest_point.h"
 #include "kernels/toi_status.h"
 #include "kernels/trajectory.h"
 
 namespace peensim {
 
 struct TriangleContact {
-    double time = 0.0;                              // s
-    Vec3 point = Vec3::Zero();                      // m, the triangle's point closest to the centre
-    Vec3 normal = Vec3::UnitZ();                    // unit, from `point` towards the centre
+    double time = 0.0;            // s
+    Vec3 point = Vec3::Zero();    // m, the triangle's point closest to the centre
+    Vec3 normal = Vec3::UnitZ();  // unit, from `point` towards the centre
     TriangleFeature feature = TriangleFeature::face;
 };
 
@@ -28,14 +28,14 @@ struct TriangleContact {
 //   approaching, or at rest and pulled in by g, is an impact at t_begin; one that starts touching
 //   and separating, as right after a bounce, is not: only a later return counts.
 // - miss: neither.
-ToiStatus sphere_triangle_toi(const Trajectory& path, double radius, const Vec3& a, const Vec3& b, const Vec3& c,
-                              double t_begin, double t_end, TriangleContact& out);
+ToiStatus sphere_triangle_toi(const Trajectory& path, double radius, const Vec3& a, const Vec3& b, const Vec3& c, double t_begin,
+                              double t_end, TriangleContact& out);
 
 // The search alone: the earliest time in [t_from, t_to] at which the gap falls to zero from
 // above or touches zero, without reading the state at t_from. For callers that know the sphere
 // is clear of the triangle at t_from (the BVH walk starts it where the sphere enters a leaf's box
 // grown by the radius). True if found.
-bool sphere_triangle_first_touch(const Trajectory& path, double radius, const Vec3& a, const Vec3& b, const Vec3& c,
-                                 double t_from, double t_to, TriangleContact& out);
+bool sphere_triangle_first_touch(const Trajectory& path, double radius, const Vec3& a, const Vec3& b, const Vec3& c, double t_from,
+                                 double t_to, TriangleContact& out);
 
 }  // namespace peensim

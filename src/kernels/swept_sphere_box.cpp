@@ -77,8 +77,10 @@ int intersect(const Interval* A, int na, const Interval* B, int nb, Interval* C)
     while (i < na && j < nb) {
         const double lo = std::max(A[i].lo, B[j].lo), hi = std::min(A[i].hi, B[j].hi);
         if (lo <= hi) C[n++] = {lo, hi};
-        if (A[i].hi < B[j].hi) ++i;
-        else ++j;
+        if (A[i].hi < B[j].hi)
+            ++i;
+        else
+            ++j;
     }
     return n;
 }

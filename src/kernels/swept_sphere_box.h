@@ -44,17 +44,17 @@ private:
         double x0 = 0.0, v = 0.0, h = 0.0;  // m, m/s, m/s^2
         double sign = 1.0;                  // -1: stored mirrored (x -> -x)
         bool linear = true;
-        double inv_v = 0.0;                 // s/m, 1 / v for a linear axis with v != 0
-        double inv_2h = 0.0;                // s^2/m, 1 / (2 h) for a parabolic one
+        double inv_v = 0.0;   // s/m, 1 / v for a linear axis with v != 0
+        double inv_2h = 0.0;  // s^2/m, 1 / (2 h) for a parabolic one
     };
     void classify_axes();
 
-    Vec3 x0_, v_, h_;         // centre at t_begin (m), velocity (m/s), g / 2 (m/s^2)
+    Vec3 x0_, v_, h_;  // centre at t_begin (m), velocity (m/s), g / 2 (m/s^2)
     AxisMotion axis_[3];
-    double radius_ = 0.0;     // m
-    double pad_ = 0.0;        // m
-    double t_begin_ = 0.0;    // s
-    double duration_ = 0.0;   // s
+    double radius_ = 0.0;       // m
+    double pad_ = 0.0;          // m
+    double t_begin_ = 0.0;      // s
+    double duration_ = 0.0;     // s
     Vec3 reach_lo_, reach_hi_;  // m, the centre's bounds over the sweep grown by radius + pad
 };
 

@@ -48,13 +48,10 @@ struct LocalGap {
     double magnitude(double v) const { return size + std::fabs(v * e1) + std::fabs(v * v * e2); }
     double touch_tolerance(double v) const { return kTouchSlack * kEps * magnitude(v); }
     double noise(double v) const { return kNoiseSlack * kEps * magnitude(v); }
-    double slope_noise(double v) const {
-        return kNoiseSlack * kEps * (std::fabs(e1) + std::fabs(2.0 * e2 * v) + std::fabs(amp * w));
-    }
+    double slope_noise(double v) const { return kNoiseSlack * kEps * (std::fabs(e1) + std::fabs(2.0 * e2 * v) + std::fabs(amp * w)); }
 };
 
-LocalGap local_gap(const Trajectory& path, double radius, const VibratingPlane& plane, double amp, double w,
-                   double t_ref) {
+LocalGap local_gap(const Trajectory& path, double radius, const VibratingPlane& plane, double amp, double w, double t_ref) {
     const Vec3 p = path.position(t_ref);
     LocalGap g;
     g.e0 = plane.normal.dot(p - plane.point_m) - radius;
@@ -84,8 +81,10 @@ double refine(const Eval& eval, double lo, double hi, double f_lo, double f_hi, 
         double f, df, noise;
         eval(x, f, df, noise);
         if (std::fabs(f) <= noise) return x;
-        if ((f > 0.0) == lo_positive) lo = x;
-        else hi = x;
+        if ((f > 0.0) == lo_positive)
+            lo = x;
+        else
+            hi = x;
         const double resolution = 2.0 * kEps * (std::fabs(t_ref) + std::fabs(hi)) + floor;
         if (hi - lo <= resolution) return lo;
         double next = df != 0.0 ? x - f / df : lo - 1.0;
@@ -121,9 +120,7 @@ struct Knots {
         if (offset[0] > offset[1]) std::swap(offset[0], offset[1]);
     }
     // The k-th knot time (s from t_ref), increasing with k.
-    double time(long k) const {
-        return (offset[static_cast<std::size_t>(k & 1)] + kTwoPi * static_cast<double>(k >> 1)) / w;
-    }
+    double time(long k) const { return (offset[static_cast<std::size_t>(k & 1)] + kTwoPi * static_cast<double>(k >> 1)) / w; }
 };
 
 // The earliest contact in [0, v_end] of one band window, into v_hit. `skip`: the window starts at
@@ -231,15 +228,11 @@ void describe(const Trajectory& path, const VibratingPlane& plane, double t, Pla
 
 double VibratingPlane::angular_frequency() const { return kTwoPi * frequency_hz; }
 
-double VibratingPlane::phase(double t) const {
-    return kTwoPi * SimTime{t, 0.0}.cycle_fraction(frequency_hz) + phase_rad;
-}
+double VibratingPlane::phase(double t) const { return kTwoPi * SimTime{t, 0.0}.cycle_fraction(frequency_hz) + phase_rad; }
 
 double VibratingPlane::displacement(double t) const { return amplitude_m * std::sin(phase(t)); }
 
-Vec3 VibratingPlane::velocity(double t) const {
-    return (amplitude_m * angular_frequency() * std::cos(phase(t))) * axis;
-}
+Vec3 VibratingPlane::velocity(double t) const { return (amplitude_m * angular_frequency() * std::cos(phase(t))) * axis; }
 
 Vec3 VibratingPlane::acceleration(double t) const {
     const double w = angular_frequency();
@@ -251,8 +244,8 @@ double vibrating_plane_gap(const Trajectory& path, double radius, const Vibratin
     return plane.normal.dot(path.position(t) - plane.point_m) - radius - amp * std::sin(plane.phase(t));
 }
 
-ToiStatus vibrating_plane_toi(const Trajectory& path, double radius, const VibratingPlane& plane, double t_begin,
-                              double t_end, PlaneContact& out, PlaneToiWork* work) {
+ToiStatus vibrating_plane_toi(const Trajectory& path, double radius, const VibratingPlane& plane, double t_begin, double t_end,
+                              PlaneContact& out, PlaneToiWork* work) {
     PlaneToiWork scratch;
     PlaneToiWork& tally = work != nullptr ? *work : scratch;
     if (!(t_end >= t_begin)) return ToiStatus::miss;
@@ -275,8 +268,7 @@ ToiStatus vibrating_plane_toi(const Trajectory& path, double radius, const Vibra
 
     // Windows where the static gap is within the band the plate sweeps: outside them h > 0.
     const double span = t_end - t_begin;
-    const double top = std::fabs(amp) + kBandSlack * kEps *
-                                            (start.size + std::fabs(start.e1) * span + std::fabs(start.e2) * span * span);
+    const double top = std::fabs(amp) + kBandSlack * kEps * (start.size + std::fabs(start.e1) * span + std::fabs(start.e2) * span * span);
     Polynomial above;  // static gap less the band's top: negative inside the band
     above.degree = 2;
     above.c = {start.e0 - top, start.e1, start.e2, 0.0, 0.0};

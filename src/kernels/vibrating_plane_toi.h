@@ -24,7 +24,7 @@ struct VibratingPlane {
     // Hz, F. The frequency rather than w = 2 pi F: the phase at a large time is reduced from the
     // exact cycle count F t (see phase()), as the engine's Kinematics does, so both agree bit for bit.
     double frequency_hz = 0.0;
-    double phase_rad = 0.0;       // rad, phi
+    double phase_rad = 0.0;  // rad, phi
 
     double angular_frequency() const;  // rad/s, w = 2 pi F
 
@@ -38,11 +38,11 @@ struct VibratingPlane {
 };
 
 struct PlaneContact {
-    double time = 0.0;                     // s
-    Vec3 point = Vec3::Zero();             // m, the foot of the centre on the plane at `time`
-    Vec3 normal = Vec3::UnitZ();           // unit, the plane's normal (towards the centre)
-    Vec3 plate_velocity = Vec3::Zero();    // m/s, of the plane at `time`, for the contact law
-    Vec3 plate_acceleration = Vec3::Zero();// m/s^2, of the plane at `time` (whether a slow shot rides it)
+    double time = 0.0;                       // s
+    Vec3 point = Vec3::Zero();               // m, the foot of the centre on the plane at `time`
+    Vec3 normal = Vec3::UnitZ();             // unit, the plane's normal (towards the centre)
+    Vec3 plate_velocity = Vec3::Zero();      // m/s, of the plane at `time`, for the contact law
+    Vec3 plate_acceleration = Vec3::Zero();  // m/s^2, of the plane at `time` (whether a slow shot rides it)
 };
 
 // How much work one query did; optional, for tests and profiling.
@@ -65,8 +65,8 @@ struct PlaneToiWork {
 //   tolerance, the moment it starts closing (so a shot cannot slip through the plate unseen).
 // - miss: neither.
 // `work`, if given, is incremented by the work done.
-ToiStatus vibrating_plane_toi(const Trajectory& path, double radius, const VibratingPlane& plane, double t_begin,
-                              double t_end, PlaneContact& out, PlaneToiWork* work = nullptr);
+ToiStatus vibrating_plane_toi(const Trajectory& path, double radius, const VibratingPlane& plane, double t_begin, double t_end,
+                              PlaneContact& out, PlaneToiWork* work = nullptr);
 
 // The gap h(t) (m) between the sphere and the plane, positive when apart: what the query solves for.
 double vibrating_plane_gap(const Trajectory& path, double radius, const VibratingPlane& plane, double t);

@@ -14,13 +14,12 @@ namespace peensim {
 
 namespace {
 
-constexpr double kTouch = 1e-7;          // m: surfaces this close (float STL rounding) touch, they do not cross
-constexpr int kReachSamples = 1500;      // surface points per component for the reach test
-constexpr int kMaxSubdivision = 64;      // per triangle edge, when sampling surfaces for the sweep test
-constexpr int kMaxSweepBins = 4096;      // axial bins of a rotating part's (r, z) profile
+constexpr double kTouch = 1e-7;      // m: surfaces this close (float STL rounding) touch, they do not cross
+constexpr int kReachSamples = 1500;  // surface points per component for the reach test
+constexpr int kMaxSubdivision = 64;  // per triangle edge, when sampling surfaces for the sweep test
+constexpr int kMaxSweepBins = 4096;  // axial bins of a rotating part's (r, z) profile
 
 bool is_solid_role(ComponentRole r) { return r == ComponentRole::part || r == ComponentRole::fixture || r == ComponentRole::almen; }
-
 
 std::string label(const Model& m, std::size_t i) { return component_field(i) + " (" + m.components[i].name + ")"; }
 
@@ -56,7 +55,8 @@ bool edges_cross_faces(const Component& a, const Vec3& oa, const Component& b, c
         const std::array<Vec3, 3> w = world_triangle(a, pa, t, oa);
         for (int k = 0; k < 3; ++k) {
             // In b's frame, so b's BVH finds the faces near the edge.
-            const Vec3 p = pb.to_component(w[static_cast<std::size_t>(k)] - ob), q = pb.to_component(w[static_cast<std::size_t>((k + 1) % 3)] - ob);
+            const Vec3 p = pb.to_component(w[static_cast<std::size_t>(k)] - ob),
+                       q = pb.to_component(w[static_cast<std::size_t>((k + 1) % 3)] - ob);
             b.collider->triangles_overlapping(p.cwiseMin(q) - Vec3::Constant(kTouch), p.cwiseMax(q) + Vec3::Constant(kTouch), near);
             for (int f : near) {
                 const auto ft = static_cast<std::size_t>(f);
@@ -232,7 +232,8 @@ bool hits_swept(const Component& f, const Vec3& offset, const SweptProfile& s, c
     // f's triangles near the swept box: the box's corners in f's frame bound them.
     Vec3 lo = Vec3::Constant(1e300), hi = -lo;
     for (int k = 0; k < 8; ++k) {
-        const Vec3 corner((k & 1) ? swept_hi.x() : swept_lo.x(), (k & 2) ? swept_hi.y() : swept_lo.y(), (k & 4) ? swept_hi.z() : swept_lo.z());
+        const Vec3 corner((k & 1) ? swept_hi.x() : swept_lo.x(), (k & 2) ? swept_hi.y() : swept_lo.y(),
+                          (k & 4) ? swept_hi.z() : swept_lo.z());
         const Vec3 local = pose.to_component(corner - offset);
         lo = lo.cwiseMin(local);
         hi = hi.cwiseMax(local);
@@ -256,7 +257,8 @@ bool hits_swept(const Component& f, const Vec3& offset, const SweptProfile& s, c
 void add(AssemblyReport& r, const Model& m, std::size_t i, bool error, std::string field_suffix, std::string message) {
     // Named as the user knows it: the field path says where in the file, the name which part.
     const ComponentDesc& d = m.description.components[i];
-    r.issues.push_back({error, d.where, component_field(i) + field_suffix, std::string(role_name(d.role)) + " '" + d.name + "': " + message});
+    r.issues.push_back(
+        {error, d.where, component_field(i) + field_suffix, std::string(role_name(d.role)) + " '" + d.name + "': " + message});
 }
 
 }  // namespace
@@ -307,7 +309,9 @@ AssemblyReport check_assembly(const Model& m, ShotCavity& cavity) {
         if (facts.reachable_fraction < kMinReachable) {
             std::ostringstream s;
             s.precision(3);
-            s << (facts.reachable_fraction == 0.0 ? "no part" : "only " + std::to_string(static_cast<int>(std::round(100.0 * facts.reachable_fraction))) + " %")
+            s << (facts.reachable_fraction == 0.0
+                      ? "no part"
+                      : "only " + std::to_string(static_cast<int>(std::round(100.0 * facts.reachable_fraction))) + " %")
               << " of its surface can be reached by the shot (the rest lies outside the chamber's cavity, in the sonotrode or in "
                  "another component); "
               << where.str() << ": check its translation, rotation and mesh_unit";

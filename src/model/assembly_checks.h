@@ -28,17 +28,17 @@
 namespace peensim {
 
 struct AssemblyIssue {
-    bool error = true;       // false: a warning (an error with --strict)
-    SourceLocation where;    // the component's entry in the scene file
-    std::string field;       // "components[2]", "components[2].mesh", ...
-    std::string message;     // what is wrong, where (mm), what to check
+    bool error = true;     // false: a warning (an error with --strict)
+    SourceLocation where;  // the component's entry in the scene file
+    std::string field;     // "components[2]", "components[2].mesh", ...
+    std::string message;   // what is wrong, where (mm), what to check
 };
 
 // What `check` prints about each component.
 struct ComponentFacts {
     Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // m, world bounds at t = 0 (rotating: swept)
     std::size_t triangles = 0;
-    bool closed = false;                        // watertight mesh
+    bool closed = false;  // watertight mesh
     // m, nearest distance to the sonotrode at rest less its amplitude, and to the chamber; NaN if
     // not measured (the sonotrode and chambers themselves).
     double clearance_to_sonotrode_m = std::numeric_limits<double>::quiet_NaN();

@@ -14,9 +14,7 @@ namespace peensim {
 
 namespace {
 
-std::string component_field(std::size_t i, const std::string& leaf) {
-    return "components[" + std::to_string(i) + "]." + leaf;
-}
+std::string component_field(std::size_t i, const std::string& leaf) { return "components[" + std::to_string(i) + "]." + leaf; }
 
 // Mean outward normal of the triangles facing `up` (area weighted), in the mesh frame.
 Vec3 mean_upward_normal(const TriangleMesh& mesh, const Vec3& up_in_mesh) {
@@ -37,8 +35,7 @@ Kinematics build_kinematics(const ComponentDesc& desc, const TriangleMesh& mesh,
         k.amplitude_m = v.amplitude_m;
         k.frequency_hz = v.frequency_hz;
         k.phase_rad = v.phase_rad;
-        k.axis = v.axis ? v.axis->normalized()
-                        : Vec3(desc.rotation * mean_upward_normal(mesh, desc.rotation.transpose() * up));
+        k.axis = v.axis ? v.axis->normalized() : Vec3(desc.rotation * mean_upward_normal(mesh, desc.rotation.transpose() * up));
     }
     if (desc.rotation_motion) {
         const RotationDesc& r = *desc.rotation_motion;
@@ -168,8 +165,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         const ContactPairDesc& pair = contact_for(scene, "shot-" + desc.material);
         c.law = surface_law_of(pair, scene, c);
         c.coefficients_source = pair.key;
-        c.logged = logged.empty() ? logged_by_default(desc.role)
-                                  : std::find(logged.begin(), logged.end(), desc.name) != logged.end();
+        c.logged = logged.empty() ? logged_by_default(desc.role) : std::find(logged.begin(), logged.end(), desc.name) != logged.end();
         component_bounds(c);
         if (desc.role == ComponentRole::part || desc.role == ComponentRole::fixture || desc.role == ComponentRole::almen) {
             const EdgeReport edges = edge_report(*c.mesh);
@@ -179,8 +175,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         if (desc.role == ComponentRole::sonotrode) model->sonotrode = static_cast<int>(i);
         model->components.push_back(std::move(c));
     }
-    if (model->sonotrode < 0)
-        throw InputError({scene.source_file, 0, 0}, "components", "expected one component with role sonotrode");
+    if (model->sonotrode < 0) throw InputError({scene.source_file, 0, 0}, "components", "expected one component with role sonotrode");
 
     model->world_lo = Vec3::Constant(std::numeric_limits<double>::infinity());
     model->world_hi = -model->world_lo;

@@ -12,7 +12,7 @@ namespace {
 constexpr double kMaxCells = 8.0e6;
 constexpr int kProbeReach = 2;  // cells: how far a point in a surface cell looks for a free one
 constexpr std::array<std::array<int, 3>, 6> kFaceNeighbours{{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
-}
+}  // namespace
 
 Enclosure::Enclosure(const TriangleMesh& world_mesh, double cell_size_m, double shot_radius_m, Clearance clearance)
     : grid_(world_mesh, DistanceGate::cell_within(world_mesh, cell_size_m, 4.0 * shot_radius_m, kMaxCells), 4.0 * shot_radius_m),
@@ -97,7 +97,8 @@ bool Enclosure::probe_cell(const Vec3& p, int& i, int& j, int& k) const {
                 if (a < 0 || b < 0 || c < 0 || a >= grid_.nx() || b >= grid_.ny() || c >= grid_.nz() || grid_.level(a, b, c) == 0) continue;
                 near[n++] = {(grid_.cell_centre(a, b, c) - p).squaredNorm(), a, b, c};
             }
-    std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(n), [](const Candidate& x, const Candidate& y) { return x.distance2 < y.distance2; });
+    std::sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(n),
+              [](const Candidate& x, const Candidate& y) { return x.distance2 < y.distance2; });
     for (std::size_t q = 0; q < n; ++q)
         if (segment_clear(p, grid_.cell_centre(near[q].i, near[q].j, near[q].k))) {
             i = near[q].i, j = near[q].j, k = near[q].k;

@@ -52,7 +52,8 @@ public:
 private:
     std::size_t index(int i, int j, int k) const {
         return (static_cast<std::size_t>(k) * static_cast<std::size_t>(grid_.ny()) + static_cast<std::size_t>(j)) *
-                   static_cast<std::size_t>(grid_.nx()) + static_cast<std::size_t>(i);
+                   static_cast<std::size_t>(grid_.nx()) +
+               static_cast<std::size_t>(i);
     }
     bool passable(int i, int j, int k) const { return grid_.level(i, j, k) >= passable_level_; }
     // The free cell (level > 0) p is read from: its own, or the nearest free one within two cells

@@ -6,10 +6,8 @@ namespace peensim {
 
 Pose Kinematics::pose(const SimTime& t, double offset_s) const {
     switch (kind) {
-        case Kind::fixed:
-            return rest;
-        case Kind::vibrating:
-            return {rest.rotation, rest.translation + axis * displacement(t, offset_s)};
+        case Kind::fixed: return rest;
+        case Kind::vibrating: return {rest.rotation, rest.translation + axis * displacement(t, offset_s)};
         case Kind::rotating: {
             // The angle is reduced modulo 2 pi from the compensated time so long runs keep it exact.
             const double turns = t.cycle_fraction(omega_rad_per_s / (2.0 * M_PI), offset_s);

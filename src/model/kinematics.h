@@ -11,8 +11,8 @@
 namespace peensim {
 
 struct Pose {
-    Mat3 rotation = Mat3::Identity();   // component frame -> world
-    Vec3 translation = Vec3::Zero();    // m
+    Mat3 rotation = Mat3::Identity();  // component frame -> world
+    Vec3 translation = Vec3::Zero();   // m
 
     Vec3 to_world(const Vec3& x_c) const { return rotation * x_c + translation; }
     Vec3 to_component(const Vec3& x_w) const { return rotation.transpose() * (x_w - translation); }
@@ -21,18 +21,18 @@ struct Pose {
 struct Kinematics {
     enum class Kind { fixed, vibrating, rotating };
     Kind kind = Kind::fixed;
-    Pose rest;                          // pose at t = 0 without vibration
+    Pose rest;  // pose at t = 0 without vibration
 
     // vibrating
-    Vec3 axis = Vec3::UnitZ();          // unit, world
-    double amplitude_m = 0.0;           // m, A0
-    double frequency_hz = 0.0;          // Hz, F
-    double phase_rad = 0.0;             // rad
+    Vec3 axis = Vec3::UnitZ();  // unit, world
+    double amplitude_m = 0.0;   // m, A0
+    double frequency_hz = 0.0;  // Hz, F
+    double phase_rad = 0.0;     // rad
 
     // rotating
-    Vec3 axis_point_m = Vec3::Zero();   // m, P
-    Vec3 axis_direction = Vec3::UnitZ();// unit, u
-    double omega_rad_per_s = 0.0;       // rad/s
+    Vec3 axis_point_m = Vec3::Zero();     // m, P
+    Vec3 axis_direction = Vec3::UnitZ();  // unit, u
+    double omega_rad_per_s = 0.0;         // rad/s
 
     bool moves() const { return kind != Kind::fixed && (amplitude_m != 0.0 || omega_rad_per_s != 0.0); }
 
@@ -59,9 +59,7 @@ struct Kinematics {
     double peak_surface_speed(double max_radius_m) const;
 
 private:
-    double angle(const SimTime& t, double offset_s) const {
-        return 2.0 * M_PI * t.cycle_fraction(frequency_hz, offset_s) + phase_rad;
-    }
+    double angle(const SimTime& t, double offset_s) const { return 2.0 * M_PI * t.cycle_fraction(frequency_hz, offset_s) + phase_rad; }
 };
 
 }  // namespace peensim

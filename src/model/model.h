@@ -22,15 +22,15 @@ struct Component {
     std::string name;
     ComponentRole role = ComponentRole::fixture;
     std::string material;
-    std::shared_ptr<const TriangleMesh> mesh;        // component frame, m
-    std::shared_ptr<const MeshCollider> collider;    // Bullet BVH over `mesh`
+    std::shared_ptr<const TriangleMesh> mesh;      // component frame, m
+    std::shared_ptr<const MeshCollider> collider;  // Bullet BVH over `mesh`
     Kinematics kinematics;
     // Shot against this component's material: the pair's law, its parameters bound (law_registry.h).
     std::shared_ptr<const contact::SurfaceLaw> law;
-    std::string coefficients_source;                 // the scene's pair: "shot-<material>" or "default"
-    bool logged = false;                             // impacts written to impacts.csv
-    double max_axis_distance_m = 0.0;                // m, largest distance of a vertex from the rotation axis
-    Vec3 world_lo, world_hi;                         // m, bounds at t = 0 (rotating: swept about the axis)
+    std::string coefficients_source;   // the scene's pair: "shot-<material>" or "default"
+    bool logged = false;               // impacts written to impacts.csv
+    double max_axis_distance_m = 0.0;  // m, largest distance of a vertex from the rotation axis
+    Vec3 world_lo, world_hi;           // m, bounds at t = 0 (rotating: swept about the axis)
     // A solid the shot stay out of (part, fixture, Almen strip) whose mesh is closed, consistently
     // wound, normals outward: a centre on the inner side of its nearest facet is inside the solid,
     // and is put back out through that facet, never pushed further in.
@@ -43,24 +43,24 @@ struct Model {
     std::uint64_t scene_hash = 0;
 
     std::vector<Component> components;
-    int sonotrode = -1;                              // index into components
+    int sonotrode = -1;  // index into components
 
     int shot_count = 0;
-    double shot_radius_m = 0.0;                      // m, R = D / 2
-    double shot_mass_kg = 0.0;                       // kg
+    double shot_radius_m = 0.0;                                 // m, R = D / 2
+    double shot_mass_kg = 0.0;                                  // kg
     std::shared_ptr<const contact::ShotShotLaw> shot_shot_law;  // the `shot-shot` pair's law, bound
 
-    Vec3 gravity_m_per_s2 = Vec3::Zero();            // m/s2
-    double duration_s = 0.0;                         // s
+    Vec3 gravity_m_per_s2 = Vec3::Zero();  // m/s2
+    double duration_s = 0.0;               // s
     std::uint64_t seed = 1;
-    double travel_fraction = 0.25;                   // -, eq. 7 travel per step / R
+    double travel_fraction = 0.25;  // -, eq. 7 travel per step / R
     // m/s, the one line between impacts and sustained contact, for both schemes: a normal approach
     // (relative to the surface's material, or between two shot) at least this fast is an impact;
     // slower is sustained contact (approach removed, friction, no rebound, not logged).
     double impact_speed_m_per_s = 0.05;
-    double peak_surface_speed_m_per_s = 0.0;         // m/s, fastest moving surface (sonotrode or part rim)
+    double peak_surface_speed_m_per_s = 0.0;  // m/s, fastest moving surface (sonotrode or part rim)
 
-    Vec3 world_lo, world_hi;                         // m, a shot outside this box has left the chamber
+    Vec3 world_lo, world_hi;  // m, a shot outside this box has left the chamber
 
     const Component& sonotrode_component() const { return components[static_cast<std::size_t>(sonotrode)]; }
     // Index of a component by name, or -1.

@@ -39,8 +39,10 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     if (vib.frequency_hz > 0.0 && (vib.frequency_hz < 1e3 || vib.frequency_hz > 1e5)) {
         const auto in_window = [](double f) { return f >= 1e3 && f <= 1e5; };
         std::string hint;
-        if (in_window(vib.frequency_hz * 1e3)) hint = "; did you mean " + num(vib.frequency_hz) + " kHz?";
-        else if (in_window(vib.frequency_hz * 1e-3)) hint = "; did you mean " + num(vib.frequency_hz * 1e-3) + " Hz?";
+        if (in_window(vib.frequency_hz * 1e3))
+            hint = "; did you mean " + num(vib.frequency_hz) + " kHz?";
+        else if (in_window(vib.frequency_hz * 1e-3))
+            hint = "; did you mean " + num(vib.frequency_hz * 1e-3) + " Hz?";
         warn(sono_where, component_field(sono) + ".vibration.frequency",
              num(vib.frequency_hz) + " Hz is outside 1-100 kHz (ultrasonic sonotrodes run at ~20 kHz)" + hint);
     }

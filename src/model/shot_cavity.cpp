@@ -93,10 +93,14 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
         enclosure.escape_point(p, lo, hi, where);
         SourceLocation at{scene.source_file, 0, 0};
         for (const ComponentDesc& c : scene.components)
-            if (c.role == ComponentRole::chamber) { at = c.where; break; }
-        throw InputError(at, "components", "the chamber is not closed around the sonotrode: a shot placed on the sonotrode at " +
-                                               mm_point(p) + " can leave the assembly near " + mm_point(where) +
-                                               " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
+            if (c.role == ComponentRole::chamber) {
+                at = c.where;
+                break;
+            }
+        throw InputError(at, "components",
+                         "the chamber is not closed around the sonotrode: a shot placed on the sonotrode at " + mm_point(p) +
+                             " can leave the assembly near " + mm_point(where) +
+                             " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
     }
     if (roofed == 0)
         throw InputError(sono_where, "components", "expected a chamber above the sonotrode, found nothing above its upper face");
@@ -125,7 +129,8 @@ int cavity_region(const Model& model, Enclosure& enclosure, const SonotrodeFaces
 
 Vec3 SonotrodeFaces::sample(Random& rng) const {
     const double u = rng.uniform() * cumulative_area.back();
-    const std::size_t f = static_cast<std::size_t>(std::upper_bound(cumulative_area.begin(), cumulative_area.end(), u) - cumulative_area.begin());
+    const std::size_t f =
+        static_cast<std::size_t>(std::upper_bound(cumulative_area.begin(), cumulative_area.end(), u) - cumulative_area.begin());
     const auto& tri = faces[std::min(f, faces.size() - 1)];
     const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
     return (1.0 - r1) * tri[0] + r1 * (1.0 - r2) * tri[1] + r1 * r2 * tri[2];
@@ -146,8 +151,9 @@ bool clear_of_meshes(const Model& model, const Vec3& p, double r) {
 double distance_to(const Component& c, const Vec3& p, double within) {
     MeshCollider::Closest closest;
     MeshCollider::QueryCounters counters;
-    return c.collider->closest_within(c.kinematics.pose(SimTime{}).to_component(p), within, closest, counters) ? std::min(within, closest.distance)
-                                                                                                              : within;
+    return c.collider->closest_within(c.kinematics.pose(SimTime{}).to_component(p), within, closest, counters)
+               ? std::min(within, closest.distance)
+               : within;
 }
 
 double clearance(const Model& model, const Vec3& p, double within) {

@@ -38,7 +38,9 @@ private:
     std::array<long, 3> cell(const Vec3& p) const {
         return {std::lround(std::floor(p.x() / cell_)), std::lround(std::floor(p.y() / cell_)), std::lround(std::floor(p.z() / cell_))};
     }
-    static long long key(long i, long j, long k) { return (static_cast<long long>(i) * 73856093) ^ (static_cast<long long>(j) * 19349663) ^ (static_cast<long long>(k) * 83492791); }
+    static long long key(long i, long j, long k) {
+        return (static_cast<long long>(i) * 73856093) ^ (static_cast<long long>(j) * 19349663) ^ (static_cast<long long>(k) * 83492791);
+    }
     double cell_;
     std::unordered_map<long long, std::vector<Vec3>> cells_;
 };
@@ -94,7 +96,8 @@ InitialShots place_shots(const Model& model, ShotCavity& cavity, Random& rng) {
             case InitialVelocityKind::random_upward: {
                 // Uniform on the upper hemisphere: cos(theta) uniform in [0, 1].
                 const double c = rng.uniform(), s = std::sqrt(std::max(0.0, 1.0 - c * c)), phi = 2.0 * M_PI * rng.uniform();
-                out.velocities.push_back(scene.shot.initial_speed_m_per_s * (c * up + s * std::cos(phi) * side + s * std::sin(phi) * side2));
+                out.velocities.push_back(scene.shot.initial_speed_m_per_s *
+                                         (c * up + s * std::cos(phi) * side + s * std::sin(phi) * side2));
                 break;
             }
         }

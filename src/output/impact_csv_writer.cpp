@@ -1,12 +1,12 @@
 #include "output/impact_csv_writer.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
-#include <fcntl.h>
 #include <stdexcept>
-#include <sys/stat.h>
-#include <unistd.h>
 #include <utility>
 
 #include "output/posix_file.h"
@@ -44,13 +44,9 @@ std::vector<std::string> csv_fields(const std::vector<std::string>& names) {
     return fields;
 }
 
-char* put_double(char* p, double value) {
-    return std::to_chars(p, p + kMaxDoubleChars, value).ptr;
-}
+char* put_double(char* p, double value) { return std::to_chars(p, p + kMaxDoubleChars, value).ptr; }
 
-char* put_int(char* p, std::int32_t value) {
-    return std::to_chars(p, p + kMaxIntChars, value).ptr;
-}
+char* put_int(char* p, std::int32_t value) { return std::to_chars(p, p + kMaxIntChars, value).ptr; }
 
 char* put_vec(char* p, const Vec3& v) {
     p = put_double(p, v.x());
@@ -78,8 +74,7 @@ std::string read_at(int fd, std::uint64_t offset, std::size_t size, const std::s
     std::string bytes(size, '\0');
     std::size_t done = 0;
     while (done < size) {
-        const ssize_t n =
-            ::pread(fd, bytes.data() + done, size - done, static_cast<off_t>(offset + done));
+        const ssize_t n = ::pread(fd, bytes.data() + done, size - done, static_cast<off_t>(offset + done));
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) posix_file::throw_errno("cannot read", path);
         if (n == 0) break;
@@ -91,9 +86,8 @@ std::string read_at(int fd, std::uint64_t offset, std::size_t size, const std::s
 
 }  // namespace
 
-ImpactCsvWriter::ImpactCsvWriter(AdoptOpenFile, std::string dir,
-                                 std::vector<std::string> component_names, int fd,
-                                 std::uint64_t bytes, std::uint64_t rows)
+ImpactCsvWriter::ImpactCsvWriter(AdoptOpenFile, std::string dir, std::vector<std::string> component_names, int fd, std::uint64_t bytes,
+                                 std::uint64_t rows)
     : dir_(std::move(dir)),
       partial_path_(join_path(dir_, kImpactCsvPartialFileName)),
       final_path_(join_path(dir_, kImpactCsvFileName)),
@@ -104,8 +98,7 @@ ImpactCsvWriter::ImpactCsvWriter(AdoptOpenFile, std::string dir,
     std::size_t longest_name = 0;
     for (const auto& name : csv_names_) longest_name = std::max(longest_name, name.size());
     // One char after each field: a comma, or the newline after the last.
-    max_row_bytes_ =
-        kDoubleFields * (kMaxDoubleChars + 1) + kIntFields * (kMaxIntChars + 1) + longest_name + 1;
+    max_row_bytes_ = kDoubleFields * (kMaxDoubleChars + 1) + kIntFields * (kMaxIntChars + 1) + longest_name + 1;
     capacity_ = std::max(kImpactCsvBufferBytes, 2 * max_row_bytes_);
     buffer_ = std::make_unique<char[]>(capacity_);
 }
@@ -120,14 +113,13 @@ ImpactCsvWriter::ImpactCsvWriter(std::string dir, std::vector<std::string> compo
     bytes_written_ = used_;
 }
 
-ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string> component_names,
-                                        std::uint64_t bytes, std::uint64_t rows) {
+ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string> component_names, std::uint64_t bytes,
+                                        std::uint64_t rows) {
     const std::string partial = join_path(dir, kImpactCsvPartialFileName);
     // A run that failed after finish() (a full disk while writing its summary) has its rows in
     // impacts.csv already and a checkpoint still: they go back to the .partial to be continued.
     const std::string final_path = join_path(dir, kImpactCsvFileName);
-    if (::access(partial.c_str(), F_OK) != 0 && ::access(final_path.c_str(), F_OK) == 0)
-        posix_file::rename_or_throw(final_path, partial);
+    if (::access(partial.c_str(), F_OK) != 0 && ::access(final_path.c_str(), F_OK) == 0) posix_file::rename_or_throw(final_path, partial);
     const int fd = ::open(partial.c_str(), O_RDWR | O_CLOEXEC);
     if (fd < 0) {
         posix_file::throw_errno("cannot resume impacts from checkpoint: cannot open", partial);
@@ -135,18 +127,14 @@ ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string
     try {
         const std::uint64_t size = file_size(fd, partial);
         const auto fail = [&](const std::string& problem) {
-            throw std::runtime_error("cannot resume impacts from checkpoint: '" + partial + "' " +
-                                     problem);
+            throw std::runtime_error("cannot resume impacts from checkpoint: '" + partial + "' " + problem);
         };
         if (size < bytes) {
-            fail("has " + std::to_string(size) + " bytes, the checkpoint recorded " +
-                 std::to_string(bytes));
+            fail("has " + std::to_string(size) + " bytes, the checkpoint recorded " + std::to_string(bytes));
         }
         const std::size_t header_line = kImpactCsvHeader.size() + 1;
-        if (bytes < header_line ||
-            read_at(fd, 0, header_line, partial) != std::string(kImpactCsvHeader) + '\n') {
-            fail("does not start with the impacts.csv header, or the checkpoint offset " +
-                 std::to_string(bytes) + " is inside it");
+        if (bytes < header_line || read_at(fd, 0, header_line, partial) != std::string(kImpactCsvHeader) + '\n') {
+            fail("does not start with the impacts.csv header, or the checkpoint offset " + std::to_string(bytes) + " is inside it");
         }
         if (read_at(fd, bytes - 1, 1, partial) != "\n") {
             fail("has no row end at the checkpoint offset " + std::to_string(bytes));
@@ -162,8 +150,7 @@ ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string
         ::close(fd);
         throw;
     }
-    ImpactCsvWriter writer(AdoptOpenFile{}, std::move(dir), std::move(component_names), fd, bytes,
-                           rows);
+    ImpactCsvWriter writer(AdoptOpenFile{}, std::move(dir), std::move(component_names), fd, bytes, rows);
     remove_if_present(writer.final_path_);
     return writer;
 }
@@ -201,9 +188,7 @@ ImpactCsvWriter& ImpactCsvWriter::operator=(ImpactCsvWriter&& other) noexcept {
     return *this;
 }
 
-ImpactCsvWriter::~ImpactCsvWriter() {
-    close_quietly();
-}
+ImpactCsvWriter::~ImpactCsvWriter() { close_quietly(); }
 
 void ImpactCsvWriter::close_quietly() noexcept {
     if (fd_ < 0) return;
@@ -219,9 +204,8 @@ void ImpactCsvWriter::close_quietly() noexcept {
 void ImpactCsvWriter::write(const ImpactRecord& impact) {
     if (fd_ < 0) throw std::logic_error("ImpactCsvWriter::write after finish()");
     if (impact.component < 0 || static_cast<std::size_t>(impact.component) >= csv_names_.size()) {
-        throw std::out_of_range("impact on component index " + std::to_string(impact.component) +
-                                " but only " + std::to_string(csv_names_.size()) +
-                                " component names were given");
+        throw std::out_of_range("impact on component index " + std::to_string(impact.component) + " but only " +
+                                std::to_string(csv_names_.size()) + " component names were given");
     }
     if (capacity_ - used_ < max_row_bytes_) flush_buffer();
 

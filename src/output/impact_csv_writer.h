@@ -47,8 +47,7 @@ public:
     // after finish() (impacts.csv but no .partial) is continued from its impacts.csv. Throws
     // std::runtime_error if the .partial is missing, shorter than `bytes`, does not start
     // with the header, or `bytes` does not fall at the end of a row.
-    static ImpactCsvWriter resume(std::string dir, std::vector<std::string> component_names,
-                                  std::uint64_t bytes, std::uint64_t rows);
+    static ImpactCsvWriter resume(std::string dir, std::vector<std::string> component_names, std::uint64_t bytes, std::uint64_t rows);
 
     ImpactCsvWriter(ImpactCsvWriter&& other) noexcept;
     ImpactCsvWriter& operator=(ImpactCsvWriter&& other) noexcept;
@@ -83,8 +82,8 @@ public:
 
 private:
     struct AdoptOpenFile {};
-    ImpactCsvWriter(AdoptOpenFile, std::string dir, std::vector<std::string> component_names,
-                    int fd, std::uint64_t bytes, std::uint64_t rows);
+    ImpactCsvWriter(AdoptOpenFile, std::string dir, std::vector<std::string> component_names, int fd, std::uint64_t bytes,
+                    std::uint64_t rows);
 
     void flush_buffer();
     void close_quietly() noexcept;

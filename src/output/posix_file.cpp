@@ -1,18 +1,17 @@
 #include "output/posix_file.h"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <cerrno>
 #include <cstdio>
-#include <fcntl.h>
 #include <stdexcept>
 #include <system_error>
-#include <unistd.h>
 
 namespace peensim::posix_file {
 
 void throw_errno(std::string_view action, const std::string& path) {
     const int err = errno;
-    throw std::runtime_error(std::string(action) + " '" + path +
-                             "': " + std::generic_category().message(err));
+    throw std::runtime_error(std::string(action) + " '" + path + "': " + std::generic_category().message(err));
 }
 
 int open_or_throw(const std::string& path, int flags, int mode) {

@@ -30,8 +30,7 @@ void format_duration(char* out, std::size_t size, double seconds) {
 
 }  // namespace
 
-ProgressReporter::ProgressReporter(std::ostream& out, bool enabled)
-    : out_(out), enabled_(enabled) {}
+ProgressReporter::ProgressReporter(std::ostream& out, bool enabled) : out_(out), enabled_(enabled) {}
 
 void ProgressReporter::update(double sim_time_s, double duration_s, std::uint64_t impacts) {
     if (!enabled_ || finished_) return;
@@ -48,8 +47,7 @@ void ProgressReporter::update(double sim_time_s, double duration_s, std::uint64_
         return;
     }
     draw(now);
-    next_draw_ = now + std::chrono::duration_cast<Clock::duration>(
-                           std::chrono::duration<double>(1.0 / kProgressRedrawsPerSecond));
+    next_draw_ = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kProgressRedrawsPerSecond));
 }
 
 void ProgressReporter::finish() {
@@ -60,14 +58,11 @@ void ProgressReporter::finish() {
 }
 
 void ProgressReporter::draw(Clock::time_point now) {
-    const double fraction =
-        duration_s_ > 0.0 ? std::clamp(sim_time_s_ / duration_s_, 0.0, 1.0) : 0.0;
+    const double fraction = duration_s_ > 0.0 ? std::clamp(sim_time_s_ / duration_s_, 0.0, 1.0) : 0.0;
     const double wall_s = std::chrono::duration<double>(now - first_update_).count();
     const double sim_done_s = sim_time_s_ - first_sim_time_s_;
-    const double eta_s =
-        sim_done_s > 0.0 ? wall_s * std::max(0.0, duration_s_ - sim_time_s_) / sim_done_s : -1.0;
-    const double impacts_per_s =
-        wall_s > 0.0 ? static_cast<double>(impacts_ - first_impacts_) / wall_s : 0.0;
+    const double eta_s = sim_done_s > 0.0 ? wall_s * std::max(0.0, duration_s_ - sim_time_s_) / sim_done_s : -1.0;
+    const double impacts_per_s = wall_s > 0.0 ? static_cast<double>(impacts_ - first_impacts_) / wall_s : 0.0;
 
     char bar[kBarWidth + 1];
     const int filled = static_cast<int>(fraction * kBarWidth);
@@ -77,9 +72,8 @@ void ProgressReporter::draw(Clock::time_point now) {
     format_duration(eta, sizeof eta, eta_s);
 
     char line[256];
-    const int length =
-        std::snprintf(line, sizeof line, "[%s] %5.1f%%  sim %.4f/%.4f s  ETA %s  %.0f impacts/s",
-                      bar, 100.0 * fraction, sim_time_s_, duration_s_, eta, impacts_per_s);
+    const int length = std::snprintf(line, sizeof line, "[%s] %5.1f%%  sim %.4f/%.4f s  ETA %s  %.0f impacts/s", bar, 100.0 * fraction,
+                                     sim_time_s_, duration_s_, eta, impacts_per_s);
     const int shown = std::clamp(length, 0, static_cast<int>(sizeof line) - 1);
     out_ << '\r';
     out_.write(line, shown);

@@ -42,8 +42,7 @@ RunDirectoryLock::RunDirectoryLock(const std::string& dir) {
         fd_ = -1;
         if (error == EWOULDBLOCK)
             throw InputError(SourceLocation{dir, 0, 0}, "output directory",
-                             "in use by another peensim run (" + who +
-                                 "); wait for it to end, or choose another directory with -o");
+                             "in use by another peensim run (" + who + "); wait for it to end, or choose another directory with -o");
         errno = error;
         posix_file::throw_errno("cannot lock", path);
     }
@@ -62,8 +61,14 @@ RunDirectoryLock::~RunDirectoryLock() {
 }
 
 const std::vector<std::string>& run_output_names() {
-    static const std::vector<std::string> names{std::string(kImpactCsvFileName), std::string(kImpactCsvPartialFileName), "checkpoint.bin",
-                                                "summary.json", "scene.resolved.yaml", "animation.mp4", "frames", "analysis"};
+    static const std::vector<std::string> names{std::string(kImpactCsvFileName),
+                                                std::string(kImpactCsvPartialFileName),
+                                                "checkpoint.bin",
+                                                "summary.json",
+                                                "scene.resolved.yaml",
+                                                "animation.mp4",
+                                                "frames",
+                                                "analysis"};
     return names;
 }
 

@@ -55,7 +55,7 @@ struct RunSummary {
     // Flights that ended in sustained contact (approach slower than impact_speed_m_per_s): not
     // impacts, counted once per landing; same entries as impacts_per_component.
     std::vector<NamedCount> slow_contacts_per_component;
-    double impact_speed_m_per_s = 0.0;  // m/s, the scene's accuracy.impact_speed
+    double impact_speed_m_per_s = 0.0;           // m/s, the scene's accuracy.impact_speed
     std::vector<NormalSpeedStats> normal_speed;  // per logged component
     std::vector<NamedCount> health_counters;
     std::vector<StageTime> stage_times;  // in step order

@@ -16,10 +16,8 @@ constexpr std::string_view kMagic = "PSHIST01";
 
 }  // namespace
 
-SpeedHistogram::SpeedHistogram(double bin_width_m_per_s, double upper_m_per_s)
-    : bin_width_(bin_width_m_per_s) {
-    if (!(bin_width_m_per_s > 0.0) || !std::isfinite(bin_width_m_per_s) || !(upper_m_per_s > 0.0) ||
-        !std::isfinite(upper_m_per_s)) {
+SpeedHistogram::SpeedHistogram(double bin_width_m_per_s, double upper_m_per_s) : bin_width_(bin_width_m_per_s) {
+    if (!(bin_width_m_per_s > 0.0) || !std::isfinite(bin_width_m_per_s) || !(upper_m_per_s > 0.0) || !std::isfinite(upper_m_per_s)) {
         throw std::invalid_argument("speed histogram: bin width and upper end must be positive");
     }
     const double bins = std::round(upper_m_per_s / bin_width_m_per_s);
@@ -66,18 +64,13 @@ double SpeedHistogram::mean() const {
     return (sum_ + sum_correction_) / static_cast<double>(count_);
 }
 
-double SpeedHistogram::min() const {
-    return count_ == 0 ? std::numeric_limits<double>::quiet_NaN() : min_;
-}
+double SpeedHistogram::min() const { return count_ == 0 ? std::numeric_limits<double>::quiet_NaN() : min_; }
 
-double SpeedHistogram::max() const {
-    return count_ == 0 ? std::numeric_limits<double>::quiet_NaN() : max_;
-}
+double SpeedHistogram::max() const { return count_ == 0 ? std::numeric_limits<double>::quiet_NaN() : max_; }
 
 double SpeedHistogram::percentile(double p) const {
     if (!(p >= 0.0 && p <= 100.0)) {
-        throw std::invalid_argument("speed histogram: percentile must be in [0, 100], got " +
-                                    std::to_string(p));
+        throw std::invalid_argument("speed histogram: percentile must be in [0, 100], got " + std::to_string(p));
     }
     if (count_ == 0) return std::numeric_limits<double>::quiet_NaN();
     const double rank = p / 100.0 * static_cast<double>(count_);  // 1-based, continuous
@@ -143,8 +136,7 @@ SpeedHistogram SpeedHistogram::deserialize(std::string_view bytes) {
     if (in.take(kMagic.size()) != kMagic) in.fail("wrong magic");
     const std::uint64_t bin_count = in.get<std::uint64_t>();
     const double width = in.get<double>();
-    if (bin_count < 1 || static_cast<double>(bin_count) > kMaxBins || !(width > 0.0) ||
-        !std::isfinite(width)) {
+    if (bin_count < 1 || static_cast<double>(bin_count) > kMaxBins || !(width > 0.0) || !std::isfinite(width)) {
         in.fail("bad bins");
     }
     SpeedHistogram h(width, static_cast<double>(bin_count) * width);

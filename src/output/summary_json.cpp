@@ -59,8 +59,6 @@ std::string summary_to_json(const RunSummary& s) {
     return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + '\n';
 }
 
-void write_summary(const std::string& path, const RunSummary& summary) {
-    write_file_atomically(path, summary_to_json(summary));
-}
+void write_summary(const std::string& path, const RunSummary& summary) { write_file_atomically(path, summary_to_json(summary)); }
 
 }  // namespace peensim

@@ -22,9 +22,8 @@ std::string printf_string(const char* fmt, ...) {
 
 std::string speeds_text(const NormalSpeedStats& n) {
     if (n.count == 0) return "no impacts";
-    return printf_string("vn mean %.3f m/s  p10 %.3f  p50 %.3f  p90 %.3f  max %.3f m/s",
-                         n.mean_m_per_s, n.p10_m_per_s, n.p50_m_per_s, n.p90_m_per_s,
-                         n.max_m_per_s);
+    return printf_string("vn mean %.3f m/s  p10 %.3f  p50 %.3f  p90 %.3f  max %.3f m/s", n.mean_m_per_s, n.p10_m_per_s, n.p50_m_per_s,
+                         n.p90_m_per_s, n.max_m_per_s);
 }
 
 std::string health_text(const std::vector<NamedCount>& counters) {
@@ -53,33 +52,25 @@ std::string slow_contacts_text(const std::vector<NamedCount>& counts, double imp
 std::string summary_to_text(const RunSummary& s) {
     std::vector<std::pair<std::string, std::string>> rows;  // label, value
     rows.emplace_back("simulated",
-                      printf_string("%.6g s of %.6g s (%s)", s.simulated_time_s, s.duration_s,
-                                    s.finished ? "finished" : "interrupted"));
-    rows.emplace_back("wall time", printf_string("%.3f s (%.4g simulated s per wall s)",
-                                                 s.wall_time_s, s.sim_seconds_per_wall_second));
+                      printf_string("%.6g s of %.6g s (%s)", s.simulated_time_s, s.duration_s, s.finished ? "finished" : "interrupted"));
+    rows.emplace_back("wall time", printf_string("%.3f s (%.4g simulated s per wall s)", s.wall_time_s, s.sim_seconds_per_wall_second));
     if (s.scheme == "event")  // shot_steps counts events, steps the times the state was brought up to date
         rows.emplace_back("events", printf_string("%.4g (%.4g per wall s)", static_cast<double>(s.shot_steps), s.shot_steps_per_s));
     else
-        rows.emplace_back("steps",
-                          printf_string("%llu (%.4g shot steps, %.4g per s)",
-                                        static_cast<unsigned long long>(s.steps),
-                                        static_cast<double>(s.shot_steps), s.shot_steps_per_s));
-    rows.emplace_back(
-        "shots", printf_string("%llu (%llu lost)", static_cast<unsigned long long>(s.shot_count),
-                               static_cast<unsigned long long>(s.shot_lost)));
+        rows.emplace_back("steps", printf_string("%llu (%.4g shot steps, %.4g per s)", static_cast<unsigned long long>(s.steps),
+                                                 static_cast<double>(s.shot_steps), s.shot_steps_per_s));
+    rows.emplace_back("shots", printf_string("%llu (%llu lost)", static_cast<unsigned long long>(s.shot_count),
+                                             static_cast<unsigned long long>(s.shot_lost)));
     for (const auto& c : s.impacts_per_component) {
         std::string value = std::to_string(c.count);
         const auto stats =
-            std::find_if(s.normal_speed.begin(), s.normal_speed.end(),
-                         [&](const NormalSpeedStats& n) { return n.component == c.name; });
+            std::find_if(s.normal_speed.begin(), s.normal_speed.end(), [&](const NormalSpeedStats& n) { return n.component == c.name; });
         if (stats != s.normal_speed.end() && stats->count > 0) value += "  " + speeds_text(*stats);
         rows.emplace_back("impacts " + c.name, std::move(value));
     }
     rows.emplace_back("slow contacts", slow_contacts_text(s.slow_contacts_per_component, s.impact_speed_m_per_s));
     rows.emplace_back("health", health_text(s.health_counters));
-    rows.emplace_back(
-        "peak memory",
-        printf_string("%.1f MiB", static_cast<double>(s.peak_memory_bytes) / (1024.0 * 1024.0)));
+    rows.emplace_back("peak memory", printf_string("%.1f MiB", static_cast<double>(s.peak_memory_bytes) / (1024.0 * 1024.0)));
 
     std::size_t width = 0;
     for (const auto& row : rows) width = std::max(width, row.first.size());

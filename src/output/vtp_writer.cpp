@@ -1,12 +1,12 @@
 #include "output/vtp_writer.h"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <fcntl.h>
 #include <set>
 #include <stdexcept>
-#include <unistd.h>
 #include <utility>
 
 #include "output/posix_file.h"
@@ -50,7 +50,9 @@ public:
         bytes_ += size;
     }
     template <class T>
-    void put(T value) { write(&value, sizeof value); }
+    void put(T value) {
+        write(&value, sizeof value);
+    }
 
     void flush() {
         posix_file::write_all(fd_, buffer_.get(), used_, path_);
@@ -133,20 +135,19 @@ struct ArrayEntry {
 // The XML before the raw data, with every array's offset in the appended block. `arrays` is:
 // points, topology connectivity, topology offsets, then the attribute fields; they must be
 // appended in this order, each after its UInt64 byte count.
-std::string polydata_header(std::uint64_t points, const std::string& topology, std::uint64_t cells,
-                            const std::string& attribute_section, const std::vector<ArrayEntry>& arrays) {
+std::string polydata_header(std::uint64_t points, const std::string& topology, std::uint64_t cells, const std::string& attribute_section,
+                            const std::vector<ArrayEntry>& arrays) {
     std::string xml =
         "<?xml version=\"1.0\"?>\n"
         "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
         "  <PolyData>\n"
-        "    <Piece NumberOfPoints=\"" + std::to_string(points) + "\" NumberOfVerts=\"" +
-        std::to_string(topology == "Verts" ? cells : 0) + "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" +
-        std::to_string(topology == "Polys" ? cells : 0) + "\">\n";
+        "    <Piece NumberOfPoints=\"" +
+        std::to_string(points) + "\" NumberOfVerts=\"" + std::to_string(topology == "Verts" ? cells : 0) +
+        "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" + std::to_string(topology == "Polys" ? cells : 0) + "\">\n";
     std::uint64_t offset = 0;
     auto data_array = [&](const ArrayEntry& a) {
-        xml += "        <DataArray type=\"" + std::string(a.type) + "\" Name=\"" + a.name +
-               "\" NumberOfComponents=\"" + std::to_string(a.components) +
-               "\" format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
+        xml += "        <DataArray type=\"" + std::string(a.type) + "\" Name=\"" + a.name + "\" NumberOfComponents=\"" +
+               std::to_string(a.components) + "\" format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
         offset += sizeof(std::uint64_t) + a.data_bytes();
     };
     xml += "      <Points>\n";
@@ -156,7 +157,8 @@ std::string polydata_header(std::uint64_t points, const std::string& topology, s
     data_array(arrays[2]);
     xml += "      </" + topology + ">\n      <" + attribute_section + ">\n";
     for (std::size_t i = 3; i < arrays.size(); ++i) data_array(arrays[i]);
-    xml += "      </" + attribute_section + ">\n    </Piece>\n  </PolyData>\n"
+    xml += "      </" + attribute_section +
+           ">\n    </Piece>\n  </PolyData>\n"
            "  <AppendedData encoding=\"raw\">\n   _";
     return xml;
 }
@@ -165,20 +167,17 @@ constexpr const char* kPolyDataFooter = "\n  </AppendedData>\n</VTKFile>\n";
 
 }  // namespace
 
-void write_mesh_vtp(const std::string& path, const TriangleMesh& mesh,
-                    const std::vector<CellField>& cell_fields) {
+void write_mesh_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<CellField>& cell_fields) {
     const std::uint64_t n_tri = mesh.triangle_count();
     const std::uint64_t n_vert = mesh.vertices.size();
     std::set<std::string> seen;
-    std::vector<ArrayEntry> arrays = {{"Points", "Float64", 3, n_vert, 8},
-                                      {"connectivity", "Int64", 1, 3 * n_tri, 8},
-                                      {"offsets", "Int64", 1, n_tri, 8}};
+    std::vector<ArrayEntry> arrays = {
+        {"Points", "Float64", 3, n_vert, 8}, {"connectivity", "Int64", 1, 3 * n_tri, 8}, {"offsets", "Int64", 1, n_tri, 8}};
     for (const CellField& f : cell_fields) {
         check_field(f.name, f.components, seen);
         if (f.values.size() != n_tri * static_cast<std::uint64_t>(f.components)) {
-            throw std::invalid_argument("cell field '" + f.name + "' has " + std::to_string(f.values.size()) +
-                                        " values for " + std::to_string(n_tri) + " triangles x " +
-                                        std::to_string(f.components) + " components");
+            throw std::invalid_argument("cell field '" + f.name + "' has " + std::to_string(f.values.size()) + " values for " +
+                                        std::to_string(n_tri) + " triangles x " + std::to_string(f.components) + " components");
         }
         arrays.push_back({f.name, "Float64", f.components, n_tri, 8});
     }
@@ -221,14 +220,12 @@ ImpactPointsVtpWriter::ImpactPointsVtpWriter(std::string path, std::vector<Point
         values_per_point_ += static_cast<std::size_t>(f.components);
     }
     const std::vector<PointFieldLayout> impact = impact_point_field_layouts();
-    impact_layout_ = std::equal(fields_.begin(), fields_.end(), impact.begin(), impact.end(),
-                                [](const PointFieldLayout& a, const PointFieldLayout& b) {
-                                    return a.name == b.name && a.components == b.components;
-                                });
+    impact_layout_ =
+        std::equal(fields_.begin(), fields_.end(), impact.begin(), impact.end(),
+                   [](const PointFieldLayout& a, const PointFieldLayout& b) { return a.name == b.name && a.components == b.components; });
     points_ = std::make_unique<ScratchArray>(path_ + ".points.part", O_RDWR);
     for (std::size_t i = 0; i < fields_.size(); ++i) {
-        field_arrays_.push_back(
-            std::make_unique<ScratchArray>(path_ + ".field" + std::to_string(i) + ".part", O_RDWR));
+        field_arrays_.push_back(std::make_unique<ScratchArray>(path_ + ".field" + std::to_string(i) + ".part", O_RDWR));
     }
 }
 
@@ -238,8 +235,8 @@ ImpactPointsVtpWriter::~ImpactPointsVtpWriter() = default;
 void ImpactPointsVtpWriter::add(const Vec3& point_m, std::span<const double> values) {
     if (finished_) throw std::logic_error("ImpactPointsVtpWriter::add after finish: " + path_);
     if (values.size() != values_per_point_) {
-        throw std::invalid_argument("point with " + std::to_string(values.size()) + " field values, " +
-                                    std::to_string(values_per_point_) + " expected: " + path_);
+        throw std::invalid_argument("point with " + std::to_string(values.size()) + " field values, " + std::to_string(values_per_point_) +
+                                    " expected: " + path_);
     }
     points_->write(point_m.data(), sizeof(Vec3));
     std::size_t next = 0;
@@ -254,14 +251,14 @@ void ImpactPointsVtpWriter::add(const Vec3& point_m, std::span<const double> val
 void ImpactPointsVtpWriter::add(std::span<const Vec3> points_m, const std::vector<PointField>& fields) {
     if (finished_) throw std::logic_error("ImpactPointsVtpWriter::add after finish: " + path_);
     if (fields.size() != fields_.size()) {
-        throw std::invalid_argument("chunk with " + std::to_string(fields.size()) + " fields, " +
-                                    std::to_string(fields_.size()) + " expected: " + path_);
+        throw std::invalid_argument("chunk with " + std::to_string(fields.size()) + " fields, " + std::to_string(fields_.size()) +
+                                    " expected: " + path_);
     }
     for (std::size_t i = 0; i < fields.size(); ++i) {
         if (fields[i].name != fields_[i].name || fields[i].components != fields_[i].components ||
             fields[i].values.size() != points_m.size() * static_cast<std::size_t>(fields_[i].components)) {
-            throw std::invalid_argument("chunk field '" + fields[i].name + "' does not match layout field '" +
-                                        fields_[i].name + "' for " + std::to_string(points_m.size()) + " points");
+            throw std::invalid_argument("chunk field '" + fields[i].name + "' does not match layout field '" + fields_[i].name + "' for " +
+                                        std::to_string(points_m.size()) + " points");
         }
     }
     points_->write(points_m.data(), points_m.size() * sizeof(Vec3));
@@ -275,17 +272,16 @@ void ImpactPointsVtpWriter::add(const ImpactRecord& impact) {
     if (!impact_layout_) {
         throw std::logic_error("ImpactPointsVtpWriter::add(ImpactRecord) needs impact_point_field_layouts(): " + path_);
     }
-    const double values[5] = {impact.v_in_m_per_s.x(), impact.v_in_m_per_s.y(), impact.v_in_m_per_s.z(),
-                              impact.vn_in_m_per_s, impact.time_s};
+    const double values[5] = {impact.v_in_m_per_s.x(), impact.v_in_m_per_s.y(), impact.v_in_m_per_s.z(), impact.vn_in_m_per_s,
+                              impact.time_s};
     add(impact.point_m, values);
 }
 
 void ImpactPointsVtpWriter::finish() {
     if (finished_) throw std::logic_error("ImpactPointsVtpWriter::finish called twice: " + path_);
     finished_ = true;
-    std::vector<ArrayEntry> arrays = {{"Points", "Float64", 3, count_, 8},
-                                      {"connectivity", "Int64", 1, count_, 8},
-                                      {"offsets", "Int64", 1, count_, 8}};
+    std::vector<ArrayEntry> arrays = {
+        {"Points", "Float64", 3, count_, 8}, {"connectivity", "Int64", 1, count_, 8}, {"offsets", "Int64", 1, count_, 8}};
     for (const PointFieldLayout& f : fields_) arrays.push_back({f.name, "Float64", f.components, count_, 8});
 
     BufferedFile out(path_ + ".tmp", O_WRONLY);

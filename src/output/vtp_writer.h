@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "common/vec.h"
-#include "geometry/triangle_mesh.h"
 #include "engine/impact_record.h"
+#include "geometry/triangle_mesh.h"
 
 namespace peensim {
 
@@ -43,8 +43,7 @@ struct PointField {
 // Throws std::invalid_argument for a field whose size is not triangles * components, a field
 // with components < 1 or an empty or duplicate name or one that needs XML escaping;
 // std::runtime_error (path + errno text) when the file cannot be written.
-void write_mesh_vtp(const std::string& path, const TriangleMesh& mesh,
-                    const std::vector<CellField>& cell_fields);
+void write_mesh_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<CellField>& cell_fields);
 
 // bytes, the buffer of each scratch array of ImpactPointsVtpWriter and of the file writer.
 inline constexpr std::size_t kVtpStreamBufferBytes = std::size_t{1} << 20;

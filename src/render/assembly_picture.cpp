@@ -10,8 +10,7 @@
 
 namespace peensim {
 
-void draw_assembly_picture(const Model& model, const SimulationState& start, const std::string& png_path, int width_px,
-                           int height_px) {
+void draw_assembly_picture(const Model& model, const SimulationState& start, const std::string& png_path, int width_px, int height_px) {
     render::OffscreenContext context({.width = width_px, .height = height_px});
     render::Renderer renderer(context);
     const ModelView view = add_model(renderer, model);
@@ -22,8 +21,10 @@ void draw_assembly_picture(const Model& model, const SimulationState& start, con
     const render::SphereSet shot{s.x, s.y, s.z, s.active, model.shot_radius_m};
     std::ostringstream title;
     title << model.description.name << " (" << model.description.source_file << "): the assembly at t = 0, ";
-    if (s.size() > 0) title << s.size() << " shot of " << model.shot_radius_m * 2e3 << " mm placed";
-    else title << "no shot placed";
+    if (s.size() > 0)
+        title << s.size() << " shot of " << model.shot_radius_m * 2e3 << " mm placed";
+    else
+        title << "no shot placed";
     std::vector<std::string> text{title.str()};
     for (const Component& c : model.components) text.push_back(c.name + ": " + role_name(c.role));
     render::RgbaImage image;

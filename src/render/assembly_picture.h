@@ -12,7 +12,6 @@
 namespace peensim {
 
 // Writes the PNG (width x height pixels). Throws std::runtime_error on a rendering or file failure.
-void draw_assembly_picture(const Model& model, const SimulationState& start, const std::string& png_path, int width_px,
-                           int height_px);
+void draw_assembly_picture(const Model& model, const SimulationState& start, const std::string& png_path, int width_px, int height_px);
 
 }  // namespace peensim

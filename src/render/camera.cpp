@@ -11,9 +11,9 @@ namespace peensim::render {
 
 namespace {
 
-constexpr double kFramingFill = 0.9;       // -, part of the image the framed box may span
-constexpr double kDepthMargin = 0.02;      // -, of the box diagonal, added before near and after far
-constexpr double kNearOverFarMin = 1e-3;   // -, floor of near / far (depth buffer resolution)
+constexpr double kFramingFill = 0.9;      // -, part of the image the framed box may span
+constexpr double kDepthMargin = 0.02;     // -, of the box diagonal, added before near and after far
+constexpr double kNearOverFarMin = 1e-3;  // -, floor of near / far (depth buffer resolution)
 
 double radians(double deg) { return deg * std::numbers::pi / 180.0; }
 
@@ -35,8 +35,7 @@ Camera Camera::framing(const Vec3& bounds_min_m, const Vec3& bounds_max_m, doubl
     return framing_points(box, aspect, view_direction, vertical_fov_deg);
 }
 
-Camera Camera::framing_points(std::span<const Vec3> points, double aspect, const Vec3& view_direction,
-                              double vertical_fov_deg) {
+Camera Camera::framing_points(std::span<const Vec3> points, double aspect, const Vec3& view_direction, double vertical_fov_deg) {
     if (!(view_direction.norm() > 0.0) || !view_direction.allFinite()) {
         throw std::invalid_argument("render: camera view direction must be a finite non-zero vector");
     }

@@ -35,8 +35,8 @@ struct Camera {
     // The same for a set of points (e.g. a mesh's vertices: a round chamber then fills the frame,
     // where its bounding box's corners would leave a margin). Throws std::invalid_argument for an
     // empty set and as framing() does.
-    static Camera framing_points(std::span<const Vec3> points, double aspect,
-                                 const Vec3& view_direction = default_view_direction(), double vertical_fov_deg = 40.0);
+    static Camera framing_points(std::span<const Vec3> points, double aspect, const Vec3& view_direction = default_view_direction(),
+                                 double vertical_fov_deg = 40.0);
 
     // Sets near/far to enclose the box (with a 2 % margin of its diagonal) along the view axis.
     // A camera inside the box keeps a near plane of 1/1000 of the far one.

@@ -20,13 +20,11 @@ struct Rgba8 {
 };
 static_assert(sizeof(Rgba8) == 4, "Rgba8 must be four packed bytes");
 
-inline std::uint8_t to_byte(float v) {
-    return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-}
+inline std::uint8_t to_byte(float v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
 inline Rgba8 to_rgba8(const Rgba& c) { return {to_byte(c.r), to_byte(c.g), to_byte(c.b), to_byte(c.a)}; }
 inline Rgba to_rgba(const Rgba8& c) {
-    return {static_cast<float>(c.r) / 255.0f, static_cast<float>(c.g) / 255.0f,
-            static_cast<float>(c.b) / 255.0f, static_cast<float>(c.a) / 255.0f};
+    return {static_cast<float>(c.r) / 255.0f, static_cast<float>(c.g) / 255.0f, static_cast<float>(c.b) / 255.0f,
+            static_cast<float>(c.a) / 255.0f};
 }
 
 }  // namespace peensim::render

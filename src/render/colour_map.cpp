@@ -13,9 +13,8 @@ constexpr Rgba hex(unsigned rgb) {
 }
 
 // viridis at fractions 0, 0.1, ..., 1.
-constexpr std::array<Rgba, 11> kViridis = {hex(0x440154), hex(0x482576), hex(0x414487), hex(0x35608D),
-                                           hex(0x2A788E), hex(0x21908C), hex(0x22A884), hex(0x43BF71),
-                                           hex(0x7AD151), hex(0xBBDF27), hex(0xFDE725)};
+constexpr std::array<Rgba, 11> kViridis = {hex(0x440154), hex(0x482576), hex(0x414487), hex(0x35608D), hex(0x2A788E), hex(0x21908C),
+                                           hex(0x22A884), hex(0x43BF71), hex(0x7AD151), hex(0xBBDF27), hex(0xFDE725)};
 
 }  // namespace
 

@@ -12,8 +12,8 @@ namespace peensim::render {
 
 namespace {
 
-constexpr int kAtlasWidth = 512;   // px; rows of glyphs are packed left to right
-constexpr int kPadding = 1;        // px between glyphs, so neighbours never bleed in
+constexpr int kAtlasWidth = 512;  // px; rows of glyphs are packed left to right
+constexpr int kPadding = 1;       // px between glyphs, so neighbours never bleed in
 
 struct LibraryDeleter {
     void operator()(FT_Library library) const { FT_Done_FreeType(library); }

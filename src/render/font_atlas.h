@@ -24,10 +24,10 @@ std::optional<std::string> find_default_font();
 class FontAtlas {
 public:
     struct Glyph {
-        int x = 0, y = 0;            // px, top-left of its bitmap in the atlas
-        int width = 0, height = 0;   // px, bitmap size
-        int left = 0, top = 0;       // px, bitmap offset from the pen: right, and up from the baseline
-        int advance = 0;             // px, pen move after the glyph
+        int x = 0, y = 0;           // px, top-left of its bitmap in the atlas
+        int width = 0, height = 0;  // px, bitmap size
+        int left = 0, top = 0;      // px, bitmap offset from the pen: right, and up from the baseline
+        int advance = 0;            // px, pen move after the glyph
     };
 
     // Throws std::runtime_error naming the file if FreeType cannot load it or the size.

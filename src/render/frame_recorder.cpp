@@ -1,20 +1,20 @@
 #include "render/frame_recorder.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
-#include <limits>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <mutex>
 #include <thread>
 #include <utility>
-#include <algorithm>
 #include <vector>
 
-#include "render/render_view.h"
 #include "render/png_io.h"
+#include "render/render_view.h"
 #include "render/video_encoder.h"
 
 namespace fs = std::filesystem;
@@ -94,10 +94,10 @@ private:
 };
 
 struct Flash {
-    double time_s = 0.0;    // s
+    double time_s = 0.0;  // s
     int component = 0;
-    Vec3 point_c;           // m, component frame
-    double vn = 0.0;        // m/s
+    Vec3 point_c;     // m, component frame
+    double vn = 0.0;  // m/s
 };
 
 }  // namespace
@@ -107,9 +107,9 @@ struct FrameRecorder::Impl {
     RenderDesc desc;
     fs::path frames_dir;
     fs::path video_path;
-    double interval_s;          // s of simulated time between frames
-    double end_s;               // s, no frame after this
-    std::int64_t next_frame;    // k of the next frame to draw
+    double interval_s;        // s of simulated time between frames
+    double end_s;             // s, no frame after this
+    std::int64_t next_frame;  // k of the next frame to draw
 
     render::OffscreenContext context;
     render::Renderer renderer;
@@ -121,7 +121,7 @@ struct FrameRecorder::Impl {
 
     std::vector<Flash> flashes;  // ring of the latest impacts
     std::size_t flash_next = 0;
-    std::vector<double> x, y, z; // shot centres moved back to the frame time
+    std::vector<double> x, y, z;  // shot centres moved back to the frame time
     std::vector<render::ImpactMarker> markers;
     std::vector<std::string> text;
 
@@ -153,8 +153,10 @@ struct FrameRecorder::Impl {
     void remember(std::span<const ImpactRecord> impacts) {
         for (const ImpactRecord& r : impacts) {
             const Flash f{r.time_s, r.component, r.point_m, r.vn_in_m_per_s};
-            if (flashes.size() < kFlashCapacity) flashes.push_back(f);
-            else flashes[flash_next] = f;
+            if (flashes.size() < kFlashCapacity)
+                flashes.push_back(f);
+            else
+                flashes[flash_next] = f;
             flash_next = (flash_next + 1) % kFlashCapacity;
         }
     }
@@ -228,8 +230,7 @@ std::string FrameRecorder::finish_video() {
     flush();
     std::vector<fs::path> frames;
     for (const auto& entry : fs::directory_iterator(m.frames_dir))
-        if (entry.path().extension() == ".png" && entry.path().filename().string().starts_with("frame_"))
-            frames.push_back(entry.path());
+        if (entry.path().extension() == ".png" && entry.path().filename().string().starts_with("frame_")) frames.push_back(entry.path());
     std::sort(frames.begin(), frames.end());
     const std::string where = m.frames_dir.string() + "/frame_*.png";
     if (frames.empty()) return "no frame (the recorded interval lies outside the run)";
@@ -237,12 +238,12 @@ std::string FrameRecorder::finish_video() {
     if (!render::ffmpeg_available())
         return std::to_string(frames.size()) + " frames in " + where +
                "; no MP4: ffmpeg not found (apt-get install ffmpeg, or render.video: none)";
-    render::VideoEncoder encoder(m.video_path.string(), {.width = m.desc.width_px, .height = m.desc.height_px,
-                                                         .fps = static_cast<double>(m.desc.fps)});
+    render::VideoEncoder encoder(m.video_path.string(),
+                                 {.width = m.desc.width_px, .height = m.desc.height_px, .fps = static_cast<double>(m.desc.fps)});
     for (const fs::path& f : frames) encoder.add_frame(render::read_png(f.string()));
     encoder.finish();
-    return std::to_string(frames.size()) + " frames in " + where + ", video " + m.video_path.string() + " (" +
-           std::to_string(m.desc.fps) + " fps, " + std::to_string(m.desc.slow_motion_s * 1e3) + " ms simulated per second)";
+    return std::to_string(frames.size()) + " frames in " + where + ", video " + m.video_path.string() + " (" + std::to_string(m.desc.fps) +
+           " fps, " + std::to_string(m.desc.slow_motion_s * 1e3) + " ms simulated per second)";
 }
 
 }  // namespace peensim

@@ -16,9 +16,9 @@
 #include <string>
 
 #include "app/render_module.h"
+#include "engine/impact_record.h"
 #include "engine/simulation_state.h"
 #include "model/model.h"
-#include "engine/impact_record.h"
 
 namespace peensim {
 
@@ -44,8 +44,8 @@ public:
     // what was written, or why there is no video (ffmpeg missing, `video: none`, no frame).
     std::string finish_video() override;
 
-    int frames_drawn() const override { return frames_drawn_; }   // by this process (not before a resume)
-    double draw_seconds() const override { return draw_seconds_; } // wall s spent drawing (not writing)
+    int frames_drawn() const override { return frames_drawn_; }     // by this process (not before a resume)
+    double draw_seconds() const override { return draw_seconds_; }  // wall s spent drawing (not writing)
 
 private:
     struct Impl;

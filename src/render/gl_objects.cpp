@@ -48,8 +48,8 @@ GLuint compile(const char* what, GLenum type, const char* source) {
     if (ok != GL_TRUE) {
         const std::string log = shader_log(shader);
         glDeleteShader(shader);
-        throw std::runtime_error(std::string("render: the ") + what +
-                                 (type == GL_VERTEX_SHADER ? " vertex" : " fragment") + " shader does not compile: " + log);
+        throw std::runtime_error(std::string("render: the ") + what + (type == GL_VERTEX_SHADER ? " vertex" : " fragment") +
+                                 " shader does not compile: " + log);
     }
     return shader;
 }

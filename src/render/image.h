@@ -10,9 +10,9 @@
 namespace peensim::render {
 
 struct RgbaImage {
-    int width = 0;                       // pixels
-    int height = 0;                      // pixels
-    std::vector<std::uint8_t> pixels;    // width * height * 4 bytes, row y at y * width * 4
+    int width = 0;                     // pixels
+    int height = 0;                    // pixels
+    std::vector<std::uint8_t> pixels;  // width * height * 4 bytes, row y at y * width * 4
 
     // Resizes without shrinking the allocation, so a reused image costs no allocation per frame.
     void resize(int w, int h) {
@@ -26,8 +26,8 @@ struct RgbaImage {
     // (x, y) from the top-left corner; no bounds check.
     Rgba8 at(int x, int y) const {
         Rgba8 c;
-        std::memcpy(&c, pixels.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                                          static_cast<std::size_t>(x)) * 4, 4);
+        std::memcpy(&c, pixels.data() + (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4,
+                    4);
         return c;
     }
 };

@@ -14,8 +14,8 @@
 namespace peensim::render {
 
 struct FrameView {
-    Mat4 view;          // world -> camera
-    Mat4 projection;    // camera -> clip
+    Mat4 view;        // world -> camera
+    Mat4 projection;  // camera -> clip
 };
 
 class MeshLayer {
@@ -43,7 +43,7 @@ private:
         gl::VertexArray vao;
         gl::Buffer vertices;
         gl::Buffer indices;
-        gl::Buffer colour_buffer;    // per-triangle colours, a texture buffer
+        gl::Buffer colour_buffer;  // per-triangle colours, a texture buffer
         gl::Texture colour_texture;
         GLsizei index_count = 0;
         std::size_t triangles = 0;

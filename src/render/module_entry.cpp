@@ -7,8 +7,8 @@
 
 namespace {
 
-std::unique_ptr<peensim::FrameSink> make_recorder(const peensim::Model& model, const peensim::RenderDesc& desc,
-                                                  const std::string& dir, const peensim::SimulationState& now) {
+std::unique_ptr<peensim::FrameSink> make_recorder(const peensim::Model& model, const peensim::RenderDesc& desc, const std::string& dir,
+                                                  const peensim::SimulationState& now) {
     return std::make_unique<peensim::FrameRecorder>(model, desc, dir, now);
 }
 

@@ -30,27 +30,36 @@ bool has_extension(const char* name) {
 OffscreenContext::OffscreenContext(const ContextOptions& options)
     : width_(options.width), height_(options.height), samples_(options.samples) {
     if (width_ <= 0 || height_ <= 0) {
-        throw std::invalid_argument("render: image size must be positive, got " + std::to_string(width_) + "x" +
-                                    std::to_string(height_));
+        throw std::invalid_argument("render: image size must be positive, got " + std::to_string(width_) + "x" + std::to_string(height_));
     }
     if (samples_ < 0 || samples_ == 1 || samples_ > 16) {
         throw std::invalid_argument("render: samples must be 0 (off) or 2..16, got " + std::to_string(samples_));
     }
     ::setenv("LP_NUM_THREADS", "1", /*overwrite=*/0);
 
-    const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS, 0,
-                              OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, kGlMajor,
-                              OSMESA_CONTEXT_MINOR_VERSION, kGlMinor, 0};
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              24,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_COMPAT_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              kGlMajor,
+                              OSMESA_CONTEXT_MINOR_VERSION,
+                              kGlMinor,
+                              0};
     context_ = OSMesaCreateContextAttribs(attributes, nullptr);
     if (context_ == nullptr) {
-        throw std::runtime_error("render: OSMesa could not create an OpenGL " + std::to_string(kGlMajor) + "." +
-                                 std::to_string(kGlMinor) + " context (is Mesa's libOSMesa with llvmpipe installed?)");
+        throw std::runtime_error("render: OSMesa could not create an OpenGL " + std::to_string(kGlMajor) + "." + std::to_string(kGlMinor) +
+                                 " context (is Mesa's libOSMesa with llvmpipe installed?)");
     }
     colour_buffer_.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4);
     if (!OSMesaMakeCurrent(context_, colour_buffer_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
         OSMesaDestroyContext(context_);
-        throw std::runtime_error("render: OSMesa could not bind a " + std::to_string(width_) + "x" +
-                                 std::to_string(height_) + " framebuffer (too large?)");
+        throw std::runtime_error("render: OSMesa could not bind a " + std::to_string(width_) + "x" + std::to_string(height_) +
+                                 " framebuffer (too large?)");
     }
     // Every Mesa driver has it (it is one of Mesa's always-on extensions); checked anyway so
     // that a strange build fails here with a message instead of writing upside-down frames.
@@ -81,8 +90,7 @@ OffscreenContext::OffscreenContext(const ContextOptions& options)
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         if (status != GL_FRAMEBUFFER_COMPLETE) {
             OSMesaDestroyContext(context_);
-            throw std::runtime_error("render: the multisample framebuffer is incomplete (status " +
-                                     std::to_string(status) + ")");
+            throw std::runtime_error("render: the multisample framebuffer is incomplete (status " + std::to_string(status) + ")");
         }
     }
     bind_draw_target();

@@ -12,8 +12,8 @@ struct osmesa_context;  // OSMesa's context handle, kept out of this header
 namespace peensim::render {
 
 struct ContextOptions {
-    int width = 1280;   // pixels
-    int height = 720;   // pixels
+    int width = 1280;  // pixels
+    int height = 720;  // pixels
     // Multisample anti-aliasing: 0 (off) or 2..4 samples per pixel, resolved in read_pixels.
     // Smooths the silhouettes of shot and walls at a cost measured in render_bench.cpp.
     int samples = 0;

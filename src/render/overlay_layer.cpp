@@ -35,7 +35,7 @@ void main() {
 )GLSL";
 
 constexpr Rgba8 kTextColour{255, 255, 255, 255};
-constexpr Rgba8 kShadowColour{0, 0, 0, 220};   // 1 px down-right: text reads on light and dark
+constexpr Rgba8 kShadowColour{0, 0, 0, 220};  // 1 px down-right: text reads on light and dark
 constexpr Rgba8 kFrameColour{0, 0, 0, 200};
 
 }  // namespace
@@ -50,8 +50,7 @@ OverlayLayer::OverlayLayer(FontAtlas atlas)
     u_atlas_ = gl::uniform(program_, "atlas");
     glBindTexture(GL_TEXTURE_2D, texture_.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas_.width(), atlas_.height(), 0, GL_RED, GL_UNSIGNED_BYTE,
-                 atlas_.pixels().data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, atlas_.width(), atlas_.height(), 0, GL_RED, GL_UNSIGNED_BYTE, atlas_.pixels().data());
     // Glyphs are placed on whole pixels, so texels map 1:1 and need no filtering.
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -66,14 +65,12 @@ OverlayLayer::OverlayLayer(FontAtlas atlas)
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, u)));
     glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Vertex),
-                          reinterpret_cast<const void*>(offsetof(Vertex, colour)));
+    glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, colour)));
     glBindVertexArray(0);
     gl::check_errors("while setting up the overlay");
 }
 
-void OverlayLayer::add_quad(float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1, Rgba8 top,
-                            Rgba8 bottom) {
+void OverlayLayer::add_quad(float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1, Rgba8 top, Rgba8 bottom) {
     const Vertex a{x0, y0, u0, v0, top}, b{x1, y0, u1, v0, top}, c{x0, y1, u0, v1, bottom}, d{x1, y1, u1, v1, bottom};
     vertices_.insert(vertices_.end(), {a, b, c, b, d, c});
 }
@@ -94,9 +91,9 @@ void OverlayLayer::add_text(float x, float baseline, std::string_view text, Rgba
         if (g.width > 0 && g.height > 0) {
             const float x0 = pen + static_cast<float>(g.left);
             const float y0 = base - static_cast<float>(g.top);
-            add_quad(x0, y0, x0 + static_cast<float>(g.width), y0 + static_cast<float>(g.height),
-                     static_cast<float>(g.x) * inv_w, static_cast<float>(g.y) * inv_h,
-                     static_cast<float>(g.x + g.width) * inv_w, static_cast<float>(g.y + g.height) * inv_h, colour, colour);
+            add_quad(x0, y0, x0 + static_cast<float>(g.width), y0 + static_cast<float>(g.height), static_cast<float>(g.x) * inv_w,
+                     static_cast<float>(g.y) * inv_h, static_cast<float>(g.x + g.width) * inv_w, static_cast<float>(g.y + g.height) * inv_h,
+                     colour, colour);
         }
         pen += static_cast<float>(g.advance);
     }

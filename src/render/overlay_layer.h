@@ -27,8 +27,8 @@ public:
 
 private:
     struct Vertex {
-        float x, y;   // px from the top-left corner
-        float u, v;   // atlas texture coordinates
+        float x, y;  // px from the top-left corner
+        float u, v;  // atlas texture coordinates
         Rgba8 colour;
     };
     void add_quad(float x0, float y0, float x1, float y1, float u0, float v0, float u1, float v1, Rgba8 top, Rgba8 bottom);

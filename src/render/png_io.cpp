@@ -1,9 +1,9 @@
 #include "render/png_io.h"
 
+#include <png.h>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
-#include <png.h>
 #include <stdexcept>
 #include <vector>
 

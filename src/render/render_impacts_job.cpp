@@ -9,11 +9,11 @@
 #include <ostream>
 #include <sstream>
 
-#include "render/render_view.h"
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "model/model.h"
 #include "render/png_io.h"
+#include "render/render_view.h"
 #include "scene/scene_parser.h"
 
 namespace fs = std::filesystem;
@@ -38,7 +38,9 @@ const std::array<MapView, 4> kViews{{
 // One column of <component>_triangles.csv, NaN for an empty cell.
 std::vector<double> read_column(const fs::path& csv, const std::string& column) {
     std::ifstream in(csv);
-    if (!in) throw std::runtime_error(csv.string() + ": not found (run `peensim analyze " + csv.parent_path().parent_path().string() + "` first)");
+    if (!in)
+        throw std::runtime_error(csv.string() + ": not found (run `peensim analyze " + csv.parent_path().parent_path().string() +
+                                 "` first)");
     std::string line;
     std::getline(in, line);
     std::vector<std::string> header;
@@ -60,7 +62,8 @@ std::vector<double> read_column(const fs::path& csv, const std::string& column) 
 // Copies `tile` into `image` with its top-left corner at (x0, y0).
 void blit(const render::RgbaImage& tile, render::RgbaImage& image, int x0, int y0) {
     for (int y = 0; y < tile.height; ++y)
-        std::memcpy(image.pixels.data() + (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x0)) * 4,
+        std::memcpy(image.pixels.data() +
+                        (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x0)) * 4,
                     tile.pixels.data() + static_cast<std::size_t>(y) * tile.row_bytes(), tile.row_bytes());
 }
 
@@ -94,8 +97,7 @@ std::vector<render::Rgba8> field_colours(std::span<const double> values, double 
     const render::ColourMap map = render::ColourMap::viridis();
     std::vector<render::Rgba8> colours;
     colours.reserve(values.size());
-    for (double v : values)
-        colours.push_back(std::isfinite(v) ? map.map8(v, 0.0, max) : render::Rgba8{128, 128, 128, 255});
+    for (double v : values) colours.push_back(std::isfinite(v) ? map.map8(v, 0.0, max) : render::Rgba8{128, 128, 128, 255});
     return colours;
 }
 
@@ -103,7 +105,8 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
     return report_errors(err, [&] {
         const fs::path dir(options.output_dir);
         const fs::path scene_path = dir / "scene.resolved.yaml";
-        if (!fs::exists(scene_path)) throw std::runtime_error(options.output_dir + ": not a peensim run directory (no scene.resolved.yaml)");
+        if (!fs::exists(scene_path))
+            throw std::runtime_error(options.output_dir + ": not a peensim run directory (no scene.resolved.yaml)");
         std::vector<const MapField*> fields;
         for (const MapField& f : kFields)
             if (options.fields.empty() || std::find(options.fields.begin(), options.fields.end(), f.name) != options.fields.end())

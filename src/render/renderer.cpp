@@ -26,8 +26,7 @@ FontAtlas load_font(const RenderOptions& options, int image_height) {
         }
         path = *found;
     }
-    const int px = options.text_height_px > 0 ? options.text_height_px
-                                              : std::max(kMinTextHeightPx, image_height / kTextHeightDivisor);
+    const int px = options.text_height_px > 0 ? options.text_height_px : std::max(kMinTextHeightPx, image_height / kTextHeightDivisor);
     return FontAtlas(path, px);
 }
 

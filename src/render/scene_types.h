@@ -22,7 +22,7 @@ enum class Cull { none, back, front };
 struct MeshStyle {
     Rgba colour{0.72f, 0.74f, 0.78f, 1.0f};  // alpha < 1: transparent, blended over what is behind
     Cull cull = Cull::none;
-    bool lit = true;      // false: flat colours (an impact map that must match its colour bar exactly)
+    bool lit = true;  // false: flat colours (an impact map that must match its colour bar exactly)
     bool visible = true;
 };
 
@@ -40,7 +40,7 @@ inline Mat4 make_pose(const Mat3& rotation, const Vec3& translation_m) {
 struct SphereSet {
     std::span<const double> x_m{}, y_m{}, z_m{};  // m, world centres
     std::span<const unsigned char> active{};
-    double radius_m = 0.0;                    // m
+    double radius_m = 0.0;  // m
     Rgba colour{0.85f, 0.86f, 0.9f, 1.0f};
 };
 
@@ -48,9 +48,9 @@ struct SphereSet {
 // sticks out of the wall, so it reads as a disc on the surface). The caller fades it over a
 // few frames by lowering colour.a; alpha 0 draws nothing.
 struct ImpactMarker {
-    Vec3 point_m = Vec3::Zero();   // m, world
-    double radius_m = 0.0;         // m
-    Rgba colour;                   // typically ColourMap::map(normal speed, ...)
+    Vec3 point_m = Vec3::Zero();  // m, world
+    double radius_m = 0.0;        // m
+    Rgba colour;                  // typically ColourMap::map(normal speed, ...)
 };
 
 // A vertical colour bar at the right edge of the frame: `title` above, `max` at the top end,
@@ -59,7 +59,7 @@ struct ColourBar {
     ColourMap map = ColourMap::viridis();
     double min = 0.0;
     double max = 1.0;
-    std::string title{}; // e.g. "normal speed (m/s)"; ASCII (other characters print as '?')
+    std::string title{};  // e.g. "normal speed (m/s)"; ASCII (other characters print as '?')
 };
 
 }  // namespace peensim::render

@@ -100,8 +100,7 @@ SphereLayer::SphereLayer()
     glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Instance), reinterpret_cast<const void*>(offsetof(Instance, x)));
     glVertexAttribDivisor(0, 1);
     glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance),
-                          reinterpret_cast<const void*>(offsetof(Instance, colour)));
+    glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance), reinterpret_cast<const void*>(offsetof(Instance, colour)));
     glVertexAttribDivisor(1, 1);
     glBindVertexArray(0);
     gl::check_errors("while setting up the sphere impostors");
@@ -117,8 +116,8 @@ void SphereLayer::draw(const FrameView& view, const SphereSet& spheres) {
     const auto radius = static_cast<float>(spheres.radius_m);
     for (std::size_t i = 0; i < n; ++i) {
         if (!spheres.active.empty() && spheres.active[i] == 0) continue;
-        instances_.push_back({static_cast<float>(spheres.x_m[i]), static_cast<float>(spheres.y_m[i]),
-                              static_cast<float>(spheres.z_m[i]), radius, colour});
+        instances_.push_back(
+            {static_cast<float>(spheres.x_m[i]), static_cast<float>(spheres.y_m[i]), static_cast<float>(spheres.z_m[i]), radius, colour});
     }
     draw_instances(view, kShotAmbient, kShotDiffuse, kShotSpecular, kShotLight);
 }
@@ -127,8 +126,8 @@ void SphereLayer::draw(const FrameView& view, std::span<const ImpactMarker> mark
     instances_.clear();
     for (const ImpactMarker& m : markers) {
         if (m.colour.a <= 0.0f) continue;
-        instances_.push_back({static_cast<float>(m.point_m.x()), static_cast<float>(m.point_m.y()),
-                              static_cast<float>(m.point_m.z()), static_cast<float>(m.radius_m), to_rgba8(m.colour)});
+        instances_.push_back({static_cast<float>(m.point_m.x()), static_cast<float>(m.point_m.y()), static_cast<float>(m.point_m.z()),
+                              static_cast<float>(m.radius_m), to_rgba8(m.colour)});
     }
     if (instances_.empty()) return;
     glEnable(GL_BLEND);
@@ -138,8 +137,7 @@ void SphereLayer::draw(const FrameView& view, std::span<const ImpactMarker> mark
     glDisable(GL_BLEND);
 }
 
-void SphereLayer::draw_instances(const FrameView& view, float ambient, float diffuse, float specular,
-                                 const Eigen::Vector3f& light) {
+void SphereLayer::draw_instances(const FrameView& view, float ambient, float diffuse, float specular, const Eigen::Vector3f& light) {
     if (instances_.empty()) return;
     glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
     const auto bytes = static_cast<GLsizeiptr>(instances_.size() * sizeof(Instance));

@@ -25,7 +25,7 @@ public:
 
 private:
     struct Instance {
-        float x, y, z, radius;   // m, world
+        float x, y, z, radius;  // m, world
         Rgba8 colour;
     };
     void draw_instances(const FrameView& view, float ambient, float diffuse, float specular, const Eigen::Vector3f& light);
@@ -34,8 +34,8 @@ private:
     GLint u_view_ = -1, u_projection_ = -1, u_ambient_ = -1, u_diffuse_ = -1, u_specular_ = -1, u_light_ = -1;
     gl::VertexArray vao_;
     gl::Buffer buffer_;
-    std::size_t buffer_capacity_ = 0;   // instances the GL buffer holds
-    std::vector<Instance> instances_;   // staging, reused: no allocation once it has grown
+    std::size_t buffer_capacity_ = 0;  // instances the GL buffer holds
+    std::vector<Instance> instances_;  // staging, reused: no allocation once it has grown
 };
 
 }  // namespace peensim::render

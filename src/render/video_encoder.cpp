@@ -1,20 +1,20 @@
 #include "render/video_encoder.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fcntl.h>
 #include <fstream>
-#include <signal.h>
-#include <spawn.h>
 #include <sstream>
 #include <stdexcept>
-#include <sys/socket.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -86,14 +86,26 @@ VideoEncoder::VideoEncoder(std::string path, VideoOptions options) : path_(std::
     }
 
     const std::string size = std::to_string(options_.width) + "x" + std::to_string(options_.height);
-    std::vector<std::string> args = {executable, "-hide_banner", "-loglevel", "error", "-y",
-                                     "-f", "rawvideo", "-pix_fmt", "rgba", "-s", size,
-                                     "-r", format_number(options_.fps), "-i", "-"};
+    std::vector<std::string> args = {executable,
+                                     "-hide_banner",
+                                     "-loglevel",
+                                     "error",
+                                     "-y",
+                                     "-f",
+                                     "rawvideo",
+                                     "-pix_fmt",
+                                     "rgba",
+                                     "-s",
+                                     size,
+                                     "-r",
+                                     format_number(options_.fps),
+                                     "-i",
+                                     "-"};
     if ((options_.width | options_.height) & 1) {
         args.insert(args.end(), {"-vf", "crop=" + std::to_string(encoded_width()) + ":" + std::to_string(encoded_height()) + ":0:0"});
     }
-    args.insert(args.end(), {"-c:v", "libx264", "-preset", options_.preset, "-crf", std::to_string(options_.crf),
-                             "-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4", partial_path(path_)});
+    args.insert(args.end(), {"-c:v", "libx264", "-preset", options_.preset, "-crf", std::to_string(options_.crf), "-pix_fmt", "yuv420p",
+                             "-movflags", "+faststart", "-f", "mp4", partial_path(path_)});
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -177,8 +189,8 @@ void VideoEncoder::fail(const std::string& what) {
 void VideoEncoder::add_frame(const RgbaImage& frame) {
     if (finished_) throw std::logic_error("video: add_frame after finish");
     if (frame.width != options_.width || frame.height != options_.height) {
-        throw std::invalid_argument("video: frame is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                                    ", the video " + std::to_string(options_.width) + "x" + std::to_string(options_.height));
+        throw std::invalid_argument("video: frame is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + ", the video " +
+                                    std::to_string(options_.width) + "x" + std::to_string(options_.height));
     }
     const auto* data = reinterpret_cast<const char*>(frame.pixels.data());
     std::size_t left = frame.byte_size();

@@ -2,10 +2,10 @@
 // yuv420p, which every player reads). ffmpeg is found on PATH at run time, not linked.
 #pragma once
 
+#include <sys/types.h>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <sys/types.h>
 
 #include "render/image.h"
 
@@ -20,12 +20,12 @@ std::optional<std::string> find_executable(std::string_view name, std::string_vi
 bool ffmpeg_available();
 
 struct VideoOptions {
-    int width = 0;            // px, of the frames given to add_frame
-    int height = 0;           // px
-    double fps = 30.0;        // frames per second of the video
-    int crf = 20;             // libx264 quality, 0 (lossless) .. 51; ~18-23 looks clean
+    int width = 0;                    // px, of the frames given to add_frame
+    int height = 0;                   // px
+    double fps = 30.0;                // frames per second of the video
+    int crf = 20;                     // libx264 quality, 0 (lossless) .. 51; ~18-23 looks clean
     std::string preset = "veryfast";  // libx264 speed/size trade-off; encoding runs beside the simulation
-    std::string ffmpeg{};     // executable; empty: "ffmpeg" found on PATH
+    std::string ffmpeg{};             // executable; empty: "ffmpeg" found on PATH
 };
 
 // Writes `path.partial` while frames come in and renames it to `path` when finish() succeeds,
@@ -69,7 +69,7 @@ private:
 
     std::string path_;
     VideoOptions options_;
-    int socket_ = -1;    // our end; ffmpeg's stdin is the other
+    int socket_ = -1;  // our end; ffmpeg's stdin is the other
     pid_t child_ = -1;
     int frames_ = 0;
     bool finished_ = false;

@@ -13,15 +13,14 @@ struct PathStep {
 
 // One override being applied; its errors all point at "<--set>" and name its path.
 struct OverrideWalk {
-    std::string text;   // "path=value" as given
-    std::string path;   // the part before '='
+    std::string text;  // "path=value" as given
+    std::string path;  // the part before '='
     std::vector<PathStep> steps;
     YAML::Node value;
     SceneContext* context = nullptr;
 
     [[noreturn]] void fail(const std::string& problem) const {
-        throw InputError(SourceLocation{std::string(override_file_name), 0, 0}, path,
-                         problem + " (in --set '" + text + "')");
+        throw InputError(SourceLocation{std::string(override_file_name), 0, 0}, path, problem + " (in --set '" + text + "')");
     }
     void record(const std::string& field_path) const { context->overrides.push_back({field_path, text}); }
 };
@@ -64,8 +63,7 @@ bool is_index(const std::string& s) {
     return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
 }
 
-std::size_t select_item(const OverrideWalk& w, const YAML::Node& list, const std::string& sel,
-                        const std::string& field_path) {
+std::size_t select_item(const OverrideWalk& w, const YAML::Node& list, const std::string& sel, const std::string& field_path) {
     if (is_index(sel)) {
         // Compared as text first: an index of 20 digits must not overflow on its way to a range error.
         const std::size_t index = sel.size() <= 9 ? std::stoul(sel) : list.size();
@@ -85,8 +83,7 @@ std::size_t select_item(const OverrideWalk& w, const YAML::Node& list, const std
 
 // Sets the value at steps[i..] below `node` (whose entry is `schema_path`). Recursion, not a loop:
 // assigning one yaml-cpp Node variable to another would overwrite the tree instead of moving down.
-void set_at(YAML::Node node, std::size_t i, const std::string& schema_path, const std::string& field_path,
-            const OverrideWalk& w) {
+void set_at(YAML::Node node, std::size_t i, const std::string& schema_path, const std::string& field_path, const OverrideWalk& w) {
     const PathStep& step = w.steps[i];
     const bool last = i + 1 == w.steps.size();
     const SchemaEntry* entry = find_schema_entry(schema_path);

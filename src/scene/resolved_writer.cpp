@@ -15,12 +15,11 @@ namespace {
 std::string yaml_text(const std::string& s) {
     bool plain = !s.empty() && s.front() != '-' && s.front() != '.';
     for (char c : s) {
-        const bool safe = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                          c == '_' || c == '-' || c == '.' || c == '/';
+        const bool safe =
+            (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.' || c == '/';
         plain = plain && safe;
     }
-    for (const char* word : {"null", "Null", "NULL", "true", "True", "TRUE", "false", "False", "FALSE"})
-        plain = plain && s != word;
+    for (const char* word : {"null", "Null", "NULL", "true", "True", "TRUE", "false", "False", "FALSE"}) plain = plain && s != word;
     if (plain) return s;
     std::string out = "\"";
     for (unsigned char c : s) {
@@ -48,12 +47,10 @@ std::string vec(const Vec3& v) {
 
 std::string unit_comment(Dimension d) { return "  # " + std::string(si_unit(d)); }
 
-
 std::string mesh_unit_name(double metres_per_unit) {
     for (std::string_view unit : split_choices(find_schema_entry("components[].mesh_unit")->choices))
         if (parse_quantity("1 " + std::string(unit), Dimension::length) == metres_per_unit) return std::string(unit);
-    throw std::invalid_argument("resolved_scene_yaml: mesh_unit_m " + num(metres_per_unit) +
-                                " is none of the scene file's mesh units");
+    throw std::invalid_argument("resolved_scene_yaml: mesh_unit_m " + num(metres_per_unit) + " is none of the scene file's mesh units");
 }
 
 void write_header(std::string& y, const SceneDescription& s) {
@@ -113,15 +110,14 @@ void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
 
 std::string matrix_text(const Mat3& m) {
     std::string out = "[";
-    for (int r = 0; r < 3; ++r)
-        out += std::string(r ? ", " : "") + "[" + num(m(r, 0)) + ", " + num(m(r, 1)) + ", " + num(m(r, 2)) + "]";
+    for (int r = 0; r < 3; ++r) out += std::string(r ? ", " : "") + "[" + num(m(r, 0)) + ", " + num(m(r, 1)) + ", " + num(m(r, 2)) + "]";
     return out + "]";
 }
 
 // One region as a flow map on one line (SI values; angles in rad).
 std::string region_text(const RegionDesc& r) {
-    const std::string axis = "axis_point: " + vec(r.axis_point_m) + ", axis_direction: " + vec(r.axis_direction) +
-                             ", reference: " + vec(r.reference);
+    const std::string axis =
+        "axis_point: " + vec(r.axis_point_m) + ", axis_direction: " + vec(r.axis_direction) + ", reference: " + vec(r.reference);
     std::string out = "{name: " + yaml_text(r.name) + ", ";
     switch (r.kind) {
         case RegionKind::sector:
@@ -131,9 +127,7 @@ std::string region_text(const RegionDesc& r) {
             out += "sectors: {" + axis + ", count: " + std::to_string(r.count) + ", width: " + num(r.width_rad) +
                    ", offset: " + num(r.offset_rad) + ", name_prefix: " + yaml_text(r.name_prefix) + "}}  # m, rad";
             break;
-        case RegionKind::box:
-            out += "box: {min: " + vec(r.box_min_m) + ", max: " + vec(r.box_max_m) + "}}  # m";
-            break;
+        case RegionKind::box: out += "box: {min: " + vec(r.box_min_m) + ", max: " + vec(r.box_max_m) + "}}  # m"; break;
         case RegionKind::half_space:
             out += "half_space: {point: " + vec(r.plane_point_m) + ", normal: " + vec(r.plane_normal) + "}}  # m";
             break;
@@ -158,8 +152,10 @@ void write_component(std::string& y, const ComponentDesc& k) {
         y += "      amplitude: " + num(v.amplitude_m) + unit_comment(Dimension::length) + "\n";
         y += "      frequency: " + num(v.frequency_hz) + unit_comment(Dimension::frequency) + "\n";
         y += "      phase: " + num(v.phase_rad) + unit_comment(Dimension::angle) + "\n";
-        if (v.axis) y += "      axis: " + vec(*v.axis) + "\n";
-        else y += "      # axis: the sonotrode's mean face normal (found when the model is compiled)\n";
+        if (v.axis)
+            y += "      axis: " + vec(*v.axis) + "\n";
+        else
+            y += "      # axis: the sonotrode's mean face normal (found when the model is compiled)\n";
     }
     if (k.almen) {
         const AlmenDesc& a = *k.almen;
@@ -191,8 +187,10 @@ void write_output(std::string& y, const OutputDesc& o) {
     std::string log;
     for (const std::string& n : o.logged_components) log += (log.empty() ? "" : ", ") + yaml_text(n);
     y += "  log: [" + log + "]\n";
-    if (!o.directory.empty()) y += "  directory: " + yaml_text(o.directory) + "\n";
-    else y += "  # directory: given on the command line\n";
+    if (!o.directory.empty())
+        y += "  directory: " + yaml_text(o.directory) + "\n";
+    else
+        y += "  # directory: given on the command line\n";
     y += "  checkpoint_interval: " + num(o.checkpoint_interval_s) + unit_comment(Dimension::time) + "\n";
 }
 
@@ -205,10 +203,14 @@ void write_render(std::string& y, const RenderDesc& r) {
     y += "  start: " + num(r.start_s) + unit_comment(Dimension::time) + "\n";
     y += "  duration: " + num(r.duration_s) + unit_comment(Dimension::time) + "\n";
     y += "  camera:\n";
-    if (r.camera_position_m) y += "    position: " + vec(*r.camera_position_m) + unit_comment(Dimension::length) + "\n";
-    else y += "    # position: automatic framing of the chamber\n";
-    if (r.camera_look_at_m) y += "    look_at: " + vec(*r.camera_look_at_m) + unit_comment(Dimension::length) + "\n";
-    else y += "    # look_at: the chamber's centre\n";
+    if (r.camera_position_m)
+        y += "    position: " + vec(*r.camera_position_m) + unit_comment(Dimension::length) + "\n";
+    else
+        y += "    # position: automatic framing of the chamber\n";
+    if (r.camera_look_at_m)
+        y += "    look_at: " + vec(*r.camera_look_at_m) + unit_comment(Dimension::length) + "\n";
+    else
+        y += "    # look_at: the chamber's centre\n";
     y += "    up: " + vec(r.camera_up) + "\n";
     y += "    fov: " + num(r.fov_rad) + unit_comment(Dimension::angle) + "\n";
     y += "  speed_scale: " + num(r.speed_scale_m_per_s) + unit_comment(Dimension::speed) + "\n";

@@ -28,10 +28,11 @@ std::string resolve_mesh(const Cursor& mesh, const std::filesystem::path& scene_
     std::error_code ec;
     const fs::file_status st = fs::status(p, ec);
     if (!fs::exists(st))
-        fail(mesh, "mesh file not found: '" + p.string() + "' (expected an existing file; relative paths are "
-                   "resolved against the scene file's directory '" + scene_dir.string() + "')");
-    if (!fs::is_regular_file(st))
-        fail(mesh, "'" + p.string() + "' is not a regular file (expected a mesh file)");
+        fail(mesh, "mesh file not found: '" + p.string() +
+                       "' (expected an existing file; relative paths are "
+                       "resolved against the scene file's directory '" +
+                       scene_dir.string() + "')");
+    if (!fs::is_regular_file(st)) fail(mesh, "'" + p.string() + "' is not a regular file (expected a mesh file)");
     return p.string();
 }
 
@@ -51,8 +52,7 @@ Mat3 read_rotation(const Cursor& c) {
     if (euler.present()) {
         const Vec3 a = read_vector(euler);  // rad
         // Intrinsic X, then the new Y, then the newest Z: R = Rx(a) Ry(b) Rz(c).
-        return (Eigen::AngleAxisd(a.x(), Vec3::UnitX()) * Eigen::AngleAxisd(a.y(), Vec3::UnitY()) *
-                Eigen::AngleAxisd(a.z(), Vec3::UnitZ()))
+        return (Eigen::AngleAxisd(a.x(), Vec3::UnitX()) * Eigen::AngleAxisd(a.y(), Vec3::UnitY()) * Eigen::AngleAxisd(a.z(), Vec3::UnitZ()))
             .toRotationMatrix();
     }
     if (matrix.present()) {
@@ -67,16 +67,14 @@ Mat3 read_rotation(const Cursor& c) {
 
 std::optional<VibrationDesc> read_vibration(const Cursor& c, const ComponentDesc& k) {
     if (k.role != ComponentRole::sonotrode) {
-        if (c.present())
-            fail(c, "vibration is only for the sonotrode; '" + k.name + "' is not one (forbidden here)");
+        if (c.present()) fail(c, "vibration is only for the sonotrode; '" + k.name + "' is not one (forbidden here)");
         return std::nullopt;
     }
     if (!c.present()) fail(c, "missing required key 'vibration' (the sonotrode needs amplitude and frequency)");
     VibrationDesc v;
     v.amplitude_m = read_quantity(c.child("amplitude"));
     v.frequency_hz = read_quantity(c.child("frequency"));
-    if (v.amplitude_m > 0.0 && !(v.frequency_hz > 0.0))
-        fail(c.child("frequency"), "expected a frequency > 0 Hz when the amplitude is > 0");
+    if (v.amplitude_m > 0.0 && !(v.frequency_hz > 0.0)) fail(c.child("frequency"), "expected a frequency > 0 Hz when the amplitude is > 0");
     v.phase_rad = read_quantity(c.child("phase"));
     v.axis = read_optional_direction(c.child("axis"));
     v.where = location_of(c);
@@ -90,8 +88,7 @@ std::optional<RotationDesc> read_motion(const Cursor& c, const ComponentDesc& k)
             if (c.child(key).present()) fail(c.child(key), "a static motion takes no '" + std::string(key) + "'");
         return std::nullopt;
     }
-    if (k.role != ComponentRole::part)
-        fail(c, "a rotating motion is only for role part; '" + k.name + "' is not a part");
+    if (k.role != ComponentRole::part) fail(c, "a rotating motion is only for role part; '" + k.name + "' is not a part");
     RotationDesc r;
     // No default: left at the world origin, a gear 42 mm up orbited through the sonotrode and a wall.
     const Cursor point = c.child("axis_point");
@@ -117,9 +114,9 @@ std::optional<AlmenDesc> read_almen(const Cursor& c, const ComponentDesc& k) {
     const Cursor height = c.child("saturation_arc_height");
     const Cursor dose = c.child("dose_constant");
     if (height.present() != dose.present())
-        fail(height.present() ? dose : height,
-             std::string("missing required key '") + (height.present() ? "dose_constant" : "saturation_arc_height") +
-                 "' (the arc-height calibration needs both saturation_arc_height and dose_constant)");
+        fail(height.present() ? dose : height, std::string("missing required key '") +
+                                                   (height.present() ? "dose_constant" : "saturation_arc_height") +
+                                                   "' (the arc-height calibration needs both saturation_arc_height and dose_constant)");
     if (height.present()) {
         a.saturation_arc_height_m = read_quantity(height);
         a.dose_constant_J_per_m2 = read_quantity(dose);
@@ -128,12 +125,10 @@ std::optional<AlmenDesc> read_almen(const Cursor& c, const ComponentDesc& k) {
     return a;
 }
 
-ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene_dir,
-                             const std::vector<MaterialDesc>& materials) {
+ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene_dir, const std::vector<MaterialDesc>& materials) {
     ComponentDesc k;
     k.name = read_text(c.child("name"));
-    if (!is_valid_name(k.name))
-        fail(c.child("name"), "invalid name '" + k.name + "'; names use only A-Z a-z 0-9 _ -");
+    if (!is_valid_name(k.name)) fail(c.child("name"), "invalid name '" + k.name + "'; names use only A-Z a-z 0-9 _ -");
     k.role = role_from(read_choice(c.child("role")));
     k.mesh_path = resolve_mesh(c.child("mesh"), scene_dir);
     k.mesh_unit_m = parse_quantity("1 " + read_choice(c.child("mesh_unit")), Dimension::length);
@@ -141,8 +136,7 @@ ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene
     k.rotation = read_rotation(c.child("rotation"));
     k.material = read_text(c.child("material"));
     if (!k.material.empty() && find_material(materials, k.material) == nullptr)
-        fail(c.child("material"), "unknown material '" + k.material + "'; expected one of the materials: " +
-                                      material_names(materials));
+        fail(c.child("material"), "unknown material '" + k.material + "'; expected one of the materials: " + material_names(materials));
     k.vibration = read_vibration(c.child("vibration"), k);
     k.rotation_motion = read_motion(c.child("motion"), k);
     k.regions = read_regions(c.child("regions"));
@@ -163,8 +157,8 @@ std::vector<ComponentDesc> read_components(const Cursor& c, const std::filesyste
         ComponentDesc k = read_component(item, scene_dir, materials);
         for (std::size_t j = 0; j < out.size(); ++j)
             if (out[j].name == k.name)
-                fail(item.child("name"), "duplicate component name '" + k.name + "' (also components[" +
-                                             std::to_string(j) + "]); names must be unique");
+                fail(item.child("name"),
+                     "duplicate component name '" + k.name + "' (also components[" + std::to_string(j) + "]); names must be unique");
         if (k.role == ComponentRole::sonotrode && ++sonotrodes > 1)
             fail(item.child("role"), "a second sonotrode ('" + k.name + "'); expected exactly one sonotrode");
         if (k.role == ComponentRole::chamber) ++chambers;

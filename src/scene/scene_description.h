@@ -36,18 +36,18 @@ inline bool logged_by_default(ComponentRole r) { return r == ComponentRole::part
 
 // Sinusoidal translation of a component along an axis: d(t) = A sin(2 pi F t + phase).
 struct VibrationDesc {
-    std::optional<Vec3> axis;  // unit vector, world frame; empty = the sonotrode's mean face normal
-    double amplitude_m = 0.0;  // m, A0
-    double frequency_hz = 0.0; // Hz, F
-    double phase_rad = 0.0;    // rad
+    std::optional<Vec3> axis;   // unit vector, world frame; empty = the sonotrode's mean face normal
+    double amplitude_m = 0.0;   // m, A0
+    double frequency_hz = 0.0;  // Hz, F
+    double phase_rad = 0.0;     // rad
     SourceLocation where;
 };
 
 // Constant-speed rotation of a component about a fixed world axis.
 struct RotationDesc {
-    Vec3 axis_point_m = Vec3::Zero();        // m, a point on the axis (world frame)
-    Vec3 axis_direction = Vec3::UnitZ();     // unit vector (world frame), right-hand rule
-    double speed_rad_per_s = 0.0;            // rad/s, omega (signed)
+    Vec3 axis_point_m = Vec3::Zero();     // m, a point on the axis (world frame)
+    Vec3 axis_direction = Vec3::UnitZ();  // unit vector (world frame), right-hand rule
+    double speed_rad_per_s = 0.0;         // rad/s, omega (signed)
     SourceLocation where;
 };
 
@@ -63,25 +63,25 @@ enum class RegionKind {
 };
 
 struct RegionDesc {
-    std::string name;                    // the region (for `sectors`: its entry; regions are <name_prefix><i>)
+    std::string name;  // the region (for `sectors`: its entry; regions are <name_prefix><i>)
     RegionKind kind = RegionKind::box;
     // sector, sectors: angles measured about axis_direction (right-hand rule) from `reference`
     // projected onto the plane normal to the axis.
-    Vec3 axis_point_m = Vec3::Zero();    // m, a point on the axis (component frame)
-    Vec3 axis_direction = Vec3::UnitZ(); // unit vector (component frame)
-    Vec3 reference = Vec3::UnitX();      // unit vector (component frame), not along the axis
-    double from_rad = 0.0;               // rad, sector start (included)
-    double to_rad = 0.0;                 // rad, sector end (excluded), from < to <= from + 2 pi
-    int count = 0;                       // sectors: number of sectors (>= 1)
-    double width_rad = 0.0;              // rad, sectors: width of each sector, (0, 2 pi]
-    double offset_rad = 0.0;             // rad, sectors: centre angle of sector 0
-    std::string name_prefix;             // sectors: sector i is named name_prefix + i
-    Vec3 box_min_m = Vec3::Zero();       // m, box: lowest corner (component frame)
-    Vec3 box_max_m = Vec3::Zero();       // m, box: highest corner (component frame)
-    Vec3 plane_point_m = Vec3::Zero();   // m, half_space: a point on the plane (component frame)
-    Vec3 plane_normal = Vec3::UnitZ();   // unit vector, half_space: points into the selected side
-    std::string group;                   // group: a name of the mesh file's solids / sub-meshes
-    SourceLocation where;                // the region's entry in the file
+    Vec3 axis_point_m = Vec3::Zero();     // m, a point on the axis (component frame)
+    Vec3 axis_direction = Vec3::UnitZ();  // unit vector (component frame)
+    Vec3 reference = Vec3::UnitX();       // unit vector (component frame), not along the axis
+    double from_rad = 0.0;                // rad, sector start (included)
+    double to_rad = 0.0;                  // rad, sector end (excluded), from < to <= from + 2 pi
+    int count = 0;                        // sectors: number of sectors (>= 1)
+    double width_rad = 0.0;               // rad, sectors: width of each sector, (0, 2 pi]
+    double offset_rad = 0.0;              // rad, sectors: centre angle of sector 0
+    std::string name_prefix;              // sectors: sector i is named name_prefix + i
+    Vec3 box_min_m = Vec3::Zero();        // m, box: lowest corner (component frame)
+    Vec3 box_max_m = Vec3::Zero();        // m, box: highest corner (component frame)
+    Vec3 plane_point_m = Vec3::Zero();    // m, half_space: a point on the plane (component frame)
+    Vec3 plane_normal = Vec3::UnitZ();    // unit vector, half_space: points into the selected side
+    std::string group;                    // group: a name of the mesh file's solids / sub-meshes
+    SourceLocation where;                 // the region's entry in the file
 };
 
 // The names a region entry yields: its name, or for `sectors` name_prefix + 0 .. count - 1.
@@ -106,16 +106,16 @@ struct AlmenDesc {
 struct ComponentDesc {
     std::string name;
     ComponentRole role = ComponentRole::fixture;
-    std::string mesh_path;            // absolute or relative to the working directory (resolved by the parser)
-    double mesh_unit_m = 1.0;         // m per mesh-file length unit (mm -> 1e-3)
-    Vec3 translation_m = Vec3::Zero();// m, placement of the component frame in the world
-    Mat3 rotation = Mat3::Identity(); // component frame -> world (applied before translation)
-    std::string material;             // key into SceneDescription::materials
-    std::optional<VibrationDesc> vibration;  // only for role sonotrode (required there)
+    std::string mesh_path;                        // absolute or relative to the working directory (resolved by the parser)
+    double mesh_unit_m = 1.0;                     // m per mesh-file length unit (mm -> 1e-3)
+    Vec3 translation_m = Vec3::Zero();            // m, placement of the component frame in the world
+    Mat3 rotation = Mat3::Identity();             // component frame -> world (applied before translation)
+    std::string material;                         // key into SceneDescription::materials
+    std::optional<VibrationDesc> vibration;       // only for role sonotrode (required there)
     std::optional<RotationDesc> rotation_motion;  // only for role part; empty = static
-    std::vector<RegionDesc> regions;  // named selections of triangles, for the impact analysis
-    std::optional<AlmenDesc> almen;   // only for role almen (always present there)
-    SourceLocation where;             // the component's entry in the file
+    std::vector<RegionDesc> regions;              // named selections of triangles, for the impact analysis
+    std::optional<AlmenDesc> almen;               // only for role almen (always present there)
+    SourceLocation where;                         // the component's entry in the file
 };
 
 struct MaterialDesc {
@@ -135,7 +135,7 @@ struct LawParameterValue {
 // One contact pair (shot-shot, or shot against one material): its law (contact/law_registry.h)
 // and every parameter that law declares, in the law's order.
 struct ContactPairDesc {
-    std::string key;             // "shot-shot", "shot-<material>" or "default"
+    std::string key;  // "shot-shot", "shot-<material>" or "default"
     std::string law = "impulse";
     std::vector<LawParameterValue> parameters;
     SourceLocation where;
@@ -149,9 +149,9 @@ enum class InitialVelocityKind { rest, vector, random_upward };
 
 struct ShotDesc {
     int count = 0;
-    double diameter_m = 0.0;           // m, D
-    double density_kg_per_m3 = 0.0;    // kg/m3 (from `density`, or from `material`)
-    std::string material;              // optional material name ("" if density given directly)
+    double diameter_m = 0.0;         // m, D
+    double density_kg_per_m3 = 0.0;  // kg/m3 (from `density`, or from `material`)
+    std::string material;            // optional material name ("" if density given directly)
     InitialVelocityKind initial = InitialVelocityKind::rest;
     Vec3 initial_velocity_m_per_s = Vec3::Zero();  // m/s, for `vector`
     double initial_speed_m_per_s = 0.0;            // m/s, for `random_upward` (uniform on the upper hemisphere around the sonotrode axis)
@@ -159,7 +159,7 @@ struct ShotDesc {
 };
 
 struct ProcessDesc {
-    double duration_s = 0.0;                  // s
+    double duration_s = 0.0;                    // s
     Vec3 gravity_m_per_s2 = Vec3(0, 0, -9.81);  // m/s2
     std::uint64_t seed = 1;
     SourceLocation where;
@@ -169,7 +169,7 @@ enum class SteppingScheme { step, event };
 inline const char* scheme_name(SteppingScheme s) { return s == SteppingScheme::event ? "event" : "step"; }
 
 struct AccuracyDesc {
-    double travel_fraction = 0.25;  // -, max travel per step / shot radius (eq. 7 uses 0.25)
+    double travel_fraction = 0.25;       // -, max travel per step / shot radius (eq. 7 uses 0.25)
     double impact_speed_m_per_s = 0.05;  // m/s, slower normal approaches are sustained contact, not impacts
     SteppingScheme scheme = SteppingScheme::event;
     SourceLocation where;
@@ -187,27 +187,27 @@ struct OutputDesc {
 struct RenderDesc {
     int width_px = 1280;
     int height_px = 720;
-    int fps = 30;                         // video frames per second
-    double slow_motion_s = 0.02;          // s, simulated seconds per video second
-    double start_s = 0.0;                 // s, simulated time of the first frame
-    double duration_s = 0.2;              // s, simulated time recorded (cut at the run's end)
+    int fps = 30;                           // video frames per second
+    double slow_motion_s = 0.02;            // s, simulated seconds per video second
+    double start_s = 0.0;                   // s, simulated time of the first frame
+    double duration_s = 0.2;                // s, simulated time recorded (cut at the run's end)
     std::optional<Vec3> camera_position_m;  // m, world; empty = automatic framing of the chamber
     std::optional<Vec3> camera_look_at_m;   // m, world; empty = the centre of the chamber
-    Vec3 camera_up = Vec3::UnitZ();       // world direction shown upward
-    double fov_rad = 40.0 * M_PI / 180.0; // rad, vertical field of view
-    double speed_scale_m_per_s = 5.0;     // m/s, top of the impact flashes' colour bar
-    bool video = true;                    // assemble an MP4 from the frames (needs ffmpeg)
+    Vec3 camera_up = Vec3::UnitZ();         // world direction shown upward
+    double fov_rad = 40.0 * M_PI / 180.0;   // rad, vertical field of view
+    double speed_scale_m_per_s = 5.0;       // m/s, top of the impact flashes' colour bar
+    bool video = true;                      // assemble an MP4 from the frames (needs ffmpeg)
     SourceLocation where;
 };
 
 struct SceneDescription {
-    std::string source_file;   // the scene file as given
-    std::string name;          // free text, for reports
+    std::string source_file;  // the scene file as given
+    std::string name;         // free text, for reports
     ProcessDesc process;
     AccuracyDesc accuracy;
     ShotDesc shot;
     std::vector<MaterialDesc> materials;
-    std::vector<ContactPairDesc> contacts;   // includes a "default" entry (given or built in)
+    std::vector<ContactPairDesc> contacts;  // includes a "default" entry (given or built in)
     std::vector<ComponentDesc> components;
     OutputDesc output;
     std::optional<RenderDesc> render;  // present when the scene has a `render` block

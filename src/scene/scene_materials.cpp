@@ -47,8 +47,8 @@ const contact::LawEntry& pair_law(const Cursor& pair, const std::string& key, co
         std::string shot_shot_laws;
         for (const contact::LawEntry& e : contact::law_catalogue())
             if (e.make_shot_shot != nullptr) shot_shot_laws += (shot_shot_laws.empty() ? "" : ", ") + std::string(e.name);
-        fail(at.present() ? at : pair, "law '" + name + "' is for shot-<material> pairs, not between shot; expected for shot-shot one of: " +
-                                          shot_shot_laws);
+        fail(at.present() ? at : pair,
+             "law '" + name + "' is for shot-<material> pairs, not between shot; expected for shot-shot one of: " + shot_shot_laws);
     }
     return *law;
 }
@@ -142,8 +142,8 @@ std::vector<ContactPairDesc> read_contacts(const Cursor& c, const std::vector<Ma
             }
             LawParameterValue v = read_parameter(at, p);
             if (v.values.empty())
-                fail(pair, "law '" + d.law + "' needs '" + std::string(p.name) + "' for pair '" + key + "' (" +
-                               expected_text(at.entry()) + "); give it here or in the `default` pair");
+                fail(pair, "law '" + d.law + "' needs '" + std::string(p.name) + "' for pair '" + key + "' (" + expected_text(at.entry()) +
+                               "); give it here or in the `default` pair");
             d.parameters.push_back(std::move(v));
         }
         d.where = location_of(pair);
@@ -160,11 +160,13 @@ std::vector<ContactPairDesc> read_contacts(const Cursor& c, const std::vector<Ma
                 continue;
             }
             if (key != shot_shot_key) {
-                const bool shot_material = key.rfind(shot_prefix, 0) == 0 &&
-                                           find_material(materials, key.substr(shot_prefix.size())) != nullptr;
+                const bool shot_material =
+                    key.rfind(shot_prefix, 0) == 0 && find_material(materials, key.substr(shot_prefix.size())) != nullptr;
                 if (!shot_material)
-                    fail(pair, "unknown contact pair '" + key + "'; expected 'shot-shot', 'default' or "
-                               "'shot-<material>' with a material of: " + material_names(materials));
+                    fail(pair, "unknown contact pair '" + key +
+                                   "'; expected 'shot-shot', 'default' or "
+                                   "'shot-<material>' with a material of: " +
+                                   material_names(materials));
             }
             out.push_back(resolve(pair, key));
         }

@@ -8,8 +8,8 @@
 
 #include "common/units.h"
 #include "scene/overrides.h"
-#include "scene/schema_validation.h"
 #include "scene/scene_sections.h"
+#include "scene/schema_validation.h"
 #include "scene/yaml_access.h"
 
 namespace peensim {

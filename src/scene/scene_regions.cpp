@@ -36,8 +36,7 @@ void read_sector(const Cursor& c, RegionDesc& r) {
     r.from_rad = read_quantity(c.child("from"));
     r.to_rad = read_quantity(c.child("to"));
     if (!(r.from_rad < r.to_rad)) fail(c.child("to"), "expected an angle greater than `from`");
-    if (!(r.to_rad - r.from_rad <= full_turn_rad + full_turn_slack_rad))
-        fail(c.child("to"), "expected at most 360 deg from `from`");
+    if (!(r.to_rad - r.from_rad <= full_turn_rad + full_turn_slack_rad)) fail(c.child("to"), "expected at most 360 deg from `from`");
 }
 
 void read_sectors(const Cursor& c, RegionDesc& r) {
@@ -47,8 +46,7 @@ void read_sectors(const Cursor& c, RegionDesc& r) {
     r.reference = read_reference(c.child("reference"), r.axis_direction);
     r.count = static_cast<int>(read_integer(c.child("count")));
     r.width_rad = read_quantity(c.child("width"));
-    if (!(r.width_rad <= full_turn_rad + full_turn_slack_rad))
-        fail(c.child("width"), "expected a width of at most 360 deg");
+    if (!(r.width_rad <= full_turn_rad + full_turn_slack_rad)) fail(c.child("width"), "expected a width of at most 360 deg");
     r.offset_rad = read_quantity(c.child("offset"));
     const Cursor prefix = c.child("name_prefix");
     r.name_prefix = prefix.present() ? read_text(prefix) : r.name + "-";
@@ -60,20 +58,17 @@ void read_box(const Cursor& c, RegionDesc& r) {
     r.kind = RegionKind::box;
     r.box_min_m = read_vector(c.child("min"));
     r.box_max_m = read_vector(c.child("max"));
-    if (!(r.box_min_m.array() <= r.box_max_m.array()).all())
-        fail(c.child("max"), "expected a corner >= min in x, y and z");
+    if (!(r.box_min_m.array() <= r.box_max_m.array()).all()) fail(c.child("max"), "expected a corner >= min in x, y and z");
 }
 
 RegionDesc read_region(const Cursor& c) {
     RegionDesc r;
     r.name = read_text(c.child("name"));
-    if (!is_valid_name(r.name))
-        fail(c.child("name"), "invalid name '" + r.name + "'; names use only A-Z a-z 0-9 _ -");
+    if (!is_valid_name(r.name)) fail(c.child("name"), "invalid name '" + r.name + "'; names use only A-Z a-z 0-9 _ -");
     r.where = location_of(c);
     int kinds = 0;
     for (std::string_view k : region_kinds) kinds += c.child(k).present() ? 1 : 0;
-    if (kinds != 1)
-        fail(c, "expected exactly one of sector, sectors, box, half_space, group, got " + std::to_string(kinds));
+    if (kinds != 1) fail(c, "expected exactly one of sector, sectors, box, half_space, group, got " + std::to_string(kinds));
     if (c.child("sector").present()) read_sector(c.child("sector"), r);
     if (c.child("sectors").present()) read_sectors(c.child("sectors"), r);
     if (c.child("box").present()) read_box(c.child("box"), r);

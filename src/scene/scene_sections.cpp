@@ -32,19 +32,16 @@ ShotDesc read_shot(const Cursor& c, const std::vector<MaterialDesc>& materials) 
 
     const Cursor density = c.child("density");
     const Cursor material = c.child("material");
-    if (density.present() && material.present())
-        fail(material, "give either shot.density or shot.material, not both");
+    if (density.present() && material.present()) fail(material, "give either shot.density or shot.material, not both");
     if (density.present()) {
         d.density_kg_per_m3 = read_quantity(density);
     } else if (material.present()) {
         d.material = read_text(material);
         const MaterialDesc* m = find_material(materials, d.material);
         if (m == nullptr)
-            fail(material, "unknown material '" + d.material + "'; expected one of the materials: " +
-                               material_names(materials));
+            fail(material, "unknown material '" + d.material + "'; expected one of the materials: " + material_names(materials));
         if (!m->density_kg_per_m3)
-            fail(material, "material '" + d.material + "' has no density; add materials." + d.material +
-                               ".density or give shot.density");
+            fail(material, "material '" + d.material + "' has no density; add materials." + d.material + ".density or give shot.density");
         d.density_kg_per_m3 = *m->density_kg_per_m3;
     } else {
         fail(density, "missing required key 'density' or 'material' (the shot needs a density)");
@@ -52,8 +49,7 @@ ShotDesc read_shot(const Cursor& c, const std::vector<MaterialDesc>& materials) 
 
     const Cursor velocity = c.child("initial_velocity");
     const Cursor speed = c.child("initial_speed");
-    if (velocity.present() && speed.present())
-        fail(speed, "give either shot.initial_velocity or shot.initial_speed, not both");
+    if (velocity.present() && speed.present()) fail(speed, "give either shot.initial_velocity or shot.initial_speed, not both");
     if (velocity.present()) {
         d.initial = InitialVelocityKind::vector;
         d.initial_velocity_m_per_s = read_vector(velocity);
@@ -71,8 +67,7 @@ OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& compon
     if (log.present()) {
         d.logged_components = read_names(log);
         for (const std::string& name : d.logged_components) {
-            const bool known = std::any_of(components.begin(), components.end(),
-                                           [&](const ComponentDesc& k) { return k.name == name; });
+            const bool known = std::any_of(components.begin(), components.end(), [&](const ComponentDesc& k) { return k.name == name; });
             if (!known) {
                 std::string names;
                 for (const ComponentDesc& k : components) names += (names.empty() ? "" : ", ") + k.name;

@@ -18,16 +18,16 @@
 namespace peensim {
 
 enum class ValueKind {
-    map,        // fixed keys, described by the entries "<path>.<key>"
-    named_map,  // user-chosen names -> entries described by "<path>.*"
-    list,       // items described by "<path>[]"
-    quantity,   // one number with a unit of `dimension`
-    integer,    // a whole number
-    vector3,    // [x, y, z] (each a quantity) or one string "x y z unit"
-    matrix3,    // 3x3 matrix as three rows [[a, b, c], [d, e, f], [g, h, i]]
-    text,       // free text, a name or a path
-    choice,     // one word out of `choices`
-    name_list,  // a list of names
+    map,            // fixed keys, described by the entries "<path>.<key>"
+    named_map,      // user-chosen names -> entries described by "<path>.*"
+    list,           // items described by "<path>[]"
+    quantity,       // one number with a unit of `dimension`
+    integer,        // a whole number
+    vector3,        // [x, y, z] (each a quantity) or one string "x y z unit"
+    matrix3,        // 3x3 matrix as three rows [[a, b, c], [d, e, f], [g, h, i]]
+    text,           // free text, a name or a path
+    choice,         // one word out of `choices`
+    name_list,      // a list of names
     quantity_list,  // a list of one or more numbers with a unit of `dimension` (a table)
 };
 
@@ -35,13 +35,13 @@ struct SchemaEntry {
     std::string_view path;
     ValueKind kind;
     Dimension dimension = Dimension::dimensionless;  // for quantity and vector3
-    bool required = false;          // the parent map must have this key
-    std::string_view default_value; // text read like a value written in the file; "" = none
-    std::string_view default_note;  // for the reference when the default is not a plain value
-    Range range;                    // for quantity and integer
-    std::string_view choices;       // for choice: "a|b|c"; for map: the scalar form it also takes
-    std::string_view planned;       // for choice: values that are known but not available yet
-    std::string_view plain_number_unit;  // unit of a number written without one ("" = SI)
+    bool required = false;                           // the parent map must have this key
+    std::string_view default_value;                  // text read like a value written in the file; "" = none
+    std::string_view default_note;                   // for the reference when the default is not a plain value
+    Range range;                                     // for quantity and integer
+    std::string_view choices;                        // for choice: "a|b|c"; for map: the scalar form it also takes
+    std::string_view planned;                        // for choice: values that are known but not available yet
+    std::string_view plain_number_unit;              // unit of a number written without one ("" = SI)
     std::string_view doc;
 };
 

@@ -7,9 +7,7 @@ namespace {
 
 void check_node(const Cursor& c);
 
-[[noreturn]] void fail_shape(const Cursor& c) {
-    fail(c, "expected " + expected_text(c.entry()) + ", got " + describe_node(c.node));
-}
+[[noreturn]] void fail_shape(const Cursor& c) { fail(c, "expected " + expected_text(c.entry()) + ", got " + describe_node(c.node)); }
 
 // A map's keys must be plain scalars, each at most once (yaml-cpp keeps duplicates silently).
 void check_keys_unique(const Cursor& c) {
@@ -58,8 +56,7 @@ void check_named_map(const Cursor& c) {
     check_keys_unique(c);
     for (const auto& kv : c.node) {
         const Cursor child = c.named_child(kv.first, kv.second);
-        if (!is_valid_name(kv.first.Scalar()))
-            fail(child, "invalid name '" + kv.first.Scalar() + "'; names use only A-Z a-z 0-9 _ -");
+        if (!is_valid_name(kv.first.Scalar())) fail(child, "invalid name '" + kv.first.Scalar() + "'; names use only A-Z a-z 0-9 _ -");
         check_node(child);
     }
 }
@@ -106,8 +103,7 @@ void check_node(const Cursor& c) {
 }  // namespace
 
 void check_structure(const Cursor& root) {
-    if (!root.node.IsDefined() || root.node.IsNull())
-        fail(root, "the scene is empty; expected " + expected_text(root.entry()));
+    if (!root.node.IsDefined() || root.node.IsNull()) fail(root, "the scene is empty; expected " + expected_text(root.entry()));
     check_node(root);
 }
 

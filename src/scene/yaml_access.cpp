@@ -107,8 +107,8 @@ Vec3 parse_vector_node(const Cursor& c, const YAML::Node& value) {
     if (value.IsSequence()) {
         if (value.size() != 3) fail(c, "expected " + expected_text(e) + ", got a list of " + std::to_string(value.size()));
         for (std::size_t i = 0; i < 3; ++i) {
-            if (!value[i].IsScalar()) fail(c, "expected " + expected_text(e) + ", element " + std::to_string(i) +
-                                                  " is " + describe_node(value[i]));
+            if (!value[i].IsScalar())
+                fail(c, "expected " + expected_text(e) + ", element " + std::to_string(i) + " is " + describe_node(value[i]));
             out[static_cast<Eigen::Index>(i)] = parse_element(c, value[i].Scalar(), e.plain_number_unit);
         }
         return out;
@@ -133,8 +133,7 @@ Vec3 parse_vector_node(const Cursor& c, const YAML::Node& value) {
     if (elements.size() != 3) fail(c, "expected " + expected_text(e) + ", got " + describe_node(value));
     if (elements[0].unit.empty() && elements[1].unit.empty()) elements[0].unit = elements[1].unit = elements[2].unit;
     for (std::size_t i = 0; i < 3; ++i)
-        out[static_cast<Eigen::Index>(i)] =
-            parse_element(c, elements[i].number + " " + elements[i].unit, e.plain_number_unit);
+        out[static_cast<Eigen::Index>(i)] = parse_element(c, elements[i].number + " " + elements[i].unit, e.plain_number_unit);
     return out;
 }
 
@@ -147,8 +146,7 @@ const SchemaEntry& Cursor::entry() const {
 }
 
 Cursor Cursor::child(std::string_view key) const {
-    Cursor c{context, YAML::Node(YAML::NodeType::Undefined), schema_child_path(schema_path, key),
-             schema_child_path(field_path, key), mark};
+    Cursor c{context, YAML::Node(YAML::NodeType::Undefined), schema_child_path(schema_path, key), schema_child_path(field_path, key), mark};
     if (!is_map()) return c;
     for (const auto& kv : node) {
         if (!kv.first.IsScalar() || kv.first.Scalar() != key) continue;
@@ -161,13 +159,11 @@ Cursor Cursor::child(std::string_view key) const {
 
 Cursor Cursor::named_child(const YAML::Node& key, const YAML::Node& value) const {
     const std::string name = key.Scalar();
-    return Cursor{context, value, schema_child_path(schema_path, "*"), schema_child_path(field_path, name),
-                  key.Mark()};
+    return Cursor{context, value, schema_child_path(schema_path, "*"), schema_child_path(field_path, name), key.Mark()};
 }
 
 Cursor Cursor::item(std::size_t index) const {
-    return Cursor{context, node[index], schema_path + "[]", field_path + "[" + std::to_string(index) + "]",
-                  node[index].Mark()};
+    return Cursor{context, node[index], schema_path + "[]", field_path + "[" + std::to_string(index) + "]", node[index].Mark()};
 }
 
 Cursor root_cursor(const SceneContext& context, const YAML::Node& root) {
@@ -219,7 +215,8 @@ std::vector<double> read_quantity_list(const Cursor& c) {
         // assignment to a copy's node: assigning a yaml-cpp Node overwrites the tree it refers to.
         const Cursor at{c.context, item, c.schema_path, c.field_path + "[" + std::to_string(k) + "]",
                         item.IsScalar() ? item.Mark() : c.mark};
-        if (!item.IsScalar() || item.IsNull()) fail(at, "expected " + std::string(dimension_noun(c.entry().dimension)) + ", got " + describe_node(item));
+        if (!item.IsScalar() || item.IsNull())
+            fail(at, "expected " + std::string(dimension_noun(c.entry().dimension)) + ", got " + describe_node(item));
         out.push_back(parse_checked_quantity(at, item));
     }
     return out;
@@ -238,13 +235,11 @@ long long read_integer(const Cursor& c) {
         // before it is converted, so nothing out of range wraps.
         double d = 0.0;
         const auto [dptr, dec] = std::from_chars(first, text.data() + text.size(), d);
-        if (dec != std::errc() || dptr != text.data() + text.size() || !std::isfinite(d) || d != std::floor(d) ||
-            !e.range.contains(d))
+        if (dec != std::errc() || dptr != text.data() + text.size() || !std::isfinite(d) || d != std::floor(d) || !e.range.contains(d))
             fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "'");
         return static_cast<long long>(d);
     }
-    if (!e.range.contains(static_cast<double>(v)))
-        fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "'");
+    if (!e.range.contains(static_cast<double>(v))) fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "'");
     return v;
 }
 
@@ -281,8 +276,7 @@ Mat3 read_matrix(const Cursor& c) {
         for (std::size_t k = 0; k < 3; ++k) {
             double x = 0.0;
             if (!row[k].IsScalar() || !parse_plain_number(row[k].Scalar(), x))
-                fail(c, expected + ", element [" + std::to_string(r) + "][" + std::to_string(k) + "] is " +
-                            describe_node(row[k]));
+                fail(c, expected + ", element [" + std::to_string(r) + "][" + std::to_string(k) + "] is " + describe_node(row[k]));
             m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k)) = x;
         }
     }
@@ -304,8 +298,7 @@ std::string read_choice(const Cursor& c) {
     for (std::string_view choice : split_choices(e.choices))
         if (choice == word) return word;
     for (std::string_view planned : split_choices(e.planned))
-        if (planned == word)
-            fail(c, "'" + word + "' is not available yet; expected " + expected_text(e));
+        if (planned == word) fail(c, "'" + word + "' is not available yet; expected " + expected_text(e));
     fail(c, "expected " + expected_text(e) + ", got " + describe_node(*value));
 }
 

@@ -37,7 +37,7 @@ struct SceneContext {
     std::vector<OverrideOrigin> overrides;  // filled by apply_overrides
     // Noted while reading (the cursors see the context as const).
     mutable std::vector<PlainQuantity> plain_quantities;
-    mutable bool units_given = false;       // some quantity was written with a unit
+    mutable bool units_given = false;  // some quantity was written with a unit
 };
 
 // A direction whose length is already 1 within this tolerance is kept as written instead of being
@@ -59,9 +59,9 @@ struct Cursor {
     bool is_map() const { return node.IsDefined() && node.IsMap(); }
     const SchemaEntry& entry() const;  // the schema entry of schema_path (must exist)
 
-    Cursor child(std::string_view key) const;  // a fixed key of a map; absent if not there
+    Cursor child(std::string_view key) const;                                  // a fixed key of a map; absent if not there
     Cursor named_child(const YAML::Node& key, const YAML::Node& value) const;  // an entry of a named map
-    Cursor item(std::size_t index) const;      // an item of a list
+    Cursor item(std::size_t index) const;                                      // an item of a list
     std::size_t size() const { return node.IsDefined() && node.IsSequence() ? node.size() : 0; }
 };
 

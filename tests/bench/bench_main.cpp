@@ -30,9 +30,12 @@ int main(int argc, char** argv) {
     std::string render_dir;
     for (int k = 2; k + 1 < argc; k += 2) {
         const std::string flag = argv[k];
-        if (flag == "--set") overrides.emplace_back(argv[k + 1]);
-        else if (flag == "--label") label = argv[k + 1];
-        else if (flag == "--render") render_dir = argv[k + 1];
+        if (flag == "--set")
+            overrides.emplace_back(argv[k + 1]);
+        else if (flag == "--label")
+            label = argv[k + 1];
+        else if (flag == "--render")
+            render_dir = argv[k + 1];
         else {
             std::cerr << "unknown option " << flag << "\n";
             return 2;
@@ -73,8 +76,8 @@ int main(int argc, char** argv) {
         std::size_t triangles = 0;
         for (const Component& c : model->components) triangles += c.mesh->triangle_count();
         std::printf("== %s\n", label.c_str());
-        std::printf("  shot %d of %.3g mm, %zu triangles, %.3g s simulated, setup %.2f s\n", model->shot_count,
-                    2e3 * model->shot_radius_m, triangles, st.time.seconds(), load_s);
+        std::printf("  shot %d of %.3g mm, %zu triangles, %.3g s simulated, setup %.2f s\n", model->shot_count, 2e3 * model->shot_radius_m,
+                    triangles, st.time.seconds(), load_s);
         std::printf("  wall %.3f s   sim s per wall s %.4f   shot-steps/s %.3e (%.0f ns per shot-step)   steps %llu\n", wall,
                     st.time.seconds() / wall, static_cast<double>(st.shot_steps) / wall, 1e9 * wall / static_cast<double>(st.shot_steps),
                     static_cast<unsigned long long>(st.steps));
@@ -83,10 +86,11 @@ int main(int argc, char** argv) {
                     static_cast<double>(logged) / st.time.seconds(), logged ? speed_sum / static_cast<double>(logged) : 0.0,
                     static_cast<unsigned long long>(st.health.shot_lost));
         if (recorder)
-            std::printf("  render: %d frames of %dx%d, drawing %.1f ms per frame (PNG written by a second thread), %.1f %% of the wall time\n",
-                        recorder->frames_drawn(), model->description.render.value_or(RenderDesc{}).width_px,
-                        model->description.render.value_or(RenderDesc{}).height_px, 1e3 * recorder->draw_seconds() / recorder->frames_drawn(),
-                        100.0 * recorder->draw_seconds() / wall);
+            std::printf(
+                "  render: %d frames of %dx%d, drawing %.1f ms per frame (PNG written by a second thread), %.1f %% of the wall time\n",
+                recorder->frames_drawn(), model->description.render.value_or(RenderDesc{}).width_px,
+                model->description.render.value_or(RenderDesc{}).height_px, 1e3 * recorder->draw_seconds() / recorder->frames_drawn(),
+                100.0 * recorder->draw_seconds() / wall);
         std::printf("  stages:");
         for (std::size_t k = 0; k < kStageNames.size(); ++k)
             if (stats.seconds[k] > 0.0) std::printf(" %s %.0f%%", std::string(kStageNames[k]).c_str(), 100.0 * stats.seconds[k] / wall);
@@ -94,19 +98,25 @@ int main(int argc, char** argv) {
         if (stats.events > 0) {
             // Event-driven: shot_steps counts events.
             const double ev = static_cast<double>(stats.events), sim_s = st.time.seconds();
-            std::printf("\n  events %.3g per simulated s (%.0f ns each): stale %.1f%%, window ends %.1f%%, substeps %.1f%%; per event: pair tests %.2f, mesh predictions %.2f, BVH sweeps %.2f, leaves %.2f; rides %.3g/s, sleeps %llu, collapse guards %.3g/s, hand-overs to time stepping %llu\n",
-                        ev / sim_s, wall / ev * 1e9, 100.0 * static_cast<double>(stats.stale_events) / ev,
-                        100.0 * static_cast<double>(stats.box_renewals) / ev, 100.0 * static_cast<double>(stats.substeps) / ev,
-                        static_cast<double>(stats.pair_tests) / ev, static_cast<double>(stats.mesh_predictions) / ev,
-                        static_cast<double>(stats.bvh_queries) / ev, static_cast<double>(stats.triangle_tests) / ev,
-                        static_cast<double>(stats.rides) / sim_s, static_cast<unsigned long long>(stats.sleeps),
-                        static_cast<double>(stats.collapse_guards) / sim_s, static_cast<unsigned long long>(stats.hand_overs));
+            std::printf(
+                "\n  events %.3g per simulated s (%.0f ns each): stale %.1f%%, window ends %.1f%%, substeps %.1f%%; per event: pair tests "
+                "%.2f, mesh predictions %.2f, BVH sweeps %.2f, leaves %.2f; rides %.3g/s, sleeps %llu, collapse guards %.3g/s, hand-overs "
+                "to time stepping %llu\n",
+                ev / sim_s, wall / ev * 1e9, 100.0 * static_cast<double>(stats.stale_events) / ev,
+                100.0 * static_cast<double>(stats.box_renewals) / ev, 100.0 * static_cast<double>(stats.substeps) / ev,
+                static_cast<double>(stats.pair_tests) / ev, static_cast<double>(stats.mesh_predictions) / ev,
+                static_cast<double>(stats.bvh_queries) / ev, static_cast<double>(stats.triangle_tests) / ev,
+                static_cast<double>(stats.rides) / sim_s, static_cast<unsigned long long>(stats.sleeps),
+                static_cast<double>(stats.collapse_guards) / sim_s, static_cast<unsigned long long>(stats.hand_overs));
             return 0;
         }
-        std::printf("\n  per shot-step: gate checks %.2f, skipped %.2f, memo skips %.3f, BVH queries %.3f (hits %.3f), triangles returned %.3f, tested %.3f, touch searches %.4f\n",
-                    static_cast<double>(stats.gate_checks) / ss, static_cast<double>(stats.gate_skips) / ss, static_cast<double>(stats.memo_skips) / ss,
-                    static_cast<double>(stats.bvh_queries) / ss, static_cast<double>(stats.bvh_hits) / ss, static_cast<double>(stats.triangles_returned) / ss, static_cast<double>(stats.triangle_tests) / ss,
-                    static_cast<double>(stats.touch_searches) / ss);
+        std::printf(
+            "\n  per shot-step: gate checks %.2f, skipped %.2f, memo skips %.3f, BVH queries %.3f (hits %.3f), triangles returned %.3f, "
+            "tested %.3f, touch searches %.4f\n",
+            static_cast<double>(stats.gate_checks) / ss, static_cast<double>(stats.gate_skips) / ss,
+            static_cast<double>(stats.memo_skips) / ss, static_cast<double>(stats.bvh_queries) / ss,
+            static_cast<double>(stats.bvh_hits) / ss, static_cast<double>(stats.triangles_returned) / ss,
+            static_cast<double>(stats.triangle_tests) / ss, static_cast<double>(stats.touch_searches) / ss);
     } catch (const std::exception& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 1;

@@ -53,8 +53,8 @@ void OverlapAudit::audit(const SimulationState& state) {
                 std::ostringstream e;
                 e.precision(12);
                 e << "t = " << state.time.seconds() << " s: shot " << i << " at " << s.position(i).transpose() << " m, "
-                  << s.velocity(i).transpose() << " m/s, component " << c.name << " triangle " << closest.triangle
-                  << ": gap " << gap << " m";
+                  << s.velocity(i).transpose() << " m/s, component " << c.name << " triangle " << closest.triangle << ": gap " << gap
+                  << " m";
                 if (report_.first_mesh.empty()) report_.first_mesh = e.str();
                 if (worst) report_.worst_mesh = e.str();
             }
@@ -64,9 +64,8 @@ void OverlapAudit::audit(const SimulationState& state) {
 
 std::string OverlapAudit::summary() const {
     std::ostringstream o;
-    o << report_.audits << " states audited; shot pairs: " << report_.pair_overlaps << " overlaps, worst gap "
-      << report_.worst_pair_gap_m << " m; meshes: " << report_.mesh_overlaps << " overlaps, worst gap "
-      << report_.worst_mesh_gap_m << " m";
+    o << report_.audits << " states audited; shot pairs: " << report_.pair_overlaps << " overlaps, worst gap " << report_.worst_pair_gap_m
+      << " m; meshes: " << report_.mesh_overlaps << " overlaps, worst gap " << report_.worst_mesh_gap_m << " m";
     return o.str();
 }
 

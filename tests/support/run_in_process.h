@@ -15,7 +15,7 @@ struct InProcessRun {
     std::string scene_path;
     std::string output_dir;
     bool resume = false;
-    bool analyze = false;  // the tests that use this look at the run's own outputs
+    bool analyze = false;                           // the tests that use this look at the run's own outputs
     std::optional<std::uint64_t> stop_after_steps;  // then an interrupted run (kExitInterrupted)
     std::vector<std::string> overrides;             // --set
 };

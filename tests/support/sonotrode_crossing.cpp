@@ -7,12 +7,11 @@
 namespace peensim::testing {
 
 namespace {
-constexpr double kSameState_m = 1e-12;        // m, end position equal to the free flight's
-constexpr double kSameState_m_per_s = 1e-9;   // m/s, end velocity equal to the free flight's
+constexpr double kSameState_m = 1e-12;       // m, end position equal to the free flight's
+constexpr double kSameState_m_per_s = 1e-9;  // m/s, end velocity equal to the free flight's
 }  // namespace
 
-SonotrodeCrossingCheck::SonotrodeCrossingCheck(const Model& model, double plate_top_m, double tolerance_m,
-                                               double samples_per_period)
+SonotrodeCrossingCheck::SonotrodeCrossingCheck(const Model& model, double plate_top_m, double tolerance_m, double samples_per_period)
     : model_(model), plate_top_m_(plate_top_m), tolerance_m_(tolerance_m), samples_per_period_(samples_per_period) {}
 
 void SonotrodeCrossingCheck::before_step(const SimulationState& state) {
@@ -48,8 +47,7 @@ void SonotrodeCrossingCheck::after_step(const SimulationState& state, const std:
         }
         const double s_end = dt - u0;
         const Vec3 c_end = c + v * s_end + 0.5 * g * s_end * s_end, v_end = v + g * s_end;
-        if ((state.shots.position(i) - c_end).norm() > kSameState_m ||
-            (state.shots.velocity(i) - v_end).norm() > kSameState_m_per_s)
+        if ((state.shots.position(i) - c_end).norm() > kSameState_m || (state.shots.velocity(i) - v_end).norm() > kSameState_m_per_s)
             continue;  // something else acted on the shot in this step
         ++report_.flights_checked;
         double deepest = 0.0, at = 0.0;
@@ -67,10 +65,10 @@ void SonotrodeCrossingCheck::after_step(const SimulationState& state, const std:
             std::ostringstream e;
             e.precision(10);
             e << "shot " << i << ", step from t0 = " << t0_.seconds() << " s, dt = " << dt << " s; flight from u0 = " << u0
-              << " s: centre z = " << c.z() << " m, vz = " << v.z() << " m/s; plate at u0: z = "
-              << plate_top_m_ + kin.displacement(t0_, u0) << " m, vz = " << kin.displacement_rate(t0_, u0)
-              << " m/s; step end: gap = " << state.shots.z[i] - R - (plate_top_m_ + kin.displacement(t0_, dt))
-              << " m; deepest gap " << deepest << " m at u = " << u0 + at << " s";
+              << " s: centre z = " << c.z() << " m, vz = " << v.z() << " m/s; plate at u0: z = " << plate_top_m_ + kin.displacement(t0_, u0)
+              << " m, vz = " << kin.displacement_rate(t0_, u0)
+              << " m/s; step end: gap = " << state.shots.z[i] - R - (plate_top_m_ + kin.displacement(t0_, dt)) << " m; deepest gap "
+              << deepest << " m at u = " << u0 + at << " s";
             report_.first_example = e.str();
         }
     }

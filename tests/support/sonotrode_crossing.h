@@ -14,25 +14,24 @@
 #include <string>
 #include <vector>
 
+#include "engine/impact_record.h"
 #include "engine/simulation_state.h"
 #include "model/model.h"
-#include "engine/impact_record.h"
 
 namespace peensim::testing {
 
 struct CrossingReport {
-    std::uint64_t flights_checked = 0;   // free flights sampled
-    std::uint64_t missed_contacts = 0;   // flights that went deeper than the tolerance into the plate
-    double deepest_m = 0.0;              // m, most negative gap found (0 if none)
-    std::string first_example;           // numbers of the first missed contact, for the report
+    std::uint64_t flights_checked = 0;  // free flights sampled
+    std::uint64_t missed_contacts = 0;  // flights that went deeper than the tolerance into the plate
+    double deepest_m = 0.0;             // m, most negative gap found (0 if none)
+    std::string first_example;          // numbers of the first missed contact, for the report
 };
 
 class SonotrodeCrossingCheck {
 public:
     // tolerance_m: a gap above -tolerance counts as touching, not crossing (m).
     // The flight is sampled samples_per_period times per vibration period, at least 8 times a step.
-    SonotrodeCrossingCheck(const Model& model, double plate_top_m, double tolerance_m = 1e-9,
-                           double samples_per_period = 64.0);
+    SonotrodeCrossingCheck(const Model& model, double plate_top_m, double tolerance_m = 1e-9, double samples_per_period = 64.0);
 
     void before_step(const SimulationState& state);
     void after_step(const SimulationState& state, const std::vector<ImpactRecord>& impacts);

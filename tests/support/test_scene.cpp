@@ -147,8 +147,7 @@ std::string scene_yaml(const TestSceneSpec& s) {
           << "    material: copper\n";
         if (s.part->speed_rad_per_s)
             y << "    motion: {type: rotating, axis_point: " << vec(s.part->axis_point_m)
-              << ", axis_direction: " << vec(s.part->axis_direction) << ", speed: " << num(*s.part->speed_rad_per_s)
-              << " rad/s}\n";
+              << ", axis_direction: " << vec(s.part->axis_direction) << ", speed: " << num(*s.part->speed_rad_per_s) << " rad/s}\n";
     }
     if (!s.log.empty()) {
         y << "output:\n  log: [";

@@ -17,18 +17,18 @@
 #include <Eigen/Core>
 
 #include "common/vec.h"
-#include "geometry/axis_frame.h"
 #include "engine/simulation_state.h"
+#include "geometry/axis_frame.h"
 #include "model/model.h"
 
 namespace peensim::testing {
 
 // Contact coefficients of one pair (reference eq. 2-5), as written into `contacts:`.
 struct PairSpec {
-    double C0 = 0.9;           // -, normal restitution below V0
-    double V0_m_per_s = 0.5;   // m/s, onset of the plastic regime
-    double mu = 0.71;          // -, tangential restitution (surface pairs only)
-    double f = 0.1;            // -, Coulomb friction in sustained contact (surface pairs only)
+    double C0 = 0.9;          // -, normal restitution below V0
+    double V0_m_per_s = 0.5;  // m/s, onset of the plastic regime
+    double mu = 0.71;         // -, tangential restitution (surface pairs only)
+    double f = 0.1;           // -, Coulomb friction in sustained contact (surface pairs only)
 };
 
 enum class PartShape { box, cylinder, plate };
@@ -42,7 +42,7 @@ struct PartSpec {
     int segments = 64;                      // cylinder polygon sides
     Vec3 center_m = Vec3(0.0, 0.0, 10e-3);  // m, world centre of the part at t = 0
     // Rotation at constant speed about a world axis (none: a static part).
-    std::optional<double> speed_rad_per_s;  // rad/s, signed, right-hand rule about axis_direction
+    std::optional<double> speed_rad_per_s;      // rad/s, signed, right-hand rule about axis_direction
     Vec3 axis_point_m = Vec3(0.0, 0.0, 10e-3);  // m, a point on the rotation axis
     Vec3 axis_direction = Vec3::UnitY();        // -, rotation axis direction
 };
@@ -50,32 +50,32 @@ struct PartSpec {
 struct TestSceneSpec {
     // Chamber: inner size along x and y (m), and the ceiling height above the plate's top face (m).
     Vec3 chamber_size_m = Vec3(20e-3, 20e-3, 20e-3);
-    bool chamber_missing_side_wall = false;  // leave the +x wall out (an unclosed chamber)
-    double plate_thickness_m = 5e-3;         // m
-    double plate_scale = 1.0;                // -, plate x/y size over the chamber's (< 1 leaves a gap)
+    bool chamber_missing_side_wall = false;                     // leave the +x wall out (an unclosed chamber)
+    double plate_thickness_m = 5e-3;                            // m
+    double plate_scale = 1.0;                                   // -, plate x/y size over the chamber's (< 1 leaves a gap)
     Eigen::Vector3i plate_divisions = Eigen::Vector3i::Ones();  // quads per edge on every plate face
 
     int shot_count = 1;
-    double shot_diameter_m = 2e-3;           // m
-    double shot_density_kg_per_m3 = 7800.0;  // kg/m3
+    double shot_diameter_m = 2e-3;                 // m
+    double shot_density_kg_per_m3 = 7800.0;        // kg/m3
     std::optional<Vec3> initial_velocity_m_per_s;  // m/s, every shot (shot.initial_velocity)
     std::optional<double> initial_speed_m_per_s;   // m/s, random upward directions (shot.initial_speed)
 
-    double amplitude_m = 0.0;      // m, sonotrode A0 (0: a still sonotrode)
-    double frequency_hz = 20e3;    // Hz
-    double phase_rad = 0.0;        // rad
+    double amplitude_m = 0.0;                       // m, sonotrode A0 (0: a still sonotrode)
+    double frequency_hz = 20e3;                     // Hz
+    double phase_rad = 0.0;                         // rad
     Vec3 gravity_m_per_s2 = Vec3(0.0, 0.0, -9.81);  // m/s2
-    double duration_s = 0.1;       // s
+    double duration_s = 0.1;                        // s
     std::uint64_t seed = 1;
-    double travel_fraction = 0.25; // -, eq. 7 travel per step over R
-    std::string scheme = "step";   // accuracy.scheme: "step" (time stepping) or "event" (event-driven)
+    double travel_fraction = 0.25;  // -, eq. 7 travel per step over R
+    std::string scheme = "step";    // accuracy.scheme: "step" (time stepping) or "event" (event-driven)
 
-    PairSpec shot_shot{0.9, 0.5, 0.71, 0.1};   // mu, f unused for shot-shot
-    PairSpec sonotrode{0.9, 0.5, 0.71, 0.1};   // shot against the sonotrode (material titanium)
-    PairSpec chamber{0.9, 0.5, 0.71, 0.1};     // shot against the chamber (material steel)
-    PairSpec part_pair{0.6, 0.3, 0.71, 0.1};   // shot against the part (material copper)
+    PairSpec shot_shot{0.9, 0.5, 0.71, 0.1};  // mu, f unused for shot-shot
+    PairSpec sonotrode{0.9, 0.5, 0.71, 0.1};  // shot against the sonotrode (material titanium)
+    PairSpec chamber{0.9, 0.5, 0.71, 0.1};    // shot against the chamber (material steel)
+    PairSpec part_pair{0.6, 0.3, 0.71, 0.1};  // shot against the part (material copper)
 
-    std::optional<PartSpec> part;            // component named "part"
+    std::optional<PartSpec> part;  // component named "part"
     // Components whose impacts are logged ("sonotrode", "chamber", "part"); empty: the default
     // (the part, if any).
     std::vector<std::string> log;

@@ -39,17 +39,14 @@ constexpr int kMaxRootIterations = 300;
 // once the shot is in the band, so this only guards against a programming error.
 constexpr long kMaxPiecesPerSearch = 10'000'000;
 
-double restitution(double C0, double V0, double speed) {
-    return speed < V0 ? C0 : C0 * std::pow(speed / V0, -0.25);
-}
+double restitution(double C0, double V0, double speed) { return speed < V0 ? C0 : C0 * std::pow(speed / V0, -0.25); }
 
 // The floor's motion in closed form, with the phase taken from fmod(t, T), which is exact: w * t
 // in double would carry ~1e-10 rad of rounding at t ~ 10 s (3e-15 m of floor position at 25 um),
 // more than the tiny gaps of a shot chattering on the floor.
 class FloorMotion {
 public:
-    FloorMotion(double A, double F, double phase, double g)
-        : A_(A), period_(1.0 / F), omega_(kTwoPi / period_), phase_(phase) {
+    FloorMotion(double A, double F, double phase, double g) : A_(A), period_(1.0 / F), omega_(kTwoPi / period_), phase_(phase) {
         // The floor acceleration -A w^2 sin(theta) equals -g where sin(theta) = g / (A w^2).
         const double s = A > 0.0 ? g / (A * omega_ * omega_) : kInf;
         if (s < 1.0) {
@@ -61,9 +58,9 @@ public:
 
     double amplitude() const { return A_; }  // m
     double angle(double t) const { return kTwoPi * (std::fmod(t, period_) / period_) + phase_; }
-    double position(double t) const { return A_ * std::sin(angle(t)); }               // m
-    double velocity(double t) const { return A_ * omega_ * std::cos(angle(t)); }      // m/s
-    double acceleration(double t) const {                                             // m/s^2
+    double position(double t) const { return A_ * std::sin(angle(t)); }           // m
+    double velocity(double t) const { return A_ * omega_ * std::cos(angle(t)); }  // m/s
+    double acceleration(double t) const {                                         // m/s^2
         return -A_ * omega_ * omega_ * std::sin(angle(t));
     }
 
@@ -73,9 +70,7 @@ public:
         return std::min(next_time_at(release_fraction_, t), next_time_at(other_fraction_, t));
     }
     // First time after t (s) where the floor acceleration falls through -g; +inf if it never does.
-    double next_release(double t) const {
-        return has_knots_ ? next_time_at(release_fraction_, t) : kInf;
-    }
+    double next_release(double t) const { return has_knots_ ? next_time_at(release_fraction_, t) : kInf; }
 
 private:
     double cycle_fraction_of(double theta) const {
@@ -131,7 +126,7 @@ Crossings level_crossings(const Flight& f, double level) {
         return c;
     }
     const double disc = v * v - 2.0 * f.g * dy;  // m^2/s^2
-    if (disc < 0.0) return c;                     // the apex stays below the level
+    if (disc < 0.0) return c;                    // the apex stays below the level
     const double root = std::sqrt(disc);
     if (dy >= 0.0 && v > 0.0) c.up = 2.0 * dy / (v + root);
     if (dy <= 0.0 || v > 0.0) c.down = v >= 0.0 ? (v + root) / f.g : -2.0 * dy / (root - v);
@@ -163,8 +158,7 @@ double crossing_time(const Fn& f, const Dfn& df, double lo, double hi) {
         const double dfx = df(x);
         const double step = dfx != 0.0 ? fx / dfx : kInf;
         const double newton = x - step;
-        if (std::isfinite(newton) && newton > lo && newton < hi &&
-            std::abs(step) < 0.5 * last_step) {
+        if (std::isfinite(newton) && newton > lo && newton < hi && std::abs(step) < 0.5 * last_step) {
             if (std::abs(step) <= kTimeTolerance) return newton;
             last_step = std::abs(step);
             x = newton;
@@ -181,15 +175,14 @@ struct FloorGap {
     const FloorMotion& floor;
     const Flight& flight;
 
-    double value(double t) const { return flight.height(t) - floor.position(t); }          // m
-    double rate(double t) const { return flight.velocity(t) - floor.velocity(t); }          // m/s
+    double value(double t) const { return flight.height(t) - floor.position(t); }   // m
+    double rate(double t) const { return flight.velocity(t) - floor.velocity(t); }  // m/s
     double curvature(double t) const { return -flight.g - floor.acceleration(t); }  // m/s^2
 };
 
 // First time in (t0, t_limit] at which the flight meets the floor, or nullopt. starts_in_contact:
 // the flight leaves the floor at t0 (G(t0) = 0, G'(t0) >= 0), so t0 itself is not a contact.
-std::optional<double> first_floor_contact(const FloorMotion& floor, const Flight& flight,
-                                          bool starts_in_contact, double t_limit) {
+std::optional<double> first_floor_contact(const FloorMotion& floor, const Flight& flight, bool starts_in_contact, double t_limit) {
     const double A = floor.amplitude();
     if (A == 0.0) {  // still floor: an exact quadratic root
         const double t = flight.t0 + level_crossings(flight, 0.0).down;
@@ -225,16 +218,14 @@ std::optional<double> first_floor_contact(const FloorMotion& floor, const Flight
                 // Leaving the floor on a convex piece with G' >= 0, G cannot come back to zero:
                 // a non-positive end value is rounding, not a contact.
                 if (!(in_contact && convex)) {
-                    return crossing_time([&](double t) { return gap.value(t); },
-                                         [&](double t) { return gap.rate(t); }, p, q);
+                    return crossing_time([&](double t) { return gap.value(t); }, [&](double t) { return gap.rate(t); }, p, q);
                 }
             } else if (convex && !in_contact && gap.rate(p) < 0.0 && gap.rate(q) > 0.0) {
                 // Positive at both ends of a convex piece: look at its minimum for a graze.
-                const double t_min = crossing_time([&](double t) { return -gap.rate(t); },
-                                                   [&](double t) { return -gap.curvature(t); }, p, q);
+                const double t_min =
+                    crossing_time([&](double t) { return -gap.rate(t); }, [&](double t) { return -gap.curvature(t); }, p, q);
                 if (gap.value(t_min) <= 0.0) {
-                    return crossing_time([&](double t) { return gap.value(t); },
-                                         [&](double t) { return gap.rate(t); }, p, t_min);
+                    return crossing_time([&](double t) { return gap.value(t); }, [&](double t) { return gap.rate(t); }, p, t_min);
                 }
             }
             in_contact = false;
@@ -286,16 +277,14 @@ void validate(const VibratingFloorCase& c) {
     require(c.C0_floor >= 0.0 && c.C0_ceiling >= 0.0, "C0 must be >= 0");
     require(c.V0_floor > 0.0 && c.V0_ceiling > 0.0, "V0 must be > 0");
     require(std::isfinite(c.duration) && c.duration >= 0.0, "duration must be >= 0");
-    require(c.statistics_start >= 0.0 && c.statistics_start <= c.duration,
-            "statistics_start must be in [0, duration]");
+    require(c.statistics_start >= 0.0 && c.statistics_start <= c.duration, "statistics_start must be in [0, duration]");
     require(c.chatter_speed >= 0.0, "chatter_speed must be >= 0");
     require(c.contact_tolerance >= 0.0, "contact_tolerance must be >= 0");
 }
 
 class Simulation {
 public:
-    explicit Simulation(const VibratingFloorCase& c)
-        : c_(c), floor_(c.A, c.F, c.phase, c.g), y_top_(c.H - 2.0 * c.R) {}
+    explicit Simulation(const VibratingFloorCase& c) : c_(c), floor_(c.A, c.F, c.phase, c.g), y_top_(c.H - 2.0 * c.R) {}
 
     VibratingFloorStats run() {
         start();
@@ -348,8 +337,7 @@ private:
         const Flight flight{t_, y_, v_, c_.g};
         const double t_ceiling = t_ + level_crossings(flight, y_top_).up;
         const double t_limit = std::min(t_ceiling, c_.duration);
-        const std::optional<double> t_floor =
-            first_floor_contact(floor_, flight, leaving_floor_, t_limit);
+        const std::optional<double> t_floor = first_floor_contact(floor_, flight, leaving_floor_, t_limit);
         if (t_floor) {
             const double gap = flight.height(*t_floor) - floor_.position(*t_floor);
             floor_contact(*t_floor, flight.velocity(*t_floor), gap);
@@ -381,8 +369,7 @@ private:
             // an impact: it changes the velocity like one but is neither counted nor recorded.
             if (speed >= c_.chatter_speed) {
                 if (t >= c_.statistics_start) floor_speeds_.add(speed);
-                record({t, VibratingFloorEventKind::floor_impact, speed, y_ + c_.R, v_in,
-                        v_floor + u_after, gap});
+                record({t, VibratingFloorEventKind::floor_impact, speed, y_ + c_.R, v_in, v_floor + u_after, gap});
             }
         }
         v_ = v_floor + u_after;
@@ -446,13 +433,9 @@ private:
 
 }  // namespace
 
-double VibratingFloorStats::floor_rate() const {
-    return counted_time > 0.0 ? static_cast<double>(floor.count) / counted_time : 0.0;
-}
+double VibratingFloorStats::floor_rate() const { return counted_time > 0.0 ? static_cast<double>(floor.count) / counted_time : 0.0; }
 
-double VibratingFloorStats::ceiling_rate() const {
-    return counted_time > 0.0 ? static_cast<double>(ceiling.count) / counted_time : 0.0;
-}
+double VibratingFloorStats::ceiling_rate() const { return counted_time > 0.0 ? static_cast<double>(ceiling.count) / counted_time : 0.0; }
 
 VibratingFloorStats simulate_vibrating_floor(const VibratingFloorCase& c) {
     validate(c);

@@ -22,14 +22,14 @@ namespace peensim::testing {
 struct VibratingFloorEvent;
 
 struct VibratingFloorCase {
-    double R;      // shot radius (m)
-    double g;      // gravity magnitude (m/s^2), >= 0, acting towards -z
-    double A;      // floor vibration amplitude (m), >= 0
-    double F;      // floor vibration frequency (Hz), > 0
-    double phase;  // floor phase at t = 0 (rad)
-    double H;      // height of the ceiling plane (m); needs H - 2R > A
-    double z0;     // centre height at t = 0 (m)
-    double v0;     // vertical velocity at t = 0 (m/s)
+    double R;           // shot radius (m)
+    double g;           // gravity magnitude (m/s^2), >= 0, acting towards -z
+    double A;           // floor vibration amplitude (m), >= 0
+    double F;           // floor vibration frequency (Hz), > 0
+    double phase;       // floor phase at t = 0 (rad)
+    double H;           // height of the ceiling plane (m); needs H - 2R > A
+    double z0;          // centre height at t = 0 (m)
+    double v0;          // vertical velocity at t = 0 (m/s)
     double C0_floor;    // shot-floor restitution in the elastic regime (-)
     double V0_floor;    // shot-floor elastic/plastic threshold speed (m/s), > 0
     double C0_ceiling;  // shot-ceiling restitution in the elastic regime (-)
@@ -77,14 +77,14 @@ struct ImpactSpeedStats {
 };
 
 struct VibratingFloorStats {
-    ImpactSpeedStats floor;    // counted impacts in [statistics_start, duration]
-    ImpactSpeedStats ceiling;  // counted impacts in [statistics_start, duration]
-    double counted_time = 0.0;           // s: duration - statistics_start
-    std::uint64_t floor_captures = 0;    // rides started by the chatter rule (whole run)
-    std::uint64_t events_total = 0;      // all recorded-kind events of the whole run
-    double final_z = 0.0;                // m: centre height at t = duration
-    double final_v = 0.0;                // m/s: velocity at t = duration
-    bool final_riding = false;           // the shot rides on the floor at t = duration
+    ImpactSpeedStats floor;                         // counted impacts in [statistics_start, duration]
+    ImpactSpeedStats ceiling;                       // counted impacts in [statistics_start, duration]
+    double counted_time = 0.0;                      // s: duration - statistics_start
+    std::uint64_t floor_captures = 0;               // rides started by the chatter rule (whole run)
+    std::uint64_t events_total = 0;                 // all recorded-kind events of the whole run
+    double final_z = 0.0;                           // m: centre height at t = duration
+    double final_v = 0.0;                           // m/s: velocity at t = duration
+    bool final_riding = false;                      // the shot rides on the floor at t = duration
     std::vector<VibratingFloorEvent> first_events;  // the first max_recorded_events events
 
     double floor_rate() const;    // counted floor impacts per second (1/s)

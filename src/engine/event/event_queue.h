@@ -23,7 +23,7 @@ public:
     std::size_t size() const { return heap_.size(); }
     bool empty() const { return heap_.empty(); }
 
-    int top() const { return heap_.front(); }             // the shot with the earliest event
+    int top() const { return heap_.front(); }  // the shot with the earliest event
     double top_time() const { return key_[static_cast<std::size_t>(heap_.front())]; }
     double time_of(int shot) const { return key_[static_cast<std::size_t>(shot)]; }
 
@@ -33,8 +33,10 @@ public:
         const double old = key_[s];
         key_[s] = t;
         const auto at = static_cast<std::size_t>(slot_[s]);
-        if (before(t, shot, old, shot)) up(at);
-        else down(at);
+        if (before(t, shot, old, shot))
+            up(at);
+        else
+            down(at);
     }
 
 private:
@@ -69,9 +71,9 @@ private:
         }
     }
 
-    std::vector<int> heap_;     // shots in heap order
-    std::vector<int> slot_;     // per shot: its position in heap_
-    std::vector<double> key_;   // per shot: event time, s
+    std::vector<int> heap_;    // shots in heap order
+    std::vector<int> slot_;    // per shot: its position in heap_
+    std::vector<double> key_;  // per shot: event time, s
 };
 
 }  // namespace peensim

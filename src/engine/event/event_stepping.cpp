@@ -20,20 +20,20 @@ namespace peensim {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kSubstep = 50e-6;          // s, sustained-contact substep (fall per substep g t^2/2 = 12 nm)
-constexpr double kSubstepTravel = 0.25;     // of R, the most a shot (or a turning surface) moves in a substep
+constexpr double kSubstep = 50e-6;       // s, sustained-contact substep (fall per substep g t^2/2 = 12 nm)
+constexpr double kSubstepTravel = 0.25;  // of R, the most a shot (or a turning surface) moves in a substep
 // Hand-over to time stepping: at a restart point, when more than this fraction of the shot lie still
 // (slower than kHandOverSpeed) on a surface, the next interval is time-stepped.
 constexpr double kHandOverFraction = 0.1;
-constexpr double kHandOverSpeed = 0.05;     // m/s
-constexpr double kMinImpactSpeed = 1e-6;    // m/s, slower approaches are never impacts
-constexpr int kQuietSubsteps = 40;          // still substeps (2 ms) before a resting shot sleeps
-constexpr double kBoxTravel = 4.0;          // radii of travel a flight's first search window (and box) covers
-constexpr double kMaxWindowTravel = 64.0;   // radii: windows double up to this while a flight finds nothing
-constexpr double kMinBoxHorizon = 1e-7;     // s, a box horizon moves time on at least this much
-constexpr double kCollapseWindow = 1e-6;    // s, TC rule: a shot-shot collision this soon after one is elastic
-constexpr int kMaxQuickGrazes = 4;          // grazes each within kCollapseWindow of the last, then sustained contact
-constexpr double kContactSlack = 1e-6;      // of R: a shot this close to a surface or a shot touches it
+constexpr double kHandOverSpeed = 0.05;    // m/s
+constexpr double kMinImpactSpeed = 1e-6;   // m/s, slower approaches are never impacts
+constexpr int kQuietSubsteps = 40;         // still substeps (2 ms) before a resting shot sleeps
+constexpr double kBoxTravel = 4.0;         // radii of travel a flight's first search window (and box) covers
+constexpr double kMaxWindowTravel = 64.0;  // radii: windows double up to this while a flight finds nothing
+constexpr double kMinBoxHorizon = 1e-7;    // s, a box horizon moves time on at least this much
+constexpr double kCollapseWindow = 1e-6;   // s, TC rule: a shot-shot collision this soon after one is elastic
+constexpr int kMaxQuickGrazes = 4;         // grazes each within kCollapseWindow of the last, then sustained contact
+constexpr double kContactSlack = 1e-6;     // of R: a shot this close to a surface or a shot touches it
 // of R: a shot in sustained contact this close to a surface stays on it. Rolling over a curved
 // surface opens a gap of (v dt)^2 / 2r per substep (6e-5 R for a 1 mm shot at 0.5 m/s on a 5 mm
 // radius); flying off it between substeps would leave a gap of a few nm to close by conservative
@@ -49,9 +49,7 @@ double resting_speed_for(const Model& m) { return std::max(kMinImpactSpeed, 2.0 
 }  // namespace
 
 EventStepping::EventStepping(std::shared_ptr<const Model> model)
-    : model_(model),
-      pairs_(model->shot_count, model->shot_radius_m, resting_speed_for(*model)),
-      walls_(std::move(model)) {
+    : model_(model), pairs_(model->shot_count, model->shot_radius_m, resting_speed_for(*model)), walls_(std::move(model)) {
     const Model& m = *model_;
     R_ = m.shot_radius_m;
     g_ = m.gravity_m_per_s2;
@@ -272,8 +270,7 @@ bool EventStepping::touches_surface(const Vec3& p) const {
         if (comp.kinematics.moves()) continue;  // nothing rests on a vibrating plate or a turning part
         MeshCollider::Closest closest;
         MeshCollider::QueryCounters counters;
-        if (comp.collider->closest_within(comp.kinematics.rest.to_component(p), R_ * (1.0 + kContactSlack), closest, counters))
-            return true;
+        if (comp.collider->closest_within(comp.kinematics.rest.to_component(p), R_ * (1.0 + kContactSlack), closest, counters)) return true;
     }
     return false;
 }
@@ -325,7 +322,8 @@ void EventStepping::set_flight(int i, const Vec3& p, const Vec3& v, double t, Mo
 Vec3 EventStepping::position(int i, double t) const {
     const Shot& s = shots_[static_cast<std::size_t>(i)];
     if (s.motion == Motion::riding)
-        return s.ride_point + walls_.face().plane.axis * (walls_.face().plane.displacement(t) - walls_.face().plane.displacement(s.ride_start)) +
+        return s.ride_point +
+               walls_.face().plane.axis * (walls_.face().plane.displacement(t) - walls_.face().plane.displacement(s.ride_start)) +
                s.ride_tangential * (t - s.ride_start);
     return s.path.position(t);
 }
@@ -367,8 +365,10 @@ void EventStepping::predict_wall(int i, double t) {
             const Vec3 p = position(i, t);
             const Component& sono = model_->sonotrode_component();
             const Vec3 reach = Vec3::Constant(2.0 * R_ + sono.kinematics.amplitude_m);
-            const bool near_sonotrode = ((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all();
-            const double speed = velocity(i, t).norm() + walls_.moving_part_speed() + (near_sonotrode ? walls_.surface_speed(static_cast<std::size_t>(model_->sonotrode)) : 0.0);
+            const bool near_sonotrode =
+                ((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all();
+            const double speed = velocity(i, t).norm() + walls_.moving_part_speed() +
+                                 (near_sonotrode ? walls_.surface_speed(static_cast<std::size_t>(model_->sonotrode)) : 0.0);
             s.substep_s = speed > 0.0 ? std::clamp(kSubstepTravel * R_ / speed, kMinBoxHorizon, substep_) : substep_;
             w.time = t + s.substep_s;
             w.kind = WallKind::substep;
@@ -418,7 +418,6 @@ void EventStepping::renew_box(int i, double t) {
     s.box_hi = hi + Vec3::Constant(R_ + pad);
     pairs_.set_box(i, s.box_lo, s.box_hi);
 }
-
 
 // ---------------------------------------------------------------------------------------------
 // Collisions
@@ -532,7 +531,8 @@ void EventStepping::record_impact(int i, int c, double t, const WallEvent& w, co
     const Component& comp = model_->components[static_cast<std::size_t>(c)];
     ++state.impacts_per_component[static_cast<std::size_t>(c)];
     if (!comp.logged) return;
-    impacts.push_back(make_impact_record(absolute_seconds(t), i, c, w.triangle, comp.kinematics.pose(epoch_, t), w.point, v, w.surface_velocity, r));
+    impacts.push_back(
+        make_impact_record(absolute_seconds(t), i, c, w.triangle, comp.kinematics.pose(epoch_, t), w.point, v, w.surface_velocity, r));
 }
 
 void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after) {
@@ -584,17 +584,20 @@ void EventStepping::launch(int i, double t, SimulationState& state) {
     const Vec3 v_plate = plane.velocity(t_release);
     // Coulomb friction over the ride: the normal impulse per unit mass is what the plate gave the
     // shot beyond gravity, and the tangential slip loses f times that (not below zero).
-    const double impulse = std::max(0.0, (v_plate - plane.velocity(s.ride_start)).dot(s.ride_normal) - g_.dot(s.ride_normal) * (t_release - s.ride_start));
+    const double impulse =
+        std::max(0.0, (v_plate - plane.velocity(s.ride_start)).dot(s.ride_normal) - g_.dot(s.ride_normal) * (t_release - s.ride_start));
     // Through the pair's law: its sustained contact with the plate pressing the shot by
     // impulse / ride on average over the ride.
     const double ride = t_release - s.ride_start;
     const auto c = static_cast<std::size_t>(model_->sonotrode);
     const Component& comp = model_->components[c];
     const Pose pose = comp.kinematics.pose(epoch_, s.ride_start);
-    const ContactSite site{i, model_->sonotrode, -1, &pose, position(i, s.ride_start) - R_ * s.ride_normal, absolute_seconds(s.ride_start), 0.0};
+    const ContactSite site{i,  model_->sonotrode, -1, &pose, position(i, s.ride_start) - R_ * s.ride_normal, absolute_seconds(s.ride_start),
+                           0.0};
     const Vec3 v0 = plane.velocity(s.ride_start);
     const contact::SurfaceContactResponse r = comp.law->sustain(
-        surface_input(*model_, site, v0 + s.ride_tangential, v0, s.ride_normal, false, ride > 0.0 ? impulse / ride : 0.0, ride), law_state(state, c));
+        surface_input(*model_, site, v0 + s.ride_tangential, v0, s.ride_normal, false, ride > 0.0 ? impulse / ride : 0.0, ride),
+        law_state(state, c));
     const Vec3 tangential = r.v_shot - v0 - (r.v_shot - v0).dot(s.ride_normal) * s.ride_normal;
     const FlightState flight = after_release({position(i, t_release), v_plate + tangential}, g_, delay);
     s.in_flight = true;

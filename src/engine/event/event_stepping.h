@@ -38,13 +38,13 @@
 
 #include "collision/mesh_collider.h"
 #include "collision/shot_box_tree.h"
-#include "engine/stepper.h"
 #include "engine/event/event_queue.h"
-#include "engine/event/sonotrode_face.h"
-#include "engine/event/wall_event.h"
 #include "engine/event/pair_predictor.h"
 #include "engine/event/shot_record.h"
+#include "engine/event/sonotrode_face.h"
+#include "engine/event/wall_event.h"
 #include "engine/event/wall_predictor.h"
+#include "engine/stepper.h"
 #include "kernels/trajectory.h"
 #include "model/model.h"
 
@@ -101,7 +101,7 @@ private:
     double since_epoch(double t_s) const;                    // absolute s -> the scheme's clock (s)
     double absolute_seconds(double t) const;                 // the scheme's clock (s) -> absolute s
     void process(int i, SimulationState& state, std::vector<ImpactRecord>& impacts);
-    void predict(int i, double t);                 // wall, box and pairs
+    void predict(int i, double t);  // wall, box and pairs
     void predict_wall(int i, double t);
     void pairs_and_schedule(int i, double t);  // the pair predictor, then the pile or the queue
     void renew_box(int i, double t);
@@ -135,33 +135,33 @@ private:
     StepStats stats_;
     mutable StepStats combined_;  // stats(): stats_ plus the handed-over time stepping's
     bool started_ = false;
-    bool handed_over_ = false;                       // this interval is time-stepped
-    std::unique_ptr<Stepper> hand_over_;             // the scheme a load at rest is handed to (time stepping), built at the first hand-over
-    double next_restart_ = 0.0;  // s (absolute), the next restart point
+    bool handed_over_ = false;            // this interval is time-stepped
+    std::unique_ptr<Stepper> hand_over_;  // the scheme a load at rest is handed to (time stepping), built at the first hand-over
+    double next_restart_ = 0.0;           // s (absolute), the next restart point
     // The scheme's clock: every time below (flights, events, rides) is seconds since epoch_, the
     // state's time at the last restart point.
     SimTime epoch_;
     std::uint64_t work_since_restart_ = 0;
-    std::uint64_t work_budget_ = 0;    // work units between restart points, at most (then the next grid point)
-    std::uint64_t work_counted_ = 0;   // work_units() already counted
-    double same_time_ = -1.0;          // s, the time of the latest event, and how many came at it (forced progress)
+    std::uint64_t work_budget_ = 0;   // work units between restart points, at most (then the next grid point)
+    std::uint64_t work_counted_ = 0;  // work_units() already counted
+    double same_time_ = -1.0;         // s, the time of the latest event, and how many came at it (forced progress)
     std::uint64_t at_same_time_ = 0;
     std::vector<Shot> shots_;
     std::vector<unsigned char> active_;
     EventQueue queue_;
-    PairPredictor pairs_;                         // neighbours by flight box, their first contacts
-    std::vector<int> neighbours_;                 // scratch of substep and wake_neighbours
-    std::vector<int> wake_stack_;                 // scratch of wake_neighbours: shot whose neighbours to wake
-    std::vector<int> woken_;                      // scratch of wake_neighbours: shot woken so far
-    WallPredictor walls_;                          // where a flight first meets a surface
+    PairPredictor pairs_;          // neighbours by flight box, their first contacts
+    std::vector<int> neighbours_;  // scratch of substep and wake_neighbours
+    std::vector<int> wake_stack_;  // scratch of wake_neighbours: shot whose neighbours to wake
+    std::vector<int> woken_;       // scratch of wake_neighbours: shot woken so far
+    WallPredictor walls_;          // where a flight first meets a surface
 
-    double R_ = 0.0;                 // m
-    Vec3 g_ = Vec3::Zero();          // m/s2
-    double resting_speed_ = 0.0;     // m/s, what gravity adds in two substeps: slower is still (sleep), a slower rebound is none
-    double impact_speed_ = 0.0;      // m/s, Model::impact_speed_m_per_s: slower contacts are no impacts (sustained contact)
-    double substep_ = 0.0;           // s, sustained-contact substep
-    double box_travel_ = 0.0;        // m, how far a flight box reaches along the path
-    std::uint64_t unresolved_ = 0;   // searches that ran out of iterations, added to the health at sync
+    double R_ = 0.0;                // m
+    Vec3 g_ = Vec3::Zero();         // m/s2
+    double resting_speed_ = 0.0;    // m/s, what gravity adds in two substeps: slower is still (sleep), a slower rebound is none
+    double impact_speed_ = 0.0;     // m/s, Model::impact_speed_m_per_s: slower contacts are no impacts (sustained contact)
+    double substep_ = 0.0;          // s, sustained-contact substep
+    double box_travel_ = 0.0;       // m, how far a flight box reaches along the path
+    std::uint64_t unresolved_ = 0;  // searches that ran out of iterations, added to the health at sync
     std::uint64_t events_since_sync_ = 0;
 };
 

@@ -45,7 +45,7 @@ bool PairPredictor::predict(int i, double t, std::span<EventShot> shots, const s
         // Riding shots' paths leave out the plate's motion: their exact positions are checked in collide_pair.
         if (st == ToiStatus::overlapping || pc.time == t) {
             if (st == ToiStatus::impact && j == s.last_partner && s.last_pair_time == t) continue;  // just collided
-            if (t == s.no_pairs_at || t == o.no_pairs_at) continue;     // forced progress (see advance)
+            if (t == s.no_pairs_at || t == o.no_pairs_at) continue;                                 // forced progress (see advance)
             // Touching (or overlapping) now, with a shot in sustained contact or asleep: a contact
             // within a pile, which the substeps resolve. As events, shot touching several others at
             // once pass the approach (or the overlap) round among themselves forever at the same

@@ -20,7 +20,7 @@ public:
     // resting_speed_m_per_s: a shot touching a resting one slower than this joins its pile.
     PairPredictor(int shot_count, double shot_radius_m, double resting_speed_m_per_s);
 
-    void reset();  // an empty tree (a restart)
+    void reset();                                            // an empty tree (a restart)
     void set_box(int shot, const Vec3& lo, const Vec3& hi);  // m, world
     void remove(int shot);
     // The shot whose boxes overlap [lo, hi] (m, world), in no particular order.
@@ -34,8 +34,8 @@ public:
 
 private:
     int shot_count_;
-    double R_;               // m
-    double resting_speed_;   // m/s
+    double R_;              // m
+    double resting_speed_;  // m/s
     std::unique_ptr<ShotBoxTree> boxes_;
     std::vector<int> neighbours_;  // scratch
 };

@@ -15,24 +15,24 @@ namespace peensim {
 enum class EventMotion : unsigned char { flying, riding, sustained, sleeping };
 
 struct EventShot {
-    Trajectory path;              // world; for a sleeping or riding shot: g = 0 (see ride_*)
+    Trajectory path;  // world; for a sleeping or riding shot: g = 0 (see ride_*)
     EventMotion motion = EventMotion::flying;
-    std::uint32_t version = 0;    // bumped whenever `path` changes
+    std::uint32_t version = 0;  // bumped whenever `path` changes
     WallEvent wall;
-    double pair_time = 0.0;       // s, +inf: none
+    double pair_time = 0.0;  // s, +inf: none
     int partner = -1;
     std::uint32_t partner_version = 0;
-    double box_until = 0.0;       // s, the neighbour box holds the shot up to this time
+    double box_until = 0.0;                             // s, the neighbour box holds the shot up to this time
     Vec3 box_lo = Vec3::Zero(), box_hi = Vec3::Zero();  // m, that box
-    double last_pair_time = -1.0; // s, latest shot-shot collision (TC rule)
+    double last_pair_time = -1.0;                       // s, latest shot-shot collision (TC rule)
     int last_partner = -1;
-    double no_pairs_at = -1.0;    // s, an instant at which this shot takes no more pair events
-    double graze_at = -1.0;       // s, the instant of its latest graze (no wall contact then)
-    int quick_grazes = 0;         // grazes in a row, each within the TC window of the one before
-    bool in_flight = false;       // SimulationState's in_flight (a slow contact ending it is counted)
-    double substep_s = 0.0;       // s, length of the current sustained-contact substep
-    int quiet_substeps = 0;       // consecutive still substeps (sleep)
-    double window_travel = 0.0;   // m, travel the next search window of this flight covers
+    double no_pairs_at = -1.0;   // s, an instant at which this shot takes no more pair events
+    double graze_at = -1.0;      // s, the instant of its latest graze (no wall contact then)
+    int quick_grazes = 0;        // grazes in a row, each within the TC window of the one before
+    bool in_flight = false;      // SimulationState's in_flight (a slow contact ending it is counted)
+    double substep_s = 0.0;      // s, length of the current sustained-contact substep
+    int quiet_substeps = 0;      // consecutive still substeps (sleep)
+    double window_travel = 0.0;  // m, travel the next search window of this flight covers
     // Riding the sonotrode since ride_start (s): centre at ride_point + a (s(t) - s(ride_start))
     // + ride_tangential (t - ride_start).
     double ride_start = 0.0;

@@ -9,15 +9,15 @@
 #include <vector>
 
 #include "collision/mesh_collider.h"
-#include "kernels/vibrating_plane_toi.h"
 #include "geometry/triangle_mesh.h"
+#include "kernels/vibrating_plane_toi.h"
 #include "model/model.h"
 
 namespace peensim {
 
 struct SonotrodeFace {
-    VibratingPlane plane;                          // world, at the phase of the component's kinematics
-    std::vector<unsigned char> on_face;            // per triangle of the sonotrode mesh: 1 if in the face
+    VibratingPlane plane;                // world, at the phase of the component's kinematics
+    std::vector<unsigned char> on_face;  // per triangle of the sonotrode mesh: 1 if in the face
     int face_triangles = 0;
     // The other triangles (may be empty: nullptr), in the sonotrode's frame, source facets kept.
     std::shared_ptr<const TriangleMesh> rest_mesh;

@@ -15,18 +15,18 @@ enum class WallKind : unsigned char { none, contact, launch, substep, leave };
 
 // The next contact of a shot with a component, world frame, at `time`.
 struct WallEvent {
-    double time = 0.0;            // s
+    double time = 0.0;  // s
     WallKind kind = WallKind::none;
     int component = -1;
-    int triangle = -1;            // facet of the mesh file (impact record)
-    int mesh_triangle = -1;       // triangle of the component's mesh (static and moving meshes)
-    bool overlapping = false;     // found inside the surface at the prediction's start
-    bool face = false;            // on the sonotrode's vibrating face
-    Vec3 point = Vec3::Zero();    // m, surface point
-    Vec3 normal = Vec3::UnitZ();  // unit, from the surface towards the centre
+    int triangle = -1;                         // facet of the mesh file (impact record)
+    int mesh_triangle = -1;                    // triangle of the component's mesh (static and moving meshes)
+    bool overlapping = false;                  // found inside the surface at the prediction's start
+    bool face = false;                         // on the sonotrode's vibrating face
+    Vec3 point = Vec3::Zero();                 // m, surface point
+    Vec3 normal = Vec3::UnitZ();               // unit, from the surface towards the centre
     Vec3 surface_velocity = Vec3::Zero();      // m/s
     Vec3 surface_acceleration = Vec3::Zero();  // m/s2
-    double depth = 0.0;           // m, overlap depth if overlapping
+    double depth = 0.0;                        // m, overlap depth if overlapping
 };
 
 }  // namespace peensim

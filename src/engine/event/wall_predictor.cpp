@@ -28,7 +28,8 @@ WallPredictor::WallPredictor(std::shared_ptr<const Model> model) : model_(std::m
     }
     for (const Component& c : m.components) {
         std::vector<int> facets(c.mesh->triangle_count());
-        for (std::size_t t = 0; t < facets.size(); ++t) facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
+        for (std::size_t t = 0; t < facets.size(); ++t)
+            facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
         facets_.push_back(std::move(facets));
         surface_speed_.push_back(c.kinematics.peak_surface_speed(c.max_axis_distance_m));
         if (&c != &sono) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
@@ -66,13 +67,15 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_
                 MeshCollider::Hit near;
                 MeshCollider::SweepCounters counters;
                 const Pose& rest = comp.kinematics.rest;
-                const Trajectory local{rest.to_component(path.p0), rest.rotation.transpose() * path.v0, rest.rotation.transpose() * path.g, t};
+                const Trajectory local{rest.to_component(path.p0), rest.rotation.transpose() * path.v0, rest.rotation.transpose() * path.g,
+                                       t};
                 const double t_limit = hit ? found.time : w.time;
-                const ToiStatus st = face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
+                const ToiStatus st =
+                    face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
                 if (st != ToiStatus::miss) {
                     WallEvent side;
-                    const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, face_.rest_mesh->source_facet, surface_speed_[k], path,
-                                                                   near.contact.time, t_limit, side);
+                    const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, face_.rest_mesh->source_facet,
+                                                                   surface_speed_[k], path, near.contact.time, t_limit, side);
                     if (r.exhausted) resume_search_at(w, r.searched_until, stats);
                     if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
                 }
@@ -199,8 +202,8 @@ bool WallPredictor::face_contact(const Trajectory& path, double t, double t_end,
 }
 
 WallPredictor::AdvancementResult WallPredictor::advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets,
-                                                                   double surface_speed, const Trajectory& path, double t,
-                                                                   double t_end, WallEvent& out) const {
+                                                                   double surface_speed, const Trajectory& path, double t, double t_end,
+                                                                   WallEvent& out) const {
     // Conservative advancement: the distance from the centre to the moving mesh changes no faster
     // than the shot's speed plus the fastest surface point's, so after measuring a gap d the shot
     // cannot touch for d / (that speed). Converges on the touch from outside; exact distances

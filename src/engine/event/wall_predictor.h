@@ -50,8 +50,8 @@ private:
     // Moving-mesh contact by conservative advancement, with a per-call iteration budget.
     struct AdvancementResult {
         bool found = false;
-        bool exhausted = false;        // out of iterations: nothing found up to searched_until
-        double searched_until = 0.0;   // s
+        bool exhausted = false;       // out of iterations: nothing found up to searched_until
+        double searched_until = 0.0;  // s
     };
 
     bool static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const;
@@ -64,14 +64,14 @@ private:
     const TriangleMesh& collider_mesh(int c, const MeshCollider& collider) const;  // the mesh `collider` was built over
 
     std::shared_ptr<const Model> model_;
-    double R_ = 0.0;                              // m
+    double R_ = 0.0;  // m
     SimTime epoch_;
     SonotrodeFace face_;
     bool sonotrode_vibrates_ = false;
-    double face_phase_at_zero_ = 0.0;             // rad, the face's phase at t = 0
-    std::vector<std::vector<int>> facets_;        // per component: source facet per mesh triangle
-    std::vector<double> surface_speed_;           // m/s, per component: fastest surface point
-    double moving_part_speed_ = 0.0;              // m/s
+    double face_phase_at_zero_ = 0.0;       // rad, the face's phase at t = 0
+    std::vector<std::vector<int>> facets_;  // per component: source facet per mesh triangle
+    std::vector<double> surface_speed_;     // m/s, per component: fastest surface point
+    double moving_part_speed_ = 0.0;        // m/s
 };
 
 }  // namespace peensim

@@ -30,10 +30,10 @@ using namespace peensim;
 namespace {
 
 constexpr std::uint64_t kDefaultImpacts = 10'000'000;
-constexpr double kSimulatedTimeS = 10.0;   // s, the span the synthetic impact times cover
-constexpr double kMaxNormalSpeed = 5.0;    // m/s, normal speeds are uniform in [0, this]
-constexpr double kMaxTangentialSpeed = 2.0;// m/s, tangential speeds are uniform in [0, this]
-constexpr double kRestitution = 0.6;       // -, rebound normal speed / approach normal speed
+constexpr double kSimulatedTimeS = 10.0;     // s, the span the synthetic impact times cover
+constexpr double kMaxNormalSpeed = 5.0;      // m/s, normal speeds are uniform in [0, this]
+constexpr double kMaxTangentialSpeed = 2.0;  // m/s, tangential speeds are uniform in [0, this]
+constexpr double kRestitution = 0.6;         // -, rebound normal speed / approach normal speed
 constexpr std::uint64_t kSeed = 20261122;
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -103,7 +103,8 @@ int main(int argc, char** argv) {
         o.progress = false;
         o.analyze = false;
         std::ostringstream run_out, run_err;
-        if (run_job(o, run_out, run_err) != kExitOk) throw std::runtime_error("the gear run failed (run from the repository root?): " + run_err.str());
+        if (run_job(o, run_out, run_err) != kExitOk)
+            throw std::runtime_error("the gear run failed (run from the repository root?): " + run_err.str());
         const SceneDescription scene = parse_scene_file((dir / "scene.resolved.yaml").string());
 
         // A tenth of the impacts first, then all of them: the same peak memory shows that the

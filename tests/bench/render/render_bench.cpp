@@ -32,14 +32,14 @@ using namespace peensim::render;
 namespace {
 
 constexpr double kMm = 1e-3;
-constexpr double kShotRadius = 1.0 * kMm;         // m
-constexpr double kGearAxisHeight = 42.0 * kMm;    // m, as in scenes/gear.yaml
-constexpr double kSpawnRadius = 25.0 * kMm;       // m, shot start inside this cylinder
+constexpr double kShotRadius = 1.0 * kMm;                         // m
+constexpr double kGearAxisHeight = 42.0 * kMm;                    // m, as in scenes/gear.yaml
+constexpr double kSpawnRadius = 25.0 * kMm;                       // m, shot start inside this cylinder
 constexpr double kSpawnLow = 3.0 * kMm, kSpawnHigh = 70.0 * kMm;  // m
-constexpr double kShotStep = 0.4 * kMm;           // m, shot travel per frame (random walk)
-constexpr double kFrameTime = 1.0 / 30.0;         // s, simulated time per frame
-constexpr int kMarkers = 64;                      // impact flashes alive in each frame
-constexpr int kWarmup = 3;                        // frames not timed (shader JIT, buffer growth)
+constexpr double kShotStep = 0.4 * kMm;                           // m, shot travel per frame (random walk)
+constexpr double kFrameTime = 1.0 / 30.0;                         // s, simulated time per frame
+constexpr int kMarkers = 64;                                      // impact flashes alive in each frame
+constexpr int kWarmup = 3;                                        // frames not timed (shader JIT, buffer growth)
 
 struct Args {
     int frames = 60;
@@ -75,17 +75,25 @@ Args parse(int argc, char** argv) {
             if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value");
             return argv[++i];
         };
-        if (arg == "--frames") a.frames = std::stoi(next());
-        else if (arg == "--shot") a.shot = std::stoi(next());
-        else if (arg == "--samples") a.samples = std::stoi(next());
+        if (arg == "--frames")
+            a.frames = std::stoi(next());
+        else if (arg == "--shot")
+            a.shot = std::stoi(next());
+        else if (arg == "--samples")
+            a.samples = std::stoi(next());
         else if (arg == "--size") {
             const std::string s = next();
             if (std::sscanf(s.c_str(), "%dx%d", &a.width, &a.height) != 2) throw std::runtime_error("--size WxH");
-        } else if (arg == "--assets") a.assets = next();
-        else if (arg == "--part") a.part = next();
-        else if (arg == "--keep") a.keep = next();
-        else if (arg == "--video") a.video = true;
-        else throw std::runtime_error("unknown argument " + arg);
+        } else if (arg == "--assets")
+            a.assets = next();
+        else if (arg == "--part")
+            a.part = next();
+        else if (arg == "--keep")
+            a.keep = next();
+        else if (arg == "--video")
+            a.video = true;
+        else
+            throw std::runtime_error("unknown argument " + arg);
     }
     if (a.frames < 1 || a.shot < 0) throw std::runtime_error("--frames must be >= 1 and --shot >= 0");
     return a;
@@ -170,8 +178,8 @@ int main(int argc, char** argv) {
 
         RgbaImage image;
         std::vector<double> t_empty, t_meshes, t_shot, t_full, t_png;
-        const fs::path out_dir = args.keep.empty() ? fs::temp_directory_path() / ("peensim-render-bench-" + std::to_string(::getpid()))
-                                                   : fs::path(args.keep);
+        const fs::path out_dir =
+            args.keep.empty() ? fs::temp_directory_path() / ("peensim-render-bench-" + std::to_string(::getpid())) : fs::path(args.keep);
         fs::create_directories(out_dir);
         std::uintmax_t png_bytes = 0;
         for (int f = 0; f < kWarmup + args.frames; ++f) {
@@ -198,11 +206,11 @@ int main(int argc, char** argv) {
             }
         }
 
-        std::printf("# peensim render benchmark: %dx%d, samples %d, LP_NUM_THREADS=%s, %d frames\n", args.width, args.height,
-                    args.samples, threads.c_str(), args.frames);
+        std::printf("# peensim render benchmark: %dx%d, samples %d, LP_NUM_THREADS=%s, %d frames\n", args.width, args.height, args.samples,
+                    threads.c_str(), args.frames);
         std::printf("  scene: chamber %zu, sonotrode %zu, axle %zu, gear %zu triangles; %d shot of r = 1 mm; %d markers\n",
-                    chamber.triangle_count(), sonotrode.triangle_count(), axle.triangle_count(), gear.triangle_count(),
-                    args.shot, kMarkers);
+                    chamber.triangle_count(), sonotrode.triangle_count(), axle.triangle_count(), gear.triangle_count(), args.shot,
+                    kMarkers);
         std::printf("draw + read-back per frame:\n");
         print("empty frame (clear + read-back)", stats(t_empty));
         print("meshes only", stats(t_meshes));
@@ -229,15 +237,16 @@ int main(int argc, char** argv) {
                 const auto t_finish = std::chrono::steady_clock::now();
                 encoder.finish();
                 const double finish_ms = ms_since(t_finish);
-                std::printf("video (libx264 veryfast, crf 20), %.0f kB for %d frames:\n",
-                            static_cast<double>(fs::file_size(mp4)) / 1e3, args.frames);
+                std::printf("video (libx264 veryfast, crf 20), %.0f kB for %d frames:\n", static_cast<double>(fs::file_size(mp4)) / 1e3,
+                            args.frames);
                 print("add_frame (blocks while ffmpeg is behind)", stats(t_send));
-                std::printf("  finish %.0f ms; render + encode %.1f frames/s overall\n", finish_ms,
-                            args.frames / (ms_since(t_all) / 1e3));
+                std::printf("  finish %.0f ms; render + encode %.1f frames/s overall\n", finish_ms, args.frames / (ms_since(t_all) / 1e3));
             }
         }
-        if (args.keep.empty()) fs::remove_all(out_dir);
-        else std::printf("kept %s\n", out_dir.c_str());
+        if (args.keep.empty())
+            fs::remove_all(out_dir);
+        else
+            std::printf("kept %s\n", out_dir.c_str());
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "peensim_render_bench: %s\n", e.what());
