@@ -50,6 +50,9 @@ struct ShotShotInput {
     Vec3 v_j;     // m/s
     Vec3 normal;  // unit, from the centre of i to the centre of j
     ShotShotMode mode = ShotShotMode::law;
+    // The partner is held (a pile's substeps move one shot at a time, its neighbours held like
+    // walls): only i's velocity changes, as against an infinite mass.
+    bool j_held = false;
     int shot_i = -1, shot_j = -1;  // indices of the two shot
     double overlap_m = 0.0;        // m, 2 R - distance between the centres (0 at an exact touch)
     double shot_radius_m = 0.0;    // m, both shot

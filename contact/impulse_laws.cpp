@@ -52,9 +52,11 @@ ShotShotResponse impulse_shot_shot(const ShotShotInput& in, const PairCoefficien
         case ShotShotMode::sustained: C = 0.0; break;
         case ShotShotMode::collapse_guard: C = normal_restitution(-dV, 1.0, k.V0_m_per_s); break;
     }
-    const Vec3 impulse_per_mass = 0.5 * (1.0 + C) * dV * in.normal;
+    // Equal masses share the impulse; against a held partner i takes all of it.
+    const double share = in.j_held ? 1.0 : 0.5;
+    const Vec3 impulse_per_mass = share * (1.0 + C) * dV * in.normal;
     out.v_i = in.v_i + impulse_per_mass;
-    out.v_j = in.v_j - impulse_per_mass;
+    if (!in.j_held) out.v_j = in.v_j - impulse_per_mass;
     out.vn_in = -dV;
     out.approaching = true;
     return out;

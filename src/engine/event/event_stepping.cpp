@@ -635,8 +635,12 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
         touching = true;
         const Vec3 n = d / dist;
         consider_support(n);
-        const double approach = -(v - velocity(j, t)).dot(n);
-        if (approach > 0.0) v += approach * n;
+        // Held like a wall: the shot-shot law in sustained contact against a held partner takes the
+        // approach away from this shot alone (the law's normal points from this shot to j).
+        contact::ShotShotInput held = shot_shot_input(*model_, i, j, v, velocity(j, t), -n, contact::ShotShotMode::sustained, dist,
+                                                      absolute_seconds(t));
+        held.j_held = true;
+        v = model_->shot_shot_law->respond(held).v_i;
         if (dist < 2.0 * R_) {
             // At most a tenth of R per substep: a jammed pile relaxes over a few substeps instead of
             // pushing a shot through a wall at once.
