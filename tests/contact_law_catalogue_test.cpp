@@ -97,14 +97,14 @@ TEST(ContactShotShotModes, AHeldPartnerTakesNothingAndTheShotTakesTheWholeImpuls
     // A shot in a pile's substep against a neighbour held like a wall: sustained stops its approach
     // entirely (not half of it), the neighbour's velocity is untouched.
     const contact::ImpulseShotShotLaw law({0.5, 1.0, 0.0, 0.0});
-    contact::ShotShotInput in{Vec3(0.3, 0.1, 0), Vec3(-0.1, 0, 0), Vec3(1, 0, 0), ShotShotMode::sustained};
+    contact::ShotShotInput in{Vec3(0.75, 0.125, 0), Vec3(-0.25, 0, 0), Vec3(1, 0, 0), ShotShotMode::sustained};  // approach 1 m/s
     in.j_held = true;
     const contact::ShotShotResponse s = law.respond(in);
-    EXPECT_EQ(s.v_i, Vec3(-0.1, 0.1, 0));
-    EXPECT_EQ(s.v_j, Vec3(-0.1, 0, 0));
-    // With the law's restitution (C0 = 0.5 below V0): rebound at half the approach off the held one.
+    EXPECT_EQ(s.v_i, Vec3(-0.25, 0.125, 0));  // moves with the held one along n
+    EXPECT_EQ(s.v_j, Vec3(-0.25, 0, 0));
+    // With the law's restitution (C0 = 0.5 below V0): it rebounds at half the approach.
     in.mode = ShotShotMode::law;
-    EXPECT_EQ(law.respond(in).v_i, Vec3(-0.3, 0.1, 0));
+    EXPECT_EQ(law.respond(in).v_i, Vec3(-0.75, 0.125, 0));
 }
 
 TEST(ContactLawCatalogue, EveryLawIsRegisteredOnceWithItsParameters) {
