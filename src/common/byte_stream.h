@@ -28,7 +28,7 @@ public:
     void put_vector(const std::vector<T>& v) {
         static_assert(std::is_trivially_copyable_v<T>);
         put<std::uint64_t>(v.size());
-        bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+        if (!v.empty()) bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
     }
     void put_string(std::string_view s) {
         put<std::uint64_t>(s.size());
@@ -58,7 +58,8 @@ public:
         const auto n = get<std::uint64_t>();
         if (n > (bytes_.size() - at_) / sizeof(T)) fail("truncated");
         std::vector<T> v(n);
-        std::memcpy(v.data(), take(n * sizeof(T)).data(), n * sizeof(T));
+        // An empty vector's data() may be null, which memcpy must not be given even for 0 bytes.
+        if (n > 0) std::memcpy(v.data(), take(n * sizeof(T)).data(), n * sizeof(T));
         return v;
     }
     std::string get_string() { return std::string(take(get<std::uint64_t>())); }
