@@ -9,7 +9,7 @@ namespace peensim {
 namespace {
 
 std::unique_ptr<Stepper> make_scheme(const std::shared_ptr<const Model>& model) {
-    switch (model->description.accuracy.scheme) {
+    switch (model->scheme) {
         case SteppingScheme::step: return std::make_unique<TimeStepping>(model);
         case SteppingScheme::event: return std::make_unique<EventStepping>(model);
     }

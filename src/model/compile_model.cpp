@@ -141,6 +141,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
     model->gravity_m_per_s2 = scene.process.gravity_m_per_s2;
     model->duration_s = scene.process.duration_s;
     model->seed = scene.process.seed;
+    model->scheme = scene.accuracy.scheme;
     model->travel_fraction = scene.accuracy.travel_fraction;
     model->impact_speed_m_per_s = scene.accuracy.impact_speed_m_per_s;
     model->shot_shot_law = shot_shot_law_of(contact_for(scene, "shot-shot"));

@@ -53,7 +53,8 @@ struct Model {
     Vec3 gravity_m_per_s2 = Vec3::Zero();  // m/s2
     double duration_s = 0.0;               // s
     std::uint64_t seed = 1;
-    double travel_fraction = 0.25;  // -, eq. 7 travel per step / R
+    SteppingScheme scheme = SteppingScheme::event;  // the scheme that runs it (accuracy.scheme)
+    double travel_fraction = 0.25;                  // -, eq. 7 travel per step / R
     // m/s, the one line between impacts and sustained contact, for both schemes: a normal approach
     // (relative to the surface's material, or between two shot) at least this fast is an impact;
     // slower is sustained contact (approach removed, friction, no rebound, not logged).
