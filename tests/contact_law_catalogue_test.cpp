@@ -262,6 +262,13 @@ TEST(SceneContactLaws, BadLawSettingsAreRefusedWithFieldAndExpectation) {
         {{"contacts.shot-aluminium-2000={law: impact-history, restitution_by_hits: [0.5], C0: 0.9}"},
          "contacts.shot-aluminium-2000.C0",
          "expected law, restitution_by_hits, mu, f"},
+        {{"contacts.shot-aluminium-2000={law: impact-history, restitution_by_hits: abc}"},
+         "contacts.shot-aluminium-2000.restitution_by_hits",
+         "expected a list of one or more numbers"},
+        // A pair naming no law takes the default's: the message says so.
+        {{"contacts.default={law: impact-history, restitution_by_hits: [0.5]}"},
+         "contacts.shot-TA6V.C0",
+         "takes its law from the `default` pair; write `law:` in it"},
         // The law needs the yield stress: found when the model is built.
         {{"contacts.shot-HDPE={law: impact-history, restitution_by_hits: [0.5]}"}, "contacts.shot-HDPE.law", "materials.HDPE.yield_stress"},
     };

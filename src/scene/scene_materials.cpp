@@ -62,9 +62,15 @@ void check_pair_keys(const Cursor& pair, const std::string& key, const contact::
         if (name == law_key) continue;
         bool declared = false;
         for (const contact::LawParameter& p : parameters) declared |= p.name == name;
-        if (!declared)
+        if (!declared) {
+            // A pair that names no law takes the `default` pair's: say so, it is the likely slip.
+            const std::string inherited = pair.child(law_key).present() || key == default_pair_key
+                                              ? ""
+                                              : " (the pair takes its law from the `default` pair; write `law:` in it to choose another)";
             fail(pair.child(name), "'" + name + "' is not a parameter of law '" + std::string(law.name) + "'" +
-                                       (key == shot_shot_key ? " between shot" : "") + "; expected " + parameter_names(parameters));
+                                       (key == shot_shot_key ? " between shot" : "") + "; expected " + parameter_names(parameters) +
+                                       inherited);
+        }
     }
 }
 

@@ -378,7 +378,13 @@ std::string expected_text(const SchemaEntry& e) {
         case K::text: return "a text";
         case K::choice: return "one of " + join_names(split_choices(e.choices));
         case K::name_list: return "a list of names, e.g. [a, b]";
-        case K::quantity_list: return "a list of one or more " + std::string(dimension_noun(e.dimension)) + "s, e.g. [0.4, 0.5]";
+        case K::quantity_list: {
+            // "a number" -> "numbers", "a positive length" -> "positive lengths".
+            std::string noun(dimension_noun(e.dimension));
+            if (noun.rfind("a ", 0) == 0) noun.erase(0, 2);
+            if (noun.rfind("an ", 0) == 0) noun.erase(0, 3);
+            return "a list of one or more " + noun + "s, e.g. [0.4, 0.5]";
+        }
     }
     return "a value";
 }
