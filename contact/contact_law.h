@@ -84,6 +84,8 @@ public:
     // Sustained contact over in.dt (resting, sliding, riding): no normal approach remains; friction
     // acts on the tangential part.
     virtual SurfaceContactResponse sustain(const SurfaceContactInput& in, std::span<double> triangle_state) const = 0;
+    // One line on what the state holds now, for the run's summary ("" when the law keeps none).
+    virtual std::string describe_state(std::span<const double> /*triangle_state*/) const { return ""; }
 };
 
 // A law for shot-shot contacts, built with its parameters bound. (Per-contact state, for laws

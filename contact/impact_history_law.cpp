@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "contact/dent.h"
@@ -50,6 +52,21 @@ SurfaceContactResponse ImpactHistoryLaw::impact(const SurfaceContactInput& in, s
         facets_.for_each_within(in.point_local, dent, [&](std::size_t k) { marks[k] += 1.0; });
     }
     return r;
+}
+
+std::string ImpactHistoryLaw::describe_state(std::span<const double> marks) const {
+    std::size_t hit = 0;
+    double most = 0.0, fewest = std::numeric_limits<double>::infinity();
+    for (double m : marks) {
+        hit += m > 0.0;
+        most = std::max(most, m);
+        fewest = std::min(fewest, m);
+    }
+    if (marks.empty()) return "";
+    char text[200];
+    std::snprintf(text, sizeof text, "%zu of %zu triangles hit, up to %.0f times (next restitution there %.3g-%.3g)", hit, marks.size(),
+                  most, restitution_after(fewest), restitution_after(most));
+    return text;
 }
 
 SurfaceContactResponse ImpactHistoryLaw::sustain(const SurfaceContactInput& in, std::span<double>) const {

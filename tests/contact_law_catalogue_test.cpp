@@ -203,6 +203,9 @@ TEST(ImpactHistoryLaw, RestitutionByHitCountAndMarksWithinOneDentDiameter) {
         in.point_local = far;
         EXPECT_EQ(law.impact(in, marks).vn_out, 2.0);
     }
+    // What the run's summary prints of the state.
+    EXPECT_EQ(law.describe_state(marks),
+              std::to_string(patch.size()) + " of 3200 triangles hit, up to 4 times (next restitution there 0.4-0.57)");
     // Sustained contact is the impulse law's Coulomb friction (f = 0.1, 9.81 m/s2, 0.01 s).
     const contact::SurfaceContactResponse s = law.sustain({Vec3(0.3, 0, 0), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, marks);
     EXPECT_NEAR(s.v_shot.x(), 0.3 - 0.1 * 9.81 * 0.01, 1e-15);

@@ -37,6 +37,10 @@ RunSummary build_summary(const Simulation& sim, const std::string& scene_file, c
         if (model.components[c].logged && logged < normal_speeds.size())
             s.normal_speed.push_back(normal_speed_stats(model.components[c].name, normal_speeds[logged++]));
     }
+    for (std::size_t c = 0; c < model.components.size() && c < state.law_state.size(); ++c) {
+        const std::string text = model.components[c].law->describe_state(state.law_state[c]);
+        if (!text.empty()) s.law_states.emplace_back(model.components[c].name, std::string(model.components[c].law->name()) + ": " + text);
+    }
     state.health.for_each([&](const char* name, std::uint64_t count) { s.health_counters.push_back({name, count}); });
     const StepStats& stats = sim.scheme().stats();
     for (std::size_t k = 0; k < kStageNames.size(); ++k) s.stage_times.push_back({std::string(kStageNames[k]), stats.seconds[k]});

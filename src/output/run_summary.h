@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "output/speed_histogram.h"
@@ -57,6 +58,8 @@ struct RunSummary {
     std::vector<NamedCount> slow_contacts_per_component;
     double impact_speed_m_per_s = 0.0;           // m/s, the scene's accuracy.impact_speed
     std::vector<NormalSpeedStats> normal_speed;  // per logged component
+    // Per component whose contact law keeps state: the law's one-line account of it (text summary).
+    std::vector<std::pair<std::string, std::string>> law_states;
     std::vector<NamedCount> health_counters;
     std::vector<StageTime> stage_times;  // in step order
 

@@ -69,6 +69,7 @@ std::string summary_to_text(const RunSummary& s) {
         rows.emplace_back("impacts " + c.name, std::move(value));
     }
     rows.emplace_back("slow contacts", slow_contacts_text(s.slow_contacts_per_component, s.impact_speed_m_per_s));
+    for (const auto& [component, text] : s.law_states) rows.emplace_back("law " + component, text);
     rows.emplace_back("health", health_text(s.health_counters));
     rows.emplace_back("peak memory", printf_string("%.1f MiB", static_cast<double>(s.peak_memory_bytes) / (1024.0 * 1024.0)));
 
