@@ -471,7 +471,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         }
         if (rides) {
             ++stats_.rides;
-            if (!launch_within_step(state, i, c, n, centre_touch, r.v_shot, u, dt)) {
+            if (!launch_within_step(state, i, c, n, centre_touch, r.v_shot, u, pose_touch, dt)) {
                 // Riding on to the step end: sustained contact acts there, on the step-end contact
                 // plane moved by the ride's change of course. (Searching again from the touch would
                 // find the plate a rounding later, ride again, and so on, pass after pass.)
@@ -494,7 +494,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
 }
 
 bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std::size_t c, const Vec3& n, const Vec3& centre,
-                                      const Vec3& v_after, double u, double dt) {
+                                      const Vec3& v_after, double u, const Pose& pose_touch, double dt) {
     // The plate's acceleration along n is -A w^2 k sin(phase) (k = a.n); it presses the shot while
     // that exceeds g.n, i.e. until sin(phase) rises through eps = -g.n / (A w^2 k): the launch, as
     // in the event-driven scheme (which rides exactly). Launched before the step end, the shot
@@ -520,7 +520,6 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     const double impulse = std::max(0.0, (plate_v1 - plate_v0).dot(n) - g.dot(n) * ride);
     // Friction over the ride through the pair's law: its sustained contact with the plate pressing
     // the shot by impulse / ride on average over the ride.
-    const Pose pose_touch = kin.pose(t0_, u);
     const ContactSite site{
         static_cast<int>(i), static_cast<int>(c), -1, &pose_touch, centre - model_->shot_radius_m * n, t0_.hi + (t0_.lo + u), 0.0};
     const contact::SurfaceContactResponse r = comp.law->sustain(
@@ -563,8 +562,7 @@ void TimeStepping::sustain_contact(SimulationState& state, std::size_t i, std::s
     const Vec3 g = model_->gravity_m_per_s2;
     const Vec3 v_surface_end = kin.point_velocity(contact.point, t0_, dt);
     const double pressing = std::max(0.0, -g.dot(n) + kin.point_acceleration(contact.point, t0_, dt).dot(n));
-    const Pose pose_end = kin.pose(t0_, dt);
-    const ContactSite site{static_cast<int>(i), static_cast<int>(c),    contact.mesh_triangle,      &pose_end,
+    const ContactSite site{static_cast<int>(i), static_cast<int>(c),    contact.mesh_triangle,      &pose_end_[c],
                            contact.point,       t0_.hi + (t0_.lo + dt), std::max(0.0, -contact.gap)};
     const contact::SurfaceContactResponse r =
         comp.law->sustain(surface_input(*model_, site, v1, v_surface_end, n, false, pressing, dt), law_state(state, c));

@@ -68,10 +68,10 @@ private:
     std::optional<double> vibrating_touch(const Kinematics& kin, const Contact& contact, const Vec3& p1, const Vec3& v1, double dt,
                                           double u_lo, bool leaving) const;
     // A shot that starts riding the vibrating plate at u (s into the step) with velocity v_after
-    // and centre `centre`: launched where the plate pulls away faster than gravity, if that comes
+    // and centre `centre` (the plate in pose_touch then): launched where the plate pulls away faster than gravity, if that comes
     // before the step end (its state at the step end set accordingly; true), else false.
     bool launch_within_step(SimulationState& state, std::size_t shot, std::size_t component, const Vec3& n, const Vec3& centre,
-                            const Vec3& v_after, double u, double dt);
+                            const Vec3& v_after, double u, const Pose& pose_touch, double dt);
     bool closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world, double query_radius,
                          Contact& out);
     void sustain_contact(SimulationState& state, std::size_t shot, std::size_t component, const Contact& contact, const Vec3& v1,

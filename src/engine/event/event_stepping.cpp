@@ -468,7 +468,7 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         const ContactSite site{i, w.component, w.mesh_triangle, &pose, w.point, absolute_seconds(t), 0.0};
         const contact::SurfaceContactResponse r = comp.law->impact(surface_input(*model_, site, v, vs, n, impact), law_state(state, c));
         if (impact) {
-            record_impact(i, w.component, t, w, v, r, state, impacts);
+            record_impact(i, w.component, t, pose, w, v, r, state, impacts);
             s.in_flight = true;  // sent off by an impact (time stepping's rule: whatever the rebound)
         } else {
             if (s.in_flight) ++state.slow_contacts_per_component[c];
@@ -526,13 +526,13 @@ void EventStepping::touch(int i, double t, const WallEvent& w, const Vec3& p, co
     predict(i, t);
 }
 
-void EventStepping::record_impact(int i, int c, double t, const WallEvent& w, const Vec3& v, const contact::SurfaceContactResponse& r,
-                                  SimulationState& state, std::vector<ImpactRecord>& impacts) const {
+void EventStepping::record_impact(int i, int c, double t, const Pose& pose, const WallEvent& w, const Vec3& v,
+                                  const contact::SurfaceContactResponse& r, SimulationState& state,
+                                  std::vector<ImpactRecord>& impacts) const {
     const Component& comp = model_->components[static_cast<std::size_t>(c)];
     ++state.impacts_per_component[static_cast<std::size_t>(c)];
     if (!comp.logged) return;
-    impacts.push_back(
-        make_impact_record(absolute_seconds(t), i, c, w.triangle, comp.kinematics.pose(epoch_, t), w.point, v, w.surface_velocity, r));
+    impacts.push_back(make_impact_record(absolute_seconds(t), i, c, w.triangle, pose, w.point, v, w.surface_velocity, r));
 }
 
 void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after) {
@@ -637,8 +637,8 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
         consider_support(n);
         // Held like a wall: the shot-shot law in sustained contact against a held partner takes the
         // approach away from this shot alone (the law's normal points from this shot to j).
-        contact::ShotShotInput held = shot_shot_input(*model_, i, j, v, velocity(j, t), -n, contact::ShotShotMode::sustained, dist,
-                                                      absolute_seconds(t));
+        contact::ShotShotInput held =
+            shot_shot_input(*model_, i, j, v, velocity(j, t), -n, contact::ShotShotMode::sustained, dist, absolute_seconds(t));
         held.j_held = true;
         v = model_->shot_shot_law->respond(held).v_i;
         if (dist < 2.0 * R_) {
@@ -682,7 +682,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
             w.normal = n;
             w.surface_velocity = vs;
             w.triangle = walls_.source_facet(c, closest.triangle);
-            if (impact) record_impact(i, static_cast<int>(c), t, w, v, r, state, impacts);
+            if (impact) record_impact(i, static_cast<int>(c), t, pose, w, v, r, state, impacts);
             v = r.v_shot;
         } else {
             const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, epoch_, t).dot(n));

@@ -122,8 +122,9 @@ private:
     void lose(int i, double t, SimulationState& state, bool non_finite);
     // support: unit normal of the surface a sustained shot rests on (zero: none).
     void set_flight(int i, const Vec3& p, const Vec3& v, double t, Motion motion, const Vec3& support = Vec3::Zero());
-    void record_impact(int i, int c, double t, const WallEvent& w, const Vec3& v, const contact::SurfaceContactResponse& r,
-                       SimulationState& state, std::vector<ImpactRecord>& impacts) const;
+    // pose: component c's pose at t (the caller has it for the law already).
+    void record_impact(int i, int c, double t, const Pose& pose, const WallEvent& w, const Vec3& v,
+                       const contact::SurfaceContactResponse& r, SimulationState& state, std::vector<ImpactRecord>& impacts) const;
     // Wakes the sleeping shot touching shot i, and those touching them (a pile wakes as a whole).
     void wake_neighbours(int i, double t);
 
