@@ -9,11 +9,7 @@
 #include "engine/law_input.h"
 #include "engine/loss_diagnosis.h"
 #include "engine/time_stepping.h"
-#include "kernels/closest_point.h"
 #include "kernels/plate_release.h"
-#include "kernels/sphere_pair_toi.h"
-#include "kernels/swept_sphere_box.h"
-#include "model/shot_cavity.h"
 
 namespace peensim {
 

@@ -37,7 +37,6 @@
 #include <vector>
 
 #include "collision/mesh_collider.h"
-#include "collision/shot_box_tree.h"
 #include "engine/event/event_queue.h"
 #include "engine/event/pair_predictor.h"
 #include "engine/event/shot_record.h"
