@@ -52,6 +52,8 @@ const BadScene catalogue[] = {
     {"rotating_without_axis_point.yaml", 19, "components[2].motion.axis_point", "missing required key 'axis_point'"},
     {"region_count_wraps.yaml", 19, "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '4294967296'"},
     {"travel_fraction_tiny.yaml", 3, "accuracy.travel_fraction", "in [0.001, 1]"},
+    {"drag_with_event.yaml", 3, "accuracy.scheme", "the event scheme needs exact parabolic flights, and air.drag is on; expected `step`"},
+    {"air_viscosity_wrong_unit.yaml", 6, "air.viscosity", "unknown unit 'm2/s' in '1.5e-5 m2/s' for a dynamic viscosity; accepted units: Pa s"},
     {"render_frames_unbounded.yaml", 18, "render.slow_motion", "the render block plans 300000000 frames"},
 };
 

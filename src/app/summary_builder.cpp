@@ -16,6 +16,7 @@ RunSummary build_summary(const Simulation& sim, const std::string& scene_file, c
     std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(model.scene_hash));
     s.scene_hash = hash;
     s.scheme = std::string(sim.scheme().name());
+    s.flight = std::string(model.flight->name());
     s.finished = finished;
     s.simulated_time_s = state.time.seconds();
     s.duration_s = model.duration_s;

@@ -74,6 +74,11 @@ constexpr std::array unit_table{
     UnitDef{"kJ/m2", Dimension::energy_per_area, 1000.0, 1.0},
     UnitDef{"mJ/mm2", Dimension::energy_per_area, 1000.0, 1.0},
     UnitDef{"mJ/m2", Dimension::energy_per_area, 1.0, 1000.0},
+    UnitDef{"Pa s", Dimension::viscosity, 1.0, 1.0},
+    UnitDef{"Pa*s", Dimension::viscosity, 1.0, 1.0},
+    UnitDef{"Pa.s", Dimension::viscosity, 1.0, 1.0},
+    UnitDef{"mPa s", Dimension::viscosity, 1.0, 1e3},
+    UnitDef{"cP", Dimension::viscosity, 1.0, 1e3},
 };
 
 std::string_view trim(std::string_view s) {
@@ -128,6 +133,7 @@ std::string_view dimension_noun(Dimension dim) {
         case Dimension::angle: return "an angle";
         case Dimension::angular_speed: return "an angular speed";
         case Dimension::energy_per_area: return "an energy per area";
+        case Dimension::viscosity: return "a dynamic viscosity";
         case Dimension::dimensionless: return "a number";
     }
     return "a quantity";

@@ -23,6 +23,7 @@ enum class Dimension {
     angle,            // rad
     angular_speed,    // rad/s
     energy_per_area,  // J/m2 (a kinetic-energy dose)
+    viscosity,        // Pa s (dynamic viscosity)
     dimensionless,    // -
 };
 

@@ -58,6 +58,11 @@ private:
     };
 
     void integrate(SimulationState& state, double dt);
+    void clear_step_marks();  // per-step marks (latest touch, kicks) back to "none"
+    // The acceleration of a shot's arc within a step (gravity; with air drag the flight model's at v).
+    Vec3 arc_acceleration(const Vec3& v) const;
+    // Sets shot i to where the flight model takes it in dt (s) from centre p and velocity v.
+    void fly(ShotArrays& s, std::size_t i, const Vec3& p, const Vec3& v, double dt) const;
     void resolve_shot_pairs(SimulationState& state, double dt);
     // only_kicked: just the shot whose flight a shot-shot contact changed in this step.
     void resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts, bool only_kicked);
@@ -87,6 +92,7 @@ private:
 
     std::shared_ptr<const Model> model_;
     ShotPairFinder pairs_;
+    bool parabola_ = true;  // flights are exact parabolas (closed form, no call through the flight model)
     StepStats stats_;
     // Per step:
     SimTime t0_;                                 // step start

@@ -6,6 +6,7 @@
 
 #include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
+#include "kernels/air_drag_flight.h"
 #include "model/enclosure.h"
 #include "model/model.h"
 #include "scene/resolved_writer.h"
@@ -122,6 +123,18 @@ std::shared_ptr<const contact::SurfaceLaw> surface_law_of(const ContactPairDesc&
     }
 }
 
+std::shared_ptr<const FlightModel> flight_model_of(const SceneDescription& scene, double shot_radius_m) {
+    const Vec3 g = scene.process.gravity_m_per_s2;
+    if (!scene.air.drag) return std::make_shared<const ParabolaFlight>(g);
+    AirDrag air;
+    air.air_density_kg_per_m3 = scene.air.density_kg_per_m3;
+    air.air_viscosity_pa_s = scene.air.viscosity_pa_s;
+    air.drag_coefficient = scene.air.drag_coefficient;
+    air.shot_radius_m = shot_radius_m;
+    air.shot_density_kg_per_m3 = scene.shot.density_kg_per_m3;
+    return std::make_shared<const AirDragFlight>(g, air);
+}
+
 }  // namespace
 
 int Model::component_index(const std::string& name) const {
@@ -139,6 +152,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
     model->shot_radius_m = 0.5 * scene.shot.diameter_m;
     model->shot_mass_kg = scene.shot.density_kg_per_m3 * (4.0 / 3.0) * M_PI * std::pow(model->shot_radius_m, 3);
     model->gravity_m_per_s2 = scene.process.gravity_m_per_s2;
+    model->flight = flight_model_of(scene, model->shot_radius_m);
     model->duration_s = scene.process.duration_s;
     model->seed = scene.process.seed;
     model->scheme = scene.accuracy.scheme;

@@ -13,6 +13,7 @@
 #include "contact/contact_law.h"
 #include "contact/law_registry.h"
 #include "geometry/triangle_mesh.h"
+#include "kernels/flight_model.h"
 #include "model/kinematics.h"
 #include "scene/scene_description.h"
 
@@ -51,7 +52,10 @@ struct Model {
     std::shared_ptr<const contact::ShotShotLaw> shot_shot_law;  // the `shot-shot` pair's law, bound
 
     Vec3 gravity_m_per_s2 = Vec3::Zero();  // m/s2
-    double duration_s = 0.0;               // s
+    // How shot fly between contacts (the exact parabola under gravity unless the scene's air drags);
+    // never null. The event scheme runs only parabolas (the scene parser chose time stepping else).
+    std::shared_ptr<const FlightModel> flight;
+    double duration_s = 0.0;  // s
     std::uint64_t seed = 1;
     SteppingScheme scheme = SteppingScheme::event;  // the scheme that runs it (accuracy.scheme)
     double travel_fraction = 0.25;                  // -, eq. 7 travel per step / R

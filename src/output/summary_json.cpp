@@ -12,6 +12,7 @@ std::string summary_to_json(const RunSummary& s) {
     j["scene_file"] = s.scene_file;
     j["scene_hash"] = s.scene_hash;
     j["scheme"] = s.scheme;
+    j["flight"] = s.flight;
     j["finished"] = s.finished;
     j["simulated_time_s"] = s.simulated_time_s;
     j["duration_s"] = s.duration_s;

@@ -54,6 +54,9 @@ std::string summary_to_text(const RunSummary& s) {
     rows.emplace_back("simulated",
                       printf_string("%.6g s of %.6g s (%s)", s.simulated_time_s, s.duration_s, s.finished ? "finished" : "interrupted"));
     rows.emplace_back("wall time", printf_string("%.3f s (%.4g simulated s per wall s)", s.wall_time_s, s.sim_seconds_per_wall_second));
+    // Flights other than the exact parabola (air drag) run with time stepping only: say why.
+    if (!s.flight.empty() && s.flight != "parabola")
+        rows.emplace_back("flight", s.flight + " (time stepping: the event scheme solves exact parabolas only)");
     if (s.scheme == "event")  // shot_steps counts events, steps the times the state was brought up to date
         rows.emplace_back("events", printf_string("%.4g (%.4g per wall s)", static_cast<double>(s.shot_steps), s.shot_steps_per_s));
     else

@@ -82,6 +82,14 @@ void write_shot(std::string& y, const ShotDesc& shot) {
         y += "  # initially at rest\n";
 }
 
+void write_air(std::string& y, const AirDesc& air) {
+    y += "air:\n";
+    y += std::string("  drag: ") + (air.drag ? "sphere" : "none") + "\n";
+    y += "  density: " + num(air.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
+    y += "  viscosity: " + num(air.viscosity_pa_s) + unit_comment(Dimension::viscosity) + "\n";
+    if (air.drag_coefficient) y += "  drag_coefficient: " + num(*air.drag_coefficient) + "\n";
+}
+
 void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
     y += s.materials.empty() ? "materials: {}\n" : "materials:\n";
     for (const MaterialDesc& m : s.materials) {
@@ -223,6 +231,7 @@ std::string resolved_scene_yaml(const SceneDescription& s) {
     std::string y;
     write_header(y, s);
     write_shot(y, s.shot);
+    write_air(y, s.air);
     write_materials_and_contacts(y, s);
     y += "components:\n";
     for (const ComponentDesc& k : s.components) write_component(y, k);

@@ -172,6 +172,16 @@ struct AccuracyDesc {
     double travel_fraction = 0.25;       // -, max travel per step / shot radius (eq. 7 uses 0.25)
     double impact_speed_m_per_s = 0.05;  // m/s, slower normal approaches are sustained contact, not impacts
     SteppingScheme scheme = SteppingScheme::event;
+    bool scheme_given = false;  // the file (or --set) chose the scheme; else the default for its flights
+    SourceLocation where;
+};
+
+// The still air the shot fly through. Without drag (the default, USP) flights are exact parabolas.
+struct AirDesc {
+    bool drag = false;
+    double density_kg_per_m3 = 1.205;        // kg/m3
+    double viscosity_pa_s = 1.822e-5;        // Pa s
+    std::optional<double> drag_coefficient;  // -, constant C_d; empty: Schiller-Naumann C_d(Re)
     SourceLocation where;
 };
 
@@ -206,6 +216,7 @@ struct SceneDescription {
     ProcessDesc process;
     AccuracyDesc accuracy;
     ShotDesc shot;
+    AirDesc air;
     std::vector<MaterialDesc> materials;
     std::vector<ContactPairDesc> contacts;  // includes a "default" entry (given or built in)
     std::vector<ComponentDesc> components;

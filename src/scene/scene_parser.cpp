@@ -30,6 +30,16 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     d.name = read_text(root.child("name"));
     d.process = read_process(root.child("process"));
     d.accuracy = read_accuracy(root.child("accuracy"));
+    d.air = read_air(root.child("air"));
+    if (d.air.drag) {
+        // The event scheme's kernels solve exact parabolas: a scene whose flights are not runs with
+        // time stepping, which it gets by default and must not be refused silently.
+        if (d.accuracy.scheme_given && d.accuracy.scheme == SteppingScheme::event)
+            fail(root.child("accuracy").child("scheme"),
+                 "the event scheme needs exact parabolic flights, and air.drag is on; expected `step` (or leave the scheme out: "
+                 "a scene with air drag runs with time stepping)");
+        d.accuracy.scheme = SteppingScheme::step;
+    }
     d.materials = read_materials(root.child("materials"));
     d.shot = read_shot(root.child("shot"), d.materials);
     d.contacts = read_contacts(root.child("contacts"), d.materials);

@@ -21,6 +21,7 @@ AccuracyDesc read_accuracy(const Cursor& c) {
     const std::string scheme = read_choice(c.child("scheme"));
     if (scheme == "step") d.scheme = SteppingScheme::step;
     if (scheme == "event") d.scheme = SteppingScheme::event;
+    d.scheme_given = c.child("scheme").present();
     d.where = location_of(c);
     return d;
 }
@@ -57,6 +58,16 @@ ShotDesc read_shot(const Cursor& c, const std::vector<MaterialDesc>& materials) 
         d.initial = InitialVelocityKind::random_upward;
         d.initial_speed_m_per_s = read_quantity(speed);
     }
+    d.where = location_of(c);
+    return d;
+}
+
+AirDesc read_air(const Cursor& c) {
+    AirDesc d;
+    d.drag = read_choice(c.child("drag")) == "sphere";
+    d.density_kg_per_m3 = read_quantity(c.child("density"));
+    d.viscosity_pa_s = read_quantity(c.child("viscosity"));
+    if (c.child("drag_coefficient").present()) d.drag_coefficient = read_quantity(c.child("drag_coefficient"));
     d.where = location_of(c);
     return d;
 }

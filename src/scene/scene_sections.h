@@ -22,6 +22,8 @@ std::vector<ComponentDesc> read_components(const Cursor& components, const std::
                                            const std::vector<MaterialDesc>& materials);
 // A component's `regions` list (names unique on the component, axes and boxes checked).
 std::vector<RegionDesc> read_regions(const Cursor& regions);
+// The `air` block (defaults: still air at 20 C, no drag).
+AirDesc read_air(const Cursor& air);
 // Needs the components (the logged names must be components; the default logs every part).
 OutputDesc read_output(const Cursor& output, const std::vector<ComponentDesc>& components);
 

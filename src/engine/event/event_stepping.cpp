@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "collision/surface_clearance.h"
 #include "engine/impact_recording.h"
@@ -47,6 +48,9 @@ double resting_speed_for(const Model& m) { return std::max(kMinImpactSpeed, 2.0 
 EventStepping::EventStepping(std::shared_ptr<const Model> model)
     : model_(model), pairs_(model->shot_count, model->shot_radius_m, resting_speed_for(*model)), walls_(std::move(model)) {
     const Model& m = *model_;
+    // Every kernel here solves exact parabolas; a scene with another flight runs time stepping.
+    if (!m.flight->is_parabola())
+        throw std::logic_error("the event scheme needs parabolic flights; this model's are '" + std::string(m.flight->name()) + "'");
     R_ = m.shot_radius_m;
     g_ = m.gravity_m_per_s2;
     substep_ = kSubstep;
