@@ -31,7 +31,7 @@ Checked check(const TestScene& scene, const std::string& yaml_path = "") {
     const auto model = yaml_path.empty() ? scene.compile() : compile_model(parse_scene_file(yaml_path));
     Random rng(model->seed);
     ShotCavity cavity(*model, rng);
-    Checked c{check_assembly(*model, cavity), ""};
+    Checked c{check_assembly(*model, &cavity), ""};
     for (const AssemblyIssue& i : c.report.issues) c.text += (i.error ? "error: " : "warning: ") + i.field + ": " + i.message + "\n";
     return c;
 }

@@ -53,7 +53,12 @@ const BadScene catalogue[] = {
     {"region_count_wraps.yaml", 19, "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '4294967296'"},
     {"travel_fraction_tiny.yaml", 3, "accuracy.travel_fraction", "in [0.001, 1]"},
     {"drag_with_event.yaml", 3, "accuracy.scheme", "the event scheme needs exact parabolic flights, and air.drag is on; expected `step`"},
-    {"air_viscosity_wrong_unit.yaml", 6, "air.viscosity", "unknown unit 'm2/s' in '1.5e-5 m2/s' for a dynamic viscosity; accepted units: Pa s"},
+    {"air_viscosity_wrong_unit.yaml", 6, "air.viscosity",
+     "unknown unit 'm2/s' in '1.5e-5 m2/s' for a dynamic viscosity; accepted units: Pa s"},
+    {"count_zero_without_sources.yaml", 3, "shot.count", "expected at least 1 shot, or sources that emit them"},
+    {"sink_box_inverted.yaml", 14, "sinks[0].max", "expected max > min in x, y and z"},
+    {"shot_without_sonotrode.yaml", 4, "components", "no component has role sonotrode, and shot.count is 10"},
+    {"source_sink_same_name.yaml", 11, "sinks[0].name", "duplicate name 'nozzle'; source and sink names must be unique"},
     {"render_frames_unbounded.yaml", 18, "render.slow_motion", "the render block plans 300000000 frames"},
 };
 

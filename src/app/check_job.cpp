@@ -68,7 +68,15 @@ void print_report(const Model& model, const AssemblyReport& assembly, std::size_
     }
     print_assembly(model, assembly, out);
     const double dt_rest = TimeStepping::time_step(model, model.peak_surface_speed_m_per_s);
-    out << "# shot: " << model.shot_count << " placed in " << shots.layers << " layer(s) on the sonotrode\n";
+    if (model.sonotrode >= 0) out << "# shot: " << model.shot_count << " placed in " << shots.layers << " layer(s) on the sonotrode\n";
+    for (const auto& source : model.sources) {
+        const auto& d = model.description.sources;
+        const auto it = std::find_if(d.begin(), d.end(), [&](const SourceDesc& s) { return s.name == source->name(); });
+        out << "# source " << source->name() << ": " << it->rate_per_s << " shot/s at " << it->speed_m_per_s << " m/s from " << it->start_s
+            << " s to " << it->stop_s << " s (" << static_cast<long long>((it->stop_s - it->start_s) * it->rate_per_s)
+            << " shot at most)\n";
+    }
+    for (const auto& sink : model.sinks) out << "# sink " << sink->name() << "\n";
     out << "# fastest surface: " << model.peak_surface_speed_m_per_s << " m/s; eq. 7 step with still shot: " << dt_rest * 1e6
         << " us (shorter while shot fly faster)\n";
     out << "# resolved scene (SI units):\n";
@@ -95,7 +103,7 @@ int check_job(const std::string& scene_path, const std::vector<std::string>& ove
         InitialShots shots;
         try {
             setup.emplace(check_setup(*model, strict, err));
-            shots = place_shots(*model, *setup->cavity, setup->rng);
+            if (setup->cavity) shots = place_shots(*model, *setup->cavity, setup->rng);
         } catch (const InputError&) {
             draw({}, " (without shot: the setup has an error)");
             throw;

@@ -18,8 +18,8 @@ namespace {
 
 // The last character is the format version: 2 added the slow-contact counters and the per-shot
 // in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes); 4 the contact
-// laws' per-triangle state.
-constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '4'};
+// laws' per-triangle state; 5 the counts of the shot sources and sinks.
+constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '5'};
 
 // Any single flipped bit (and almost any damage) changes it.
 std::uint64_t checksum(std::string_view bytes) { return fnv1a64(bytes); }
@@ -64,6 +64,8 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
     for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz}) w.put_vector(*v);
     w.put_vector(s.shots.active);
     w.put_vector(s.shots.in_flight);
+    w.put_vector(s.emitted_per_source);
+    w.put_vector(s.collected_per_sink);
     w.put(c.csv_bytes);
     w.put(c.csv_rows);
     w.put<std::uint64_t>(c.normal_speeds.size());
@@ -124,6 +126,8 @@ Checkpoint load_checkpoint(const std::string& path) {
     for (auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz}) *v = r.get_vector<double>();
     s.shots.active = r.get_vector<unsigned char>();
     s.shots.in_flight = r.get_vector<unsigned char>();
+    s.emitted_per_source = r.get_vector<std::uint64_t>();
+    s.collected_per_sink = r.get_vector<std::uint64_t>();
     c.csv_bytes = r.get<std::uint64_t>();
     c.csv_rows = r.get<std::uint64_t>();
     const auto histograms = r.get<std::uint64_t>();
@@ -142,10 +146,21 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
     const double t = s.time.seconds();
     if (!std::isfinite(s.time.hi) || !std::isfinite(s.time.lo) || t < 0.0 || t > model.duration_s)
         throw damaged(path, "expected a time in [0, " + std::to_string(model.duration_s) + "] s, got " + std::to_string(t));
-    const auto n = static_cast<std::size_t>(model.shot_count);
-    for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz})
-        if (v->size() != n) throw damaged(path, "expected " + std::to_string(n) + " shot, got " + std::to_string(v->size()));
+    // The placed shot, and as many slots again as the sources have emitted at most.
+    const std::size_t n = s.shots.x.size();
+    std::uint64_t emitted = 0;
+    for (std::uint64_t e : s.emitted_per_source) emitted += e;
+    if (n < static_cast<std::size_t>(model.shot_count) || n > static_cast<std::size_t>(model.shot_count) + emitted)
+        throw damaged(path, "expected " + std::to_string(model.shot_count) + " shot" +
+                                (emitted > 0 ? " (and up to " + std::to_string(emitted) + " emitted)" : std::string()) + ", got " +
+                                std::to_string(n));
+    for (const auto* v : {&s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz})
+        if (v->size() != n) throw damaged(path, "shot arrays of different lengths");
     if (s.shots.active.size() != n || s.shots.in_flight.size() != n) throw damaged(path, "shot flags of the wrong length");
+    if (s.emitted_per_source.size() != model.sources.size() || s.collected_per_sink.size() != model.sinks.size())
+        throw damaged(path, "counts for " + std::to_string(s.emitted_per_source.size()) + " sources and " +
+                                std::to_string(s.collected_per_sink.size()) + " sinks, the scene has " +
+                                std::to_string(model.sources.size()) + " and " + std::to_string(model.sinks.size()));
     if (s.impacts_per_component.size() != model.components.size() || s.slow_contacts_per_component.size() != model.components.size())
         throw damaged(path, "impact counters for " + std::to_string(s.impacts_per_component.size()) + " components, the scene has " +
                                 std::to_string(model.components.size()));

@@ -130,7 +130,7 @@ private:
         } else {
             fs::remove(checkpoint_path());
             fs::remove(fs::path(dir_) / kImpactCsvFileName);
-            sim_ = std::make_unique<Simulation>(model_, place_shots(*model_, *cavity, setup.rng));
+            sim_ = std::make_unique<Simulation>(model_, cavity ? place_shots(*model_, *cavity, setup.rng) : InitialShots{});
             writer_ = std::make_unique<ImpactCsvWriter>(dir_, component_names(*model_));
             speeds_.assign(logged, SpeedHistogram());
         }

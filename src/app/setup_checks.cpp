@@ -25,8 +25,8 @@ std::size_t report_setup_issues(const std::vector<AssemblyIssue>& issues, bool s
 SetupCheck check_setup(const Model& model, bool strict, std::ostream& err) {
     SetupCheck s{Random(model.seed), nullptr, {}, 0};
     s.warnings = report_setup_issues(plausibility_issues(model), strict, err);
-    s.cavity = std::make_unique<ShotCavity>(model, s.rng);
-    s.assembly = check_assembly(model, *s.cavity);
+    if (model.sonotrode >= 0) s.cavity = std::make_unique<ShotCavity>(model, s.rng);
+    s.assembly = check_assembly(model, s.cavity.get());
     s.warnings += report_setup_issues(s.assembly.issues, strict, err);
     return s;
 }

@@ -17,8 +17,8 @@
 namespace peensim {
 
 struct SetupCheck {
-    Random rng;  // the placement's generator, after the cavity's probes
-    std::unique_ptr<ShotCavity> cavity;
+    Random rng;                          // the placement's generator, after the cavity's probes
+    std::unique_ptr<ShotCavity> cavity;  // null without a sonotrode (a scene fed by sources)
     AssemblyReport assembly;
     std::size_t warnings = 0;
 };

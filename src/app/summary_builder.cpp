@@ -27,6 +27,10 @@ RunSummary build_summary(const Simulation& sim, const std::string& scene_file, c
     s.sim_seconds_per_wall_second = wall_time_s > 0.0 ? s.simulated_time_s / wall_time_s : 0.0;
     s.shot_count = static_cast<std::uint64_t>(model.shot_count);
     s.shot_lost = state.health.shot_lost + state.health.non_finite;
+    for (std::size_t k = 0; k < model.sources.size() && k < state.emitted_per_source.size(); ++k)
+        s.emitted_per_source.push_back({model.sources[k]->name(), state.emitted_per_source[k]});
+    for (std::size_t k = 0; k < model.sinks.size() && k < state.collected_per_sink.size(); ++k)
+        s.collected_per_sink.push_back({model.sinks[k]->name(), state.collected_per_sink[k]});
     s.impacts_per_component.push_back({"shot-shot", state.shot_shot_impacts});
     s.slow_contacts_per_component.push_back({"shot-shot", state.shot_shot_slow_contacts});
     s.impact_speed_m_per_s = model.impact_speed_m_per_s;

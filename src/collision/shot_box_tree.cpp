@@ -31,6 +31,10 @@ ShotBoxTree::ShotBoxTree(int shot_count) : impl_(std::make_unique<Impl>()) {
 
 ShotBoxTree::~ShotBoxTree() = default;
 
+void ShotBoxTree::grow(int shot_count) {
+    if (static_cast<std::size_t>(shot_count) > impl_->leaf.size()) impl_->leaf.resize(static_cast<std::size_t>(shot_count), nullptr);
+}
+
 void ShotBoxTree::set(int shot, const Vec3& lo, const Vec3& hi) {
     btDbvtNode*& leaf = impl_->leaf[static_cast<std::size_t>(shot)];
     btDbvtVolume v = volume(lo, hi);

@@ -22,6 +22,8 @@ public:
 
     // Sets shot i's box (m, world); inserts it if it has none.
     void set(int shot, const Vec3& lo, const Vec3& hi);
+    // Room for shot_count shot (never fewer), the new ones without a box.
+    void grow(int shot_count);
     // Takes shot i out (a lost shot).
     void remove(int shot);
     // The shots whose boxes overlap [lo, hi] (m), into `out` (cleared first), in no set order.

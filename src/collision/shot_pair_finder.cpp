@@ -26,12 +26,19 @@ ShotPairFinder::ShotPairFinder(int shot_count, double radius_m, double fat_margi
     gDbvtMargin = 0.0;
     impl_->radius = radius_m;
     impl_->margin = fat_margin_m;
-    impl_->anchor.assign(static_cast<std::size_t>(shot_count), btVector3(1e30, 1e30, 1e30));
+    grow(shot_count);
+}
+
+void ShotPairFinder::grow(int shot_count) {
+    const double r = impl_->radius;
+    const int before = static_cast<int>(impl_->proxies.size());
+    if (shot_count <= before) return;
+    impl_->anchor.resize(static_cast<std::size_t>(shot_count), btVector3(1e30, 1e30, 1e30));
     impl_->proxies.resize(static_cast<std::size_t>(shot_count));
-    for (int i = 0; i < shot_count; ++i) {
-        const btVector3 far(1e3 + 10.0 * i * radius_m, 1e3, 1e3);  // parked until the first update
+    for (int i = before; i < shot_count; ++i) {
+        const btVector3 far(1e3 + 10.0 * i * r, 1e3, 1e3);  // parked until the first update
         impl_->proxies[static_cast<std::size_t>(i)] =
-            impl_->broadphase.createProxy(far - btVector3(radius_m, radius_m, radius_m), far + btVector3(radius_m, radius_m, radius_m),
+            impl_->broadphase.createProxy(far - btVector3(r, r, r), far + btVector3(r, r, r),
                                           /*shapeType=*/SPHERE_SHAPE_PROXYTYPE, reinterpret_cast<void*>(static_cast<std::intptr_t>(i)),
                                           btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter, &impl_->dispatcher);
     }

@@ -22,6 +22,9 @@ public:
     ShotPairFinder(const ShotPairFinder&) = delete;
     ShotPairFinder& operator=(const ShotPairFinder&) = delete;
 
+    // Room for shot_count shot (more than before: a source emitted; never fewer), the new ones inactive.
+    void grow(int shot_count);
+
     // Moves every active shot's box to its position (x, y, z arrays, m) and refreshes the pairs.
     // Inactive shots (lost) have their proxies parked far away.
     void update(const double* x, const double* y, const double* z, const unsigned char* active);

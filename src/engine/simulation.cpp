@@ -27,18 +27,41 @@ SimulationState initial_state(const Model& model, const InitialShots& shots) {
     state.impacts_per_component.assign(model.components.size(), 0);
     state.slow_contacts_per_component.assign(model.components.size(), 0);
     state.law_state = fresh_law_state(model);
+    state.emitted_per_source.assign(model.sources.size(), 0);
+    state.collected_per_sink.assign(model.sinks.size(), 0);
     return state;
 }
 
 }  // namespace
 
 Simulation::Simulation(std::shared_ptr<const Model> model)
-    : model_(std::move(model)), state_(initial_state(*model_, place_shots(*model_))), scheme_(make_scheme(model_)) {}
+    : model_(std::move(model)), state_(initial_state(*model_, place_shots(*model_))), scheme_(make_scheme(model_)), emitter_(*model_) {}
 
 Simulation::Simulation(std::shared_ptr<const Model> model, const InitialShots& shots)
-    : model_(std::move(model)), state_(initial_state(*model_, shots)), scheme_(make_scheme(model_)) {}
+    : model_(std::move(model)), state_(initial_state(*model_, shots)), scheme_(make_scheme(model_)), emitter_(*model_) {}
 
 Simulation::Simulation(std::shared_ptr<const Model> model, SimulationState state)
-    : model_(std::move(model)), state_(std::move(state)), scheme_(make_scheme(model_)) {}
+    : model_(std::move(model)), state_(std::move(state)), scheme_(make_scheme(model_)), emitter_(*model_) {
+    // A state made by hand (a test) may leave the sources' and sinks' counts out.
+    state_.emitted_per_source.resize(model_->sources.size(), 0);
+    state_.collected_per_sink.resize(model_->sinks.size(), 0);
+}
+
+void Simulation::step(std::vector<ImpactRecord>& impacts, double pause_at_s) {
+    emit_due();
+    const double now = state_.time.seconds();
+    // The next emission is a pause too: the event-driven scheme stops exactly there, so the shot
+    // starts exactly at its emission time (time stepping steps past it: see ShotEmitter).
+    pause_at_s = std::min(pause_at_s, emitter_.next_time(state_));
+    // A pause at or before the present is no pause (asked again and again, it would stall the run).
+    if (!(pause_at_s > now)) pause_at_s = std::numeric_limits<double>::infinity();
+    scheme_->advance(state_, model_->duration_s, pause_at_s, impacts);
+    emit_due();
+}
+
+void Simulation::emit_due() {
+    emitter_.emit_due(state_, emitted_);
+    if (!emitted_.empty()) scheme_->shots_added(state_, emitted_);
+}
 
 }  // namespace peensim

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "engine/shot_emitter.h"
 #include "engine/simulation_state.h"
 #include "engine/stepper.h"
 #include "model/model.h"
@@ -26,11 +27,8 @@ public:
     // One unit of work of the scheme (a time step, or a stretch of events); impacts on logged
     // components are appended to `impacts`. An event-driven scheme stops exactly at `pause_at_s`
     // (s) if it comes first (see Stepper::advance); a pause not after the present is ignored.
-    void step(std::vector<ImpactRecord>& impacts, double pause_at_s = std::numeric_limits<double>::infinity()) {
-        // A pause at or before the present is no pause (asked again and again, it would stall the run).
-        if (!(pause_at_s > state_.time.seconds())) pause_at_s = std::numeric_limits<double>::infinity();
-        scheme_->advance(state_, model_->duration_s, pause_at_s, impacts);
-    }
+    // The sources' shot due by then join the state (ShotEmitter), the scheme told of them.
+    void step(std::vector<ImpactRecord>& impacts, double pause_at_s = std::numeric_limits<double>::infinity());
     bool finished() const { return !(state_.time.seconds() < model_->duration_s); }
     // A checkpoint of the state now resumes into exactly this run (Stepper::at_restart_point).
     bool at_restart_point() const { return scheme_->at_restart_point(); }
@@ -51,6 +49,10 @@ private:
     std::shared_ptr<const Model> model_;
     SimulationState state_;
     std::unique_ptr<Stepper> scheme_;
+    ShotEmitter emitter_;
+    std::vector<int> emitted_;  // scratch: the slots of the shot just emitted
+
+    void emit_due();  // the emissions at or before the state's time
 };
 
 }  // namespace peensim

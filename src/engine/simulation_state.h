@@ -27,6 +27,12 @@ struct ShotArrays {
         active.assign(n, 1);
         in_flight.assign(n, 0);
     }
+    // Room for n shot (n >= size()): the new slots inactive, at the origin, at rest.
+    void grow(std::size_t n) {
+        for (auto* v : {&x, &y, &z, &vx, &vy, &vz}) v->resize(n, 0.0);
+        active.resize(n, 0);
+        in_flight.resize(n, 0);
+    }
     Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
     Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
     void set_position(std::size_t i, const Vec3& p) { x[i] = p.x(), y[i] = p.y(), z[i] = p.z(); }
@@ -92,6 +98,11 @@ struct SimulationState {
     std::vector<std::vector<double>> law_state;
     HealthCounters health;
     std::vector<LostShot> lost;  // one entry per lost shot (bounded by the shot count)
+    // Shot sources and sinks (model/shot_flow.h), in the model's order: how many each source has
+    // emitted (the number of its next emission) and each sink collected. An emitted shot takes
+    // the lowest inactive slot of `shots` (one collected or lost), else a new one at the end.
+    std::vector<std::uint64_t> emitted_per_source;
+    std::vector<std::uint64_t> collected_per_sink;
 };
 
 }  // namespace peensim

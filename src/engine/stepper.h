@@ -30,6 +30,10 @@ public:
     // The caller changed the state (Simulation::edit_state): whatever the scheme keeps besides it
     // (flights, caches) is dropped, and it goes on from the state as it now is.
     virtual void state_changed() = 0;
+    // Shot were added to the state at these slots, at the state's time (a source emitted them; a
+    // slot may be new, or reused from a collected or lost shot): the scheme takes them into its
+    // flights from now on, without disturbing the others.
+    virtual void shots_added(SimulationState& state, const std::vector<int>& shots) = 0;
 };
 
 }  // namespace peensim

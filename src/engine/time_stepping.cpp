@@ -84,6 +84,39 @@ void TimeStepping::state_changed() {
     std::fill(memo_.begin(), memo_.end(), DistanceMemo{});
 }
 
+void TimeStepping::fit_shots(std::size_t n) {
+    if (n <= last_touch_.size()) return;
+    if (n > n_shots_) {
+        // The per-component tables are laid out with a stride: doubled, they are copied rarely.
+        const std::size_t stride = std::max(n, 2 * n_shots_), components = model_->components.size();
+        std::vector<std::uint64_t> skip(components * stride, 0);
+        std::vector<DistanceMemo> memo(components * stride);
+        for (std::size_t c = 0; c < components; ++c)
+            for (std::size_t i = 0; i < n_shots_; ++i) {
+                skip[c * stride + i] = skip_until_[c * n_shots_ + i];
+                memo[c * stride + i] = memo_[c * n_shots_ + i];
+            }
+        skip_until_.swap(skip);
+        memo_.swap(memo);
+        n_shots_ = stride;
+    }
+    last_touch_.resize(n, 0.0);
+    last_touch_component_.resize(n, -1);
+    kicked_by_shot_.resize(n, 0);
+    touched_.resize(n, 0);
+    pairs_.grow(static_cast<int>(n));
+}
+
+void TimeStepping::shots_added(SimulationState& state, const std::vector<int>& shots) {
+    fit_shots(state.shots.size());
+    for (const int i : shots) {
+        // A reused slot's memos describe the shot that was there.
+        const auto k = static_cast<std::size_t>(i);
+        for (std::size_t c = 0; c < model_->components.size(); ++c) memo_[c * n_shots_ + k] = DistanceMemo{};
+        forget_clearances(k);
+    }
+}
+
 void TimeStepping::advance(SimulationState& state, double t_end_s, double /*pause_at_s*/, std::vector<ImpactRecord>& impacts) {
     const double now = state.time.seconds();
     const double remaining = t_end_s - now;
@@ -92,6 +125,7 @@ void TimeStepping::advance(SimulationState& state, double t_end_s, double /*paus
     double dt = time_step(*model_, v_max);
     if (!(dt > 0.0) || !std::isfinite(dt) || dt >= remaining * (1.0 - 1e-9)) dt = remaining;
     step_ = state.steps;
+    fit_shots(state.shots.size());  // an edit may have added shot
     // A state made before the flags existed (or by hand in a test) starts with every shot at rest.
     if (state.shots.in_flight.size() != state.shots.size()) state.shots.in_flight.assign(state.shots.size(), 0);
     if (state.slow_contacts_per_component.size() != model_->components.size())
@@ -582,6 +616,19 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     return true;
 }
 
+bool TimeStepping::collected(SimulationState& state, std::size_t i) const {
+    // Looked at the step's end: a shot whose centre entered a sink within the step is collected
+    // there (unlike the event-driven scheme, not at the exact moment it entered).
+    const Vec3 p = state.shots.position(i);
+    for (std::size_t k = 0; k < model_->sinks.size(); ++k)
+        if (model_->sinks[k]->contains(p)) {
+            state.shots.active[i] = 0;
+            ++state.collected_per_sink[k];
+            return true;
+        }
+    return false;
+}
+
 bool TimeStepping::ends_a_flight(SimulationState& state, std::size_t i) {
     // Counting rule: a slow contact is a free flight ending in sustained contact. A shot lying
     // still, rolling or sliding is in sustained contact at every step; it is counted only when it
@@ -632,6 +679,7 @@ void TimeStepping::check_health(SimulationState& state) {
             ++state.health.non_finite;
             continue;
         }
+        if (collected(state, i)) continue;
         if (x < lo.x() || y < lo.y() || z < lo.z() || x > hi.x() || y > hi.y() || z > hi.z()) {
             s.active[i] = 0;
             ++state.health.shot_lost;

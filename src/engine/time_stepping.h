@@ -37,6 +37,7 @@ public:
     // A shot moved by hand may be anywhere: the skip counters (which assume bounded travel per
     // step) and distance memos are dropped.
     void state_changed() override;
+    void shots_added(SimulationState& state, const std::vector<int>& shots) override;
 
     // Eq. 7 generalised to a travel fraction: the step in which the fastest thing (speed v, m/s)
     // travels at most fraction * R under gravity g (m/s2).
@@ -87,6 +88,10 @@ private:
     // After a step: a shot that touched nothing in it is in free flight.
     void note_free_flights(SimulationState& state);
     void check_health(SimulationState& state);
+    // Shot i is in a sink at the step end: taken out and counted there (true).
+    bool collected(SimulationState& state, std::size_t i) const;
+    // Per-shot tables for n shot (a source emitted, or an edit added shot).
+    void fit_shots(std::size_t n);
     // A kicked shot may move further than the per-step bound: check it against every component again.
     void forget_clearances(std::size_t shot);
 
@@ -104,7 +109,8 @@ private:
     std::vector<std::pair<int, int>> touching_;  // overlapping shot pairs of this step, reused
     std::uint64_t step_ = 0;                     // index of the current step
     // Per component and shot: the first step at which the shot could touch the component again
-    // (the distance gate's clearance divided by the most a shot can close in per step).
+    // (the distance gate's clearance divided by the most a shot can close in per step), at
+    // [component * n_shots_ + shot]: n_shots_ is the tables' stride, at least the shot count.
     std::size_t n_shots_ = 0;
     std::vector<std::uint64_t> skip_until_;
     double max_relative_travel_ = 0.0;  // m per step

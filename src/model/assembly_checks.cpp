@@ -269,11 +269,13 @@ std::size_t AssemblyReport::errors() const {
 
 std::size_t AssemblyReport::warnings() const { return issues.size() - errors(); }
 
-AssemblyReport check_assembly(const Model& m, ShotCavity& cavity) {
+AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
     AssemblyReport report;
     const std::size_t n = m.components.size();
-    const Component& sono = m.sonotrode_component();
-    const Vec3 travel = sono.kinematics.axis.normalized() * sono.kinematics.amplitude_m;  // m, the sonotrode's +A0 offset
+    // A scene fed by sources alone has no sonotrode (and no cavity): the checks against the
+    // sonotrode and of the shot's reach are not made.
+    const Component* sono = m.sonotrode >= 0 ? &m.sonotrode_component() : nullptr;
+    const Vec3 travel = sono ? Vec3(sono->kinematics.axis.normalized() * sono->kinematics.amplitude_m) : Vec3(Vec3::Zero());  // m, +A0
     const double diagonal = (m.world_hi - m.world_lo).norm();
     const double R = m.shot_radius_m;
 
@@ -289,12 +291,12 @@ AssemblyReport check_assembly(const Model& m, ShotCavity& cavity) {
                 std::to_string(c.mesh->dropped_degenerate_facets) + " facets of zero area dropped (" +
                     std::to_string(c.mesh->triangle_count()) + " kept): check the mesh export");
         if (is_solid_role(c.role)) {
-            facts.clearance_to_sonotrode_m = vertex_clearance(c, sono, diagonal) - sono.kinematics.amplitude_m;
+            if (sono) facts.clearance_to_sonotrode_m = vertex_clearance(c, *sono, diagonal) - sono->kinematics.amplitude_m;
             double to_chamber = diagonal;
             for (const Component& k : m.components)
                 if (k.role == ComponentRole::chamber) to_chamber = std::min(to_chamber, vertex_clearance(c, k, to_chamber));
             facts.clearance_to_chamber_m = to_chamber;
-            facts.reachable_fraction = reachable_fraction(m, i, cavity);
+            if (cavity) facts.reachable_fraction = reachable_fraction(m, i, *cavity);
         }
         report.components.push_back(facts);
     }
@@ -306,7 +308,7 @@ AssemblyReport check_assembly(const Model& m, ShotCavity& cavity) {
         std::ostringstream where;
         where.precision(4);
         where << "it spans " << mm_point(c.world_lo) << " to " << mm_point(c.world_hi);
-        if (facts.reachable_fraction < kMinReachable) {
+        if (cavity && facts.reachable_fraction < kMinReachable) {
             std::ostringstream s;
             s.precision(3);
             s << (facts.reachable_fraction == 0.0
@@ -319,7 +321,7 @@ AssemblyReport check_assembly(const Model& m, ShotCavity& cavity) {
         }
         Vec3 at;
         for (const Vec3& offset : {Vec3(Vec3::Zero()), Vec3(travel), Vec3(-travel)})
-            if (meshes_cross(c, Vec3::Zero(), sono, offset, at)) {
+            if (sono && meshes_cross(c, Vec3::Zero(), *sono, offset, at)) {
                 add(report, m, i, true, "",
                     "intersects the sonotrode" + std::string(offset.isZero() ? "" : " within its vibration travel (+-A0)") + " near " +
                         mm_point(at) + "; " + where.str() + ": move it clear of the sonotrode's face");
@@ -334,7 +336,7 @@ AssemblyReport check_assembly(const Model& m, ShotCavity& cavity) {
                     "passes through the wall of " + label(m, j) + " near " + mm_point(at) +
                         " (a shaft through a wall is a real design; if this part was meant to be inside, check its placement)");
         std::size_t open_edges = 0;
-        if (exposed_opening(m, i, cavity, at, open_edges))
+        if (cavity && exposed_opening(m, i, *cavity, at, open_edges))
             add(report, m, i, true, ".mesh",
                 "the mesh is open (" + std::to_string(open_edges) + " boundary edges) and shot can reach an opening near " + mm_point(at) +
                     ": close the mesh (a missing cap?) or seal the opening against a wall");
@@ -345,7 +347,7 @@ AssemblyReport check_assembly(const Model& m, ShotCavity& cavity) {
                 if (j == i || f.kinematics.kind == Kinematics::Kind::rotating) continue;
                 bool hit = false;
                 for (const Vec3& offset : {Vec3(Vec3::Zero()), Vec3(travel), Vec3(-travel)}) {
-                    if (&f != &sono && !offset.isZero()) continue;
+                    if (&f != sono && !offset.isZero()) continue;
                     if (hits_swept(f, offset, profile, c.world_lo, c.world_hi, at)) {
                         hit = true;
                         break;

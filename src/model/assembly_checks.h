@@ -56,6 +56,8 @@ struct AssemblyReport {
 
 inline constexpr double kMinReachable = 0.2;  // -, of a part's surface (a strip on its holder: ~0.5)
 
-AssemblyReport check_assembly(const Model& model, ShotCavity& cavity);
+// cavity: the shot's cavity about the sonotrode; null for a scene without one (fed by sources):
+// then only the checks that need neither are made.
+AssemblyReport check_assembly(const Model& model, ShotCavity* cavity);
 
 }  // namespace peensim

@@ -123,6 +123,31 @@ std::shared_ptr<const contact::SurfaceLaw> surface_law_of(const ContactPairDesc&
     }
 }
 
+void add_flow(Model& model, const SceneDescription& scene) {
+    for (std::size_t k = 0; k < scene.sources.size(); ++k) {
+        const SourceDesc& s = scene.sources[k];
+        NozzleSpec spec;
+        spec.name = s.name;
+        spec.position_m = s.position_m;
+        spec.direction = s.direction;
+        spec.exit_radius_m = s.exit_radius_m;
+        spec.speed_m_per_s = s.speed_m_per_s;
+        spec.spread_rad = s.spread_rad;
+        spec.rate_per_s = s.rate_per_s;
+        spec.start_s = s.start_s;
+        spec.stop_s = std::min(s.stop_s, scene.process.duration_s);
+        spec.seed = scene.process.seed;
+        spec.index = static_cast<int>(k);
+        model.sources.push_back(std::make_shared<const NozzleSource>(spec));
+    }
+    for (const SinkDesc& s : scene.sinks) {
+        if (s.region == SinkRegion::box)
+            model.sinks.push_back(std::make_shared<const BoxSink>(s.name, s.min_m, s.max_m));
+        else
+            model.sinks.push_back(std::make_shared<const OutsideSink>(s.name, model.world_lo, model.world_hi));
+    }
+}
+
 std::shared_ptr<const FlightModel> flight_model_of(const SceneDescription& scene, double shot_radius_m) {
     const Vec3 g = scene.process.gravity_m_per_s2;
     if (!scene.air.drag) return std::make_shared<const ParabolaFlight>(g);
@@ -190,7 +215,6 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         if (desc.role == ComponentRole::sonotrode) model->sonotrode = static_cast<int>(i);
         model->components.push_back(std::move(c));
     }
-    if (model->sonotrode < 0) throw InputError({scene.source_file, 0, 0}, "components", "expected one component with role sonotrode");
 
     model->world_lo = Vec3::Constant(std::numeric_limits<double>::infinity());
     model->world_hi = -model->world_lo;
@@ -200,9 +224,14 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         model->peak_surface_speed_m_per_s =
             std::max(model->peak_surface_speed_m_per_s, c.kinematics.peak_surface_speed(c.max_axis_distance_m));
     }
+    for (const SourceDesc& s : scene.sources) {  // a nozzle's exit lies inside the bounds
+        model->world_lo = model->world_lo.cwiseMin(s.position_m - Vec3::Constant(s.exit_radius_m));
+        model->world_hi = model->world_hi.cwiseMax(s.position_m + Vec3::Constant(s.exit_radius_m));
+    }
     // A shot beyond the assembly's bounds by more than a diameter has certainly left it.
     model->world_lo -= Vec3::Constant(4.0 * R);
     model->world_hi += Vec3::Constant(4.0 * R);
+    add_flow(*model, scene);
     return model;
 }
 

@@ -15,6 +15,7 @@
 #include "geometry/triangle_mesh.h"
 #include "kernels/flight_model.h"
 #include "model/kinematics.h"
+#include "model/shot_flow.h"
 #include "scene/scene_description.h"
 
 namespace peensim {
@@ -44,9 +45,9 @@ struct Model {
     std::uint64_t scene_hash = 0;
 
     std::vector<Component> components;
-    int sonotrode = -1;  // index into components
+    int sonotrode = -1;  // index into components; -1: none (a scene fed by sources only)
 
-    int shot_count = 0;
+    int shot_count = 0;                                         // placed on the sonotrode at the start; sources may add more during the run
     double shot_radius_m = 0.0;                                 // m, R = D / 2
     double shot_mass_kg = 0.0;                                  // kg
     std::shared_ptr<const contact::ShotShotLaw> shot_shot_law;  // the `shot-shot` pair's law, bound
@@ -66,6 +67,10 @@ struct Model {
     double peak_surface_speed_m_per_s = 0.0;  // m/s, fastest moving surface (sonotrode or part rim)
 
     Vec3 world_lo, world_hi;  // m, a shot outside this box has left the chamber
+
+    // Where shot enter and leave besides the initial load (model/shot_flow.h), in the scene's order.
+    std::vector<std::shared_ptr<const ShotSource>> sources;
+    std::vector<std::shared_ptr<const ShotSink>> sinks;
 
     const Component& sonotrode_component() const { return components[static_cast<std::size_t>(sonotrode)]; }
     // Index of a component by name, or -1.

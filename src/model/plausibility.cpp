@@ -16,16 +16,10 @@ std::string num(double v) {
     return s.str();
 }
 
-}  // namespace
-
-std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
-    std::vector<AssemblyIssue> out;
+// The sonotrode's vibration against ultrasonic peening's window.
+template <class Warn>
+void sonotrode_issues(const Model& m, Warn&& warn) {
     const SceneDescription& scene = m.description;
-    auto warn = [&](const SourceLocation& where, std::string field, std::string message) {
-        out.push_back({false, where, std::move(field), std::move(message)});
-    };
-    for (const SceneDescription::Warning& w : scene.warnings) warn(w.where, w.field, w.message);
-
     const auto sono = static_cast<std::size_t>(m.sonotrode);
     const Kinematics& vib = m.sonotrode_component().kinematics;
     const SourceLocation& sono_where = scene.components[sono].where;
@@ -46,14 +40,26 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
         warn(sono_where, component_field(sono) + ".vibration.frequency",
              num(vib.frequency_hz) + " Hz is outside 1-100 kHz (ultrasonic sonotrodes run at ~20 kHz)" + hint);
     }
+}
 
+}  // namespace
+
+std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
+    std::vector<AssemblyIssue> out;
+    const SceneDescription& scene = m.description;
+    auto warn = [&](const SourceLocation& where, std::string field, std::string message) {
+        out.push_back({false, where, std::move(field), std::move(message)});
+    };
+    for (const SceneDescription::Warning& w : scene.warnings) warn(w.where, w.field, w.message);
+
+    if (m.sonotrode >= 0) sonotrode_issues(m, warn);
     // The chamber: the union of the chamber components' bounds.
     Vec3 lo = Vec3::Constant(1e300), hi = -lo;
     for (const Component& c : m.components)
         if (c.role == ComponentRole::chamber) lo = lo.cwiseMin(c.world_lo), hi = hi.cwiseMax(c.world_hi);
     const Vec3 chamber = hi - lo;
     const double D = 2.0 * m.shot_radius_m;
-    if (D > 0.1 * chamber.minCoeff())
+    if (lo.x() <= hi.x() && D > 0.1 * chamber.minCoeff())  // (a scene fed by sources may have no chamber)
         warn(scene.shot.where, "shot.diameter",
              "shot of " + num(D * 1e3) + " mm in a chamber " + num(chamber.minCoeff() * 1e3) +
                  " mm across at its narrowest: more than a tenth of it; check shot.diameter and the chamber's mesh_unit");

@@ -48,6 +48,7 @@ private:
 }  // namespace
 
 InitialShots place_shots(const Model& model) {
+    if (model.shot_count == 0) return {};  // a scene fed by its sources (it may have no sonotrode)
     Random rng(model.seed);
     ShotCavity cavity(model, rng);
     return place_shots(model, cavity, rng);

@@ -53,6 +53,9 @@ struct RunSummary {
     std::uint64_t shot_count = 0;
     std::uint64_t shot_lost = 0;  // shots that left the chamber or went non-finite
 
+    // Shot sources and sinks (empty without): shot each emitted, and each collected.
+    std::vector<NamedCount> emitted_per_source;
+    std::vector<NamedCount> collected_per_sink;
     std::vector<NamedCount> impacts_per_component;
     // Flights that ended in sustained contact (approach slower than impact_speed_m_per_s): not
     // impacts, counted once per landing; same entries as impacts_per_component.

@@ -33,6 +33,11 @@ std::string summary_to_json(const RunSummary& s) {
     auto slow = nlohmann::ordered_json::array();
     for (const auto& c : s.slow_contacts_per_component) slow.push_back({{"component", c.name}, {"slow_contacts", c.count}});
     j["slow_contacts_per_component"] = std::move(slow);
+    auto emitted = nlohmann::ordered_json::array(), collected = nlohmann::ordered_json::array();
+    for (const auto& c : s.emitted_per_source) emitted.push_back({{"source", c.name}, {"emitted", c.count}});
+    for (const auto& c : s.collected_per_sink) collected.push_back({{"sink", c.name}, {"collected", c.count}});
+    j["emitted_per_source"] = std::move(emitted);
+    j["collected_per_sink"] = std::move(collected);
     j["impact_speed_mps"] = s.impact_speed_m_per_s;
 
     auto speeds = nlohmann::ordered_json::array();

@@ -47,6 +47,21 @@ std::string slow_contacts_text(const std::vector<NamedCount>& counts, double imp
     return (text.empty() ? std::string("none") : text) + printf_string(" (landings slower than %.3g m/s)", impact_speed_m_per_s);
 }
 
+// "0 placed + 1000 emitted (nozzle 1000), 940 collected (away 940), 0 lost".
+std::string flow_text(const RunSummary& s) {
+    const auto listed = [](const std::vector<NamedCount>& counts) {
+        std::uint64_t total = 0;
+        std::string names;
+        for (const auto& c : counts) {
+            total += c.count;
+            names += (names.empty() ? "" : ", ") + c.name + " " + std::to_string(c.count);
+        }
+        return std::to_string(total) + (counts.empty() ? std::string() : " (" + names + ")");
+    };
+    return std::to_string(s.shot_count) + " placed + " + listed(s.emitted_per_source) + " emitted, " + listed(s.collected_per_sink) +
+           " collected, " + std::to_string(s.shot_lost) + " lost";
+}
+
 }  // namespace
 
 std::string summary_to_text(const RunSummary& s) {
@@ -62,8 +77,11 @@ std::string summary_to_text(const RunSummary& s) {
     else
         rows.emplace_back("steps", printf_string("%llu (%.4g shot steps, %.4g per s)", static_cast<unsigned long long>(s.steps),
                                                  static_cast<double>(s.shot_steps), s.shot_steps_per_s));
-    rows.emplace_back("shots", printf_string("%llu (%llu lost)", static_cast<unsigned long long>(s.shot_count),
-                                             static_cast<unsigned long long>(s.shot_lost)));
+    if (s.emitted_per_source.empty() && s.collected_per_sink.empty())
+        rows.emplace_back("shots", printf_string("%llu (%llu lost)", static_cast<unsigned long long>(s.shot_count),
+                                                 static_cast<unsigned long long>(s.shot_lost)));
+    else
+        rows.emplace_back("shots", flow_text(s));
     for (const auto& c : s.impacts_per_component) {
         std::string value = std::to_string(c.count);
         const auto stats =

@@ -90,6 +90,30 @@ void write_air(std::string& y, const AirDesc& air) {
     if (air.drag_coefficient) y += "  drag_coefficient: " + num(*air.drag_coefficient) + "\n";
 }
 
+// Sources and sinks, only when the scene has them (most have neither).
+void write_flow(std::string& y, const SceneDescription& s) {
+    if (!s.sources.empty()) y += "sources:\n";
+    for (const SourceDesc& d : s.sources) {
+        y += "  - name: " + yaml_text(d.name) + "\n";
+        y += "    position: " + vec(d.position_m) + unit_comment(Dimension::length) + "\n";
+        y += "    direction: " + vec(d.direction) + "\n";
+        y += "    speed: " + num(d.speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
+        y += "    rate: " + num(d.rate_per_s) + "  # shot per s\n";
+        y += "    exit_radius: " + num(d.exit_radius_m) + unit_comment(Dimension::length) + "\n";
+        y += "    spread: " + num(d.spread_rad) + unit_comment(Dimension::angle) + "\n";
+        y += "    start: " + num(d.start_s) + unit_comment(Dimension::time) + "\n";
+        y += "    stop: " + num(d.stop_s) + unit_comment(Dimension::time) + "\n";
+    }
+    if (!s.sinks.empty()) y += "sinks:\n";
+    for (const SinkDesc& d : s.sinks) {
+        y += "  - name: " + yaml_text(d.name) + "\n";
+        y += std::string("    region: ") + (d.region == SinkRegion::box ? "box" : "outside") + "\n";
+        if (d.region != SinkRegion::box) continue;
+        y += "    min: " + vec(d.min_m) + unit_comment(Dimension::length) + "\n";
+        y += "    max: " + vec(d.max_m) + unit_comment(Dimension::length) + "\n";
+    }
+}
+
 void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
     y += s.materials.empty() ? "materials: {}\n" : "materials:\n";
     for (const MaterialDesc& m : s.materials) {
@@ -235,6 +259,7 @@ std::string resolved_scene_yaml(const SceneDescription& s) {
     write_materials_and_contacts(y, s);
     y += "components:\n";
     for (const ComponentDesc& k : s.components) write_component(y, k);
+    write_flow(y, s);
     write_output(y, s.output);
     if (s.render) write_render(y, *s.render);
     return y;

@@ -151,7 +151,6 @@ std::vector<ComponentDesc> read_components(const Cursor& c, const std::filesyste
                                            const std::vector<MaterialDesc>& materials) {
     std::vector<ComponentDesc> out;
     int sonotrodes = 0;
-    int chambers = 0;
     for (std::size_t i = 0; i < c.size(); ++i) {
         const Cursor item = c.item(i);
         ComponentDesc k = read_component(item, scene_dir, materials);
@@ -161,11 +160,8 @@ std::vector<ComponentDesc> read_components(const Cursor& c, const std::filesyste
                      "duplicate component name '" + k.name + "' (also components[" + std::to_string(j) + "]); names must be unique");
         if (k.role == ComponentRole::sonotrode && ++sonotrodes > 1)
             fail(item.child("role"), "a second sonotrode ('" + k.name + "'); expected exactly one sonotrode");
-        if (k.role == ComponentRole::chamber) ++chambers;
         out.push_back(std::move(k));
     }
-    if (sonotrodes == 0) fail(c, "no component has role sonotrode; expected exactly one sonotrode");
-    if (chambers == 0) fail(c, "no component has role chamber; expected at least one chamber");
     return out;
 }
 

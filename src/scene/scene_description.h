@@ -185,6 +185,30 @@ struct AirDesc {
     SourceLocation where;
 };
 
+// A nozzle emitting shot during the run (model/shot_flow.h).
+struct SourceDesc {
+    std::string name;
+    Vec3 position_m = Vec3::Zero();   // m, world
+    Vec3 direction = -Vec3::UnitZ();  // unit, world
+    double speed_m_per_s = 0.0;       // m/s
+    double rate_per_s = 0.0;          // shot per second
+    double exit_radius_m = 0.0;       // m
+    double spread_rad = 0.0;          // rad, half-angle of the jet's cone
+    double start_s = 0.0;             // s
+    double stop_s = 0.0;              // s (the run's end unless given)
+    SourceLocation where;
+};
+
+enum class SinkRegion { box, outside };
+
+// Where shot are collected (model/shot_flow.h).
+struct SinkDesc {
+    std::string name;
+    SinkRegion region = SinkRegion::box;
+    Vec3 min_m = Vec3::Zero(), max_m = Vec3::Zero();  // m, world (box)
+    SourceLocation where;
+};
+
 struct OutputDesc {
     std::vector<std::string> logged_components;  // names; default: every component with role part
     std::string directory;                       // "" = given on the command line
@@ -220,6 +244,8 @@ struct SceneDescription {
     std::vector<MaterialDesc> materials;
     std::vector<ContactPairDesc> contacts;  // includes a "default" entry (given or built in)
     std::vector<ComponentDesc> components;
+    std::vector<SourceDesc> sources;
+    std::vector<SinkDesc> sinks;
     OutputDesc output;
     std::optional<RenderDesc> render;  // present when the scene has a `render` block
     // Values to look at again (a plain number where units are given elsewhere): warnings, errors

@@ -25,6 +25,25 @@ YAML::Node load_yaml(const std::string& text, const std::string& file) {
     }
 }
 
+// Shot start on a sonotrode (shot.count of them) or come from sources: an ultrasonic chamber needs
+// its sonotrode and chamber, a scene fed by nozzles may have neither.
+void check_shot_origin(const Cursor& root, const SceneDescription& d) {
+    int sonotrodes = 0, chambers = 0;
+    for (const ComponentDesc& k : d.components) {
+        sonotrodes += k.role == ComponentRole::sonotrode;
+        chambers += k.role == ComponentRole::chamber;
+    }
+    if (d.shot.count > 0 && sonotrodes == 0)
+        fail(root.child("components"), "no component has role sonotrode, and shot.count is " + std::to_string(d.shot.count) +
+                                           "; expected a sonotrode to place the shot on (or shot.count: 0 with sources)");
+    if (d.shot.count == 0 && d.sources.empty())
+        fail(root.child("shot").child("count"),
+             "expected at least 1 shot, or sources that emit them (shot.count is 0 and the "
+             "scene has no sources)");
+    if (sonotrodes > 0 && chambers == 0)
+        fail(root.child("components"), "no component has role chamber; expected at least one chamber around the sonotrode");
+}
+
 SceneDescription build(const Cursor& root, const std::filesystem::path& scene_dir) {
     SceneDescription d;
     d.name = read_text(root.child("name"));
@@ -44,6 +63,8 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     d.shot = read_shot(root.child("shot"), d.materials);
     d.contacts = read_contacts(root.child("contacts"), d.materials);
     d.components = read_components(root.child("components"), scene_dir, d.materials);
+    read_flow(root.child("sources"), root.child("sinks"), d.process.duration_s, d.sources, d.sinks);
+    check_shot_origin(root, d);
     d.output = read_output(root.child("output"), d.components);
     d.render = read_render(root.child("render"));
     return d;

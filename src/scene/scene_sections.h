@@ -22,6 +22,10 @@ std::vector<ComponentDesc> read_components(const Cursor& components, const std::
                                            const std::vector<MaterialDesc>& materials);
 // A component's `regions` list (names unique on the component, axes and boxes checked).
 std::vector<RegionDesc> read_regions(const Cursor& regions);
+// The `sources` and `sinks` lists (names unique among both; a source stops at the run's end
+// unless it says otherwise).
+void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, std::vector<SourceDesc>& out_sources,
+               std::vector<SinkDesc>& out_sinks);
 // The `air` block (defaults: still air at 20 C, no drag).
 AirDesc read_air(const Cursor& air);
 // Needs the components (the logged names must be components; the default logs every part).

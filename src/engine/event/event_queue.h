@@ -20,11 +20,23 @@ public:
         key_.assign(n, std::numeric_limits<double>::infinity());
         for (std::size_t i = 0; i < n; ++i) heap_[i] = static_cast<int>(i), slot_[i] = static_cast<int>(i);
     }
+    // Entries for shots size()..n-1 (key +infinity) added, the others kept: they go to the heap's
+    // end, where a key of +infinity and an index above every other keep the heap in order.
+    void grow(std::size_t n) {
+        for (std::size_t i = heap_.size(); i < n; ++i) {
+            heap_.push_back(static_cast<int>(i));
+            slot_.push_back(static_cast<int>(i));
+            key_.push_back(std::numeric_limits<double>::infinity());
+        }
+    }
     std::size_t size() const { return heap_.size(); }
     bool empty() const { return heap_.empty(); }
 
     int top() const { return heap_.front(); }  // the shot with the earliest event
-    double top_time() const { return key_[static_cast<std::size_t>(heap_.front())]; }
+    // +infinity when there are no entries (a run with no shot yet).
+    double top_time() const {
+        return heap_.empty() ? std::numeric_limits<double>::infinity() : key_[static_cast<std::size_t>(heap_.front())];
+    }
     double time_of(int shot) const { return key_[static_cast<std::size_t>(shot)]; }
 
     // Sets a shot's event time (s; +infinity: none) and restores the heap order.

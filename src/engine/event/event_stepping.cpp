@@ -90,7 +90,7 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         if (handed_over_) {
             if (!hand_over_) hand_over_ = std::make_unique<TimeStepping>(model_);
             ++stats_.hand_overs;
-            work_budget_ = std::max(kMinWorkBudget, kWorkPerRestart * kWorkPerShotStep * static_cast<std::uint64_t>(model_->shot_count));
+            work_budget_ = std::max(kMinWorkBudget, kWorkPerRestart * kWorkPerShotStep * static_cast<std::uint64_t>(state.shots.size()));
         } else {
             // The budget follows from the restart's own work, which depends on the state alone: a
             // resumed run restarts where the uninterrupted one does.
@@ -184,6 +184,40 @@ void EventStepping::state_changed() {
     if (hand_over_) hand_over_->state_changed();
 }
 
+void EventStepping::fit_shots(std::size_t n) {
+    if (n <= shots_.size()) return;
+    shots_.resize(n);
+    active_.resize(n, 0);
+    queue_.grow(n);
+    pairs_.grow(static_cast<int>(n));
+}
+
+void EventStepping::shots_added(SimulationState& state, const std::vector<int>& shots) {
+    fit_shots(state.shots.size());
+    if (hand_over_) hand_over_->shots_added(state, shots);
+    // Between restart points (or time-stepped) nothing is kept that a new shot could upset: the
+    // next start() takes it from the state with the others.
+    if (!started_ || handed_over_) return;
+    // The scheme stopped at the emission time (Simulation pauses there): the shot fly from now.
+    const double t = since_epoch(state.time.seconds());
+    for (const int i : shots) {
+        const auto k = static_cast<std::size_t>(i);
+        // A reused slot keeps counting its versions: a pair event predicted against the shot that
+        // was there must stay stale.
+        const std::uint32_t version = shots_[k].version;
+        shots_[k] = Shot{};
+        shots_[k].version = version;
+        active_[k] = 1;
+        set_flight(i, state.shots.position(k), state.shots.velocity(k), t, Motion::flying);
+        shots_[k].in_flight = true;
+        predict_wall(i, t);
+        renew_box(i, t);
+        shots_[k].pair_time = kInf;
+        schedule(i);
+    }
+    for (const int i : shots) pairs_and_schedule(i, t);
+}
+
 bool EventStepping::count_work(std::uint64_t units, double now_s) {
     const bool was_due = work_since_restart_ >= work_budget_;
     work_since_restart_ += units;
@@ -218,6 +252,7 @@ void EventStepping::start(SimulationState& state) {
     at_same_time_ = 0;
     const double t = 0.0;
     // Everything from the state alone, as after a resume: fresh tree, queue and per-shot records.
+    fit_shots(state.shots.size());
     pairs_.reset();
     queue_.reset(shots_.size());
     std::fill(shots_.begin(), shots_.end(), Shot{});
@@ -363,10 +398,12 @@ void EventStepping::predict_wall(int i, double t) {
             // near it) further than a quarter radius: nothing can be crossed unseen, as with time
             // stepping's travel limit.
             const Vec3 p = position(i, t);
-            const Component& sono = model_->sonotrode_component();
-            const Vec3 reach = Vec3::Constant(2.0 * R_ + sono.kinematics.amplitude_m);
-            const bool near_sonotrode =
-                ((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all();
+            bool near_sonotrode = false;
+            if (model_->sonotrode >= 0) {
+                const Component& sono = model_->sonotrode_component();
+                const Vec3 reach = Vec3::Constant(2.0 * R_ + sono.kinematics.amplitude_m);
+                near_sonotrode = ((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all();
+            }
             const double speed = velocity(i, t).norm() + walls_.moving_part_speed() +
                                  (near_sonotrode ? walls_.surface_speed(static_cast<std::size_t>(model_->sonotrode)) : 0.0);
             s.substep_s = speed > 0.0 ? std::clamp(kSubstepTravel * R_ / speed, kMinBoxHorizon, substep_) : substep_;
@@ -432,6 +469,7 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
             predict(i, t);
             return;
         case WallKind::leave: lose(i, t, state, false); return;
+        case WallKind::sink: collect(i, state, static_cast<std::size_t>(s.wall.component)); return;
         case WallKind::launch: launch(i, t, state); return;
         case WallKind::substep: substep(i, t, state, impacts); return;
         case WallKind::contact: break;
@@ -785,10 +823,13 @@ void EventStepping::wake_neighbours(int i, double t) {
     woken_.clear();
 }
 
+void EventStepping::collect(int i, SimulationState& state, std::size_t sink) {
+    ++state.collected_per_sink[sink];
+    retire(i, state);
+}
+
 void EventStepping::lose(int i, double t, SimulationState& state, bool non_finite) {
     const auto k = static_cast<std::size_t>(i);
-    active_[k] = 0;
-    state.shots.active[k] = 0;
     if (non_finite) {
         ++state.health.non_finite;
     } else {
@@ -802,6 +843,13 @@ void EventStepping::lose(int i, double t, SimulationState& state, bool non_finit
         if (l.cause == LossCause::engine_error) ++state.health.engine_errors;
         state.lost.push_back(l);
     }
+    retire(i, state);
+}
+
+void EventStepping::retire(int i, SimulationState& state) {
+    const auto k = static_cast<std::size_t>(i);
+    active_[k] = 0;
+    state.shots.active[k] = 0;
     pairs_.remove(i);
     Shot& s = shots_[k];
     s.wall = WallEvent{};

@@ -69,6 +69,8 @@ public:
     bool at_restart_point() const override { return !started_; }
     // Starts afresh from the edited state at the next advance(), as at a restart point.
     void state_changed() override;
+    // Predicts the new shot's flights at once (the scheme stopped at their emission time).
+    void shots_added(SimulationState& state, const std::vector<int>& shots) override;
     static constexpr double kRestartInterval = 0.1;  // s
 
     // Simulated time (s) one advance() covers at most: it stops on a grid of this spacing (absolute
@@ -119,6 +121,9 @@ private:
     void touch(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_kept);
     void substep(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
     void lose(int i, double t, SimulationState& state, bool non_finite);
+    void collect(int i, SimulationState& state, std::size_t sink);  // entered sink `sink`: taken out, counted
+    void retire(int i, SimulationState& state);                     // out of the run (lost or collected)
+    void fit_shots(std::size_t n);                                  // per-shot records for n shot
     // support: unit normal of the surface a sustained shot rests on (zero: none).
     void set_flight(int i, const Vec3& p, const Vec3& v, double t, Motion motion, const Vec3& support = Vec3::Zero());
     // pose: component c's pose at t (the caller has it for the law already).

@@ -17,6 +17,12 @@ PairPredictor::PairPredictor(int shot_count, double shot_radius_m, double restin
 
 void PairPredictor::reset() { boxes_ = std::make_unique<ShotBoxTree>(shot_count_); }
 
+void PairPredictor::grow(int shot_count) {
+    if (shot_count <= shot_count_) return;
+    shot_count_ = shot_count;
+    boxes_->grow(shot_count);
+}
+
 void PairPredictor::set_box(int shot, const Vec3& lo, const Vec3& hi) { boxes_->set(shot, lo, hi); }
 
 void PairPredictor::remove(int shot) { boxes_->remove(shot); }

@@ -21,6 +21,7 @@ public:
     PairPredictor(int shot_count, double shot_radius_m, double resting_speed_m_per_s);
 
     void reset();                                            // an empty tree (a restart)
+    void grow(int shot_count);                               // room for shot_count shot (a source emitted)
     void set_box(int shot, const Vec3& lo, const Vec3& hi);  // m, world
     void remove(int shot);
     // The shot whose boxes overlap [lo, hi] (m, world), in no particular order.

@@ -11,7 +11,8 @@ namespace peensim {
 // searched again from this far on; a shot-shot overlap shallower than this is left alone).
 inline constexpr double kTouchDistance = 1e-9;
 
-enum class WallKind : unsigned char { none, contact, launch, substep, leave };
+// sink: the centre enters one of the model's sinks (`component` is the sink's index there).
+enum class WallKind : unsigned char { none, contact, launch, substep, leave, sink };
 
 // The next contact of a shot with a component, world frame, at `time`.
 struct WallEvent {

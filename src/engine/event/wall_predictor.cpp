@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "collision/surface_clearance.h"
+#include "kernels/box_entry.h"
 #include "kernels/closest_point.h"
 #include "kernels/swept_sphere_box.h"
 #include "kernels/vibrating_plane_toi.h"
@@ -20,10 +21,10 @@ constexpr int kMaxAdvancement = 2000;  // conservative-advancement iterations pe
 WallPredictor::WallPredictor(std::shared_ptr<const Model> model) : model_(std::move(model)) {
     const Model& m = *model_;
     R_ = m.shot_radius_m;
-    const Component& sono = m.sonotrode_component();
-    sonotrode_vibrates_ = sono.kinematics.kind == Kinematics::Kind::vibrating && sono.kinematics.moves();
+    const Component* sono = m.sonotrode >= 0 ? &m.sonotrode_component() : nullptr;
+    sonotrode_vibrates_ = sono && sono->kinematics.kind == Kinematics::Kind::vibrating && sono->kinematics.moves();
     if (sonotrode_vibrates_) {
-        face_ = build_sonotrode_face(sono, sonotrode_up(m));
+        face_ = build_sonotrode_face(*sono, sonotrode_up(m));
         face_phase_at_zero_ = face_.plane.phase_rad;
     }
     for (const Component& c : m.components) {
@@ -32,7 +33,7 @@ WallPredictor::WallPredictor(std::shared_ptr<const Model> model) : model_(std::m
             facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
         facets_.push_back(std::move(facets));
         surface_speed_.push_back(c.kinematics.peak_surface_speed(c.max_axis_distance_m));
-        if (&c != &sono) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
+        if (&c != sono) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
     }
 }
 
@@ -47,6 +48,15 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_
     w.time = std::min(t_leave, window_end);
     w.kind = t_leave <= window_end ? WallKind::leave : WallKind::none;
     const Model& m = *model_;
+    // A sink entered no later than anything else is where the flight ends (collected, not lost).
+    for (std::size_t k = 0; k < m.sinks.size(); ++k) {
+        const std::optional<double> in = m.sinks[k]->first_entry(path, t, w.time);
+        if (in && *in <= w.time) {
+            w.time = *in;
+            w.kind = WallKind::sink;
+            w.component = static_cast<int>(k);
+        }
+    }
     // The window's sphere bounds: a component whose (swept) bounds they miss cannot be reached.
     Vec3 reach_lo, reach_hi;
     path.bounds(t, w.time, reach_lo, reach_hi);
@@ -104,28 +114,7 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_
 }
 
 double WallPredictor::leave_time(const Trajectory& path, double t) const {
-    // The first time after t the centre leaves the world box: per axis x0 + v u + h u^2 = bound.
-    const Vec3 p = path.position(t), v = path.velocity(t), h = 0.5 * path.g;
-    double first = kInf;
-    for (int k = 0; k < 3; ++k) {
-        for (const double bound : {model_->world_lo[k], model_->world_hi[k]}) {
-            const double c = p[k] - bound;
-            if ((bound == model_->world_lo[k] && c < 0.0) || (bound == model_->world_hi[k] && c > 0.0)) return t;
-            double u = kInf;
-            if (h[k] == 0.0) {
-                if (v[k] != 0.0 && -c / v[k] > 0.0) u = -c / v[k];
-            } else {
-                const double disc = v[k] * v[k] - 4.0 * h[k] * c;
-                if (disc >= 0.0) {
-                    const double q = -0.5 * (v[k] + std::copysign(std::sqrt(disc), v[k]));
-                    for (const double r : {q / h[k], q != 0.0 ? c / q : kInf})
-                        if (r > 0.0) u = std::min(u, r);
-                }
-            }
-            first = std::min(first, t + u);
-        }
-    }
-    return first;
+    return first_time_outside_box(path, model_->world_lo, model_->world_hi, t, kInf).value_or(kInf);
 }
 
 void WallPredictor::resume_search_at(WallEvent& w, double t, StepStats& stats) {

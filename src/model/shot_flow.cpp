@@ -1,0 +1,49 @@
+#include "model/shot_flow.h"
+
+#include <cmath>
+
+#include "common/random.h"
+#include "kernels/box_entry.h"
+
+namespace peensim {
+
+NozzleSource::NozzleSource(const NozzleSpec& spec) : spec_(spec) {
+    const Vec3& d = spec_.direction;
+    // Any unit vector not along d, made perpendicular to it.
+    const Vec3 helper = std::abs(d.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    e1_ = (helper - helper.dot(d) * d).normalized();
+    e2_ = d.cross(e1_);
+}
+
+std::optional<Emission> NozzleSource::emission(std::uint64_t k) const {
+    Emission e;
+    e.time_s = spec_.start_s + static_cast<double>(k) / spec_.rate_per_s;
+    if (!(e.time_s < spec_.stop_s)) return std::nullopt;
+    // Emission k's own generator: the scene's seed, the source and k mixed (Random's SplitMix64
+    // seeding spreads neighbouring seeds), so no generator state is carried between emissions.
+    Random rng(spec_.seed * 0x9e3779b97f4a7c15ull ^ (static_cast<std::uint64_t>(spec_.index + 1) << 48) ^ k);
+    const double r = spec_.exit_radius_m * std::sqrt(rng.uniform());  // uniform over the disc
+    const double phi = 2.0 * M_PI * rng.uniform();
+    e.position_m = spec_.position_m + r * (std::cos(phi) * e1_ + std::sin(phi) * e2_);
+    // Uniform over the cone's spherical cap: cos(theta) uniform in [cos(spread), 1].
+    const double cos_theta = 1.0 - rng.uniform() * (1.0 - std::cos(spec_.spread_rad));
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    const double psi = 2.0 * M_PI * rng.uniform();
+    const Vec3 dir = cos_theta * spec_.direction + sin_theta * (std::cos(psi) * e1_ + std::sin(psi) * e2_);
+    e.velocity_m_per_s = spec_.speed_m_per_s * dir;
+    return e;
+}
+
+bool BoxSink::contains(const Vec3& p) const { return (p.array() >= lo_.array()).all() && (p.array() <= hi_.array()).all(); }
+
+std::optional<double> BoxSink::first_entry(const Trajectory& path, double ta, double tb) const {
+    return first_time_inside_box(path, lo_, hi_, ta, tb);
+}
+
+bool OutsideSink::contains(const Vec3& p) const { return (p.array() < lo_.array()).any() || (p.array() > hi_.array()).any(); }
+
+std::optional<double> OutsideSink::first_entry(const Trajectory& path, double ta, double tb) const {
+    return first_time_outside_box(path, lo_, hi_, ta, tb);
+}
+
+}  // namespace peensim

@@ -1,0 +1,100 @@
+// Where shot enter and leave a run besides the initial load: sources emit shot during the run
+// (a conventional peening nozzle), sinks take them out (an outlet, a hopper: collected, not lost).
+// Both are part of the compiled model and pluggable: the schemes see only these interfaces.
+//
+// A source's emissions are numbered; emission k's time, centre and velocity are a function of the
+// source, the scene's seed and k alone (counter-based random numbers), so a run resumed from a
+// checkpoint (which keeps how many each source has emitted) emits exactly the same shot.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "common/vec.h"
+#include "kernels/trajectory.h"
+
+namespace peensim {
+
+struct Emission {
+    double time_s = 0.0;                   // s, absolute
+    Vec3 position_m = Vec3::Zero();        // m, world, the shot's centre then
+    Vec3 velocity_m_per_s = Vec3::Zero();  // m/s, world
+};
+
+class ShotSource {
+public:
+    virtual ~ShotSource() = default;
+    virtual const std::string& name() const = 0;
+    // Emission k (0, 1, ...), or none: the source has stopped before it.
+    virtual std::optional<Emission> emission(std::uint64_t k) const = 0;
+};
+
+class ShotSink {
+public:
+    virtual ~ShotSink() = default;
+    virtual const std::string& name() const = 0;
+    // The centre p (m, world) is in the sink: the shot is collected.
+    virtual bool contains(const Vec3& p) const = 0;
+    // The first time in [ta, tb] (s, the path's clock) the centre on `path` is in the sink, or none.
+    virtual std::optional<double> first_entry(const Trajectory& path, double ta, double tb) const = 0;
+};
+
+// A nozzle: shot leave a disc of radius `exit_radius_m` centred on `position_m`, facing
+// `direction`, at `speed`, in directions uniform over the cone of half-angle `spread_rad` about
+// `direction`, at points uniform over the disc; `rate_per_s` shot per second from `start_s` until
+// `stop_s` (s, absolute), emission k at start + k / rate.
+struct NozzleSpec {
+    std::string name;
+    Vec3 position_m = Vec3::Zero();
+    Vec3 direction = -Vec3::UnitZ();  // unit
+    double exit_radius_m = 0.0;
+    double speed_m_per_s = 0.0;
+    double spread_rad = 0.0;
+    double rate_per_s = 0.0;
+    double start_s = 0.0;
+    double stop_s = 0.0;
+    std::uint64_t seed = 1;  // the scene's seed (mixed with the source's index)
+    int index = 0;           // the source's place in the scene
+};
+
+class NozzleSource final : public ShotSource {
+public:
+    explicit NozzleSource(const NozzleSpec& spec);
+    const std::string& name() const override { return spec_.name; }
+    std::optional<Emission> emission(std::uint64_t k) const override;
+    const NozzleSpec& spec() const { return spec_; }
+
+private:
+    NozzleSpec spec_;
+    Vec3 e1_, e2_;  // unit, completing `direction` to a right-handed frame
+};
+
+// An axis-aligned box (world frame): an outlet, a hopper's opening.
+class BoxSink final : public ShotSink {
+public:
+    BoxSink(std::string name, const Vec3& lo_m, const Vec3& hi_m) : name_(std::move(name)), lo_(lo_m), hi_(hi_m) {}
+    const std::string& name() const override { return name_; }
+    bool contains(const Vec3& p) const override;
+    std::optional<double> first_entry(const Trajectory& path, double ta, double tb) const override;
+
+private:
+    std::string name_;
+    Vec3 lo_, hi_;  // m
+};
+
+// Everything outside a box: the chamber's bounds, for an open setup (a nozzle over a part in a
+// cabinet not modelled) where a shot flying away is collected, not lost.
+class OutsideSink final : public ShotSink {
+public:
+    OutsideSink(std::string name, const Vec3& lo_m, const Vec3& hi_m) : name_(std::move(name)), lo_(lo_m), hi_(hi_m) {}
+    const std::string& name() const override { return name_; }
+    bool contains(const Vec3& p) const override;
+    std::optional<double> first_entry(const Trajectory& path, double ta, double tb) const override;
+
+private:
+    std::string name_;
+    Vec3 lo_, hi_;  // m
+};
+
+}  // namespace peensim
