@@ -142,9 +142,9 @@ void add_flow(Model& model, const SceneDescription& scene) {
     }
     for (const SinkDesc& s : scene.sinks) {
         if (s.region == SinkRegion::box)
-            model.sinks.push_back(std::make_shared<const BoxSink>(s.name, s.min_m, s.max_m));
+            model.sinks.push_back(std::make_shared<const BoxSink>(s.name, s.min_m, s.max_m, BoxSink::Side::inside));
         else
-            model.sinks.push_back(std::make_shared<const OutsideSink>(s.name, model.world_lo, model.world_hi));
+            model.sinks.push_back(std::make_shared<const BoxSink>(s.name, model.world_lo, model.world_hi, BoxSink::Side::outside));
     }
 }
 

@@ -34,16 +34,13 @@ std::optional<Emission> NozzleSource::emission(std::uint64_t k) const {
     return e;
 }
 
-bool BoxSink::contains(const Vec3& p) const { return (p.array() >= lo_.array()).all() && (p.array() <= hi_.array()).all(); }
-
-std::optional<double> BoxSink::first_entry(const Trajectory& path, double ta, double tb) const {
-    return first_time_inside_box(path, lo_, hi_, ta, tb);
+bool BoxSink::contains(const Vec3& p) const {
+    const bool in = (p.array() >= lo_.array()).all() && (p.array() <= hi_.array()).all();
+    return side_ == Side::inside ? in : !in;
 }
 
-bool OutsideSink::contains(const Vec3& p) const { return (p.array() < lo_.array()).any() || (p.array() > hi_.array()).any(); }
-
-std::optional<double> OutsideSink::first_entry(const Trajectory& path, double ta, double tb) const {
-    return first_time_outside_box(path, lo_, hi_, ta, tb);
+std::optional<double> BoxSink::first_entry(const Trajectory& path, double ta, double tb) const {
+    return side_ == Side::inside ? first_time_inside_box(path, lo_, hi_, ta, tb) : first_time_outside_box(path, lo_, hi_, ta, tb);
 }
 
 }  // namespace peensim

@@ -70,10 +70,14 @@ private:
     Vec3 e1_, e2_;  // unit, completing `direction` to a right-handed frame
 };
 
-// An axis-aligned box (world frame): an outlet, a hopper's opening.
+// An axis-aligned box (world frame). Side inside: a shot whose centre enters it is collected (an
+// outlet, a hopper's opening). Side outside: a shot whose centre leaves it is (the chamber's
+// bounds, for an open setup, a nozzle over a part in a cabinet not modelled: a shot flying away is
+// collected, not lost).
 class BoxSink final : public ShotSink {
 public:
-    BoxSink(std::string name, const Vec3& lo_m, const Vec3& hi_m) : name_(std::move(name)), lo_(lo_m), hi_(hi_m) {}
+    enum class Side { inside, outside };
+    BoxSink(std::string name, const Vec3& lo_m, const Vec3& hi_m, Side side) : name_(std::move(name)), lo_(lo_m), hi_(hi_m), side_(side) {}
     const std::string& name() const override { return name_; }
     bool contains(const Vec3& p) const override;
     std::optional<double> first_entry(const Trajectory& path, double ta, double tb) const override;
@@ -81,20 +85,7 @@ public:
 private:
     std::string name_;
     Vec3 lo_, hi_;  // m
-};
-
-// Everything outside a box: the chamber's bounds, for an open setup (a nozzle over a part in a
-// cabinet not modelled) where a shot flying away is collected, not lost.
-class OutsideSink final : public ShotSink {
-public:
-    OutsideSink(std::string name, const Vec3& lo_m, const Vec3& hi_m) : name_(std::move(name)), lo_(lo_m), hi_(hi_m) {}
-    const std::string& name() const override { return name_; }
-    bool contains(const Vec3& p) const override;
-    std::optional<double> first_entry(const Trajectory& path, double ta, double tb) const override;
-
-private:
-    std::string name_;
-    Vec3 lo_, hi_;  // m
+    Side side_;
 };
 
 }  // namespace peensim
