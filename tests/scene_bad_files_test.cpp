@@ -30,7 +30,6 @@ const BadScene catalogue[] = {
     {"wrong_dimension.yaml", 11, "components[0].vibration.amplitude", "'kHz' is a unit of frequency, but a length"},
     {"missing_mesh.yaml", 14, "components[1].mesh", "mesh file not found"},
     {"unknown_material.yaml", 10, "components[0].material", "unknown material 'unobtainium'; expected one of"},
-    {"two_sonotrodes.yaml", 16, "components[2].role", "expected exactly one sonotrode"},
     {"missing_required.yaml", 2, "process.duration", "missing required key 'duration'"},
     {"wrong_type.yaml", 16, "output.log", "expected a list of names"},
     {"bad_syntax.yaml", 2, "", "invalid YAML"},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace peensim {
 
@@ -52,26 +53,30 @@ std::optional<double> first_time_inside_box(const Trajectory& path, const Vec3& 
 
 std::optional<double> first_time_outside_box(const Trajectory& path, const Vec3& lo, const Vec3& hi, double ta, double tb) {
     if (!(tb >= ta)) return std::nullopt;
-    const Vec3 p = path.position(ta);
-    if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) return ta;
-    std::array<double, 16> times{};
-    int n = 0;
+    // Inside at ta, the centre first leaves where one coordinate first reaches a bound: per axis
+    // x0 + v u + h u^2 = bound, the earliest root u > 0 (a hot path: every event-driven flight).
+    const Vec3 p = path.position(ta), v = path.velocity(ta), h = 0.5 * path.g;
+    double first = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k) {
-        axis_crossings(path, k, lo[k], ta, tb, times, n);
-        axis_crossings(path, k, hi[k], ta, tb, times, n);
-    }
-    if (n == 0) return std::nullopt;
-    // The first crossing of a face the centre goes out through (moving outward there).
-    std::sort(times.begin(), times.begin() + n);
-    for (int i = 0; i < n; ++i) {
-        const double t = times[static_cast<std::size_t>(i)];
-        const Vec3 q = path.position(t), v = path.velocity(t);
-        for (int k = 0; k < 3; ++k) {
-            const double tol = 1e-12 * std::abs(hi[k] - lo[k]) + 1e-15;
-            if ((std::abs(q[k] - lo[k]) <= tol && v[k] < 0.0) || (std::abs(q[k] - hi[k]) <= tol && v[k] > 0.0)) return t;
+        for (const double bound : {lo[k], hi[k]}) {
+            const double c = p[k] - bound;
+            if ((bound == lo[k] && c < 0.0) || (bound == hi[k] && c > 0.0)) return ta;
+            double u = std::numeric_limits<double>::infinity();
+            if (h[k] == 0.0) {
+                if (v[k] != 0.0 && -c / v[k] > 0.0) u = -c / v[k];
+            } else {
+                const double disc = v[k] * v[k] - 4.0 * h[k] * c;
+                if (disc >= 0.0) {
+                    const double q = -0.5 * (v[k] + std::copysign(std::sqrt(disc), v[k]));
+                    for (const double r : {q / h[k], q != 0.0 ? c / q : std::numeric_limits<double>::infinity()})
+                        if (r > 0.0) u = std::min(u, r);
+                }
+            }
+            first = std::min(first, ta + u);
         }
     }
-    return std::nullopt;
+    if (!(first <= tb)) return std::nullopt;
+    return first;
 }
 
 }  // namespace peensim

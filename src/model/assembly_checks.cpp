@@ -272,10 +272,14 @@ std::size_t AssemblyReport::warnings() const { return issues.size() - errors(); 
 AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
     AssemblyReport report;
     const std::size_t n = m.components.size();
-    // A scene fed by sources alone has no sonotrode (and no cavity): the checks against the
-    // sonotrode and of the shot's reach are not made.
-    const Component* sono = m.sonotrode >= 0 ? &m.sonotrode_component() : nullptr;
-    const Vec3 travel = sono ? Vec3(sono->kinematics.axis.normalized() * sono->kinematics.amplitude_m) : Vec3(Vec3::Zero());  // m, +A0
+    // Every sonotrode (none in a scene fed by sources alone; then there is no cavity either, and
+    // the shot's reach is not checked), and how far each travels (m, its +A0 offset).
+    std::vector<std::size_t> sonotrodes;
+    for (std::size_t k = 0; k < n; ++k)
+        if (m.components[k].role == ComponentRole::sonotrode) sonotrodes.push_back(k);
+    const auto travel_of = [](const Component& c) {
+        return c.role == ComponentRole::sonotrode ? Vec3(c.kinematics.axis.normalized() * c.kinematics.amplitude_m) : Vec3(Vec3::Zero());
+    };
     const double diagonal = (m.world_hi - m.world_lo).norm();
     const double R = m.shot_radius_m;
 
@@ -291,7 +295,11 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
                 std::to_string(c.mesh->dropped_degenerate_facets) + " facets of zero area dropped (" +
                     std::to_string(c.mesh->triangle_count()) + " kept): check the mesh export");
         if (is_solid_role(c.role)) {
-            if (sono) facts.clearance_to_sonotrode_m = vertex_clearance(c, *sono, diagonal) - sono->kinematics.amplitude_m;
+            for (std::size_t k : sonotrodes) {
+                const Component& sono = m.components[k];
+                const double clearance = vertex_clearance(c, sono, diagonal) - sono.kinematics.amplitude_m;
+                if (!(facts.clearance_to_sonotrode_m <= clearance)) facts.clearance_to_sonotrode_m = clearance;
+            }
             double to_chamber = diagonal;
             for (const Component& k : m.components)
                 if (k.role == ComponentRole::chamber) to_chamber = std::min(to_chamber, vertex_clearance(c, k, to_chamber));
@@ -320,13 +328,18 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
             add(report, m, i, true, "", s.str());
         }
         Vec3 at;
-        for (const Vec3& offset : {Vec3(Vec3::Zero()), Vec3(travel), Vec3(-travel)})
-            if (sono && meshes_cross(c, Vec3::Zero(), *sono, offset, at)) {
-                add(report, m, i, true, "",
-                    "intersects the sonotrode" + std::string(offset.isZero() ? "" : " within its vibration travel (+-A0)") + " near " +
-                        mm_point(at) + "; " + where.str() + ": move it clear of the sonotrode's face");
-                break;
-            }
+        for (std::size_t k : sonotrodes) {
+            const Component& sono = m.components[k];
+            const Vec3 travel = travel_of(sono);
+            for (const Vec3& offset : {Vec3(Vec3::Zero()), Vec3(travel), Vec3(-travel)})
+                if (meshes_cross(c, Vec3::Zero(), sono, offset, at)) {
+                    add(report, m, i, true, "",
+                        "intersects the sonotrode" + std::string(sonotrodes.size() > 1 ? " " + label(m, k) : "") +
+                            std::string(offset.isZero() ? "" : " within its vibration travel (+-A0)") + " near " + mm_point(at) + "; " +
+                            where.str() + ": move it clear of the sonotrode's face");
+                    break;
+                }
+        }
         for (std::size_t j = i + 1; j < n; ++j)
             if (is_solid_role(m.components[j].role) && meshes_cross(c, Vec3::Zero(), m.components[j], Vec3::Zero(), at))
                 add(report, m, i, true, "", "intersects " + label(m, j) + " near " + mm_point(at) + ": components may touch, not overlap");
@@ -346,8 +359,9 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
                 const Component& f = m.components[j];
                 if (j == i || f.kinematics.kind == Kinematics::Kind::rotating) continue;
                 bool hit = false;
+                const Vec3 travel = travel_of(f);  // zero but for a sonotrode
                 for (const Vec3& offset : {Vec3(Vec3::Zero()), Vec3(travel), Vec3(-travel)}) {
-                    if (&f != sono && !offset.isZero()) continue;
+                    if (f.role != ComponentRole::sonotrode && !offset.isZero()) continue;
                     if (hits_swept(f, offset, profile, c.world_lo, c.world_hi, at)) {
                         hit = true;
                         break;

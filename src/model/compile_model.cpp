@@ -212,7 +212,8 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
             c.solid = edges.boundary_edges == 0 && edges.non_manifold_edges == 0 && edges.misoriented_edges == 0 &&
                       enclosed_volume(*c.mesh) > 0.0;
         }
-        if (desc.role == ComponentRole::sonotrode) model->sonotrode = static_cast<int>(i);
+        // The first sonotrode is the one the shot are placed on.
+        if (desc.role == ComponentRole::sonotrode && model->sonotrode < 0) model->sonotrode = static_cast<int>(i);
         model->components.push_back(std::move(c));
     }
 

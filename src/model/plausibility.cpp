@@ -18,10 +18,9 @@ std::string num(double v) {
 
 // The sonotrode's vibration against ultrasonic peening's window.
 template <class Warn>
-void sonotrode_issues(const Model& m, Warn&& warn) {
+void sonotrode_issues(const Model& m, std::size_t sono, Warn&& warn) {
     const SceneDescription& scene = m.description;
-    const auto sono = static_cast<std::size_t>(m.sonotrode);
-    const Kinematics& vib = m.sonotrode_component().kinematics;
+    const Kinematics& vib = m.components[sono].kinematics;
     const SourceLocation& sono_where = scene.components[sono].where;
     // A hint only where the slip is plain: the number meant in the usual unit lands in the window.
     if (vib.amplitude_m > 1e-3) {
@@ -52,7 +51,8 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     };
     for (const SceneDescription::Warning& w : scene.warnings) warn(w.where, w.field, w.message);
 
-    if (m.sonotrode >= 0) sonotrode_issues(m, warn);
+    for (std::size_t k = 0; k < m.components.size(); ++k)
+        if (m.components[k].role == ComponentRole::sonotrode) sonotrode_issues(m, k, warn);
     // The chamber: the union of the chamber components' bounds.
     Vec3 lo = Vec3::Constant(1e300), hi = -lo;
     for (const Component& c : m.components)

@@ -150,7 +150,6 @@ ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene
 std::vector<ComponentDesc> read_components(const Cursor& c, const std::filesystem::path& scene_dir,
                                            const std::vector<MaterialDesc>& materials) {
     std::vector<ComponentDesc> out;
-    int sonotrodes = 0;
     for (std::size_t i = 0; i < c.size(); ++i) {
         const Cursor item = c.item(i);
         ComponentDesc k = read_component(item, scene_dir, materials);
@@ -158,8 +157,6 @@ std::vector<ComponentDesc> read_components(const Cursor& c, const std::filesyste
             if (out[j].name == k.name)
                 fail(item.child("name"),
                      "duplicate component name '" + k.name + "' (also components[" + std::to_string(j) + "]); names must be unique");
-        if (k.role == ComponentRole::sonotrode && ++sonotrodes > 1)
-            fail(item.child("role"), "a second sonotrode ('" + k.name + "'); expected exactly one sonotrode");
         out.push_back(std::move(k));
     }
     return out;

@@ -101,8 +101,9 @@ const std::array schema_table{
                 "Unique name (`[A-Za-z0-9_-]+`)."},
     SchemaEntry{"components[].role", K::choice, D::dimensionless, true, "", "", {},
                 "sonotrode|chamber|part|fixture|almen", "", "",
-                "What the component does. `almen`: a virtual SAE Almen strip (static; impacts always logged; "
-                "see `almen`)."},
+                "What the component does. `sonotrode`: vibrates (`vibration`); there may be several, the shot are "
+                "placed on the first one listed; a scene fed by `sources` may have none. `almen`: a virtual SAE Almen "
+                "strip (static; impacts always logged; see `almen`)."},
     SchemaEntry{"components[].mesh", K::text, D::dimensionless, true, "", "", {}, "", "", "",
                 "Mesh file (STL, OBJ, ...), relative to the scene file's directory."},
     SchemaEntry{"components[].mesh_unit", K::choice, D::dimensionless, false, "m", "", {}, "m|cm|mm|um|in", "",
@@ -124,7 +125,7 @@ const std::array schema_table{
     SchemaEntry{"components[].material", K::text, D::dimensionless, false, "", "none (`default` contact)", {},
                 "", "", "", "A key of `materials`; selects the `shot-<material>` contact pair."},
     SchemaEntry{"components[].vibration", K::map, D::dimensionless, false, "", "", {}, "", "", "",
-                "Sinusoidal vibration A sin(2 pi F t + phase); required for the sonotrode, forbidden for "
+                "Sinusoidal vibration A sin(2 pi F t + phase); required for a sonotrode, forbidden for "
                 "others."},
     SchemaEntry{"components[].vibration.amplitude", K::quantity, D::length, true, "", "", at_least(0), "", "",
                 "", "Amplitude A0."},

@@ -356,16 +356,17 @@ void EventStepping::set_flight(int i, const Vec3& p, const Vec3& v, double t, Mo
 
 Vec3 EventStepping::position(int i, double t) const {
     const Shot& s = shots_[static_cast<std::size_t>(i)];
-    if (s.motion == Motion::riding)
-        return s.ride_point +
-               walls_.face().plane.axis * (walls_.face().plane.displacement(t) - walls_.face().plane.displacement(s.ride_start)) +
+    if (s.motion == Motion::riding) {
+        const VibratingPlane& plane = walls_.face(static_cast<std::size_t>(s.ride_component)).plane;
+        return s.ride_point + plane.axis * (plane.displacement(t) - plane.displacement(s.ride_start)) +
                s.ride_tangential * (t - s.ride_start);
+    }
     return s.path.position(t);
 }
 
 Vec3 EventStepping::velocity(int i, double t) const {
     const Shot& s = shots_[static_cast<std::size_t>(i)];
-    if (s.motion == Motion::riding) return walls_.face().plane.velocity(t) + s.ride_tangential;
+    if (s.motion == Motion::riding) return walls_.face(static_cast<std::size_t>(s.ride_component)).plane.velocity(t) + s.ride_tangential;
     return s.path.velocity(t);
 }
 
@@ -398,14 +399,16 @@ void EventStepping::predict_wall(int i, double t) {
             // near it) further than a quarter radius: nothing can be crossed unseen, as with time
             // stepping's travel limit.
             const Vec3 p = position(i, t);
-            bool near_sonotrode = false;
-            if (model_->sonotrode >= 0) {
-                const Component& sono = model_->sonotrode_component();
+            // Every sonotrode the shot is near moves its surface too.
+            double near_sonotrode = 0.0;  // m/s
+            for (std::size_t c = 0; c < model_->components.size(); ++c) {
+                const Component& sono = model_->components[c];
+                if (sono.role != ComponentRole::sonotrode) continue;
                 const Vec3 reach = Vec3::Constant(2.0 * R_ + sono.kinematics.amplitude_m);
-                near_sonotrode = ((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all();
+                if (((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all())
+                    near_sonotrode = std::max(near_sonotrode, walls_.surface_speed(c));
             }
-            const double speed = velocity(i, t).norm() + walls_.moving_part_speed() +
-                                 (near_sonotrode ? walls_.surface_speed(static_cast<std::size_t>(model_->sonotrode)) : 0.0);
+            const double speed = velocity(i, t).norm() + walls_.moving_part_speed() + near_sonotrode;
             s.substep_s = speed > 0.0 ? std::clamp(kSubstepTravel * R_ / speed, kMinBoxHorizon, substep_) : substep_;
             w.time = t + s.substep_s;
             w.kind = WallKind::substep;
@@ -445,7 +448,7 @@ void EventStepping::renew_box(int i, double t) {
         s.box_until = s.motion == Motion::flying ? s.wall.time : std::min(s.wall.time, t + horizon);
         if (s.motion == Motion::riding) {
             s.path.bounds(t, s.box_until, lo, hi);
-            const Vec3 swing = Vec3::Constant(2.0 * walls_.face().plane.amplitude_m);
+            const Vec3 swing = Vec3::Constant(2.0 * walls_.face(static_cast<std::size_t>(s.ride_component)).plane.amplitude_m);
             lo -= swing, hi += swing;  // riders follow the plate; their path leaves it out
         } else {
             s.path.bounds(t, s.box_until, lo, hi);
@@ -575,7 +578,7 @@ void EventStepping::record_impact(int i, int c, double t, const Pose& pose, cons
 
 void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
-    const VibratingPlane& plane = walls_.face().plane;
+    const VibratingPlane& plane = walls_.face(static_cast<std::size_t>(w.component)).plane;
     const Vec3& n = w.normal;
     const double k = plane.axis.dot(n);
     const double w2a = plane.amplitude_m * plane.angular_frequency() * plane.angular_frequency() * k;
@@ -595,6 +598,7 @@ void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& 
     ++stats_.rides;
     s.in_flight = false;
     const Vec3 rel = v_after - w.surface_velocity;
+    s.ride_component = w.component;
     s.ride_start = t;
     s.ride_point = p;
     s.ride_normal = n;
@@ -607,14 +611,14 @@ void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& 
     s.wall = WallEvent{};
     s.wall.time = launch_time;
     s.wall.kind = launch_time < kInf ? WallKind::launch : WallKind::none;
-    s.wall.component = model_->sonotrode;
+    s.wall.component = w.component;
     renew_box(i, t);
     pairs_and_schedule(i, t);
 }
 
 void EventStepping::launch(int i, double t, SimulationState& state) {
     Shot& s = shots_[static_cast<std::size_t>(i)];
-    const VibratingPlane& plane = walls_.face().plane;
+    const VibratingPlane& plane = walls_.face(static_cast<std::size_t>(s.ride_component)).plane;
     // The shot left the plate at the release, kReleaseDelayPeriods before this event
     // (plate_release.h): it flies from the plate's state there.
     const double delay = kReleaseDelayPeriods / plane.frequency_hz;
@@ -627,10 +631,10 @@ void EventStepping::launch(int i, double t, SimulationState& state) {
     // Through the pair's law: its sustained contact with the plate pressing the shot by
     // impulse / ride on average over the ride.
     const double ride = t_release - s.ride_start;
-    const auto c = static_cast<std::size_t>(model_->sonotrode);
+    const auto c = static_cast<std::size_t>(s.ride_component);
     const Component& comp = model_->components[c];
     const Pose pose = comp.kinematics.pose(epoch_, s.ride_start);
-    const ContactSite site{i,  model_->sonotrode, -1, &pose, position(i, s.ride_start) - R_ * s.ride_normal, absolute_seconds(s.ride_start),
+    const ContactSite site{i,  s.ride_component, -1, &pose, position(i, s.ride_start) - R_ * s.ride_normal, absolute_seconds(s.ride_start),
                            0.0};
     const Vec3 v0 = plane.velocity(s.ride_start);
     const contact::SurfaceContactResponse r = comp.law->sustain(

@@ -33,8 +33,9 @@ struct EventShot {
     double substep_s = 0.0;      // s, length of the current sustained-contact substep
     int quiet_substeps = 0;      // consecutive still substeps (sleep)
     double window_travel = 0.0;  // m, travel the next search window of this flight covers
-    // Riding the sonotrode since ride_start (s): centre at ride_point + a (s(t) - s(ride_start))
-    // + ride_tangential (t - ride_start).
+    // Riding sonotrode ride_component since ride_start (s): centre at ride_point + a (s(t) -
+    // s(ride_start)) + ride_tangential (t - ride_start).
+    int ride_component = -1;
     double ride_start = 0.0;
     Vec3 ride_point = Vec3::Zero();
     Vec3 ride_tangential = Vec3::Zero();

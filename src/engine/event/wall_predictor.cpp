@@ -9,7 +9,6 @@
 #include "kernels/closest_point.h"
 #include "kernels/swept_sphere_box.h"
 #include "kernels/vibrating_plane_toi.h"
-#include "model/shot_cavity.h"
 
 namespace peensim {
 
@@ -21,11 +20,13 @@ constexpr int kMaxAdvancement = 2000;  // conservative-advancement iterations pe
 WallPredictor::WallPredictor(std::shared_ptr<const Model> model) : model_(std::move(model)) {
     const Model& m = *model_;
     R_ = m.shot_radius_m;
-    const Component* sono = m.sonotrode >= 0 ? &m.sonotrode_component() : nullptr;
-    sonotrode_vibrates_ = sono && sono->kinematics.kind == Kinematics::Kind::vibrating && sono->kinematics.moves();
-    if (sonotrode_vibrates_) {
-        face_ = build_sonotrode_face(*sono, sonotrode_up(m));
-        face_phase_at_zero_ = face_.plane.phase_rad;
+    face_of_.assign(m.components.size(), -1);
+    for (std::size_t k = 0; k < m.components.size(); ++k) {
+        const Component& c = m.components[k];
+        if (c.role != ComponentRole::sonotrode || c.kinematics.kind != Kinematics::Kind::vibrating || !c.kinematics.moves()) continue;
+        face_of_[k] = static_cast<int>(faces_.size());
+        faces_.push_back(build_sonotrode_face(c, face_direction(m, k)));
+        face_phase_at_zero_.push_back(faces_.back().plane.phase_rad);
     }
     for (const Component& c : m.components) {
         std::vector<int> facets(c.mesh->triangle_count());
@@ -33,13 +34,23 @@ WallPredictor::WallPredictor(std::shared_ptr<const Model> model) : model_(std::m
             facets[t] = c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t];
         facets_.push_back(std::move(facets));
         surface_speed_.push_back(c.kinematics.peak_surface_speed(c.max_axis_distance_m));
-        if (&c != sono) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
+        if (c.role != ComponentRole::sonotrode) moving_part_speed_ = std::max(moving_part_speed_, surface_speed_.back());
     }
 }
 
 void WallPredictor::set_epoch(const SimTime& epoch) {
     epoch_ = epoch;
-    if (sonotrode_vibrates_) face_.plane.phase_rad = face_phase_at_zero_ + 2.0 * M_PI * epoch_.cycle_fraction(face_.plane.frequency_hz);
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+        faces_[f].plane.phase_rad = face_phase_at_zero_[f] + 2.0 * M_PI * epoch_.cycle_fraction(faces_[f].plane.frequency_hz);
+}
+
+Vec3 WallPredictor::face_direction(const Model& m, std::size_t c) {
+    // Along the vibration axis, against gravity: the face shot fall onto, ride and are thrown
+    // from. Its other faces (a sonotrode in the lid faces down) are moving meshes like any other,
+    // exact by conservative advancement.
+    const Vec3 up = m.gravity_m_per_s2.norm() > 0.0 ? Vec3(-m.gravity_m_per_s2.normalized()) : Vec3::UnitZ();
+    const Vec3& axis = m.components[c].kinematics.axis;
+    return axis.dot(up) >= 0.0 ? axis : Vec3(-axis);
 }
 
 WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_search, double window_end, StepStats& stats) const {
@@ -69,9 +80,10 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_
         ++stats.mesh_predictions;
         WallEvent found;
         bool hit = false;
-        if (c == m.sonotrode && sonotrode_vibrates_) {
-            hit = face_contact(path, t_search, w.time, found, stats);
-            if (face_.rest_collider && !(hit && found.overlapping)) {
+        if (face_of_[k] >= 0) {
+            const SonotrodeFace& face = faces_[static_cast<std::size_t>(face_of_[k])];
+            hit = face_contact(c, path, t_search, w.time, found, stats);
+            if (face.rest_collider && !(hit && found.overlapping)) {
                 // The sonotrode's other triangles move by at most A: a static sweep with the radius
                 // grown by A finds when the shot can first reach them, advancement settles it.
                 MeshCollider::Hit near;
@@ -81,11 +93,11 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_
                                        t};
                 const double t_limit = hit ? found.time : w.time;
                 const ToiStatus st =
-                    face_.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
+                    face.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
                 if (st != ToiStatus::miss) {
                     WallEvent side;
-                    const AdvancementResult r = advance_to_contact(c, *face_.rest_collider, face_.rest_mesh->source_facet,
-                                                                   surface_speed_[k], path, near.contact.time, t_limit, side);
+                    const AdvancementResult r = advance_to_contact(c, *face.rest_collider, face.rest_mesh->source_facet, surface_speed_[k],
+                                                                   path, near.contact.time, t_limit, side);
                     if (r.exhausted) resume_search_at(w, r.searched_until, stats);
                     if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
                 }
@@ -168,25 +180,26 @@ bool WallPredictor::static_contact(int c, const Trajectory& path, double t, doub
     return true;
 }
 
-bool WallPredictor::face_contact(const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const {
+bool WallPredictor::face_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const {
+    const SonotrodeFace& face = faces_[static_cast<std::size_t>(face_of_[static_cast<std::size_t>(c)])];
     PlaneContact pc;
-    const ToiStatus st = vibrating_plane_toi(path, R_, face_.plane, t, t_end, pc);
+    const ToiStatus st = vibrating_plane_toi(path, R_, face.plane, t, t_end, pc);
     ++stats.touch_searches;
     if (st == ToiStatus::miss) return false;
     // Only where the plane is the face: the foot of the centre must lie on one of its triangles.
-    const Component& sono = model_->sonotrode_component();
+    const Component& sono = model_->components[static_cast<std::size_t>(c)];
     const Pose pose = sono.kinematics.pose(epoch_, pc.time);
     int triangle = -1;
-    if (!face_.contains(sono, pose.to_component(pc.point), kTouchDistance * R_ + 1e-12, triangle)) return false;
+    if (!face.contains(sono, pose.to_component(pc.point), kTouchDistance * R_ + 1e-12, triangle)) return false;
     out.time = pc.time;
     out.point = pc.point;
     out.normal = pc.normal;
     out.surface_velocity = pc.plate_velocity;
     out.surface_acceleration = pc.plate_acceleration;
     out.face = true;
-    out.triangle = facets_[static_cast<std::size_t>(model_->sonotrode)][static_cast<std::size_t>(triangle)];
+    out.triangle = facets_[static_cast<std::size_t>(c)][static_cast<std::size_t>(triangle)];
     out.overlapping = st == ToiStatus::overlapping;
-    if (out.overlapping) out.depth = std::max(0.0, -vibrating_plane_gap(path, R_, face_.plane, t));
+    if (out.overlapping) out.depth = std::max(0.0, -vibrating_plane_gap(path, R_, face.plane, t));
     return true;
 }
 
@@ -250,7 +263,8 @@ WallPredictor::AdvancementResult WallPredictor::advance_to_contact(int c, const 
 
 const TriangleMesh& WallPredictor::collider_mesh(int c, const MeshCollider& collider) const {
     const Component& comp = model_->components[static_cast<std::size_t>(c)];
-    return &collider == comp.collider.get() ? *comp.mesh : *face_.rest_mesh;
+    return &collider == comp.collider.get() ? *comp.mesh
+                                            : *faces_[static_cast<std::size_t>(face_of_[static_cast<std::size_t>(c)])].rest_mesh;
 }
 
 }  // namespace peensim

@@ -39,12 +39,14 @@ public:
     // t, moves p out to touch that face and sets w's point, normal and surface motion: true.
     bool put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const;
 
-    bool sonotrode_vibrates() const { return sonotrode_vibrates_; }
-    const SonotrodeFace& face() const { return face_; }
+    // Each vibrating sonotrode's face (its exact vibrating plane): face(c) for component c, which
+    // has_face(c).
+    bool has_face(std::size_t c) const { return face_of_[c] >= 0; }
+    const SonotrodeFace& face(std::size_t c) const { return faces_[static_cast<std::size_t>(face_of_[c])]; }
     // The mesh file's facet of a triangle of component c's mesh (impact records).
     int source_facet(std::size_t c, int mesh_triangle) const { return facets_[c][static_cast<std::size_t>(mesh_triangle)]; }
     double surface_speed(std::size_t c) const { return surface_speed_[c]; }  // m/s, fastest surface point of c
-    double moving_part_speed() const { return moving_part_speed_; }          // m/s, of any moving part but the sonotrode
+    double moving_part_speed() const { return moving_part_speed_; }          // m/s, of any moving part but the sonotrodes
 
 private:
     // Moving-mesh contact by conservative advancement, with a per-call iteration budget.
@@ -55,7 +57,9 @@ private:
     };
 
     bool static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const;
-    bool face_contact(const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const;
+    bool face_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const;
+    // Unit, world: the direction component c's face looks into the chamber (see the .cpp).
+    static Vec3 face_direction(const Model& m, std::size_t c);
     AdvancementResult advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets, double surface_speed,
                                          const Trajectory& path, double t, double t_end, WallEvent& out) const;
     // The search found nothing up to t and must go on from there: the event becomes a window end at t
@@ -66,12 +70,12 @@ private:
     std::shared_ptr<const Model> model_;
     double R_ = 0.0;  // m
     SimTime epoch_;
-    SonotrodeFace face_;
-    bool sonotrode_vibrates_ = false;
-    double face_phase_at_zero_ = 0.0;       // rad, the face's phase at t = 0
-    std::vector<std::vector<int>> facets_;  // per component: source facet per mesh triangle
-    std::vector<double> surface_speed_;     // m/s, per component: fastest surface point
-    double moving_part_speed_ = 0.0;        // m/s
+    std::vector<int> face_of_;                // per component: index into faces_, -1: none
+    std::vector<SonotrodeFace> faces_;        // one per vibrating sonotrode
+    std::vector<double> face_phase_at_zero_;  // rad, per face: its phase at t = 0
+    std::vector<std::vector<int>> facets_;    // per component: source facet per mesh triangle
+    std::vector<double> surface_speed_;       // m/s, per component: fastest surface point
+    double moving_part_speed_ = 0.0;          // m/s
 };
 
 }  // namespace peensim
