@@ -228,3 +228,37 @@ TEST(RenderRun, ThePeensimBinaryDoesNotLinkOpenGL) {
     EXPECT_EQ(text.find("libOSMesa"), std::string::npos) << text;
     EXPECT_EQ(text.find("libLLVM"), std::string::npos) << text;
 }
+
+namespace {
+
+// Light grey, the shot's colour: bright and without hue.
+int shot_pixels(const render::RgbaImage& image) {
+    int n = 0;
+    for (std::size_t i = 0; i + 3 < image.pixels.size(); i += 4) {
+        const auto r = image.pixels[i], g = image.pixels[i + 1], b = image.pixels[i + 2];
+        n += std::min({r, g, b}) > 150 && std::max({r, g, b}) - std::min({r, g, b}) < 30;
+    }
+    return n;
+}
+
+}  // namespace
+
+// Shot emitted during the run (a nozzle's) are drawn too: the state grows past the shot count the
+// recorder started with (zero here; the frames once wrote past its arrays).
+TEST(RenderRun, ShotEmittedDuringTheRunAreDrawn) {
+    TempDir dir;
+    RunOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/nozzle-almen.yaml";
+    o.output_dir = dir.path.string();
+    o.overrides = {"process.duration=6 ms",
+                   "render={width: 320, height: 180, fps: 10, slow_motion: 5 ms, video: none, "
+                   "camera: {position: [40 mm, -50 mm, 30 mm], look_at: [0, 0, 8 mm]}}"};
+    o.progress = false;
+    o.analyze = false;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    const std::vector<fs::path> frames = frames_in(dir.path);
+    ASSERT_EQ(frames.size(), 13u) << out.str();  // a frame every 0.5 ms (slow_motion / fps), 0 to 6 ms
+    // At 6 ms the jet is full (~15 shot in the air); at t = 0 at most the first has left the nozzle.
+    EXPECT_GT(shot_pixels(render::read_png(frames.back().string())), shot_pixels(render::read_png(frames.front().string())) + 10);
+}

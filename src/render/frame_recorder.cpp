@@ -167,6 +167,8 @@ struct FrameRecorder::Impl {
         const double behind = st.time.seconds() - t;  // s, >= 0
         const Vec3& g = model.gravity_m_per_s2;
         const ShotArrays& s = st.shots;
+        // Sources add shot during a run: as many centres as the state has slots (grown, never shrunk).
+        if (x.size() < s.size()) x.resize(s.size()), y.resize(s.size()), z.resize(s.size());
         // Back along the parabola: p(t) = p(t + d) - v(t + d) d + g d^2 / 2.
         for (std::size_t i = 0; i < s.size(); ++i) {
             x[i] = s.x[i] - s.vx[i] * behind + 0.5 * g.x() * behind * behind;
@@ -194,7 +196,13 @@ struct FrameRecorder::Impl {
         std::snprintf(line, sizeof line, "impacts logged: %llu", static_cast<unsigned long long>(logged_impacts));
         text.emplace_back(line);
 
-        const render::SphereSet shot{x, y, z, s.active, model.shot_radius_m, {0.85f, 0.86f, 0.9f, 1.0f}};
+        const std::size_t n = s.size();
+        const render::SphereSet shot{std::span<const double>(x.data(), n),
+                                     std::span<const double>(y.data(), n),
+                                     std::span<const double>(z.data(), n),
+                                     s.active,
+                                     model.shot_radius_m,
+                                     {0.85f, 0.86f, 0.9f, 1.0f}};
         renderer.render(camera, {.spheres = {&shot, 1}, .markers = markers, .text = text, .colour_bar = &bar}, image);
         writer.write(image, (frames_dir / frame_name(k)).string());
     }
