@@ -5,9 +5,12 @@
 
 #include <cstdint>
 
+#include <vector>
+
 #include "contact/contact_law.h"
 #include "engine/impact_record.h"
-#include "model/kinematics.h"
+#include "engine/simulation_state.h"
+#include "model/model.h"
 
 namespace peensim {
 
@@ -28,6 +31,16 @@ inline ImpactRecord make_impact_record(double time_s, int shot, int component, i
     rec.vt_in_m_per_s = r.vt_in;
     rec.vn_out_m_per_s = r.vn_out;
     return rec;
+}
+
+// An impact on component c: counted, and appended to `impacts` if c's impacts are logged (same
+// arguments as make_impact_record).
+inline void record_impact(const Model& model, SimulationState& state, std::vector<ImpactRecord>& impacts, double time_s, int shot, int c,
+                          int triangle, const Pose& pose, const Vec3& point_world, const Vec3& v_shot_in, const Vec3& v_surface,
+                          const contact::SurfaceContactResponse& r) {
+    ++state.impacts_per_component[static_cast<std::size_t>(c)];
+    if (!model.components[static_cast<std::size_t>(c)].logged) return;
+    impacts.push_back(make_impact_record(time_s, shot, c, triangle, pose, point_world, v_shot_in, v_surface, r));
 }
 
 }  // namespace peensim

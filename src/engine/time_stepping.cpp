@@ -538,12 +538,9 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         last_touch_[i] = u;
         last_touch_component_[i] = static_cast<int>(c);
         forget_clearances(i);
-        if (impact) {
-            ++state.impacts_per_component[c];
-            if (comp.logged)
-                impacts.push_back(make_impact_record(t0_.hi + (t0_.lo + u), static_cast<int>(i), static_cast<int>(c), contact.triangle,
-                                                     pose_touch, x_touch, v_touch, v_surface, r));
-        }
+        if (impact)
+            record_impact(*model_, state, impacts, t0_.hi + (t0_.lo + u), static_cast<int>(i), static_cast<int>(c), contact.triangle,
+                          pose_touch, x_touch, v_touch, v_surface, r);
         if (rides) {
             ++stats_.rides;
             if (!launch_within_step(state, i, c, n, centre_touch, r.v_shot, u, pose_touch, dt)) {

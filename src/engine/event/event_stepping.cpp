@@ -22,20 +22,13 @@ constexpr double kSubstepTravel = 0.25;  // of R, the most a shot (or a turning 
 // Hand-over to time stepping: at a restart point, when more than this fraction of the shot lie still
 // (slower than kHandOverSpeed) on a surface, the next interval is time-stepped.
 constexpr double kHandOverFraction = 0.1;
-constexpr double kHandOverSpeed = 0.05;    // m/s
-constexpr double kMinImpactSpeed = 1e-6;   // m/s, slower approaches are never impacts
-constexpr int kQuietSubsteps = 40;         // still substeps (2 ms) before a resting shot sleeps
-constexpr double kBoxTravel = 4.0;         // radii of travel a flight's first search window (and box) covers
-constexpr double kMaxWindowTravel = 64.0;  // radii: windows double up to this while a flight finds nothing
-constexpr double kMinBoxHorizon = 1e-7;    // s, a box horizon moves time on at least this much
-constexpr double kCollapseWindow = 1e-6;   // s, TC rule: a shot-shot collision this soon after one is elastic
-constexpr int kMaxQuickGrazes = 4;         // grazes each within kCollapseWindow of the last, then sustained contact
-constexpr double kContactSlack = 1e-6;     // of R: a shot this close to a surface or a shot touches it
-// of R: a shot in sustained contact this close to a surface stays on it. Rolling over a curved
-// surface opens a gap of (v dt)^2 / 2r per substep (6e-5 R for a 1 mm shot at 0.5 m/s on a 5 mm
-// radius); flying off it between substeps would leave a gap of a few nm to close by conservative
-// advancement, whose steps (gap / speed) crawl there.
-constexpr double kSustainSlack = 1e-3;
+constexpr double kHandOverSpeed = 0.05;               // m/s
+constexpr double kMinImpactSpeed = 1e-6;              // m/s, slower approaches are never impacts
+constexpr double kBoxTravel = 4.0;                    // radii of travel a flight's first search window (and box) covers
+constexpr double kMaxWindowTravel = 64.0;             // radii: windows double up to this while a flight finds nothing
+constexpr double kMinBoxHorizon = 1e-7;               // s, a box horizon moves time on at least this much
+constexpr double kCollapseWindow = 1e-6;              // s, TC rule: a shot-shot collision this soon after one is elastic
+constexpr int kMaxQuickGrazes = 4;                    // grazes each within kCollapseWindow of the last, then sustained contact
 constexpr std::uint64_t kMaxEventsAtOneTime = 10000;  // then the shot is forced into substeps
 
 // Slower approaches than gravity adds over two substeps are sustained contact (time stepping's rule).
@@ -46,7 +39,10 @@ double resting_speed_for(const Model& m) { return std::max(kMinImpactSpeed, 2.0 
 }  // namespace
 
 EventStepping::EventStepping(std::shared_ptr<const Model> model)
-    : model_(model), pairs_(model->shot_count, model->shot_radius_m, resting_speed_for(*model)), walls_(std::move(model)) {
+    : model_(model),
+      pairs_(model->shot_count, model->shot_radius_m, resting_speed_for(*model)),
+      walls_(model),
+      sustained_(std::move(model), resting_speed_for(*model_)) {
     const Model& m = *model_;
     // Every kernel here solves exact parabolas; a scene with another flight runs time stepping.
     if (!m.flight->is_parabola())
@@ -341,34 +337,12 @@ void EventStepping::process(int i, SimulationState& state, std::vector<ImpactRec
 // Flights and predictions
 
 void EventStepping::set_flight(int i, const Vec3& p, const Vec3& v, double t, Motion motion, const Vec3& support) {
-    Shot& s = shots_[static_cast<std::size_t>(i)];
-    const bool still = motion == Motion::sleeping || motion == Motion::riding;
-    Vec3 g = still ? Vec3(Vec3::Zero()) : g_;
-    // A shot in sustained contact slides along its support: the support takes gravity's pressing
-    // part, so that the shot neither sinks into it between substeps nor leaves it.
-    if (motion == Motion::sustained && g.dot(support) < 0.0) g -= g.dot(support) * support;
-    s.path = Trajectory{p, motion == Motion::sleeping ? Vec3(Vec3::Zero()) : v, g, t};
-    if (motion != Motion::sustained && motion != Motion::sleeping) s.quiet_substeps = 0;
-    s.window_travel = box_travel_;
-    s.motion = motion;
-    ++s.version;
+    start_motion(shots_[static_cast<std::size_t>(i)], p, v, t, motion, g_, box_travel_, support);
 }
 
-Vec3 EventStepping::position(int i, double t) const {
-    const Shot& s = shots_[static_cast<std::size_t>(i)];
-    if (s.motion == Motion::riding) {
-        const VibratingPlane& plane = walls_.face(static_cast<std::size_t>(s.ride_component)).plane;
-        return s.ride_point + plane.axis * (plane.displacement(t) - plane.displacement(s.ride_start)) +
-               s.ride_tangential * (t - s.ride_start);
-    }
-    return s.path.position(t);
-}
+Vec3 EventStepping::position(int i, double t) const { return motion_position(shots_[static_cast<std::size_t>(i)], walls_, t); }
 
-Vec3 EventStepping::velocity(int i, double t) const {
-    const Shot& s = shots_[static_cast<std::size_t>(i)];
-    if (s.motion == Motion::riding) return walls_.face(static_cast<std::size_t>(s.ride_component)).plane.velocity(t) + s.ride_tangential;
-    return s.path.velocity(t);
-}
+Vec3 EventStepping::velocity(int i, double t) const { return motion_velocity(shots_[static_cast<std::size_t>(i)], walls_, t); }
 
 void EventStepping::predict(int i, double t) {
     predict_wall(i, t);
@@ -509,7 +483,8 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         const ContactSite site{i, w.component, w.mesh_triangle, &pose, w.point, absolute_seconds(t), 0.0};
         const contact::SurfaceContactResponse r = comp.law->impact(surface_input(*model_, site, v, vs, n, impact), law_state(state, c));
         if (impact) {
-            record_impact(i, w.component, t, pose, w, v, r, state, impacts);
+            record_impact(*model_, state, impacts, absolute_seconds(t), i, w.component, w.triangle, pose, w.point, v, w.surface_velocity,
+                          r);
             s.in_flight = true;  // sent off by an impact (time stepping's rule: whatever the rebound)
         } else {
             if (s.in_flight) ++state.slow_contacts_per_component[c];
@@ -565,15 +540,6 @@ void EventStepping::touch(int i, double t, const WallEvent& w, const Vec3& p, co
         set_flight(i, p, v_kept, t, Motion::sustained, w.normal);
     }
     predict(i, t);
-}
-
-void EventStepping::record_impact(int i, int c, double t, const Pose& pose, const WallEvent& w, const Vec3& v,
-                                  const contact::SurfaceContactResponse& r, SimulationState& state,
-                                  std::vector<ImpactRecord>& impacts) const {
-    const Component& comp = model_->components[static_cast<std::size_t>(c)];
-    ++state.impacts_per_component[static_cast<std::size_t>(c)];
-    if (!comp.logged) return;
-    impacts.push_back(make_impact_record(absolute_seconds(t), i, c, w.triangle, pose, w.point, v, w.surface_velocity, r));
 }
 
 void EventStepping::start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after) {
@@ -648,107 +614,15 @@ void EventStepping::launch(int i, double t, SimulationState& state) {
 }
 
 void EventStepping::substep(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts) {
-    // Sustained contact (resting, rolling, sliding): time stepping's treatment over one substep.
-    // The shot has flown freely since the last substep; every surface and shot it now touches
-    // takes the approach away (friction on surfaces), and overlaps are removed by moving it out.
     ++stats_.substeps;
-    Shot& s = shots_[static_cast<std::size_t>(i)];
-    Vec3 p = position(i, t), v = velocity(i, t);
+    const Vec3 p = position(i, t), v = velocity(i, t);
     if (!std::isfinite(p.squaredNorm() + v.squaredNorm())) {
         lose(i, t, state, true);
         return;
     }
-    const Model& m = *model_;
-    const double slack = kContactSlack * R_;
-    bool touching = false, moving_support = false;
-    Vec3 support = Vec3::Zero();  // the contact normal gravity presses on most
-    const auto consider_support = [&](const Vec3& n) {
-        if (g_.dot(n) < g_.dot(support)) support = n;
-    };
-    // Shot it rests on or leans against: held like a wall (only this shot's motion changes). Shot
-    // first, surfaces last, so that a push from a neighbour never leaves the shot inside a surface.
-    pairs_.overlapping(p - Vec3::Constant(2.0 * R_ + slack), p + Vec3::Constant(2.0 * R_ + slack), neighbours_);
-    for (const int j : neighbours_) {
-        if (j == i || !active_[static_cast<std::size_t>(j)]) continue;
-        const Vec3 pj = position(j, t);
-        const Vec3 d = p - pj;
-        const double dist = d.norm();
-        if (!(dist < 2.0 * R_ + slack) || !(dist > 0.0)) continue;
-        touching = true;
-        const Vec3 n = d / dist;
-        consider_support(n);
-        // Held like a wall: the shot-shot law in sustained contact against a held partner takes the
-        // approach away from this shot alone (the law's normal points from this shot to j).
-        contact::ShotShotInput held =
-            shot_shot_input(*model_, i, j, v, velocity(j, t), -n, contact::ShotShotMode::sustained, dist, absolute_seconds(t));
-        held.j_held = true;
-        v = model_->shot_shot_law->respond(held).v_i;
-        if (dist < 2.0 * R_) {
-            // At most a tenth of R per substep: a jammed pile relaxes over a few substeps instead of
-            // pushing a shot through a wall at once.
-            p += std::min(2.0 * R_ - dist, 0.1 * R_) * n;
-            if (2.0 * R_ - dist > contact::kOverlapWorthCounting * R_) ++state.health.shot_overlap_corrections;
-        }
-        // A neighbour still moving (not asleep, not as still as this shot must be) keeps it awake.
-        const Shot& o = shots_[static_cast<std::size_t>(j)];
-        if (o.motion == Motion::flying || o.motion == Motion::riding || velocity(j, t).norm() >= resting_speed_) moving_support = true;
-    }
-    for (std::size_t c = 0; c < m.components.size(); ++c) {
-        const Component& comp = m.components[c];
-        const Pose pose = comp.kinematics.pose(epoch_, t);
-        const Vec3 local = pose.to_component(p);
-        MeshCollider::Closest closest;
-        MeshCollider::QueryCounters counters;
-        if (!comp.collider->closest_within(local, R_ * (1.0 + kSustainSlack), closest, counters)) continue;
-        if (!(closest.distance > 0.0)) continue;
-        const SurfaceClearance clear = surface_clearance(*comp.mesh, comp.solid, local, closest);
-        const double gap = clear.distance_m - R_;
-        if (gap < -contact::kDeepPenetration * R_) ++state.health.deep_penetrations;
-        touching = true;
-        const Vec3 n = pose.rotation * clear.normal;
-        const Vec3 point = pose.to_world(closest.point);
-        const Vec3 vs = comp.kinematics.point_velocity(point, epoch_, t);
-        moving_support |= comp.kinematics.moves();
-        const double approach = -(v - vs).dot(n);
-        consider_support(n);
-        if (approach > resting_speed_) {
-            // Slid or rolled into another surface fast enough to bounce: a rebound at the substep's
-            // end, an impact if at least the impact speed.
-            const bool impact = contact::is_impact(approach, impact_speed_);
-            if (!impact && s.in_flight) ++state.slow_contacts_per_component[c];
-            s.in_flight = impact;
-            const ContactSite site{i, static_cast<int>(c), closest.triangle, &pose, point, absolute_seconds(t), std::max(0.0, -gap)};
-            const contact::SurfaceContactResponse r = comp.law->impact(surface_input(m, site, v, vs, n, impact), law_state(state, c));
-            WallEvent w;
-            w.point = point;
-            w.normal = n;
-            w.surface_velocity = vs;
-            w.triangle = walls_.source_facet(c, closest.triangle);
-            if (impact) record_impact(i, static_cast<int>(c), t, pose, w, v, r, state, impacts);
-            v = r.v_shot;
-        } else {
-            const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, epoch_, t).dot(n));
-            const ContactSite site{i, static_cast<int>(c), closest.triangle, &pose, point, absolute_seconds(t), std::max(0.0, -gap)};
-            v = comp.law->sustain(surface_input(m, site, v, vs, n, false, pressing, s.substep_s), law_state(state, c)).v_shot;
-        }
-        if (gap < 0.0) {
-            p -= gap * n;
-            if (-gap > contact::kOverlapWorthCounting * R_) ++state.health.mesh_overlap_corrections;
-        }
-    }
-    if (!touching) {
-        s.in_flight = true;
-        set_flight(i, p, v, t, Motion::flying);
-        predict(i, t);
-        return;
-    }
-    s.quiet_substeps = (!moving_support && v.norm() < resting_speed_) ? s.quiet_substeps + 1 : 0;
-    if (s.quiet_substeps >= kQuietSubsteps) {
-        ++stats_.sleeps;
-        set_flight(i, p, Vec3::Zero(), t, Motion::sleeping);
-    } else {
-        set_flight(i, p, v - std::min(0.0, v.dot(support)) * support, t, Motion::sustained, support);
-    }
+    const SustainedContact::Next next = sustained_.end_of_substep(i, t, p, v, epoch_, shots_, active_, pairs_, walls_, state, impacts);
+    if (next.motion == Motion::sleeping) ++stats_.sleeps;
+    set_flight(i, next.position_m, next.velocity_m_per_s, t, next.motion, next.support);
     predict(i, t);
 }
 

@@ -39,8 +39,10 @@
 #include "collision/mesh_collider.h"
 #include "engine/event/event_queue.h"
 #include "engine/event/pair_predictor.h"
+#include "engine/event/shot_motion.h"
 #include "engine/event/shot_record.h"
 #include "engine/event/sonotrode_face.h"
+#include "engine/event/sustained_contact.h"
 #include "engine/event/wall_event.h"
 #include "engine/event/wall_predictor.h"
 #include "engine/stepper.h"
@@ -126,9 +128,6 @@ private:
     void fit_shots(std::size_t n);                                  // per-shot records for n shot
     // support: unit normal of the surface a sustained shot rests on (zero: none).
     void set_flight(int i, const Vec3& p, const Vec3& v, double t, Motion motion, const Vec3& support = Vec3::Zero());
-    // pose: component c's pose at t (the caller has it for the law already).
-    void record_impact(int i, int c, double t, const Pose& pose, const WallEvent& w, const Vec3& v,
-                       const contact::SurfaceContactResponse& r, SimulationState& state, std::vector<ImpactRecord>& impacts) const;
     // Wakes the sleeping shot touching shot i, and those touching them (a pile wakes as a whole).
     void wake_neighbours(int i, double t);
 
@@ -155,10 +154,11 @@ private:
     std::vector<unsigned char> active_;
     EventQueue queue_;
     PairPredictor pairs_;          // neighbours by flight box, their first contacts
-    std::vector<int> neighbours_;  // scratch of substep and wake_neighbours
+    std::vector<int> neighbours_;  // scratch of wake_neighbours
     std::vector<int> wake_stack_;  // scratch of wake_neighbours: shot whose neighbours to wake
     std::vector<int> woken_;       // scratch of wake_neighbours: shot woken so far
     WallPredictor walls_;          // where a flight first meets a surface
+    SustainedContact sustained_;   // the ends of sustained-contact substeps
 
     double R_ = 0.0;                // m
     Vec3 g_ = Vec3::Zero();         // m/s2

@@ -10,6 +10,8 @@ namespace peensim {
 // Fraction of R: a gap this small is a touch (conservative advancement stops there; a graze is
 // searched again from this far on; a shot-shot overlap shallower than this is left alone).
 inline constexpr double kTouchDistance = 1e-9;
+// Fraction of R: a shot this close to a surface or a shot touches it (sustained contact, sleep).
+inline constexpr double kContactSlack = 1e-6;
 
 // sink: the centre enters one of the model's sinks (`component` is the sink's index there).
 enum class WallKind : unsigned char { none, contact, launch, substep, leave, sink };
