@@ -34,6 +34,9 @@ struct SurfaceContactInput {
     // The contact policy's verdict (contact_policy.h): an impact (counted and logged) or a slower
     // contact the scheme resolves as a rebound. A law with a memory of hits counts only impacts.
     bool impact = false;
+    // This contact's own state (state_per_contact() doubles; zeros when the contact starts), kept
+    // while the contact lasts; empty for a law that keeps none.
+    std::span<double> contact_state{};
 };
 
 struct SurfaceContactResponse {
@@ -70,14 +73,19 @@ struct ShotShotResponse {
 // The impact line (contact::is_impact) and the other rules both schemes follow: contact_policy.h.
 
 // A law for shot-surface contacts (static or moving mesh), built for one pair (its parameters
-// bound) and immutable: what it must remember between contacts it keeps in the per-triangle state
-// the engine stores for it (in the simulation state and the checkpoint), never in itself.
+// bound) and immutable: what it must remember it keeps in the state the engine stores for it (in
+// the simulation state and the checkpoint), never in itself: per mesh triangle, across contacts
+// (a memory of hits), and per contact, while one lasts (a tangential spring, a contact's age).
 class SurfaceLaw {
 public:
     virtual ~SurfaceLaw() = default;
     virtual std::string_view name() const = 0;
     // Doubles of state per mesh triangle of the component (0: none, and the scene stores nothing).
     virtual int state_per_triangle() const { return 0; }
+    // Doubles of state per contact (0: none). A contact lasts while the shot stays in sustained
+    // contact with the component (engine/contact_states.h); an impact in the rigid schemes is a
+    // contact of its own, handed zeros.
+    virtual int state_per_contact() const { return 0; }
     // A rebound: the shot's velocity after the contact. Leaves it unchanged if the pair is separating.
     // triangle_state: the component's whole state (state_per_triangle() doubles per triangle).
     virtual SurfaceContactResponse impact(const SurfaceContactInput& in, std::span<double> triangle_state) const = 0;
@@ -88,9 +96,10 @@ public:
     virtual std::string describe_state(std::span<const double> /*triangle_state*/) const { return ""; }
 };
 
-// A law for shot-shot contacts, built with its parameters bound. (Per-contact state, for laws
-// whose contacts last, such as Hertz-Mindlin's tangential spring, comes with a scheme in which
-// contacts last: in the rigid schemes every shot-shot contact is instantaneous.)
+// A law for shot-shot contacts, built with its parameters bound. (Per-contact state for shot-shot
+// laws, such as Hertz-Mindlin's tangential spring, comes with the soft-sphere scheme: in the rigid
+// schemes a resting pile's shot-shot contacts are not handed to the law while they last, only
+// their approaches are.)
 class ShotShotLaw {
 public:
     virtual ~ShotShotLaw() = default;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,8 +19,8 @@ namespace {
 
 // The last character is the format version: 2 added the slow-contact counters and the per-shot
 // in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes); 4 the contact
-// laws' per-triangle state; 5 the counts of the shot sources and sinks.
-constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '5'};
+// laws' per-triangle state; 5 the counts of the shot sources and sinks; 6 the laws' per-contact state.
+constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '6'};
 
 // Any single flipped bit (and almost any damage) changes it.
 std::uint64_t checksum(std::string_view bytes) { return fnv1a64(bytes); }
@@ -66,6 +67,14 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
     w.put_vector(s.shots.in_flight);
     w.put_vector(s.emitted_per_source);
     w.put_vector(s.collected_per_sink);
+    w.put(s.contacts.resolutions());
+    w.put<std::uint64_t>(s.contacts.entries().size());
+    for (const auto& [key, entry] : s.contacts.entries()) {
+        w.put(key.first);
+        w.put(key.second);
+        w.put(entry.seen);
+        w.put_vector(entry.values);
+    }
     w.put(c.csv_bytes);
     w.put(c.csv_rows);
     w.put<std::uint64_t>(c.normal_speeds.size());
@@ -128,6 +137,20 @@ Checkpoint load_checkpoint(const std::string& path) {
     s.shots.in_flight = r.get_vector<unsigned char>();
     s.emitted_per_source = r.get_vector<std::uint64_t>();
     s.collected_per_sink = r.get_vector<std::uint64_t>();
+    const auto resolutions = r.get<std::uint64_t>();
+    const auto contacts = r.get<std::uint64_t>();
+    if (contacts > bytes.size()) throw damaged(path, "more contacts than the file has bytes");
+    std::map<ContactStates::Key, ContactStates::Entry> entries;
+    for (std::uint64_t k = 0; k < contacts; ++k) {
+        ContactStates::Key key;
+        key.first = r.get<int>();
+        key.second = r.get<int>();
+        ContactStates::Entry e;
+        e.seen = r.get<std::uint64_t>();
+        e.values = r.get_vector<double>();
+        entries.emplace(key, std::move(e));
+    }
+    s.contacts.restore(resolutions, std::move(entries));
     c.csv_bytes = r.get<std::uint64_t>();
     c.csv_rows = r.get<std::uint64_t>();
     const auto histograms = r.get<std::uint64_t>();
@@ -173,6 +196,18 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
         for (double x : s.law_state[k])
             if (!std::isfinite(x))
                 throw damaged(path, "component " + model.components[k].name + ": contact law state that is not a number");
+    }
+    for (const auto& [key, entry] : s.contacts.entries()) {
+        const auto [shot, c] = key;
+        if (shot < 0 || static_cast<std::size_t>(shot) >= n || c < 0 || static_cast<std::size_t>(c) >= model.components.size())
+            throw damaged(path, "a contact of shot " + std::to_string(shot) + " with component " + std::to_string(c) + ": no such pair");
+        const std::size_t per = static_cast<std::size_t>(model.components[static_cast<std::size_t>(c)].law->state_per_contact());
+        if (entry.values.size() != per)
+            throw damaged(path, "component " + model.components[static_cast<std::size_t>(c)].name + ": contact state of the wrong length");
+        for (double x : entry.values)
+            if (!std::isfinite(x))
+                throw damaged(path,
+                              "component " + model.components[static_cast<std::size_t>(c)].name + ": contact state that is not a number");
     }
     for (std::size_t i = 0; i < n; ++i) {
         if (s.shots.active[i] > 1 || s.shots.in_flight[i] > 1) throw damaged(path, "shot " + std::to_string(i) + ": flags not 0 or 1");

@@ -24,10 +24,13 @@ struct ContactSite {
 };
 
 // v_shot, v_surface: m/s, world; n: unit normal towards the shot; impact: the contact policy's
-// verdict; pressing_accel (m/s2) and dt (s): for friction in sustained contact.
+// verdict; pressing_accel (m/s2) and dt (s): for friction in sustained contact; contact_state: the
+// contact's own state (sustained_contact_state or instant_contact_state below).
 inline contact::SurfaceContactInput surface_input(const Model& model, const ContactSite& site, const Vec3& v_shot, const Vec3& v_surface,
-                                                  const Vec3& n, bool impact, double pressing_accel = 0.0, double dt = 0.0) {
+                                                  const Vec3& n, bool impact, double pressing_accel = 0.0, double dt = 0.0,
+                                                  std::span<double> contact_state = {}) {
     contact::SurfaceContactInput in{v_shot, v_surface, n, pressing_accel, dt};
+    in.contact_state = contact_state;
     in.shot = site.shot;
     in.component = site.component;
     in.triangle = site.mesh_triangle;
@@ -54,6 +57,27 @@ inline std::vector<std::vector<double>> fresh_law_state(const Model& model) {
         out[c].assign(per * comp.mesh->triangle_count(), 0.0);
     }
     return out;
+}
+
+// Whether any component's law keeps state per contact (then the schemes keep ContactStates).
+inline bool uses_contact_state(const Model& model) {
+    for (const Component& c : model.components)
+        if (c.law && c.law->state_per_contact() > 0) return true;
+    return false;
+}
+
+// The state of shot's sustained contact with component c, found in resolution `stamp` (zeros if
+// new; empty when c's law keeps none).
+inline std::span<double> sustained_contact_state(SimulationState& state, const Model& model, int shot, std::size_t c, std::uint64_t stamp) {
+    const int n = model.components[c].law->state_per_contact();
+    return n > 0 ? state.contacts.touch(shot, static_cast<int>(c), static_cast<std::size_t>(n), stamp) : std::span<double>();
+}
+
+// An instantaneous contact's state (an impact, a ride in one piece): zeros, in `scratch`.
+inline std::span<double> instant_contact_state(std::vector<double>& scratch, const Model& model, std::size_t c) {
+    const auto n = static_cast<std::size_t>(model.components[c].law->state_per_contact());
+    scratch.assign(n, 0.0);
+    return scratch;
 }
 
 // The shot-shot law's input; mode: the contact policy's (contact_policy.h).

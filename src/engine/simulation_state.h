@@ -8,6 +8,7 @@
 
 #include "common/sim_time.h"
 #include "common/vec.h"
+#include "engine/contact_states.h"
 
 namespace peensim {
 
@@ -96,6 +97,8 @@ struct SimulationState {
     // What the contact laws remember between contacts (contact_law.h): per component, its law's
     // state_per_triangle() doubles per mesh triangle; empty for a law that keeps none.
     std::vector<std::vector<double>> law_state;
+    // What the surface laws remember per contact while it lasts (empty unless a law asks).
+    ContactStates contacts;
     HealthCounters health;
     std::vector<LostShot> lost;  // one entry per lost shot (bounded by the shot count)
     // Shot sources and sinks (model/shot_flow.h), in the model's order: how many each source has

@@ -57,7 +57,8 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
       // Fat margin of the shot broad phase: one radius, about four steps of travel at the default
       // quarter-radius step (measured best in the reference notes: fewer re-insertions, few extra pairs).
       pairs_(model_->shot_count, model_->shot_radius_m, model_->shot_radius_m),
-      parabola_(model_->flight->is_parabola()) {
+      parabola_(model_->flight->is_parabola()),
+      contact_state_(uses_contact_state(*model_)) {
     pose_end_.resize(model_->components.size());
     n_shots_ = static_cast<std::size_t>(model_->shot_count);
     skip_until_.assign(model_->components.size() * n_shots_, 0);
@@ -126,6 +127,8 @@ void TimeStepping::advance(SimulationState& state, double t_end_s, double /*paus
     if (!(dt > 0.0) || !std::isfinite(dt) || dt >= remaining * (1.0 - 1e-9)) dt = remaining;
     step_ = state.steps;
     fit_shots(state.shots.size());  // an edit may have added shot
+    // Every sustained contact is resolved once a step: one not found again in this step has ended.
+    stamp_ = contact_state_ ? state.contacts.begin_resolution() : 0;
     // A state made before the flags existed (or by hand in a test) starts with every shot at rest.
     if (state.shots.in_flight.size() != state.shots.size()) state.shots.in_flight.assign(state.shots.size(), 0);
     if (state.slow_contacts_per_component.size() != model_->components.size())
@@ -144,6 +147,7 @@ void TimeStepping::advance(SimulationState& state, double t_end_s, double /*paus
     resolve_mesh_contacts(state, dt, impacts, /*only_kicked=*/true);
     note_free_flights(state);
     check_health(state);
+    if (contact_state_) state.contacts.end_unseen(stamp_);
 
     state.time.advance(dt);
     if (t_end_s - state.time.seconds() < 1e-12 * t_end_s) {
@@ -506,7 +510,9 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         const Pose pose_touch = kin.pose(t0_, u);
         const ContactSite site{
             static_cast<int>(i), static_cast<int>(c), contact.mesh_triangle, &pose_touch, x_touch, t0_.hi + (t0_.lo + u), 0.0};
-        contact::SurfaceContactResponse r = law.impact(surface_input(*model_, site, v_touch, v_surface, n, impact), law_state(state, c));
+        contact::SurfaceContactResponse r = law.impact(
+            surface_input(*model_, site, v_touch, v_surface, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
+            law_state(state, c));
         bool rides = false;
         double closing_accel = 0.0;  // m/s2
         if (vibrating) {
@@ -594,8 +600,10 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     // the shot by impulse / ride on average over the ride.
     const ContactSite site{
         static_cast<int>(i), static_cast<int>(c), -1, &pose_touch, centre - model_->shot_radius_m * n, t0_.hi + (t0_.lo + u), 0.0};
-    const contact::SurfaceContactResponse r = comp.law->sustain(
-        surface_input(*model_, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0, ride), law_state(state, c));
+    const contact::SurfaceContactResponse r =
+        comp.law->sustain(surface_input(*model_, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0, ride,
+                                        instant_contact_state(contact_scratch_, *model_, c)),
+                          law_state(state, c));
     const Vec3 kept = r.v_shot - plate_v0 - (r.v_shot - plate_v0).dot(n) * n;
     const Vec3 c_release = centre + kin.axis * (kin.displacement(t0_, u_release) - kin.displacement(t0_, u)) + slip * ride;
     const Vec3 v_launch = plate_v1 + kept;
@@ -654,7 +662,9 @@ void TimeStepping::sustain_contact(SimulationState& state, std::size_t i, std::s
     const ContactSite site{static_cast<int>(i), static_cast<int>(c),    contact.mesh_triangle,      &pose_end_[c],
                            contact.point,       t0_.hi + (t0_.lo + dt), std::max(0.0, -contact.gap)};
     const contact::SurfaceContactResponse r =
-        comp.law->sustain(surface_input(*model_, site, v1, v_surface_end, n, false, pressing, dt), law_state(state, c));
+        comp.law->sustain(surface_input(*model_, site, v1, v_surface_end, n, false, pressing, dt,
+                                        sustained_contact_state(state, *model_, static_cast<int>(i), c, stamp_)),
+                          law_state(state, c));
     ShotArrays& s = state.shots;
     s.set_velocity(i, r.v_shot);
     s.set_position(i, p1 - contact.gap * n);

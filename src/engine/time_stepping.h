@@ -97,7 +97,10 @@ private:
 
     std::shared_ptr<const Model> model_;
     ShotPairFinder pairs_;
-    bool parabola_ = true;  // flights are exact parabolas (closed form, no call through the flight model)
+    bool parabola_ = true;                 // flights are exact parabolas (closed form, no call through the flight model)
+    bool contact_state_ = false;           // a law keeps state per contact (ContactStates)
+    std::uint64_t stamp_ = 0;              // this step's resolution of the sustained contacts
+    std::vector<double> contact_scratch_;  // an instantaneous contact's state (zeros)
     StepStats stats_;
     // Per step:
     SimTime t0_;                                 // step start

@@ -42,7 +42,8 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
     : model_(model),
       pairs_(model->shot_count, model->shot_radius_m, resting_speed_for(*model)),
       walls_(model),
-      sustained_(std::move(model), resting_speed_for(*model_)) {
+      sustained_(std::move(model), resting_speed_for(*model_)),
+      contact_state_(uses_contact_state(*model_)) {
     const Model& m = *model_;
     // Every kernel here solves exact parabolas; a scene with another flight runs time stepping.
     if (!m.flight->is_parabola())
@@ -261,7 +262,10 @@ void EventStepping::start(SimulationState& state) {
         // with a zero velocity): it sleeps on, as it would in a run resumed from this state.
         const Vec3 p = state.shots.position(k), v = state.shots.velocity(k);
         const bool asleep = v == Vec3::Zero() && touches_surface(p);
-        set_flight(i, p, v, t, asleep ? Motion::sleeping : Motion::flying);
+        // A shot whose contacts a law remembers is in sustained contact: it goes on in substeps (a
+        // flight would end those contacts, and their state, at every restart point).
+        const bool sustained = !asleep && contact_state_ && has_contacts(state.contacts, i);
+        set_flight(i, p, v, t, asleep ? Motion::sleeping : sustained ? Motion::sustained : Motion::flying);
         shots_[k].in_flight = state.shots.in_flight[k] != 0;
         predict_wall(i, t);
         renew_box(i, t);
@@ -481,7 +485,9 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         const bool impact = contact::is_impact(approach, impact_speed_);
         const Pose pose = comp.kinematics.pose(epoch_, t);
         const ContactSite site{i, w.component, w.mesh_triangle, &pose, w.point, absolute_seconds(t), 0.0};
-        const contact::SurfaceContactResponse r = comp.law->impact(surface_input(*model_, site, v, vs, n, impact), law_state(state, c));
+        const contact::SurfaceContactResponse r =
+            comp.law->impact(surface_input(*model_, site, v, vs, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
+                             law_state(state, c));
         if (impact) {
             record_impact(*model_, state, impacts, absolute_seconds(t), i, w.component, w.triangle, pose, w.point, v, w.surface_velocity,
                           r);
@@ -603,9 +609,10 @@ void EventStepping::launch(int i, double t, SimulationState& state) {
     const ContactSite site{i,  s.ride_component, -1, &pose, position(i, s.ride_start) - R_ * s.ride_normal, absolute_seconds(s.ride_start),
                            0.0};
     const Vec3 v0 = plane.velocity(s.ride_start);
-    const contact::SurfaceContactResponse r = comp.law->sustain(
-        surface_input(*model_, site, v0 + s.ride_tangential, v0, s.ride_normal, false, ride > 0.0 ? impulse / ride : 0.0, ride),
-        law_state(state, c));
+    const contact::SurfaceContactResponse r =
+        comp.law->sustain(surface_input(*model_, site, v0 + s.ride_tangential, v0, s.ride_normal, false, ride > 0.0 ? impulse / ride : 0.0,
+                                        ride, instant_contact_state(contact_scratch_, *model_, c)),
+                          law_state(state, c));
     const Vec3 tangential = r.v_shot - v0 - (r.v_shot - v0).dot(s.ride_normal) * s.ride_normal;
     const FlightState flight = after_release({position(i, t_release), v_plate + tangential}, g_, delay);
     s.in_flight = true;
@@ -669,6 +676,10 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state)
     // A contact slower than the resting speed leaves the upper shot resting on the lower one.
     set_flight(i, pi, vi, t, after(a), slow ? Vec3(-n) : Vec3(Vec3::Zero()));
     set_flight(j, pj, vj, t, after(b), slow ? n : Vec3(Vec3::Zero()));
+    if (contact_state_) {  // knocked off its support: its contacts have ended
+        if (a.motion == Motion::flying) state.contacts.end_all(i);
+        if (b.motion == Motion::flying) state.contacts.end_all(j);
+    }
     predict(i, t);
     predict(j, t);
     if (a_slept) wake_neighbours(i, t);
@@ -726,6 +737,7 @@ void EventStepping::lose(int i, double t, SimulationState& state, bool non_finit
 
 void EventStepping::retire(int i, SimulationState& state) {
     const auto k = static_cast<std::size_t>(i);
+    if (contact_state_) state.contacts.end_all(i);
     active_[k] = 0;
     state.shots.active[k] = 0;
     pairs_.remove(i);

@@ -131,6 +131,11 @@ private:
     // Wakes the sleeping shot touching shot i, and those touching them (a pile wakes as a whole).
     void wake_neighbours(int i, double t);
 
+    // Whether `contacts` holds a contact of shot i.
+    static bool has_contacts(const ContactStates& contacts, int i) {
+        const auto it = contacts.entries().lower_bound({i, -1});
+        return it != contacts.entries().end() && it->first.first == i;
+    }
     // Exact centre and velocity of shot i at time t, whatever its motion.
     Vec3 position(int i, double t) const;
     Vec3 velocity(int i, double t) const;
@@ -153,12 +158,14 @@ private:
     std::vector<Shot> shots_;
     std::vector<unsigned char> active_;
     EventQueue queue_;
-    PairPredictor pairs_;          // neighbours by flight box, their first contacts
-    std::vector<int> neighbours_;  // scratch of wake_neighbours
-    std::vector<int> wake_stack_;  // scratch of wake_neighbours: shot whose neighbours to wake
-    std::vector<int> woken_;       // scratch of wake_neighbours: shot woken so far
-    WallPredictor walls_;          // where a flight first meets a surface
-    SustainedContact sustained_;   // the ends of sustained-contact substeps
+    PairPredictor pairs_;                  // neighbours by flight box, their first contacts
+    std::vector<int> neighbours_;          // scratch of wake_neighbours
+    std::vector<int> wake_stack_;          // scratch of wake_neighbours: shot whose neighbours to wake
+    std::vector<int> woken_;               // scratch of wake_neighbours: shot woken so far
+    WallPredictor walls_;                  // where a flight first meets a surface
+    SustainedContact sustained_;           // the ends of sustained-contact substeps
+    bool contact_state_ = false;           // a law keeps state per contact (SimulationState::contacts)
+    std::vector<double> contact_scratch_;  // an instantaneous contact's state (zeros)
 
     double R_ = 0.0;                // m
     Vec3 g_ = Vec3::Zero();         // m/s2

@@ -20,7 +20,11 @@ constexpr double kSustainSlack = 1e-3;
 }  // namespace
 
 SustainedContact::SustainedContact(std::shared_ptr<const Model> model, double resting_speed_m_per_s)
-    : model_(std::move(model)), R_(model_->shot_radius_m), g_(model_->gravity_m_per_s2), resting_speed_(resting_speed_m_per_s) {
+    : model_(std::move(model)),
+      R_(model_->shot_radius_m),
+      g_(model_->gravity_m_per_s2),
+      resting_speed_(resting_speed_m_per_s),
+      contact_state_(uses_contact_state(*model_)) {
     neighbours_.reserve(64);
 }
 
@@ -30,6 +34,8 @@ SustainedContact::Next SustainedContact::end_of_substep(int i, double t, Vec3 p,
                                                         std::vector<ImpactRecord>& impacts) {
     EventShot& s = shots[static_cast<std::size_t>(i)];
     const Model& m = *model_;
+    // The contacts a law remembers: those not found again at this substep's end have ended.
+    const std::uint64_t stamp = contact_state_ ? state.contacts.begin_resolution() : 0;
     const double now_s = epoch.hi + (epoch.lo + t);  // absolute
     const double slack = kContactSlack * R_;
     bool touching = false, moving_support = false;
@@ -90,20 +96,26 @@ SustainedContact::Next SustainedContact::end_of_substep(int i, double t, Vec3 p,
             const bool impact = contact::is_impact(approach, m.impact_speed_m_per_s);
             if (!impact && s.in_flight) ++state.slow_contacts_per_component[c];
             s.in_flight = impact;
-            const contact::SurfaceContactResponse r = comp.law->impact(surface_input(m, site, v, vs, n, impact), law_state(state, c));
+            const contact::SurfaceContactResponse r = comp.law->impact(
+                surface_input(m, site, v, vs, n, impact, 0.0, 0.0, instant_contact_state(scratch_, m, c)), law_state(state, c));
             if (impact)
                 record_impact(m, state, impacts, now_s, i, static_cast<int>(c), walls.source_facet(c, closest.triangle), pose, point, v, vs,
                               r);
             v = r.v_shot;
         } else {
             const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, epoch, t).dot(n));
-            v = comp.law->sustain(surface_input(m, site, v, vs, n, false, pressing, s.substep_s), law_state(state, c)).v_shot;
+            v = comp.law
+                    ->sustain(
+                        surface_input(m, site, v, vs, n, false, pressing, s.substep_s, sustained_contact_state(state, m, i, c, stamp)),
+                        law_state(state, c))
+                    .v_shot;
         }
         if (gap < 0.0) {
             p -= gap * n;
             if (-gap > contact::kOverlapWorthCounting * R_) ++state.health.mesh_overlap_corrections;
         }
     }
+    if (contact_state_) state.contacts.end_unseen(stamp, i);
     if (!touching) {
         s.in_flight = true;
         return {p, v, Vec3::Zero(), EventMotion::flying};

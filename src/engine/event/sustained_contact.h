@@ -48,7 +48,9 @@ private:
     double R_ = 0.0;               // m
     Vec3 g_ = Vec3::Zero();        // m/s2
     double resting_speed_ = 0.0;   // m/s
+    bool contact_state_ = false;   // a law keeps state per contact (SimulationState::contacts)
     std::vector<int> neighbours_;  // scratch
+    std::vector<double> scratch_;  // an instantaneous contact's state (zeros)
 };
 
 }  // namespace peensim
