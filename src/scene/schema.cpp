@@ -95,7 +95,8 @@ const std::array schema_table{
     // contacts.*.law and each law's parameters: generated from the law catalogue (law_entries).
 
     SchemaEntry{"components", K::list, D::dimensionless, true, "", "", {}, "", "", "",
-                "The meshes: exactly one `sonotrode`, at least one `chamber`."},
+                "The meshes. With `shot.count` above 0: at least one `sonotrode` (the shot are placed on the first) and one "
+                "`chamber`; a scene fed by `sources` may have neither."},
     SchemaEntry{"components[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One component."},
     SchemaEntry{"components[].name", K::text, D::dimensionless, true, "", "", {}, "", "", "",
                 "Unique name (`[A-Za-z0-9_-]+`)."},
