@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/vec.h"
+#include "contact/hertz_mindlin.h"
 
 namespace peensim::contact {
 
@@ -72,6 +73,15 @@ struct ShotShotResponse {
 
 // The impact line (contact::is_impact) and the other rules both schemes follow: contact_policy.h.
 
+// What the soft-sphere scheme asks of a pair's law (a law that offers it: `hertz-mindlin`): the
+// Hertz-Mindlin constants of a contact that starts approaching at approach_speed (m/s, >= 0). A
+// velocity-dependent restitution fixes the contact's damping from its approach speed.
+class SoftLaw {
+public:
+    virtual ~SoftLaw() = default;
+    virtual HertzPair contact(double approach_speed_m_per_s) const = 0;
+};
+
 // A law for shot-surface contacts (static or moving mesh), built for one pair (its parameters
 // bound) and immutable: what it must remember it keeps in the state the engine stores for it (in
 // the simulation state and the checkpoint), never in itself: per mesh triangle, across contacts
@@ -94,6 +104,8 @@ public:
     virtual SurfaceContactResponse sustain(const SurfaceContactInput& in, std::span<double> triangle_state) const = 0;
     // One line on what the state holds now, for the run's summary ("" when the law keeps none).
     virtual std::string describe_state(std::span<const double> /*triangle_state*/) const { return ""; }
+    // The soft-sphere form of this law, or nullptr (the soft scheme needs it for every pair).
+    virtual const SoftLaw* soft() const { return nullptr; }
 };
 
 // A law for shot-shot contacts, built with its parameters bound. (Per-contact state for shot-shot
@@ -105,6 +117,8 @@ public:
     virtual ~ShotShotLaw() = default;
     virtual std::string_view name() const = 0;
     virtual ShotShotResponse respond(const ShotShotInput& in) const = 0;
+    // The soft-sphere form of this law, or nullptr (the soft scheme needs it for every pair).
+    virtual const SoftLaw* soft() const { return nullptr; }
 };
 
 }  // namespace peensim::contact

@@ -22,7 +22,9 @@ HertzPair hertz_pair(const ElasticMaterial& a, const ElasticMaterial& b, double 
                      double mass_b_kg, double restitution, double friction) {
     HertzPair p;
     const auto e_part = [](const ElasticMaterial& m) { return (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus_pa; };
-    const auto g_part = [](const ElasticMaterial& m) { return 2.0 * (2.0 - m.poisson_ratio) * (1.0 + m.poisson_ratio) / m.youngs_modulus_pa; };
+    const auto g_part = [](const ElasticMaterial& m) {
+        return 2.0 * (2.0 - m.poisson_ratio) * (1.0 + m.poisson_ratio) / m.youngs_modulus_pa;
+    };
     p.E_star_pa = harmonic(e_part(a), e_part(b));
     p.G_star_pa = harmonic(g_part(a), g_part(b));
     p.R_star_m = harmonic(inverse(radius_a_m), inverse(radius_b_m));
@@ -40,8 +42,13 @@ double hertz_normal_force(const HertzPair& p, double delta_m, double delta_rate_
 }
 
 Vec3 mindlin_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, double dt_s, Vec3& spring_m) {
+    return mindlin_tangential_force(p, delta_m, normal_force_n, v_t, Vec3(v_t * dt_s), spring_m);
+}
+
+Vec3 mindlin_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, const Vec3& slip_m,
+                              Vec3& spring_m) {
     const double s_t = 8.0 * p.G_star_pa * std::sqrt(p.R_star_m * std::max(0.0, delta_m));  // N/m
-    spring_m += v_t * dt_s;
+    spring_m += slip_m;
     const Vec3 damping = -kDampingFactor * p.beta * std::sqrt(s_t * p.m_star_kg) * v_t;  // beta <= 0: opposes v_t
     Vec3 force = -s_t * spring_m - damping;
     const double cap = p.friction * std::max(0.0, normal_force_n);

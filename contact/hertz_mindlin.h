@@ -45,6 +45,10 @@ double hertz_normal_force(const HertzPair& p, double delta_m, double delta_rate_
 // delta (m) under normal force f_n (N): S_t = 8 G* sqrt(R* delta), F_t = -S_t s - 2 sqrt(5/6) beta
 // sqrt(S_t m*) v_t, capped at friction f_n (the spring then shortened to match: a slider).
 Vec3 mindlin_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, double dt_s, Vec3& spring_m);
+// The same with the spring's extension this step (slip_m, m) given apart from the slip velocity
+// v_t (m/s) the damping acts on (an integrator may take them at different times of its step).
+Vec3 mindlin_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, const Vec3& slip_m,
+                              Vec3& spring_m);
 
 // s, the duration of an elastic Hertz impact at approach speed v (m/s): 2.87 (m*^2 / (R* E*^2 v))^(1/5).
 double hertz_contact_duration(const HertzPair& p, double v_m_per_s);

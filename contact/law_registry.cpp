@@ -3,6 +3,7 @@
 #include <array>
 #include <stdexcept>
 
+#include "contact/hertz_mindlin_law.h"
 #include "contact/impact_history_law.h"
 #include "contact/impulse_laws.h"
 
@@ -14,7 +15,7 @@ std::shared_ptr<const SurfaceLaw> make_impulse_surface(const ParameterValues& v,
     return std::make_shared<ImpulseSurfaceLaw>(impulse_coefficients(v));
 }
 
-std::shared_ptr<const ShotShotLaw> make_impulse_shot_shot(const ParameterValues& v) {
+std::shared_ptr<const ShotShotLaw> make_impulse_shot_shot(const ParameterValues& v, const ShotShotPair&) {
     return std::make_shared<ImpulseShotShotLaw>(impulse_coefficients(v));
 }
 
@@ -45,6 +46,13 @@ const std::array kCatalogue{
              {},
              make_impact_history,
              nullptr},
+    LawEntry{"hertz-mindlin",
+             "Soft-sphere contact (reference section 4, as LIGGGHTS and EDEM): Hertz normal force, Mindlin "
+             "tangential spring with Coulomb's cap f, both damped from the restitution e (e falls as (V/V0)^-1/4 "
+             "above V0 when V0 > 0). Needs `youngs_modulus` and `poisson_ratio` of the shot's and the surface's "
+             "materials. The soft scheme integrates it; the rigid schemes take its instantaneous limit (normal "
+             "restitution e, the tangential impulse of a sphere that grips: 5/7 of the slip, or Coulomb-limited).",
+             hertz_mindlin_parameters(), hertz_mindlin_parameters(), make_hertz_mindlin_surface, make_hertz_mindlin_shot_shot},
 };
 
 }  // namespace

@@ -25,6 +25,18 @@ struct SurfacePair {
     double shot_density_kg_per_m3 = 0.0;    // kg/m3
     std::optional<double> yield_stress_pa;  // Pa, of the component's material, if the scene gives it
     std::string material;                   // the component's material (for messages)
+    // E and nu of the component's and the shot's materials, where the scene gives both.
+    std::optional<ElasticMaterial> surface_elastic;
+    std::optional<ElasticMaterial> shot_elastic;
+    std::string shot_material;  // the shot's material ("" if the scene gives only a density; for messages)
+};
+
+// What a shot-shot law may be built from besides its parameter values.
+struct ShotShotPair {
+    double shot_diameter_m = 0.0;         // m
+    double shot_density_kg_per_m3 = 0.0;  // kg/m3
+    std::optional<ElasticMaterial> shot_elastic;
+    std::string shot_material;
 };
 
 struct LawEntry {
@@ -34,7 +46,7 @@ struct LawEntry {
     std::span<const LawParameter> shot_shot_parameters;  // for `shot-shot`; empty: not a shot-shot law
     // Throw std::invalid_argument saying what the pair lacks (the caller adds the scene location).
     std::shared_ptr<const SurfaceLaw> (*make_surface)(const ParameterValues&, const SurfacePair&);
-    std::shared_ptr<const ShotShotLaw> (*make_shot_shot)(const ParameterValues&);  // nullptr when not a shot-shot law
+    std::shared_ptr<const ShotShotLaw> (*make_shot_shot)(const ParameterValues&, const ShotShotPair&);  // nullptr when not a shot-shot law
 };
 
 // Every law, the default ("impulse") first.
@@ -43,7 +55,7 @@ std::span<const LawEntry> law_catalogue();
 // The entry of a law name, or nullptr.
 const LawEntry* find_law(std::string_view name);
 
-// "impulse, impact-history".
+// "impulse, impact-history, hertz-mindlin".
 std::string law_names_text();
 
 }  // namespace peensim::contact

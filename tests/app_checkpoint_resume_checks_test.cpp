@@ -91,7 +91,7 @@ TEST(CheckpointResumeChecks, StatesThatCannotBeResumedAreRefused) {
     EXPECT_NE(resume_error(c, *model).find("expected a time"), std::string::npos);
     c = good;
     c.state.shots.x[3] = nan;
-    EXPECT_NE(resume_error(c, *model).find("shot 3: a position or velocity that is not a number"), std::string::npos);
+    EXPECT_NE(resume_error(c, *model).find("shot 3: a position, velocity or spin that is not a number"), std::string::npos);
     c = good;
     c.state.shots.vz[5] = std::numeric_limits<double>::infinity();
     EXPECT_NE(resume_error(c, *model).find("shot 5"), std::string::npos);

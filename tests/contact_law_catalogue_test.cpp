@@ -108,7 +108,7 @@ TEST(ContactShotShotModes, AHeldPartnerTakesNothingAndTheShotTakesTheWholeImpuls
 }
 
 TEST(ContactLawCatalogue, EveryLawIsRegisteredOnceWithItsParameters) {
-    EXPECT_EQ(contact::law_names_text(), "impulse, impact-history");
+    EXPECT_EQ(contact::law_names_text(), "impulse, impact-history, hertz-mindlin");
     const contact::LawEntry* impulse = contact::find_law("impulse");
     ASSERT_NE(impulse, nullptr);
     ASSERT_EQ(impulse->shot_shot_parameters.size(), 2u);

@@ -139,7 +139,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct SchemeSpec {
     std::string label;                   // as given on --schemes, "#k" added when two are the same
-    std::string name;                    // step | event
+    std::string name;                    // step | event | soft
     std::vector<std::string> overrides;  // its own path=value overrides
 };
 
@@ -153,8 +153,8 @@ std::vector<SchemeSpec> parse_schemes(const std::vector<std::string>& texts) {
         s.label = text;
         std::stringstream parts(text);
         std::getline(parts, s.name, ':');
-        if (s.name != "step" && s.name != "event")
-            fail("expected step or event, optionally followed by :path=value overrides, got '" + text + "'");
+        if (s.name != "step" && s.name != "event" && s.name != "soft")
+            fail("expected step, event or soft, optionally followed by :path=value overrides, got '" + text + "'");
         for (std::string o; std::getline(parts, o, ':');) {
             if (o.find('=') == std::string::npos) fail("expected path=value after ':' in '" + text + "', got '" + o + "'");
             s.overrides.push_back(o);
@@ -348,6 +348,13 @@ void print_scene(const std::string& scene_path, const std::vector<SchemeRun>& ru
         for (const ComponentFigures& f : r.components)
             if (!f.total) out << " " << f.name << format(" %.1f,", r.per_simulated_s(static_cast<double>(f.impacts)));
         out << format(" shot-shot %.1f", r.per_simulated_s(static_cast<double>(r.shot_shot_impacts)));
+        if (r.stats.events > 0)
+            out << "\n  " << pad("", r.spec.label.size()) << "  work: " << r.stats.events << " events, " << r.stats.rides << " rides, "
+                << r.stats.substeps << " sustained substeps, " << r.stats.hand_overs << " hand-overs";
+        if (r.stats.soft_steps > 0)
+            out << "; soft contacts: " << r.stats.soft_steps << " steps, " << r.stats.soft_member_steps << " shot steps, "
+                << r.stats.soft_contact_evaluations << " contact evaluations, " << r.stats.soft_joins << " joins, " << r.stats.soft_rests
+                << " left to rest";
         if (r.health.serious() > 0) {
             out << "; health:";
             r.health.for_each([&](const char* name, std::uint64_t v) {

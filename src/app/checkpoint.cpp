@@ -19,8 +19,9 @@ namespace {
 
 // The last character is the format version: 2 added the slow-contact counters and the per-shot
 // in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes); 4 the contact
-// laws' per-triangle state; 5 the counts of the shot sources and sinks; 6 the laws' per-contact state.
-constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '6'};
+// laws' per-triangle state; 5 the counts of the shot sources and sinks; 6 the laws' per-contact state;
+// 7 the shot's angular velocities and the soft scheme's contacts in progress.
+constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '7'};
 
 // Any single flipped bit (and almost any damage) changes it.
 std::uint64_t checksum(std::string_view bytes) { return fnv1a64(bytes); }
@@ -30,6 +31,16 @@ InputError damaged(const std::string& path, const std::string& what) {
 }
 
 bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+void put_vec(ByteWriter& w, const Vec3& v) {
+    for (int k = 0; k < 3; ++k) w.put(v[k]);
+}
+
+Vec3 get_vec(ByteReader& r) {
+    Vec3 v;
+    for (int k = 0; k < 3; ++k) v[k] = r.get<double>();
+    return v;
+}
 
 }  // namespace
 
@@ -62,7 +73,8 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
         for (int k = 0; k < 3; ++k) w.put(l.where_m[k]);
         w.put(l.clearance_m);
     }
-    for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz}) w.put_vector(*v);
+    for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz, &s.shots.wx, &s.shots.wy, &s.shots.wz})
+        w.put_vector(*v);
     w.put_vector(s.shots.active);
     w.put_vector(s.shots.in_flight);
     w.put_vector(s.emitted_per_source);
@@ -74,6 +86,20 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
         w.put(key.second);
         w.put(entry.seen);
         w.put_vector(entry.values);
+    }
+    w.put<std::uint64_t>(s.soft_contacts.size());
+    for (const SoftContact& k : s.soft_contacts) {
+        w.put(k.shot);
+        w.put(k.partner);
+        w.put(k.component);
+        put_vec(w, k.spring_m);
+        put_vec(w, k.normal);
+        w.put(k.approach_m_per_s);
+        w.put(k.start_time_s);
+        w.put(k.mesh_triangle);
+        put_vec(w, k.start_point_m);
+        put_vec(w, k.start_velocity_m_per_s);
+        w.put(k.start_tangential_m_per_s);
     }
     w.put(c.csv_bytes);
     w.put(c.csv_rows);
@@ -132,7 +158,8 @@ Checkpoint load_checkpoint(const std::string& path) {
         l.clearance_m = r.get<double>();
         s.lost.push_back(l);
     }
-    for (auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz}) *v = r.get_vector<double>();
+    for (auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz, &s.shots.wx, &s.shots.wy, &s.shots.wz})
+        *v = r.get_vector<double>();
     s.shots.active = r.get_vector<unsigned char>();
     s.shots.in_flight = r.get_vector<unsigned char>();
     s.emitted_per_source = r.get_vector<std::uint64_t>();
@@ -151,6 +178,23 @@ Checkpoint load_checkpoint(const std::string& path) {
         entries.emplace(key, std::move(e));
     }
     s.contacts.restore(resolutions, std::move(entries));
+    const auto soft = r.get<std::uint64_t>();
+    if (soft > bytes.size()) throw damaged(path, "more soft contacts than the file has bytes");
+    for (std::uint64_t k = 0; k < soft; ++k) {
+        SoftContact sc;
+        sc.shot = r.get<int>();
+        sc.partner = r.get<int>();
+        sc.component = r.get<int>();
+        sc.spring_m = get_vec(r);
+        sc.normal = get_vec(r);
+        sc.approach_m_per_s = r.get<double>();
+        sc.start_time_s = r.get<double>();
+        sc.mesh_triangle = r.get<int>();
+        sc.start_point_m = get_vec(r);
+        sc.start_velocity_m_per_s = get_vec(r);
+        sc.start_tangential_m_per_s = r.get<double>();
+        s.soft_contacts.push_back(sc);
+    }
     c.csv_bytes = r.get<std::uint64_t>();
     c.csv_rows = r.get<std::uint64_t>();
     const auto histograms = r.get<std::uint64_t>();
@@ -177,7 +221,7 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
         throw damaged(path, "expected " + std::to_string(model.shot_count) + " shot" +
                                 (emitted > 0 ? " (and up to " + std::to_string(emitted) + " emitted)" : std::string()) + ", got " +
                                 std::to_string(n));
-    for (const auto* v : {&s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz})
+    for (const auto* v : {&s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz, &s.shots.wx, &s.shots.wy, &s.shots.wz})
         if (v->size() != n) throw damaged(path, "shot arrays of different lengths");
     if (s.shots.active.size() != n || s.shots.in_flight.size() != n) throw damaged(path, "shot flags of the wrong length");
     if (s.emitted_per_source.size() != model.sources.size() || s.collected_per_sink.size() != model.sinks.size())
@@ -209,11 +253,30 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
                 throw damaged(path,
                               "component " + model.components[static_cast<std::size_t>(c)].name + ": contact state that is not a number");
     }
+    for (const SoftContact& k : s.soft_contacts) {
+        const bool with_shot = k.partner >= 0;
+        const bool shot_ok = k.shot >= 0 && static_cast<std::size_t>(k.shot) < n && s.shots.active[static_cast<std::size_t>(k.shot)] == 1;
+        const bool other_ok = with_shot ? k.component < 0 && k.partner > k.shot && static_cast<std::size_t>(k.partner) < n &&
+                                              s.shots.active[static_cast<std::size_t>(k.partner)] == 1
+                                        : k.component >= 0 && static_cast<std::size_t>(k.component) < model.components.size() &&
+                                              k.mesh_triangle >= 0 &&
+                                              static_cast<std::size_t>(k.mesh_triangle) <
+                                                  model.components[static_cast<std::size_t>(k.component)].mesh->triangle_count();
+        if (model.scheme != SteppingScheme::soft || !shot_ok || !other_ok)
+            throw damaged(path, "a soft contact of shot " + std::to_string(k.shot) + " with " +
+                                    (with_shot ? "shot " + std::to_string(k.partner) : "component " + std::to_string(k.component)) +
+                                    ": no such pair in this scene");
+        if (!finite(k.spring_m) || !finite(k.normal) || !(std::abs(k.normal.norm() - 1.0) < 1e-6) || !std::isfinite(k.approach_m_per_s) ||
+            !(k.approach_m_per_s >= 0.0) || !std::isfinite(k.start_time_s) || !finite(k.start_point_m) ||
+            !finite(k.start_velocity_m_per_s) || !std::isfinite(k.start_tangential_m_per_s))
+            throw damaged(path, "a soft contact of shot " + std::to_string(k.shot) + ": values that are not numbers, or not a unit normal");
+    }
     for (std::size_t i = 0; i < n; ++i) {
         if (s.shots.active[i] > 1 || s.shots.in_flight[i] > 1) throw damaged(path, "shot " + std::to_string(i) + ": flags not 0 or 1");
         if (!s.shots.active[i]) continue;
         const Vec3 p = s.shots.position(i), v = s.shots.velocity(i);
-        if (!finite(p) || !finite(v)) throw damaged(path, "shot " + std::to_string(i) + ": a position or velocity that is not a number");
+        if (!finite(p) || !finite(v) || !finite(s.shots.spin(i)))
+            throw damaged(path, "shot " + std::to_string(i) + ": a position, velocity or spin that is not a number");
         if ((p.array() < model.world_lo.array()).any() || (p.array() > model.world_hi.array()).any())
             throw damaged(path, "shot " + std::to_string(i) + ": active but outside the assembly");
     }

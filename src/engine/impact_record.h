@@ -19,6 +19,7 @@ struct ImpactRecord {
     double vt_in_m_per_s = 0.0;   // m/s, tangential speed relative to the surface before impact
     Vec3 v_out_m_per_s;           // m/s, relative velocity after impact, component frame
     double vn_out_m_per_s = 0.0;  // m/s, normal rebound speed (positive)
+    double duration_s = 0.0;      // s, how long the contact lasted (soft scheme; 0: an instantaneous impact)
 };
 
 }  // namespace peensim

@@ -11,7 +11,8 @@ namespace {
 std::unique_ptr<Stepper> make_scheme(const std::shared_ptr<const Model>& model) {
     switch (model->scheme) {
         case SteppingScheme::step: return std::make_unique<TimeStepping>(model);
-        case SteppingScheme::event: return std::make_unique<EventStepping>(model);
+        case SteppingScheme::event:
+        case SteppingScheme::soft: return std::make_unique<EventStepping>(model);  // with its soft pool
     }
     return std::make_unique<TimeStepping>(model);
 }

@@ -9,12 +9,14 @@
 #include "common/sim_time.h"
 #include "common/vec.h"
 #include "engine/contact_states.h"
+#include "engine/soft/soft_contact.h"
 
 namespace peensim {
 
 struct ShotArrays {
     std::vector<double> x, y, z;        // m, centre, world
     std::vector<double> vx, vy, vz;     // m/s, world
+    std::vector<double> wx, wy, wz;     // rad/s, angular velocity, world (changed only by soft-sphere contacts)
     std::vector<unsigned char> active;  // 0 once a shot is lost (left the chamber, non-finite state)
     // 1 while a shot is in free flight: since an impact sent it off, or since a step (time
     // stepping) in which it touched nothing. 0 once it is in sustained contact, and at the start
@@ -24,20 +26,22 @@ struct ShotArrays {
 
     std::size_t size() const { return x.size(); }
     void resize(std::size_t n) {
-        for (auto* v : {&x, &y, &z, &vx, &vy, &vz}) v->assign(n, 0.0);
+        for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz}) v->assign(n, 0.0);
         active.assign(n, 1);
         in_flight.assign(n, 0);
     }
     // Room for n shot (n >= size()): the new slots inactive, at the origin, at rest.
     void grow(std::size_t n) {
-        for (auto* v : {&x, &y, &z, &vx, &vy, &vz}) v->resize(n, 0.0);
+        for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz}) v->resize(n, 0.0);
         active.resize(n, 0);
         in_flight.resize(n, 0);
     }
     Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
     Vec3 velocity(std::size_t i) const { return {vx[i], vy[i], vz[i]}; }
+    Vec3 spin(std::size_t i) const { return {wx[i], wy[i], wz[i]}; }
     void set_position(std::size_t i, const Vec3& p) { x[i] = p.x(), y[i] = p.y(), z[i] = p.z(); }
     void set_velocity(std::size_t i, const Vec3& v) { vx[i] = v.x(), vy[i] = v.y(), vz[i] = v.z(); }
+    void set_spin(std::size_t i, const Vec3& w) { wx[i] = w.x(), wy[i] = w.y(), wz[i] = w.z(); }
 };
 
 // Numerical trouble is counted, never fatal (STYLE practice 11); `--strict` fails a run on any.
@@ -99,6 +103,9 @@ struct SimulationState {
     std::vector<std::vector<double>> law_state;
     // What the surface laws remember per contact while it lasts (empty unless a law asks).
     ContactStates contacts;
+    // The soft scheme's contacts in progress at the state's time (engine/soft/soft_pool.h), ordered
+    // by (shot, partner, component); empty for the rigid schemes.
+    std::vector<SoftContact> soft_contacts;
     HealthCounters health;
     std::vector<LostShot> lost;  // one entry per lost shot (bounded by the shot count)
     // Shot sources and sinks (model/shot_flow.h), in the model's order: how many each source has

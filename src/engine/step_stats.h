@@ -9,11 +9,22 @@
 
 namespace peensim {
 
-enum class Stage : int { kinematics, integrate, shot_broadphase, shot_contacts, mesh_queries, contact_laws, health, output, count };
+enum class Stage : int {
+    kinematics,
+    integrate,
+    shot_broadphase,
+    shot_contacts,
+    mesh_queries,
+    contact_laws,
+    health,
+    output,
+    soft_contacts,
+    count
+};
 
 constexpr std::array<std::string_view, static_cast<int>(Stage::count)> kStageNames{
-    "advance_kinematics", "integrate_shots", "shot_broadphase", "shot_shot_contacts",
-    "mesh_queries",       "contact_laws",    "check_health",    "record_impacts"};
+    "advance_kinematics", "integrate_shots", "shot_broadphase", "shot_shot_contacts", "mesh_queries",
+    "contact_laws",       "check_health",    "record_impacts",  "soft_contacts"};
 
 struct StepStats {
     std::array<double, static_cast<int>(Stage::count)> seconds{};  // s of wall time per stage
@@ -39,6 +50,12 @@ struct StepStats {
     std::uint64_t sleeps = 0;            // shot put to sleep at rest
     std::uint64_t collapse_guards = 0;   // shot-shot collisions made elastic by the TC rule
     std::uint64_t hand_overs = 0;        // restart intervals handed over to time stepping (a load at rest)
+    // Soft scheme (engine/soft/soft_pool.h).
+    std::uint64_t soft_steps = 0;                // steps of the pool of shot in soft contact
+    std::uint64_t soft_member_steps = 0;         // members advanced, summed over the steps
+    std::uint64_t soft_contact_evaluations = 0;  // contact forces evaluated, summed over the steps
+    std::uint64_t soft_joins = 0;                // shot taken into the pool
+    std::uint64_t soft_rests = 0;                // members left to rigid sustained contact (slow contacts)
     // Adds another scheme's figures (the event scheme's hand-over to time stepping): every stage
     // time and every counter (a counter added to StepStats must be added here too).
     StepStats& operator+=(const StepStats& o) {
@@ -62,7 +79,12 @@ struct StepStats {
                                     {&substeps, &o.substeps},
                                     {&sleeps, &o.sleeps},
                                     {&collapse_guards, &o.collapse_guards},
-                                    {&hand_overs, &o.hand_overs}})
+                                    {&hand_overs, &o.hand_overs},
+                                    {&soft_steps, &o.soft_steps},
+                                    {&soft_member_steps, &o.soft_member_steps},
+                                    {&soft_contact_evaluations, &o.soft_contact_evaluations},
+                                    {&soft_joins, &o.soft_joins},
+                                    {&soft_rests, &o.soft_rests}})
             *mine += *theirs;
         return *this;
     }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 
 #include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
@@ -92,11 +94,41 @@ contact::ParameterValues parameter_values(const ContactPairDesc& pair, std::span
     return v;
 }
 
-std::shared_ptr<const contact::ShotShotLaw> shot_shot_law_of(const ContactPairDesc& pair) {
+// E and nu of a material, where the scene gives both.
+std::optional<contact::ElasticMaterial> elastic_of(const SceneDescription& scene, const std::string& material) {
+    for (const MaterialDesc& m : scene.materials)
+        if (m.name == material && m.youngs_modulus_pa && m.poisson_ratio)
+            return contact::ElasticMaterial{*m.youngs_modulus_pa, *m.poisson_ratio};
+    return std::nullopt;
+}
+
+std::shared_ptr<const contact::ShotShotLaw> shot_shot_law_of(const ContactPairDesc& pair, const SceneDescription& scene) {
     const contact::LawEntry* law = contact::find_law(pair.law);
     if (law == nullptr || law->make_shot_shot == nullptr)
         throw InputError(pair.where, "contacts." + pair.key + ".law", "'" + pair.law + "' is not a shot-shot law");
-    return law->make_shot_shot(parameter_values(pair, law->shot_shot_parameters));
+    contact::ShotShotPair what;
+    what.shot_diameter_m = scene.shot.diameter_m;
+    what.shot_density_kg_per_m3 = scene.shot.density_kg_per_m3;
+    what.shot_elastic = elastic_of(scene, scene.shot.material);
+    what.shot_material = scene.shot.material;
+    try {
+        return law->make_shot_shot(parameter_values(pair, law->shot_shot_parameters), what);
+    } catch (const std::invalid_argument& e) {
+        throw InputError(pair.where, "contacts." + pair.key + ".law", std::string(e.what()) + " (shot-shot)");
+    }
+}
+
+// The soft scheme integrates every contact with the pair's soft-sphere law: each pair must have one.
+void require_soft_laws(const Model& model, const SceneDescription& scene) {
+    const auto refuse = [&](const std::string& key) {
+        const ContactPairDesc& pair = contact_for(scene, key);
+        throw InputError(pair.where, "contacts." + pair.key + ".law",
+                         "the soft scheme (accuracy.scheme: soft) integrates soft-sphere contacts; expected law 'hertz-mindlin' for " +
+                             key + " (write it in the `default` pair to set it for every pair), found '" + pair.law + "'");
+    };
+    if (model.shot_shot_law->soft() == nullptr) refuse("shot-shot");
+    for (const Component& c : model.components)
+        if (c.law->soft() == nullptr) refuse("shot-" + c.material);
 }
 
 std::shared_ptr<const contact::SurfaceLaw> surface_law_of(const ContactPairDesc& pair, const SceneDescription& scene, const Component& c) {
@@ -116,6 +148,9 @@ std::shared_ptr<const contact::SurfaceLaw> surface_law_of(const ContactPairDesc&
     what.material = c.material;
     for (const MaterialDesc& m : scene.materials)
         if (m.name == c.material) what.yield_stress_pa = m.yield_stress_pa;
+    what.surface_elastic = elastic_of(scene, c.material);
+    what.shot_elastic = elastic_of(scene, scene.shot.material);
+    what.shot_material = scene.shot.material;
     try {
         return law->make_surface(parameter_values(pair, law->surface_parameters), what);
     } catch (const std::invalid_argument& e) {
@@ -183,7 +218,8 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
     model->scheme = scene.accuracy.scheme;
     model->travel_fraction = scene.accuracy.travel_fraction;
     model->impact_speed_m_per_s = scene.accuracy.impact_speed_m_per_s;
-    model->shot_shot_law = shot_shot_law_of(contact_for(scene, "shot-shot"));
+    model->soft_steps_per_contact = scene.accuracy.soft_steps_per_contact;
+    model->shot_shot_law = shot_shot_law_of(contact_for(scene, "shot-shot"), scene);
 
     const double R = model->shot_radius_m;
     const Vec3 up = model->gravity_m_per_s2.norm() > 0.0 ? Vec3(-model->gravity_m_per_s2.normalized()) : Vec3::UnitZ();
@@ -233,6 +269,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
     model->world_lo -= Vec3::Constant(4.0 * R);
     model->world_hi += Vec3::Constant(4.0 * R);
     add_flow(*model, scene);
+    if (model->scheme == SteppingScheme::soft) require_soft_laws(*model, scene);
     return model;
 }
 

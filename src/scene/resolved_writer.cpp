@@ -64,6 +64,7 @@ void write_header(std::string& y, const SceneDescription& s) {
     y += "  travel_fraction: " + num(s.accuracy.travel_fraction) + "  # of the shot radius\n";
     y += "  impact_speed: " + num(s.accuracy.impact_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
     y += std::string("  scheme: ") + scheme_name(s.accuracy.scheme) + "\n";
+    y += "  soft_steps_per_contact: " + num(s.accuracy.soft_steps_per_contact) + "  # per Hertz contact time (soft scheme)\n";
 }
 
 void write_shot(std::string& y, const ShotDesc& shot) {
@@ -117,13 +118,15 @@ void write_flow(std::string& y, const SceneDescription& s) {
 void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
     y += s.materials.empty() ? "materials: {}\n" : "materials:\n";
     for (const MaterialDesc& m : s.materials) {
-        if (!m.density_kg_per_m3 && !m.yield_stress_pa) {
+        if (!m.density_kg_per_m3 && !m.yield_stress_pa && !m.youngs_modulus_pa && !m.poisson_ratio) {
             y += "  " + yaml_text(m.name) + ": {}\n";
             continue;
         }
         y += "  " + yaml_text(m.name) + ":\n";
         if (m.density_kg_per_m3) y += "    density: " + num(*m.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
         if (m.yield_stress_pa) y += "    yield_stress: " + num(*m.yield_stress_pa) + unit_comment(Dimension::stress) + "\n";
+        if (m.youngs_modulus_pa) y += "    youngs_modulus: " + num(*m.youngs_modulus_pa) + unit_comment(Dimension::stress) + "\n";
+        if (m.poisson_ratio) y += "    poisson_ratio: " + num(*m.poisson_ratio) + "\n";
     }
     y += "contacts:\n";
     for (const ContactPairDesc& c : s.contacts) {

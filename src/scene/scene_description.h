@@ -122,6 +122,8 @@ struct MaterialDesc {
     std::string name;
     std::optional<double> density_kg_per_m3;  // kg/m3
     std::optional<double> yield_stress_pa;    // Pa (used by the impact analysis, eq. 10)
+    std::optional<double> youngs_modulus_pa;  // Pa, E (soft-sphere contacts, law hertz-mindlin)
+    std::optional<double> poisson_ratio;      // -, nu (soft-sphere contacts)
     SourceLocation where;
 };
 
@@ -165,14 +167,26 @@ struct ProcessDesc {
     SourceLocation where;
 };
 
-enum class SteppingScheme { step, event };
-inline const char* scheme_name(SteppingScheme s) { return s == SteppingScheme::event ? "event" : "step"; }
+// step: time stepping; event: event-driven, instantaneous rigid impacts; soft: event-driven flights
+// with soft-sphere (Hertz-Mindlin) contacts integrated while they last.
+enum class SteppingScheme { step, event, soft };
+inline const char* scheme_name(SteppingScheme s) {
+    switch (s) {
+        case SteppingScheme::step: return "step";
+        case SteppingScheme::event: return "event";
+        case SteppingScheme::soft: return "soft";
+    }
+    return "event";
+}
 
 struct AccuracyDesc {
     double travel_fraction = 0.25;       // -, max travel per step / shot radius (eq. 7 uses 0.25)
     double impact_speed_m_per_s = 0.05;  // m/s, slower normal approaches are sustained contact, not impacts
     SteppingScheme scheme = SteppingScheme::event;
     bool scheme_given = false;  // the file (or --set) chose the scheme; else the default for its flights
+    // -, soft scheme: integration steps per Hertz contact time (the contact's duration at its
+    // approach speed); the soft contacts' accuracy knob.
+    double soft_steps_per_contact = 40.0;  // the file (or --set) chose the scheme; else the default for its flights
     SourceLocation where;
 };
 

@@ -98,6 +98,8 @@ std::vector<MaterialDesc> read_materials(const Cursor& c) {
         d.name = kv.first.Scalar();
         d.density_kg_per_m3 = read_optional_quantity(m.child("density"));
         d.yield_stress_pa = read_optional_quantity(m.child("yield_stress"));
+        d.youngs_modulus_pa = read_optional_quantity(m.child("youngs_modulus"));
+        d.poisson_ratio = read_optional_quantity(m.child("poisson_ratio"));
         d.where = location_of(m);
         out.push_back(std::move(d));
     }

@@ -53,10 +53,11 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     if (d.air.drag) {
         // The event scheme's kernels solve exact parabolas: a scene whose flights are not runs with
         // time stepping, which it gets by default and must not be refused silently.
-        if (d.accuracy.scheme_given && d.accuracy.scheme == SteppingScheme::event)
+        if (d.accuracy.scheme_given && d.accuracy.scheme != SteppingScheme::step)
             fail(root.child("accuracy").child("scheme"),
-                 "the event scheme needs exact parabolic flights, and air.drag is on; expected `step` (or leave the scheme out: "
-                 "a scene with air drag runs with time stepping)");
+                 std::string("the ") + scheme_name(d.accuracy.scheme) +
+                     " scheme needs exact parabolic flights, and air.drag is on; expected `step` (or leave the scheme out: "
+                     "a scene with air drag runs with time stepping)");
         d.accuracy.scheme = SteppingScheme::step;
     }
     d.materials = read_materials(root.child("materials"));

@@ -21,6 +21,8 @@ AccuracyDesc read_accuracy(const Cursor& c) {
     const std::string scheme = read_choice(c.child("scheme"));
     if (scheme == "step") d.scheme = SteppingScheme::step;
     if (scheme == "event") d.scheme = SteppingScheme::event;
+    if (scheme == "soft") d.scheme = SteppingScheme::soft;
+    d.soft_steps_per_contact = read_quantity(c.child("soft_steps_per_contact"));
     d.scheme_given = c.child("scheme").present();
     d.where = location_of(c);
     return d;

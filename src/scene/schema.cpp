@@ -43,11 +43,16 @@ const std::array schema_table{
                 "logged); slower is sustained contact (the approach is removed, Coulomb friction acts, no rebound, "
                 "not logged: counted once per landing in `slow_contacts_per_component`). See the README's \"Impacts "
                 "and sustained contact\"."},
-    SchemaEntry{"accuracy.scheme", K::choice, D::dimensionless, false, "event", "", {}, "step|event", "", "",
+    SchemaEntry{"accuracy.scheme", K::choice, D::dimensionless, false, "event", "", {}, "step|event|soft", "", "",
                 "Stepping scheme: `event`, event-driven (each shot flies exactly to its next collision, found in "
                 "closed form or by root finding; `travel_fraction` unused), or `step`, time stepping (every shot "
-                "advances by the step of eq. 7; contacts found at step ends and taken back to their exact touch time). "
-                "See the README's \"Choosing the stepping scheme\"."},
+                "advances by the step of eq. 7; contacts found at step ends and taken back to their exact touch time); "
+                "both with instantaneous rigid impacts. `soft`: event-driven flights, and every impact a soft-sphere "
+                "Hertz-Mindlin contact integrated while it lasts (every pair's law `hertz-mindlin`; materials with "
+                "`youngs_modulus` and `poisson_ratio`). See the README's \"Choosing the stepping scheme\"."},
+    SchemaEntry{"accuracy.soft_steps_per_contact", K::quantity, D::dimensionless, false, "40", "", closed(4, 10000), "", "", "",
+                "Soft scheme only: integration steps per Hertz contact time (the duration of an elastic contact at "
+                "the contact's approach speed); the soft contacts' accuracy knob (see \"Soft-sphere contacts\")."},
 
     SchemaEntry{"shot", K::map, D::dimensionless, true, "", "", {}, "", "", "", "The shot (all of one size)."},
     SchemaEntry{"shot.count", K::integer, D::dimensionless, true, "", "", closed(0, 1e8), "", "", "",
@@ -85,6 +90,10 @@ const std::array schema_table{
                 "Density (needed if the shot names this material)."},
     SchemaEntry{"materials.*.yield_stress", K::quantity, D::stress, false, "", "none", above(0), "", "", "",
                 "Yield stress, for dent diameters (eq. 10)."},
+    SchemaEntry{"materials.*.youngs_modulus", K::quantity, D::stress, false, "", "none", closed(1e3, 1e13), "", "", "",
+                "Young's modulus E, for soft-sphere contacts (law `hertz-mindlin`)."},
+    SchemaEntry{"materials.*.poisson_ratio", K::quantity, D::dimensionless, false, "", "none", closed(-0.99, 0.5), "", "", "",
+                "Poisson's ratio nu, for soft-sphere contacts (law `hertz-mindlin`)."},
 
     SchemaEntry{"contacts", K::named_map, D::dimensionless, false, "", "built-in `default`", {}, "", "", "",
                 "Contact coefficients by pair: `shot-shot`, `shot-<material>` or `default` (every pair not "
@@ -333,15 +342,27 @@ std::vector<SchemaEntry> law_entries() {
     std::vector<SchemaEntry> out{
         SchemaEntry{"contacts.*.law", K::choice, D::dimensionless, false, "impulse", "", {}, choices, "", "", law_doc}};
     static std::deque<std::string> paths;  // storage for the generated paths (entries hold views; a deque never moves them)
+    static std::deque<std::string> docs;   // likewise for a key several laws declare: each law's doc
     for (const contact::LawEntry& law : contact::law_catalogue()) {
-        for (const contact::LawParameter& p : law.surface_parameters) {
-            const std::string path = "contacts.*." + std::string(p.name);
-            bool known = false;
-            for (const SchemaEntry& e : out) known |= e.path == path;
-            if (known) continue;
-            paths.push_back(path);
-            out.push_back(SchemaEntry{paths.back(), p.list ? K::quantity_list : K::quantity, p.dimension, false, p.default_value,
-                                      p.default_value.empty() ? "none (needed by the law)" : "", p.range, "", "", "", p.doc});
+        for (const std::span<const contact::LawParameter> declared : {law.surface_parameters, law.shot_shot_parameters}) {
+            for (const contact::LawParameter& p : declared) {
+                const std::string path = "contacts.*." + std::string(p.name);
+                SchemaEntry* known = nullptr;
+                for (SchemaEntry& e : out)
+                    if (e.path == path) known = &e;
+                const std::string doc = "`" + std::string(law.name) + "`: " + std::string(p.doc);
+                if (known != nullptr) {
+                    // One key, several laws (same dimension and range: the catalogue test checks it).
+                    if (known->doc.find(doc) != std::string_view::npos) continue;
+                    docs.push_back(std::string(known->doc) + " " + doc);
+                    known->doc = docs.back();
+                    continue;
+                }
+                paths.push_back(path);
+                docs.push_back(doc);
+                out.push_back(SchemaEntry{paths.back(), p.list ? K::quantity_list : K::quantity, p.dimension, false, p.default_value,
+                                          p.default_value.empty() ? "none (needed by the law)" : "", p.range, "", "", "", docs.back()});
+            }
         }
     }
     return out;

@@ -110,23 +110,45 @@ std::string scene_yaml(const TestSceneSpec& s) {
       << "  seed: " << s.seed << "\n"
       << "accuracy:\n"
       << "  travel_fraction: " << num(s.travel_fraction) << "\n"
-      << "  scheme: " << s.scheme << "\n"
-      << "shot:\n"
+      << "  scheme: " << s.scheme << "\n";
+    if (s.soft) y << "  soft_steps_per_contact: " << num(s.soft->steps_per_contact) << "\n";
+    y << "shot:\n"
       << "  count: " << s.shot_count << "\n"
-      << "  diameter: " << num(s.shot_diameter_m) << " m\n"
-      << "  density: " << num(s.shot_density_kg_per_m3) << " kg/m3\n";
+      << "  diameter: " << num(s.shot_diameter_m) << " m\n";
+    if (s.soft)
+        y << "  material: shot_steel\n";
+    else
+        y << "  density: " << num(s.shot_density_kg_per_m3) << " kg/m3\n";
     if (s.initial_velocity_m_per_s) y << "  initial_velocity: " << vec(*s.initial_velocity_m_per_s) << "\n";
     if (s.initial_speed_m_per_s) y << "  initial_speed: " << num(*s.initial_speed_m_per_s) << " m/s\n";
-    y << "materials:\n"
-      << "  titanium: {density: 4430 kg/m3}\n"
-      << "  steel: {density: 7800 kg/m3}\n"
-      << "  copper: {density: 8960 kg/m3, yield_stress: 70 MPa}\n"
-      << "contacts:\n"
-      << "  shot-shot: " << pair(s.shot_shot, false) << "\n"
-      << "  shot-titanium: " << pair(s.sonotrode, true) << "\n"
-      << "  shot-steel: " << pair(s.chamber, true) << "\n"
-      << "  shot-copper: " << pair(s.part_pair, true) << "\n"
-      << "components:\n"
+    if (s.soft) {
+        const SoftSpec& k = *s.soft;
+        const std::string elastic = ", youngs_modulus: " + num(k.youngs_modulus_pa) + " Pa, poisson_ratio: " + num(k.poisson_ratio) + "}";
+        const auto hm = [&](double e, double f) {
+            return "{law: hertz-mindlin, e: " + num(e) + ", f: " + num(f) + ", plastic_speed: " + num(k.V0_m_per_s) + " m/s}";
+        };
+        y << "materials:\n"
+          << "  shot_steel: {density: " << num(s.shot_density_kg_per_m3) << " kg/m3" << elastic << "\n"
+          << "  titanium: {density: 4430 kg/m3" << elastic << "\n"
+          << "  steel: {density: 7800 kg/m3" << elastic << "\n"
+          << "  copper: {density: 8960 kg/m3, yield_stress: 70 MPa" << elastic << "\n"
+          << "contacts:\n"
+          << "  shot-shot: " << hm(k.e_shot_shot, k.f_shot_shot) << "\n"
+          << "  shot-titanium: " << hm(k.e_sonotrode, k.f_sonotrode) << "\n"
+          << "  shot-steel: " << hm(k.e_chamber, k.f_chamber) << "\n"
+          << "  shot-copper: " << hm(k.e_part, k.f_part) << "\n";
+    } else {
+        y << "materials:\n"
+          << "  titanium: {density: 4430 kg/m3}\n"
+          << "  steel: {density: 7800 kg/m3}\n"
+          << "  copper: {density: 8960 kg/m3, yield_stress: 70 MPa}\n"
+          << "contacts:\n"
+          << "  shot-shot: " << pair(s.shot_shot, false) << "\n"
+          << "  shot-titanium: " << pair(s.sonotrode, true) << "\n"
+          << "  shot-steel: " << pair(s.chamber, true) << "\n"
+          << "  shot-copper: " << pair(s.part_pair, true) << "\n";
+    }
+    y << "components:\n"
       << "  - name: sonotrode\n"
       << "    role: sonotrode\n"
       << "    mesh: sonotrode.stl\n"

@@ -31,6 +31,18 @@ struct PairSpec {
     double f = 0.1;           // -, Coulomb friction in sustained contact (surface pairs only)
 };
 
+// Soft-sphere contacts (law hertz-mindlin for every pair), as written into `materials:` and
+// `contacts:` in place of the impulse pairs: every material, the shot's included, with these
+// elastic constants; restitution e and Coulomb friction f per pair.
+struct SoftSpec {
+    double youngs_modulus_pa = 200e9;  // Pa, every material
+    double poisson_ratio = 0.3;        // -, every material
+    double e_shot_shot = 0.9, e_sonotrode = 0.9, e_chamber = 0.9, e_part = 0.9;  // -
+    double f_shot_shot = 0.1, f_sonotrode = 0.1, f_chamber = 0.1, f_part = 0.1;  // -
+    double V0_m_per_s = 0.0;           // m/s, every pair (0: e at every speed)
+    double steps_per_contact = 40.0;   // -, accuracy.soft_steps_per_contact
+};
+
 enum class PartShape { box, cylinder, plate };
 
 struct PartSpec {
@@ -68,7 +80,8 @@ struct TestSceneSpec {
     double duration_s = 0.1;                        // s
     std::uint64_t seed = 1;
     double travel_fraction = 0.25;  // -, eq. 7 travel per step over R
-    std::string scheme = "step";    // accuracy.scheme: "step" (time stepping) or "event" (event-driven)
+    std::string scheme = "step";    // accuracy.scheme: "step" (time stepping), "event" (event-driven) or "soft"
+    std::optional<SoftSpec> soft;   // hertz-mindlin for every pair (the soft scheme needs it) instead of the PairSpecs below
 
     PairSpec shot_shot{0.9, 0.5, 0.71, 0.1};  // mu, f unused for shot-shot
     PairSpec sonotrode{0.9, 0.5, 0.71, 0.1};  // shot against the sonotrode (material titanium)

@@ -57,6 +57,7 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
     shots_.resize(static_cast<std::size_t>(m.shot_count));
     active_.assign(shots_.size(), 0);
     queue_.reset(shots_.size());
+    if (m.scheme == SteppingScheme::soft) soft_ = std::make_unique<SoftPool>(model_, walls_);
     neighbours_.reserve(64);
     wake_stack_.reserve(64);
     woken_.reserve(64);
@@ -83,7 +84,8 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         // A load mostly at rest (sonotrode off, a chamber filled with shot) is time stepping's regime:
         // its sustained contacts resolve whole piles at once, where events would crawl through them
         // shot by shot. Decided from the state alone, so a resumed run decides the same.
-        handed_over_ = resting_fraction(state) > kHandOverFraction;
+        // (Not while soft contacts are in progress: time stepping has no soft contacts.)
+        handed_over_ = state.soft_contacts.empty() && resting_fraction(state) > kHandOverFraction;
         if (handed_over_) {
             if (!hand_over_) hand_over_ = std::make_unique<TimeStepping>(model_);
             ++stats_.hand_overs;
@@ -111,7 +113,22 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
     double stop_s = std::min({t_end_s, pause_at_s, grid_s, next_restart_});
     const double now = since_epoch(now_s);
     double t_stop = std::max(now, since_epoch(stop_s));
-    while (queue_.top_time() <= t_stop) {
+    for (;;) {
+        // The soft pool's next step takes its turn in time order with the events (first on a tie).
+        if (soft_ && soft_->next_step_end() <= queue_.top_time()) {
+            if (soft_->next_step_end() > t_stop) break;
+            soft_->step(*this, state, impacts, exits_, stats_);
+            take_exits(state);
+            const std::uint64_t done = work_units();
+            const bool due = count_work(done - work_counted_, absolute_seconds(soft_->time()));
+            work_counted_ = done;
+            if (due && next_restart_ < stop_s) {
+                stop_s = next_restart_;
+                t_stop = std::max(now, since_epoch(stop_s));
+            }
+            continue;
+        }
+        if (!(queue_.top_time() <= t_stop)) break;
         const int i = queue_.top();
         const double t = queue_.top_time();
         // Forced progress (pitfall 5): should a shot keep producing events without time moving on,
@@ -139,6 +156,12 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         }
     }
 
+    // A restart point comes next: the pool steps exactly there, and its contacts go into the state.
+    if (soft_ && stop_s >= next_restart_) {
+        soft_->step_to(t_stop, *this, state, impacts, exits_, stats_);
+        take_exits(state);
+        soft_->save(state);
+    }
     // Bring the state up to t_stop: exact positions on every shot's current flight.
     StageTimer timer(stats_, Stage::integrate);
     ShotArrays& s = state.shots;
@@ -149,6 +172,7 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         s.set_position(k, position(i, t_stop));
         const Vec3 v = velocity(i, t_stop);
         s.set_velocity(k, v);
+        if (soft_ && soft_->contains(i)) s.set_spin(k, soft_->spin(i));
         s.in_flight[k] = shots_[k].in_flight;
         fastest2 = std::max(fastest2, v.squaredNorm());
     }
@@ -187,6 +211,7 @@ void EventStepping::fit_shots(std::size_t n) {
     active_.resize(n, 0);
     queue_.grow(n);
     pairs_.grow(static_cast<int>(n));
+    if (soft_) soft_->grow(n);
 }
 
 void EventStepping::shots_added(SimulationState& state, const std::vector<int>& shots) {
@@ -272,10 +297,17 @@ void EventStepping::start(SimulationState& state) {
         shots_[k].pair_time = kInf;
         schedule(i);
     }
+    // The soft contacts in progress go on: their shot are the pool's again.
+    std::vector<ImpactRecord> none;
+    if (soft_) {
+        soft_->reset(epoch_, shots_.size());
+        soft_->restore(*this, state, none, exits_, stats_);
+    }
     for (std::size_t k = 0; k < shots_.size(); ++k) {
-        if (!active_[k]) continue;
+        if (!active_[k] || (soft_ && soft_->contains(static_cast<int>(k)))) continue;
         pairs_and_schedule(static_cast<int>(k), t);
     }
+    if (soft_) take_exits(state);
 }
 
 double EventStepping::resting_fraction(const SimulationState& state) const {
@@ -325,7 +357,7 @@ void EventStepping::process(int i, SimulationState& state, std::vector<ImpactRec
             pairs_and_schedule(i, t);
             return;
         }
-        collide_pair(i, j, t, state);
+        collide_pair(i, j, t, state, impacts);
         return;
     }
     if (s.wall.time <= s.box_until) {
@@ -344,9 +376,15 @@ void EventStepping::set_flight(int i, const Vec3& p, const Vec3& v, double t, Mo
     start_motion(shots_[static_cast<std::size_t>(i)], p, v, t, motion, g_, box_travel_, support);
 }
 
-Vec3 EventStepping::position(int i, double t) const { return motion_position(shots_[static_cast<std::size_t>(i)], walls_, t); }
+Vec3 EventStepping::position(int i, double t) const {
+    if (soft_ && soft_->contains(i)) return soft_->position(i, t);
+    return motion_position(shots_[static_cast<std::size_t>(i)], walls_, t);
+}
 
-Vec3 EventStepping::velocity(int i, double t) const { return motion_velocity(shots_[static_cast<std::size_t>(i)], walls_, t); }
+Vec3 EventStepping::velocity(int i, double t) const {
+    if (soft_ && soft_->contains(i)) return soft_->velocity(i, t);
+    return motion_velocity(shots_[static_cast<std::size_t>(i)], walls_, t);
+}
 
 void EventStepping::predict(int i, double t) {
     predict_wall(i, t);
@@ -355,7 +393,9 @@ void EventStepping::predict(int i, double t) {
 }
 
 void EventStepping::pairs_and_schedule(int i, double t) {
-    if (pairs_.predict(i, t, shots_, active_, queue_, stats_)) {
+    const bool joins_pile = pairs_.predict(i, t, shots_, active_, queue_, stats_);
+    offer_to_pool(i);
+    if (joins_pile) {
         // Pressed into a pile (shot in sustained contact or asleep): it joins the pile's sustained
         // contact, which resolves it with the others substep by substep.
         set_flight(i, position(i, t), velocity(i, t), t, Motion::sustained);
@@ -393,6 +433,7 @@ void EventStepping::predict_wall(int i, double t) {
             return;
         }
         case Motion::sleeping:
+        case Motion::soft:  // the pool finds its contacts
             w.time = kInf;
             w.kind = WallKind::none;
             return;
@@ -478,6 +519,13 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
     const Vec3& n = w.normal;
     const Vec3& vs = w.surface_velocity;
     const double approach = -(v - vs).dot(n);
+    // Soft scheme: an impact, or a touch on a moving surface that approaches or that the surface
+    // presses (a landing on the vibrating plate), is a soft contact, integrated by the pool.
+    if (soft_ && (contact::is_impact(approach, impact_speed_) ||
+                  (comp.kinematics.moves() && (approach > resting_speed_ || (w.surface_acceleration - g_).dot(n) > 0.0)))) {
+        to_pool(i, t, p, v, std::max(0.0, approach), comp.law->soft(), state, impacts);
+        return;
+    }
     if (approach > resting_speed_) {
         // A rebound, followed exactly however slow (down to the resting speed). Only an approach at
         // least the impact speed is an impact (logged); a slower one is a slow contact, counted once
@@ -633,7 +681,7 @@ void EventStepping::substep(int i, double t, SimulationState& state, std::vector
     predict(i, t);
 }
 
-void EventStepping::collide_pair(int i, int j, double t, SimulationState& state) {
+void EventStepping::collide_pair(int i, int j, double t, SimulationState& state, std::vector<ImpactRecord>& impacts) {
     Shot& a = shots_[static_cast<std::size_t>(i)];
     Shot& b = shots_[static_cast<std::size_t>(j)];
     const bool a_slept = a.motion == Motion::sleeping, b_slept = b.motion == Motion::sleeping;
@@ -654,6 +702,14 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state)
             }
         }
         const double approach = -(vj - vi).dot(n);
+        if (soft_ && contact::is_impact(approach, impact_speed_)) {
+            // Soft scheme: both shot are the pool's from their touch (positions as they are: a
+            // soft contact's overlap is its physics).
+            const Vec3 p_i = position(i, t), p_j = position(j, t);
+            to_pool(i, t, p_i, vi, approach, model_->shot_shot_law->soft(), state, impacts);
+            to_pool(j, t, p_j, vj, approach, model_->shot_shot_law->soft(), state, impacts);
+            return;
+        }
         if (approach > 0.0) {
             impact = contact::is_impact(approach, impact_speed_);
             if (!impact && (a.in_flight || b.in_flight)) ++state.shot_shot_slow_contacts;
@@ -748,6 +804,101 @@ void EventStepping::retire(int i, SimulationState& state) {
     s.box_until = kInf;
     ++s.version;
     queue_.set(i, kInf);
+}
+
+}  // namespace peensim
+
+namespace peensim {
+
+// ---------------------------------------------------------------------------------------------
+// The soft scheme's pool
+
+void EventStepping::to_pool(int i, double t, const Vec3& p, const Vec3& v, double approach, const contact::SoftLaw* law,
+                            SimulationState& state, std::vector<ImpactRecord>& impacts) {
+    if (contact_state_) state.contacts.end_all(i);
+    soft_->join(i, t, p, v, state.shots.spin(static_cast<std::size_t>(i)), approach, law, *this, state, impacts, exits_, stats_);
+    take_exits(state);
+}
+
+void EventStepping::take_exits(SimulationState& state) {
+    if (exits_.empty()) return;
+    const double t = soft_->time();
+    // Each set up first, then predicted, so that their predictions see one another.
+    for (const SoftExit& e : exits_) {
+        const int i = e.shot;
+        Shot& s = shots_[static_cast<std::size_t>(i)];
+        switch (e.to) {
+            case SoftExit::To::lost: break;
+            case SoftExit::To::flight:
+                s.in_flight = true;
+                set_flight(i, e.position_m, e.velocity_m_per_s, t, Motion::flying);
+                break;
+            case SoftExit::To::rest:
+                s.in_flight = false;
+                set_flight(i, e.position_m, e.velocity_m_per_s, t, Motion::sustained, e.support);
+                break;
+        }
+    }
+    // Copied: a prediction may hand a shot to the pool again (and fill exits_ anew).
+    std::vector<SoftExit> leaving;
+    leaving.swap(exits_);
+    for (const SoftExit& e : leaving) {
+        if (e.to == SoftExit::To::lost) {
+            lose(e.shot, t, state, true);
+            continue;
+        }
+        if (soft_->contains(e.shot)) continue;
+        predict_wall(e.shot, t);
+        renew_box(e.shot, t);
+        shots_[static_cast<std::size_t>(e.shot)].pair_time = kInf;
+        schedule(e.shot);
+    }
+    for (const SoftExit& e : leaving)
+        if (e.to != SoftExit::To::lost && !soft_->contains(e.shot)) pairs_and_schedule(e.shot, t);
+    leaving.clear();
+    if (exits_.empty()) leaving.swap(exits_);  // keep the capacity
+}
+
+void EventStepping::offer_to_pool(int i) {
+    if (!soft_) return;
+    for (const int member : pairs_.soft_neighbours()) soft_->add_candidate(member, i);
+}
+
+void EventStepping::set_box(int shot, const Vec3& lo, const Vec3& hi) {
+    Shot& s = shots_[static_cast<std::size_t>(shot)];
+    s.box_lo = lo;
+    s.box_hi = hi;
+    s.box_until = kInf;
+    pairs_.set_box(shot, lo, hi);
+}
+
+bool EventStepping::path_of(int shot, double t, Trajectory& out) const {
+    const auto k = static_cast<std::size_t>(shot);
+    if (k >= shots_.size() || !active_[k]) return false;
+    const Shot& s = shots_[k];
+    if (s.motion == Motion::riding) {
+        out = Trajectory{position(shot, t), velocity(shot, t), Vec3::Zero(), t};
+        return true;
+    }
+    out = s.path;
+    return true;
+}
+
+void EventStepping::joined(int shot, double t) {
+    Shot& s = shots_[static_cast<std::size_t>(shot)];
+    s.motion = Motion::soft;
+    ++s.version;  // pair events predicted against its flight are stale
+    s.wall = WallEvent{};
+    s.wall.time = kInf;
+    s.pair_time = kInf;
+    s.partner = -1;
+    s.in_flight = false;
+    s.path.t0 = t;
+    queue_.set(shot, kInf);
+}
+
+void EventStepping::moved(int shot, const Vec3& p, const Vec3& v, double t) {
+    shots_[static_cast<std::size_t>(shot)].path = Trajectory{p, v, g_, t};
 }
 
 }  // namespace peensim

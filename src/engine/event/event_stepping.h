@@ -45,18 +45,23 @@
 #include "engine/event/sustained_contact.h"
 #include "engine/event/wall_event.h"
 #include "engine/event/wall_predictor.h"
+#include "engine/soft/soft_pool.h"
 #include "engine/stepper.h"
 #include "kernels/trajectory.h"
 #include "model/model.h"
 
 namespace peensim {
 
-class EventStepping final : public Stepper {
+// The soft scheme (`accuracy.scheme: soft`) is this scheme with a SoftPool: a touch that is an
+// impact (or any touch on a moving surface) hands the shot to the pool, which integrates its
+// soft-sphere contacts with the others' and hands it back when it leaves; the pool's steps take
+// their turn with the events in time order.
+class EventStepping final : public Stepper, private SoftSurroundings {
 public:
     explicit EventStepping(std::shared_ptr<const Model> model);
     ~EventStepping() override;
 
-    std::string_view name() const override { return "event"; }
+    std::string_view name() const override { return soft_ ? "soft" : "event"; }
     // Processes the events up to min(t_end_s, pause_at_s, now + kSyncInterval) and leaves the
     // state (positions, velocities) exact at that time. Where it pauses does not change the run.
     void advance(SimulationState& state, double t_end_s, double pause_at_s, std::vector<ImpactRecord>& impacts) override;
@@ -94,7 +99,10 @@ private:
     // (3072 shot of 2 mm) an event tests ~37 neighbour pairs and costs ~9 us, against ~1 us for a
     // lone small shot, and restart points came 1.5 s of wall time apart. Only differences are
     // used, so the counters' values before a resume do not matter.
-    std::uint64_t work_units() const { return 4 * (stats_.events + stats_.mesh_predictions) + stats_.pair_tests; }
+    // A member's step in the soft pool is one unit.
+    std::uint64_t work_units() const {
+        return 4 * (stats_.events + stats_.mesh_predictions) + stats_.pair_tests + stats_.soft_member_steps;
+    }
     static constexpr std::uint64_t kWorkPerShotStep = 4;  // a time-stepped shot step (hand-over)
     // Adds work done (work units) since the last restart point; once it
     // reaches the budget, brings the next restart point forward to the next point of the sync grid
@@ -115,7 +123,7 @@ private:
     double resting_fraction(const SimulationState& state) const;  // of the active shot, still on a surface
 
     void collide_wall(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
-    void collide_pair(int i, int j, double t, SimulationState& state);
+    void collide_pair(int i, int j, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
     void start_ride(int i, double t, const WallEvent& w, const Vec3& p, const Vec3& v_after);
     void launch(int i, double t, SimulationState& state);
     // A touch without approach (v_kept: the velocity with the approach removed): sustained contact
@@ -130,6 +138,20 @@ private:
     void set_flight(int i, const Vec3& p, const Vec3& v, double t, Motion motion, const Vec3& support = Vec3::Zero());
     // Wakes the sleeping shot touching shot i, and those touching them (a pile wakes as a whole).
     void wake_neighbours(int i, double t);
+    // The soft pool takes shot i in at t (its touch approaching at `approach`, m/s, with `law`).
+    void to_pool(int i, double t, const Vec3& p, const Vec3& v, double approach, const contact::SoftLaw* law, SimulationState& state,
+                 std::vector<ImpactRecord>& impacts);
+    // The members that left the pool go on in this scheme (at the pool's time).
+    void take_exits(SimulationState& state);
+    // The pool members a prediction met are offered to the pool as shot i's neighbours.
+    void offer_to_pool(int i);
+
+    // SoftSurroundings: what the pool reads of, and tells, this scheme.
+    void shots_in_box(const Vec3& lo, const Vec3& hi, std::vector<int>& out) const override { pairs_.overlapping(lo, hi, out); }
+    void set_box(int shot, const Vec3& lo, const Vec3& hi) override;
+    bool path_of(int shot, double t, Trajectory& out) const override;
+    void joined(int shot, double t) override;
+    void moved(int shot, const Vec3& p, const Vec3& v, double t) override;
 
     // Whether `contacts` holds a contact of shot i.
     static bool has_contacts(const ContactStates& contacts, int i) {
@@ -165,6 +187,8 @@ private:
     WallPredictor walls_;                  // where a flight first meets a surface
     SustainedContact sustained_;           // the ends of sustained-contact substeps
     bool contact_state_ = false;           // a law keeps state per contact (SimulationState::contacts)
+    std::unique_ptr<SoftPool> soft_;       // the soft scheme's contacts (null for the event scheme)
+    std::vector<SoftExit> exits_;          // scratch: members that left the pool
     std::vector<double> contact_scratch_;  // an instantaneous contact's state (zeros)
 
     double R_ = 0.0;                // m

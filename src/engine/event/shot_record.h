@@ -12,7 +12,9 @@
 
 namespace peensim {
 
-enum class EventMotion : unsigned char { flying, riding, sustained, sleeping };
+// soft: a member of the soft scheme's pool (engine/soft/soft_pool.h), which moves it; `path` is the
+// pool's latest state of it.
+enum class EventMotion : unsigned char { flying, riding, sustained, sleeping, soft };
 
 struct EventShot {
     Trajectory path;  // world; for a sleeping or riding shot: g = 0 (see ride_*)

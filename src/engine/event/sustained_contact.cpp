@@ -69,7 +69,8 @@ SustainedContact::Next SustainedContact::end_of_substep(int i, double t, Vec3 p,
             if (2.0 * R_ - dist > contact::kOverlapWorthCounting * R_) ++state.health.shot_overlap_corrections;
         }
         // A neighbour still moving (not asleep, not as still as this shot must be) keeps it awake.
-        if (o.motion == EventMotion::flying || o.motion == EventMotion::riding || vj.norm() >= resting_speed_) moving_support = true;
+        if (o.motion == EventMotion::flying || o.motion == EventMotion::riding || o.motion == EventMotion::soft || vj.norm() >= resting_speed_)
+            moving_support = true;
     }
     for (std::size_t c = 0; c < m.components.size(); ++c) {
         const Component& comp = m.components[c];
