@@ -170,7 +170,9 @@ TEST(SoftContact, ErrorFallsWithTheStepsPerContact) {
             if (e == 1.0) {
                 EXPECT_LT(std::abs(rebound), last) << n;  // converges
                 EXPECT_LT(std::abs(rebound), 1e-4) << n;
-                if (n >= 20) EXPECT_LT(std::abs(duration), 0.01) << n;
+                if (n >= 20) {
+                    EXPECT_LT(std::abs(duration), 0.01) << n;
+                }
                 last = std::abs(rebound);
             } else if (n >= 20) {
                 EXPECT_LT(std::abs(rebound), 0.005) << n;
