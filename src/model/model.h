@@ -60,7 +60,7 @@ struct Model {
     std::uint64_t seed = 1;
     SteppingScheme scheme = SteppingScheme::event;  // the scheme that runs it (accuracy.scheme)
     double travel_fraction = 0.25;                  // -, eq. 7 travel per step / R
-    double soft_steps_per_contact = 40.0;           // -, soft scheme: integration steps per Hertz contact time
+    double soft_steps_per_contact = 20.0;           // -, soft scheme: integration steps per Hertz contact time
     // m/s, the one line between impacts and sustained contact, for both schemes: a normal approach
     // (relative to the surface's material, or between two shot) at least this fast is an impact;
     // slower is sustained contact (approach removed, friction, no rebound, not logged).

@@ -186,7 +186,7 @@ struct AccuracyDesc {
     bool scheme_given = false;  // the file (or --set) chose the scheme; else the default for its flights
     // -, soft scheme: integration steps per Hertz contact time (the contact's duration at its
     // approach speed); the soft contacts' accuracy knob.
-    double soft_steps_per_contact = 40.0;  // the file (or --set) chose the scheme; else the default for its flights
+    double soft_steps_per_contact = 20.0;
     SourceLocation where;
 };
 

@@ -50,7 +50,7 @@ const std::array schema_table{
                 "both with instantaneous rigid impacts. `soft`: event-driven flights, and every impact a soft-sphere "
                 "Hertz-Mindlin contact integrated while it lasts (every pair's law `hertz-mindlin`; materials with "
                 "`youngs_modulus` and `poisson_ratio`). See the README's \"Choosing the stepping scheme\"."},
-    SchemaEntry{"accuracy.soft_steps_per_contact", K::quantity, D::dimensionless, false, "40", "", closed(4, 10000), "", "", "",
+    SchemaEntry{"accuracy.soft_steps_per_contact", K::quantity, D::dimensionless, false, "20", "", closed(4, 10000), "", "", "",
                 "Soft scheme only: integration steps per Hertz contact time (the duration of an elastic contact at "
                 "the contact's approach speed); the soft contacts' accuracy knob (see \"Soft-sphere contacts\")."},
 

@@ -40,7 +40,7 @@ struct SoftSpec {
     double e_shot_shot = 0.9, e_sonotrode = 0.9, e_chamber = 0.9, e_part = 0.9;  // -
     double f_shot_shot = 0.1, f_sonotrode = 0.1, f_chamber = 0.1, f_part = 0.1;  // -
     double V0_m_per_s = 0.0;           // m/s, every pair (0: e at every speed)
-    double steps_per_contact = 40.0;   // -, accuracy.soft_steps_per_contact
+    double steps_per_contact = 20.0;   // -, accuracy.soft_steps_per_contact
 };
 
 enum class PartShape { box, cylinder, plate };

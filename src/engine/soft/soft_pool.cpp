@@ -52,6 +52,14 @@ SoftPool::SoftPool(std::shared_ptr<const Model> model, const WallPredictor& wall
     line_speed_ = m.impact_speed_m_per_s;
     steps_per_contact_ = m.soft_steps_per_contact;
     poses_.resize(m.components.size());
+    for (std::size_t c = 0; c < m.components.size(); ++c) {
+        const Component& comp = m.components[c];
+        poses_[c] = comp.kinematics.rest;
+        // The component's bounds over its motion, grown by what a sphere and its gathering reach.
+        const Vec3 grow = Vec3::Constant((1.0 + kGatherMargin) * R_);
+        reach_lo_.push_back(comp.world_lo - grow);
+        reach_hi_.push_back(comp.world_hi + grow);
+    }
 }
 
 void SoftPool::reset(const SimTime& epoch, std::size_t shot_count) {
@@ -103,8 +111,13 @@ void SoftPool::remove_member(int slot) {
 
 void SoftPool::add_candidate(int member, int shot) {
     if (!contains(member) || contains(shot) || member == shot) return;
-    std::vector<int>& c = members_[static_cast<std::size_t>(member_of_[static_cast<std::size_t>(member)])].candidates;
-    if (std::find(c.begin(), c.end(), shot) == c.end()) c.push_back(shot);
+    std::vector<Candidate>& c = members_[static_cast<std::size_t>(member_of_[static_cast<std::size_t>(member)])].candidates;
+    for (Candidate& k : c)
+        if (k.shot == shot) {
+            k.check_at = -kInf;  // it flies anew: looked at again
+            return;
+        }
+    c.push_back({shot});
 }
 
 void SoftPool::renew_box(int m, SoftSurroundings& around) {
@@ -117,7 +130,7 @@ void SoftPool::renew_box(int m, SoftSurroundings& around) {
     around.shots_in_box(M.p - reach, M.p + reach, neighbours_);
     M.candidates.clear();
     for (const int k : neighbours_)
-        if (!contains(k)) M.candidates.push_back(k);
+        if (!contains(k)) M.candidates.push_back({k});
 }
 
 void SoftPool::report(SoftSurroundings& around) {
@@ -162,14 +175,25 @@ void SoftPool::join(int shot, double t, const Vec3& p, const Vec3& v, const Vec3
 double SoftPool::first_join(double t_end, SoftSurroundings& around, int& shot, StepStats& stats) {
     double best = kInf;
     shot = -1;
+    // How fast a member may move until a candidate is looked at again: the fastest member now, and
+    // what a moving surface can add to it (a plate or a part throws a shot at up to twice its speed).
+    double speed_bound = 0.0;
+    for (const Member& M : members_) speed_bound = std::max(speed_bound, M.v.norm());
+    speed_bound += 2.0 * model_->peak_surface_speed_m_per_s;
+    const double g = g_.norm();
     for (std::size_t m = 0; m < members_.size(); ++m) {
         if (!members_[m].box_set || (members_[m].p - members_[m].box_centre).norm() > kGatherMargin * R_)
             renew_box(static_cast<int>(m), around);
         Member& M = members_[m];
         const Trajectory pm{M.p, M.v, M.a, t_};
-        std::vector<int>& cands = M.candidates;
+        std::vector<Candidate>& cands = M.candidates;
         for (std::size_t k = 0; k < cands.size();) {
-            const int j = cands[k];
+            Candidate& c = cands[k];
+            if (t_end < c.check_at && speed_bound <= c.speed_bound) {
+                ++k;
+                continue;
+            }
+            const int j = c.shot;
             Trajectory pj;
             if (contains(j) || !around.path_of(j, t_, pj)) {
                 cands[k] = cands.back();
@@ -179,10 +203,15 @@ double SoftPool::first_join(double t_end, SoftSurroundings& around, int& shot, S
             ++k;
             const double tb = std::max(t_, pj.t0);
             if (tb > t_end) continue;
-            // Far apart for the whole step: no exact test.
-            const double d_begin = (pj.position(tb) - pm.position(tb)).norm();
-            const double closing = (pj.velocity(tb) - pm.velocity(tb)).norm() + (pj.g - pm.g).norm() * (t_end - tb);
-            if (d_begin - closing * (t_end - tb) > 2.0 * R_) continue;
+            const double gap = (pj.position(tb) - pm.position(tb)).norm() - 2.0 * R_;
+            // Apart for a while: not looked at until the gap could have closed, at the candidate's
+            // speed (gravity adding for up to a millisecond) and the members' bound.
+            const double closing = pj.velocity(tb).norm() + g * 1e-3 + speed_bound;
+            if (gap > 0.0 && gap > closing * (t_end - tb)) {
+                c.check_at = tb + std::min(1e-3, gap / closing);
+                c.speed_bound = speed_bound;
+                continue;
+            }
             ++stats.pair_tests;
             PairContact pc;
             const ToiStatus st = sphere_pair_toi(pj, R_, pm, R_, tb, t_end, pc);
@@ -266,7 +295,8 @@ void SoftPool::integrate(double dt, SoftSurroundings& around, SimulationState& s
 
 void SoftPool::evaluate(double t, double spring_dt, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats) {
     const Model& m = *model_;
-    for (std::size_t c = 0; c < m.components.size(); ++c) poses_[c] = m.components[c].kinematics.pose(epoch_, t);
+    for (std::size_t c = 0; c < m.components.size(); ++c)
+        if (m.components[c].kinematics.moves()) poses_[c] = m.components[c].kinematics.pose(epoch_, t);
     for (Member& M : members_) {
         // Damping acts on the velocities at the step's end, predicted from the last forces (the
         // half-step velocities, which the springs' slip takes, would lag half a step: an error of
@@ -313,6 +343,19 @@ void SoftPool::evaluate(double t, double spring_dt, SimulationState& state, std:
     stats.soft_contact_evaluations += live_.size();
 }
 
+void SoftPool::settle_step(Live& l, double rate, double t) const {
+    l.energy_j = 0.5 * l.pair.m_star_kg * rate * rate + elastic_energy(l.pair, l.delta_m);
+    if (!(l.start_step_s > 0.0)) {
+        l.start_energy_j = std::max(l.energy_j, 0.5 * l.pair.m_star_kg * l.c.approach_m_per_s * l.c.approach_m_per_s);
+        l.start_step_s = hertz_step(l.pair, l.start_energy_j);
+    }
+    // A contact left to itself only loses energy, and keeps the step of its start; one that a
+    // surface loads beyond it (the plate pressing a shot) asks for the shorter step of its energy.
+    l.step_s = l.energy_j > l.start_energy_j ? hertz_step(l.pair, l.energy_j) : l.start_step_s;
+    const double age = t - (l.c.start_time_s - epoch_.hi - epoch_.lo);
+    l.lively = l.energy_j >= 0.5 * l.pair.m_star_kg * line_speed_ * line_speed_ || age < kSlowAge;
+}
+
 int SoftPool::continue_or_begin(int before, const SoftContact& key, double t, double spring_dt, double approach_now, double& spring_step) {
     if (before >= 0) {
         continued_[static_cast<std::size_t>(before)] = 1;
@@ -337,6 +380,7 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
     const Model& model = *model_;
     Member& M = members_[static_cast<std::size_t>(m)];
     for (std::size_t c = 0; c < model.components.size(); ++c) {
+        if ((M.p.array() < reach_lo_[c].array()).any() || (M.p.array() > reach_hi_[c].array()).any()) continue;  // nowhere near
         const Component& comp = model.components[c];
         const Pose& pose = poses_[c];
         overlaps_.clear();
@@ -393,10 +437,7 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
             l.point_m = q;
             M.f += fn * n + ft;
             M.tau += r.cross(ft);
-            l.energy_j = 0.5 * l.pair.m_star_kg * rate * rate + elastic_energy(l.pair, delta);
-            l.step_s = hertz_step(l.pair, l.energy_j);
-            const double age = t - (l.c.start_time_s - epoch_.hi - epoch_.lo);
-            l.lively = l.energy_j >= 0.5 * l.pair.m_star_kg * line_speed_ * line_speed_ || age < kSlowAge;
+            settle_step(l, rate, t);
             if (delta > contact::kDeepPenetration * R_ && !l.deep) {
                 l.deep = true;
                 ++state.health.deep_penetrations;
@@ -406,18 +447,24 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
 }
 
 void SoftPool::shot_contacts(double t, double spring_dt) {
-    // Members by x, swept: a pair within 2 R along x is tested.
-    order_.resize(members_.size());
+    // A few members: every pair; more: sorted by x and swept, a pair within 2 R along x tested.
+    const std::size_t n = members_.size();
+    if (n < 2) return;
+    order_.resize(n);
     std::iota(order_.begin(), order_.end(), 0);
-    std::sort(order_.begin(), order_.end(), [&](int a, int b) {
-        const double xa = members_[static_cast<std::size_t>(a)].p.x(), xb = members_[static_cast<std::size_t>(b)].p.x();
-        return xa < xb || (xa == xb && members_[static_cast<std::size_t>(a)].shot < members_[static_cast<std::size_t>(b)].shot);
-    });
+    const bool sweep = n > kAllPairsUpTo;
+    if (sweep)
+        std::sort(order_.begin(), order_.end(), [&](int a, int b) {
+            const double xa = members_[static_cast<std::size_t>(a)].p.x(), xb = members_[static_cast<std::size_t>(b)].p.x();
+            return xa < xb || (xa == xb && members_[static_cast<std::size_t>(a)].shot < members_[static_cast<std::size_t>(b)].shot);
+        });
     const double reach = 2.0 * R_;
-    for (std::size_t u = 0; u < order_.size(); ++u) {
-        for (std::size_t w = u + 1; w < order_.size(); ++w) {
+    for (std::size_t u = 0; u < n; ++u) {
+        for (std::size_t w = u + 1; w < n; ++w) {
             int ma = order_[u], mb = order_[w];
-            if (members_[static_cast<std::size_t>(mb)].p.x() - members_[static_cast<std::size_t>(ma)].p.x() >= reach) break;
+            const double dx = members_[static_cast<std::size_t>(mb)].p.x() - members_[static_cast<std::size_t>(ma)].p.x();
+            if (sweep && dx >= reach) break;
+            if (!(std::abs(dx) < reach)) continue;
             if (members_[static_cast<std::size_t>(ma)].shot > members_[static_cast<std::size_t>(mb)].shot) std::swap(ma, mb);
             Member& A = members_[static_cast<std::size_t>(ma)];
             Member& B = members_[static_cast<std::size_t>(mb)];
@@ -466,10 +513,7 @@ void SoftPool::shot_contacts(double t, double spring_dt) {
             B.f -= force_on_a;
             A.tau += (arm * n).cross(ft);
             B.tau += (-arm * n).cross(-ft);
-            l.energy_j = 0.5 * l.pair.m_star_kg * rate * rate + elastic_energy(l.pair, delta);
-            l.step_s = hertz_step(l.pair, l.energy_j);
-            const double age = t - (l.c.start_time_s - epoch_.hi - epoch_.lo);
-            l.lively = l.energy_j >= 0.5 * l.pair.m_star_kg * line_speed_ * line_speed_ || age < kSlowAge;
+            settle_step(l, rate, t);
         }
     }
 }
@@ -519,6 +563,15 @@ void SoftPool::leave(SimulationState& state, std::vector<ImpactRecord>& impacts,
     // Groups of members joined by contacts; a group leaves for rigid sustained contact when none of
     // its contacts is lively.
     const std::size_t n = members_.size();
+    // Usually nobody leaves: every member in contact (or just out of one), every contact lively.
+    bool quiet = true;
+    for (const Member& M : members_)
+        quiet = quiet && (M.touching || M.was_touching) && std::isfinite(M.p.squaredNorm() + M.v.squaredNorm());
+    for (const Live& l : live_) quiet = quiet && l.lively;
+    if (quiet) {
+        for (Member& M : members_) M.was_touching = M.touching;
+        return;
+    }
     parent_.resize(n);
     std::iota(parent_.begin(), parent_.end(), 0);
     const auto root = [&](int x) {

@@ -30,6 +30,7 @@
 // when it is first seen: sqrt(v_n^2 + 2 U / m*), U the elastic energy already in its overlap.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -128,7 +129,9 @@ public:
     static constexpr double kSlowAge = 20e-6;
     // of R: how far a member moves from where its triangles and neighbours were gathered before
     // they are gathered again.
-    static constexpr double kGatherMargin = 0.5;
+    static constexpr double kGatherMargin = 0.25;
+    // Members up to which every pair is tested for contact (beyond, a sweep along x).
+    static constexpr std::size_t kAllPairsUpTo = 12;
 
 private:
     // A contact in progress.
@@ -139,9 +142,19 @@ private:
         double delta_m = 0.0;         // m, overlap at the last evaluation
         double step_s = 0.0;          // s, the step this contact asks for now
         double energy_j = 0.0;        // J, its normal kinetic plus elastic energy now
+        double start_energy_j = 0.0;  // J, ... when it began (a contact left to itself only loses energy)
+        double start_step_s = 0.0;    // s, the step that energy asks for
         bool lively = false;          // carries at least the impact line's energy, or is younger than kSlowAge
         bool deep = false;            // counted once as a deep penetration
         Vec3 point_m = Vec3::Zero();  // m, world: the contact point now (on the surface)
+    };
+    // A shot outside the pool near a member, and until when it cannot reach it (s): it is looked
+    // at again then, or when it flies anew (offered again), or when a member faster than
+    // speed_bound (m/s) could close the gap sooner.
+    struct Candidate {
+        int shot = -1;
+        double check_at = -std::numeric_limits<double>::infinity();
+        double speed_bound = 0.0;
     };
     struct Member {
         int shot = -1;
@@ -154,7 +167,7 @@ private:
         bool was_touching = false;  // had one at the evaluation before (a whole step without: it flies)
         Vec3 box_centre;            // m, where its neighbour box and candidates were gathered
         bool box_set = false;
-        std::vector<int> candidates;        // shot outside the pool near it
+        std::vector<Candidate> candidates;  // shot outside the pool near it
         std::vector<SurfacePatch> patches;  // per component
         std::vector<int> contacts;          // indices into live_
     };
@@ -179,7 +192,9 @@ private:
     // The earliest touch within [t_, t_end] of a shot outside with a member: its time, or +inf.
     double first_join(double t_end, SoftSurroundings& around, int& shot, StepStats& stats);
     double hertz_step(const contact::HertzPair& p, double energy_j) const;  // s
-    void report(SoftSurroundings& around);                                  // every member's state to the scheme
+    // A contact's energy, wanted step and liveliness now, from its overlap and closing rate (m/s).
+    void settle_step(Live& l, double rate, double t) const;
+    void report(SoftSurroundings& around);  // every member's state to the scheme
 
     std::shared_ptr<const Model> model_;
     const WallPredictor& walls_;
@@ -196,7 +211,8 @@ private:
     std::vector<Member> members_;
     std::vector<int> member_of_;  // per shot: its slot in members_, -1 outside the pool
     std::vector<Live> live_, next_live_;
-    std::vector<Pose> poses_;  // per component, at the evaluation's time
+    std::vector<Pose> poses_;                // per component, at the evaluation's time (a still one's set once)
+    std::vector<Vec3> reach_lo_, reach_hi_;  // m, world, per component: a centre outside them touches nothing of it
     std::vector<Vec3> velocities_scratch_;
     std::vector<SurfaceOverlap> overlaps_;  // scratch
     std::vector<int> order_;                // scratch: members by x

@@ -16,12 +16,22 @@ void SurfacePatch::overlaps(const Vec3& p, double R, double margin_m, const Mesh
         reach_ = R + margin_m;
         const Vec3 r = Vec3::Constant(reach_);
         collider.triangles_overlapping(p - r, p + r, triangles_);
+        nearby_.clear();
+        for (const int t : triangles_) {
+            const std::size_t k = static_cast<std::size_t>(t);
+            Nearby n{t, mesh.corner(k, 0), mesh.corner(k, 1), mesh.corner(k, 2), Vec3::Zero(), 0.0};
+            n.centre = (n.a + n.b + n.c) / 3.0;
+            n.radius = std::max({(n.a - n.centre).norm(), (n.b - n.centre).norm(), (n.c - n.centre).norm()});
+            nearby_.push_back(n);
+        }
         valid_ = true;
     }
     found_.clear();
-    for (const int t : triangles_) {
-        const std::size_t k = static_cast<std::size_t>(t);
-        const ClosestPoint c = closest_point_on_triangle(p, mesh.corner(k, 0), mesh.corner(k, 1), mesh.corner(k, 2));
+    for (const Nearby& n : nearby_) {
+        const double reach = R + n.radius;
+        if ((p - n.centre).squaredNorm() >= reach * reach) continue;
+        const int t = n.triangle;
+        const ClosestPoint c = closest_point_on_triangle(p, n.a, n.b, n.c);
         const Vec3 d = p - c.point;
         const double dist2 = d.squaredNorm();
         if (!(dist2 < R * R) || !(dist2 > 0.0)) continue;

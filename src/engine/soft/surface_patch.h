@@ -43,7 +43,16 @@ private:
     bool valid_ = false;
     Vec3 centre_ = Vec3::Zero();  // m, where the triangles were gathered (component frame)
     double reach_ = 0.0;          // m, they are every triangle within this of centre_
-    std::vector<int> triangles_;
+    // The gathered triangles: index, corners and bounding sphere (component frame), so that a
+    // step reads them in one pass and skips those whose sphere the shot's cannot reach.
+    struct Nearby {
+        int triangle;
+        Vec3 a, b, c;
+        Vec3 centre;    // m
+        double radius;  // m
+    };
+    std::vector<int> triangles_;  // scratch of the gathering
+    std::vector<Nearby> nearby_;
     std::vector<SurfaceOverlap> found_;  // scratch
 };
 
