@@ -185,3 +185,95 @@ TEST(SoftContact, ErrorFallsWithTheStepsPerContact) {
 }
 }  // namespace
 }  // namespace peensim::testing
+
+namespace peensim::testing {
+namespace {
+
+// Oblique impacts on a flat wall at 3.9 m/s from 2 to 80 degrees from the normal (the benchmark set
+// of Chung and Ooi 2011, test 6; steel on steel here, e 0.9, f 0.1). Published trends the
+// Hertz-Mindlin no-slip model reproduces: (1) beyond the incidence where the contact slides
+// throughout (tan(theta) > 7/2 f (1 + e)) the rebound follows Coulomb's closed form: the tangential
+// speed loses f (1 + e) v_n and the spin is 5/2 f (1 + e) v_n / R, the same at every angle;
+// (2) below it the spin grows with the incidence; (3) in between (micro-slip, here 10-30 deg) the
+// contact point's tangential velocity reverses (the tangential spring springs back: a negative
+// tangential restitution, down to -0.31 at 20 deg), which an instantaneous rigid impact cannot
+// give; at the smallest incidences (pure stick) it comes out at +0.68 of itself, the tangential
+// oscillation (1.7 times as fast as the normal one for nu 0.3) ending past a full turn.
+TEST(SoftContact, ObliqueImpactsFollowTheDemBenchmarkTrends) {
+    SoftSpec soft;
+    soft.e_sonotrode = 0.9;
+    soft.f_sonotrode = 0.1;
+    const double v = 3.9, R = 1e-3, fe = 0.1 * 1.9;
+    const double sliding_from = std::atan(3.5 * fe) * 180.0 / M_PI;  // 33.6 deg
+    double last_spin = 0.0, most_reversed = 0.0;
+    for (const double deg : {2.0, 5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0}) {
+        const double th = deg * M_PI / 180.0, vn = v * std::cos(th), vt = v * std::sin(th);
+        const Throw t = throw_at_plate(soft, Vec3(vt, 0, -vn), 1e-4, 1e-4 / vn + 5e-5);
+        ASSERT_EQ(t.impacts.size(), 1u) << deg;
+        const double vt2 = t.velocity.x(), vn2 = t.velocity.z(), spin = t.spin.y();
+        const double contact_point = vt2 - spin * R;  // tangential velocity of the contact point after
+        const double rebound_deg = std::atan2(vt2, vn2) * 180.0 / M_PI;
+        std::cout << "[ oblique  ] " << deg << " deg: vt2/vt1 " << vt2 / vt << ", spin R/vn " << spin * R / vn << ", rebound angle "
+                  << rebound_deg << " deg, contact point after/before " << contact_point / vt << "\n";
+        if (deg > sliding_from + 5.0) {
+            EXPECT_NEAR(vt2, vt - fe * vn, 0.01 * fe * vn) << deg;
+            EXPECT_NEAR(spin * R / vn, 2.5 * fe, 0.01 * 2.5 * fe) << deg;
+        } else {
+            EXPECT_GT(spin, last_spin) << deg;  // grows with the incidence up to the sliding regime
+            EXPECT_LT(spin * R / vn, 2.5 * fe * 1.01) << deg;
+        }
+        most_reversed = std::min(most_reversed, contact_point / vt);
+        last_spin = spin;
+    }
+    EXPECT_LT(most_reversed, -0.2);  // the contact point springs back
+}
+
+}  // namespace
+}  // namespace peensim::testing
+
+namespace peensim::testing {
+namespace {
+
+// A shot thrown along a line of two touching shot at rest (Newton's cradle): the three are one
+// cluster, integrated together; momentum is kept exactly (equal and opposite contact forces) and,
+// elastic and frictionless, the energy to the integration's accuracy. Unlike rigid spheres (the
+// last one leaves with all the speed), soft ones share it: the first does not stop dead.
+TEST(SoftContact, ACradleIsOneClusterThatKeepsMomentumAndEnergy) {
+    TestSceneSpec spec;
+    spec.scheme = "soft";
+    spec.soft = SoftSpec{};
+    spec.soft->e_shot_shot = 1.0;
+    spec.soft->f_shot_shot = 0.0;
+    spec.shot_count = 3;
+    spec.gravity_m_per_s2 = Vec3::Zero();
+    spec.chamber_size_m = Vec3(40e-3, 40e-3, 40e-3);
+    spec.duration_s = 2e-3;  // the touch at 0.5 ms
+    const TestScene scene(spec);
+    const auto model = scene.compile();
+    Simulation sim(model);
+    sim.edit_state([&](SimulationState& s) {
+        set_shot(s, 0, Vec3(-3e-3, 0.0, 20e-3), Vec3(2.0, 0.0, 0.0));
+        set_shot(s, 1, Vec3(0.0, 0.0, 20e-3), Vec3::Zero());
+        set_shot(s, 2, Vec3(2e-3, 0.0, 20e-3), Vec3::Zero());  // touching shot 1
+    });
+    std::vector<ImpactRecord> step;
+    while (!sim.finished()) {
+        sim.step(step);
+        step.clear();
+    }
+    const ShotArrays& s = sim.state().shots;
+    const Vec3 p = s.velocity(0) + s.velocity(1) + s.velocity(2);
+    const double ke = s.velocity(0).squaredNorm() + s.velocity(1).squaredNorm() + s.velocity(2).squaredNorm();
+    std::cout << "[ cradle   ] after: " << s.velocity(0).x() << ", " << s.velocity(1).x() << ", " << s.velocity(2).x() << " m/s; joins "
+              << sim.scheme().stats().soft_joins << "\n";
+    EXPECT_NEAR(p.x(), 2.0, 1e-12);
+    EXPECT_NEAR(p.y(), 0.0, 1e-12);
+    EXPECT_NEAR(ke, 4.0, 4.0 * 1e-3);                 // measured +3.3e-4 at 20 steps per contact
+    EXPECT_GT(s.velocity(2).x(), s.velocity(1).x());  // in order, none through another
+    EXPECT_GE(s.velocity(1).x(), s.velocity(0).x());
+    EXPECT_GT(s.velocity(2).x(), 1.0);
+    EXPECT_EQ(sim.state().health.serious(), 0u);
+}
+
+}  // namespace
+}  // namespace peensim::testing

@@ -84,8 +84,9 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
         // A load mostly at rest (sonotrode off, a chamber filled with shot) is time stepping's regime:
         // its sustained contacts resolve whole piles at once, where events would crawl through them
         // shot by shot. Decided from the state alone, so a resumed run decides the same.
-        // (Not while soft contacts are in progress: time stepping has no soft contacts.)
-        handed_over_ = state.soft_contacts.empty() && resting_fraction(state) > kHandOverFraction;
+        // (Never in the soft scheme: time stepping has no soft contacts, and would resolve an impact
+        // into the load rigidly; its sustained contacts and sleep keep a load at rest cheap there.)
+        handed_over_ = !soft_ && resting_fraction(state) > kHandOverFraction;
         if (handed_over_) {
             if (!hand_over_) hand_over_ = std::make_unique<TimeStepping>(model_);
             ++stats_.hand_overs;
@@ -189,7 +190,7 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
     // Most shot in sustained contact or asleep, and the state says the load is at rest: restart at
     // this grid point, to hand the load over to time stepping (see above). Looked at on the grid only,
     // so that where a caller pauses never changes the run.
-    if (!started_ || stop_s != grid_s) return;
+    if (!started_ || stop_s != grid_s || soft_) return;
     std::size_t active = 0, still = 0;
     for (std::size_t k = 0; k < shots_.size(); ++k) {
         if (!active_[k]) continue;
