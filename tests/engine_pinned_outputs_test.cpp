@@ -24,7 +24,8 @@ struct Pinned {
     const char* impacts_fnv1a;  // of impacts.csv, hex
 };
 
-// nozzle-almen pinned when it was added (shot sources and sinks).
+// nozzle-almen pinned when it was added (shot sources and sinks); rod-soft and gear-soft when
+// they were (the soft scheme, and the rigid event scheme on the hertz-mindlin law's limit).
 // Last moved by: time stepping follows slow touches on the pressing plate as rebounds down to the
 // ride speed, as the event scheme does (rotating-gear step: 794 -> 784 rows); before that, the
 // launch from a ride started from the free flight since the release (e64ce17).
@@ -34,6 +35,8 @@ const Pinned kPinned[] = {
     {"rotating-gear", "event", 878, "39f8f555c075679a"},  {"rotating-gear", "step", 784, "75faf08347826696"},
     {"almen", "event", 946, "14acb11530796b00"},          {"almen", "step", 835, "4553c21722f5a983"},
     {"nozzle-almen", "event", 10290, "408e171dd2e8b4b5"}, {"nozzle-almen", "step", 10298, "038ac3ea187fb48c"},
+    {"rod-soft", "soft", 2372, "9b2fea3eb8a45ee2"},       {"rod-soft", "event", 2451, "fb40376583a3a876"},
+    {"gear-soft", "soft", 727, "2739357bc4d7e72a"},       {"gear-soft", "event", 794, "43bb77a63129baa9"},
 };
 
 void PrintTo(const Pinned& p, std::ostream* os) { *os << p.scene << " " << p.scheme; }
