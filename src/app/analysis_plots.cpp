@@ -208,6 +208,16 @@ std::string render(const std::string& gnuplot, const fs::path& dir, const std::s
 
 }  // namespace
 
+std::string gnuplot_string(const std::string& s) { return gnuplot_quoted(s); }
+std::string gnuplot_text(const std::string& s) { return enhanced_text_escaped(s); }
+
+std::string plot_with_gnuplot(const std::string& dir, const std::string& stem, const std::string& script) {
+    const std::string gnuplot = find_gnuplot();
+    if (gnuplot.empty()) return std::string(kNoGnuplotNote);
+    write_file_atomically((fs::path(dir) / (stem + ".gp")).string(), script);
+    return render(gnuplot, fs::path(dir), stem + ".gp", stem + ".png");
+}
+
 std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, const std::vector<std::string>& components,
                                               std::string& note) {
     note.clear();

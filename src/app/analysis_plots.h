@@ -30,4 +30,11 @@ inline constexpr std::string_view kNoGnuplotNote = "gnuplot not found: no PNG pl
 std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, const std::vector<std::string>& components,
                                               std::string& note);
 
+// Writes `dir/stem.gp` and renders `dir/stem.png` with it (through `stem.png.tmp`, renamed: complete
+// or absent). Returns "" when done, else why not (gnuplot missing, or its messages). The script
+// writes to the file named by the variable `out`, which this sets (`set output out`).
+std::string plot_with_gnuplot(const std::string& dir, const std::string& stem, const std::string& script);
+std::string gnuplot_string(const std::string& s);  // `s` as a gnuplot single-quoted string
+std::string gnuplot_text(const std::string& s);    // `s` escaped for gnuplot's enhanced text
+
 }  // namespace peensim

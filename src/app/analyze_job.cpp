@@ -10,6 +10,7 @@
 #include <ostream>
 
 #include "analysis/impact_stream.h"
+#include "analysis/part_coverage.h"
 #include "app/analysis_plots.h"
 #include "app/analysis_report.h"
 #include "app/analysis_tables.h"
@@ -27,10 +28,7 @@ namespace peensim {
 
 namespace {
 
-constexpr int kCoverageSamples = 50;               // points of the coverage- and dose-vs-time curves
-constexpr double kDentsPerSpacing = 5.0;           // coverage sampling: spacing = dent at 1 m/s / 5
-constexpr double kLargestSpeed = 30.0;             // m/s, sizes the coverage map's dent grid
-constexpr std::int64_t kMaxSamples = 200'000'000;  // coverage samples per component at most (1 bit each: 25 MB)
+constexpr int kCoverageSamples = 50;  // points of the coverage- and dose-vs-time curves
 
 const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
     for (const MaterialDesc& m : scene.materials)
@@ -49,15 +47,6 @@ double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& 
         } catch (const std::exception&) {}
     }
     return scene.process.duration_s;
-}
-
-// The coverage map of a component of yield stress sigma_y: sample spacing a fifth of the dent at
-// 1 m/s, coarsened (in steps of 25 %) while the mesh would need more than kMaxSamples samples.
-std::unique_ptr<CoverageMap> coverage_map(const TriangleMesh& mesh, const SceneDescription& scene, double sigma_y) {
-    const double D = scene.shot.diameter_m, rho = scene.shot.density_kg_per_m3;
-    double spacing = dent_diameter(D, rho, 1.0, sigma_y) / kDentsPerSpacing;
-    while (CoverageMap::samples_needed(mesh, spacing) > kMaxSamples) spacing *= 1.25;
-    return std::make_unique<CoverageMap>(mesh, spacing, dent_diameter(D, rho, kLargestSpeed, sigma_y));
 }
 
 // Which regions hold each triangle, as compressed rows (a triangle may be in several regions).
@@ -85,7 +74,7 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
     const MaterialDesc* m = material_named(scene, c.material);
     if (m && m->yield_stress_pa) {
         a.yield_stress_pa = *m->yield_stress_pa;
-        a.coverage = coverage_map(*a.mesh, scene, a.yield_stress_pa);
+        a.coverage = part_coverage_map(*a.mesh, scene.shot.diameter_m, scene.shot.density_kg_per_m3, a.yield_stress_pa);
     }
     if (c.almen) {
         AlmenAnalysis almen;

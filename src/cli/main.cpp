@@ -1,10 +1,11 @@
-// The `peensim` command line: run, check, analyze, render-impacts, bench, generate, schema.
+// The `peensim` command line: run, check, analyze, render-impacts, bench, trade, generate, schema.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
 
 #include "app/analyze_job.h"
 #include "app/bench_job.h"
+#include "app/trade_job.h"
 #include "app/check_job.h"
 #include "app/render_module.h"
 #include "app/run_job.h"
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
         ->excludes(render_flag);
     std::string scheme;
     run_cmd->add_option("--scheme", scheme, "stepping scheme, overriding the scene's accuracy.scheme")
-        ->check(CLI::IsMember({"step", "event"}));
+        ->check(CLI::IsMember({"step", "event", "soft"}));
     std::uint64_t stop_after = 0;
     run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
 
@@ -83,6 +84,18 @@ int main(int argc, char** argv) {
     generate_cmd->prefix_command();
     generate_cmd->set_help_flag();
 
+    TradeOptions trade;
+    auto* trade_cmd = app.add_subcommand(
+        "trade", "the speed/accuracy trade: every accuracy knob (rigid event, time step, soft resolution and stiffness) against a converged soft reference");
+    trade_cmd->add_option("scene", trade.scene_path, "scene file (YAML) whose contacts are hertz-mindlin")->required();
+    trade_cmd->add_option("--duration", trade.duration, "simulated time of every run (default: the scene's process.duration)");
+    trade_cmd->add_option("--settle", trade.settle_s, "s left out of rates and speeds at the start (default: a tenth of the run)");
+    trade_cmd->add_option("--reference-steps", trade.reference_steps, "soft steps per contact of the reference (default 80)")
+        ->check(CLI::Range(20.0, 10000.0));
+    trade_cmd->add_option("--seeds", trade.seeds, "runs per knob from consecutive seeds, figures averaged (default 1)")->check(CLI::Range(1, 1000));
+    trade_cmd->add_option("--set", trade.overrides, "override a scene field for every knob")->allow_extra_args(false);
+    trade_cmd->add_option("--csv", trade.csv_path, "also write every figure to this CSV file");
+    trade_cmd->add_option("--plot", trade.plot_path, "draw error against wall time to this PNG (gnuplot; its .gp and data beside it)");
     app.add_subcommand("schema", "print the scene file reference (Markdown)");
 
     try {
@@ -112,6 +125,7 @@ int main(int argc, char** argv) {
         }
     }
     if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
+    if (*trade_cmd) return trade_job(trade, std::cout, std::cerr);
     if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
     if (app.got_subcommand("schema")) {
         std::cout << scene_reference_markdown();
