@@ -49,7 +49,7 @@ const std::array kCatalogue{
     LawEntry{"hertz-mindlin",
              "Soft-sphere contact (reference section 4, as LIGGGHTS and EDEM): Hertz normal force, Mindlin "
              "tangential spring with Coulomb's cap f, both damped from the restitution e (e falls as (V/V0)^-1/4 "
-             "above V0 when V0 > 0). Needs `youngs_modulus` and `poisson_ratio` of the shot's and the surface's "
+             "above V0 = plastic_speed when it is > 0). Needs `youngs_modulus` and `poisson_ratio` of the shot's and the surface's "
              "materials. The soft scheme integrates it; the rigid schemes take its instantaneous limit (normal "
              "restitution e, the tangential impulse of a sphere that grips: 5/7 of the slip, or Coulomb-limited).",
              hertz_mindlin_parameters(), hertz_mindlin_parameters(), make_hertz_mindlin_surface, make_hertz_mindlin_shot_shot},

@@ -20,20 +20,9 @@ namespace peensim::testing {
 namespace {
 
 TestSceneSpec tiny_soft() {
-    TestSceneSpec s;
-    s.scheme = "soft";
+    TestSceneSpec s = small_rod_scene("soft", 0.04);
     s.soft = SoftSpec{};
     s.shot_count = 24;
-    s.initial_speed_m_per_s = 1.0;
-    s.duration_s = 0.04;
-    s.amplitude_m = 25e-6;
-    PartSpec rod;
-    rod.shape = PartShape::cylinder;
-    rod.radius_m = 3e-3;
-    rod.length_m = 16e-3;
-    rod.axis = Axis::y;
-    rod.center_m = Vec3(0.0, 0.0, 8e-3);
-    s.part = rod;
     s.log = {"part"};
     return s;
 }

@@ -26,23 +26,23 @@ namespace fs = std::filesystem;
 
 // 64 shot of 2 mm thrown up at 1 m/s by the 25 um plate onto a static rod 8 mm above it.
 TestSceneSpec soft_rod_scene(double duration_s, std::uint64_t seed = 5) {
-    TestSceneSpec spec;
-    spec.scheme = "soft";
+    TestSceneSpec spec = small_rod_scene("soft", duration_s);
     spec.soft = SoftSpec{};
-    spec.shot_count = 64;
-    spec.initial_speed_m_per_s = 1.0;
-    spec.amplitude_m = 25e-6;
-    spec.duration_s = duration_s;
     spec.seed = seed;
-    PartSpec rod;
-    rod.shape = PartShape::cylinder;
-    rod.radius_m = 3e-3;
-    rod.length_m = 16e-3;
-    rod.axis = Axis::y;
-    rod.center_m = Vec3(0.0, 0.0, 8e-3);
-    spec.part = rod;
     spec.log = {"part", "sonotrode"};
     return spec;
+}
+
+// Runs to the end; returns the impacts logged on the component `component` (-1: every one).
+std::size_t run_to_end(Simulation& sim, int component = -1) {
+    std::vector<ImpactRecord> impacts;
+    std::size_t n = 0;
+    while (!sim.finished()) {
+        sim.step(impacts);
+        for (const ImpactRecord& r : impacts) n += component < 0 || r.component == component;
+        impacts.clear();
+    }
+    return n;
 }
 
 constexpr std::uint64_t kBusySeed = 7;
@@ -123,11 +123,7 @@ TEST(SoftScheme, ALoadDroppedOnAStillPlateComesToRestAndLeavesThePool) {
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        impacts.clear();
-    }
+    run_to_end(sim);
     const StepStats& st = sim.scheme().stats();
     double fastest = 0.0;
     for (std::size_t i = 0; i < sim.state().shots.size(); ++i) fastest = std::max(fastest, sim.state().shots.velocity(i).norm());
@@ -156,13 +152,7 @@ TEST(SoftScheme, SofteningUntilAContactLastsAPeriodStopsThePlateThrowing) {
         const TestScene scene(spec);
         const auto model = scene.compile();
         Simulation sim(model);
-        std::vector<ImpactRecord> impacts;
-        std::size_t rod = 0;
-        while (!sim.finished()) {
-            sim.step(impacts);
-            rod += impacts.size();
-            impacts.clear();
-        }
+        const std::size_t rod = run_to_end(sim);
         EXPECT_EQ(sim.state().health.serious(), 0u);
         return rod;
     };
