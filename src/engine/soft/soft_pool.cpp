@@ -52,6 +52,7 @@ SoftPool::SoftPool(std::shared_ptr<const Model> model, const WallPredictor& wall
     line_speed_ = m.impact_speed_m_per_s;
     steps_per_contact_ = m.soft_steps_per_contact;
     poses_.resize(m.components.size());
+    sliding_.assign(m.components.size(), Vec3::Zero());
     for (std::size_t c = 0; c < m.components.size(); ++c) {
         const Component& comp = m.components[c];
         poses_[c] = comp.kinematics.rest;
@@ -78,6 +79,12 @@ void SoftPool::grow(std::size_t shot_count) {
 
 double SoftPool::next_step_end() const { return members_.empty() ? kInf : t_ + dt_; }
 
+Vec3 SoftPool::surface_velocity(std::size_t c, const Vec3& q) const {
+    const Kinematics& k = model_->components[c].kinematics;
+    if (k.kind == Kinematics::Kind::rotating) return k.omega_rad_per_s * k.axis_direction.cross(q - k.axis_point_m);
+    return sliding_[c];  // vibrating (the same everywhere), or still (zero)
+}
+
 double SoftPool::hertz_step(const contact::HertzPair& p, double energy_j) const {
     const double v = std::max(line_speed_, std::sqrt(2.0 * std::max(0.0, energy_j) / p.m_star_kg));
     return std::max(kMinStep, contact::hertz_contact_duration(p, v) / steps_per_contact_);
@@ -85,7 +92,13 @@ double SoftPool::hertz_step(const contact::HertzPair& p, double energy_j) const 
 
 int SoftPool::add_member(int shot, const Vec3& p, const Vec3& v, const Vec3& w) {
     const int slot = static_cast<int>(members_.size());
-    members_.emplace_back();
+    // A retired member's record is reused, its lists' room with it: joining allocates nothing once warm.
+    if (spare_.empty()) {
+        members_.emplace_back();
+    } else {
+        members_.push_back(std::move(spare_.back()));
+        spare_.pop_back();
+    }
     Member& M = members_.back();
     M.shot = shot;
     M.p = M.p_before = p;
@@ -93,6 +106,10 @@ int SoftPool::add_member(int shot, const Vec3& p, const Vec3& v, const Vec3& w) 
     M.w = w;
     M.a = g_;
     M.alpha = Vec3::Zero();
+    M.touching = M.was_touching = false;
+    M.box_set = false;
+    M.candidates.clear();
+    M.contacts.clear();
     M.patches.resize(model_->components.size());
     for (SurfacePatch& s : M.patches) s.clear();
     member_of_[static_cast<std::size_t>(shot)] = slot;
@@ -106,6 +123,7 @@ void SoftPool::remove_member(int slot) {
         std::swap(members_[static_cast<std::size_t>(slot)], members_[static_cast<std::size_t>(last)]);
         member_of_[static_cast<std::size_t>(members_[static_cast<std::size_t>(slot)].shot)] = slot;
     }
+    spare_.push_back(std::move(members_.back()));
     members_.pop_back();
 }
 
@@ -295,8 +313,19 @@ void SoftPool::integrate(double dt, SoftSurroundings& around, SimulationState& s
 
 void SoftPool::evaluate(double t, double spring_dt, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats) {
     const Model& m = *model_;
-    for (std::size_t c = 0; c < m.components.size(); ++c)
-        if (m.components[c].kinematics.moves()) poses_[c] = m.components[c].kinematics.pose(epoch_, t);
+    for (std::size_t c = 0; c < m.components.size(); ++c) {
+        const Kinematics& k = m.components[c].kinematics;
+        if (!k.moves()) continue;
+        if (k.kind == Kinematics::Kind::vibrating) {
+            // Both from one phase: the plate's offset and its velocity (a turning part's pose is a rotation).
+            const double phase = 2.0 * M_PI * epoch_.cycle_fraction(k.frequency_hz, t) + k.phase_rad;
+            const double sn = std::sin(phase), cs = std::cos(phase);
+            poses_[c] = {k.rest.rotation, k.rest.translation + k.axis * (k.amplitude_m * sn)};
+            sliding_[c] = k.axis * (k.amplitude_m * k.angular_frequency() * cs);
+        } else {
+            poses_[c] = k.pose(epoch_, t);
+        }
+    }
     for (Member& M : members_) {
         // Damping acts on the velocities at the step's end, predicted from the last forces (the
         // half-step velocities, which the springs' slip takes, would lag half a step: an error of
@@ -389,7 +418,7 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
             const Vec3 n = pose.rotation * o.normal;
             const Vec3 q = pose.to_world(o.point_m);
             const Vec3 r = q - M.p;  // centre to contact point
-            const Vec3 vs = comp.kinematics.point_velocity(q, epoch_, t);
+            const Vec3 vs = surface_velocity(c, q);
             const Vec3 slip_rel = M.v + M.w.cross(r) - vs;  // mid-step: the springs' slip
             const Vec3 slip = slip_rel - slip_rel.dot(n) * n;
             const Vec3 v_rel = M.v_rate + M.w_rate.cross(r) - vs;

@@ -192,6 +192,8 @@ private:
     // The earliest touch within [t_, t_end] of a shot outside with a member: its time, or +inf.
     double first_join(double t_end, SoftSurroundings& around, int& shot, StepStats& stats);
     double hertz_step(const contact::HertzPair& p, double energy_j) const;  // s
+    // m/s, the velocity of component c's material point at q (m, world) at the evaluation's time.
+    Vec3 surface_velocity(std::size_t c, const Vec3& q) const;
     // A contact's energy, wanted step and liveliness now, from its overlap and closing rate (m/s).
     void settle_step(Live& l, double rate, double t) const;
     void report(SoftSurroundings& around);  // every member's state to the scheme
@@ -209,9 +211,12 @@ private:
     double line_speed_ = 0.0;  // m/s, the impact line
     double steps_per_contact_ = 40.0;
     std::vector<Member> members_;
+    std::vector<Member> spare_;   // retired members' records, reused by the next to join
     std::vector<int> member_of_;  // per shot: its slot in members_, -1 outside the pool
     std::vector<Live> live_, next_live_;
     std::vector<Pose> poses_;                // per component, at the evaluation's time (a still one's set once)
+    // Per component, at the evaluation's time: a vibrating one's (uniform) surface velocity (m/s).
+    std::vector<Vec3> sliding_;
     std::vector<Vec3> reach_lo_, reach_hi_;  // m, world, per component: a centre outside them touches nothing of it
     std::vector<Vec3> velocities_scratch_;
     std::vector<SurfaceOverlap> overlaps_;  // scratch

@@ -19,15 +19,21 @@ void SurfacePatch::overlaps(const Vec3& p, double R, double margin_m, const Mesh
         nearby_.clear();
         for (const int t : triangles_) {
             const std::size_t k = static_cast<std::size_t>(t);
-            Nearby n{t, mesh.corner(k, 0), mesh.corner(k, 1), mesh.corner(k, 2), Vec3::Zero(), 0.0};
+            Nearby n{t, mesh.corner(k, 0), mesh.corner(k, 1), mesh.corner(k, 2), Vec3::Zero(), Vec3::Zero(), 0.0};
+            const Vec3 cross = (n.b - n.a).cross(n.c - n.a);
+            if (cross.norm() > 0.0) n.normal = cross.normalized();
             n.centre = (n.a + n.b + n.c) / 3.0;
             n.radius = std::max({(n.a - n.centre).norm(), (n.b - n.centre).norm(), (n.c - n.centre).norm()});
             nearby_.push_back(n);
         }
         valid_ = true;
+        empty_ = nearby_.empty();
     }
+    if (empty_) return;
     found_.clear();
     for (const Nearby& n : nearby_) {
+        // Its plane first (rules out a large face the sphere is nowhere near), then its bounding sphere.
+        if (std::abs(n.normal.dot(p - n.a)) >= R) continue;
         const double reach = R + n.radius;
         if ((p - n.centre).squaredNorm() >= reach * reach) continue;
         const int t = n.triangle;

@@ -41,6 +41,7 @@ public:
 
 private:
     bool valid_ = false;
+    bool empty_ = true;  // nothing was gathered: nothing to test until the shot moves on
     Vec3 centre_ = Vec3::Zero();  // m, where the triangles were gathered (component frame)
     double reach_ = 0.0;          // m, they are every triangle within this of centre_
     // The gathered triangles: index, corners and bounding sphere (component frame), so that a
@@ -48,6 +49,7 @@ private:
     struct Nearby {
         int triangle;
         Vec3 a, b, c;
+        Vec3 normal;    // unit (zero for a degenerate triangle): a centre farther than R from its plane misses it
         Vec3 centre;    // m
         double radius;  // m
     };
