@@ -255,7 +255,7 @@ void SoftPool::step(SoftSurroundings& around, SimulationState& state, std::vecto
         // A shot outside reaches a member within this step: the pool steps exactly to its touch,
         // where it joins (its contact then starts at a step's start, at zero overlap).
         if (touch > t_) {
-            integrate(touch - t_, around, state, impacts, stats);
+            integrate(touch, around, state, impacts, stats);
             leave(state, impacts, exits, stats);
         }
         Trajectory path;
@@ -272,7 +272,7 @@ void SoftPool::step(SoftSurroundings& around, SimulationState& state, std::vecto
              impacts, exits, stats);
         return;
     }
-    integrate(dt_, around, state, impacts, stats);
+    integrate(t_end, around, state, impacts, stats);
     leave(state, impacts, exits, stats);
 }
 
@@ -280,14 +280,15 @@ void SoftPool::step_to(double t, SoftSurroundings& around, SimulationState& stat
                        std::vector<SoftExit>& exits, StepStats& stats) {
     StageTimer timer(stats, Stage::soft_contacts);
     while (!members_.empty() && t_ < t) {
-        integrate(std::min(dt_, t - t_), around, state, impacts, stats);
+        integrate(std::min(t_ + dt_, t), around, state, impacts, stats);
         leave(state, impacts, exits, stats);
     }
     if (members_.empty()) t_ = std::max(t_, t);
 }
 
-void SoftPool::integrate(double dt, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts,
+void SoftPool::integrate(double t_end, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts,
                          StepStats& stats) {
+    const double dt = t_end - t_;
     last_dt_ = dt;
     for (Member& M : members_) {
         M.p_before = M.p;
@@ -297,7 +298,7 @@ void SoftPool::integrate(double dt, SoftSurroundings& around, SimulationState& s
         M.p += dt * M.v;
     }
     // The step's end, on the scheme's clock: exactly the join's or the restart's time when it is one.
-    t_ += dt;
+    t_ = t_end;
     evaluate(t_, dt, state, impacts, stats);
     for (Member& M : members_) {
         M.v += 0.5 * dt * M.a;

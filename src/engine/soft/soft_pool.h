@@ -174,8 +174,9 @@ private:
 
     int add_member(int shot, const Vec3& p, const Vec3& v, const Vec3& w);
     void remove_member(int slot);
-    // Velocity Verlet over dt (s); forces at the end found by evaluate().
-    void integrate(double dt, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats);
+    // Velocity Verlet up to t_end (s, the scheme's clock; the pool's time is then exactly t_end);
+    // forces at the end found by evaluate().
+    void integrate(double t_end, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats);
     // Contacts and forces at the members' current positions, at time t (s), with the springs
     // advanced by spring_dt (s; 0: a look without advancing); contacts no longer found end (their
     // impact records).
@@ -214,7 +215,7 @@ private:
     std::vector<Member> spare_;   // retired members' records, reused by the next to join
     std::vector<int> member_of_;  // per shot: its slot in members_, -1 outside the pool
     std::vector<Live> live_, next_live_;
-    std::vector<Pose> poses_;                // per component, at the evaluation's time (a still one's set once)
+    std::vector<Pose> poses_;  // per component, at the evaluation's time (a still one's set once)
     // Per component, at the evaluation's time: a vibrating one's (uniform) surface velocity (m/s).
     std::vector<Vec3> sliding_;
     std::vector<Vec3> reach_lo_, reach_hi_;  // m, world, per component: a centre outside them touches nothing of it

@@ -41,7 +41,7 @@ public:
 
 private:
     bool valid_ = false;
-    bool empty_ = true;  // nothing was gathered: nothing to test until the shot moves on
+    bool empty_ = true;           // nothing was gathered: nothing to test until the shot moves on
     Vec3 centre_ = Vec3::Zero();  // m, where the triangles were gathered (component frame)
     double reach_ = 0.0;          // m, they are every triangle within this of centre_
     // The gathered triangles: index, corners and bounding sphere (component frame), so that a
