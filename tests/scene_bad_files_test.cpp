@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/input_error.h"
+#include "model/model.h"
 #include "scene/scene_parser.h"
 
 namespace peensim {
@@ -52,6 +53,8 @@ const BadScene catalogue[] = {
     {"region_count_wraps.yaml", 19, "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '4294967296'"},
     {"travel_fraction_tiny.yaml", 3, "accuracy.travel_fraction", "in [0.001, 1]"},
     {"drag_with_event.yaml", 3, "accuracy.scheme", "the event scheme needs exact parabolic flights, and air.drag is on; expected `step`"},
+    {"soft_with_drag.yaml", 3, "accuracy.scheme", "the soft scheme needs exact parabolic flights, and air.drag is on; expected `step`"},
+    {"poisson_ratio_above_half.yaml", 5, "materials.steel.poisson_ratio", "expected a number in [-0.99, 0.5], got '3.5'"},
     {"air_viscosity_wrong_unit.yaml", 6, "air.viscosity",
      "unknown unit 'm2/s' in '1.5e-5 m2/s' for a dynamic viscosity; accepted units: Pa s"},
     {"count_zero_without_sources.yaml", 3, "shot.count", "expected at least 1 shot, or sources that emit them"},
@@ -60,6 +63,26 @@ const BadScene catalogue[] = {
     {"source_sink_same_name.yaml", 11, "sinks[0].name", "duplicate name 'nozzle'; source and sink names must be unique"},
     {"render_frames_unbounded.yaml", 18, "render.slow_motion", "the render block plans 300000000 frames"},
 };
+
+// Scenes that read but cannot be compiled into a model (compile_model: a law without what it
+// needs, a scheme without the laws it integrates).
+const BadScene compile_catalogue[] = {
+    {"soft_with_impulse_law.yaml", 9, "contacts.default.law", "expected law 'hertz-mindlin' for shot-shot"},
+    {"soft_without_youngs_modulus.yaml", 9, "contacts.default.law", "add materials.titanium.youngs_modulus and .poisson_ratio"},
+};
+
+void expect_refusal(const BadScene& bad, const std::string& path, const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(e.where().file, path) << msg;
+    EXPECT_EQ(e.where().line, bad.line) << msg;
+    EXPECT_GT(e.where().column, 0) << msg;
+    EXPECT_NE(msg.find(std::string(bad.file) + ":" + std::to_string(bad.line) + ":"), std::string::npos) << msg;
+    EXPECT_EQ(e.field(), bad.field) << msg;
+    if (*bad.field != '\0') {
+        EXPECT_NE(msg.find(std::string(": ") + bad.field + ": "), std::string::npos) << msg;
+    }
+    EXPECT_NE(msg.find(bad.expected), std::string::npos) << msg;
+}
 
 class SceneBadFiles : public ::testing::TestWithParam<BadScene> {};
 
@@ -70,16 +93,20 @@ TEST_P(SceneBadFiles, IsRefusedWithFileLineFieldAndExpectation) {
         parse_scene_file(path);
         FAIL() << bad.file << " was accepted";
     } catch (const InputError& e) {
-        const std::string msg = e.what();
-        EXPECT_EQ(e.where().file, path) << msg;
-        EXPECT_EQ(e.where().line, bad.line) << msg;
-        EXPECT_GT(e.where().column, 0) << msg;
-        EXPECT_NE(msg.find(std::string(bad.file) + ":" + std::to_string(bad.line) + ":"), std::string::npos) << msg;
-        EXPECT_EQ(e.field(), bad.field) << msg;
-        if (*bad.field != '\0') {
-            EXPECT_NE(msg.find(std::string(": ") + bad.field + ": "), std::string::npos) << msg;
-        }
-        EXPECT_NE(msg.find(bad.expected), std::string::npos) << msg;
+        expect_refusal(bad, path, e);
+    }
+}
+
+class SceneBadModels : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(SceneBadModels, ReadsButIsRefusedByTheModelWithFileLineFieldAndExpectation) {
+    const BadScene& bad = GetParam();
+    const std::string path = bad_dir + "/" + bad.file;
+    try {
+        (void)compile_model(parse_scene_file(path));
+        FAIL() << bad.file << " was accepted";
+    } catch (const InputError& e) {
+        expect_refusal(bad, path, e);
     }
 }
 
@@ -90,6 +117,14 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, SceneBadFiles, ::testing::ValuesIn(catalogue
         if (c == '-') c = '_';
     return name;
 });
+INSTANTIATE_TEST_SUITE_P(ModelCatalogue, SceneBadModels, ::testing::ValuesIn(compile_catalogue),
+                         [](const ::testing::TestParamInfo<BadScene>& info) {
+                             std::string name = info.param.file;
+                             name = name.substr(0, name.find('.'));
+                             for (char& c : name)
+                                 if (c == '-') c = '_';
+                             return name;
+                         });
 
 // Each bad file is the same small scene with one thing broken; the unbroken scene parses.
 TEST(SceneBadFilesCatalogue, TheUnbrokenSceneParses) {
@@ -116,11 +151,12 @@ components:
 TEST(SceneBadFilesCatalogue, EveryFileInTheFolderIsInTheCatalogue) {
     std::set<std::string> listed;
     for (const BadScene& bad : catalogue) listed.insert(bad.file);
+    for (const BadScene& bad : compile_catalogue) listed.insert(bad.file);
     for (const auto& entry : std::filesystem::directory_iterator(bad_dir)) {
         if (entry.path().extension() != ".yaml") continue;
         EXPECT_TRUE(listed.count(entry.path().filename().string())) << entry.path() << " is not checked";
     }
-    EXPECT_EQ(listed.size(), std::size(catalogue));
+    EXPECT_EQ(listed.size(), std::size(catalogue) + std::size(compile_catalogue));
 }
 
 }  // namespace
