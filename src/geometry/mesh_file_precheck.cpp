@@ -33,6 +33,8 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
         std::uint64_t count = 0;
         std::uint64_t min_bytes = 0;  // per element, binary
         std::uint64_t values = 0;     // per element, at least (ASCII)
+        std::vector<std::string> properties;
+        std::vector<bool> is_list;
     };
     std::vector<Element> elements;
     bool binary = false, has_format = false;
@@ -80,6 +82,7 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
             words >> type;
             Element& e = elements.back();
             ++e.values;
+            e.is_list.push_back(type == "list");
             if (type == "list") {
                 std::string length_type, item_type;
                 words >> length_type >> item_type >> name;
@@ -92,6 +95,9 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
                     bad_line("expected 'property TYPE NAME' with a known type");
                 e.min_bytes += ply_type_bytes(type);
             }
+            for (const std::string& other : e.properties)
+                if (other == name) bad_line("property '" + name + "' twice in element '" + e.name + "'");
+            e.properties.push_back(name);
         } else {
             bad_line("unknown keyword '" + word + "'");
         }
@@ -113,6 +119,32 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
             refuse(path, "the PLY header declares " + std::to_string(e.count) + " " + e.name + " elements, but the file (" +
                              std::to_string(file_bytes) + " bytes) can hold at most " + std::to_string(body / per) +
                              ": a damaged or truncated file");
+    }    if (binary) return;
+    // ASCII: one entry per line, each list's length no more than the values left on its line (the
+    // reader allocates a list by its length field: a damaged one asked for 28 GB, found by fuzzing).
+    std::uint64_t line_number = static_cast<std::uint64_t>(lines);
+    for (const Element& e : elements) {
+        for (std::uint64_t k = 0; k < e.count; ++k) {
+            if (!std::getline(in, line)) return;  // short: the reader reports it
+            ++line_number;
+            std::istringstream words(line);
+            std::vector<std::string> values;
+            for (std::string w; words >> w;) values.push_back(w);
+            std::size_t at = 0;
+            for (std::size_t p = 0; p < e.properties.size(); ++p) {
+                if (at >= values.size()) break;  // short line: the reader reports it
+                if (!e.is_list[p]) {
+                    ++at;
+                    continue;
+                }
+                const std::string& length = values[at++];
+                const bool whole = !length.empty() && length.size() <= 19 && length.find_first_not_of("0123456789") == std::string::npos;
+                if (!whole || std::stoull(length) > values.size() - at)
+                    refuse(path, "PLY line " + std::to_string(line_number) + ": a list of '" + length + "' values in element '" + e.name +
+                                     "' with " + std::to_string(values.size() - at) + " values left on the line: a damaged file");
+                at += static_cast<std::size_t>(std::stoull(length));
+            }
+        }
     }
 }
 
