@@ -119,7 +119,8 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
             refuse(path, "the PLY header declares " + std::to_string(e.count) + " " + e.name + " elements, but the file (" +
                              std::to_string(file_bytes) + " bytes) can hold at most " + std::to_string(body / per) +
                              ": a damaged or truncated file");
-    }    if (binary) return;
+    }
+    if (binary) return;
     // ASCII: one entry per line, each list's length no more than the values left on its line (the
     // reader allocates a list by its length field: a damaged one asked for 28 GB, found by fuzzing).
     std::uint64_t line_number = static_cast<std::uint64_t>(lines);
