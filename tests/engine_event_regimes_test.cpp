@@ -402,14 +402,7 @@ TEST_P(EngineEventRegimes, RotatingPartImpactsLieOnItsSurface) {
     spec.initial_speed_m_per_s = 1.0;
     spec.amplitude_m = 25e-6;
     spec.duration_s = 0.1;
-    PartSpec part;
-    part.shape = PartShape::plate;
-    part.size_m = Vec3(10e-3, 6e-3, 2e-3);
-    part.center_m = Vec3(0.0, 0.0, 10e-3);
-    part.speed_rad_per_s = omega;
-    part.axis_point_m = part.center_m;
-    part.axis_direction = Vec3::UnitY();
-    spec.part = part;
+    spec.part = turning_plate_part(omega);
     spec.log = {"part"};
     const TestScene scene(spec);
     const auto model = scene.compile();

@@ -174,14 +174,7 @@ namespace {
 // its mesh, and nothing serious happens.
 TEST(SoftScheme, ImpactsOnAPartTurningAt1000RpmLieOnItsSurface) {
     TestSceneSpec spec = soft_rod_scene(0.1);
-    PartSpec part;
-    part.shape = PartShape::plate;
-    part.size_m = Vec3(10e-3, 6e-3, 2e-3);
-    part.center_m = Vec3(0.0, 0.0, 10e-3);
-    part.speed_rad_per_s = 1000.0 * 2.0 * M_PI / 60.0;
-    part.axis_point_m = part.center_m;
-    part.axis_direction = Vec3::UnitY();
-    spec.part = part;
+    spec.part = turning_plate_part(1000.0 * 2.0 * M_PI / 60.0);
     spec.log = {"part"};
     const TestScene scene(spec);
     const auto model = scene.compile();

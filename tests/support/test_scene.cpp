@@ -220,6 +220,17 @@ TestSceneSpec thrown_shot_scene(int shot_count, double duration_s) {
     return spec;
 }
 
+PartSpec turning_plate_part(double omega_rad_per_s) {
+    PartSpec part;
+    part.shape = PartShape::plate;
+    part.size_m = Vec3(10e-3, 6e-3, 2e-3);
+    part.center_m = Vec3(0.0, 0.0, 10e-3);
+    part.speed_rad_per_s = omega_rad_per_s;
+    part.axis_point_m = part.center_m;
+    part.axis_direction = Vec3::UnitY();
+    return part;
+}
+
 TestSceneSpec small_rod_scene(const std::string& scheme, double duration_s) {
     TestSceneSpec spec = thrown_shot_scene(64, duration_s);
     spec.scheme = scheme;

@@ -35,12 +35,12 @@ struct PairSpec {
 // `contacts:` in place of the impulse pairs: every material, the shot's included, with these
 // elastic constants; restitution e and Coulomb friction f per pair.
 struct SoftSpec {
-    double youngs_modulus_pa = 200e9;  // Pa, every material
-    double poisson_ratio = 0.3;        // -, every material
+    double youngs_modulus_pa = 200e9;                                            // Pa, every material
+    double poisson_ratio = 0.3;                                                  // -, every material
     double e_shot_shot = 0.9, e_sonotrode = 0.9, e_chamber = 0.9, e_part = 0.9;  // -
     double f_shot_shot = 0.1, f_sonotrode = 0.1, f_chamber = 0.1, f_part = 0.1;  // -
-    double V0_m_per_s = 0.0;           // m/s, every pair (0: e at every speed)
-    double steps_per_contact = 20.0;   // -, accuracy.soft_steps_per_contact
+    double V0_m_per_s = 0.0;                                                     // m/s, every pair (0: e at every speed)
+    double steps_per_contact = 20.0;                                             // -, accuracy.soft_steps_per_contact
 };
 
 enum class PartShape { box, cylinder, plate };
@@ -131,6 +131,10 @@ void set_shot(SimulationState& state, std::size_t i, const Vec3& position_m, con
 // `shot_count` shot of 2 mm thrown up at 1 m/s in random directions from the plate (A0 25 um), no
 // part: the smallest busy run (outputs, checkpoints, resumes).
 TestSceneSpec thrown_shot_scene(int shot_count, double duration_s);
+
+// A 10 x 6 x 2 mm plate part centred 10 mm above the sonotrode, turning at omega (rad/s) about +y
+// through its centre (at 1000 rpm its rim moves at 0.53 m/s and sweeps down to 4.9 mm).
+PartSpec turning_plate_part(double omega_rad_per_s);
 
 // 64 shot of 2 mm thrown up at 1 m/s in random directions from the plate (A0 25 um) onto a static
 // rod (r 3 mm, 16 mm along y, axis 8 mm up): a small, busy scene for determinism and run tests.
