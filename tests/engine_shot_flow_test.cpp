@@ -89,6 +89,34 @@ TEST(NozzleSource, EmissionsAreEvenlyTimedOnTheDiscInTheConeAndTheSameEveryTime)
     EXPECT_FALSE(source.emission(10000));  // 0.25 + 10 s: the stop, excluded
 }
 
+// Exit speeds spread uniformly over v0 (1 +- spread): within the bounds, mean v0 and variance
+// (v0 spread)^2 / 3 within 4 standard errors of 20,000 draws; the directions unchanged by it.
+TEST(NozzleSource, ExitSpeedsAreUniformOverTheSpread) {
+    NozzleSpec spec;
+    spec.name = "n";
+    spec.speed_m_per_s = 100.0;
+    spec.speed_spread = 0.05;
+    spec.rate_per_s = 1000.0;
+    spec.stop_s = 100.0;
+    const NozzleSource source(spec);
+    const int n = 20000;
+    double sum = 0.0, sum2 = 0.0;
+    for (int k = 0; k < n; ++k) {
+        const Emission e = *source.emission(static_cast<std::uint64_t>(k));
+        const double v = e.velocity_m_per_s.norm();
+        EXPECT_GE(v, 95.0 - 1e-12);
+        EXPECT_LE(v, 105.0 + 1e-12);
+        EXPECT_NEAR(e.velocity_m_per_s.normalized().dot(spec.direction), 1.0, 1e-15);  // no cone
+        sum += v;
+        sum2 += v * v;
+    }
+    const double mean = sum / n, var = sum2 / n - mean * mean, var_expected = 25.0 / 3.0;
+    EXPECT_NEAR(mean, 100.0, 4.0 * std::sqrt(var_expected / n));
+    // The sample variance's standard error, sqrt((mu4 - sigma^4) / n) with mu4 = a^4 / 5 for a
+    // uniform over +-a: 0.63 % of it here; 4 of them.
+    EXPECT_NEAR(var, var_expected, 0.025 * var_expected);
+}
+
 struct FlowRun {
     std::vector<ImpactRecord> impacts;
     SimulationState state;

@@ -61,6 +61,9 @@ const BadScene catalogue[] = {
     {"sink_box_inverted.yaml", 14, "sinks[0].max", "expected max > min in x, y and z"},
     {"shot_without_sonotrode.yaml", 4, "components", "no component has role sonotrode, and shot.count is 10"},
     {"source_sink_same_name.yaml", 11, "sinks[0].name", "duplicate name 'nozzle'; source and sink names must be unique"},
+    {"nozzle_position_and_target.yaml", 12, "sources[0].position", "'position' and `target` both place the nozzle: expected one"},
+    {"nozzle_rate_and_mass_flow.yaml", 14, "sources[0].mass_flow", "expected `rate` or `mass_flow`, not both"},
+    {"nozzle_target_without_distance.yaml", 9, "sources[0]", "missing required key 'distance' (a nozzle placed by its target)"},
     {"render_frames_unbounded.yaml", 18, "render.slow_motion", "the render block plans 300000000 frames"},
 };
 

@@ -31,6 +31,16 @@ RunSummary build_summary(const Simulation& sim, const std::string& scene_file, c
         s.emitted_per_source.push_back({model.sources[k]->name(), state.emitted_per_source[k]});
     for (std::size_t k = 0; k < model.sinks.size() && k < state.collected_per_sink.size(); ++k)
         s.collected_per_sink.push_back({model.sinks[k]->name(), state.collected_per_sink[k]});
+    for (std::size_t i = 0; i < state.shots.size(); ++i) {
+        if (!state.shots.active[i]) continue;
+        if (state.shots.velocity(i).norm() < model.impact_speed_m_per_s)
+            ++s.shots_at_rest;
+        else
+            ++s.shots_in_flight;
+    }
+    for (const auto& source : model.sources)
+        if (const auto* nozzle = dynamic_cast<const NozzleSource*>(source.get()))
+            s.flow_rate_eps.emplace_back(nozzle->name(), nozzle_flow_rate_eps(nozzle->spec(), 2.0 * model.shot_radius_m));
     s.impacts_per_component.push_back({"shot-shot", state.shot_shot_impacts});
     s.slow_contacts_per_component.push_back({"shot-shot", state.shot_shot_slow_contacts});
     s.impact_speed_m_per_s = model.impact_speed_m_per_s;

@@ -79,6 +79,11 @@ constexpr std::array unit_table{
     UnitDef{"Pa.s", Dimension::viscosity, 1.0, 1.0},
     UnitDef{"mPa s", Dimension::viscosity, 1.0, 1e3},
     UnitDef{"cP", Dimension::viscosity, 1.0, 1e3},
+    UnitDef{"kg/s", Dimension::mass_flow, 1.0, 1.0},
+    UnitDef{"kg/min", Dimension::mass_flow, 1.0, 60.0},
+    UnitDef{"kg/h", Dimension::mass_flow, 1.0, 3600.0},
+    UnitDef{"g/s", Dimension::mass_flow, 1e-3, 1.0},
+    UnitDef{"g/min", Dimension::mass_flow, 1e-3, 60.0},
 };
 
 std::string_view trim(std::string_view s) {
@@ -134,6 +139,7 @@ std::string_view dimension_noun(Dimension dim) {
         case Dimension::angular_speed: return "an angular speed";
         case Dimension::energy_per_area: return "an energy per area";
         case Dimension::viscosity: return "a dynamic viscosity";
+        case Dimension::mass_flow: return "a mass flow";
         case Dimension::dimensionless: return "a number";
     }
     return "a quantity";

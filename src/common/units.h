@@ -24,6 +24,7 @@ enum class Dimension {
     angular_speed,    // rad/s
     energy_per_area,  // J/m2 (a kinetic-energy dose)
     viscosity,        // Pa s (dynamic viscosity)
+    mass_flow,        // kg/s
     dimensionless,    // -
 };
 

@@ -167,6 +167,7 @@ void add_flow(Model& model, const SceneDescription& scene) {
         spec.direction = s.direction;
         spec.exit_radius_m = s.exit_radius_m;
         spec.speed_m_per_s = s.speed_m_per_s;
+        spec.speed_spread = s.speed_spread;
         spec.spread_rad = s.spread_rad;
         spec.rate_per_s = s.rate_per_s;
         spec.start_s = s.start_s;

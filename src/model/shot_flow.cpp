@@ -30,7 +30,8 @@ std::optional<Emission> NozzleSource::emission(std::uint64_t k) const {
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
     const double psi = 2.0 * M_PI * rng.uniform();
     const Vec3 dir = cos_theta * spec_.direction + sin_theta * (std::cos(psi) * e1_ + std::sin(psi) * e2_);
-    e.velocity_m_per_s = spec_.speed_m_per_s * dir;
+    const double speed = spec_.speed_m_per_s * (1.0 + spec_.speed_spread * (2.0 * rng.uniform() - 1.0));
+    e.velocity_m_per_s = speed * dir;
     return e;
 }
 

@@ -56,6 +56,13 @@ struct RunSummary {
     // Shot sources and sinks (empty without): shot each emitted, and each collected.
     std::vector<NamedCount> emitted_per_source;
     std::vector<NamedCount> collected_per_sink;
+    // The mass balance at the end: placed + emitted = collected + lost + in flight + at rest (the
+    // shot still in the run, slower than the impact speed: at rest).
+    std::uint64_t shots_in_flight = 0;
+    std::uint64_t shots_at_rest = 0;
+    // Per source: its dimensionless flow rate eps = r_m D / (v0 m_shot) (the conventional-peening
+    // study's measure of how crowded the jet is; r_m the mass flow, kg/s).
+    std::vector<std::pair<std::string, double>> flow_rate_eps;
     std::vector<NamedCount> impacts_per_component;
     // Flights that ended in sustained contact (approach slower than impact_speed_m_per_s): not
     // impacts, counted once per landing; same entries as impacts_per_component.

@@ -38,6 +38,11 @@ std::string summary_to_json(const RunSummary& s) {
     for (const auto& c : s.collected_per_sink) collected.push_back({{"sink", c.name}, {"collected", c.count}});
     j["emitted_per_source"] = std::move(emitted);
     j["collected_per_sink"] = std::move(collected);
+    j["shots_in_flight"] = s.shots_in_flight;
+    j["shots_at_rest"] = s.shots_at_rest;
+    auto eps = nlohmann::ordered_json::array();
+    for (const auto& [name, value] : s.flow_rate_eps) eps.push_back({{"source", name}, {"eps", value}});
+    j["flow_rate_eps"] = std::move(eps);
     j["impact_speed_mps"] = s.impact_speed_m_per_s;
 
     auto speeds = nlohmann::ordered_json::array();

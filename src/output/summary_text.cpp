@@ -47,7 +47,7 @@ std::string slow_contacts_text(const std::vector<NamedCount>& counts, double imp
     return (text.empty() ? std::string("none") : text) + printf_string(" (landings slower than %.3g m/s)", impact_speed_m_per_s);
 }
 
-// "0 placed + 1000 emitted (nozzle 1000), 940 collected (away 940), 0 lost".
+// "0 placed + 1000 emitted (nozzle 1000) = 940 collected (away 940) + 0 lost + 60 in flight + 0 at rest".
 std::string flow_text(const RunSummary& s) {
     const auto listed = [](const std::vector<NamedCount>& counts) {
         std::uint64_t total = 0;
@@ -58,8 +58,9 @@ std::string flow_text(const RunSummary& s) {
         }
         return std::to_string(total) + (counts.empty() ? std::string() : " (" + names + ")");
     };
-    return std::to_string(s.shot_count) + " placed + " + listed(s.emitted_per_source) + " emitted, " + listed(s.collected_per_sink) +
-           " collected, " + std::to_string(s.shot_lost) + " lost";
+    return std::to_string(s.shot_count) + " placed + " + listed(s.emitted_per_source) + " emitted = " + listed(s.collected_per_sink) +
+           " collected + " + std::to_string(s.shot_lost) + " lost + " + std::to_string(s.shots_in_flight) + " in flight + " +
+           std::to_string(s.shots_at_rest) + " at rest";
 }
 
 }  // namespace
@@ -82,6 +83,8 @@ std::string summary_to_text(const RunSummary& s) {
                                                  static_cast<unsigned long long>(s.shot_lost)));
     else
         rows.emplace_back("shots", flow_text(s));
+    for (const auto& [name, eps] : s.flow_rate_eps)
+        rows.emplace_back("flow " + name, printf_string("eps = r_m D / (v0 m_shot) = %.4g", eps));
     for (const auto& c : s.impacts_per_component) {
         std::string value = std::to_string(c.count);
         const auto stats =

@@ -96,10 +96,23 @@ void write_flow(std::string& y, const SceneDescription& s) {
     if (!s.sources.empty()) y += "sources:\n";
     for (const SourceDesc& d : s.sources) {
         y += "  - name: " + yaml_text(d.name) + "\n";
-        y += "    position: " + vec(d.position_m) + unit_comment(Dimension::length) + "\n";
-        y += "    direction: " + vec(d.direction) + "\n";
+        if (d.aim) {
+            y += "    target: " + vec(d.aim->target_m) + unit_comment(Dimension::length) + "\n";
+            y += "    distance: " + num(d.aim->distance_m) + unit_comment(Dimension::length) + "\n";
+            y += "    angle_of_attack: " + num(d.aim->angle_of_attack_rad) + unit_comment(Dimension::angle) + "\n";
+            y += "    target_normal: " + vec(d.aim->target_normal) + "\n";
+            y += "    azimuth: " + num(d.aim->azimuth_rad) + unit_comment(Dimension::angle) + "\n";
+            y += "    # position: " + vec(d.position_m) + " m, direction: " + vec(d.direction) + " (from the target)\n";
+        } else {
+            y += "    position: " + vec(d.position_m) + unit_comment(Dimension::length) + "\n";
+            y += "    direction: " + vec(d.direction) + "\n";
+        }
         y += "    speed: " + num(d.speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
-        y += "    rate: " + num(d.rate_per_s) + "  # shot per s\n";
+        y += "    speed_spread: " + num(d.speed_spread) + "\n";
+        if (d.mass_flow_kg_per_s)
+            y += "    mass_flow: " + num(*d.mass_flow_kg_per_s) + unit_comment(Dimension::mass_flow) + "  # " + num(d.rate_per_s) + " shot per s\n";
+        else
+            y += "    rate: " + num(d.rate_per_s) + "  # shot per s\n";
         y += "    exit_radius: " + num(d.exit_radius_m) + unit_comment(Dimension::length) + "\n";
         y += "    spread: " + num(d.spread_rad) + unit_comment(Dimension::angle) + "\n";
         y += "    start: " + num(d.start_s) + unit_comment(Dimension::time) + "\n";

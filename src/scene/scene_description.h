@@ -200,12 +200,24 @@ struct AirDesc {
 };
 
 // A nozzle emitting shot during the run (model/shot_flow.h).
+// Where the jet aims, when the scene places a nozzle by its target (position and direction follow).
+struct NozzleAim {
+    Vec3 target_m = Vec3::Zero();    // m, world
+    double distance_m = 0.0;         // m, exit to target along the axis
+    double angle_of_attack_rad = 0.0;  // rad, axis to the target surface (pi/2: along its normal)
+    Vec3 target_normal = Vec3::UnitZ();  // unit, world
+    double azimuth_rad = 0.0;        // rad
+};
+
 struct SourceDesc {
     std::string name;
-    Vec3 position_m = Vec3::Zero();   // m, world
-    Vec3 direction = -Vec3::UnitZ();  // unit, world
-    double speed_m_per_s = 0.0;       // m/s
-    double rate_per_s = 0.0;          // shot per second
+    Vec3 position_m = Vec3::Zero();   // m, world (given, or from `aim`)
+    Vec3 direction = -Vec3::UnitZ();  // unit, world (given, or from `aim`)
+    std::optional<NozzleAim> aim;     // the scene placed it by its target
+    double speed_m_per_s = 0.0;       // m/s, mean exit speed v0
+    double speed_spread = 0.05;       // -, exit speeds uniform in v0 (1 +- speed_spread)
+    double rate_per_s = 0.0;          // shot per second (given, or from mass_flow)
+    std::optional<double> mass_flow_kg_per_s;  // kg/s, when the scene gives the flow as a mass
     double exit_radius_m = 0.0;       // m
     double spread_rad = 0.0;          // rad, half-angle of the jet's cone
     double start_s = 0.0;             // s

@@ -1,4 +1,5 @@
 // The `sources` and `sinks` sections: where shot enter and leave a run besides the initial load.
+#include <cmath>
 #include <set>
 
 #include "scene/scene_sections.h"
@@ -14,20 +15,70 @@ std::string checked_name(const Cursor& c, std::set<std::string>& taken) {
     return name;
 }
 
+// Exactly one of the two keys.
+void one_of(const Cursor& c, const char* a, const char* b) {
+    const bool has_a = c.child(a).present(), has_b = c.child(b).present();
+    if (has_a && has_b) fail(c.child(b), std::string("expected `") + a + "` or `" + b + "`, not both");
+    if (!has_a && !has_b) fail(c, std::string("missing required key '") + a + "' (or '" + b + "')");
+}
+
+// position and direction, given or from the target: the exit `distance` from `target` along an axis
+// at `angle_of_attack` to the surface (normal `target_normal`), leaning towards `azimuth`.
+void read_placement(const Cursor& c, const Vec3& up, SourceDesc& d) {
+    const bool by_target = c.child("target").present();
+    if (by_target) {
+        for (const char* key : {"position", "direction"})
+            if (c.child(key).present()) fail(c.child(key), std::string("'") + key + "' and `target` both place the nozzle: expected one");
+        if (!c.child("distance").present()) fail(c, "missing required key 'distance' (a nozzle placed by its target)");
+        NozzleAim a;
+        a.target_m = read_vector(c.child("target"));
+        a.distance_m = read_quantity(c.child("distance"));
+        a.angle_of_attack_rad = read_quantity(c.child("angle_of_attack"));
+        a.target_normal = c.child("target_normal").present() ? *read_optional_direction(c.child("target_normal")) : up;
+        a.azimuth_rad = read_quantity(c.child("azimuth"));
+        // The lean's direction in the surface: world x projected on it (y when the normal is along x).
+        const Vec3& n = a.target_normal;
+        const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+        const Vec3 e1 = (helper - helper.dot(n) * n).normalized(), e2 = n.cross(e1);
+        const Vec3 lean = std::cos(a.azimuth_rad) * e1 + std::sin(a.azimuth_rad) * e2;
+        // From the nozzle towards the target: into the surface at the angle of attack.
+        d.direction = (-std::sin(a.angle_of_attack_rad) * n + std::cos(a.angle_of_attack_rad) * lean).normalized();
+        d.position_m = a.target_m - a.distance_m * d.direction;
+        d.aim = a;
+        return;
+    }
+    for (const char* key : {"distance", "angle_of_attack", "target_normal", "azimuth"})
+        if (c.child(key).present()) fail(c.child(key), std::string("'") + key + "' places a nozzle by its `target`, which is missing");
+    if (!c.child("position").present()) fail(c, "missing required key 'position' (or 'target')");
+    if (!c.child("direction").present()) fail(c, "missing required key 'direction' (or 'target')");
+    d.position_m = read_vector(c.child("position"));
+    d.direction = *read_optional_direction(c.child("direction"));
+}
+
 }  // namespace
 
-void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, std::vector<SourceDesc>& out_sources,
-               std::vector<SinkDesc>& out_sinks) {
+void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up,
+               std::vector<SourceDesc>& out_sources, std::vector<SinkDesc>& out_sinks) {
     std::set<std::string> names;
     for (std::size_t i = 0; i < sources.size(); ++i) {
         const Cursor c = sources.item(i);
         SourceDesc d;
         d.name = checked_name(c.child("name"), names);
-        d.position_m = read_vector(c.child("position"));
-        d.direction = *read_optional_direction(c.child("direction"));
+        read_placement(c, up, d);
         d.speed_m_per_s = read_quantity(c.child("speed"));
-        d.rate_per_s = read_quantity(c.child("rate"));
-        d.exit_radius_m = read_quantity(c.child("exit_radius"));
+        d.speed_spread = read_quantity(c.child("speed_spread"));
+        one_of(c, "rate", "mass_flow");
+        if (c.child("mass_flow").present()) {
+            d.mass_flow_kg_per_s = read_quantity(c.child("mass_flow"));
+            d.rate_per_s = *d.mass_flow_kg_per_s / shot_mass_kg;
+            if (!(d.rate_per_s <= 1e8))
+                fail(c.child("mass_flow"), "expected at most 1e8 shot per second, got " + format_si(d.rate_per_s) + " for this shot");
+        } else {
+            d.rate_per_s = read_quantity(c.child("rate"));
+        }
+        if (c.child("diameter").present() && c.child("exit_radius").present())
+            fail(c.child("diameter"), "expected `diameter` or `exit_radius`, not both");
+        d.exit_radius_m = c.child("diameter").present() ? 0.5 * read_quantity(c.child("diameter")) : read_quantity(c.child("exit_radius"));
         d.spread_rad = read_quantity(c.child("spread"));
         d.start_s = read_quantity(c.child("start"));
         d.stop_s = c.child("stop").present() ? read_quantity(c.child("stop")) : duration_s;

@@ -24,7 +24,9 @@ std::vector<ComponentDesc> read_components(const Cursor& components, const std::
 std::vector<RegionDesc> read_regions(const Cursor& regions);
 // The `sources` and `sinks` lists (names unique among both; a source stops at the run's end
 // unless it says otherwise).
-void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, std::vector<SourceDesc>& out_sources,
+// shot_mass_kg: one shot's mass (a mass flow's rate); up: against gravity (+z without it), the
+// default target normal.
+void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up, std::vector<SourceDesc>& out_sources,
                std::vector<SinkDesc>& out_sinks);
 // The `air` block (defaults: still air at 20 C, no drag).
 AirDesc read_air(const Cursor& air);

@@ -228,18 +228,37 @@ const std::array schema_table{
     SchemaEntry{"sources[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One nozzle."},
     SchemaEntry{"sources[].name", K::text, D::dimensionless, true, "", "", {}, "", "", "",
                 "Unique among sources and sinks (`[A-Za-z0-9_-]+`)."},
-    SchemaEntry{"sources[].position", K::vector3, D::length, true, "", "", {}, "", "", "",
-                "Centre of the nozzle's exit (world frame): where the shot's centres start."},
-    SchemaEntry{"sources[].direction", K::vector3, D::dimensionless, true, "", "", {}, "", "", "",
+    SchemaEntry{"sources[].position", K::vector3, D::length, false, "", "from `target`", {}, "", "", "",
+                "Centre of the nozzle's exit (world frame): where the shot's centres start. Give `position` and "
+                "`direction`, or `target` and `distance` (with `angle_of_attack`, `target_normal`, `azimuth`)."},
+    SchemaEntry{"sources[].direction", K::vector3, D::dimensionless, false, "", "from `target`", {}, "", "", "",
                 "Axis of the jet (normalised; not zero)."},
+    SchemaEntry{"sources[].target", K::vector3, D::length, false, "", "none", {}, "", "", "",
+                "The point the jet's axis aims at (world frame): the nozzle is placed `distance` from it, its axis at "
+                "`angle_of_attack` to the surface whose normal is `target_normal`."},
+    SchemaEntry{"sources[].distance", K::quantity, D::length, false, "", "none", above(0), "", "", "",
+                "Distance from the nozzle's exit to `target` along its axis (with `target`)."},
+    SchemaEntry{"sources[].angle_of_attack", K::quantity, D::angle, false, "90 deg", "", open_closed(0, 1.5707963267948966), "", "",
+                "", "Angle between the jet's axis and the target surface (90 deg: along its normal)."},
+    SchemaEntry{"sources[].target_normal", K::vector3, D::dimensionless, false, "", "against gravity (+z without it)", {}, "", "", "",
+                "Normal of the target surface at `target`, pointing to the nozzle's side (normalised)."},
+    SchemaEntry{"sources[].azimuth", K::quantity, D::angle, false, "0 deg", "", {}, "", "", "",
+                "Side the nozzle leans from below 90 deg: the angle about `target_normal` from world x projected on "
+                "the surface (y when the normal is along x)."},
     SchemaEntry{"sources[].speed", K::quantity, D::speed, true, "", "", open_closed(0, 1000), "", "", "",
-                "Speed of the shot leaving the nozzle."},
-    SchemaEntry{"sources[].rate", K::quantity, D::frequency, true, "", "", open_closed(0, 1e8), "", "", "",
-                "Shot emitted per second (a mass flow m' is m' / (rho pi D^3 / 6) shot per second), evenly spaced in time."},
+                "Mean speed of the shot leaving the nozzle (v0)."},
+    SchemaEntry{"sources[].speed_spread", K::quantity, D::dimensionless, false, "0.05", "", closed(0, 0.9), "", "", "",
+                "Spread of the exit speed: uniform in v0 (1 +- speed_spread)."},
+    SchemaEntry{"sources[].rate", K::quantity, D::frequency, false, "", "from `mass_flow`", open_closed(0, 1e8), "", "", "",
+                "Shot emitted per second, evenly spaced in time; give `rate` or `mass_flow`."},
+    SchemaEntry{"sources[].mass_flow", K::quantity, D::mass_flow, false, "", "none", open_closed(0, 1e4), "", "", "",
+                "Mass flow of shot (5-13 kg/min in conventional peening): `rate` = mass_flow / (rho pi D^3 / 6)."},
     SchemaEntry{"sources[].exit_radius", K::quantity, D::length, false, "0 m", "", closed(0, 1), "", "", "",
                 "Radius of the nozzle's exit: centres start at points uniform over this disc, normal to `direction`."},
+    SchemaEntry{"sources[].diameter", K::quantity, D::length, false, "", "2 exit_radius", closed(0, 2), "", "", "",
+                "Inner diameter of the nozzle, instead of `exit_radius`."},
     SchemaEntry{"sources[].spread", K::quantity, D::angle, false, "0 deg", "", closed(0, 1.5707963267948966), "", "", "",
-                "Half-angle of the jet's cone: directions uniform over it."},
+                "Half-angle of the jet's cone (its divergence): directions uniform over it."},
     SchemaEntry{"sources[].start", K::quantity, D::time, false, "0 s", "", at_least(0), "", "", "",
                 "Time of the first emission."},
     SchemaEntry{"sources[].stop", K::quantity, D::time, false, "", "the run's end", above(0), "", "", "",
@@ -492,7 +511,8 @@ std::string scene_reference_markdown() {
               markdown_cell(deflt) + " | " + markdown_cell(range) + " | " + markdown_cell(e.doc) + " |\n";
     }
     md += "\n#### Units\n\n| Quantity | Accepted units (first is SI) |\n|---|---|\n";
-    for (Dimension d : {D::length, D::time, D::frequency, D::speed, D::acceleration, D::density, D::stress, D::angle, D::angular_speed}) {
+    for (Dimension d : {D::length, D::time, D::frequency, D::speed, D::acceleration, D::density, D::stress, D::angle, D::angular_speed,
+                        D::energy_per_area, D::viscosity, D::mass_flow}) {
         md += "| " + std::string(dimension_noun(d).substr(dimension_noun(d).find(' ') + 1)) + " | " +
               markdown_cell(accepted_units_text(d)) + " |\n";
     }
