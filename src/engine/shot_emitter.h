@@ -1,7 +1,9 @@
 // Puts the shot the model's sources emit into the state, at their emission times: each takes the
 // lowest inactive slot (a collected or lost shot's), else a new one at the end, and flies from its
 // emission to the state's time (nothing when the scheme stopped exactly there, as the event-driven
-// scheme does; up to one step of time stepping, a quarter radius of travel, otherwise).
+// scheme does; up to one step of time stepping, a quarter radius of travel, otherwise). A shot
+// never starts overlapping another: a draw that would is drawn again (the source's next attempt at
+// the same emission), so the emissions stay a function of the seed and the run's own state.
 #pragma once
 
 #include <vector>
@@ -25,8 +27,13 @@ private:
     struct Due {
         double time_s;
         std::size_t source;
+        std::uint64_t index;  // the source's emission number
         Emission emission;
     };
+    bool overlaps_a_shot(const SimulationState& state, const Vec3& p) const;
+    // Where shot d is now (p, m) and its velocity (v, m/s): its first draw clear of every shot in
+    // the run, flown from its emission time to the state's time.
+    void place_clear_of_others(const SimulationState& state, const Due& d, Vec3& p, Vec3& v) const;
     const Model& model_;
     std::vector<Due> due_;  // scratch, reused
 };

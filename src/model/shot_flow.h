@@ -26,8 +26,10 @@ class ShotSource {
 public:
     virtual ~ShotSource() = default;
     virtual const std::string& name() const = 0;
-    // Emission k (0, 1, ...), or none: the source has stopped before it.
-    virtual std::optional<Emission> emission(std::uint64_t k) const = 0;
+    // Emission k (0, 1, ...), or none: the source has stopped before it. `attempt` > 0 draws the
+    // same emission again elsewhere (same time; another point, direction and speed), for when the
+    // first draw would overlap a shot already there.
+    virtual std::optional<Emission> emission(std::uint64_t k, unsigned attempt = 0) const = 0;
 };
 
 class ShotSink {
@@ -63,7 +65,7 @@ class NozzleSource final : public ShotSource {
 public:
     explicit NozzleSource(const NozzleSpec& spec);
     const std::string& name() const override { return spec_.name; }
-    std::optional<Emission> emission(std::uint64_t k) const override;
+    std::optional<Emission> emission(std::uint64_t k, unsigned attempt = 0) const override;
     const NozzleSpec& spec() const { return spec_; }
 
 private:
