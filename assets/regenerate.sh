@@ -59,3 +59,8 @@ mkdir -p "$out"
 # SAE J442 Almen strip, type A (76.2 x 19.0 x 1.29 mm): peened face up (+z), back face at z = 0.
 "$peensim" generate box "$out/almen-strip-a.stl" --size-x-mm 76.2 --size-y-mm 19 --size-z-mm 1.29 \
     --center-z-mm 0.645
+
+# A flat steel target for conventional peening (scenes/nozzle-study.yaml): 24 x 24 x 4 mm, peened
+# face up at z = 0, in 0.25 mm squares (smaller than a dent, for the impact-history law's memory).
+"$peensim" generate box "$out/steel-plate.stl" --size-x-mm 24 --size-y-mm 24 --size-z-mm 4 \
+    --divisions-x 96 --divisions-y 96 --center-z-mm -2

@@ -241,6 +241,46 @@ TEST_P(ShotFlow, ACrowdedNozzleStartsEveryShotClearOfTheOthers) {
     EXPECT_EQ(s.health.serious(), 0u);
 }
 
+// Rebound scatter on the study's jet (100 m/s onto a plate, e = 0.4: rebounds at ~40 m/s, above
+// the 40 m/s and Re* 1600 thresholds): rebounds leave the normal by up to the spread more than
+// without, the run is the same twice, healthy.
+TEST_P(ShotFlow, ReboundScatterTurnsFastRebounds) {
+    const std::string study = std::string(PEENSIM_SOURCE_DIR) + "/scenes/nozzle-study.yaml";
+    const auto run = [&](bool scatter) {
+        std::vector<std::string> set{"accuracy.scheme=" + GetParam(), "process.duration=5 ms"};
+        if (scatter) set.push_back("air.rebound_scatter={spread: 20 deg}");
+        FlowRun r;
+        r.model = compile_model(parse_scene_file(study, set));
+        Simulation sim(r.model);
+        RunLoop loop(sim);
+        Collect collect(r.impacts);
+        loop.add(collect);
+        EXPECT_TRUE(loop.run());
+        EXPECT_EQ(sim.state().health.serious(), 0u);
+        return r.impacts;
+    };
+    // The rebound's angle from the normal (deg), mean over the fast impacts.
+    const auto mean_tilt = [](const std::vector<ImpactRecord>& impacts) {
+        double sum = 0.0;
+        int n = 0;
+        for (const ImpactRecord& i : impacts)
+            if (i.vn_in_m_per_s > 90.0) {
+                sum += std::acos(std::min(1.0, i.vn_out_m_per_s / i.v_out_m_per_s.norm())) * 180.0 / M_PI, ++n;
+            }
+        return sum / std::max(n, 1);
+    };
+    const auto plain = run(false), scattered = run(true), again = run(true);
+    ASSERT_GT(plain.size(), 200u);
+    const double tilt_plain = mean_tilt(plain), tilt_scattered = mean_tilt(scattered);
+    std::cout << "[ scatter  ] " << GetParam() << ": mean rebound tilt of impacts faster than 90 m/s " << tilt_plain << " deg, with a 20 deg scatter "
+              << tilt_scattered << " deg\n";
+    // Uniform in [0, 20] deg on top of the jet's own few degrees: about 10 deg more.
+    EXPECT_GT(tilt_scattered, tilt_plain + 6.0);
+    EXPECT_LT(tilt_scattered, tilt_plain + 14.0);
+    ASSERT_EQ(again.size(), scattered.size());
+    for (std::size_t k = 0; k < again.size(); ++k) EXPECT_EQ(again[k].v_out_m_per_s, scattered[k].v_out_m_per_s);
+}
+
 INSTANTIATE_TEST_SUITE_P(Schemes, ShotFlow, ::testing::Values("event", "step"));
 
 }  // namespace

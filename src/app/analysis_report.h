@@ -1,7 +1,10 @@
 // report.md of `peensim analyze`: the numbers and plots of every logged component on one page.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -17,6 +20,9 @@ struct ReportContext {
     bool truncated = false;         // the log ended inside a row
     std::vector<std::string> pngs;  // plots written (paths)
     std::string plot_note;          // why plots are missing, or ""
+    // From the run's summary.json, when it has them: shot-shot collisions, and each nozzle's eps.
+    std::optional<std::uint64_t> shot_shot_impacts;
+    std::vector<std::pair<std::string, double>> flow_rate_eps;
 };
 
 std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, const ReportContext& context);

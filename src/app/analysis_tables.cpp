@@ -91,6 +91,18 @@ void write_almen_csv(const fs::path& path, const AlmenAnalysis& a) {
     write_file_atomically(path.string(), s.str());
 }
 
+void write_jet_csv(const fs::path& path, const ComponentAnalysis& c) {
+    std::ostringstream s;
+    s << "first_impact,impacts,end_time_s,share_at_least_0_9_v0" << (c.jet_normal_meaningful ? ",share_keeping_0_9_jet_normal_speed" : "")
+      << '\n';
+    for (const JetWindow& w : c.jet->windows()) {
+        s << w.first_impact << ',' << w.impacts << ',' << fmt(w.end_time_s, 8) << ',' << fmt(w.fast_share(), 6);
+        if (c.jet_normal_meaningful) s << ',' << fmt(w.normal_kept_share(), 6);
+        s << '\n';
+    }
+    write_file_atomically(path.string(), s.str());
+}
+
 }  // namespace
 
 void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, double duration) {
@@ -100,6 +112,7 @@ void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, dou
     if (c.coverage) write_curve_csv(dir / (c.name + "_coverage.csv"), c);
     if (!c.regions.empty()) write_regions_csv(dir / (c.name + "_regions.csv"), c, duration);
     if (c.almen) write_almen_csv(dir / (c.name + "_almen.csv"), *c.almen);
+    if (c.jet) write_jet_csv(dir / (c.name + "_jet.csv"), c);
 }
 
 }  // namespace peensim

@@ -29,6 +29,7 @@ namespace peensim {
 namespace {
 
 constexpr int kCoverageSamples = 50;  // points of the coverage- and dose-vs-time curves
+constexpr std::uint64_t kJetWindow = 500;  // impacts per window of the jet's figures
 
 const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
     for (const MaterialDesc& m : scene.materials)
@@ -90,7 +91,28 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
             almen.calibration = AlmenCalibration{*c.almen->saturation_arc_height_m, *c.almen->dose_constant_J_per_m2};
         a.almen = std::move(almen);
     }
+    if (!scene.sources.empty()) {
+        // Several nozzles: their exit speeds and axes weighted by their rates.
+        double rate = 0.0, v0 = 0.0;
+        Vec3 axis = Vec3::Zero();
+        for (const SourceDesc& s : scene.sources) {
+            rate += s.rate_per_s;
+            v0 += s.rate_per_s * s.speed_m_per_s;
+            axis += s.rate_per_s * s.direction;
+        }
+        if (rate > 0.0 && v0 > 0.0) {
+            a.jet.emplace(v0 / rate, kJetWindow);
+            a.jet_axis = (c.rotation.transpose() * axis).normalized();  // world -> component frame
+            a.jet_normal_meaningful = scene.sources.size() == 1 && !c.rotation_motion;
+        }
+    }
     return a;
+}
+
+// The unit normal of mesh triangle t (its corners are counter-clockwise seen from it).
+Vec3 triangle_normal(const TriangleMesh& mesh, int t) {
+    const auto k = static_cast<std::size_t>(t);
+    return (mesh.corner(k, 1) - mesh.corner(k, 0)).cross(mesh.corner(k, 2) - mesh.corner(k, 0)).normalized();
 }
 
 // Adds one impact row to a component's statistics (the ParaView points are written by the reader thread).
@@ -111,6 +133,23 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
             a.region_histograms[a.region_index[k]].add(row.vn_in_m_per_s, row.vt_in_m_per_s, dent);
     }
     if (a.almen) a.almen->dose->add(t, row.vn_in_m_per_s);
+    if (a.jet) {
+        const double jet_normal = t >= 0 ? a.jet->v0_m_per_s() * std::abs(a.jet_axis.dot(triangle_normal(*a.mesh, t))) : 0.0;
+        a.jet->add(row.time_s, row.v_in_m_per_s.norm(), row.vn_in_m_per_s, jet_normal);
+    }
+}
+
+// What the report takes from the run's summary.json, when it has it.
+void read_flow_figures(const fs::path& dir, ReportContext& context) {
+    std::ifstream in(dir / "summary.json");
+    if (!in) return;
+    try {
+        const auto j = nlohmann::json::parse(in);
+        for (const auto& c : j.value("impacts_per_component", nlohmann::json::array()))
+            if (c.value("component", "") == "shot-shot") context.shot_shot_impacts = c.value("impacts", std::uint64_t{0});
+        for (const auto& e : j.value("flow_rate_eps", nlohmann::json::array()))
+            context.flow_rate_eps.emplace_back(e.value("source", ""), e.value("eps", 0.0));
+    } catch (const std::exception&) {}  // an older or damaged summary: the report goes without
 }
 
 }  // namespace
@@ -179,7 +218,8 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
             a.points->finish();
             write_component_tables(adir, a, duration);
         }
-        ReportContext context{dir, duration, finished, stream.truncated(), {}, ""};
+        ReportContext context{dir, duration, finished, stream.truncated(), {}, "", {}, {}};
+        read_flow_figures(dir, context);
         context.pngs = write_analysis_plots(adir.string(), names, context.plot_note);
         write_file_atomically((adir / "report.md").string(), analysis_report(scene, parts, context));
         out << analysis_summary_table(parts, duration) << "analysis: " << adir.string()

@@ -12,6 +12,7 @@
 #include "analysis/avrami.h"
 #include "analysis/coverage_map.h"
 #include "analysis/impact_histograms.h"
+#include "analysis/jet_stream.h"
 #include "analysis/regions.h"
 #include "analysis/triangle_fields.h"
 #include "geometry/triangle_mesh.h"
@@ -46,6 +47,12 @@ struct ComponentAnalysis {
     std::vector<std::uint32_t> region_start;
     std::vector<std::uint32_t> region_index;
     std::optional<AlmenAnalysis> almen;
+    // Scenes with nozzles: how the jet arrives (analysis/jet_stream.h). The jet's axis in the
+    // component's frame, and whether the normal-speed share means anything (one nozzle, a static
+    // component: a turning part's facets face the jet at every angle).
+    std::optional<JetStreamStats> jet;
+    Vec3 jet_axis = -Vec3::UnitZ();
+    bool jet_normal_meaningful = false;
 };
 
 }  // namespace peensim

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "contact/rebound_scatter.h"
 #include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
 #include "kernels/air_drag_flight.h"
@@ -158,6 +159,22 @@ std::shared_ptr<const contact::SurfaceLaw> surface_law_of(const ContactPairDesc&
     }
 }
 
+contact::ReboundScatter rebound_scatter_of(const SceneDescription& scene) {
+    const AirDesc::Scatter& s = *scene.air.rebound_scatter;
+    if (scene.accuracy.scheme == SteppingScheme::soft)
+        throw InputError(s.where, "air.rebound_scatter",
+                         "the soft scheme integrates contact forces, which rebound scatter cannot turn; expected accuracy.scheme "
+                         "event or step with rebound scatter");
+    contact::ReboundScatter r;
+    r.spread_rad = s.spread_rad;
+    r.min_reynolds = s.min_reynolds;
+    r.min_speed_m_per_s = s.min_speed_m_per_s;
+    r.air_density_kg_per_m3 = scene.air.density_kg_per_m3;
+    r.air_viscosity_pa_s = scene.air.viscosity_pa_s;
+    r.seed = scene.process.seed;
+    return r;
+}
+
 void add_flow(Model& model, const SceneDescription& scene) {
     for (std::size_t k = 0; k < scene.sources.size(); ++k) {
         const SourceDesc& s = scene.sources[k];
@@ -241,6 +258,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         c.kinematics = build_kinematics(desc, *c.mesh, up);
         const ContactPairDesc& pair = contact_for(scene, "shot-" + desc.material);
         c.law = surface_law_of(pair, scene, c);
+        if (scene.air.rebound_scatter) c.law = contact::with_rebound_scatter(c.law, rebound_scatter_of(scene));
         c.coefficients_source = pair.key;
         c.logged = logged.empty() ? logged_by_default(desc.role) : std::find(logged.begin(), logged.end(), desc.name) != logged.end();
         component_bounds(c);

@@ -89,6 +89,12 @@ void write_air(std::string& y, const AirDesc& air) {
     y += "  density: " + num(air.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
     y += "  viscosity: " + num(air.viscosity_pa_s) + unit_comment(Dimension::viscosity) + "\n";
     if (air.drag_coefficient) y += "  drag_coefficient: " + num(*air.drag_coefficient) + "\n";
+    if (air.rebound_scatter) {
+        y += "  rebound_scatter:\n";
+        y += "    spread: " + num(air.rebound_scatter->spread_rad) + unit_comment(Dimension::angle) + "\n";
+        y += "    min_reynolds: " + num(air.rebound_scatter->min_reynolds) + "\n";
+        y += "    min_speed: " + num(air.rebound_scatter->min_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
+    }
 }
 
 // Sources and sinks, only when the scene has them (most have neither).

@@ -196,6 +196,14 @@ struct AirDesc {
     double density_kg_per_m3 = 1.205;        // kg/m3
     double viscosity_pa_s = 1.822e-5;        // Pa s
     std::optional<double> drag_coefficient;  // -, constant C_d; empty: Schiller-Naumann C_d(Re)
+    // Rebound scatter (contact/rebound_scatter.h); empty: off.
+    struct Scatter {
+        double spread_rad = 0.0;          // rad
+        double min_reynolds = 1600.0;     // -
+        double min_speed_m_per_s = 40.0;  // m/s
+        SourceLocation where;
+    };
+    std::optional<Scatter> rebound_scatter;
     SourceLocation where;
 };
 

@@ -70,6 +70,15 @@ AirDesc read_air(const Cursor& c) {
     d.density_kg_per_m3 = read_quantity(c.child("density"));
     d.viscosity_pa_s = read_quantity(c.child("viscosity"));
     if (c.child("drag_coefficient").present()) d.drag_coefficient = read_quantity(c.child("drag_coefficient"));
+    const Cursor scatter = c.child("rebound_scatter");
+    if (scatter.present()) {
+        AirDesc::Scatter s;
+        s.spread_rad = read_quantity(scatter.child("spread"));
+        s.min_reynolds = read_quantity(scatter.child("min_reynolds"));
+        s.min_speed_m_per_s = read_quantity(scatter.child("min_speed"));
+        s.where = location_of(scatter);
+        d.rebound_scatter = s;
+    }
     d.where = location_of(c);
     return d;
 }

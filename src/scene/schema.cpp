@@ -82,6 +82,18 @@ const std::array schema_table{
                 "Dynamic viscosity of the air, for the Reynolds number Re = rho |v| D / mu."},
     SchemaEntry{"air.drag_coefficient", K::quantity, D::dimensionless, false, "", "Schiller-Naumann C_d(Re)", open_closed(0, 100), "", "", "",
                 "A constant drag coefficient instead of C_d(Re) (to compare with a code or a closed-form flight)."},
+    SchemaEntry{"air.rebound_scatter", K::map, D::dimensionless, false, "", "off", {}, "", "", "",
+                "Random rebounds (reference section 5: above Re* ~ 1600 and ~40 m/s the single-shot study saw the rebound "
+                "leave in a random direction): an impact faster than `min_speed` whose Re* = rho |v| D / mu (still air, "
+                "`air.density`, `air.viscosity`) is at least `min_reynolds` rebounds turned by an angle uniform in [0, "
+                "`spread`] towards a random direction of the surface's plane, its speed kept. Reproducible from the seed; "
+                "the rigid schemes only (the soft scheme's contacts are forces)."},
+    SchemaEntry{"air.rebound_scatter.spread", K::quantity, D::angle, true, "", "", closed(0, 1.5707963267948966), "", "", "",
+                "Largest deflection of the rebound's direction (0 to 90 deg)."},
+    SchemaEntry{"air.rebound_scatter.min_reynolds", K::quantity, D::dimensionless, false, "1600", "", closed(0, 1e7), "", "", "",
+                "Relative Reynolds number from which rebounds scatter."},
+    SchemaEntry{"air.rebound_scatter.min_speed", K::quantity, D::speed, false, "40 m/s", "", closed(0, 1e4), "", "", "",
+                "Impact speed (relative to the surface) from which rebounds scatter."},
 
     SchemaEntry{"materials", K::named_map, D::dimensionless, false, "", "none", {}, "", "", "",
                 "Materials by name (`[A-Za-z0-9_-]+`)."},

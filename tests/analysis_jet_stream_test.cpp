@@ -1,0 +1,102 @@
+// The jet's figures (analysis/jet_stream.h): shares counted exactly, per window and overall; the
+// steady state found where a known stream settles; and `peensim analyze` on the study's nozzle
+// scene: the report's jet table and <component>_jet.csv agree with the impact log counted here.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "analysis/impact_log_reader.h"
+#include "analysis/jet_stream.h"
+#include "app/analyze_job.h"
+#include "app/run_job.h"
+#include "support/temp_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+namespace {
+
+TEST(JetStream, SharesAreCountedPerWindowAndOverall) {
+    JetStreamStats j(100.0, 4);
+    // |v| at 90 m/s counts (>= 0.9 v0), 89.99 does not; the normal share against each facet's own.
+    const double speeds[] = {90.0, 89.99, 100.0, 50.0, 95.0, 10.0};
+    const double normals[] = {60.0, 60.0, 70.0, 10.0, 95.0, 1.0};
+    const double jet_normals[] = {70.0, 70.0, 70.0, 70.0, 100.0, 100.0};
+    for (int k = 0; k < 6; ++k) j.add(0.001 * k, speeds[k], normals[k], jet_normals[k]);
+    EXPECT_EQ(j.impacts(), 6u);
+    EXPECT_EQ(j.total().fast, 3u);         // 90, 100, 95
+    EXPECT_EQ(j.total().normal_kept, 2u);  // 70 >= 63, 95 >= 90
+    const auto w = j.windows();
+    ASSERT_EQ(w.size(), 2u);
+    EXPECT_EQ(w[0].first_impact, 0u);
+    EXPECT_EQ(w[0].impacts, 4u);
+    EXPECT_DOUBLE_EQ(w[0].fast_share(), 0.5);
+    EXPECT_DOUBLE_EQ(w[0].end_time_s, 0.003);
+    EXPECT_EQ(w[1].first_impact, 4u);
+    EXPECT_EQ(w[1].impacts, 2u);  // the partial last window
+    EXPECT_DOUBLE_EQ(w[1].fast_share(), 0.5);
+    EXPECT_FALSE(j.steady_after());  // fewer than 4 complete windows
+}
+
+TEST(JetStream, SteadyStateIsWhereTheStreamSettles) {
+    // 6 windows of 100 all fast, then 20 windows with exactly 40 % fast: steady from impact 600.
+    JetStreamStats j(50.0, 100);
+    for (int w = 0; w < 26; ++w)
+        for (int k = 0; k < 100; ++k) j.add(0.0, (w < 6 || k < 40) ? 50.0 : 10.0, 0.0, 0.0);
+    EXPECT_DOUBLE_EQ(j.steady_fast_share(), 0.4);  // windows 13-25
+    ASSERT_TRUE(j.steady_after());
+    EXPECT_EQ(*j.steady_after(), 600u);
+    // A stream that never settles (alternating 0 % and 100 % windows) has no steady state.
+    JetStreamStats flip(50.0, 100);
+    for (int w = 0; w < 10; ++w)
+        for (int k = 0; k < 100; ++k) flip.add(0.0, w % 2 ? 50.0 : 10.0, 0.0, 0.0);
+    EXPECT_FALSE(flip.steady_after());
+}
+
+TEST(JetStream, AnalyzeReportsTheJetOfANozzleScene) {
+    testing::TempDir dir;
+    RunOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/nozzle-study.yaml";
+    o.output_dir = dir.path.string();
+    o.overrides = {"process.duration=20 ms"};
+    o.progress = false;
+    o.analyze = false;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    // Counted here from the log: impacts at >= 90 m/s (v0 = 100 m/s).
+    std::uint64_t impacts = 0, fast = 0;
+    ImpactLogReader log((dir.path / "impacts.csv").string());
+    ImpactRow row;
+    while (log.next(row))
+        if (row.component == "target") ++impacts, fast += row.v_in_m_per_s.norm() >= 90.0;
+    ASSERT_GT(impacts, 1000u);
+    // The windows' counts add up to it.
+    std::ifstream csv(dir.path / "analysis" / "target_jet.csv");
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "first_impact,impacts,end_time_s,share_at_least_0_9_v0,share_keeping_0_9_jet_normal_speed");
+    double fast_from_windows = 0.0;
+    std::uint64_t impacts_from_windows = 0;
+    while (std::getline(csv, line)) {
+        std::stringstream s(line);
+        std::string first, n, end, share;
+        std::getline(s, first, ','), std::getline(s, n, ','), std::getline(s, end, ','), std::getline(s, share, ',');
+        impacts_from_windows += std::stoull(n);
+        fast_from_windows += std::stod(share) * std::stod(n);
+    }
+    EXPECT_EQ(impacts_from_windows, impacts);
+    EXPECT_NEAR(fast_from_windows, static_cast<double>(fast), 0.5);
+    std::ifstream report(dir.path / "analysis" / "report.md");
+    const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("## The jet"), std::string::npos);
+    EXPECT_NE(text.find("eps = r_m D / (v0 m_shot) = 0.6672"), std::string::npos);
+    EXPECT_NE(text.find("Shot-shot collisions: "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace peensim
