@@ -1,4 +1,4 @@
-// The `peensim` command line: run, check, analyze, render-impacts, bench, trade, generate, schema.
+// The `peensim` command line: run, check, analyze, render-impacts, bench, trade, export-fem, generate, schema.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -7,6 +7,7 @@
 #include "app/bench_job.h"
 #include "app/trade_job.h"
 #include "app/check_job.h"
+#include "app/export_fem_job.h"
 #include "app/render_module.h"
 #include "app/run_job.h"
 #include "cli/generate_command.h"
@@ -96,6 +97,27 @@ int main(int argc, char** argv) {
     trade_cmd->add_option("--set", trade.overrides, "override a scene field for every knob")->allow_extra_args(false);
     trade_cmd->add_option("--csv", trade.csv_path, "also write every figure to this CSV file");
     trade_cmd->add_option("--plot", trade.plot_path, "draw error against wall time to this PNG (gnuplot; its .gp and data beside it)");
+    ExportFemOptions fem;
+    auto* fem_cmd = app.add_subcommand(
+        "export-fem", "write an Abaqus/CalculiX input deck (.inp) of a patch of a logged part with the run's impacts on it as shot");
+    fem_cmd->add_option("rundir", fem.run_dir, "the run's output directory (optional with --single)");
+    fem_cmd->add_option("-o,--output", fem.output_dir, "directory for the deck, impacts.csv and README.md")->required();
+    fem_cmd->add_option("--name", fem.name, "the deck's file name without .inp (default patch)");
+    fem_cmd->add_option("--component", fem.component, "the logged component (default: the only one)");
+    fem_cmd->add_option("--center", fem.center, "patch centre x,y,z in the component's frame, e.g. \"12 mm, 0, 3.5 mm\"");
+    fem_cmd->add_option("--radius", fem.radius, "patch radius (default max(3 shot radii, 2 dent diameters))");
+    fem_cmd->add_option("--region", fem.region, "a region of the component: the patch is centred on it and takes only its impacts");
+    fem_cmd->add_option("--impacts", fem.max_impacts, "only the first N impacts of the patch (default all)");
+    fem_cmd->add_option("--single", fem.single, "one synthetic impact x,y,z,vx,vy,vz instead of the run's, e.g. \"0,0,0,0,0,-50 m/s\"");
+    fem_cmd->add_option("--shot-diameter", fem.shot_diameter, "shot diameter (needed without a run directory)");
+    fem_cmd->add_option("--yield-stress", fem.yield_stress, "target yield stress (default: its material's, else 500 MPa)");
+    fem_cmd->add_option("--hardening", fem.hardening, "slope of the yield stress against plastic strain (default 0: perfectly plastic)");
+    fem_cmd->add_option("--element-size", fem.element_size, "edge of the fine elements (default: smallest dent diameter / --elements-per-dent)");
+    fem_cmd->add_option("--elements-per-dent", fem.elements_per_dent, "fine elements across the smallest dent (default 6)");
+    fem_cmd->add_option("--shot-divisions", fem.shot_divisions, "cells along the shot mesh's cube edge, even (default 8)");
+    fem_cmd->add_flag("--quarter", fem.quarter, "quarter model with symmetry planes (one normal impact at the centre only)");
+    fem_cmd->add_option("--group-window", fem.group_window, "a step groups impacts within this much run time (default 1 ms)");
+    fem_cmd->add_option("--contact-times", fem.contact_times, "a step lasts this many Hertz contact times (default 2.5)");
     app.add_subcommand("schema", "print the scene file reference (Markdown)");
 
     try {
@@ -126,6 +148,7 @@ int main(int argc, char** argv) {
     }
     if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
     if (*trade_cmd) return trade_job(trade, std::cout, std::cerr);
+    if (*fem_cmd) return export_fem_job(fem, std::cout, std::cerr);
     if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
     if (app.got_subcommand("schema")) {
         std::cout << scene_reference_markdown();

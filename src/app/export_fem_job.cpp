@@ -1,0 +1,420 @@
+#include "app/export_fem_job.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <sstream>
+
+#include "analysis/impact_log_reader.h"
+#include "analysis/regions.h"
+#include "app/report_errors.h"
+#include "common/units.h"
+#include "contact/dent.h"
+#include "fem/impact_steps.h"
+#include "fem/inp_writer.h"
+#include "fem/patch_frame.h"
+#include "geometry/mesh_loader.h"
+#include "output/atomic_file.h"
+#include "output/impact_csv_writer.h"
+#include "scene/scene_parser.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+// Steel, where the scene does not say (documented in the README).
+constexpr double kSteelYoungsModulusPa = 210e9;  // Pa
+constexpr double kSteelPoissonRatio = 0.3;       // -
+constexpr double kSteelDensity = 7850.0;         // kg/m3
+constexpr double kSteelYieldStressPa = 500e6;    // Pa
+constexpr double kPatchRadii = 3.0;              // -, the smallest patch radius, in shot radii
+constexpr double kPatchDents = 2.0;              // -, ... and in dent diameters
+constexpr double kCandidateRadii = 10.0;         // -, impacts kept while the default radius is found, in shot radii
+constexpr double kDepthDents = 3.0;              // -, block depth in dent diameters
+constexpr double kFineDepthDents = 0.3;          // -, depth of the uniform fine layer in dent diameters
+constexpr double kPenaltyPerModulus = 10.0;      // -, contact stiffness = this x E / h
+constexpr double kMaxElements = 2e6;             // the largest block written
+constexpr double kCentreTolerance = 1e-9;        // -, in shot radii: the quarter model's impact at the centre
+
+const ComponentDesc& logged_component(const SceneDescription& scene, const std::string& wanted, const std::string& scene_file) {
+    std::vector<const ComponentDesc*> logged;
+    for (const ComponentDesc& c : scene.components) {
+        const auto& l = scene.output.logged_components;
+        if (l.empty() ? logged_by_default(c.role) : std::find(l.begin(), l.end(), c.name) != l.end()) logged.push_back(&c);
+    }
+    std::string names;
+    for (const ComponentDesc* c : logged) names += (names.empty() ? "'" : ", '") + c->name + "'";
+    for (const ComponentDesc* c : logged)
+        if (c->name == wanted) return *c;
+    if (!wanted.empty()) throw InputError({"--component"}, "", "'" + wanted + "' is not a logged component of " + scene_file + "; expected one of " + names);
+    if (logged.size() != 1) throw InputError({"--component"}, "", "the run logged " + std::to_string(logged.size()) + " components (" + names + "); name one");
+    return *logged.front();
+}
+
+const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
+    for (const MaterialDesc& m : scene.materials)
+        if (m.name == name) return &m;
+    return nullptr;
+}
+
+std::vector<std::string> split_commas(std::string text) {
+    text.erase(std::remove(text.begin(), text.end(), '['), text.end());
+    text.erase(std::remove(text.begin(), text.end(), ']'), text.end());
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string p; std::getline(in, p, ',');) parts.push_back(p);
+    return parts;
+}
+
+double quantity(const std::string& option, const std::string& text, Dimension dim) {
+    try {
+        return parse_quantity(text, dim);
+    } catch (const QuantityError& e) {
+        throw InputError({option}, "", std::string(e.what()) + ", got '" + text + "'");
+    }
+}
+
+double positive(const std::string& option, const std::string& text, Dimension dim) {
+    const double v = quantity(option, text, dim);
+    if (!(v > 0.0)) throw InputError({option}, "", "expected a positive " + std::string(dimension_noun(dim)) + ", got '" + text + "'");
+    return v;
+}
+
+Vec3 point_option(const std::string& option, const std::string& text) {
+    const auto parts = split_commas(text);
+    if (parts.size() != 3) throw InputError({option}, "", "expected x,y,z (lengths, e.g. \"1 mm, 0, 2.5 mm\"), got '" + text + "'");
+    return {quantity(option, parts[0], Dimension::length), quantity(option, parts[1], Dimension::length),
+            quantity(option, parts[2], Dimension::length)};
+}
+
+std::string mm(double m) {
+    std::ostringstream s;
+    s.precision(4);
+    s << m * 1e3;
+    return s.str();
+}
+
+std::string mm3(const Vec3& p) { return "(" + mm(p.x()) + ", " + mm(p.y()) + ", " + mm(p.z()) + ") mm"; }
+
+// A run's impacts on the component near the centre (component frame, m).
+struct LoggedImpact {
+    std::uint64_t row = 0;
+    double time_s = 0.0;
+    Vec3 point_m, v_m_per_s;
+    double vn_m_per_s = 0.0;
+    int triangle = -1;
+};
+
+}  // namespace
+
+int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& err) {
+    return report_errors(err, [&] {
+        if (o.output_dir.empty()) throw InputError({"-o"}, "", "expected an output directory for the deck");
+        if (o.run_dir.empty() && o.single.empty())
+            throw InputError({"RUNDIR"}, "", "expected a run directory (or --single x,y,z,vx,vy,vz for one synthetic impact)");
+        if (o.shot_divisions < 2 || o.shot_divisions % 2 != 0 || o.shot_divisions > 64)
+            throw InputError({"--shot-divisions"}, "", "expected an even number from 2 to 64, got " + std::to_string(o.shot_divisions));
+        if (!(o.elements_per_dent >= 1.0 && o.elements_per_dent <= 100.0))
+            throw InputError({"--elements-per-dent"}, "", "expected a number from 1 to 100");
+        if (!(o.contact_times >= 1.0 && o.contact_times <= 100.0))
+            throw InputError({"--contact-times"}, "", "expected a number from 1 to 100");
+        if (o.max_impacts < 0) throw InputError({"--impacts"}, "", "expected a positive count");
+
+        // The run: its scene, the shot, the part and its material.
+        std::optional<SceneDescription> scene;
+        std::string scene_file;
+        if (!o.run_dir.empty()) {
+            const fs::path dir(o.run_dir);
+            if (!fs::is_directory(dir)) throw InputError({o.run_dir}, "", "no such run directory");
+            scene_file = (dir / "scene.resolved.yaml").string();
+            if (!fs::exists(scene_file)) throw InputError({o.run_dir}, "", "not a peensim run directory (no scene.resolved.yaml)");
+            scene = parse_scene_file(scene_file);
+        }
+        double shot_diameter = 0.0, shot_density = kSteelDensity;
+        FemMaterial shot_mat{"SHOT", kSteelYoungsModulusPa, kSteelPoissonRatio, kSteelDensity, std::nullopt, 0.0};
+        FemMaterial target{"TARGET", kSteelYoungsModulusPa, kSteelPoissonRatio, kSteelDensity, kSteelYieldStressPa, 0.0};
+        std::vector<std::string> notes;
+        const ComponentDesc* component = nullptr;
+        if (scene) {
+            shot_diameter = scene->shot.diameter_m;
+            shot_density = scene->shot.density_kg_per_m3;
+            if (const MaterialDesc* m = material_named(*scene, scene->shot.material)) {
+                if (m->youngs_modulus_pa) shot_mat.youngs_modulus_pa = *m->youngs_modulus_pa;
+                if (m->poisson_ratio) shot_mat.poisson_ratio = *m->poisson_ratio;
+            }
+            component = &logged_component(*scene, o.component, scene_file);
+            if (const MaterialDesc* m = material_named(*scene, component->material)) {
+                if (m->youngs_modulus_pa) target.youngs_modulus_pa = *m->youngs_modulus_pa;
+                else notes.push_back("material '" + m->name + "' has no youngs_modulus: steel's used");
+                if (m->poisson_ratio) target.poisson_ratio = *m->poisson_ratio;
+                if (m->density_kg_per_m3) target.density_kg_per_m3 = *m->density_kg_per_m3;
+                if (m->yield_stress_pa) target.yield_stress_pa = *m->yield_stress_pa;
+                else notes.push_back("material '" + m->name + "' has no yield_stress: steel's 500 MPa used");
+            }
+        }
+        if (!o.shot_diameter.empty()) shot_diameter = positive("--shot-diameter", o.shot_diameter, Dimension::length);
+        if (!(shot_diameter > 0.0)) throw InputError({"--shot-diameter"}, "", "expected the shot diameter (there is no run directory to take it from)");
+        shot_mat.density_kg_per_m3 = shot_density;
+        if (!o.yield_stress.empty()) target.yield_stress_pa = positive("--yield-stress", o.yield_stress, Dimension::stress);
+        if (!o.hardening.empty()) target.hardening_modulus_pa = quantity("--hardening", o.hardening, Dimension::stress);
+        if (target.hardening_modulus_pa < 0.0) throw InputError({"--hardening"}, "", "expected a stress >= 0");
+        const double window = quantity("--group-window", o.group_window, Dimension::time);
+        const double R = 0.5 * shot_diameter;
+        auto dent = [&](double vn) { return dent_diameter(shot_diameter, shot_density, vn, *target.yield_stress_pa); };
+
+        // The patch frame and the candidate impacts (component frame).
+        PatchFrame frame;
+        std::vector<LoggedImpact> candidates;
+        std::optional<TriangleMesh> mesh;
+        std::vector<int> region_triangles;
+        std::vector<int> first_triangle_of_facet;
+        if (component) {
+            mesh = load_mesh(component->mesh_path, component->mesh_unit_m);
+            for (std::size_t t = 0; t < mesh->triangle_count(); ++t) {
+                const auto f = static_cast<std::size_t>(mesh->source_facet[t]);
+                if (first_triangle_of_facet.size() <= f) first_triangle_of_facet.resize(f + 1, -1);
+                if (first_triangle_of_facet[f] < 0) first_triangle_of_facet[f] = static_cast<int>(t);
+            }
+        }
+        Vec3 centre;
+        bool have_centre = false;
+        if (!o.center.empty()) {
+            centre = point_option("--center", o.center);
+            have_centre = true;
+        }
+        if (!o.region.empty()) {
+            if (!mesh) throw InputError({"--region"}, "", "needs a run directory");
+            std::string names;
+            for (const Region& r : select_regions(*mesh, component->regions)) {
+                names += (names.empty() ? "'" : ", '") + r.name + "'";
+                if (r.name == o.region) region_triangles = r.triangles;
+            }
+            if (region_triangles.empty())
+                throw InputError({"--region"}, "", "component '" + component->name + "' has no region '" + o.region + "'" +
+                                                       (names.empty() ? std::string(" (it has no regions)") : "; expected one of " + names));
+            if (!have_centre) {
+                Vec3 sum = Vec3::Zero();
+                double area = 0.0;
+                for (int t : region_triangles) {
+                    const auto ti = static_cast<std::size_t>(t);
+                    const double a = 0.5 * (mesh->corner(ti, 1) - mesh->corner(ti, 0)).cross(mesh->corner(ti, 2) - mesh->corner(ti, 0)).norm();
+                    sum += a * (mesh->corner(ti, 0) + mesh->corner(ti, 1) + mesh->corner(ti, 2)) / 3.0;
+                    area += a;
+                }
+                centre = sum / area;
+                have_centre = true;
+            }
+        }
+        std::vector<PatchImpact> synthetic;
+        if (!o.single.empty()) {
+            const auto parts = split_commas(o.single);
+            if (parts.size() != 6) throw InputError({"--single"}, "", "expected x,y,z,vx,vy,vz (lengths and speeds, e.g. \"0,0,0,0,0,-50 m/s\"), got '" + o.single + "'");
+            Vec3 p, v;
+            for (int k = 0; k < 3; ++k) {
+                p[k] = quantity("--single", parts[static_cast<std::size_t>(k)], Dimension::length);
+                v[k] = quantity("--single", parts[static_cast<std::size_t>(k + 3)], Dimension::speed);
+            }
+            if (!have_centre) {
+                centre = p;
+                have_centre = true;
+            }
+            LoggedImpact li{0, 0.0, p, v, 0.0, -1};
+            candidates.push_back(li);
+        }
+        if (!have_centre) throw InputError({"--center"}, "", "expected the patch centre (--center x,y,z in the component's frame) or --region");
+
+        if (mesh) {
+            const SurfacePoint s = closest_surface_point(*mesh, centre, region_triangles);
+            if (s.distance_m > R)
+                throw InputError({"--center"}, "", mm3(centre) + " is " + mm(s.distance_m) + " mm from the surface of component '" + component->name +
+                                                       "'; expected a point on it (within a shot radius, " + mm(R) + " mm)");
+            centre = s.point_m;
+            const double r_frame = o.radius.empty() ? kPatchRadii * R : positive("--radius", o.radius, Dimension::length);
+            frame = tangent_frame(*mesh, centre, s.triangle, r_frame);
+        } else {
+            frame = frame_from_normal(centre, Vec3::UnitZ());
+        }
+        const double candidate_radius = o.radius.empty() ? kCandidateRadii * R : positive("--radius", o.radius, Dimension::length);
+
+        // The run's impacts on the component within the candidate radius, facing the patch's side.
+        std::uint64_t log_rows = 0;
+        if (o.single.empty()) {
+            const fs::path dir(o.run_dir);
+            fs::path log = dir / kImpactCsvFileName;
+            if (!fs::exists(log)) log = dir / kImpactCsvPartialFileName;
+            if (!fs::exists(log)) throw InputError({o.run_dir}, "", "no impact log (impacts.csv or impacts.csv.partial)");
+            ImpactLogReader reader(log.string());
+            ImpactRow row;
+            while (reader.next(row)) {
+                ++log_rows;
+                if (row.component != component->name) continue;
+                if ((row.point_m - frame.centre_m).norm() > candidate_radius) continue;
+                int tri = -1;
+                if (row.triangle >= 0 && static_cast<std::size_t>(row.triangle) < first_triangle_of_facet.size())
+                    tri = first_triangle_of_facet[static_cast<std::size_t>(row.triangle)];
+                if (tri >= 0 && triangle_normal(*mesh, static_cast<std::size_t>(tri)).dot(frame.normal) < 0.5) continue;
+                if (!region_triangles.empty() && !std::binary_search(region_triangles.begin(), region_triangles.end(), tri)) continue;
+                candidates.push_back({reader.rows(), row.time_s, row.point_m, row.v_in_m_per_s, row.vn_in_m_per_s, tri});
+            }
+        }
+
+        // Into the patch frame: on the tangent plane, the normal speed kept.
+        auto to_patch = [&](const LoggedImpact& li) {
+            PatchImpact p;
+            p.row = li.row;
+            p.time_s = li.time_s;
+            const Vec3 q = frame.to_local(li.point_m);
+            p.point_m = Vec3(q.x(), q.y(), 0.0);
+            p.plane_offset_m = q.z();
+            if (li.triangle >= 0) {
+                const Vec3 n = triangle_normal(*mesh, static_cast<std::size_t>(li.triangle));
+                const Vec3 vt = frame.direction_to_local(li.v_m_per_s - li.v_m_per_s.dot(n) * n);
+                p.velocity_m_per_s = Vec3(vt.x(), vt.y(), -li.vn_m_per_s);
+            } else {
+                p.velocity_m_per_s = frame.direction_to_local(li.v_m_per_s);
+            }
+            const double vn = -p.velocity_m_per_s.z();
+            p.dent_diameter_m = vn > 0.0 ? dent(vn) : 0.0;
+            return p;
+        };
+        std::vector<PatchImpact> all;
+        for (const LoggedImpact& li : candidates) all.push_back(to_patch(li));
+        for (const PatchImpact& p : all)
+            if (!(-p.velocity_m_per_s.z() > 0.0))
+                throw InputError({"--single"}, "", "the impact's velocity must point into the surface (its z component, along the patch normal, negative)");
+        std::stable_sort(all.begin(), all.end(), [](const PatchImpact& a, const PatchImpact& b) { return a.time_s < b.time_s; });
+
+        // The patch radius: given, or max(3 R, 2 dent diameters of the impacts inside it).
+        double radius = candidate_radius;
+        if (o.radius.empty()) {
+            radius = kPatchRadii * R;
+            for (int pass = 0; pass < 4; ++pass) {
+                double largest = 0.0;
+                for (const PatchImpact& p : all)
+                    if (p.point_m.norm() <= radius) largest = std::max(largest, p.dent_diameter_m);
+                radius = std::max(kPatchRadii * R, kPatchDents * largest);
+            }
+        }
+        std::vector<PatchImpact> impacts;
+        for (const PatchImpact& p : all)
+            if (p.point_m.norm() <= radius && (o.max_impacts == 0 || static_cast<int>(impacts.size()) < o.max_impacts)) impacts.push_back(p);
+        if (impacts.empty())
+            throw InputError({o.run_dir.empty() ? "--single" : o.run_dir}, "",
+                             "no impact of component '" + (component ? component->name : std::string("-")) + "' within " + mm(radius) +
+                                 " mm of " + mm3(frame.centre_m) + " (" + std::to_string(log_rows) + " rows read); expected a centre where the part was hit");
+        if (o.quarter) {
+            const PatchImpact& p = impacts.front();
+            const double vt = std::hypot(p.velocity_m_per_s.x(), p.velocity_m_per_s.y());
+            if (impacts.size() != 1 || p.point_m.norm() > kCentreTolerance * R + 1e-15 || vt > 1e-9 * p.velocity_m_per_s.norm())
+                throw InputError({"--quarter"}, "", "the quarter model needs exactly one normal impact at the patch centre (the patch has " +
+                                                        std::to_string(impacts.size()) + "); use the full model");
+        }
+
+        // Meshes.
+        double smallest_dent = impacts.front().dent_diameter_m, largest_dent = 0.0, fine = 0.0, max_offset = 0.0;
+        for (const PatchImpact& p : impacts) {
+            smallest_dent = std::min(smallest_dent, p.dent_diameter_m);
+            largest_dent = std::max(largest_dent, p.dent_diameter_m);
+            fine = std::max(fine, std::max(std::abs(p.point_m.x()), std::abs(p.point_m.y())) + p.dent_diameter_m);
+            max_offset = std::max(max_offset, std::abs(p.plane_offset_m));
+        }
+        const double h = o.element_size.empty() ? smallest_dent / o.elements_per_dent : positive("--element-size", o.element_size, Dimension::length);
+        BlockMeshSpec spec;
+        spec.half_width_m = radius;
+        spec.depth_m = std::max(kDepthDents * largest_dent, 4.0 * h);
+        spec.fine_half_width_m = std::min(fine, radius);
+        spec.fine_depth_m = std::max(kFineDepthDents * largest_dent, h);
+        spec.element_size_m = h;
+        spec.quarter = o.quarter;
+        const double cells = std::pow((o.quarter ? 1.0 : 2.0) * spec.fine_half_width_m / h, 2.0) * spec.fine_depth_m / h;
+        if (cells > kMaxElements)
+            throw InputError({"--element-size"}, "", "the fine zone alone would need ~" + std::to_string(static_cast<long long>(cells)) +
+                                                         " elements (h = " + mm(h) + " mm); give a larger --element-size or fewer --impacts");
+
+        FemDeck deck;
+        deck.quarter = o.quarter;
+        deck.block = mesh_block(spec);
+        deck.shot_mesh = mesh_sphere(R, o.shot_divisions, o.quarter);
+        deck.target = target;
+        deck.shot = shot_mat;
+        deck.contact_stiffness_pa_per_m = kPenaltyPerModulus * target.youngs_modulus_pa / h;
+        const auto groups = group_impacts(impacts, GroupingRule{kPatchDents, window});
+        StepTiming timing;
+        timing.contact_times = o.contact_times;
+        plan_steps(deck, impacts, groups, R, timing);
+
+        // Header.
+        auto line = [&](const std::string& s) { deck.header.push_back(s); };
+        deck.heading = "peensim export-fem: " + std::to_string(impacts.size()) + " impacts in " + std::to_string(groups.size()) + " steps";
+        line("Written by peensim export-fem (" + std::string(o.run_dir.empty() ? "synthetic impact" : "run " + o.run_dir) + ").");
+        line("Units: SI throughout (m, kg, s, Pa = N/m2, m/s).");
+        line("Patch frame (the deck's axes): origin at the patch centre on the surface, z = the outward surface normal,");
+        line("the target block below z = 0. In the component frame (m): centre " + format_si(frame.centre_m.x()) + ", " +
+             format_si(frame.centre_m.y()) + ", " + format_si(frame.centre_m.z()));
+        line("  x axis " + format_si(frame.e1.x()) + ", " + format_si(frame.e1.y()) + ", " + format_si(frame.e1.z()) + "; y axis " +
+             format_si(frame.e2.x()) + ", " + format_si(frame.e2.y()) + ", " + format_si(frame.e2.z()) + "; z axis " +
+             format_si(frame.normal.x()) + ", " + format_si(frame.normal.y()) + ", " + format_si(frame.normal.z()));
+        if (mesh)
+            line("The part is replaced by its tangent plane at the centre; the impacts were at most " + format_si(max_offset) +
+                 " m off it (projected onto it, normal speed kept).");
+        line("Patch radius " + format_si(radius) + " m; block " + format_si(2 * radius) + " m square (" + (o.quarter ? "quarter model, symmetry planes x = 0, y = 0" : "full") +
+             "), " + format_si(spec.depth_m) + " m deep; fine elements " + format_si(h) + " m.");
+        line("Target: E " + format_si(target.youngs_modulus_pa) + " Pa, nu " + format_si(target.poisson_ratio) + ", density " +
+             format_si(target.density_kg_per_m3) + " kg/m3, yield " + format_si(*target.yield_stress_pa) + " Pa, hardening " +
+             format_si(target.hardening_modulus_pa) + " Pa (isotropic).");
+        line("Shot: elastic balls of diameter " + format_si(shot_diameter) + " m, E " + format_si(shot_mat.youngs_modulus_pa) + " Pa, nu " +
+             format_si(shot_mat.poisson_ratio) + ", density " + format_si(shot_density) + " kg/m3.");
+        for (const std::string& n : notes) line("Note: " + n + ".");
+        line("Sets: NTOP, NBOTTOM, NXMIN, NXMAX, NYMIN, NYMAX, NPROFILE (top nodes on y = 0, x >= 0), ETOP, EBLOCK,");
+        line("  NSHOT<k>/ESHOT<k> (shot k), NSHOTCENTRES, ESHOTS; surfaces STOP (slave) and SSHOTS (master).");
+
+        // Files.
+        fs::create_directories(o.output_dir);
+        const fs::path deck_path = fs::path(o.output_dir) / (o.name + ".inp");
+        std::ostringstream text;
+        write_inp(text, deck);
+        write_file_atomically(deck_path.string(), text.str());
+
+        std::ostringstream csv;
+        csv << "step,shot,row,time_s,x_m,y_m,plane_offset_m,vx_mps,vy_mps,vz_mps,vn_mps,dent_diameter_m\n";
+        for (std::size_t s = 0; s < deck.shots.size(); ++s) {
+            const FemShot& shot = deck.shots[s];
+            const PatchImpact& p = impacts[static_cast<std::size_t>(shot.impact)];
+            csv << shot.step + 1 << "," << s + 1 << "," << p.row << "," << format_si(p.time_s) << "," << format_si(p.point_m.x()) << ","
+                << format_si(p.point_m.y()) << "," << format_si(p.plane_offset_m) << "," << format_si(p.velocity_m_per_s.x()) << ","
+                << format_si(p.velocity_m_per_s.y()) << "," << format_si(p.velocity_m_per_s.z()) << "," << format_si(-p.velocity_m_per_s.z())
+                << "," << format_si(p.dent_diameter_m) << "\n";
+        }
+        write_file_atomically((fs::path(o.output_dir) / "impacts.csv").string(), csv.str());
+
+        std::ostringstream readme;
+        readme << "# FEM deck `" << o.name << ".inp` (peensim export-fem)\n\n";
+        for (const std::string& l : deck.header) readme << l << "\n";
+        readme << "\nRun it with CalculiX: `ccx -i " << o.name << "` (in this directory; results in " << o.name << ".dat and "
+               << o.name << ".frd).\n\n";
+        readme << "Block: " << deck.block.mesh.nodes.size() << " nodes, " << deck.block.mesh.elements.size() << " C3D8 elements; each shot "
+               << deck.shot_mesh.mesh.nodes.size() << " nodes, " << deck.shot_mesh.mesh.elements.size() << " elements.\n\n";
+        readme << "| step | duration s | shots (impacts.csv rows of the run) |\n|---|---|---|\n";
+        for (std::size_t k = 0; k < deck.steps.size(); ++k) {
+            readme << "| " << k + 1 << " | " << format_si(deck.steps[k].duration_s) << " |";
+            for (int s : deck.steps[k].shots)
+                readme << " " << s + 1 << " (row " << impacts[static_cast<std::size_t>(deck.shots[static_cast<std::size_t>(s)].impact)].row << ")";
+            readme << " |\n";
+        }
+        readme << "\n`impacts.csv` lists every shot: its step, the run's row (0: synthetic), time, point and velocity in the deck's frame, "
+                  "normal speed and the dent diameter of eq. 10.\n";
+        write_file_atomically((fs::path(o.output_dir) / "README.md").string(), readme.str());
+
+        out << "export-fem: " << impacts.size() << " impacts in " << deck.steps.size() << " steps; block " << deck.block.mesh.elements.size()
+            << " elements (fine " << mm(h) << " mm), " << deck.shots.size() << " shots x " << deck.shot_mesh.mesh.elements.size()
+            << " elements\n  deck: " << deck_path.string() << "  (run: cd " << o.output_dir << " && ccx -i " << o.name << ")\n";
+        for (const std::string& n : notes) err << "note: " << n << "\n";
+        return 0;
+    });
+}
+
+}  // namespace peensim

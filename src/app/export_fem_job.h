@@ -1,0 +1,40 @@
+// `peensim export-fem RUNDIR -o OUTDIR`: hands the impacts of a patch of a logged part to a
+// finite-element model. Writes OUTDIR/<name>.inp, an Abaqus-format input deck (CalculiX reads it:
+// `ccx -i <name>`), in SI units: the block of the part's material under a circular patch (C3D8
+// bricks, fine near the impacts, elastic-plastic), one elastic steel ball per impact placed just
+// above its point with its logged velocity, penalty contact, and one implicit dynamic step per
+// group of impacts far enough apart (src/fem/impact_steps.h); OUTDIR/impacts.csv (which impact
+// went into which step) and OUTDIR/README.md (what the deck holds and how to run it).
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+namespace peensim {
+
+struct ExportFemOptions {
+    std::string run_dir;           // the run's output directory ("" only with --single)
+    std::string output_dir;        // -o: where the deck goes
+    std::string name = "patch";    // --name: the deck's file name without .inp (ccx's job name)
+    std::string component;         // --component: the logged part ("" = the only one)
+    std::string center;            // --center x,y,z: the patch centre, component frame (lengths with units)
+    std::string radius;            // --radius: the patch radius ("" = max(3 R, 2 dent diameters))
+    std::string region;            // --region: a region of the component (centre and impacts from it)
+    int max_impacts = 0;           // --impacts N: the first N impacts of the patch (0 = all)
+    std::string single;            // --single x,y,z,vx,vy,vz: one synthetic impact instead of the run's
+    std::string shot_diameter;     // --shot-diameter: the shot without a run directory
+    std::string yield_stress;      // --yield-stress: the target's (default: its material's, else steel's)
+    std::string hardening;         // --hardening: slope of yield stress against plastic strain (default 0)
+    std::string element_size;      // --element-size: fine elements' edge ("" = the smallest dent / elements_per_dent)
+    double elements_per_dent = 6.0;    // --elements-per-dent
+    int shot_divisions = 8;            // --shot-divisions: cells along the shot mesh's cube edge (even)
+    bool quarter = false;              // --quarter: quarter model (one normal impact at the centre)
+    std::string group_window = "1 ms"; // --group-window: a step spans at most this much of the run's time
+    double contact_times = 2.5;        // --contact-times: a step lasts this many Hertz contact times
+};
+
+// Returns kExitOk, kExitInputError (bad option, run directory, centre, no impact in the patch) or
+// kExitRuntimeError (I/O).
+int export_fem_job(const ExportFemOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace peensim
