@@ -65,10 +65,10 @@ TEST(AirDragFlight, AccelerationIsGravityMinusDragAlongTheVelocity) {
     const AirDrag air = steel_shot_in_air(0.44);
     const AirDragFlight flight(g, air);
     const Vec3 v(30.0, 0.0, -40.0);  // |v| = 50 m/s
-    const Vec3 a = flight.acceleration(v);
+    const Vec3 a = flight.acceleration(Vec3::Zero(), v);
     const Vec3 expected = g - k_of(air, 0.44) * 50.0 * v;
     EXPECT_NEAR((a - expected).norm(), 0.0, 1e-12 * expected.norm());
-    EXPECT_EQ(flight.acceleration(Vec3::Zero()), g);  // at rest: gravity alone, no 0/0
+    EXPECT_EQ(flight.acceleration(Vec3::Zero(), Vec3::Zero()), g);  // at rest: gravity alone, no 0/0
 }
 
 // Without gravity, quadratic drag at constant C_d: v(t) = v0 / (1 + k v0 t), x(t) = ln(1 + k v0 t) / k.
@@ -138,7 +138,7 @@ TEST(AirDragFlight, SpeedNeverGrowsFasterThanGravity) {
     std::normal_distribution<double> normal(0.0, 10.0);
     for (int k = 0; k < 1000; ++k) {
         const Vec3 v(normal(rng), normal(rng), normal(rng));
-        EXPECT_LE(flight.acceleration(v).dot(v.normalized()), flight.speed_gain_bound() * (1.0 + 1e-15));
+        EXPECT_LE(flight.acceleration(Vec3::Zero(), v).dot(v.normalized()), flight.speed_gain_bound() * (1.0 + 1e-15));
     }
 }
 

@@ -61,7 +61,7 @@ private:
     void integrate(SimulationState& state, double dt);
     void clear_step_marks();  // per-step marks (latest touch, kicks) back to "none"
     // The acceleration of a shot's arc within a step (gravity; with air drag the flight model's at v).
-    Vec3 arc_acceleration(const Vec3& v) const;
+    Vec3 arc_acceleration(const Vec3& p, const Vec3& v) const;
     // Sets shot i to where the flight model takes it in dt (s) from centre p and velocity v.
     void fly(ShotArrays& s, std::size_t i, const Vec3& p, const Vec3& v, double dt) const;
     void resolve_shot_pairs(SimulationState& state, double dt);

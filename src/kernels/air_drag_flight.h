@@ -1,6 +1,7 @@
-// Flight through still air: gravity plus the drag of a smooth sphere, a = g - k(Re) |v| v with
-// k = 3 rho_air C_d / (8 rho_shot R) (drag force C_d rho_air |v| v pi R^2 / 2 over the shot's mass)
-// and Re = rho_air |v| D / mu. C_d is Schiller-Naumann's 24/Re (1 + 0.15 Re^0.687) up to Re = 1000
+// Flight through air: gravity plus the drag of a smooth sphere, a = g - k(Re) |w| w with w = v - u(p)
+// the shot's velocity relative to the air (u: still, or the nozzles' free jets, free_jet.h),
+// k = 3 rho_air C_d / (8 rho_shot R) (drag force C_d rho_air |w| w pi R^2 / 2 over the shot's mass)
+// and Re = rho_air |w| D / mu. C_d is Schiller-Naumann's 24/Re (1 + 0.15 Re^0.687) up to Re = 1000
 // and Newton's 0.44 above (continuous there to 0.4 %), or a constant the scene gives.
 //
 // Drag matters for the fast jet of conventional peening and for small slow shot (reference sec. 5);
@@ -9,9 +10,11 @@
 // (tests/flight_models_test.cpp measures it against closed-form flights).
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include "kernels/flight_model.h"
+#include "kernels/free_jet.h"
 
 namespace peensim {
 
@@ -21,6 +24,7 @@ struct AirDrag {
     std::optional<double> drag_coefficient;  // -, constant C_d; empty: Schiller-Naumann C_d(Re)
     double shot_radius_m = 0.0;              // m
     double shot_density_kg_per_m3 = 0.0;     // kg/m3
+    std::shared_ptr<const AirVelocityField> wind;  // the air's motion; empty: still air
 };
 
 class AirDragFlight final : public FlightModel {
@@ -30,10 +34,12 @@ public:
     std::string_view name() const override { return "air drag"; }
     bool is_parabola() const override { return false; }
     Vec3 gravity() const override { return g_; }
-    Vec3 acceleration(const Vec3& v) const override;
+    Vec3 acceleration(const Vec3& p, const Vec3& v) const override;
     void advance(Vec3& p, Vec3& v, double dt) const override;
-    // Drag in still air only ever slows a shot: its speed grows by at most |g| per second.
-    double speed_gain_bound() const override { return g_.norm(); }
+    // Drag in still air only ever slows a shot: its speed grows by at most |g| per second. Moving
+    // air (at most U m/s) speeds up only a shot slower than U along its own direction, and then
+    // |w| <= 2 U: at most |g| + k(2U) (2U)^2.
+    double speed_gain_bound() const override { return speed_gain_bound_; }
 
     // -, the drag coefficient at Reynolds number re (> 0).
     double drag_coefficient(double re) const;
@@ -45,6 +51,7 @@ private:
     AirDrag air_;
     double reynolds_per_speed_ = 0.0;  // s/m, rho_air D / mu
     double k_per_cd_ = 0.0;            // 1/m, 3 rho_air / (8 rho_shot R): k = C_d k_per_cd
+    double speed_gain_bound_ = 0.0;    // m/s2
 };
 
 }  // namespace peensim

@@ -18,8 +18,8 @@ public:
     // Every flight is Trajectory's exact parabola under gravity(): the event scheme may run.
     virtual bool is_parabola() const = 0;
     virtual Vec3 gravity() const = 0;  // m/s2
-    // m/s2, acceleration of a shot in free flight at velocity v (m/s).
-    virtual Vec3 acceleration(const Vec3& v) const = 0;
+    // m/s2, acceleration of a shot in free flight at centre p (m) and velocity v (m/s).
+    virtual Vec3 acceleration(const Vec3& p, const Vec3& v) const = 0;
     // Free flight of dt (s) from centre p (m) and velocity v (m/s); both updated.
     virtual void advance(Vec3& p, Vec3& v, double dt) const = 0;
     // m/s2, the most a shot's speed can grow per second of free flight, whatever its velocity: so
@@ -35,7 +35,7 @@ public:
     std::string_view name() const override { return "parabola"; }
     bool is_parabola() const override { return true; }
     Vec3 gravity() const override { return g_; }
-    Vec3 acceleration(const Vec3& /*v*/) const override { return g_; }
+    Vec3 acceleration(const Vec3& /*p*/, const Vec3& /*v*/) const override { return g_; }
     void advance(Vec3& p, Vec3& v, double dt) const override {
         p += v * dt + (0.5 * dt * dt) * g_;
         v += g_ * dt;

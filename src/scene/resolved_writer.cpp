@@ -115,6 +115,7 @@ void write_flow(std::string& y, const SceneDescription& s) {
         }
         y += "    speed: " + num(d.speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
         y += "    speed_spread: " + num(d.speed_spread) + "\n";
+        if (d.air_speed_m_per_s) y += "    air_speed: " + num(*d.air_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
         if (d.mass_flow_kg_per_s)
             y += "    mass_flow: " + num(*d.mass_flow_kg_per_s) + unit_comment(Dimension::mass_flow) + "  # " + num(d.rate_per_s) + " shot per s\n";
         else

@@ -224,6 +224,7 @@ struct SourceDesc {
     std::optional<NozzleAim> aim;     // the scene placed it by its target
     double speed_m_per_s = 0.0;       // m/s, mean exit speed v0
     double speed_spread = 0.05;       // -, exit speeds uniform in v0 (1 +- speed_spread)
+    std::optional<double> air_speed_m_per_s;  // m/s, the air jet's exit speed (kernels/free_jet.h); empty: none
     double rate_per_s = 0.0;          // shot per second (given, or from mass_flow)
     std::optional<double> mass_flow_kg_per_s;  // kg/s, when the scene gives the flow as a mass
     double exit_radius_m = 0.0;       // m

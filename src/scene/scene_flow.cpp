@@ -67,6 +67,7 @@ void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, do
         read_placement(c, up, d);
         d.speed_m_per_s = read_quantity(c.child("speed"));
         d.speed_spread = read_quantity(c.child("speed_spread"));
+        if (c.child("air_speed").present()) d.air_speed_m_per_s = read_quantity(c.child("air_speed"));
         one_of(c, "rate", "mass_flow");
         if (c.child("mass_flow").present()) {
             d.mass_flow_kg_per_s = read_quantity(c.child("mass_flow"));

@@ -261,6 +261,10 @@ const std::array schema_table{
                 "Mean speed of the shot leaving the nozzle (v0)."},
     SchemaEntry{"sources[].speed_spread", K::quantity, D::dimensionless, false, "0.05", "", closed(0, 0.9), "", "", "",
                 "Spread of the exit speed: uniform in v0 (1 +- speed_spread)."},
+    SchemaEntry{"sources[].air_speed", K::quantity, D::speed, false, "", "still air", open_closed(0, 1000), "", "", "",
+                "The air's exit speed U_0: the nozzle blows a round free jet (B = 5.8, S = 0.094: U_0 on the axis for 5.8 "
+                "exit diameters, then U_0 5.8 D_n / s; half-width max(D_n / 2, 0.094 s); see README \"Air drag\") that "
+                "the shot's drag is taken against. Needs `air.drag: sphere` and an exit diameter."},
     SchemaEntry{"sources[].rate", K::quantity, D::frequency, false, "", "from `mass_flow`", open_closed(0, 1e8), "", "", "",
                 "Shot emitted per second, evenly spaced in time; give `rate` or `mass_flow`."},
     SchemaEntry{"sources[].mass_flow", K::quantity, D::mass_flow, false, "", "none", open_closed(0, 1e4), "", "", "",
