@@ -61,6 +61,7 @@ const BadScene catalogue[] = {
     {"sink_box_inverted.yaml", 14, "sinks[0].max", "expected max > min in x, y and z"},
     {"shot_without_sonotrode.yaml", 4, "components", "no component has role sonotrode, and shot.count is 10"},
     {"source_sink_same_name.yaml", 11, "sinks[0].name", "duplicate name 'nozzle'; source and sink names must be unique"},
+    {"sink_box_with_mesh.yaml", 15, "sinks[0].mesh", "'mesh' is only for region mesh"},
     {"nozzle_position_and_target.yaml", 12, "sources[0].position", "'position' and `target` both place the nozzle: expected one"},
     {"nozzle_rate_and_mass_flow.yaml", 14, "sources[0].mass_flow", "expected `rate` or `mass_flow`, not both"},
     {"nozzle_target_without_distance.yaml", 9, "sources[0]", "missing required key 'distance' (a nozzle placed by its target)"},
@@ -71,6 +72,7 @@ const BadScene catalogue[] = {
 // needs, a scheme without the laws it integrates).
 const BadScene compile_catalogue[] = {
     {"soft_with_impulse_law.yaml", 9, "contacts.default.law", "expected law 'hertz-mindlin' for shot-shot"},
+    {"sink_mesh_open.yaml", 11, "sinks[0].mesh", "a mesh sink must be a closed mesh"},
     {"air_jet_without_drag.yaml", 9, "sources[0].air_speed", "an air jet acts on the shot through drag, which is off; expected air.drag: sphere"},
     {"soft_with_rebound_scatter.yaml", 5, "air.rebound_scatter", "the soft scheme integrates contact forces, which rebound scatter cannot turn"},
     {"soft_without_youngs_modulus.yaml", 9, "contacts.default.law", "add materials.titanium.youngs_modulus and .poisson_ratio"},

@@ -11,6 +11,7 @@
 #include "geometry/mesh_loader.h"
 #include "kernels/air_drag_flight.h"
 #include "model/enclosure.h"
+#include "model/mesh_sink.h"
 #include "model/model.h"
 #include "scene/resolved_writer.h"
 
@@ -193,8 +194,22 @@ void add_flow(Model& model, const SceneDescription& scene) {
         spec.index = static_cast<int>(k);
         model.sources.push_back(std::make_shared<const NozzleSource>(spec));
     }
-    for (const SinkDesc& s : scene.sinks) {
-        if (s.region == SinkRegion::box)
+    for (std::size_t k = 0; k < scene.sinks.size(); ++k) {
+        const SinkDesc& s = scene.sinks[k];
+        if (s.region == SinkRegion::mesh) {
+            TriangleMesh mesh;
+            try {
+                mesh = load_mesh(s.mesh_path, s.mesh_unit_m);
+            } catch (const InputError& e) {
+                throw InputError(s.where, "sinks[" + std::to_string(k) + "].mesh", e.problem());
+            }
+            for (Vec3& v : mesh.vertices) v += s.translation_m;
+            try {
+                model.sinks.push_back(std::make_shared<const MeshSink>(s.name, std::make_shared<const TriangleMesh>(std::move(mesh))));
+            } catch (const std::invalid_argument& e) {
+                throw InputError(s.where, "sinks[" + std::to_string(k) + "].mesh", std::string(e.what()) + " (" + s.mesh_path + ")");
+            }
+        } else if (s.region == SinkRegion::box)
             model.sinks.push_back(std::make_shared<const BoxSink>(s.name, s.min_m, s.max_m, BoxSink::Side::inside));
         else
             model.sinks.push_back(std::make_shared<const BoxSink>(s.name, model.world_lo, model.world_hi, BoxSink::Side::outside));

@@ -128,7 +128,12 @@ void write_flow(std::string& y, const SceneDescription& s) {
     if (!s.sinks.empty()) y += "sinks:\n";
     for (const SinkDesc& d : s.sinks) {
         y += "  - name: " + yaml_text(d.name) + "\n";
-        y += std::string("    region: ") + (d.region == SinkRegion::box ? "box" : "outside") + "\n";
+        y += std::string("    region: ") + (d.region == SinkRegion::box ? "box" : d.region == SinkRegion::mesh ? "mesh" : "outside") + "\n";
+        if (d.region == SinkRegion::mesh) {
+            y += "    mesh: " + yaml_text(d.mesh_path) + "\n";
+            y += "    mesh_unit: " + mesh_unit_name(d.mesh_unit_m) + "  # " + num(d.mesh_unit_m) + " m per mesh unit\n";
+            y += "    translation: " + vec(d.translation_m) + unit_comment(Dimension::length) + "\n";
+        }
         if (d.region != SinkRegion::box) continue;
         y += "    min: " + vec(d.min_m) + unit_comment(Dimension::length) + "\n";
         y += "    max: " + vec(d.max_m) + unit_comment(Dimension::length) + "\n";

@@ -19,23 +19,6 @@ ComponentRole role_from(const std::string& word) {
     return ComponentRole::fixture;
 }
 
-std::string resolve_mesh(const Cursor& mesh, const std::filesystem::path& scene_dir) {
-    namespace fs = std::filesystem;
-    const std::string given = read_text(mesh);
-    fs::path p(given);
-    if (p.is_relative()) p = scene_dir / p;
-    p = p.lexically_normal();
-    std::error_code ec;
-    const fs::file_status st = fs::status(p, ec);
-    if (!fs::exists(st))
-        fail(mesh, "mesh file not found: '" + p.string() +
-                       "' (expected an existing file; relative paths are "
-                       "resolved against the scene file's directory '" +
-                       scene_dir.string() + "')");
-    if (!fs::is_regular_file(st)) fail(mesh, "'" + p.string() + "' is not a regular file (expected a mesh file)");
-    return p.string();
-}
-
 Mat3 read_rotation(const Cursor& c) {
     if (!c.is_map()) return Mat3::Identity();
     const Cursor axis = c.child("axis");
@@ -146,6 +129,23 @@ ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene
 }
 
 }  // namespace
+
+std::string resolve_mesh(const Cursor& mesh, const std::filesystem::path& scene_dir) {
+    namespace fs = std::filesystem;
+    const std::string given = read_text(mesh);
+    fs::path p(given);
+    if (p.is_relative()) p = scene_dir / p;
+    p = p.lexically_normal();
+    std::error_code ec;
+    const fs::file_status st = fs::status(p, ec);
+    if (!fs::exists(st))
+        fail(mesh, "mesh file not found: '" + p.string() +
+                       "' (expected an existing file; relative paths are "
+                       "resolved against the scene file's directory '" +
+                       scene_dir.string() + "')");
+    if (!fs::is_regular_file(st)) fail(mesh, "'" + p.string() + "' is not a regular file (expected a mesh file)");
+    return p.string();
+}
 
 std::vector<ComponentDesc> read_components(const Cursor& c, const std::filesystem::path& scene_dir,
                                            const std::vector<MaterialDesc>& materials) {

@@ -234,13 +234,16 @@ struct SourceDesc {
     SourceLocation where;
 };
 
-enum class SinkRegion { box, outside };
+enum class SinkRegion { box, outside, mesh };
 
 // Where shot are collected (model/shot_flow.h).
 struct SinkDesc {
     std::string name;
     SinkRegion region = SinkRegion::box;
     Vec3 min_m = Vec3::Zero(), max_m = Vec3::Zero();  // m, world (box)
+    std::string mesh_path;                             // mesh: a closed mesh, its file
+    double mesh_unit_m = 1.0;                          // mesh: metres per mesh unit
+    Vec3 translation_m = Vec3::Zero();                 // mesh: where its frame sits in the world
     SourceLocation where;
 };
 

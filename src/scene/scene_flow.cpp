@@ -57,7 +57,7 @@ void read_placement(const Cursor& c, const Vec3& up, SourceDesc& d) {
 
 }  // namespace
 
-void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up,
+void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up, const std::filesystem::path& scene_dir,
                std::vector<SourceDesc>& out_sources, std::vector<SinkDesc>& out_sinks) {
     std::set<std::string> names;
     for (std::size_t i = 0; i < sources.size(); ++i) {
@@ -91,7 +91,16 @@ void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, do
         const Cursor c = sinks.item(i);
         SinkDesc d;
         d.name = checked_name(c.child("name"), names);
-        d.region = read_choice(c.child("region")) == "outside" ? SinkRegion::outside : SinkRegion::box;
+        const std::string region = read_choice(c.child("region"));
+        d.region = region == "outside" ? SinkRegion::outside : region == "mesh" ? SinkRegion::mesh : SinkRegion::box;
+        for (const char* key : {"mesh", "mesh_unit", "translation"})
+            if (d.region != SinkRegion::mesh && c.child(key).present()) fail(c.child(key), std::string("'") + key + "' is only for region mesh");
+        if (d.region == SinkRegion::mesh) {
+            if (!c.child("mesh").present()) fail(c, "missing required key 'mesh' (a mesh sink needs its closed mesh)");
+            d.mesh_path = resolve_mesh(c.child("mesh"), scene_dir);
+            d.mesh_unit_m = parse_quantity("1 " + read_choice(c.child("mesh_unit")), Dimension::length);
+            d.translation_m = read_vector(c.child("translation"));
+        }
         if (d.region == SinkRegion::box) {
             if (!c.child("min").present()) fail(c.child("min"), "missing required key 'min' (a box sink needs its corners)");
             if (!c.child("max").present()) fail(c.child("max"), "missing required key 'max' (a box sink needs its corners)");

@@ -66,7 +66,7 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     d.components = read_components(root.child("components"), scene_dir, d.materials);
     const double shot_mass_kg = d.shot.density_kg_per_m3 * M_PI / 6.0 * std::pow(d.shot.diameter_m, 3);
     const Vec3 up = d.process.gravity_m_per_s2.norm() > 0.0 ? Vec3(-d.process.gravity_m_per_s2.normalized()) : Vec3(Vec3::UnitZ());
-    read_flow(root.child("sources"), root.child("sinks"), d.process.duration_s, shot_mass_kg, up, d.sources, d.sinks);
+    read_flow(root.child("sources"), root.child("sinks"), d.process.duration_s, shot_mass_kg, up, scene_dir, d.sources, d.sinks);
     check_shot_origin(root, d);
     d.output = read_output(root.child("output"), d.components);
     d.render = read_render(root.child("render"));

@@ -26,7 +26,10 @@ std::vector<RegionDesc> read_regions(const Cursor& regions);
 // unless it says otherwise).
 // shot_mass_kg: one shot's mass (a mass flow's rate); up: against gravity (+z without it), the
 // default target normal.
-void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up, std::vector<SourceDesc>& out_sources,
+// A mesh file named by `mesh`, resolved against the scene's directory; refused if it does not exist.
+std::string resolve_mesh(const Cursor& mesh, const std::filesystem::path& scene_dir);
+
+void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up, const std::filesystem::path& scene_dir, std::vector<SourceDesc>& out_sources,
                std::vector<SinkDesc>& out_sinks);
 // The `air` block (defaults: still air at 20 C, no drag).
 AirDesc read_air(const Cursor& air);

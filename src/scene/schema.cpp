@@ -285,9 +285,18 @@ const std::array schema_table{
     SchemaEntry{"sinks[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One sink."},
     SchemaEntry{"sinks[].name", K::text, D::dimensionless, true, "", "", {}, "", "", "",
                 "Unique among sources and sinks (`[A-Za-z0-9_-]+`)."},
-    SchemaEntry{"sinks[].region", K::choice, D::dimensionless, true, "", "", {}, "box|outside", "", "",
+    SchemaEntry{"sinks[].region", K::choice, D::dimensionless, true, "", "", {}, "box|outside|mesh", "", "",
                 "`box`: a shot whose centre enters the box (`min`, `max`, world frame) is collected (an outlet, a "
-                "hopper); `outside`: a shot leaving the assembly's bounds is collected instead of lost (an open setup)."},
+                "hopper); `mesh`: a shot whose centre enters a closed mesh's volume (`mesh`, `mesh_unit`, "
+                "`translation`; a duct's mouth, a hopper of any shape; shot pass through its surface into it, it is no "
+                "obstacle) is collected; `outside`: a shot leaving the assembly's bounds is collected instead of lost (an "
+                "open setup)."},
+    SchemaEntry{"sinks[].mesh", K::text, D::dimensionless, false, "", "", {}, "", "", "",
+                "`mesh`: the closed mesh file (STL, OBJ, PLY...; relative to the scene file)."},
+    SchemaEntry{"sinks[].mesh_unit", K::choice, D::dimensionless, false, "m", "", {}, "m|cm|mm|um|in", "", "",
+                "`mesh`: length unit of the mesh file's coordinates."},
+    SchemaEntry{"sinks[].translation", K::vector3, D::length, false, "[0, 0, 0]", "", {}, "", "", "",
+                "`mesh`: where the mesh's frame sits in the world."},
     SchemaEntry{"sinks[].min", K::vector3, D::length, false, "", "", {}, "", "", "",
                 "`box`: lowest corner (world frame)."},
     SchemaEntry{"sinks[].max", K::vector3, D::length, false, "", "", {}, "", "", "",
