@@ -51,9 +51,11 @@ TEST(MeshSink, AFlightEntersAtTheClosedFormTime) {
     const auto fall = sink.first_entry(Trajectory{Vec3(0.003, -0.004, 0.05), Vec3::Zero(), Vec3(0, 0, -9.81), 0.0}, 0.0, 1.0);
     ASSERT_TRUE(fall);
     EXPECT_NEAR(*fall, std::sqrt((0.04 - MeshSink::kSurfaceReach) / 4.905), 1e-15);
-    // Passing beside it: never; starting inside: at once.
+    // Passing beside it: never; starting inside (at the centre at t = 0.25 on the path's clock): at once.
     EXPECT_FALSE(sink.first_entry(Trajectory{Vec3(-0.1, 0.02, 0.0), Vec3(30, 0, 0), Vec3::Zero(), 0.0}, 0.0, 1.0));
-    EXPECT_EQ(*sink.first_entry(Trajectory{Vec3(0.0, 0.0, 0.0), Vec3(30, 0, 0), Vec3::Zero(), 0.0}, 0.25, 1.0), 0.25);
+    const auto inside = sink.first_entry(Trajectory{Vec3(0.0, 0.0, 0.0), Vec3(30, 0, 0), Vec3::Zero(), 0.25}, 0.25, 1.0);
+    ASSERT_TRUE(inside);
+    EXPECT_EQ(*inside, 0.25);
 }
 
 TEST(MeshSink, AnOpenMeshIsRefused) {
