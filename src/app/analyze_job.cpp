@@ -17,6 +17,7 @@
 #include "app/component_analysis.h"
 #include "app/report_errors.h"
 #include "contact/dent.h"
+#include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
@@ -109,11 +110,6 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
     return a;
 }
 
-// The unit normal of mesh triangle t (its corners are counter-clockwise seen from it).
-Vec3 triangle_normal(const TriangleMesh& mesh, int t) {
-    const auto k = static_cast<std::size_t>(t);
-    return (mesh.corner(k, 1) - mesh.corner(k, 0)).cross(mesh.corner(k, 2) - mesh.corner(k, 0)).normalized();
-}
 
 // Adds one impact row to a component's statistics (the ParaView points are written by the reader thread).
 void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescription& scene) {
@@ -134,7 +130,7 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
     }
     if (a.almen) a.almen->dose->add(t, row.vn_in_m_per_s);
     if (a.jet) {
-        const double jet_normal = t >= 0 ? a.jet->v0_m_per_s() * std::abs(a.jet_axis.dot(triangle_normal(*a.mesh, t))) : 0.0;
+        const double jet_normal = t >= 0 ? a.jet->v0_m_per_s() * std::abs(a.jet_axis.dot(triangle_normal(*a.mesh, static_cast<std::size_t>(t)))) : 0.0;
         a.jet->add(row.time_s, row.v_in_m_per_s.norm(), row.vn_in_m_per_s, jet_normal);
     }
 }
