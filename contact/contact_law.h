@@ -48,7 +48,7 @@ struct SurfaceContactResponse {
     bool approaching = false;  // false: the pair was separating and nothing changed
 };
 
-// Two shots of equal mass in contact.
+// Two shots in contact (of one size, or two sizes of a mix).
 struct ShotShotInput {
     Vec3 v_i;     // m/s
     Vec3 v_j;     // m/s
@@ -58,11 +58,27 @@ struct ShotShotInput {
     // walls): only i's velocity changes, as against an infinite mass.
     bool j_held = false;
     int shot_i = -1, shot_j = -1;  // indices of the two shot
-    double overlap_m = 0.0;        // m, 2 R - distance between the centres (0 at an exact touch)
-    double shot_radius_m = 0.0;    // m, both shot
-    double shot_mass_kg = 0.0;     // kg, both shot
+    double overlap_m = 0.0;        // m, R_i + R_j - distance between the centres (0 at an exact touch)
+    double radius_i_m = 0.0, radius_j_m = 0.0;  // m
+    double mass_i_kg = 0.0, mass_j_kg = 0.0;    // kg (0 for both: equal masses)
     double time_s = 0.0;           // s
 };
+
+// How a shot-shot impulse changes the two velocities: shot i's by share i of the change of their
+// relative velocity, j's by share j, m_j / (m_i + m_j) and m_i / (m_i + m_j) (a half each for equal
+// masses, or when the masses are not given); against a held partner i takes all of it.
+struct ImpulseShares {
+    double i = 0.5, j = 0.5;
+};
+inline ImpulseShares impulse_shares(const ShotShotInput& in) {
+    ImpulseShares s;
+    if (in.mass_i_kg > 0.0 && in.mass_j_kg > 0.0 && in.mass_i_kg != in.mass_j_kg) {
+        s.i = in.mass_j_kg / (in.mass_i_kg + in.mass_j_kg);
+        s.j = in.mass_i_kg / (in.mass_i_kg + in.mass_j_kg);
+    }
+    if (in.j_held) s.i = 1.0;
+    return s;
+}
 
 struct ShotShotResponse {
     Vec3 v_i;            // m/s, after

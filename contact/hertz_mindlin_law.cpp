@@ -102,15 +102,16 @@ ShotShotResponse HertzMindlinShotShotLaw::respond(const ShotShotInput& in) const
         case ShotShotMode::sustained: e = 0.0; break;
         case ShotShotMode::collapse_guard: e = 1.0; break;
     }
-    // Normal: equal masses share the impulse (eq. 3); against a held partner i takes all of it.
+    // Normal: the impulse changes each velocity in inverse proportion to its mass (eq. 3;
+    // impulse_shares: a half each for equal masses, all of it to i against a held partner).
     // Tangential: the relative slip keeps rigid_tangential_keep of itself, shared the same way; a
     // sustained contact in a pile changes only the normal part (its friction is the substeps').
-    const double share = in.j_held ? 1.0 : 0.5;
+    const ImpulseShares share = impulse_shares(in);
     const Vec3 vt = rel - dV * in.normal;
     const double lost = in.mode == ShotShotMode::sustained ? 0.0 : 1.0 - rigid_tangential_keep(vt.norm(), -dV, e, k_.f);
-    const Vec3 impulse_per_mass = share * ((1.0 + e) * dV * in.normal + lost * vt);
-    out.v_i = in.v_i + impulse_per_mass;
-    if (!in.j_held) out.v_j = in.v_j - impulse_per_mass;
+    const Vec3 exchange = (1.0 + e) * dV * in.normal + lost * vt;
+    out.v_i = in.v_i + share.i * exchange;
+    if (!in.j_held) out.v_j = in.v_j - share.j * exchange;
     out.vn_in = -dV;
     out.approaching = true;
     return out;

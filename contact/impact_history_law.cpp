@@ -29,10 +29,9 @@ ImpactHistoryLaw::ImpactHistoryLaw(std::vector<double> restitution_by_hits, doub
     : restitution_by_hits_(std::move(restitution_by_hits)),
       mu_(mu),
       f_(f),
-      shot_diameter_m_(g.shot_diameter_m),
       shot_density_kg_per_m3_(g.shot_density_kg_per_m3),
       yield_stress_pa_(g.yield_stress_pa),
-      // Dents are of the order of the shot diameter: a cell that size keeps the scan to a few cells.
+      // Dents are of the order of the shot diameter (the mix's largest): a cell that size keeps the scan to a few cells.
       facets_(g.corners_m, g.shot_diameter_m) {
     if (restitution_by_hits_.empty()) throw std::invalid_argument("impact-history: an empty restitution table");
 }
@@ -47,8 +46,9 @@ SurfaceContactResponse ImpactHistoryLaw::impact(const SurfaceContactInput& in, s
     const double C = restitution_after(t < marks.size() ? marks[t] : 0.0);
     const SurfaceContactResponse r = impulse_surface_rebound(in, C, mu_);
     if (in.impact && r.approaching && !marks.empty()) {
-        // The dent of this impact (eq. 10) work-hardens the surface within one diameter of its centre.
-        const double dent = dent_diameter(shot_diameter_m_, shot_density_kg_per_m3_, r.vn_in, yield_stress_pa_);
+        // The dent of this impact (eq. 10, this shot's own size) work-hardens the surface within
+        // one dent diameter of its centre.
+        const double dent = dent_diameter(2.0 * in.shot_radius_m, shot_density_kg_per_m3_, r.vn_in, yield_stress_pa_);
         facets_.for_each_within(in.point_local, dent, [&](std::size_t k) { marks[k] += 1.0; });
     }
     return r;

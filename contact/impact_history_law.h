@@ -18,7 +18,7 @@ namespace peensim::contact {
 // What the law must know of its pair beyond its parameters.
 struct ImpactHistoryGeometry {
     std::vector<Vec3> corners_m;          // three per mesh triangle, component frame (m)
-    double shot_diameter_m = 0.0;         // m
+    double shot_diameter_m = 0.0;         // m, the largest of the mix (sizes the facet index; each dent takes its shot's own)
     double shot_density_kg_per_m3 = 0.0;  // kg/m3
     double yield_stress_pa = 0.0;         // Pa, of the component's material (eq. 10)
 };
@@ -42,7 +42,7 @@ public:
 private:
     std::vector<double> restitution_by_hits_;
     double mu_, f_;
-    double shot_diameter_m_, shot_density_kg_per_m3_, yield_stress_pa_;
+    double shot_density_kg_per_m3_, yield_stress_pa_;
     FacetIndex facets_;
 };
 

@@ -52,11 +52,12 @@ ShotShotResponse impulse_shot_shot(const ShotShotInput& in, const PairCoefficien
         case ShotShotMode::sustained: C = 0.0; break;
         case ShotShotMode::collapse_guard: C = normal_restitution(-dV, 1.0, k.V0_m_per_s); break;
     }
-    // Equal masses share the impulse; against a held partner i takes all of it.
-    const double share = in.j_held ? 1.0 : 0.5;
-    const Vec3 impulse_per_mass = share * (1.0 + C) * dV * in.normal;
-    out.v_i = in.v_i + impulse_per_mass;
-    if (!in.j_held) out.v_j = in.v_j - impulse_per_mass;
+    // The impulse (1 + C) dV m_i m_j / (m_i + m_j) changes each velocity in inverse proportion to
+    // its mass (impulse_shares).
+    const ImpulseShares share = impulse_shares(in);
+    const Vec3 exchange = (1.0 + C) * dV * in.normal;
+    out.v_i = in.v_i + share.i * exchange;
+    if (!in.j_held) out.v_j = in.v_j - share.j * exchange;
     out.vn_in = -dV;
     out.approaching = true;
     return out;

@@ -21,7 +21,9 @@ struct SurfacePair {
     // Three corners per mesh triangle of the component, its own frame (m); built only for a law
     // that asks (the impulse law does not: a scene pays only for what it uses).
     std::function<std::vector<Vec3>()> triangle_corners_m;
-    double shot_diameter_m = 0.0;           // m
+    // m, the shot's diameter; for a mix its largest (each contact hands the law its own shot's
+    // radius and mass: SurfaceContactInput).
+    double shot_diameter_m = 0.0;
     double shot_density_kg_per_m3 = 0.0;    // kg/m3
     std::optional<double> yield_stress_pa;  // Pa, of the component's material, if the scene gives it
     std::string material;                   // the component's material (for messages)
@@ -33,7 +35,7 @@ struct SurfacePair {
 
 // What a shot-shot law may be built from besides its parameter values.
 struct ShotShotPair {
-    double shot_diameter_m = 0.0;         // m
+    double shot_diameter_m = 0.0;         // m (for a mix its largest, as SurfacePair)
     double shot_density_kg_per_m3 = 0.0;  // kg/m3
     std::optional<ElasticMaterial> shot_elastic;
     std::string shot_material;

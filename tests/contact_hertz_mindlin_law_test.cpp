@@ -62,6 +62,25 @@ TEST(HertzMindlinLaw, RigidLimitBetweenShotKeepsMomentum) {
     EXPECT_EQ(held.v_j, in.v_j);
 }
 
+TEST(HertzMindlinLaw, RigidLimitBetweenShotOfTwoSizesWeighsByMass) {
+    // A shot mix: i of mass 1, j of mass 4 (a shot 1.59 times the diameter). The same relative
+    // outcome as for equal masses (normal reversed at e, slip reduced by Coulomb's impulse), the
+    // change of each velocity in inverse proportion to its mass: i takes 4/5, j 1/5.
+    const HertzMindlinShotShotLaw law({0.9, 0.1, 0.0}, kSteel, kR, kMass);
+    ShotShotInput in{Vec3(1.0, 3.0, 0.0), Vec3(-1.0, 0.0, 0.0), Vec3::UnitX(), ShotShotMode::law};
+    in.mass_i_kg = 1.0;
+    in.mass_j_kg = 4.0;
+    const ShotShotResponse r = law.respond(in);
+    EXPECT_NEAR((1.0 * r.v_i + 4.0 * r.v_j - 1.0 * in.v_i - 4.0 * in.v_j).norm(), 0.0, 1e-14);
+    EXPECT_NEAR((r.v_j - r.v_i).x(), 0.9 * 2.0, 1e-15);
+    EXPECT_NEAR((r.v_i - r.v_j).y(), 3.0 - 0.38, 1e-15);
+    // Exchange (1 + e) dV = -3.8 along x, -(0.38) along y of the slip: i gets 4/5 of it.
+    EXPECT_NEAR(r.v_i.x(), 1.0 - 0.8 * 3.8, 1e-15);
+    EXPECT_NEAR(r.v_j.x(), -1.0 + 0.2 * 3.8, 1e-15);
+    EXPECT_NEAR(r.v_i.y(), 3.0 - 0.8 * 0.38, 1e-15);
+    EXPECT_NEAR(r.v_j.y(), 0.2 * 0.38, 1e-15);
+}
+
 TEST(HertzMindlinLaw, SoftConstantsAreThePairsWithTheDampingOfTheApproach) {
     const HertzMindlinSurfaceLaw law({0.9, 0.1, 0.5}, kSteel, kAluminium, kR, kMass);
     ASSERT_EQ(law.soft(), &law);

@@ -178,6 +178,7 @@ TEST(ImpactHistoryLaw, RestitutionByHitCountAndMarksWithinOneDentDiameter) {
     in.triangle = static_cast<int>(hit);
     in.point_local = point;
     in.impact = true;
+    in.shot_radius_m = 0.5e-3;
     const double dent = dent_diameter(1e-3, 7800, 5.0, 345e6);
     EXPECT_NEAR(dent, 0.1497e-3, 0.0001e-3);
     const std::set<std::size_t> patch = brute_force_within(g.corners_m, point, dent);
@@ -209,6 +210,27 @@ TEST(ImpactHistoryLaw, RestitutionByHitCountAndMarksWithinOneDentDiameter) {
     // Sustained contact is the impulse law's Coulomb friction (f = 0.1, 9.81 m/s2, 0.01 s).
     const contact::SurfaceContactResponse s = law.sustain({Vec3(0.3, 0, 0), Vec3::Zero(), Vec3::UnitZ(), 9.81, 0.01}, marks);
     EXPECT_NEAR(s.v_shot.x(), 0.3 - 0.1 * 9.81 * 0.01, 1e-15);
+}
+
+TEST(ImpactHistoryLaw, EachImpactMarksItsOwnShotsDent) {
+    // A mix: the law is built once (sized by the largest shot), and each impact's dent (eq. 10)
+    // scales with its own shot's diameter. A 0.5 mm shot at 5 m/s dents 0.0749 mm, a 1 mm shot twice that.
+    contact::ImpactHistoryGeometry g{flat_grid(40, 25e-6), 1e-3, 7800, 345e6};
+    const contact::ImpactHistoryLaw law({0.4, 0.5}, 0.8, 0.1, g);
+    const Vec3 point(0.5e-3 + 3e-6, 0.5e-3 + 7e-6, 0.0);
+    contact::SurfaceContactInput in{Vec3(0, 0, -5), Vec3::Zero(), Vec3::UnitZ()};
+    in.point_local = point;
+    in.impact = true;
+    for (std::size_t t : brute_force_within(g.corners_m, point, 0.0)) in.triangle = static_cast<int>(t);
+    for (const double D : {0.5e-3, 1e-3}) {
+        std::vector<double> marks(g.corners_m.size() / 3, 0.0);
+        in.shot_radius_m = 0.5 * D;
+        law.impact(in, marks);
+        const std::set<std::size_t> patch = brute_force_within(g.corners_m, point, dent_diameter(D, 7800, 5.0, 345e6));
+        for (std::size_t t = 0; t < marks.size(); ++t) EXPECT_EQ(marks[t], patch.count(t) ? 1.0 : 0.0) << "D " << D << " triangle " << t;
+    }
+    EXPECT_LT(brute_force_within(g.corners_m, point, dent_diameter(0.5e-3, 7800, 5.0, 345e6)).size(),
+              brute_force_within(g.corners_m, point, dent_diameter(1e-3, 7800, 5.0, 345e6)).size() / 2);
 }
 
 const std::string kGear = std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml";

@@ -101,6 +101,52 @@ TEST(ContactShotShot, MomentumConservedToRoundOff) {
     EXPECT_GT(approaching, 4000);  // about half the random pairs approach
 }
 
+TEST(ContactShotShot, UnequalMassesHeadOnExact) {
+    // A shot mix: m_i = 1, m_j = 3 (mass units); dV = -4, C = 0.5 (elastic regime): the exchange is
+    // (1 + C) dV = -6; i takes 3/4 of it, j 1/4: v_i = 2 - 4.5 = -2.5, v_j = -2 + 1.5 = -0.5 (exact).
+    ShotShotInput in{Vec3(2, 0, 0), Vec3(-2, 0, 0), Vec3(1, 0, 0)};
+    in.mass_i_kg = 1.0;
+    in.mass_j_kg = 3.0;
+    const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.5, 10.0, 0.0, 0.0}).respond(in);
+    EXPECT_EQ(r.vn_in, 4.0);
+    EXPECT_EQ(r.v_i, Vec3(-2.5, 0, 0));
+    EXPECT_EQ(r.v_j, Vec3(-0.5, 0, 0));
+    // Momentum m_i v_i + m_j v_j = 2 - 6 = -4 before and -2.5 - 1.5 = -4 after; separation C dV.
+    EXPECT_EQ(1.0 * r.v_i.x() + 3.0 * r.v_j.x(), -4.0);
+    EXPECT_EQ(r.v_j.x() - r.v_i.x(), 2.0);
+    // Equal masses given explicitly: exactly the shares of masses left out (a half each).
+    in.mass_j_kg = 1.0;
+    const ShotShotResponse equal = ImpulseShotShotLaw(PairCoefficients{0.5, 10.0, 0.0, 0.0}).respond(in);
+    in.mass_i_kg = in.mass_j_kg = 0.0;
+    const ShotShotResponse unweighed = ImpulseShotShotLaw(PairCoefficients{0.5, 10.0, 0.0, 0.0}).respond(in);
+    EXPECT_EQ(equal.v_i, unweighed.v_i);
+    EXPECT_EQ(equal.v_j, unweighed.v_j);
+    EXPECT_EQ(equal.v_i, Vec3(-1, 0, 0));
+}
+
+TEST(ContactShotShot, UnequalMassesConserveMomentumAndRestitution) {
+    // Random pairs of a 0.425 and a 0.71 mm shot (mass ratio 4.66) in both regimes: mass-weighted
+    // momentum kept to round-off, the relative normal speed reversed by C, tangential parts kept.
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-10.0, 10.0);
+    const double mi = 0.425 * 0.425 * 0.425, mj = 0.71 * 0.71 * 0.71;
+    for (int k = 0; k < 10000; ++k) {
+        ShotShotInput in{Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)).normalized()};
+        const bool swap = k % 2 == 1;  // either order
+        in.mass_i_kg = swap ? mj : mi;
+        in.mass_j_kg = swap ? mi : mj;
+        const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond(in);
+        const double scale = (in.mass_i_kg + in.mass_j_kg) * std::max({in.v_i.norm(), in.v_j.norm(), r.v_i.norm(), r.v_j.norm()});
+        EXPECT_LE(((in.mass_i_kg * r.v_i + in.mass_j_kg * r.v_j) - (in.mass_i_kg * in.v_i + in.mass_j_kg * in.v_j)).norm(), 1e-14 * scale)
+            << "case " << k;
+        if (!r.approaching) continue;
+        EXPECT_NEAR((r.v_j - r.v_i).dot(in.normal), normal_restitution(r.vn_in, 0.9, 0.5) * r.vn_in, 1e-13 * scale) << "case " << k;
+        // The light shot's velocity changes mj / mi times as much as the heavy one's.
+        const double light = ((swap ? r.v_j - in.v_j : r.v_i - in.v_i)).norm(), heavy = ((swap ? r.v_i - in.v_i : r.v_j - in.v_j)).norm();
+        EXPECT_NEAR(light, heavy * mj / mi, 1e-12 * scale) << "case " << k;
+    }
+}
+
 TEST(ContactShotShot, SeparatingPairUnchanged) {
     const Vec3 vi(-1, 0.3, 0), vj(2, 0, 1);
     const ShotShotResponse r = ImpulseShotShotLaw(PairCoefficients{0.9, 0.5, 0.0, 0.0}).respond({vi, vj, Vec3(1, 0, 0)});

@@ -87,7 +87,7 @@ TEST_P(ContactState, ARestingShotsContactLastsAndRemembersHowLong) {
     const TestScene scene(still_plate(GetParam()));
     const Rest rest = plate_with_age_law(scene);
     Simulation sim(rest.model);
-    const double R = rest.model->shot_radius_m;
+    const double R = rest.model->max_shot_radius_m;
     sim.edit_state([&](SimulationState& s) { set_shot(s, 0, Vec3(0.0, 0.0, R + 2e-3), Vec3::Zero()); });
     std::vector<ImpactRecord> all;
     const double t_lift = 0.35;  // s

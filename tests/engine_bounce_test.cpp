@@ -46,7 +46,7 @@ DropErrors drop(double travel_fraction, const std::string& scheme = "step") {
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     // Centre of the chamber: 9 mm from every wall, 18 mm below the ceiling at the start.
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + kH0), Vec3::Zero()); });
 

@@ -105,7 +105,7 @@ TEST_P(EngineContainment, ShotStayInsideAtTheExtremes) {
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     const Vec3 half = 0.5 * spec.chamber_size_m;
     const Kinematics& plate = model->sonotrode_component().kinematics;
     const int part = model->component_index("part");

@@ -40,7 +40,7 @@ TEST_P(EngineEdge, SlidingAcrossInternalEdgesKeepsHeightAndSpeed) {
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     const Vec3 u = path.direction.normalized();
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, path.start_m + Vec3(0, 0, R), speed * u); });
 

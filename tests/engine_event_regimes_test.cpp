@@ -94,7 +94,7 @@ TEST_P(EngineEventRegimes, ChatteringShotOnTheVibratingSonotrodeIsThrown) {
         const auto model = scene.compile();
         const auto t0 = std::chrono::steady_clock::now();
         Simulation sim(model);
-        const double R = model->shot_radius_m;
+        const double R = model->max_shot_radius_m;
         sim.edit_state(
             [&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + c.amplitude_m * std::sin(c.phase_rad)), Vec3::Zero()); });
         OverlapAudit audit(*model, kOverlapTolerance);
@@ -148,7 +148,7 @@ TEST_P(EngineEventRegimes, ShotDroppedOnTheStillSonotrodeComeToRest) {
     const auto model = scene.compile();
     const auto t0 = std::chrono::steady_clock::now();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     for (int i = 0; i < 20; ++i) {
         const Vec3 p((i % 5 - 2) * 3.5e-3, (i / 5 - 1.5) * 3.5e-3, R + 0.5e-3 + 0.5e-3 * (i % 4));
         sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(i), p, Vec3::Zero()); });
@@ -237,7 +237,7 @@ TEST_P(EngineEventRegimes, DenseLoadOnTheVibratingSonotrode) {
         std::cout << "[ dense    ] pair overlaps: first " << audit.report().first_pair << "; deepest " << audit.report().worst_pair << "\n";
     if (!audit.report().first_mesh.empty())
         std::cout << "[ dense    ] mesh overlaps: first " << audit.report().first_mesh << "; deepest " << audit.report().worst_mesh << "\n";
-    EXPECT_GT(top, 4.0 * model->shot_radius_m);  // several layers
+    EXPECT_GT(top, 4.0 * model->max_shot_radius_m);  // several layers
     EXPECT_GT(st.shot_shot_impacts, 2000u);      // a dense load: time stepping measured ~6000
     if (exact()) {
         EXPECT_EQ(audit.report().pair_overlaps, 0u) << audit.report().first_pair;
@@ -277,7 +277,7 @@ TEST_P(EngineEventRegimes, GrazingFlightsWithoutGravityLogNoImpacts) {
     const auto model = scene.compile();
     const auto t0 = std::chrono::steady_clock::now();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(-8e-3, 0.0, kBoxTop + R), Vec3(0.5, 0.0, 0.0)); });
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 1, Vec3(-4e-3, -6e-3, R), Vec3(0.3, 0.0, 0.0)); });
     OverlapAudit audit(*model, kOverlapTolerance);
@@ -346,7 +346,7 @@ TEST_P(EngineEventRegimes, ShotSlidingOnTheFloorAndOffABoxTopLogNoSpuriousImpact
     const auto model = scene.compile();
     const auto t0 = std::chrono::steady_clock::now();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     const double f = spec.sonotrode.f;
     const Vec3 start0(-4e-3, -6e-3, R);
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start0, Vec3(0.1, 0.0, 0.0)); });

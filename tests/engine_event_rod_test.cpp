@@ -143,7 +143,7 @@ TEST(EngineEventRod, EventSchemeMatchesPeriodResolvingTimeStepping) {
     const double g = fine_model->gravity_m_per_s2.norm();
     // v_max of eq. 7 is never below the plate's peak speed, so no step is longer than this:
     const double dt_bound =
-        TimeStepping::step_for(fine_model->peak_surface_speed_m_per_s, g, kFineTravelFraction * fine_model->shot_radius_m);
+        TimeStepping::step_for(fine_model->peak_surface_speed_m_per_s, g, kFineTravelFraction * fine_model->max_shot_radius_m);
     ASSERT_LE(dt_bound, period / 20.0);
     const auto t_fine = std::chrono::steady_clock::now();
     Simulation fine(fine_model, settled);

@@ -61,7 +61,7 @@ Drop drop(const std::vector<std::string>& overrides, const std::string& scheme =
     Simulation sim(model);
     Drop d;
     d.scheme = scheme;
-    d.R = model->shot_radius_m;
+    d.R = model->max_shot_radius_m;
     d.sonotrode = static_cast<std::size_t>(model->sonotrode);
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, d.R + kH0), Vec3::Zero()); });
     std::vector<ImpactRecord> step_impacts;
@@ -138,10 +138,10 @@ TEST(EngineImpactSpeed, TheStepIsCappedSoGravityAddsATenthOfTheThresholdAtMost) 
     const auto model = scene.compile({"accuracy.impact_speed=2 cm/s"});
     EXPECT_DOUBLE_EQ(model->impact_speed_m_per_s, 0.02);
     // A still shot on a still plate: eq. 7 alone would give 4.5 ms.
-    EXPECT_GT(TimeStepping::step_for(0.0, kG, 0.25 * model->shot_radius_m), 4e-3);
+    EXPECT_GT(TimeStepping::step_for(0.0, kG, 0.25 * model->max_shot_radius_m), 4e-3);
     EXPECT_DOUBLE_EQ(TimeStepping::time_step(*model, 0.0), 0.1 * 0.02 / kG);
     // Fast shot: eq. 7 decides.
-    EXPECT_DOUBLE_EQ(TimeStepping::time_step(*model, 10.0), TimeStepping::step_for(10.0, kG, 0.25 * model->shot_radius_m));
+    EXPECT_DOUBLE_EQ(TimeStepping::time_step(*model, 10.0), TimeStepping::step_for(10.0, kG, 0.25 * model->max_shot_radius_m));
 }
 
 TEST(EngineImpactSpeed, TheSummaryCountsSlowContactsPerComponent) {

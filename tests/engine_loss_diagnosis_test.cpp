@@ -53,7 +53,7 @@ TEST(EngineLossDiagnosis, AFlightThroughAWallIsAnEngineErrorAtTheWall) {
     // A flight the scheme cannot have made: from the middle straight through the closed +x wall.
     const Trajectory path{Vec3(0.0, 0.0, 10e-3), Vec3(5.0, 0.0, 0.0), Vec3::Zero(), 0.0};
     LostShot l;
-    diagnose_loss(*model, SimTime{}, path, 0.0, 0.01, l);
+    diagnose_loss(*model, SimTime{}, path, model->max_shot_radius_m, 0.0, 0.01, l);
     EXPECT_EQ(l.cause, LossCause::engine_error);
     EXPECT_EQ(model->components[static_cast<std::size_t>(l.component)].name, "chamber");
     EXPECT_NEAR(l.where_m.x(), kHalf, 1e-9);

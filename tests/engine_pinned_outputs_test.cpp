@@ -25,7 +25,8 @@ struct Pinned {
     const char* duration = "0.5 s";  // simulated (a nozzle scene's 100 m/s jet: 30 ms)
 };
 
-// nozzle-study and nozzle-gear pinned when they were added (30 and 50 ms of their jets). nozzle-almen pinned when it was added (shot sources and sinks), moved when nozzles got their
+// nozzle-study and nozzle-gear pinned when they were added (30 and 50 ms of their jets), nozzle-mix
+// too (shot size mixes; its log has the shot_diameter_m column; the others did not move). nozzle-almen pinned when it was added (shot sources and sinks), moved when nozzles got their
 // exit-speed spread (default +-5 %: one more draw per emission) and were drawn again where they
 // would overlap a shot (10290 -> 10301 rows event, 10298 -> 10305 step); rod-soft and gear-soft when
 // they were (the soft scheme, and the rigid event scheme on the hertz-mindlin law's limit). The soft
@@ -45,6 +46,7 @@ const Pinned kPinned[] = {
     {"gear-soft", "soft", 779, "3e29fce2cec7b068"},       {"gear-soft", "event", 794, "43bb77a63129baa9"},
     {"nozzle-study", "event", 4356, "0e5490f59b3f306e", "30 ms"}, {"nozzle-study", "step", 4350, "5532dd3e16620419", "30 ms"},
     {"nozzle-gear", "event", 10925, "2f0542406346fb56", "50 ms"},  {"nozzle-gear", "step", 11020, "150022a6e60e6991", "50 ms"},
+    {"nozzle-mix", "event", 5055, "974f1bd363d56f50", "30 ms"},   {"nozzle-mix", "step", 5091, "4ef5efafadc78182", "30 ms"},
 };
 
 void PrintTo(const Pinned& p, std::ostream* os) { *os << p.scene << " " << p.scheme; }

@@ -27,7 +27,7 @@ TEST(EngineRest, ShotSettleOnStillSonotrodeWithoutSinkingOrJitter) {
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     std::vector<ImpactRecord> impacts;
     std::size_t logged = 0;
     while (!sim.finished()) {
@@ -64,7 +64,7 @@ TEST(EngineRest, SlidingShotSlowsDownByCoulombFriction) {
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     const Vec3 direction(0.8, 0.6, 0.0);
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R), v0 * direction); });
 

@@ -62,7 +62,7 @@ struct Throw {
     std::optional<ExactContact> first_contact(double t_max) const {
         const Component& comp = model->components[part];
         const Kinematics& kin = comp.kinematics;
-        const double R = model->shot_radius_m, omega = std::abs(kin.omega_rad_per_s);
+        const double R = model->max_shot_radius_m, omega = std::abs(kin.omega_rad_per_s);
         // How fast the centre can close in on the part's surface, in the part's frame, at any time
         // up to t_max: its own speed plus the frame's turn at its distance from the axis.
         const double g = model->gravity_m_per_s2.norm();
@@ -124,7 +124,7 @@ Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
     const TestScene scene(spec);
     const std::shared_ptr<const Model> model = scene.compile();
     const auto part_index = static_cast<std::size_t>(model->component_index("part"));
-    const double R = model->shot_radius_m, C = 0.6, mu = 0.8;
+    const double R = model->max_shot_radius_m, C = 0.6, mu = 0.8;
 
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> uni(0.0, 1.0);

@@ -41,7 +41,7 @@ PlateRun drop_on_second_sonotrode(const std::string& scheme) {
     r.model = scene.compile(
         {"components[part].role=sonotrode", "components[part].vibration={amplitude: 20 um, frequency: 20 kHz, axis: [0, 0, 1]}"});
     Simulation sim(r.model);
-    const double R = r.model->shot_radius_m;
+    const double R = r.model->max_shot_radius_m;
     // 16 shot dropped on the plate from 2 mm, on a 4 x 4 grid 2.5 mm apart.
     sim.edit_state([&](SimulationState& s) {
         for (int k = 0; k < 16; ++k)

@@ -172,7 +172,7 @@ TEST_P(ShotFlow, EveryEmittedShotIsInTheRunCollectedOrLost) {
 TEST_P(ShotFlow, TheFirstShotLandsAtTheClosedFormTimeOfItsFlight) {
     const FlowRun r = run_nozzle(GetParam(), "2 ms");
     const Emission e = *r.model->sources[0]->emission(0);
-    const double R = r.model->shot_radius_m, g = 9.81;
+    const double R = r.model->max_shot_radius_m, g = 9.81;
     const double dz = e.position_m.z() - (1.29e-3 + R), vz = -e.velocity_m_per_s.z();  // down, m and m/s
     const double t = (-vz + std::sqrt(vz * vz + 2.0 * g * dz)) / g;
     const ImpactRecord* first = nullptr;
@@ -224,7 +224,7 @@ TEST_P(ShotFlow, ACrowdedNozzleStartsEveryShotClearOfTheOthers) {
                        "sources[nozzle].rate=50000 1/s", "sources[nozzle].speed=20 m/s", "sources[nozzle].spread=0 deg"}));
     Simulation sim(model);
     RunLoop loop(sim);
-    NoOverlapAtEmission check(model->shot_radius_m);
+    NoOverlapAtEmission check(model->max_shot_radius_m);
     loop.add(check);
     ASSERT_TRUE(loop.run());
     const SimulationState& s = sim.state();

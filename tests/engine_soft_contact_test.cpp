@@ -30,7 +30,7 @@ Throw throw_at_plate(const SoftSpec& soft, const Vec3& v0, double height_m, doub
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     sim.edit_state([&](SimulationState& s) { set_shot(s, 0, Vec3(0.0, 0.0, R + height_m), v0); });
     Throw out;
     std::vector<ImpactRecord> step;

@@ -330,6 +330,66 @@ TEST(ExportFemJob, RodRunPatchOnTheCurvedPartAndItsRefusals) {
     refused(empty, "no impact of component 'rod' within");
 }
 
+// A run of a shot mix: the deck has one ball, so the user picks the size whose impacts go in it.
+TEST(ExportFemJob, AMixRunExportsTheImpactsOfTheChosenSize) {
+    TempDir dir;
+    RunOptions r;
+    r.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/nozzle-mix.yaml";
+    r.output_dir = (dir.path / "run").string();
+    r.overrides = {"process.duration=3 ms"};
+    r.progress = false;
+    r.analyze = false;
+    std::ostringstream rout, rerr;
+    ASSERT_EQ(run_job(r, rout, rerr), kExitOk) << rerr.str();
+    ImpactLogReader reader((dir.path / "run" / "impacts.csv").string());
+    ASSERT_TRUE(reader.has_shot_diameter());
+    std::vector<double> diameter_of_row{0.0};  // by log row (1-based)
+    Vec3 centre = Vec3::Zero();
+    bool found = false;
+    for (ImpactRow row; reader.next(row);) {
+        diameter_of_row.push_back(row.shot_diameter_m);
+        if (!found && std::abs(row.shot_diameter_m - 0.6e-3) < 1e-12) centre = row.point_m, found = true;
+    }
+    ASSERT_TRUE(found);
+    ExportFemOptions o;
+    o.run_dir = (dir.path / "run").string();
+    o.output_dir = (dir.path / "deck").string();
+    std::ostringstream c;
+    c.precision(17);
+    c << centre.x() << "," << centre.y() << "," << centre.z();
+    o.center = c.str();
+    o.max_impacts = 4;
+    std::ostringstream out, err;
+    EXPECT_EQ(export_fem_job(o, out, err), kExitInputError);
+    EXPECT_NE(err.str().find("the run peened with a shot mix (0.71 mm, 0.6 mm, 0.5 mm, 0.425 mm); expected --shot-diameter"), std::string::npos)
+        << err.str();
+    o.shot_diameter = "0.55 mm";
+    std::ostringstream out2, err2;
+    EXPECT_EQ(export_fem_job(o, out2, err2), kExitInputError);
+    EXPECT_NE(err2.str().find("expected one of the run's sizes"), std::string::npos) << err2.str();
+    o.shot_diameter = "600 um";
+    std::ostringstream out3, err3;
+    ASSERT_EQ(export_fem_job(o, out3, err3), kExitOk) << err3.str();
+    EXPECT_NE(read_file((dir.path / "deck" / "patch.inp").string()).find("** Units: SI"), std::string::npos);
+    // Every impact of the deck is one of a 0.6 mm shot (its log row says so).
+    std::istringstream csv(read_file((dir.path / "deck" / "impacts.csv").string()));
+    std::string line;
+    std::getline(csv, line);
+    int rows = 0;
+    while (std::getline(csv, line)) {
+        std::istringstream fields(line);
+        std::string step, shot, log_row;
+        std::getline(fields, step, ',');
+        std::getline(fields, shot, ',');
+        std::getline(fields, log_row, ',');
+        const auto k = static_cast<std::size_t>(std::stoul(log_row));
+        ASSERT_LT(k, diameter_of_row.size());
+        EXPECT_NEAR(diameter_of_row[k], 0.6e-3, 1e-12) << line;
+        ++rows;
+    }
+    EXPECT_GE(rows, 1);
+}
+
 // The hand-off end to end: one 0.58 mm steel shot at 50 m/s onto a steel block (500 MPa, perfectly
 // plastic), quarter model; ccx must finish, and the dent is measured from the surface profile.
 TEST(ExportFemCalculix, SingleImpactRunsAndLeavesTheDentOfEq10) {

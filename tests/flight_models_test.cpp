@@ -155,7 +155,7 @@ TEST(AirDragFlight, ShotDroppedThroughAirLandsAsTheClosedFormSays) {
     const auto model = scene.compile({"air.drag=sphere", "air.density=50 kg/m3", "air.drag_coefficient=0.44"});
     ASSERT_FALSE(model->flight->is_parabola());
     EXPECT_EQ(model->scheme, SteppingScheme::step);
-    const double R = model->shot_radius_m, h = 30e-3, g = 9.81;
+    const double R = model->max_shot_radius_m, h = 30e-3, g = 9.81;
     Simulation sim(model);
     sim.edit_state([&](SimulationState& s) { set_shot(s, 0, Vec3(0.0, 0.0, R + h), Vec3::Zero()); });
     std::vector<ImpactRecord> impacts, step_impacts;

@@ -25,7 +25,7 @@ struct BadScene {
 };
 
 const BadScene catalogue[] = {
-    {"unknown_key.yaml", 3, "shot.densty", "unknown key 'densty' in shot; valid keys: count, diameter, density"},
+    {"unknown_key.yaml", 3, "shot.densty", "unknown key 'densty' in shot; valid keys: count, diameter, sizes, fractions_by, density"},
     {"negative_diameter.yaml", 3, "shot.diameter", "expected a length in (0, 0.02] m, got '-2 mm'"},
     {"unit_typo.yaml", 3, "shot.diameter", "unknown unit 'mmm'"},
     {"wrong_dimension.yaml", 11, "components[0].vibration.amplitude", "'kHz' is a unit of frequency, but a length"},
@@ -66,6 +66,9 @@ const BadScene catalogue[] = {
     {"nozzle_rate_and_mass_flow.yaml", 14, "sources[0].mass_flow", "expected `rate` or `mass_flow`, not both"},
     {"nozzle_target_without_distance.yaml", 9, "sources[0]", "missing required key 'distance' (a nozzle placed by its target)"},
     {"render_frames_unbounded.yaml", 18, "render.slow_motion", "the render block plans 300000000 frames"},
+    {"shot_sizes_not_summing.yaml", 6, "shot.sizes", "expected the fractions to sum to 1 (within 0.005), got 0.9"},
+    {"shot_diameter_and_sizes.yaml", 7, "shot.sizes", "give either shot.diameter (one size) or shot.sizes (a mix), not both"},
+    {"shot_sizes_duplicate.yaml", 8, "shot.sizes[1].diameter", "this diameter is already in the mix; give each size once"},
 };
 
 // Scenes that read but cannot be compiled into a model (compile_model: a law without what it
@@ -76,6 +79,7 @@ const BadScene compile_catalogue[] = {
     {"air_jet_without_drag.yaml", 9, "sources[0].air_speed", "an air jet acts on the shot through drag, which is off; expected air.drag: sphere"},
     {"soft_with_rebound_scatter.yaml", 5, "air.rebound_scatter", "the soft scheme integrates contact forces, which rebound scatter cannot turn"},
     {"soft_without_youngs_modulus.yaml", 9, "contacts.default.law", "add materials.titanium.youngs_modulus and .poisson_ratio"},
+    {"soft_with_shot_mix.yaml", 4, "shot.sizes", "the soft scheme's Hertz-Mindlin pairs are built for one shot size"},
 };
 
 void expect_refusal(const BadScene& bad, const std::string& path, const InputError& e) {
@@ -151,7 +155,7 @@ components:
     mesh: tetrahedron.stl
 )";
     const SceneDescription s = parse_scene_text(text, bad_dir + "/unbroken.yaml");
-    EXPECT_EQ(s.shot.diameter_m, 0.002);
+    EXPECT_EQ(s.shot.sizes.front().diameter_m, 0.002);
     EXPECT_EQ(s.components.size(), 2u);
 }
 

@@ -108,7 +108,7 @@ TEST(SceneParser, FullSceneReadsInSI) {
     EXPECT_EQ(s.accuracy.scheme, SteppingScheme::step);
 
     EXPECT_EQ(s.shot.count, 512);
-    EXPECT_EQ(s.shot.diameter_m, 0.002);
+    EXPECT_EQ(s.shot.sizes.front().diameter_m, 0.002);
     EXPECT_EQ(s.shot.material, "steel");
     EXPECT_EQ(s.shot.density_kg_per_m3, 7800.0);
     EXPECT_EQ(s.shot.initial, InitialVelocityKind::random_upward);
@@ -261,7 +261,7 @@ TEST(SceneParser, OverridesApplyBeforeValidation) {
                           "materials.titanium.density=4.43 g/cm3", "contacts.shot-shot.C0=0.5", "name=renamed"});
     EXPECT_EQ(s.process.duration_s, 0.2);
     EXPECT_EQ(s.process.seed, 7u);
-    EXPECT_EQ(s.shot.diameter_m, 0.001);
+    EXPECT_EQ(s.shot.sizes.front().diameter_m, 0.001);
     EXPECT_EQ(component(s, "gear").rotation_motion->speed_rad_per_s, 2 * pi);
     EXPECT_EQ(component(s, "chamber").translation_m, Vec3(0.001, 0.002, 0.003));
     EXPECT_EQ(s.output.logged_components, std::vector<std::string>{"gear"});
@@ -323,7 +323,7 @@ TEST(SceneParser, ResolvedSceneReadsBackTheSame) {
         const SceneDescription second = parse_scene_text(resolved, "/nonexistent/dir/resolved.yaml");
         EXPECT_EQ(resolved_scene_yaml(second), resolved);
         EXPECT_EQ(scene_hash(second), scene_hash(first));
-        EXPECT_EQ(second.shot.diameter_m, first.shot.diameter_m);
+        EXPECT_EQ(second.shot.sizes.front().diameter_m, first.shot.sizes.front().diameter_m);
         EXPECT_EQ(second.shot.density_kg_per_m3, first.shot.density_kg_per_m3);
         ASSERT_EQ(second.components.size(), first.components.size());
         for (std::size_t i = 0; i < first.components.size(); ++i) {

@@ -64,7 +64,8 @@ TEST(SceneSchema, ReferenceListsEveryKeyAndUnit) {
         if (e.path.empty()) continue;
         EXPECT_NE(md.find("| `" + std::string(e.path) + "` |"), std::string::npos) << e.path;
     }
-    EXPECT_NE(md.find("| `shot.diameter` | number | m | required | (0, 0.02] |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| `shot.diameter` | number | m | from `sizes` | (0, 0.02] |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| `shot.sizes[].fraction` | number | - | required | (0, 1] |"), std::string::npos) << md;
     EXPECT_NE(md.find("| `process.gravity` | vector | m/s2 | `[0, 0, -9.81]` |"), std::string::npos) << md;
     EXPECT_NE(md.find("| angular speed | rad/s, deg/s, rpm, rev/min, rev/s |"), std::string::npos) << md;
 }

@@ -51,9 +51,9 @@ AlmenDose::AlmenDose(const TriangleMesh& mesh, const Vec3& face_normal, double s
     if (!(face_area_ > 0.0)) throw std::invalid_argument("no triangle of the Almen strip faces along its face_normal");
 }
 
-void AlmenDose::add(int triangle, double vn) {
+void AlmenDose::add(int triangle, double vn, double shot_mass_kg) {
     if (triangle < 0 || static_cast<std::size_t>(triangle) >= on_face_.size() || !on_face_[static_cast<std::size_t>(triangle)]) return;
-    energy_ += 0.5 * shot_mass_ * vn * vn;
+    energy_ += 0.5 * shot_mass_kg * vn * vn;
     speed_sum_ += vn;
     ++impacts_;
 }

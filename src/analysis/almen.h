@@ -60,7 +60,9 @@ public:
 
     // One impact on triangle t (index in the mesh) at normal speed vn (m/s); impacts on the
     // strip's other faces (edges, back) do not count.
-    void add(int triangle, double vn_m_per_s);
+    void add(int triangle, double vn_m_per_s) { add(triangle, vn_m_per_s, shot_mass_); }
+    // The same for a shot of its own mass (kg; a mix's log gives each impact's shot).
+    void add(int triangle, double vn_m_per_s, double shot_mass_kg);
 
     double face_area_m2() const { return face_area_; }
     std::uint64_t face_impacts() const { return impacts_; }

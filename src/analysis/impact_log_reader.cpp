@@ -63,7 +63,9 @@ ImpactLogReader::ImpactLogReader(const std::string& path) : path_(path), buffer_
     const char* nl = static_cast<const char*>(std::memchr(buffer_.data() + begin_, '\n', end_ - begin_));
     if (!nl) fail(end_ == begin_ ? "the impact log is empty (no header): the run wrote nothing" : "no complete header line");
     header = std::string_view(buffer_.data() + begin_, static_cast<std::size_t>(nl - (buffer_.data() + begin_)));
-    if (header != kImpactCsvHeader) fail("not a peensim impact log: expected the header '" + std::string(kImpactCsvHeader) + "'");
+    shot_diameter_ = header == impact_csv_header(true);
+    if (header != kImpactCsvHeader && !shot_diameter_)
+        fail("not a peensim impact log: expected the header '" + std::string(kImpactCsvHeader) + "' (with ',shot_diameter_m' for a shot mix)");
     begin_ += header.size() + 1;
 }
 
@@ -112,6 +114,10 @@ bool ImpactLogReader::next(ImpactRow& row) {
         row.vt_in_m_per_s = f.number();
         row.v_out_m_per_s = f.vec();
         row.vn_out_m_per_s = f.number();
+        if (shot_diameter_) {
+            row.shot_diameter_m = f.number();
+            if (!(row.shot_diameter_m > 0.0)) throw std::invalid_argument("a shot diameter that is not positive");
+        }
         if (!f.finished()) throw std::invalid_argument("too many fields");
     } catch (const std::invalid_argument& e) {
         fail(std::string("malformed impact row: ") + e.what());

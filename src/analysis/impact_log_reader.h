@@ -27,6 +27,7 @@ struct ImpactRow {
     double vt_in_m_per_s = 0.0;   // m/s
     Vec3 v_out_m_per_s;           // m/s
     double vn_out_m_per_s = 0.0;  // m/s
+    double shot_diameter_m = 0.0; // m, the impacting shot's diameter (a mix's log); 0 when the log has one size
 };
 
 class ImpactLogReader {
@@ -41,6 +42,8 @@ public:
     bool next(ImpactRow& row);
 
     bool truncated() const { return truncated_; }  // the file ended inside a line
+    // The log has the shot_diameter_m column (a run of a shot mix): each row's shot_diameter_m is set.
+    bool has_shot_diameter() const { return shot_diameter_; }
     std::uint64_t rows() const { return rows_; }
     const std::string& path() const { return path_; }
 
@@ -54,6 +57,7 @@ private:
     std::size_t begin_ = 0, end_ = 0;  // unread bytes are buffer_[begin_, end_)
     bool eof_ = false;
     bool truncated_ = false;
+    bool shot_diameter_ = false;
     std::uint64_t rows_ = 0;
     std::uint64_t line_ = 1;  // 1-based line number of the header
 };

@@ -31,7 +31,7 @@ TriangleFields::TriangleFields(const TriangleMesh& mesh, double shot_mass_kg)
     }
 }
 
-int TriangleFields::add(int facet, const Vec3& point, double vn) {
+int TriangleFields::add(int facet, const Vec3& point, double vn, double shot_mass_kg) {
     if (facet < 0 || static_cast<std::size_t>(facet) >= first_triangle_of_facet_.size() ||
         first_triangle_of_facet_[static_cast<std::size_t>(facet)] < 0) {
         ++unknown_;
@@ -56,7 +56,7 @@ int TriangleFields::add(int facet, const Vec3& point, double vn) {
     ++count_[i];
     sum_[i] += vn;
     max_[i] = std::max(max_[i], vn);
-    energy_[i] += 0.5 * shot_mass_ * vn * vn;
+    energy_[i] += 0.5 * shot_mass_kg * vn * vn;
     return t;
 }
 

@@ -19,7 +19,9 @@ public:
     // One impact on facet `facet` of the mesh file at `point` (component frame, m), normal speed
     // `vn` (m/s). A facet the file split into several triangles (a polygon) credits the one of
     // them closest to the point. Returns the triangle credited, or -1 for a facet the mesh lacks.
-    int add(int facet, const Vec3& point, double vn_m_per_s);
+    int add(int facet, const Vec3& point, double vn_m_per_s) { return add(facet, point, vn_m_per_s, shot_mass_); }
+    // The same for a shot of its own mass (kg; a mix's log gives each impact's shot).
+    int add(int facet, const Vec3& point, double vn_m_per_s, double shot_mass_kg);
 
     std::size_t triangle_count() const { return count_.size(); }
     std::uint64_t count(std::size_t t) const { return count_[t]; }

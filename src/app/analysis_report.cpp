@@ -1,5 +1,6 @@
 #include "app/analysis_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -96,6 +97,33 @@ std::string jet_sections(const std::vector<ComponentAnalysis>& parts, const Repo
     return r.str();
 }
 
+// A shot mix: what each size brings to each logged component.
+std::string size_sections(const std::vector<ComponentAnalysis>& parts) {
+    std::ostringstream r;
+    bool first = true;
+    for (const ComponentAnalysis& c : parts) {
+        if (c.sizes.empty()) continue;
+        if (first) {
+            r << "\n## Shot sizes\n\nThe run peened with a mix: each impact's dent is its own shot's (eq. 10 with its diameter), "
+                 "and its energy 1/2 m v_n^2 its own shot's mass.\n\n"
+              << "| component | shot diameter (mm) | impacts | share of impacts | mean v_n (m/s) | mean dent (um) | share of the energy |\n"
+              << "|---|---|---|---|---|---|---|\n";
+            first = false;
+        }
+        std::vector<ComponentAnalysis::SizeTally> sizes = c.sizes;
+        std::sort(sizes.begin(), sizes.end(), [](const auto& a, const auto& b) { return a.diameter_m > b.diameter_m; });
+        double energy = 0.0;
+        for (const auto& z : sizes) energy += z.energy_J;
+        for (const auto& z : sizes) {
+            const double n = static_cast<double>(z.impacts);
+            r << "| " << c.name << " | " << fmt(z.diameter_m * 1e3, 4) << " | " << z.impacts << " | " << fmt(100.0 * n / static_cast<double>(c.impacts), 3)
+              << " % | " << fmt(z.speed_sum / n) << " | " << (c.coverage ? fmt(z.dent_sum / n * 1e6) : std::string("no yield_stress")) << " | "
+              << fmt(energy > 0.0 ? 100.0 * z.energy_J / energy : NAN, 3) << " % |\n";
+        }
+    }
+    return r.str();
+}
+
 }  // namespace
 
 std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, double duration) {
@@ -140,6 +168,7 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
     r << region_tables(parts, x.duration_s);
     r << almen_sections(parts, x.duration_s);
     r << jet_sections(parts, x);
+    r << size_sections(parts);
     if (!x.pngs.empty()) r << "\n## Plots\n\n";
     for (const std::string& png : x.pngs) {
         const std::string name = fs::path(png).filename().string();

@@ -22,6 +22,7 @@
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
 #include "scene/scene_parser.h"
+#include "scene/shot_mix.h"
 
 namespace fs = std::filesystem;
 
@@ -76,7 +77,8 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
     const MaterialDesc* m = material_named(scene, c.material);
     if (m && m->yield_stress_pa) {
         a.yield_stress_pa = *m->yield_stress_pa;
-        a.coverage = part_coverage_map(*a.mesh, scene.shot.diameter_m, scene.shot.density_kg_per_m3, a.yield_stress_pa);
+        a.coverage = part_coverage_map(*a.mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot), scene.shot.density_kg_per_m3,
+                                       a.yield_stress_pa);
     }
     if (c.almen) {
         AlmenAnalysis almen;
@@ -113,12 +115,17 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
 
 // Adds one impact row to a component's statistics (the ParaView points are written by the reader thread).
 void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescription& scene) {
-    const int t = a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s);
+    // The impacting shot: a mix's log names its diameter, a log of one size has that size.
+    const double D = row.shot_diameter_m > 0.0 ? row.shot_diameter_m : scene.shot.sizes.front().diameter_m;
+    if (row.shot_diameter_m == 0.0 && scene.shot.sizes.size() > 1)
+        throw std::runtime_error("the scene has a shot mix but its impact log has no shot_diameter_m column: was it written by this run?");
+    const double mass = sphere_mass_kg(D, scene.shot.density_kg_per_m3);
+    const int t = a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s, mass);
     ++a.impacts;
     a.speed_sum += row.vn_in_m_per_s;
     double dent = std::numeric_limits<double>::quiet_NaN();
     if (a.coverage) {
-        dent = dent_diameter(scene.shot.diameter_m, scene.shot.density_kg_per_m3, row.vn_in_m_per_s, a.yield_stress_pa);
+        dent = dent_diameter(D, scene.shot.density_kg_per_m3, row.vn_in_m_per_s, a.yield_stress_pa);
         a.coverage->add_dent(row.point_m, dent);
         a.dent_sum += dent;
     }
@@ -128,7 +135,15 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
         for (std::uint32_t k = a.region_start[ti]; k < a.region_start[ti + 1]; ++k)
             a.region_histograms[a.region_index[k]].add(row.vn_in_m_per_s, row.vt_in_m_per_s, dent);
     }
-    if (a.almen) a.almen->dose->add(t, row.vn_in_m_per_s);
+    if (a.almen) a.almen->dose->add(t, row.vn_in_m_per_s, mass);
+    if (row.shot_diameter_m > 0.0) {
+        auto size = std::find_if(a.sizes.begin(), a.sizes.end(), [&](const ComponentAnalysis::SizeTally& z) { return z.diameter_m == D; });
+        if (size == a.sizes.end()) size = a.sizes.insert(a.sizes.end(), ComponentAnalysis::SizeTally{D});
+        ++size->impacts;
+        size->speed_sum += row.vn_in_m_per_s;
+        if (a.coverage) size->dent_sum += dent;
+        size->energy_J += 0.5 * mass * row.vn_in_m_per_s * row.vn_in_m_per_s;
+    }
     if (a.jet) {
         const double jet_normal = t >= 0 ? a.jet->v0_m_per_s() * std::abs(a.jet_axis.dot(triangle_normal(*a.mesh, static_cast<std::size_t>(t)))) : 0.0;
         a.jet->add(row.time_s, row.v_in_m_per_s.norm(), row.vn_in_m_per_s, jet_normal);
@@ -165,7 +180,7 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
         // Components whose impacts were logged.
         std::vector<ComponentAnalysis> parts;
         std::vector<std::string> names;
-        const double shot_mass = scene.shot.density_kg_per_m3 * M_PI / 6.0 * std::pow(scene.shot.diameter_m, 3);
+        const double shot_mass = mean_shot_mass_kg(scene.shot);  // each impact brings its own (accumulate)
         for (const ComponentDesc& c : scene.components) {
             const auto& logged = scene.output.logged_components;
             const bool is_logged =

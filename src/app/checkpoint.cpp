@@ -20,8 +20,9 @@ namespace {
 // The last character is the format version: 2 added the slow-contact counters and the per-shot
 // in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes); 4 the contact
 // laws' per-triangle state; 5 the counts of the shot sources and sinks; 6 the laws' per-contact state;
-// 7 the shot's angular velocities and the soft scheme's contacts in progress.
-constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '7'};
+// 7 the shot's angular velocities and the soft scheme's contacts in progress; 8 each shot's size
+// (a mix) and a lost shot's radius.
+constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '8'};
 
 // Any single flipped bit (and almost any damage) changes it.
 std::uint64_t checksum(std::string_view bytes) { return fnv1a64(bytes); }
@@ -72,13 +73,16 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
         w.put(l.component);
         for (int k = 0; k < 3; ++k) w.put(l.where_m[k]);
         w.put(l.clearance_m);
+        w.put(l.radius_m);
     }
     for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz, &s.shots.wx, &s.shots.wy, &s.shots.wz})
         w.put_vector(*v);
     w.put_vector(s.shots.active);
     w.put_vector(s.shots.in_flight);
+    w.put_vector(s.shots.size_class);
     w.put_vector(s.emitted_per_source);
     w.put_vector(s.collected_per_sink);
+    w.put_vector(s.shots_per_size);
     w.put(s.contacts.resolutions());
     w.put<std::uint64_t>(s.contacts.entries().size());
     for (const auto& [key, entry] : s.contacts.entries()) {
@@ -156,14 +160,17 @@ Checkpoint load_checkpoint(const std::string& path) {
         l.component = r.get<int>();
         for (int a = 0; a < 3; ++a) l.where_m[a] = r.get<double>();
         l.clearance_m = r.get<double>();
+        l.radius_m = r.get<double>();
         s.lost.push_back(l);
     }
     for (auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz, &s.shots.wx, &s.shots.wy, &s.shots.wz})
         *v = r.get_vector<double>();
     s.shots.active = r.get_vector<unsigned char>();
     s.shots.in_flight = r.get_vector<unsigned char>();
+    s.shots.size_class = r.get_vector<unsigned char>();
     s.emitted_per_source = r.get_vector<std::uint64_t>();
     s.collected_per_sink = r.get_vector<std::uint64_t>();
+    s.shots_per_size = r.get_vector<std::uint64_t>();
     const auto resolutions = r.get<std::uint64_t>();
     const auto contacts = r.get<std::uint64_t>();
     if (contacts > bytes.size()) throw damaged(path, "more contacts than the file has bytes");
@@ -223,11 +230,15 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
                                 std::to_string(n));
     for (const auto* v : {&s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz, &s.shots.wx, &s.shots.wy, &s.shots.wz})
         if (v->size() != n) throw damaged(path, "shot arrays of different lengths");
-    if (s.shots.active.size() != n || s.shots.in_flight.size() != n) throw damaged(path, "shot flags of the wrong length");
+    if (s.shots.active.size() != n || s.shots.in_flight.size() != n || s.shots.size_class.size() != n)
+        throw damaged(path, "shot flags of the wrong length");
     if (s.emitted_per_source.size() != model.sources.size() || s.collected_per_sink.size() != model.sinks.size())
         throw damaged(path, "counts for " + std::to_string(s.emitted_per_source.size()) + " sources and " +
                                 std::to_string(s.collected_per_sink.size()) + " sinks, the scene has " +
                                 std::to_string(model.sources.size()) + " and " + std::to_string(model.sinks.size()));
+    if (s.shots_per_size.size() != model.shot_sizes.size())
+        throw damaged(path, "shot counts for " + std::to_string(s.shots_per_size.size()) + " sizes, the scene has " +
+                                std::to_string(model.shot_sizes.size()));
     if (s.impacts_per_component.size() != model.components.size() || s.slow_contacts_per_component.size() != model.components.size())
         throw damaged(path, "impact counters for " + std::to_string(s.impacts_per_component.size()) + " components, the scene has " +
                                 std::to_string(model.components.size()));
@@ -273,6 +284,9 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
     }
     for (std::size_t i = 0; i < n; ++i) {
         if (s.shots.active[i] > 1 || s.shots.in_flight[i] > 1) throw damaged(path, "shot " + std::to_string(i) + ": flags not 0 or 1");
+        if (s.shots.size_class[i] >= model.shot_sizes.size())
+            throw damaged(path, "shot " + std::to_string(i) + ": size " + std::to_string(s.shots.size_class[i]) + ", the scene has " +
+                                    std::to_string(model.shot_sizes.size()));
         if (!s.shots.active[i]) continue;
         const Vec3 p = s.shots.position(i), v = s.shots.velocity(i);
         if (!finite(p) || !finite(v) || !finite(s.shots.spin(i)))

@@ -53,6 +53,15 @@ struct ComponentAnalysis {
     std::optional<JetStreamStats> jet;
     Vec3 jet_axis = -Vec3::UnitZ();
     bool jet_normal_meaningful = false;
+    // A shot mix's log: the impacts of each size (in the order first met; a log of one size keeps none).
+    struct SizeTally {
+        double diameter_m = 0.0;  // m
+        std::uint64_t impacts = 0;
+        double speed_sum = 0.0;  // m/s, summed normal speeds
+        double dent_sum = 0.0;   // m, summed dent diameters (with a yield stress)
+        double energy_J = 0.0;   // J, 1/2 m v_n^2 summed
+    };
+    std::vector<SizeTally> sizes;
 };
 
 }  // namespace peensim

@@ -140,7 +140,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         std::vector<std::string> notes;
         const ComponentDesc* component = nullptr;
         if (scene) {
-            shot_diameter = scene->shot.diameter_m;
+            shot_diameter = scene->shot.sizes.front().diameter_m;
             shot_density = scene->shot.density_kg_per_m3;
             if (const MaterialDesc* m = material_named(*scene, scene->shot.material)) {
                 if (m->youngs_modulus_pa) shot_mat.youngs_modulus_pa = *m->youngs_modulus_pa;
@@ -157,6 +157,20 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             }
         }
         if (!o.shot_diameter.empty()) shot_diameter = positive("--shot-diameter", o.shot_diameter, Dimension::length);
+        // A run of a shot mix: the deck has one ball, so one size's impacts are exported, the size chosen.
+        const bool mix = scene && scene->shot.sizes.size() > 1;
+        if (mix) {
+            std::string sizes;
+            bool known = false;
+            for (const ShotSizeDesc& size : scene->shot.sizes) {
+                sizes += (sizes.empty() ? "" : ", ") + mm(size.diameter_m) + " mm";
+                known |= std::abs(size.diameter_m - shot_diameter) <= 1e-9 * size.diameter_m;
+            }
+            if (o.shot_diameter.empty())
+                throw InputError({"--shot-diameter"}, "", "the run peened with a shot mix (" + sizes +
+                                                              "); expected --shot-diameter to choose whose impacts to export (the deck has one ball size)");
+            if (!known) throw InputError({"--shot-diameter"}, "", "expected one of the run's sizes (" + sizes + "), got " + mm(shot_diameter) + " mm");
+        }
         if (!(shot_diameter > 0.0)) throw InputError({"--shot-diameter"}, "", "expected the shot diameter (there is no run directory to take it from)");
         shot_mat.density_kg_per_m3 = shot_density;
         if (!o.yield_stress.empty()) target.yield_stress_pa = positive("--yield-stress", o.yield_stress, Dimension::stress);
@@ -252,6 +266,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             while (reader.next(row)) {
                 ++log_rows;
                 if (row.component != component->name) continue;
+                if (mix && !(std::abs(row.shot_diameter_m - shot_diameter) <= 1e-9 * shot_diameter)) continue;  // another size's
                 if ((row.point_m - frame.centre_m).norm() > candidate_radius) continue;
                 int tri = -1;
                 if (row.triangle >= 0 && static_cast<std::size_t>(row.triangle) < first_triangle_of_facet.size())

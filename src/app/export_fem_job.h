@@ -22,7 +22,7 @@ struct ExportFemOptions {
     std::string region;            // --region: a region of the component (centre and impacts from it)
     int max_impacts = 0;           // --impacts N: the first N impacts of the patch (0 = all)
     std::string single;            // --single x,y,z,vx,vy,vz: one synthetic impact instead of the run's
-    std::string shot_diameter;     // --shot-diameter: the shot without a run directory
+    std::string shot_diameter;     // --shot-diameter: the shot without a run directory; a mix run: whose impacts
     std::string yield_stress;      // --yield-stress: the target's (default: its material's, else steel's)
     std::string hardening;         // --hardening: slope of yield stress against plastic strain (default 0)
     std::string element_size;      // --element-size: fine elements' edge ("" = the smallest dent / elements_per_dent)

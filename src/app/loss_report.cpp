@@ -20,7 +20,7 @@ std::string name_of(const Model& model, int c) {
 
 std::string describe_loss(const Model& model, const LostShot& l) {
     std::ostringstream o;
-    const double D_mm = 2e3 * model.shot_radius_m;
+    const double D_mm = 2e3 * (l.radius_m > 0.0 ? l.radius_m : model.min_shot_radius_m);
     switch (l.cause) {
         case LossCause::leak:
             o << "warning: shot " << l.shot << " left the assembly at t = " << l.time_s << " s through an opening near " << mm(l.where_m)

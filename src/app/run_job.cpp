@@ -124,14 +124,14 @@ private:
             Checkpoint c = load_checkpoint(checkpoint_path());
             check_resumable(checkpoint_path(), c, *model_, logged);
             sim_ = std::make_unique<Simulation>(model_, std::move(c.state));
-            writer_ = std::make_unique<ImpactCsvWriter>(ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows));
+            writer_ = std::make_unique<ImpactCsvWriter>(ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows, model_->has_size_mix()));
             speeds_ = std::move(c.normal_speeds);
             wall_before_ = c.wall_time_s;
         } else {
             fs::remove(checkpoint_path());
             fs::remove(fs::path(dir_) / kImpactCsvFileName);
             sim_ = std::make_unique<Simulation>(model_, cavity ? place_shots(*model_, *cavity, setup.rng) : InitialShots{});
-            writer_ = std::make_unique<ImpactCsvWriter>(dir_, component_names(*model_));
+            writer_ = std::make_unique<ImpactCsvWriter>(dir_, component_names(*model_), model_->has_size_mix());
             speeds_.assign(logged, SpeedHistogram());
         }
         logged_impacts_ = writer_->rows_written();

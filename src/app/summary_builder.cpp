@@ -38,9 +38,20 @@ RunSummary build_summary(const Simulation& sim, const std::string& scene_file, c
         else
             ++s.shots_in_flight;
     }
+    // A mix's eps counts its mean diameter (by count): shot per diameter travelled.
+    double mean_diameter = 0.0, mean_mass = 0.0;
+    for (const ShotSize& size : model.shot_sizes) {
+        mean_diameter += size.count_fraction * 2.0 * size.radius_m;
+        mean_mass += size.count_fraction * size.mass_kg;
+    }
+    for (std::size_t k = 0; k < model.shot_sizes.size(); ++k) {
+        const ShotSize& size = model.shot_sizes[k];
+        s.shot_sizes.push_back({2.0 * size.radius_m, size.count_fraction, size.count_fraction * size.mass_kg / mean_mass,
+                                k < state.shots_per_size.size() ? state.shots_per_size[k] : 0});
+    }
     for (const auto& source : model.sources)
         if (const auto* nozzle = dynamic_cast<const NozzleSource*>(source.get()))
-            s.flow_rate_eps.emplace_back(nozzle->name(), nozzle_flow_rate_eps(nozzle->spec(), 2.0 * model.shot_radius_m));
+            s.flow_rate_eps.emplace_back(nozzle->name(), nozzle_flow_rate_eps(nozzle->spec(), mean_diameter));
     s.impacts_per_component.push_back({"shot-shot", state.shot_shot_impacts});
     s.slow_contacts_per_component.push_back({"shot-shot", state.shot_shot_slow_contacts});
     s.impact_speed_m_per_s = model.impact_speed_m_per_s;

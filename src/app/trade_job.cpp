@@ -21,6 +21,7 @@
 #include "model/model.h"
 #include "output/atomic_file.h"
 #include "scene/scene_parser.h"
+#include "scene/shot_mix.h"
 
 namespace fs = std::filesystem;
 
@@ -102,13 +103,12 @@ double mean_se(const std::array<double, kBatches>& x) {
 // areas per time batch of the measured window, speed histograms, and the coverage map (every impact).
 class PartFigures final : public RunListener {
 public:
-    PartFigures(int part, double settle_s, double end_s, std::unique_ptr<CoverageMap> coverage, double shot_diameter_m,
-                double shot_density_kg_per_m3, double yield_stress_pa)
+    PartFigures(int part, double settle_s, double end_s, std::unique_ptr<CoverageMap> coverage, double shot_density_kg_per_m3,
+                double yield_stress_pa)
         : part_(part),
           settle_(settle_s),
           end_(end_s),
           coverage_(std::move(coverage)),
-          D_(shot_diameter_m),
           rho_(shot_density_kg_per_m3),
           sigma_(yield_stress_pa),
           histograms_(kBatches, std::vector<std::uint32_t>(kSpeedBins, 0)) {}
@@ -116,7 +116,8 @@ public:
     void after_step(const Simulation&, const std::vector<ImpactRecord>& impacts) override {
         for (const ImpactRecord& r : impacts) {
             if (r.component != part_) continue;
-            const double dent = coverage_ ? dent_diameter(D_, rho_, r.vn_in_m_per_s, sigma_) : 0.0;
+            // Each impact's own shot (a mix's sizes dent differently).
+            const double dent = coverage_ ? dent_diameter(r.shot_diameter_m, rho_, r.vn_in_m_per_s, sigma_) : 0.0;
             if (coverage_) coverage_->add_dent(r.point_m, dent);
             if (r.time_s < settle_) continue;
             const int b = std::clamp(static_cast<int>((r.time_s - settle_) / (end_ - settle_) * kBatches), 0, kBatches - 1);
@@ -189,7 +190,7 @@ private:
     int part_;
     double settle_, end_;  // s
     std::unique_ptr<CoverageMap> coverage_;
-    double D_, rho_, sigma_;
+    double rho_, sigma_;
     std::array<double, kBatches> counts_{}, speeds_{}, dent_areas_{};
     std::vector<std::vector<std::uint32_t>> histograms_;
 };
@@ -229,8 +230,10 @@ KnobResult run_once(const TradeOptions& o, const Knob& knob, double settle_s, in
     for (const MaterialDesc& mat : scene.materials)
         if (mat.name == comp.material) sigma = mat.yield_stress_pa;
     PartFigures figures(part, settle_s, model->duration_s,
-                        sigma ? part_coverage_map(*comp.mesh, scene.shot.diameter_m, scene.shot.density_kg_per_m3, *sigma) : nullptr,
-                        scene.shot.diameter_m, scene.shot.density_kg_per_m3, sigma.value_or(1.0));
+                        sigma ? part_coverage_map(*comp.mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot),
+                                                  scene.shot.density_kg_per_m3, *sigma)
+                              : nullptr,
+                        scene.shot.density_kg_per_m3, sigma.value_or(1.0));
     Simulation sim(model);
     RunLoop loop(sim);
     loop.add(figures);

@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
     fem_cmd->add_option("--region", fem.region, "a region of the component: the patch is centred on it and takes only its impacts");
     fem_cmd->add_option("--impacts", fem.max_impacts, "only the first N impacts of the patch (default all)");
     fem_cmd->add_option("--single", fem.single, "one synthetic impact x,y,z,vx,vy,vz instead of the run's, e.g. \"0,0,0,0,0,-50 m/s\"");
-    fem_cmd->add_option("--shot-diameter", fem.shot_diameter, "shot diameter (needed without a run directory)");
+    fem_cmd->add_option("--shot-diameter", fem.shot_diameter, "shot diameter (needed without a run directory; a run of a shot mix: the size whose impacts to export)");
     fem_cmd->add_option("--yield-stress", fem.yield_stress, "target yield stress (default: its material's, else 500 MPa)");
     fem_cmd->add_option("--hardening", fem.hardening, "slope of the yield stress against plastic strain (default 0: perfectly plastic)");
     fem_cmd->add_option("--element-size", fem.element_size, "edge of the fine elements (default: smallest dent diameter / --elements-per-dent)");

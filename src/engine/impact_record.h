@@ -20,6 +20,7 @@ struct ImpactRecord {
     Vec3 v_out_m_per_s;           // m/s, relative velocity after impact, component frame
     double vn_out_m_per_s = 0.0;  // m/s, normal rebound speed (positive)
     double duration_s = 0.0;      // s, how long the contact lasted (soft scheme; 0: an instantaneous impact)
+    double shot_diameter_m = 0.0; // m, the shot's diameter (its size's)
 };
 
 }  // namespace peensim

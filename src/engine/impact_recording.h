@@ -41,6 +41,7 @@ inline void record_impact(const Model& model, SimulationState& state, std::vecto
     ++state.impacts_per_component[static_cast<std::size_t>(c)];
     if (!model.components[static_cast<std::size_t>(c)].logged) return;
     impacts.push_back(make_impact_record(time_s, shot, c, triangle, pose, point_world, v_shot_in, v_surface, r));
+    impacts.back().shot_diameter_m = 2.0 * model.shot_sizes[state.shots.size_class[static_cast<std::size_t>(shot)]].radius_m;
 }
 
 }  // namespace peensim

@@ -23,10 +23,14 @@ struct ContactSite {
     double overlap_m = 0.0;           // m, depth of the shot in the surface (0 at an exact touch)
 };
 
+// A shot's size (its radius, mass and flight), and its radius (m).
+inline const ShotSize& shot_size(const Model& model, const ShotArrays& shots, std::size_t i) { return model.shot_sizes[shots.size_class[i]]; }
+inline double shot_radius(const Model& model, const ShotArrays& shots, std::size_t i) { return shot_size(model, shots, i).radius_m; }
+
 // v_shot, v_surface: m/s, world; n: unit normal towards the shot; impact: the contact policy's
 // verdict; pressing_accel (m/s2) and dt (s): for friction in sustained contact; contact_state: the
 // contact's own state (sustained_contact_state or instant_contact_state below).
-inline contact::SurfaceContactInput surface_input(const Model& model, const ContactSite& site, const Vec3& v_shot, const Vec3& v_surface,
+inline contact::SurfaceContactInput surface_input(const Model& model, const ShotArrays& shots, const ContactSite& site, const Vec3& v_shot, const Vec3& v_surface,
                                                   const Vec3& n, bool impact, double pressing_accel = 0.0, double dt = 0.0,
                                                   std::span<double> contact_state = {}) {
     contact::SurfaceContactInput in{v_shot, v_surface, n, pressing_accel, dt};
@@ -36,8 +40,9 @@ inline contact::SurfaceContactInput surface_input(const Model& model, const Cont
     in.triangle = site.mesh_triangle;
     in.point_local = site.pose != nullptr ? site.pose->to_component(site.point_world) : site.point_world;
     in.overlap_m = site.overlap_m;
-    in.shot_radius_m = model.shot_radius_m;
-    in.shot_mass_kg = model.shot_mass_kg;
+    const ShotSize& size = shot_size(model, shots, static_cast<std::size_t>(site.shot));
+    in.shot_radius_m = size.radius_m;
+    in.shot_mass_kg = size.mass_kg;
     in.time_s = site.time_s;
     in.impact = impact;
     return in;
@@ -81,14 +86,18 @@ inline std::span<double> instant_contact_state(std::vector<double>& scratch, con
 }
 
 // The shot-shot law's input; mode: the contact policy's (contact_policy.h).
-inline contact::ShotShotInput shot_shot_input(const Model& model, int i, int j, const Vec3& vi, const Vec3& vj, const Vec3& n,
-                                              contact::ShotShotMode mode, double distance_m, double time_s) {
+inline contact::ShotShotInput shot_shot_input(const Model& model, const ShotArrays& shots, int i, int j, const Vec3& vi, const Vec3& vj,
+                                              const Vec3& n, contact::ShotShotMode mode, double distance_m, double time_s) {
     contact::ShotShotInput in{vi, vj, n, mode};
     in.shot_i = i;
     in.shot_j = j;
-    in.overlap_m = std::max(0.0, 2.0 * model.shot_radius_m - distance_m);
-    in.shot_radius_m = model.shot_radius_m;
-    in.shot_mass_kg = model.shot_mass_kg;
+    const ShotSize& size_i = shot_size(model, shots, static_cast<std::size_t>(i));
+    const ShotSize& size_j = shot_size(model, shots, static_cast<std::size_t>(j));
+    in.overlap_m = std::max(0.0, size_i.radius_m + size_j.radius_m - distance_m);
+    in.radius_i_m = size_i.radius_m;
+    in.radius_j_m = size_j.radius_m;
+    in.mass_i_kg = size_i.mass_kg;
+    in.mass_j_kg = size_j.mass_kg;
     in.time_s = time_s;
     return in;
 }

@@ -41,8 +41,7 @@ bool first_overlap(const Model& model, std::size_t c, const SimTime& epoch, cons
 
 }  // namespace
 
-void diagnose_loss(const Model& model, const SimTime& epoch, const Trajectory& path, double t_from, double t_to, LostShot& lost) {
-    const double R = model.shot_radius_m;
+void diagnose_loss(const Model& model, const SimTime& epoch, const Trajectory& path, double R, double t_from, double t_to, LostShot& lost) {
     const double begin = std::min(t_to, t_from + kStartSkip);
     lost.from_time_s = epoch.hi + (epoch.lo + t_from);
     lost.from_m = path.position(t_from);

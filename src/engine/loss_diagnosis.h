@@ -14,8 +14,8 @@
 
 namespace peensim {
 
-// path: the shot's world flight since its last event, times in seconds since `epoch` (t_from: that
-// event; t_to: when it left the world box). Fills the diagnosis fields of `lost`.
-void diagnose_loss(const Model& model, const SimTime& epoch, const Trajectory& path, double t_from, double t_to, LostShot& lost);
+// path: the world flight of a shot of radius R (m) since its last event, times in seconds since
+// `epoch` (t_from: that event; t_to: when it left the world box). Fills the diagnosis fields of `lost`.
+void diagnose_loss(const Model& model, const SimTime& epoch, const Trajectory& path, double R, double t_from, double t_to, LostShot& lost);
 
 }  // namespace peensim

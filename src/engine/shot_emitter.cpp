@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "engine/law_input.h"
+
 namespace peensim {
 
 namespace {
@@ -15,21 +17,24 @@ constexpr unsigned kDrawsPerEmission = 32;
 
 }  // namespace
 
-bool ShotEmitter::overlaps_a_shot(const SimulationState& state, const Vec3& p) const {
+bool ShotEmitter::overlaps_a_shot(const SimulationState& state, const Vec3& p, double radius_m) const {
     const ShotArrays& shots = state.shots;
-    const double reach2 = 4.0 * model_.shot_radius_m * model_.shot_radius_m;
-    for (std::size_t i = 0; i < shots.size(); ++i)
-        if (shots.active[i] && (shots.position(i) - p).squaredNorm() < reach2) return true;
+    for (std::size_t i = 0; i < shots.size(); ++i) {
+        if (!shots.active[i]) continue;
+        const double reach = radius_m + shot_radius(model_, shots, i);
+        if ((shots.position(i) - p).squaredNorm() < reach * reach) return true;
+    }
     return false;
 }
 
 void ShotEmitter::place_clear_of_others(const SimulationState& state, const Due& d, Vec3& p, Vec3& v) const {
     const double now = state.time.seconds();
     Emission e = d.emission;
+    const ShotSize& size = model_.shot_sizes[static_cast<std::size_t>(e.size)];
     for (unsigned attempt = 1;; ++attempt) {
         p = e.position_m, v = e.velocity_m_per_s;
-        model_.flight->advance(p, v, now - d.time_s);
-        if (attempt == kDrawsPerEmission || !overlaps_a_shot(state, p)) return;
+        size.flight->advance(p, v, now - d.time_s);
+        if (attempt == kDrawsPerEmission || !overlaps_a_shot(state, p, size.radius_m)) return;
         e = *model_.sources[d.source]->emission(d.index, attempt);
     }
 }
@@ -63,6 +68,8 @@ void ShotEmitter::emit_due(SimulationState& state, std::vector<int>& added) {
         shots.set_position(slot, p);
         shots.set_velocity(slot, v);
         shots.active[slot] = 1;
+        shots.size_class[slot] = static_cast<unsigned char>(d.emission.size);
+        if (static_cast<std::size_t>(d.emission.size) < state.shots_per_size.size()) ++state.shots_per_size[static_cast<std::size_t>(d.emission.size)];
         shots.in_flight[slot] = 1;
         state.fastest_shot_m_per_s = std::max(state.fastest_shot_m_per_s, v.norm());
         added.push_back(static_cast<int>(slot));

@@ -30,7 +30,8 @@ private:
         std::uint64_t index;  // the source's emission number
         Emission emission;
     };
-    bool overlaps_a_shot(const SimulationState& state, const Vec3& p) const;
+    // A shot of radius_m (m) centred at p would overlap a shot in the run.
+    bool overlaps_a_shot(const SimulationState& state, const Vec3& p, double radius_m) const;
     // Where shot d is now (p, m) and its velocity (v, m/s): its first draw clear of every shot in
     // the run, flown from its emission time to the state's time.
     void place_clear_of_others(const SimulationState& state, const Due& d, Vec3& p, Vec3& v) const;

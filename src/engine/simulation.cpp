@@ -23,6 +23,7 @@ SimulationState initial_state(const Model& model, const InitialShots& shots) {
     for (std::size_t i = 0; i < shots.positions.size(); ++i) {
         state.shots.set_position(i, shots.positions[i]);
         state.shots.set_velocity(i, shots.velocities[i]);
+        if (i < shots.sizes.size()) state.shots.size_class[i] = static_cast<unsigned char>(shots.sizes[i]);
         state.fastest_shot_m_per_s = std::max(state.fastest_shot_m_per_s, shots.velocities[i].norm());
     }
     state.impacts_per_component.assign(model.components.size(), 0);
@@ -30,6 +31,8 @@ SimulationState initial_state(const Model& model, const InitialShots& shots) {
     state.law_state = fresh_law_state(model);
     state.emitted_per_source.assign(model.sources.size(), 0);
     state.collected_per_sink.assign(model.sinks.size(), 0);
+    state.shots_per_size.assign(model.shot_sizes.size(), 0);
+    for (std::size_t i = 0; i < shots.positions.size(); ++i) ++state.shots_per_size[state.shots.size_class[i]];
     return state;
 }
 

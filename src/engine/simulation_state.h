@@ -18,6 +18,7 @@ struct ShotArrays {
     std::vector<double> vx, vy, vz;     // m/s, world
     std::vector<double> wx, wy, wz;     // rad/s, angular velocity, world (changed only by soft-sphere contacts)
     std::vector<unsigned char> active;  // 0 once a shot is lost (left the chamber, non-finite state)
+    std::vector<unsigned char> size_class;  // index into Model::shot_sizes (0 for a scene of one size)
     // 1 while a shot is in free flight: since an impact sent it off, or since a step (time
     // stepping) in which it touched nothing. 0 once it is in sustained contact, and at the start
     // (placed shot have not flown). A sustained contact that finds it 1 ends a flight more slowly
@@ -28,12 +29,14 @@ struct ShotArrays {
     void resize(std::size_t n) {
         for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz}) v->assign(n, 0.0);
         active.assign(n, 1);
+        size_class.assign(n, 0);
         in_flight.assign(n, 0);
     }
     // Room for n shot (n >= size()): the new slots inactive, at the origin, at rest.
     void grow(std::size_t n) {
         for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz}) v->resize(n, 0.0);
         active.resize(n, 0);
+        size_class.resize(n, 0);
         in_flight.resize(n, 0);
     }
     Vec3 position(std::size_t i) const { return {x[i], y[i], z[i]}; }
@@ -84,6 +87,7 @@ struct LostShot {
     int component = -1;           // engine error: the component it crossed; leak: the nearest at the opening
     Vec3 where_m = Vec3::Zero();  // m, world, engine error: the point crossed; leak: where the centre left the chamber's bounds
     double clearance_m = 0.0;     // m, leak: centre to the nearest surface there (the opening is at least 2 R wide)
+    double radius_m = 0.0;        // m, the shot's radius R (diagnosed losses)
 };
 
 struct SimulationState {
@@ -113,6 +117,8 @@ struct SimulationState {
     // the lowest inactive slot of `shots` (one collected or lost), else a new one at the end.
     std::vector<std::uint64_t> emitted_per_source;
     std::vector<std::uint64_t> collected_per_sink;
+    // Shot placed or emitted so far of each size (Model::shot_sizes' order): what the mix came out as.
+    std::vector<std::uint64_t> shots_per_size;
 };
 
 }  // namespace peensim

@@ -47,8 +47,9 @@ double TimeStepping::step_for(double v_max, double gravity, double travel_m) {
 
 double TimeStepping::time_step(const Model& model, double v_max) {
     // Gravity, or what bounds a flight's speed gain (drag only ever slows a shot in still air).
-    const double g = model.flight->speed_gain_bound();
-    const double dt = step_for(v_max, g, model.travel_fraction * model.shot_radius_m);
+    const double g = model.flight_speed_gain_bound_m_per_s2;
+    // The smallest shot of a mix sets the travel: a quarter of its radius.
+    const double dt = step_for(v_max, g, model.travel_fraction * model.min_shot_radius_m);
     return g > 0.0 ? std::min(dt, kGravityShareOfImpactSpeed * model.impact_speed_m_per_s / g) : dt;
 }
 
@@ -56,22 +57,22 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
     : model_(std::move(model)),
       // Fat margin of the shot broad phase: one radius, about four steps of travel at the default
       // quarter-radius step (measured best in the reference notes: fewer re-insertions, few extra pairs).
-      pairs_(model_->shot_count, model_->shot_radius_m, model_->shot_radius_m),
+      pairs_(model_->shot_count, model_->max_shot_radius_m, model_->min_shot_radius_m),
       parabola_(model_->flight->is_parabola()),
       contact_state_(uses_contact_state(*model_)) {
     pose_end_.resize(model_->components.size());
     n_shots_ = static_cast<std::size_t>(model_->shot_count);
     skip_until_.assign(model_->components.size() * n_shots_, 0);
-    max_relative_travel_ = kMaxRelativeTravelPerStep * model_->travel_fraction * model_->shot_radius_m;
+    max_relative_travel_ = kMaxRelativeTravelPerStep * model_->travel_fraction * model_->min_shot_radius_m;
     memo_.assign(model_->components.size() * n_shots_, DistanceMemo{});
-    memo_margin_ = kMemoMargin * model_->shot_radius_m;
+    memo_margin_ = kMemoMargin * model_->min_shot_radius_m;
     for (const Component& c : model_->components) {
         // The largest query radius a step uses for this component (see handle_component).
-        const double travel = model_->travel_fraction * model_->shot_radius_m;
-        max_query_radius_.push_back(model_->shot_radius_m +
+        const double travel = model_->travel_fraction * model_->min_shot_radius_m;
+        max_query_radius_.push_back(model_->max_shot_radius_m +
                                     (c.kinematics.amplitude_m > 0.0 ? 2.0 * c.kinematics.amplitude_m + travel : 0.0));
         gates_.push_back(
-            std::make_unique<const DistanceGate>(DistanceGate::for_shot(*c.mesh, model_->shot_radius_m, 2.0 * c.kinematics.amplitude_m)));
+            std::make_unique<const DistanceGate>(DistanceGate::for_shot(*c.mesh, model_->max_shot_radius_m, 2.0 * c.kinematics.amplitude_m)));
         sharp_.emplace_back(*gates_.back(), *c.collider, max_query_radius_.back());
     }
     last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
@@ -158,13 +159,13 @@ void TimeStepping::advance(SimulationState& state, double t_end_s, double /*paus
     ++state.steps;
 }
 
-Vec3 TimeStepping::arc_acceleration(const Vec3& p, const Vec3& v) const {
-    return parabola_ ? model_->gravity_m_per_s2 : model_->flight->acceleration(p, v);
+Vec3 TimeStepping::arc_acceleration(const ShotArrays& s, std::size_t i, const Vec3& p, const Vec3& v) const {
+    return parabola_ ? model_->gravity_m_per_s2 : shot_size(*model_, s, i).flight->acceleration(p, v);
 }
 
 void TimeStepping::fly(ShotArrays& s, std::size_t i, const Vec3& p, const Vec3& v, double dt) const {
     Vec3 p_end = p, v_end = v;
-    model_->flight->advance(p_end, v_end, dt);
+    shot_size(*model_, s, i).flight->advance(p_end, v_end, dt);
     s.set_position(i, p_end);
     s.set_velocity(i, v_end);
 }
@@ -217,7 +218,6 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
         pairs_.update(s.x.data(), s.y.data(), s.z.data(), s.active.data());
     }
     StageTimer timer(stats_, Stage::shot_contacts);
-    const double R = model_->shot_radius_m, D = 2.0 * R;
     const contact::ShotShotLaw& law = *model_->shot_shot_law;
     // Only pairs that overlap now, in a fixed order: the result must not depend on the history
     // inside Bullet's pair cache (a resumed run continues exactly like an uninterrupted one).
@@ -225,11 +225,13 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
     pairs_.for_each_pair([&](int a, int b) {
         const auto i = static_cast<std::size_t>(a), j = static_cast<std::size_t>(b);
         if (!s.active[i] || !s.active[j]) return;
+        const double D = shot_radius(*model_, s, i) + shot_radius(*model_, s, j);  // m, centre distance at contact
         if ((s.position(j) - s.position(i)).squaredNorm() < D * D) touching_.emplace_back(a, b);
     });
     std::sort(touching_.begin(), touching_.end());
     for (const auto& [a, b] : touching_) {
         const auto i = static_cast<std::size_t>(a), j = static_cast<std::size_t>(b);
+        const double D = shot_radius(*model_, s, i) + shot_radius(*model_, s, j);  // m
         const Vec3 r1 = s.position(j) - s.position(i);
         const double d2 = r1.squaredNorm();
         if (d2 >= D * D) continue;
@@ -249,7 +251,7 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             // approach stops). It has no TC window: a step resolves each pair once.
             const contact::ShotShotMode mode = contact::shot_shot_mode(approach, model_->impact_speed_m_per_s, false);
             const double time_s = t0_.hi + (t0_.lo + u);
-            const contact::ShotShotResponse r = law.respond(shot_shot_input(*model_, a, b, vi, vj, n, mode, std::sqrt(d2), time_s));
+            const contact::ShotShotResponse r = law.respond(shot_shot_input(*model_, s, a, b, vi, vj, n, mode, std::sqrt(d2), time_s));
             const Vec3 dvi = r.v_i - vi, dvj = r.v_j - vj;
             // After a velocity change at time u the rest of the flight shifts by dv * (dt - u): exact.
             s.set_velocity(i, r.v_i);
@@ -280,7 +282,8 @@ void TimeStepping::resolve_shot_pairs(SimulationState& state, double dt) {
             kicked_by_shot_[i] = kicked_by_shot_[j] = 1;
             forget_clearances(i);
             forget_clearances(j);
-            if (D - d > contact::kOverlapWorthCounting * R) ++state.health.shot_overlap_corrections;
+            if (D - d > contact::kOverlapWorthCounting * std::min(shot_radius(*model_, s, i), shot_radius(*model_, s, j)))
+                ++state.health.shot_overlap_corrections;
         }
     }
 }
@@ -310,7 +313,7 @@ void TimeStepping::resolve_mesh_contacts(SimulationState& state, double dt, std:
     stats_[Stage::mesh_queries] += total - (stats_[Stage::contact_laws] - laws_before);
 }
 
-bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world, double query_radius,
+bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, double R, const Vec3& p_world, const Vec3& v_world, double query_radius,
                                    Contact& out) {
     const Component& comp = model_->components[component];
     const Pose& pose = pose_end_[component];
@@ -358,7 +361,7 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
         // in, so the shot is pushed back out through the face it crossed (surface_clearance.h).
         d = clear.distance_m;
         n_local = clear.normal;
-    } else if (d > 1e-9 * model_->shot_radius_m) {
+    } else if (d > 1e-9 * R) {
         n_local = (p - best_point) / d;
     } else {
         // Centre on the surface: take the face normal on the side the shot came from.
@@ -366,7 +369,7 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
         n_local = (mesh.corner(tt, 1) - mesh.corner(tt, 0)).cross(mesh.corner(tt, 2) - mesh.corner(tt, 0)).normalized();
         if (n_local.dot(pose.rotation.transpose() * v_world) > 0.0) n_local = -n_local;
     }
-    out.gap = d - model_->shot_radius_m;
+    out.gap = d - R;
     out.normal = pose.rotation * n_local;
     out.point = pose.to_world(best_point);
     out.triangle = mesh.source_facet.empty() ? best_triangle : mesh.source_facet[static_cast<std::size_t>(best_triangle)];
@@ -375,13 +378,12 @@ bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, cons
 }
 
 std::optional<double> TimeStepping::vibrating_touch(const Kinematics& kin, const Contact& contact, const Vec3& p1, const Vec3& v1,
-                                                    double dt, double u_lo, bool leaving) const {
+                                                    const Vec3& g, double R, double dt, double u_lo, bool leaving) const {
     // The contact plane found at the step end, vibrating with the sonotrode over the step, against
     // the shot's free-flight arc, solved exactly (vibrating_plane_toi.h) in the step's own time u.
     // Sampling the gap 32 times a period missed grazing touches (the plate catching a shot at
     // the top of its stroke for less than a sample): in the tube at 1 mm / 80 um the floor rate
     // came out 2 % low and its mean speed 2 % high against the exact reference.
-    const Vec3 g = arc_acceleration(p1, v1);
     VibratingPlane plane;
     plane.normal = contact.normal;
     plane.axis = kin.axis;
@@ -391,7 +393,7 @@ std::optional<double> TimeStepping::vibrating_touch(const Kinematics& kin, const
     plane.point_m = contact.point - kin.axis * kin.displacement(t0_, dt);
     const Trajectory path{p1 - v1 * dt + 0.5 * g * dt * dt, v1 - g * dt, g, 0.0};
     PlaneContact at;
-    switch (vibrating_plane_toi(path, model_->shot_radius_m, plane, u_lo, dt, at)) {
+    switch (vibrating_plane_toi(path, R, plane, u_lo, dt, at)) {
         case ToiStatus::impact: return at.time;
         // Overlapping at the start of the search: touching now, unless that is the rebound just taken.
         case ToiStatus::overlapping: return leaving ? std::nullopt : std::optional<double>(u_lo);
@@ -403,23 +405,23 @@ std::optional<double> TimeStepping::vibrating_touch(const Kinematics& kin, const
 bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::size_t c, double dt, std::vector<ImpactRecord>& impacts) {
     const Component& comp = model_->components[c];
     const Kinematics& kin = comp.kinematics;
-    const double R = model_->shot_radius_m;
     const bool vibrating = kin.kind == Kinematics::Kind::vibrating && kin.amplitude_m > 0.0;
     // A vibrating surface may reach a shot within the step and fall back before its end: look
     // as far as it can travel in the step.
     // A vibrating surface may reach a shot within the step and fall back before its end, while the
     // shot moves on: look as far as the surface can travel in the step plus the shot's own travel.
     const double swing = vibrating ? std::min(2.0 * kin.amplitude_m, kin.amplitude_m * kin.angular_frequency() * dt) +
-                                         s_velocity_norm(state.shots, i) * dt + 0.5 * model_->flight->speed_gain_bound() * dt * dt
+                                         s_velocity_norm(state.shots, i) * dt + 0.5 * model_->flight_speed_gain_bound_m_per_s2 * dt * dt
                                    : 0.0;
     if (step_ < skip_until_[c * n_shots_ + i]) {
         ++stats_.gate_skips;
         return false;
     }
     ShotArrays& s = state.shots;
+    const double R = shot_radius(*model_, s, i);
     const Vec3 p1 = s.position(i), v1 = s.velocity(i);
     Contact contact{};
-    if (!closest_contact(c, i, p1, v1, R + swing, contact)) return false;
+    if (!closest_contact(c, i, R, p1, v1, R + swing, contact)) return false;
     // A shot left exactly on a surface by sustained contact, which no force presses onto it (sliding
     // along a wall, rolling round a chamber), is still touching it, not in free flight: without
     // this its every re-contact (the next facet of a curved wall) would count as a new landing.
@@ -430,7 +432,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     // The step's arc, known by its end: the parabola under gravity, or under the flight's
     // acceleration at the step end (air drag: the velocity changes by under 1e-4 of itself in a
     // step, so the arc's centre is off by under 1e-9 R).
-    const Vec3 g = arc_acceleration(p1, v1);
+    const Vec3 g = arc_acceleration(s, i, p1, v1);
     const Vec3& n = contact.normal;
     const double u_lo = last_touch_[i];
     // A gap of ~0 at u_lo is the rebound from this very component just taken, not a new contact.
@@ -441,7 +443,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
     std::optional<MovingMeshGap> turning_gap;
     ++stats_.touch_searches;
     if (vibrating) {
-        touch = vibrating_touch(kin, contact, p1, v1, dt, u_lo, leaving);
+        touch = vibrating_touch(kin, contact, p1, v1, g, R, dt, u_lo, leaving);
     } else if (kin.kind == Kinematics::Kind::rotating) {
         // A turning mesh: the true gap, the mesh in its pose at each trial time (moving_mesh_gap.h).
         turning_gap.emplace(comp, t0_, StepArc{p1, v1, g, dt}, R, u_lo, stats_);
@@ -476,7 +478,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         // arc above found the touch time; taken with it, the speed was off by 6e-7 of itself).
         centre_touch = p1;
         v_touch = v1;
-        model_->flight->advance(centre_touch, v_touch, -back);
+        shot_size(*model_, s, i).flight->advance(centre_touch, v_touch, -back);
     }
     Vec3 x_touch = centre_touch - R * n;
     if (turning_gap) {
@@ -513,7 +515,7 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         const ContactSite site{
             static_cast<int>(i), static_cast<int>(c), contact.mesh_triangle, &pose_touch, x_touch, t0_.hi + (t0_.lo + u), 0.0};
         contact::SurfaceContactResponse r = law.impact(
-            surface_input(*model_, site, v_touch, v_surface, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
+            surface_input(*model_, state.shots, site, v_touch, v_surface, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
             law_state(state, c));
         bool rides = false;
         double closing_accel = 0.0;  // m/s2
@@ -601,9 +603,9 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     // Friction over the ride through the pair's law: its sustained contact with the plate pressing
     // the shot by impulse / ride on average over the ride.
     const ContactSite site{
-        static_cast<int>(i), static_cast<int>(c), -1, &pose_touch, centre - model_->shot_radius_m * n, t0_.hi + (t0_.lo + u), 0.0};
+        static_cast<int>(i), static_cast<int>(c), -1, &pose_touch, centre - shot_radius(*model_, state.shots, i) * n, t0_.hi + (t0_.lo + u), 0.0};
     const contact::SurfaceContactResponse r =
-        comp.law->sustain(surface_input(*model_, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0, ride,
+        comp.law->sustain(surface_input(*model_, state.shots, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0, ride,
                                         instant_contact_state(contact_scratch_, *model_, c)),
                           law_state(state, c));
     const Vec3 kept = r.v_shot - plate_v0 - (r.v_shot - plate_v0).dot(n) * n;
@@ -664,13 +666,13 @@ void TimeStepping::sustain_contact(SimulationState& state, std::size_t i, std::s
     const ContactSite site{static_cast<int>(i), static_cast<int>(c),    contact.mesh_triangle,      &pose_end_[c],
                            contact.point,       t0_.hi + (t0_.lo + dt), std::max(0.0, -contact.gap)};
     const contact::SurfaceContactResponse r =
-        comp.law->sustain(surface_input(*model_, site, v1, v_surface_end, n, false, pressing, dt,
+        comp.law->sustain(surface_input(*model_, state.shots, site, v1, v_surface_end, n, false, pressing, dt,
                                         sustained_contact_state(state, *model_, static_cast<int>(i), c, stamp_)),
                           law_state(state, c));
     ShotArrays& s = state.shots;
     s.set_velocity(i, r.v_shot);
     s.set_position(i, p1 - contact.gap * n);
-    if (-contact.gap > contact::kOverlapWorthCounting * model_->shot_radius_m) ++state.health.mesh_overlap_corrections;
+    if (-contact.gap > contact::kOverlapWorthCounting * shot_radius(*model_, s, i)) ++state.health.mesh_overlap_corrections;
 }
 
 void TimeStepping::check_health(SimulationState& state) {

@@ -60,8 +60,8 @@ private:
 
     void integrate(SimulationState& state, double dt);
     void clear_step_marks();  // per-step marks (latest touch, kicks) back to "none"
-    // The acceleration of a shot's arc within a step (gravity; with air drag the flight model's at v).
-    Vec3 arc_acceleration(const Vec3& p, const Vec3& v) const;
+    // The acceleration of shot i's arc within a step (gravity; with air drag its size's flight model's at p and v).
+    Vec3 arc_acceleration(const ShotArrays& s, std::size_t i, const Vec3& p, const Vec3& v) const;
     // Sets shot i to where the flight model takes it in dt (s) from centre p and velocity v.
     void fly(ShotArrays& s, std::size_t i, const Vec3& p, const Vec3& v, double dt) const;
     void resolve_shot_pairs(SimulationState& state, double dt);
@@ -69,16 +69,18 @@ private:
     void resolve_mesh_contacts(SimulationState& state, double dt, std::vector<ImpactRecord>& impacts, bool only_kicked);
     // Returns true if an impact happened (the shot's trajectory changed within the step).
     bool handle_component(SimulationState& state, std::size_t shot, std::size_t component, double dt, std::vector<ImpactRecord>& impacts);
-    // The first touch (s into the step, at or after u_lo) of the shot ending the step at p1 with
-    // velocity v1 on the vibrating surface whose contact at the step end is `contact`.
-    std::optional<double> vibrating_touch(const Kinematics& kin, const Contact& contact, const Vec3& p1, const Vec3& v1, double dt,
-                                          double u_lo, bool leaving) const;
+    // The first touch (s into the step, at or after u_lo) of the shot of radius R (m) ending the
+    // step at p1 with velocity v1 on its arc of acceleration g (m/s2) on the vibrating surface
+    // whose contact at the step end is `contact`.
+    std::optional<double> vibrating_touch(const Kinematics& kin, const Contact& contact, const Vec3& p1, const Vec3& v1, const Vec3& g,
+                                          double R, double dt, double u_lo, bool leaving) const;
     // A shot that starts riding the vibrating plate at u (s into the step) with velocity v_after
     // and centre `centre` (the plate in pose_touch then): launched where the plate pulls away faster than gravity, if that comes
     // before the step end (its state at the step end set accordingly; true), else false.
     bool launch_within_step(SimulationState& state, std::size_t shot, std::size_t component, const Vec3& n, const Vec3& centre,
                             const Vec3& v_after, double u, const Pose& pose_touch, double dt);
-    bool closest_contact(std::size_t component, std::size_t shot, const Vec3& p_world, const Vec3& v_world, double query_radius,
+    // The contact of a shot of radius R (m) with a component, if the surface is within query_radius of its centre.
+    bool closest_contact(std::size_t component, std::size_t shot, double R, const Vec3& p_world, const Vec3& v_world, double query_radius,
                          Contact& out);
     void sustain_contact(SimulationState& state, std::size_t shot, std::size_t component, const Contact& contact, const Vec3& v1,
                          const Vec3& p1, double dt);

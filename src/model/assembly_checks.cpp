@@ -110,7 +110,7 @@ double reachable_fraction(const Model& m, std::size_t ci, ShotCavity& cavity) {
     for (std::size_t t = 0; t < c.mesh->triangle_count(); ++t) cumulative.push_back(total += triangle_area(*c.mesh, t));
     if (!(total > 0.0)) return 0.0;
     Random rng(0x5eed + ci);
-    const double R = m.shot_radius_m;
+    const double R = m.min_shot_radius_m;  // the smallest shot of a mix reaches furthest
     int reachable = 0;
     for (int k = 0; k < kReachSamples; ++k) {
         const double u = rng.uniform() * total;
@@ -154,7 +154,7 @@ bool exposed_opening(const Model& m, std::size_t ci, ShotCavity& cavity, Vec3& a
     edges = open.size();
     if (open.empty()) return false;
     const Pose pose = c.kinematics.pose(SimTime{});
-    const double R = m.shot_radius_m, D = 2.0 * R;
+    const double R = m.min_shot_radius_m, D = 2.0 * R;  // the smallest shot of a mix passes the narrowest gaps
     for (const auto& [a, b] : open) {
         const Vec3 p = pose.to_world(c.mesh->vertices[static_cast<std::size_t>(a)]);
         const Vec3 q = pose.to_world(c.mesh->vertices[static_cast<std::size_t>(b)]);
@@ -281,7 +281,7 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
         return c.role == ComponentRole::sonotrode ? Vec3(c.kinematics.axis.normalized() * c.kinematics.amplitude_m) : Vec3(Vec3::Zero());
     };
     const double diagonal = (m.world_hi - m.world_lo).norm();
-    const double R = m.shot_radius_m;
+    const double R = m.min_shot_radius_m;  // the smallest shot of a mix reaches furthest
 
     for (std::size_t i = 0; i < n; ++i) {
         const Component& c = m.components[i];

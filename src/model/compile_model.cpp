@@ -14,6 +14,7 @@
 #include "model/mesh_sink.h"
 #include "model/model.h"
 #include "scene/resolved_writer.h"
+#include "scene/shot_mix.h"
 
 namespace peensim {
 
@@ -109,7 +110,7 @@ std::shared_ptr<const contact::ShotShotLaw> shot_shot_law_of(const ContactPairDe
     if (law == nullptr || law->make_shot_shot == nullptr)
         throw InputError(pair.where, "contacts." + pair.key + ".law", "'" + pair.law + "' is not a shot-shot law");
     contact::ShotShotPair what;
-    what.shot_diameter_m = scene.shot.diameter_m;
+    what.shot_diameter_m = largest_diameter_m(scene.shot);
     what.shot_density_kg_per_m3 = scene.shot.density_kg_per_m3;
     what.shot_elastic = elastic_of(scene, scene.shot.material);
     what.shot_material = scene.shot.material;
@@ -145,7 +146,7 @@ std::shared_ptr<const contact::SurfaceLaw> surface_law_of(const ContactPairDesc&
             for (int k = 0; k < 3; ++k) corners.push_back(mesh.corner(t, k));
         return corners;
     };
-    what.shot_diameter_m = scene.shot.diameter_m;
+    what.shot_diameter_m = largest_diameter_m(scene.shot);
     what.shot_density_kg_per_m3 = scene.shot.density_kg_per_m3;
     what.material = c.material;
     for (const MaterialDesc& m : scene.materials)
@@ -192,6 +193,7 @@ void add_flow(Model& model, const SceneDescription& scene) {
         spec.stop_s = std::min(s.stop_s, scene.process.duration_s);
         spec.seed = scene.process.seed;
         spec.index = static_cast<int>(k);
+        if (model.has_size_mix()) spec.size_count_fraction = model.size_count_fraction;
         model.sources.push_back(std::make_shared<const NozzleSource>(spec));
     }
     for (std::size_t k = 0; k < scene.sinks.size(); ++k) {
@@ -249,6 +251,29 @@ std::shared_ptr<const FlightModel> flight_model_of(const SceneDescription& scene
     return std::make_shared<const AirDragFlight>(g, air);
 }
 
+// The shot's sizes: radius, mass, count share and flight of each.
+void add_shot_sizes(Model& model, const SceneDescription& scene) {
+    const std::vector<double> share = count_fractions(scene.shot);
+    model.min_shot_radius_m = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < scene.shot.sizes.size(); ++k) {
+        ShotSize size;
+        size.radius_m = 0.5 * scene.shot.sizes[k].diameter_m;
+        size.mass_kg = scene.shot.density_kg_per_m3 * (4.0 / 3.0) * M_PI * std::pow(size.radius_m, 3);
+        size.count_fraction = share[k];
+        size.flight = flight_model_of(scene, size.radius_m);
+        model.flight_speed_gain_bound_m_per_s2 = std::max(model.flight_speed_gain_bound_m_per_s2, size.flight->speed_gain_bound());
+        model.min_shot_radius_m = std::min(model.min_shot_radius_m, size.radius_m);
+        model.max_shot_radius_m = std::max(model.max_shot_radius_m, size.radius_m);
+        model.size_count_fraction.push_back(share[k]);
+        model.shot_sizes.push_back(std::move(size));
+    }
+    model.flight = model.shot_sizes.front().flight;
+    if (model.has_size_mix() && scene.accuracy.scheme == SteppingScheme::soft)
+        throw InputError(scene.shot.where, "shot.sizes",
+                         "the soft scheme's Hertz-Mindlin pairs are built for one shot size; expected shot.diameter (one size) with "
+                         "accuracy.scheme: soft, or the event or step scheme for a mix");
+}
+
 }  // namespace
 
 int Model::component_index(const std::string& name) const {
@@ -263,10 +288,8 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
     model->resolved_scene_yaml = resolved_scene_yaml(scene);
     model->scene_hash = scene_hash(scene);
     model->shot_count = scene.shot.count;
-    model->shot_radius_m = 0.5 * scene.shot.diameter_m;
-    model->shot_mass_kg = scene.shot.density_kg_per_m3 * (4.0 / 3.0) * M_PI * std::pow(model->shot_radius_m, 3);
     model->gravity_m_per_s2 = scene.process.gravity_m_per_s2;
-    model->flight = flight_model_of(scene, model->shot_radius_m);
+    add_shot_sizes(*model, scene);
     model->duration_s = scene.process.duration_s;
     model->seed = scene.process.seed;
     model->scheme = scene.accuracy.scheme;
@@ -275,7 +298,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
     model->soft_steps_per_contact = scene.accuracy.soft_steps_per_contact;
     model->shot_shot_law = shot_shot_law_of(contact_for(scene, "shot-shot"), scene);
 
-    const double R = model->shot_radius_m;
+    const double R = model->max_shot_radius_m;
     const Vec3 up = model->gravity_m_per_s2.norm() > 0.0 ? Vec3(-model->gravity_m_per_s2.normalized()) : Vec3::UnitZ();
     const std::vector<std::string>& logged = scene.output.logged_components;
 

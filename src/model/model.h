@@ -39,6 +39,16 @@ struct Component {
     bool solid = false;
 };
 
+// One size of the shot (a scene gives one, or a mix: shot.sizes). A shot's size is its index
+// into Model::shot_sizes (ShotArrays::size_class).
+struct ShotSize {
+    double radius_m = 0.0;        // m, R = D / 2
+    double mass_kg = 0.0;         // kg
+    double count_fraction = 1.0;  // -, this size's share of the shot count
+    // How shot of this size fly (drag depends on the size); all sizes fly the same kind of flight.
+    std::shared_ptr<const FlightModel> flight;
+};
+
 struct Model {
     SceneDescription description;
     std::string resolved_scene_yaml;
@@ -48,14 +58,22 @@ struct Model {
     int sonotrode = -1;  // index into components; -1: none (a scene fed by sources only)
 
     int shot_count = 0;                                         // placed on the sonotrode at the start; sources may add more during the run
-    double shot_radius_m = 0.0;                                 // m, R = D / 2
-    double shot_mass_kg = 0.0;                                  // kg
+    // The shot's sizes, in the scene's order; one for a scene of one size. Geometry is per shot
+    // (its size's radius); the smallest radius scales the schemes' tolerances and step lengths,
+    // the largest their search reaches.
+    std::vector<ShotSize> shot_sizes;
+    std::vector<double> size_count_fraction;  // -, shot_sizes' count_fraction in one array (size_for_draw)
+    double min_shot_radius_m = 0.0;           // m
+    double max_shot_radius_m = 0.0;           // m
     std::shared_ptr<const contact::ShotShotLaw> shot_shot_law;  // the `shot-shot` pair's law, bound
 
     Vec3 gravity_m_per_s2 = Vec3::Zero();  // m/s2
     // How shot fly between contacts (the exact parabola under gravity unless the scene's air drags);
-    // never null. The event scheme runs only parabolas (the scene parser chose time stepping else).
+    // never null: the first size's flight (each size has its own, ShotSize::flight, of the same
+    // kind). The event scheme runs only parabolas (the scene parser chose time stepping else).
     std::shared_ptr<const FlightModel> flight;
+    // m/s2, the largest speed_gain_bound() of the sizes' flights.
+    double flight_speed_gain_bound_m_per_s2 = 0.0;
     double duration_s = 0.0;  // s
     std::uint64_t seed = 1;
     SteppingScheme scheme = SteppingScheme::event;  // the scheme that runs it (accuracy.scheme)
@@ -73,6 +91,7 @@ struct Model {
     std::vector<std::shared_ptr<const ShotSource>> sources;
     std::vector<std::shared_ptr<const ShotSink>> sinks;
 
+    bool has_size_mix() const { return shot_sizes.size() > 1; }
     const Component& sonotrode_component() const { return components[static_cast<std::size_t>(sonotrode)]; }
     // Index of a component by name, or -1.
     int component_index(const std::string& name) const;

@@ -73,7 +73,7 @@ TriangleMesh world_mesh(const Model& model) {
 // beyond the chamber (a horn wider than the chamber) and are simply not used for placement.
 void require_closed_chamber(const Model& model, const Enclosure& enclosure, const SonotrodeFaces& faces, const Vec3& up, Random& rng) {
     const SceneDescription& scene = model.description;
-    const double R = model.shot_radius_m;
+    const double R = model.max_shot_radius_m;  // where a shot of any size of the mix fits (as placement)
     const SourceLocation sono_where = scene.components[static_cast<std::size_t>(model.sonotrode)].where;
     std::vector<int> scratch;
     int roofed = 0;
@@ -111,7 +111,7 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
 // sonotrode) or a sealed pocket, which the enclosure also counts as enclosed: such a shot would
 // start inside the part. Sampled with its own generator, so the placement's draws are unchanged.
 int cavity_region(const Model& model, Enclosure& enclosure, const SonotrodeFaces& faces, const Vec3& up) {
-    const double R = model.shot_radius_m;
+    const double R = model.max_shot_radius_m;  // where a shot of any size of the mix fits (as placement)
     Random probe(model.seed ^ 0x9e3779b97f4a7c15ULL);
     std::unordered_map<int, int> votes;
     for (int k = 0; k < 256; ++k) {
@@ -181,7 +181,7 @@ ShotCavity::ShotCavity(const Model& model, Random& rng)
     : model_(model),
       up_(sonotrode_up(model)),
       faces_(upward_faces(model.sonotrode_component(), up_)),
-      enclosure_(world_mesh(model), 0.5 * model.shot_radius_m, model.shot_radius_m,
+      enclosure_(world_mesh(model), 0.5 * model.min_shot_radius_m, model.min_shot_radius_m,  // openings the smallest shot passes
                  [&model](const Vec3& p, double within) { return clearance(model, p, within); }) {
     const SceneDescription& scene = model.description;
     if (faces_.faces.empty())

@@ -4,6 +4,7 @@
 
 #include "common/random.h"
 #include "kernels/box_entry.h"
+#include "scene/shot_mix.h"
 
 namespace peensim {
 
@@ -34,6 +35,12 @@ std::optional<Emission> NozzleSource::emission(std::uint64_t k, unsigned attempt
     const Vec3 dir = cos_theta * spec_.direction + sin_theta * (std::cos(psi) * e1_ + std::sin(psi) * e2_);
     const double speed = spec_.speed_m_per_s * (1.0 + spec_.speed_spread * (2.0 * rng.uniform() - 1.0));
     e.velocity_m_per_s = speed * dir;
+    // The size: a stream of its own (attempt 255, never a redraw's), so a redraw moves the shot but
+    // keeps its size, and a scene of one size draws nothing.
+    if (spec_.size_count_fraction.size() > 1) {
+        Random size_rng(spec_.seed * 0x9e3779b97f4a7c15ull ^ (static_cast<std::uint64_t>(spec_.index + 1) << 48) ^ (std::uint64_t{255} << 40) ^ k);
+        e.size = size_for_draw(spec_.size_count_fraction, size_rng.uniform());
+    }
     return e;
 }
 

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/vec.h"
 #include "kernels/trajectory.h"
@@ -20,6 +21,7 @@ struct Emission {
     double time_s = 0.0;                   // s, absolute
     Vec3 position_m = Vec3::Zero();        // m, world, the shot's centre then
     Vec3 velocity_m_per_s = Vec3::Zero();  // m/s, world
+    int size = 0;                          // index into Model::shot_sizes
 };
 
 class ShotSource {
@@ -59,6 +61,8 @@ struct NozzleSpec {
     double stop_s = 0.0;
     std::uint64_t seed = 1;  // the scene's seed (mixed with the source's index)
     int index = 0;           // the source's place in the scene
+    // -, the count share of each shot size (Model::size_count_fraction); empty for one size.
+    std::vector<double> size_count_fraction;
 };
 
 class NozzleSource final : public ShotSource {
@@ -75,7 +79,8 @@ private:
 
 // The dimensionless flow rate of a nozzle, eps = r_m D / (v0 m_shot) = rate D / v0 (r_m the mass
 // flow, kg/s; D the shot diameter, m): the conventional-peening study's measure of how crowded the
-// jet is (0.667 for 5.5 kg/min of 0.58 mm shot at 100 m/s, 3.154 for 13 kg/min at 50 m/s).
+// jet is (0.667 for 5.5 kg/min of 0.58 mm shot at 100 m/s, 3.154 for 13 kg/min at 50 m/s). For a
+// mix D is the mean diameter of the shot emitted (weighted by count): shot per diameter travelled.
 inline double nozzle_flow_rate_eps(const NozzleSpec& n, double shot_diameter_m) { return n.rate_per_s * shot_diameter_m / n.speed_m_per_s; }
 
 // An axis-aligned box (world frame). Side inside: a shot whose centre enters it is collected (an

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "common/input_error.h"
+#include "scene/shot_mix.h"
 
 namespace peensim {
 
@@ -56,7 +57,8 @@ InitialShots place_shots(const Model& model) {
 
 InitialShots place_shots(const Model& model, ShotCavity& cavity, Random& rng) {
     const SceneDescription& scene = model.description;
-    const double R = model.shot_radius_m, D = 2.0 * R;
+    // A mix is placed as if every shot were of the largest size: no two overlap whatever sizes they draw.
+    const double R = model.max_shot_radius_m, D = 2.0 * R;
     const Vec3& up = cavity.up();
     const SonotrodeFaces& faces = cavity.sonotrode_faces();
 
@@ -86,6 +88,14 @@ InitialShots place_shots(const Model& model, ShotCavity& cavity, Random& rng) {
         rejections = 0;
     }
     out.layers = layer + 1;
+
+    // Sizes, from a generator of their own (a scene of one size draws nothing, and the positions
+    // and velocities do not depend on the mix).
+    out.sizes.assign(out.positions.size(), 0);
+    if (model.has_size_mix()) {
+        Random size_rng(model.seed ^ 0x5a17e5u);
+        for (int& size : out.sizes) size = size_for_draw(model.size_count_fraction, size_rng.uniform());
+    }
 
     // Initial velocities.
     const Vec3 side = (std::abs(up.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(up).normalized();

@@ -3,7 +3,7 @@
 // radius (plus 1 %) above them, rejected if outside the chamber's cavity (beyond the walls, inside
 // a closed part, in a sealed pocket) or touching a mesh or another shot; when a layer is full (400
 // rejections in a row) the next layer is filled one diameter higher, until the shot are placed or
-// no layer takes any more.
+// no layer takes any more. A mix is spaced by its largest diameter; each shot draws its size.
 #pragma once
 
 #include <vector>
@@ -17,6 +17,7 @@ namespace peensim {
 struct InitialShots {
     std::vector<Vec3> positions;   // m, world
     std::vector<Vec3> velocities;  // m/s, world
+    std::vector<int> sizes;        // index into Model::shot_sizes
     int layers = 0;                // layers used
 };
 

@@ -86,35 +86,37 @@ std::string read_at(int fd, std::uint64_t offset, std::size_t size, const std::s
 
 }  // namespace
 
-ImpactCsvWriter::ImpactCsvWriter(AdoptOpenFile, std::string dir, std::vector<std::string> component_names, int fd, std::uint64_t bytes,
-                                 std::uint64_t rows)
+ImpactCsvWriter::ImpactCsvWriter(AdoptOpenFile, std::string dir, std::vector<std::string> component_names, bool shot_diameter, int fd,
+                                 std::uint64_t bytes, std::uint64_t rows)
     : dir_(std::move(dir)),
       partial_path_(join_path(dir_, kImpactCsvPartialFileName)),
       final_path_(join_path(dir_, kImpactCsvFileName)),
       csv_names_(csv_fields(component_names)),
+      shot_diameter_(shot_diameter),
       fd_(fd),
       bytes_written_(bytes),
       rows_written_(rows) {
     std::size_t longest_name = 0;
     for (const auto& name : csv_names_) longest_name = std::max(longest_name, name.size());
     // One char after each field: a comma, or the newline after the last.
-    max_row_bytes_ = kDoubleFields * (kMaxDoubleChars + 1) + kIntFields * (kMaxIntChars + 1) + longest_name + 1;
+    max_row_bytes_ = (kDoubleFields + (shot_diameter ? 1 : 0)) * (kMaxDoubleChars + 1) + kIntFields * (kMaxIntChars + 1) + longest_name + 1;
     capacity_ = std::max(kImpactCsvBufferBytes, 2 * max_row_bytes_);
     buffer_ = std::make_unique<char[]>(capacity_);
 }
 
-ImpactCsvWriter::ImpactCsvWriter(std::string dir, std::vector<std::string> component_names)
-    : ImpactCsvWriter(AdoptOpenFile{}, std::move(dir), std::move(component_names), -1, 0, 0) {
+ImpactCsvWriter::ImpactCsvWriter(std::string dir, std::vector<std::string> component_names, bool shot_diameter)
+    : ImpactCsvWriter(AdoptOpenFile{}, std::move(dir), std::move(component_names), shot_diameter, -1, 0, 0) {
     remove_if_present(final_path_);
     fd_ = posix_file::open_or_throw(partial_path_, O_WRONLY | O_CREAT | O_TRUNC);
-    std::copy(kImpactCsvHeader.begin(), kImpactCsvHeader.end(), buffer_.get());
-    used_ = kImpactCsvHeader.size();
+    const std::string header = impact_csv_header(shot_diameter);
+    std::copy(header.begin(), header.end(), buffer_.get());
+    used_ = header.size();
     buffer_[used_++] = '\n';
     bytes_written_ = used_;
 }
 
 ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string> component_names, std::uint64_t bytes,
-                                        std::uint64_t rows) {
+                                        std::uint64_t rows, bool shot_diameter) {
     const std::string partial = join_path(dir, kImpactCsvPartialFileName);
     // A run that failed after finish() (a full disk while writing its summary) has its rows in
     // impacts.csv already and a checkpoint still: they go back to the .partial to be continued.
@@ -132,8 +134,8 @@ ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string
         if (size < bytes) {
             fail("has " + std::to_string(size) + " bytes, the checkpoint recorded " + std::to_string(bytes));
         }
-        const std::size_t header_line = kImpactCsvHeader.size() + 1;
-        if (bytes < header_line || read_at(fd, 0, header_line, partial) != std::string(kImpactCsvHeader) + '\n') {
+        const std::string header = impact_csv_header(shot_diameter) + '\n';
+        if (bytes < header.size() || read_at(fd, 0, header.size(), partial) != header) {
             fail("does not start with the impacts.csv header, or the checkpoint offset " + std::to_string(bytes) + " is inside it");
         }
         if (read_at(fd, bytes - 1, 1, partial) != "\n") {
@@ -150,7 +152,7 @@ ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string
         ::close(fd);
         throw;
     }
-    ImpactCsvWriter writer(AdoptOpenFile{}, std::move(dir), std::move(component_names), fd, bytes, rows);
+    ImpactCsvWriter writer(AdoptOpenFile{}, std::move(dir), std::move(component_names), shot_diameter, fd, bytes, rows);
     remove_if_present(writer.final_path_);
     return writer;
 }
@@ -160,6 +162,7 @@ ImpactCsvWriter::ImpactCsvWriter(ImpactCsvWriter&& other) noexcept
       partial_path_(std::move(other.partial_path_)),
       final_path_(std::move(other.final_path_)),
       csv_names_(std::move(other.csv_names_)),
+      shot_diameter_(other.shot_diameter_),
       max_row_bytes_(other.max_row_bytes_),
       capacity_(other.capacity_),
       buffer_(std::move(other.buffer_)),
@@ -176,6 +179,7 @@ ImpactCsvWriter& ImpactCsvWriter::operator=(ImpactCsvWriter&& other) noexcept {
         partial_path_ = std::move(other.partial_path_);
         final_path_ = std::move(other.final_path_);
         csv_names_ = std::move(other.csv_names_);
+        shot_diameter_ = other.shot_diameter_;
         max_row_bytes_ = other.max_row_bytes_;
         capacity_ = other.capacity_;
         buffer_ = std::move(other.buffer_);
@@ -231,6 +235,10 @@ void ImpactCsvWriter::write(const ImpactRecord& impact) {
     p = put_vec(p, impact.v_out_m_per_s);
     *p++ = ',';
     p = put_double(p, impact.vn_out_m_per_s);
+    if (shot_diameter_) {
+        *p++ = ',';
+        p = put_double(p, impact.shot_diameter_m);
+    }
     *p++ = '\n';
 
     const auto row_bytes = static_cast<std::size_t>(p - start);

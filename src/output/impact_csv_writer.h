@@ -26,6 +26,13 @@ namespace peensim {
 inline constexpr std::string_view kImpactCsvHeader =
     "time_s,shot,component,triangle,x_m,y_m,z_m,vx_in_mps,vy_in_mps,vz_in_mps,vn_in_mps,"
     "vt_in_mps,vx_out_mps,vy_out_mps,vz_out_mps,vn_out_mps";
+// A run of a shot mix (several sizes) adds a last column, the shot's diameter; a run of one size
+// writes none (its rows are those of every earlier version).
+inline constexpr std::string_view kImpactCsvDiameterColumn = "shot_diameter_m";
+// The header line a run writes (without its newline).
+inline std::string impact_csv_header(bool shot_diameter) {
+    return std::string(kImpactCsvHeader) + (shot_diameter ? "," + std::string(kImpactCsvDiameterColumn) : std::string());
+}
 inline constexpr std::string_view kImpactCsvFileName = "impacts.csv";
 inline constexpr std::string_view kImpactCsvPartialFileName = "impacts.csv.partial";
 
@@ -38,8 +45,9 @@ public:
     // Starts a new <dir>/impacts.csv.partial (truncating one left by an earlier run) and
     // writes the header. A stale <dir>/impacts.csv is removed so it cannot be mistaken for
     // this run's output. `component_names[i]` is written for ImpactRecord::component == i.
+    // shot_diameter: write the shot_diameter_m column (a run of a shot mix).
     // Throws std::runtime_error (path + errno text) if the file cannot be created.
-    ImpactCsvWriter(std::string dir, std::vector<std::string> component_names);
+    ImpactCsvWriter(std::string dir, std::vector<std::string> component_names, bool shot_diameter = false);
 
     // Continues a killed run from a checkpoint that recorded bytes_written() == bytes and
     // rows_written() == rows after flush_durable(). The .partial is truncated to exactly
@@ -47,7 +55,8 @@ public:
     // after finish() (impacts.csv but no .partial) is continued from its impacts.csv. Throws
     // std::runtime_error if the .partial is missing, shorter than `bytes`, does not start
     // with the header, or `bytes` does not fall at the end of a row.
-    static ImpactCsvWriter resume(std::string dir, std::vector<std::string> component_names, std::uint64_t bytes, std::uint64_t rows);
+    static ImpactCsvWriter resume(std::string dir, std::vector<std::string> component_names, std::uint64_t bytes, std::uint64_t rows,
+                                  bool shot_diameter = false);
 
     ImpactCsvWriter(ImpactCsvWriter&& other) noexcept;
     ImpactCsvWriter& operator=(ImpactCsvWriter&& other) noexcept;
@@ -82,8 +91,8 @@ public:
 
 private:
     struct AdoptOpenFile {};
-    ImpactCsvWriter(AdoptOpenFile, std::string dir, std::vector<std::string> component_names, int fd, std::uint64_t bytes,
-                    std::uint64_t rows);
+    ImpactCsvWriter(AdoptOpenFile, std::string dir, std::vector<std::string> component_names, bool shot_diameter, int fd,
+                    std::uint64_t bytes, std::uint64_t rows);
 
     void flush_buffer();
     void close_quietly() noexcept;
@@ -92,6 +101,7 @@ private:
     std::string partial_path_;
     std::string final_path_;
     std::vector<std::string> csv_names_;  // component names, CSV-quoted where needed
+    bool shot_diameter_ = false;          // rows end with the shot's diameter
     std::size_t max_row_bytes_ = 0;       // bound on one formatted row
     std::size_t capacity_ = 0;            // bytes in buffer_
     std::unique_ptr<char[]> buffer_;

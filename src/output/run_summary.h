@@ -63,6 +63,15 @@ struct RunSummary {
     // Per source: its dimensionless flow rate eps = r_m D / (v0 m_shot) (the conventional-peening
     // study's measure of how crowded the jet is; r_m the mass flow, kg/s).
     std::vector<std::pair<std::string, double>> flow_rate_eps;
+    // The shot's sizes (one, or a mix): each one's diameter, its share of the count and of the mass
+    // the scene asked for, and how many shot of it were placed and emitted.
+    struct ShotSizeCount {
+        double diameter_m = 0.0;
+        double count_fraction = 1.0;
+        double mass_fraction = 1.0;
+        std::uint64_t shots = 0;
+    };
+    std::vector<ShotSizeCount> shot_sizes;
     std::vector<NamedCount> impacts_per_component;
     // Flights that ended in sustained contact (approach slower than impact_speed_m_per_s): not
     // impacts, counted once per landing; same entries as impacts_per_component.

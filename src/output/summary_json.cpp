@@ -43,6 +43,10 @@ std::string summary_to_json(const RunSummary& s) {
     auto eps = nlohmann::ordered_json::array();
     for (const auto& [name, value] : s.flow_rate_eps) eps.push_back({{"source", name}, {"eps", value}});
     j["flow_rate_eps"] = std::move(eps);
+    auto sizes = nlohmann::ordered_json::array();
+    for (const RunSummary::ShotSizeCount& z : s.shot_sizes)
+        sizes.push_back({{"diameter_m", z.diameter_m}, {"count_fraction", z.count_fraction}, {"mass_fraction", z.mass_fraction}, {"shots", z.shots}});
+    j["shot_sizes"] = std::move(sizes);
     j["impact_speed_mps"] = s.impact_speed_m_per_s;
 
     auto speeds = nlohmann::ordered_json::array();

@@ -85,6 +85,17 @@ std::string summary_to_text(const RunSummary& s) {
         rows.emplace_back("shots", flow_text(s));
     for (const auto& [name, eps] : s.flow_rate_eps)
         rows.emplace_back("flow " + name, printf_string("eps = r_m D / (v0 m_shot) = %.4g", eps));
+    if (s.shot_sizes.size() > 1) {  // a mix: what it came out as beside what the scene asked
+        std::uint64_t total = 0;
+        for (const auto& z : s.shot_sizes) total += z.shots;
+        std::string value;
+        for (const auto& z : s.shot_sizes)
+            value += (value.empty() ? "" : ", ") + printf_string("%.4g mm %llu (%.1f %% of the count, asked %.1f %%)", z.diameter_m * 1e3,
+                                                                 static_cast<unsigned long long>(z.shots),
+                                                                 total > 0 ? 100.0 * static_cast<double>(z.shots) / static_cast<double>(total) : 0.0,
+                                                                 100.0 * z.count_fraction);
+        rows.emplace_back("shot sizes", value);
+    }
     for (const auto& c : s.impacts_per_component) {
         std::string value = std::to_string(c.count);
         const auto stats =

@@ -18,11 +18,16 @@ void draw_assembly_picture(const Model& model, const SimulationState& start, con
     const RenderDesc desc = model.description.render.value_or(RenderDesc{});
     const render::Camera camera = scene_camera(desc, view, static_cast<double>(width_px) / height_px);
     const ShotArrays& s = start.shots;
-    const render::SphereSet shot{s.x, s.y, s.z, s.active, model.shot_radius_m};
+    std::vector<double> radii;  // m, per shot (a mix)
+    if (model.has_size_mix())
+        for (std::size_t i = 0; i < s.size(); ++i) radii.push_back(model.shot_sizes[s.size_class[i]].radius_m);
+    const render::SphereSet shot{s.x, s.y, s.z, s.active, model.shot_sizes.front().radius_m, {0.85f, 0.86f, 0.9f, 1.0f}, radii};
     std::ostringstream title;
     title << model.description.name << " (" << model.description.source_file << "): the assembly at t = 0, ";
-    if (s.size() > 0)
-        title << s.size() << " shot of " << model.shot_radius_m * 2e3 << " mm placed";
+    if (s.size() > 0 && !model.has_size_mix())
+        title << s.size() << " shot of " << model.shot_sizes.front().radius_m * 2e3 << " mm placed";
+    else if (s.size() > 0)
+        title << s.size() << " shot of " << model.min_shot_radius_m * 2e3 << "-" << model.max_shot_radius_m * 2e3 << " mm placed";
     else
         title << "no shot placed";
     std::vector<std::string> text{title.str()};

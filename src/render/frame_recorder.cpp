@@ -96,8 +96,9 @@ private:
 struct Flash {
     double time_s = 0.0;  // s
     int component = 0;
-    Vec3 point_c;     // m, component frame
-    double vn = 0.0;  // m/s
+    Vec3 point_c;         // m, component frame
+    double vn = 0.0;      // m/s
+    double radius_m = 0.0;  // m, its shot's
 };
 
 }  // namespace
@@ -122,6 +123,7 @@ struct FrameRecorder::Impl {
     std::vector<Flash> flashes;  // ring of the latest impacts
     std::size_t flash_next = 0;
     std::vector<double> x, y, z;  // shot centres moved back to the frame time
+    std::vector<double> radii;    // m, per shot (a shot mix)
     std::vector<render::ImpactMarker> markers;
     std::vector<std::string> text;
 
@@ -152,7 +154,7 @@ struct FrameRecorder::Impl {
 
     void remember(std::span<const ImpactRecord> impacts) {
         for (const ImpactRecord& r : impacts) {
-            const Flash f{r.time_s, r.component, r.point_m, r.vn_in_m_per_s};
+            const Flash f{r.time_s, r.component, r.point_m, r.vn_in_m_per_s, 0.5 * r.shot_diameter_m};
             if (flashes.size() < kFlashCapacity)
                 flashes.push_back(f);
             else
@@ -169,6 +171,10 @@ struct FrameRecorder::Impl {
         const ShotArrays& s = st.shots;
         // Sources add shot during a run: as many centres as the state has slots (grown, never shrunk).
         if (x.size() < s.size()) x.resize(s.size()), y.resize(s.size()), z.resize(s.size());
+        if (model.has_size_mix()) {
+            radii.resize(s.size());
+            for (std::size_t i = 0; i < s.size(); ++i) radii[i] = model.shot_sizes[s.size_class[i]].radius_m;
+        }
         // Back along the parabola: p(t) = p(t + d) - v(t + d) d + g d^2 / 2.
         for (std::size_t i = 0; i < s.size(); ++i) {
             x[i] = s.x[i] - s.vx[i] * behind + 0.5 * g.x() * behind * behind;
@@ -178,7 +184,6 @@ struct FrameRecorder::Impl {
         pose_model(renderer, view, model, st.time, -behind);
 
         const double window = kFlashFrames * interval_s;
-        const double flash_radius = model.shot_radius_m;  // a disc the size of the shot on the surface
         markers.clear();
         for (const Flash& f : flashes) {
             const double age = t - f.time_s;
@@ -186,7 +191,7 @@ struct FrameRecorder::Impl {
             const Pose pose = model.components[static_cast<std::size_t>(f.component)].kinematics.pose(st.time, -behind);
             render::Rgba colour = bar.map.map(f.vn, bar.min, bar.max);
             colour.a = static_cast<float>(1.0 - age / window);
-            markers.push_back({pose.to_world(f.point_c), flash_radius, colour});
+            markers.push_back({pose.to_world(f.point_c), f.radius_m, colour});  // a disc the size of its shot on the surface
         }
         char line[96];
         text.clear();
@@ -201,8 +206,9 @@ struct FrameRecorder::Impl {
                                      std::span<const double>(y.data(), n),
                                      std::span<const double>(z.data(), n),
                                      s.active,
-                                     model.shot_radius_m,
-                                     {0.85f, 0.86f, 0.9f, 1.0f}};
+                                     model.shot_sizes.front().radius_m,
+                                     {0.85f, 0.86f, 0.9f, 1.0f},
+                                     model.has_size_mix() ? std::span<const double>(radii.data(), n) : std::span<const double>()};
         renderer.render(camera, {.spheres = {&shot, 1}, .markers = markers, .text = text, .colour_bar = &bar}, image);
         writer.write(image, (frames_dir / frame_name(k)).string());
     }

@@ -40,8 +40,9 @@ inline Mat4 make_pose(const Mat3& rotation, const Vec3& translation_m) {
 struct SphereSet {
     std::span<const double> x_m{}, y_m{}, z_m{};  // m, world centres
     std::span<const unsigned char> active{};
-    double radius_m = 0.0;  // m
+    double radius_m = 0.0;  // m, every sphere's, unless radii_m is given
     Rgba colour{0.85f, 0.86f, 0.9f, 1.0f};
+    std::span<const double> radii_m{};  // m, per sphere (a shot mix); empty: radius_m for all
 };
 
 // A flash where an impact happened: a small sphere centred on the contact point (half of it

@@ -108,7 +108,8 @@ SphereLayer::SphereLayer()
 
 void SphereLayer::draw(const FrameView& view, const SphereSet& spheres) {
     const std::size_t n = spheres.x_m.size();
-    if (spheres.y_m.size() != n || spheres.z_m.size() != n || (!spheres.active.empty() && spheres.active.size() != n)) {
+    if (spheres.y_m.size() != n || spheres.z_m.size() != n || (!spheres.active.empty() && spheres.active.size() != n) ||
+        (!spheres.radii_m.empty() && spheres.radii_m.size() != n)) {
         throw std::invalid_argument("render: sphere coordinate arrays differ in size");
     }
     instances_.clear();
@@ -116,8 +117,9 @@ void SphereLayer::draw(const FrameView& view, const SphereSet& spheres) {
     const auto radius = static_cast<float>(spheres.radius_m);
     for (std::size_t i = 0; i < n; ++i) {
         if (!spheres.active.empty() && spheres.active[i] == 0) continue;
+        const float r = spheres.radii_m.empty() ? radius : static_cast<float>(spheres.radii_m[i]);
         instances_.push_back(
-            {static_cast<float>(spheres.x_m[i]), static_cast<float>(spheres.y_m[i]), static_cast<float>(spheres.z_m[i]), radius, colour});
+            {static_cast<float>(spheres.x_m[i]), static_cast<float>(spheres.y_m[i]), static_cast<float>(spheres.z_m[i]), r, colour});
     }
     draw_instances(view, kShotAmbient, kShotDiffuse, kShotSpecular, kShotLight);
 }

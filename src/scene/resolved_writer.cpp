@@ -70,7 +70,14 @@ void write_header(std::string& y, const SceneDescription& s) {
 void write_shot(std::string& y, const ShotDesc& shot) {
     y += "shot:\n";
     y += "  count: " + std::to_string(shot.count) + "\n";
-    y += "  diameter: " + num(shot.diameter_m) + unit_comment(Dimension::length) + "\n";
+    if (!shot.sizes_given) {
+        y += "  diameter: " + num(shot.sizes.front().diameter_m) + unit_comment(Dimension::length) + "\n";
+    } else {
+        y += std::string("  fractions_by: ") + (shot.fractions_by_mass ? "mass" : "count") + "\n";
+        y += "  sizes:\n";
+        for (const ShotSizeDesc& s : shot.sizes)
+            y += "    - {diameter: " + num(s.diameter_m) + ", fraction: " + num(s.fraction) + "}" + unit_comment(Dimension::length) + "\n";
+    }
     if (shot.material.empty())
         y += "  density: " + num(shot.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
     else

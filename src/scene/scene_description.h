@@ -149,9 +149,22 @@ struct ContactPairDesc {
 
 enum class InitialVelocityKind { rest, vector, random_upward };
 
+// One size of a shot mix: its diameter and its share, by mass (a sieve analysis, SAE J444) or by
+// count (ShotDesc::fractions_by_mass).
+struct ShotSizeDesc {
+    double diameter_m = 0.0;  // m
+    double fraction = 1.0;    // -, the shares of a mix sum to 1
+};
+
+// The most sizes a mix may have (a shot's size is stored as one byte).
+inline constexpr std::size_t kMaxShotSizes = 32;
+
 struct ShotDesc {
     int count = 0;
-    double diameter_m = 0.0;         // m, D
+    // The sizes: one (`shot.diameter`) or a mix (`shot.sizes`), in the file's order.
+    std::vector<ShotSizeDesc> sizes;
+    bool fractions_by_mass = true;   // the mix's fractions are shares of the mass (else of the count)
+    bool sizes_given = false;        // the file wrote a mix (`shot.sizes`), not one `diameter`
     double density_kg_per_m3 = 0.0;  // kg/m3 (from `density`, or from `material`)
     std::string material;            // optional material name ("" if density given directly)
     InitialVelocityKind initial = InitialVelocityKind::rest;

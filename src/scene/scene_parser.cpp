@@ -9,6 +9,7 @@
 #include "common/units.h"
 #include "scene/overrides.h"
 #include "scene/scene_sections.h"
+#include "scene/shot_mix.h"
 #include "scene/schema_validation.h"
 #include "scene/yaml_access.h"
 
@@ -64,7 +65,7 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     d.shot = read_shot(root.child("shot"), d.materials);
     d.contacts = read_contacts(root.child("contacts"), d.materials);
     d.components = read_components(root.child("components"), scene_dir, d.materials);
-    const double shot_mass_kg = d.shot.density_kg_per_m3 * M_PI / 6.0 * std::pow(d.shot.diameter_m, 3);
+    const double shot_mass_kg = mean_shot_mass_kg(d.shot);  // a mass flow of a mix: the mean shot
     const Vec3 up = d.process.gravity_m_per_s2.norm() > 0.0 ? Vec3(-d.process.gravity_m_per_s2.normalized()) : Vec3(Vec3::UnitZ());
     read_flow(root.child("sources"), root.child("sinks"), d.process.duration_s, shot_mass_kg, up, scene_dir, d.sources, d.sinks);
     check_shot_origin(root, d);

@@ -2,6 +2,8 @@
 #include "scene/scene_sections.h"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 namespace peensim {
 
@@ -28,10 +30,43 @@ AccuracyDesc read_accuracy(const Cursor& c) {
     return d;
 }
 
+namespace {
+
+// One `diameter`, or a mix in `sizes` (diameters with fractions summing to 1).
+void read_sizes(const Cursor& c, ShotDesc& d) {
+    const Cursor diameter = c.child("diameter"), sizes = c.child("sizes");
+    if (diameter.present() && sizes.present()) fail(sizes, "give either shot.diameter (one size) or shot.sizes (a mix), not both");
+    if (!sizes.present()) {
+        if (!diameter.present()) fail(c, "missing required key 'diameter' or 'sizes' (the shot's size)");
+        if (c.child("fractions_by").present()) fail(c.child("fractions_by"), "'fractions_by' is only for a mix (shot.sizes)");
+        d.sizes = {ShotSizeDesc{read_quantity(diameter), 1.0}};
+        return;
+    }
+    d.sizes_given = true;
+    d.fractions_by_mass = read_choice(c.child("fractions_by")) == "mass";
+    if (sizes.size() == 0) fail(sizes, "expected at least one size (diameter and fraction)");
+    if (sizes.size() > kMaxShotSizes) fail(sizes, "expected at most " + std::to_string(kMaxShotSizes) + " sizes, got " + std::to_string(sizes.size()));
+    double sum = 0.0;
+    for (std::size_t i = 0; i < sizes.size(); ++i) {
+        const Cursor item = sizes.item(i);
+        ShotSizeDesc s{read_quantity(item.child("diameter")), read_quantity(item.child("fraction"))};
+        for (const ShotSizeDesc& before : d.sizes)
+            if (before.diameter_m == s.diameter_m) fail(item.child("diameter"), "this diameter is already in the mix; give each size once");
+        sum += s.fraction;
+        d.sizes.push_back(s);
+    }
+    // Sieve data are rounded: the shares must sum to 1 within 0.5 % and are then scaled to it.
+    if (!(std::abs(sum - 1.0) <= 5e-3))
+        fail(sizes, "expected the fractions to sum to 1 (within 0.005), got " + std::to_string(sum));
+    for (ShotSizeDesc& s : d.sizes) s.fraction /= sum;
+}
+
+}  // namespace
+
 ShotDesc read_shot(const Cursor& c, const std::vector<MaterialDesc>& materials) {
     ShotDesc d;
     d.count = static_cast<int>(read_integer(c.child("count")));
-    d.diameter_m = read_quantity(c.child("diameter"));
+    read_sizes(c, d);
 
     const Cursor density = c.child("density");
     const Cursor material = c.child("material");

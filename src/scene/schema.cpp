@@ -54,11 +54,23 @@ const std::array schema_table{
                 "Soft scheme only: integration steps per Hertz contact time (the duration of an elastic contact at "
                 "the contact's approach speed); the soft contacts' accuracy knob (see \"Soft-sphere contacts\")."},
 
-    SchemaEntry{"shot", K::map, D::dimensionless, true, "", "", {}, "", "", "", "The shot (all of one size)."},
+    SchemaEntry{"shot", K::map, D::dimensionless, true, "", "", {}, "", "", "", "The shot: one size (`diameter`) or a mix (`sizes`)."},
     SchemaEntry{"shot.count", K::integer, D::dimensionless, true, "", "", closed(0, 1e8), "", "", "",
                 "Number of shot placed on the sonotrode at the start (0: only what `sources` emit)."},
-    SchemaEntry{"shot.diameter", K::quantity, D::length, true, "", "", open_closed(0, 0.02), "", "", "",
-                "Shot diameter D."},
+    SchemaEntry{"shot.diameter", K::quantity, D::length, false, "", "from `sizes`", open_closed(0, 0.02), "", "", "",
+                "Shot diameter D, when all shot are of one size; else give `sizes`."},
+    SchemaEntry{"shot.sizes", K::list, D::dimensionless, false, "", "one size, `diameter`", {}, "", "", "",
+                "A mix of sizes (a sieve analysis, SAE J444), instead of `diameter`: up to 32 items of `diameter` and "
+                "`fraction`, the fractions summing to 1 (within 0.005, then scaled to it). Each shot placed or emitted "
+                "draws its size from the seed; a mass flow counts the mix's mean mass. See the README's \"Shot size mixes\"."},
+    SchemaEntry{"shot.sizes[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One size of the mix."},
+    SchemaEntry{"shot.sizes[].diameter", K::quantity, D::length, true, "", "", open_closed(0, 0.02), "", "", "",
+                "This size's diameter; each diameter once."},
+    SchemaEntry{"shot.sizes[].fraction", K::quantity, D::dimensionless, true, "", "", open_closed(0, 1), "", "", "",
+                "This size's share of the mix, by mass or by count (`fractions_by`)."},
+    SchemaEntry{"shot.fractions_by", K::choice, D::dimensionless, false, "mass", "", {}, "mass|count", "", "",
+                "What the fractions of `sizes` share: `mass` (a sieve analysis; LIGGGHTS' discrete distributions) or "
+                "`count` (the share of the shot)."},
     SchemaEntry{"shot.density", K::quantity, D::density, false, "", "from `material`", above(0), "", "", "",
                 "Shot density; give either `density` or `material`, not both."},
     SchemaEntry{"shot.material", K::text, D::dimensionless, false, "", "none", {}, "", "", "",

@@ -11,16 +11,18 @@ OverlapAudit::OverlapAudit(const Model& model, double tolerance_m) : model_(mode
 void OverlapAudit::audit(const SimulationState& state) {
     ++report_.audits;
     const ShotArrays& s = state.shots;
-    const double R = model_.shot_radius_m;
     const std::size_t n = s.size();
+    // Each shot's own radius (a mix has several).
+    const auto radius = [&](std::size_t i) { return model_.shot_sizes[s.size_class[i]].radius_m; };
     for (std::size_t i = 0; i < n; ++i) {
         if (!s.active[i]) continue;
         for (std::size_t j = i + 1; j < n; ++j) {
             if (!s.active[j]) continue;
             const double dx = s.x[i] - s.x[j], dy = s.y[i] - s.y[j], dz = s.z[i] - s.z[j];
             const double d2 = dx * dx + dy * dy + dz * dz;
-            if (d2 > 4.0 * 4.0 * R * R) continue;  // far apart: not a candidate for the worst gap
-            const double gap = std::sqrt(d2) - 2.0 * R;
+            const double touch = radius(i) + radius(j);
+            if (d2 > 4.0 * touch * touch) continue;  // far apart: not a candidate for the worst gap
+            const double gap = std::sqrt(d2) - touch;
             const bool worst = gap < report_.worst_pair_gap_m;
             report_.worst_pair_gap_m = std::min(report_.worst_pair_gap_m, gap);
             if (gap >= -tolerance_m_) continue;
@@ -40,6 +42,7 @@ void OverlapAudit::audit(const SimulationState& state) {
         const Pose pose = c.kinematics.pose(state.time);
         for (std::size_t i = 0; i < n; ++i) {
             if (!s.active[i]) continue;
+            const double R = radius(i);
             MeshCollider::Closest closest;
             MeshCollider::QueryCounters counters;
             // Within 2R, so that the closest approach is reported even without an overlap.

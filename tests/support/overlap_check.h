@@ -15,9 +15,9 @@ namespace peensim::testing {
 
 struct OverlapReport {
     std::uint64_t audits = 0;                                           // states audited
-    std::uint64_t pair_overlaps = 0;                                    // shot pairs closer than 2R - tolerance (summed over audits)
+    std::uint64_t pair_overlaps = 0;                                    // shot pairs closer than R_i + R_j - tolerance (summed over audits)
     std::uint64_t mesh_overlaps = 0;                                    // shot closer than R - tolerance to a mesh (summed over audits)
-    double worst_pair_gap_m = std::numeric_limits<double>::infinity();  // m, min over pairs of |ci - cj| - 2R
+    double worst_pair_gap_m = std::numeric_limits<double>::infinity();  // m, min over pairs of |ci - cj| - (R_i + R_j)
     double worst_mesh_gap_m = std::numeric_limits<double>::infinity();  // m, min of distance - R (within 2R of a mesh)
     std::string first_pair;                                             // numbers of the first pair overlap
     std::string first_mesh;                                             // numbers of the first mesh overlap

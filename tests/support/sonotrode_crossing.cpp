@@ -22,7 +22,6 @@ void SonotrodeCrossingCheck::before_step(const SimulationState& state) {
 void SonotrodeCrossingCheck::after_step(const SimulationState& state, const std::vector<ImpactRecord>& impacts) {
     const std::size_t n = before_.size();
     const Kinematics& kin = model_.sonotrode_component().kinematics;
-    const double R = model_.shot_radius_m;
     const Vec3 g = model_.gravity_m_per_s2;
     const double dt = (state.time.hi - t0_.hi) + (state.time.lo - t0_.lo);
     last_impact_.assign(n, -1);
@@ -34,6 +33,7 @@ void SonotrodeCrossingCheck::after_step(const SimulationState& state, const std:
     }
     for (std::size_t i = 0; i < n; ++i) {
         if (!before_.active[i] || !state.shots.active[i]) continue;
+        const double R = model_.shot_sizes[state.shots.size_class[i]].radius_m;  // this shot's
         // The flight's start: offset u0 (s) into the step, centre c (m), velocity v (m/s).
         double u0 = 0.0;
         Vec3 c = before_.position(i), v = before_.velocity(i);

@@ -113,8 +113,13 @@ std::string scene_yaml(const TestSceneSpec& s) {
       << "  scheme: " << s.scheme << "\n";
     if (s.soft) y << "  soft_steps_per_contact: " << num(s.soft->steps_per_contact) << "\n";
     y << "shot:\n"
-      << "  count: " << s.shot_count << "\n"
-      << "  diameter: " << num(s.shot_diameter_m) << " m\n";
+      << "  count: " << s.shot_count << "\n";
+    if (s.shot_sizes.empty()) {
+        y << "  diameter: " << num(s.shot_diameter_m) << " m\n";
+    } else {
+        y << "  fractions_by: count\n  sizes:\n";
+        for (const auto& [d, f] : s.shot_sizes) y << "    - {diameter: " << num(d) << " m, fraction: " << num(f) << "}\n";
+    }
     if (s.soft)
         y << "  material: shot_steel\n";
     else

@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -69,6 +70,8 @@ struct TestSceneSpec {
 
     int shot_count = 1;
     double shot_diameter_m = 2e-3;                 // m
+    // A mix instead (shot.sizes, fractions by count): (diameter m, count fraction) per size.
+    std::vector<std::pair<double, double>> shot_sizes;
     double shot_density_kg_per_m3 = 7800.0;        // kg/m3
     std::optional<Vec3> initial_velocity_m_per_s;  // m/s, every shot (shot.initial_velocity)
     std::optional<double> initial_speed_m_per_s;   // m/s, random upward directions (shot.initial_speed)

@@ -40,7 +40,7 @@ double resting_speed_for(const Model& m) { return std::max(kMinImpactSpeed, 2.0 
 
 EventStepping::EventStepping(std::shared_ptr<const Model> model)
     : model_(model),
-      pairs_(model->shot_count, model->shot_radius_m, resting_speed_for(*model)),
+      pairs_(model->shot_count, resting_speed_for(*model)),
       walls_(model),
       sustained_(std::move(model), resting_speed_for(*model_)),
       contact_state_(uses_contact_state(*model_)) {
@@ -48,7 +48,8 @@ EventStepping::EventStepping(std::shared_ptr<const Model> model)
     // Every kernel here solves exact parabolas; a scene with another flight runs time stepping.
     if (!m.flight->is_parabola())
         throw std::logic_error("the event scheme needs parabolic flights; this model's are '" + std::string(m.flight->name()) + "'");
-    R_ = m.shot_radius_m;
+    R_ = m.min_shot_radius_m;
+    R_max_ = m.max_shot_radius_m;
     g_ = m.gravity_m_per_s2;
     substep_ = kSubstep;
     resting_speed_ = resting_speed_for(m);
@@ -230,6 +231,7 @@ void EventStepping::shots_added(SimulationState& state, const std::vector<int>& 
         const std::uint32_t version = shots_[k].version;
         shots_[k] = Shot{};
         shots_[k].version = version;
+        shots_[k].radius_m = shot_radius(*model_, state.shots, k);
         active_[k] = 1;
         set_flight(i, state.shots.position(k), state.shots.velocity(k), t, Motion::flying);
         shots_[k].in_flight = true;
@@ -284,10 +286,11 @@ void EventStepping::start(SimulationState& state) {
         active_[k] = state.shots.active[k];
         if (!active_[k]) continue;
         const int i = static_cast<int>(k);
+        shots_[k].radius_m = shot_radius(*model_, state.shots, k);
         // A shot exactly still and touching a surface was asleep (sleeping shot are synchronised
         // with a zero velocity): it sleeps on, as it would in a run resumed from this state.
         const Vec3 p = state.shots.position(k), v = state.shots.velocity(k);
-        const bool asleep = v == Vec3::Zero() && touches_surface(p);
+        const bool asleep = v == Vec3::Zero() && touches_surface(p, shots_[k].radius_m);
         // A shot whose contacts a law remembers is in sustained contact: it goes on in substeps (a
         // flight would end those contacts, and their state, at every restart point).
         const bool sustained = !asleep && contact_state_ && has_contacts(state.contacts, i);
@@ -314,7 +317,7 @@ void EventStepping::start(SimulationState& state) {
 double EventStepping::resting_fraction(const SimulationState& state) const {
     // Still shot (slower than kHandOverSpeed) touching a surface or another still shot, over the
     // active ones. Neighbours by a sweep along x over the still shot sorted by x.
-    const double reach = 2.0 * R_ * (1.0 + kContactSlack);
+    const double reach = 2.0 * R_max_ * (1.0 + kContactSlack);  // the sweep's window; each pair is checked at its own
     std::size_t active = 0;
     std::vector<std::pair<double, std::size_t>> still;
     for (std::size_t k = 0; k < state.shots.size(); ++k) {
@@ -326,19 +329,24 @@ double EventStepping::resting_fraction(const SimulationState& state) const {
     std::sort(still.begin(), still.end());
     std::vector<unsigned char> resting(still.size(), 0);
     for (std::size_t a = 0; a < still.size(); ++a) {
-        if (!resting[a] && touches_surface(state.shots.position(still[a].second))) resting[a] = 1;
-        for (std::size_t b = a + 1; b < still.size() && still[b].first - still[a].first < reach; ++b)
-            if ((state.shots.position(still[a].second) - state.shots.position(still[b].second)).norm() < reach) resting[a] = resting[b] = 1;
+        const std::size_t ka = still[a].second;
+        const double Ra = shot_radius(*model_, state.shots, ka);
+        if (!resting[a] && touches_surface(state.shots.position(ka), Ra)) resting[a] = 1;
+        for (std::size_t b = a + 1; b < still.size() && still[b].first - still[a].first < reach; ++b) {
+            const std::size_t kb = still[b].second;
+            const double touch = (Ra + shot_radius(*model_, state.shots, kb)) * (1.0 + kContactSlack);
+            if ((state.shots.position(ka) - state.shots.position(kb)).norm() < touch) resting[a] = resting[b] = 1;
+        }
     }
     return static_cast<double>(std::count(resting.begin(), resting.end(), 1)) / static_cast<double>(active);
 }
 
-bool EventStepping::touches_surface(const Vec3& p) const {
+bool EventStepping::touches_surface(const Vec3& p, double R) const {
     for (const Component& comp : model_->components) {
         if (comp.kinematics.moves()) continue;  // nothing rests on a vibrating plate or a turning part
         MeshCollider::Closest closest;
         MeshCollider::QueryCounters counters;
-        if (comp.collider->closest_within(comp.kinematics.rest.to_component(p), R_ * (1.0 + kContactSlack), closest, counters)) return true;
+        if (comp.collider->closest_within(comp.kinematics.rest.to_component(p), R * (1.0 + kContactSlack), closest, counters)) return true;
     }
     return false;
 }
@@ -423,12 +431,12 @@ void EventStepping::predict_wall(int i, double t) {
             for (std::size_t c = 0; c < model_->components.size(); ++c) {
                 const Component& sono = model_->components[c];
                 if (sono.role != ComponentRole::sonotrode) continue;
-                const Vec3 reach = Vec3::Constant(2.0 * R_ + sono.kinematics.amplitude_m);
+                const Vec3 reach = Vec3::Constant(2.0 * s.radius_m + sono.kinematics.amplitude_m);
                 if (((p.array() > (sono.world_lo - reach).array()) && (p.array() < (sono.world_hi + reach).array())).all())
                     near_sonotrode = std::max(near_sonotrode, walls_.surface_speed(c));
             }
             const double speed = velocity(i, t).norm() + walls_.moving_part_speed() + near_sonotrode;
-            s.substep_s = speed > 0.0 ? std::clamp(kSubstepTravel * R_ / speed, kMinBoxHorizon, substep_) : substep_;
+            s.substep_s = speed > 0.0 ? std::clamp(kSubstepTravel * s.radius_m / speed, kMinBoxHorizon, substep_) : substep_;
             w.time = t + s.substep_s;
             w.kind = WallKind::substep;
             return;
@@ -451,8 +459,8 @@ void EventStepping::predict_wall(int i, double t) {
     // surfaces are searched from a hair later: the touch itself, read again at the same instant,
     // would be found again (its approach sign is rounding), forever. Within the hair the shot moves
     // 1e-9 R: anything it could enter meanwhile is found overlapping by this search.
-    const double t_search = t == s.graze_at ? t + kTouchDistance * R_ / std::max(path.v0.norm(), resting_speed_) : t;
-    w = walls_.first_event(path, t, t_search, t + window, stats_);
+    const double t_search = t == s.graze_at ? t + kTouchDistance * s.radius_m / std::max(path.v0.norm(), resting_speed_) : t;
+    w = walls_.first_event(path, s.radius_m, t, t_search, t + window, stats_);
 }
 
 void EventStepping::renew_box(int i, double t) {
@@ -474,8 +482,8 @@ void EventStepping::renew_box(int i, double t) {
             s.path.bounds(t, s.box_until, lo, hi);
         }
     }
-    s.box_lo = lo - Vec3::Constant(R_ + pad);
-    s.box_hi = hi + Vec3::Constant(R_ + pad);
+    s.box_lo = lo - Vec3::Constant(s.radius_m + pad);
+    s.box_hi = hi + Vec3::Constant(s.radius_m + pad);
     pairs_.set_box(i, s.box_lo, s.box_hi);
 }
 
@@ -488,7 +496,7 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
     switch (kind) {
         case WallKind::none:  // the end of a searched window: search the next (same flight)
             ++stats_.box_renewals;
-            s.window_travel = std::min(kMaxWindowTravel * R_, 2.0 * s.window_travel);
+            s.window_travel = std::min(kMaxWindowTravel * s.radius_m, 2.0 * s.window_travel);
             predict(i, t);
             return;
         case WallKind::leave: lose(i, t, state, false); return;
@@ -506,7 +514,7 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
     WallEvent w = s.wall;
     const auto c = static_cast<std::size_t>(w.component);
     const Component& comp = model_->components[c];
-    if (comp.solid && w.mesh_triangle >= 0 && walls_.put_out_of_solid(c, t, w, p)) {
+    if (comp.solid && w.mesh_triangle >= 0 && walls_.put_out_of_solid(c, s.radius_m, t, w, p)) {
         // The centre was inside the solid (it reached its surface from within): put back out
         // through the face it lies behind; never a rebound that keeps it inside.
         ++state.health.deep_penetrations;
@@ -514,8 +522,8 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
     } else if (w.overlapping) {
         // Found inside the surface (an approximated rider, a rounding): moved out, no energy added.
         p += w.depth * w.normal;
-        if (w.depth > contact::kOverlapWorthCounting * R_) ++state.health.mesh_overlap_corrections;
-        if (w.depth > contact::kDeepPenetration * R_) ++state.health.deep_penetrations;
+        if (w.depth > contact::kOverlapWorthCounting * s.radius_m) ++state.health.mesh_overlap_corrections;
+        if (w.depth > contact::kDeepPenetration * s.radius_m) ++state.health.deep_penetrations;
     }
     const Vec3& n = w.normal;
     const Vec3& vs = w.surface_velocity;
@@ -535,7 +543,7 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         const Pose pose = comp.kinematics.pose(epoch_, t);
         const ContactSite site{i, w.component, w.mesh_triangle, &pose, w.point, absolute_seconds(t), 0.0};
         const contact::SurfaceContactResponse r =
-            comp.law->impact(surface_input(*model_, site, v, vs, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
+            comp.law->impact(surface_input(*model_, state.shots, site, v, vs, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
                              law_state(state, c));
         if (impact) {
             record_impact(*model_, state, impacts, absolute_seconds(t), i, w.component, w.triangle, pose, w.point, v, w.surface_velocity,
@@ -655,11 +663,11 @@ void EventStepping::launch(int i, double t, SimulationState& state) {
     const auto c = static_cast<std::size_t>(s.ride_component);
     const Component& comp = model_->components[c];
     const Pose pose = comp.kinematics.pose(epoch_, s.ride_start);
-    const ContactSite site{i,  s.ride_component, -1, &pose, position(i, s.ride_start) - R_ * s.ride_normal, absolute_seconds(s.ride_start),
+    const ContactSite site{i,  s.ride_component, -1, &pose, position(i, s.ride_start) - s.radius_m * s.ride_normal, absolute_seconds(s.ride_start),
                            0.0};
     const Vec3 v0 = plane.velocity(s.ride_start);
     const contact::SurfaceContactResponse r =
-        comp.law->sustain(surface_input(*model_, site, v0 + s.ride_tangential, v0, s.ride_normal, false, ride > 0.0 ? impulse / ride : 0.0,
+        comp.law->sustain(surface_input(*model_, state.shots, site, v0 + s.ride_tangential, v0, s.ride_normal, false, ride > 0.0 ? impulse / ride : 0.0,
                                         ride, instant_contact_state(contact_scratch_, *model_, c)),
                           law_state(state, c));
     const Vec3 tangential = r.v_shot - v0 - (r.v_shot - v0).dot(s.ride_normal) * s.ride_normal;
@@ -693,13 +701,14 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state,
     bool slow = false, impact = false;
     const Vec3 n = d > 0.0 ? Vec3(r / d) : Vec3(Vec3::Zero());  // from i towards j
     if (d > 0.0) {
-        if (d < 2.0 * R_) {
+        const double touch = a.radius_m + b.radius_m;
+        if (d < touch) {
             // Overlap (a rider's approximated path, or a rounding): removed symmetrically, positions only.
-            const double depth = 2.0 * R_ - d;
-            if (depth > kTouchDistance * 2.0 * R_) {
+            const double depth = touch - d;
+            if (depth > kTouchDistance * touch) {
                 pi -= 0.5 * depth * n;
                 pj += 0.5 * depth * n;
-                if (depth > contact::kOverlapWorthCounting * R_) ++state.health.shot_overlap_corrections;
+                if (depth > contact::kOverlapWorthCounting * std::min(a.radius_m, b.radius_m)) ++state.health.shot_overlap_corrections;
             }
         }
         const double approach = -(vj - vi).dot(n);
@@ -719,7 +728,7 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state,
             slow = mode == contact::ShotShotMode::sustained;
             if (mode == contact::ShotShotMode::collapse_guard) ++stats_.collapse_guards;
             const contact::ShotShotResponse resp =
-                model_->shot_shot_law->respond(shot_shot_input(*model_, i, j, vi, vj, n, mode, (pj - pi).norm(), absolute_seconds(t)));
+                model_->shot_shot_law->respond(shot_shot_input(*model_, state.shots, i, j, vi, vj, n, mode, (pj - pi).norm(), absolute_seconds(t)));
             vi = resp.v_i;
             vj = resp.v_j;
             if (impact) ++state.shot_shot_impacts;
@@ -751,7 +760,7 @@ void EventStepping::wake_neighbours(int i, double t) {
         const int k = wake_stack_.back();
         wake_stack_.pop_back();
         const Vec3 p = position(k, t);
-        const Vec3 reach = Vec3::Constant(2.0 * R_ + kContactSlack * R_);
+        const Vec3 reach = Vec3::Constant(shots_[static_cast<std::size_t>(k)].radius_m + R_max_ + kContactSlack * R_max_);
         pairs_.overlapping(p - reach, p + reach, neighbours_);
         const std::size_t first_woken = woken_.size();
         for (const int j : neighbours_) {
@@ -785,7 +794,8 @@ void EventStepping::lose(int i, double t, SimulationState& state, bool non_finit
         l.time_s = absolute_seconds(t);
         l.position_m = position(i, t);
         const Trajectory& flight = shots_[k].path;  // exact since the shot's last event
-        diagnose_loss(*model_, epoch_, flight, flight.t0, t, l);
+        l.radius_m = shots_[k].radius_m;
+        diagnose_loss(*model_, epoch_, flight, l.radius_m, flight.t0, t, l);
         if (l.cause == LossCause::engine_error) ++state.health.engine_errors;
         state.lost.push_back(l);
     }

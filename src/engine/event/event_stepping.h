@@ -119,7 +119,8 @@ private:
     void schedule(int i);
     double key(const Shot& s) const;
     // A component that does not move within R (plus the contact slack) of p.
-    bool touches_surface(const Vec3& p) const;
+    // A shot of radius R (m) centred at p touches a static surface.
+    bool touches_surface(const Vec3& p, double R) const;
     double resting_fraction(const SimulationState& state) const;  // of the active shot, still on a surface
 
     void collide_wall(int i, double t, SimulationState& state, std::vector<ImpactRecord>& impacts);
@@ -191,7 +192,8 @@ private:
     std::vector<SoftExit> exits_;          // scratch: members that left the pool
     std::vector<double> contact_scratch_;  // an instantaneous contact's state (zeros)
 
-    double R_ = 0.0;                // m
+    double R_ = 0.0;                // m, the smallest shot radius (scales the scheme's tolerances and windows)
+    double R_max_ = 0.0;            // m, the largest (how far a neighbour's centre can be)
     Vec3 g_ = Vec3::Zero();         // m/s2
     double resting_speed_ = 0.0;    // m/s, what gravity adds in two substeps: slower is still (sleep), a slower rebound is none
     double impact_speed_ = 0.0;     // m/s, Model::impact_speed_m_per_s: slower contacts are no impacts (sustained contact)

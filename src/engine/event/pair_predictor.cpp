@@ -10,8 +10,8 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
-PairPredictor::PairPredictor(int shot_count, double shot_radius_m, double resting_speed_m_per_s)
-    : shot_count_(shot_count), R_(shot_radius_m), resting_speed_(resting_speed_m_per_s), boxes_(std::make_unique<ShotBoxTree>(shot_count)) {
+PairPredictor::PairPredictor(int shot_count, double resting_speed_m_per_s)
+    : shot_count_(shot_count), resting_speed_(resting_speed_m_per_s), boxes_(std::make_unique<ShotBoxTree>(shot_count)) {
     neighbours_.reserve(64);
 }
 
@@ -51,7 +51,7 @@ bool PairPredictor::predict(int i, double t, std::span<EventShot> shots, const s
         if (end < t) continue;
         ++stats.pair_tests;
         PairContact pc;
-        const ToiStatus st = sphere_pair_toi(s.path, R_, o.path, R_, t, end, pc);
+        const ToiStatus st = sphere_pair_toi(s.path, s.radius_m, o.path, o.radius_m, t, end, pc);
         if (st == ToiStatus::miss) continue;
         // Riding shots' paths leave out the plate's motion: their exact positions are checked in collide_pair.
         if (st == ToiStatus::overlapping || pc.time == t) {

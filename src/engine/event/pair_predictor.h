@@ -17,8 +17,9 @@ namespace peensim {
 
 class PairPredictor {
 public:
-    // resting_speed_m_per_s: a shot touching a resting one slower than this joins its pile.
-    PairPredictor(int shot_count, double shot_radius_m, double resting_speed_m_per_s);
+    // resting_speed_m_per_s: a shot touching a resting one slower than this joins its pile. Each
+    // shot's radius is its record's (EventShot::radius_m).
+    PairPredictor(int shot_count, double resting_speed_m_per_s);
 
     void reset();                                            // an empty tree (a restart)
     void grow(int shot_count);                               // room for shot_count shot (a source emitted)
@@ -39,7 +40,6 @@ public:
 
 private:
     int shot_count_;
-    double R_;              // m
     double resting_speed_;  // m/s
     std::unique_ptr<ShotBoxTree> boxes_;
     std::vector<int> neighbours_;  // scratch

@@ -45,7 +45,6 @@ public:
 
 private:
     std::shared_ptr<const Model> model_;
-    double R_ = 0.0;               // m
     Vec3 g_ = Vec3::Zero();        // m/s2
     double resting_speed_ = 0.0;   // m/s
     bool contact_state_ = false;   // a law keeps state per contact (SimulationState::contacts)

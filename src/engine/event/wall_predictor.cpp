@@ -19,7 +19,6 @@ constexpr int kMaxAdvancement = 2000;  // conservative-advancement iterations pe
 
 WallPredictor::WallPredictor(std::shared_ptr<const Model> model) : model_(std::move(model)) {
     const Model& m = *model_;
-    R_ = m.shot_radius_m;
     face_of_.assign(m.components.size(), -1);
     for (std::size_t k = 0; k < m.components.size(); ++k) {
         const Component& c = m.components[k];
@@ -53,7 +52,7 @@ Vec3 WallPredictor::face_direction(const Model& m, std::size_t c) {
     return axis.dot(up) >= 0.0 ? axis : Vec3(-axis);
 }
 
-WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_search, double window_end, StepStats& stats) const {
+WallEvent WallPredictor::first_event(const Trajectory& path, double R, double t, double t_search, double window_end, StepStats& stats) const {
     WallEvent w;
     const double t_leave = leave_time(path, t);
     w.time = std::min(t_leave, window_end);
@@ -71,8 +70,8 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_
     // The window's sphere bounds: a component whose (swept) bounds they miss cannot be reached.
     Vec3 reach_lo, reach_hi;
     path.bounds(t, w.time, reach_lo, reach_hi);
-    reach_lo -= Vec3::Constant(1.001 * R_);
-    reach_hi += Vec3::Constant(1.001 * R_);
+    reach_lo -= Vec3::Constant(1.001 * R);
+    reach_hi += Vec3::Constant(1.001 * R);
     for (std::size_t k = 0; k < m.components.size(); ++k) {
         const int c = static_cast<int>(k);
         const Component& comp = m.components[k];
@@ -82,7 +81,7 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_
         bool hit = false;
         if (face_of_[k] >= 0) {
             const SonotrodeFace& face = faces_[static_cast<std::size_t>(face_of_[k])];
-            hit = face_contact(c, path, t_search, w.time, found, stats);
+            hit = face_contact(c, path, R, t_search, w.time, found, stats);
             if (face.rest_collider && !(hit && found.overlapping)) {
                 // The sonotrode's other triangles move by at most A: a static sweep with the radius
                 // grown by A finds when the shot can first reach them, advancement settles it.
@@ -93,26 +92,26 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double t, double t_
                                        t};
                 const double t_limit = hit ? found.time : w.time;
                 const ToiStatus st =
-                    face.rest_collider->first_hit(local, R_ + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
+                    face.rest_collider->first_hit(local, R + comp.kinematics.amplitude_m, t_search, t_limit, near, counters);
                 if (st != ToiStatus::miss) {
                     WallEvent side;
                     const AdvancementResult r = advance_to_contact(c, *face.rest_collider, face.rest_mesh->source_facet, surface_speed_[k],
-                                                                   path, near.contact.time, t_limit, side);
+                                                                   path, R, near.contact.time, t_limit, side);
                     if (r.exhausted) resume_search_at(w, r.searched_until, stats);
                     if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
                 }
             }
         } else if (comp.kinematics.moves()) {
-            SweptSphere sweep(path, R_, t_search, w.time);
+            SweptSphere sweep(path, R, t_search, w.time);
             TimeSpan span;
             if (sweep.span(comp.world_lo, comp.world_hi, span)) {
-                const AdvancementResult r = advance_to_contact(c, *comp.collider, facets_[k], surface_speed_[k], path,
+                const AdvancementResult r = advance_to_contact(c, *comp.collider, facets_[k], surface_speed_[k], path, R,
                                                                std::max(t_search, span.first), std::min(w.time, span.last), found);
                 if (r.exhausted) resume_search_at(w, r.searched_until, stats);
                 hit = r.found;
             }
         } else {
-            hit = static_contact(c, path, t_search, w.time, found, stats);
+            hit = static_contact(c, path, R, t_search, w.time, found, stats);
         }
         if (!hit) continue;
         if (found.overlapping || found.time < w.time) {
@@ -137,7 +136,7 @@ void WallPredictor::resume_search_at(WallEvent& w, double t, StepStats& stats) {
     w.kind = WallKind::none;
 }
 
-bool WallPredictor::put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const {
+bool WallPredictor::put_out_of_solid(std::size_t c, double R, double t, WallEvent& w, Vec3& p) const {
     const Component& comp = model_->components[c];
     const Pose pose = comp.kinematics.pose(epoch_, t);
     const auto tri = static_cast<std::size_t>(w.mesh_triangle);
@@ -151,7 +150,7 @@ bool WallPredictor::put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3
     if (foot.feature != TriangleFeature::face || !(face.dot(local - foot.point) < 0.0)) return false;
     w.normal = pose.rotation * face.normalized();
     w.point = pose.to_world(foot.point);
-    p = w.point + R_ * w.normal;
+    p = w.point + R * w.normal;
     if (comp.kinematics.moves()) {
         w.surface_velocity = comp.kinematics.point_velocity(w.point, epoch_, t);
         w.surface_acceleration = comp.kinematics.point_acceleration(w.point, epoch_, t);
@@ -159,14 +158,14 @@ bool WallPredictor::put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3
     return true;
 }
 
-bool WallPredictor::static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const {
+bool WallPredictor::static_contact(int c, const Trajectory& path, double R, double t, double t_end, WallEvent& out, StepStats& stats) const {
     const Component& comp = model_->components[static_cast<std::size_t>(c)];
     const Pose& rest = comp.kinematics.rest;
     const Mat3 to_local = rest.rotation.transpose();
     const Trajectory local{rest.to_component(path.p0), to_local * path.v0, to_local * path.g, path.t0};
     MeshCollider::Hit hit;
     MeshCollider::SweepCounters counters;
-    const ToiStatus st = comp.collider->first_hit(local, R_, t, t_end, hit, counters);
+    const ToiStatus st = comp.collider->first_hit(local, R, t, t_end, hit, counters);
     stats.bvh_queries += 1;
     stats.triangle_tests += counters.leaves_visited;
     if (st == ToiStatus::miss) return false;
@@ -176,21 +175,21 @@ bool WallPredictor::static_contact(int c, const Trajectory& path, double t, doub
     out.triangle = facets_[static_cast<std::size_t>(c)][static_cast<std::size_t>(hit.triangle)];
     out.mesh_triangle = hit.triangle;
     out.overlapping = st == ToiStatus::overlapping;
-    if (out.overlapping) out.depth = std::max(0.0, R_ - (path.position(t) - out.point).norm());
+    if (out.overlapping) out.depth = std::max(0.0, R - (path.position(t) - out.point).norm());
     return true;
 }
 
-bool WallPredictor::face_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const {
+bool WallPredictor::face_contact(int c, const Trajectory& path, double R, double t, double t_end, WallEvent& out, StepStats& stats) const {
     const SonotrodeFace& face = faces_[static_cast<std::size_t>(face_of_[static_cast<std::size_t>(c)])];
     PlaneContact pc;
-    const ToiStatus st = vibrating_plane_toi(path, R_, face.plane, t, t_end, pc);
+    const ToiStatus st = vibrating_plane_toi(path, R, face.plane, t, t_end, pc);
     ++stats.touch_searches;
     if (st == ToiStatus::miss) return false;
     // Only where the plane is the face: the foot of the centre must lie on one of its triangles.
     const Component& sono = model_->components[static_cast<std::size_t>(c)];
     const Pose pose = sono.kinematics.pose(epoch_, pc.time);
     int triangle = -1;
-    if (!face.contains(sono, pose.to_component(pc.point), kTouchDistance * R_ + 1e-12, triangle)) return false;
+    if (!face.contains(sono, pose.to_component(pc.point), kTouchDistance * R + 1e-12, triangle)) return false;
     out.time = pc.time;
     out.point = pc.point;
     out.normal = pc.normal;
@@ -199,13 +198,13 @@ bool WallPredictor::face_contact(int c, const Trajectory& path, double t, double
     out.face = true;
     out.triangle = facets_[static_cast<std::size_t>(c)][static_cast<std::size_t>(triangle)];
     out.overlapping = st == ToiStatus::overlapping;
-    if (out.overlapping) out.depth = std::max(0.0, -vibrating_plane_gap(path, R_, face.plane, t));
+    if (out.overlapping) out.depth = std::max(0.0, -vibrating_plane_gap(path, R, face.plane, t));
     return true;
 }
 
 WallPredictor::AdvancementResult WallPredictor::advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets,
-                                                                   double surface_speed, const Trajectory& path, double t, double t_end,
-                                                                   WallEvent& out) const {
+                                                                   double surface_speed, const Trajectory& path, double R, double t,
+                                                                   double t_end, WallEvent& out) const {
     // Conservative advancement: the distance from the centre to the moving mesh changes no faster
     // than the shot's speed plus the fastest surface point's, so after measuring a gap d the shot
     // cannot touch for d / (that speed). Converges on the touch from outside; exact distances
@@ -215,7 +214,7 @@ WallPredictor::AdvancementResult WallPredictor::advance_to_contact(int c, const 
     const bool solid = comp.solid && &collider == comp.collider.get();
     const double V = path.max_speed(t, t_end) + surface_speed;
     if (!(V > 0.0)) return {};
-    const double look = 2.0 * R_, tolerance = kTouchDistance * R_;
+    const double look = 2.0 * R, tolerance = kTouchDistance * R;
     double u = t;
     bool at_start = true;
     for (int it = 0; it < kMaxAdvancement; ++it) {
@@ -225,13 +224,13 @@ WallPredictor::AdvancementResult WallPredictor::advance_to_contact(int c, const 
         const Vec3 local = pose.to_component(centre);
         MeshCollider::Closest closest;
         MeshCollider::QueryCounters counters;
-        if (!collider.closest_within(local, R_ + look, closest, counters)) {
+        if (!collider.closest_within(local, R + look, closest, counters)) {
             u += look / V;
             at_start = false;
             continue;
         }
         const SurfaceClearance clear = surface_clearance(solid ? *comp.mesh : collider_mesh(c, collider), solid, local, closest);
-        const double d = clear.distance_m - R_;
+        const double d = clear.distance_m - R;
         if (d > tolerance) {
             u += d / V;
             at_start = false;
@@ -246,7 +245,7 @@ WallPredictor::AdvancementResult WallPredictor::advance_to_contact(int c, const 
         if (!out.overlapping && approach <= 0.0) {
             // Touching but separating (the shot has just left this surface): not a contact; move on
             // by a hair so that time progresses, and keep watching for the return.
-            u += (at_start ? 1e-3 : 1e-6) * R_ / V;
+            u += (at_start ? 1e-3 : 1e-6) * R / V;
             at_start = false;
             continue;
         }

@@ -25,19 +25,20 @@ public:
     // since it (the face's phase is rebased to it).
     void set_epoch(const SimTime& epoch);
 
-    // The first event of the flight `path` (rebased at t) with a surface, searched over
+    // The first event of the flight `path` (rebased at t) of a shot of radius R (m) with a surface, searched over
     // [t_search, window_end]: a contact (kind contact; overlapping if the shot is already in a
     // surface at t_search), leaving the world box (kind leave), or nothing found (kind none) at
     // the window's end or where a moving-mesh search ran out of iterations (the search goes on
     // from there). Counts its work in `stats`.
-    WallEvent first_event(const Trajectory& path, double t, double t_search, double window_end, StepStats& stats) const;
+    WallEvent first_event(const Trajectory& path, double R, double t, double t_search, double window_end, StepStats& stats) const;
 
     // The first time after t the centre leaves the world box (t if it is outside already).
     double leave_time(const Trajectory& path, double t) const;
 
-    // If the centre p (world) lies behind the face of w.mesh_triangle of solid component c at time
-    // t, moves p out to touch that face and sets w's point, normal and surface motion: true.
-    bool put_out_of_solid(std::size_t c, double t, WallEvent& w, Vec3& p) const;
+    // If the centre p (world) of a shot of radius R (m) lies behind the face of w.mesh_triangle of
+    // solid component c at time t, moves p out to touch that face and sets w's point, normal and
+    // surface motion: true.
+    bool put_out_of_solid(std::size_t c, double R, double t, WallEvent& w, Vec3& p) const;
 
     // Each vibrating sonotrode's face (its exact vibrating plane): face(c) for component c, which
     // has_face(c).
@@ -56,19 +57,18 @@ private:
         double searched_until = 0.0;  // s
     };
 
-    bool static_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const;
-    bool face_contact(int c, const Trajectory& path, double t, double t_end, WallEvent& out, StepStats& stats) const;
+    bool static_contact(int c, const Trajectory& path, double R, double t, double t_end, WallEvent& out, StepStats& stats) const;
+    bool face_contact(int c, const Trajectory& path, double R, double t, double t_end, WallEvent& out, StepStats& stats) const;
     // Unit, world: the direction component c's face looks into the chamber (see the .cpp).
     static Vec3 face_direction(const Model& m, std::size_t c);
     AdvancementResult advance_to_contact(int c, const MeshCollider& collider, const std::vector<int>& facets, double surface_speed,
-                                         const Trajectory& path, double t, double t_end, WallEvent& out) const;
+                                         const Trajectory& path, double R, double t, double t_end, WallEvent& out) const;
     // The search found nothing up to t and must go on from there: the event becomes a window end at t
     // if that comes before what `w` holds.
     static void resume_search_at(WallEvent& w, double t, StepStats& stats);
     const TriangleMesh& collider_mesh(int c, const MeshCollider& collider) const;  // the mesh `collider` was built over
 
     std::shared_ptr<const Model> model_;
-    double R_ = 0.0;  // m
     SimTime epoch_;
     std::vector<int> face_of_;                // per component: index into faces_, -1: none
     std::vector<SonotrodeFace> faces_;        // one per vibrating sonotrode

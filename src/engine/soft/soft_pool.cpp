@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
 
 #include "contact/contact_policy.h"
@@ -45,8 +46,11 @@ double onset_speed(const contact::HertzPair& elastic, double gap_before_m, doubl
 
 SoftPool::SoftPool(std::shared_ptr<const Model> model, const WallPredictor& walls) : model_(std::move(model)), walls_(walls) {
     const Model& m = *model_;
-    R_ = m.shot_radius_m;
-    mass_ = m.shot_mass_kg;
+    // One size: the scene refuses a mix with the soft scheme (its Hertz-Mindlin pairs are built
+    // for one radius and mass).
+    if (m.has_size_mix()) throw std::logic_error("the soft scheme runs shot of one size");
+    R_ = m.shot_sizes.front().radius_m;
+    mass_ = m.shot_sizes.front().mass_kg;
     inertia_ = 0.4 * mass_ * R_ * R_;
     g_ = m.gravity_m_per_s2;
     line_speed_ = m.impact_speed_m_per_s;
@@ -583,6 +587,7 @@ void SoftPool::end_contact(const Live& l, double t, SimulationState& state, std:
     rec.v_out_m_per_s = poses_[c].rotation.transpose() * rel;
     rec.vn_out_m_per_s = std::max(0.0, rel.dot(l.c.normal));
     rec.duration_s = epoch_.hi + (epoch_.lo + ended) - l.c.start_time_s;
+    rec.shot_diameter_m = 2.0 * R_;  // one size (the soft scheme refuses a mix)
     impacts.push_back(rec);
 }
 
