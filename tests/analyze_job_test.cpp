@@ -9,6 +9,8 @@
 #include <map>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "analysis/impact_log_reader.h"
 #include "app/analyze_job.h"
 #include "app/run_job.h"
@@ -85,6 +87,39 @@ TEST(AnalyzeJob, CountsAddUpAndCoverageOnlyGrows) {
     // The ParaView files (their format is checked against VTK's reader in output_vtp_test).
     EXPECT_GT(fs::file_size(a / "rod.vtp"), 6720u * 6 * 8);  // six cell fields of doubles at least
     EXPECT_GT(fs::file_size(a / "rod_impacts.vtp"), rows * 8 * 8);
+}
+
+// figures.json: the report's figures as data, agreeing with the log they come from.
+TEST(AnalyzeJob, FiguresJsonAgreesWithTheLog) {
+    TempDir dir;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(rod_run(dir.path, 0.1), out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    std::uint64_t rows = 0;
+    double speed = 0.0;
+    std::vector<std::uint64_t> batch(10, 0);
+    {
+        ImpactLogReader reader((dir.path / "impacts.csv").string());
+        for (ImpactRow row; reader.next(row);) {
+            ++rows;
+            speed += row.vn_in_m_per_s;
+            ++batch[static_cast<std::size_t>(std::min(9, static_cast<int>(row.time_s / 0.1 * 10)))];
+        }
+    }
+    std::ifstream in(dir.path / "analysis" / "figures.json");
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_DOUBLE_EQ(j["duration_s"].get<double>(), 0.1);
+    const auto& rod = j["components"][0];
+    EXPECT_EQ(rod["component"], "rod");
+    EXPECT_EQ(rod["impacts"].get<std::uint64_t>(), rows);
+    EXPECT_NEAR(rod["impact_rate_per_s"].get<double>(), static_cast<double>(rows) / 0.1, 1e-9);
+    EXPECT_NEAR(rod["mean_vn_mps"].get<double>(), speed / static_cast<double>(rows), 1e-12);
+    for (std::size_t b = 0; b < 10; ++b)
+        EXPECT_NEAR(rod["batch_impact_rate_per_s"][b].get<double>(), static_cast<double>(batch[b]) / 0.01, 1e-6) << "batch " << b;
+    EXPECT_GT(rod["coverage"].get<double>(), 0.0);
+    EXPECT_GT(rod["time_to_98_s"].get<double>(), 0.0);
+    EXPECT_TRUE(rod["avrami_k_se_per_s"].is_number());
+    EXPECT_TRUE(rod["regions"].is_array());
 }
 
 TEST(AnalyzeJob, AnInterruptedRunIsAnalysedWithANote) {

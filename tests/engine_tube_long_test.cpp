@@ -44,7 +44,7 @@
 
 #include "engine/run_loop.h"
 #include "engine/simulation.h"
-#include "support/student_t.h"
+#include "analysis/student_t.h"
 #include "support/test_scene.h"
 #include "support/tube_scene.h"
 #include "support/vibrating_floor_reference.h"

@@ -16,6 +16,7 @@
 
 #include "app/check_job.h"
 #include "app/run_job.h"
+#include "app/sweep_plan.h"
 #include "scene/schema.h"
 #include "support/temp_dir.h"
 
@@ -91,11 +92,17 @@ TEST(Readme, ExampleCommandsAreValidScenesAndOverrides) {
         if (command.find(" [") != std::string::npos || command.find("SCENE") != std::string::npos || command.find('|') != std::string::npos)
             continue;  // the synopsis
         const std::vector<std::string> words = shell_words(command);
-        if (words.size() < 2 || (words[1] != "run" && words[1] != "check" && words[1] != "bench")) continue;
-        std::vector<std::string> scenes, overrides;
+        if (words.size() < 2 || (words[1] != "run" && words[1] != "check" && words[1] != "bench" && words[1] != "sweep")) continue;
+        std::vector<std::string> scenes, overrides, varied;
         for (std::size_t k = 2; k < words.size(); ++k) {
             if (words[k] == "--set" && k + 1 < words.size()) {
                 overrides.push_back(words[++k]);
+            } else if (words[k] == "--vary" && k + 1 < words.size()) {
+                // A sweep's every value, each checked as its own --set.
+                const peensim::SweepAxis axis = peensim::parse_sweep_axis(words[++k]);
+                for (const std::string& v : axis.values) varied.push_back(axis.path + "=" + v);
+            } else if (words[k] == "--seeds" || words[k] == "--jobs" || words[k] == "--baseline") {
+                ++k;
             } else if (words[k] == "-o" || words[k] == "--scheme" || words[k] == "--duration" || words[k] == "--schemes" ||
                        words[k] == "--csv" || words[k] == "--stop-after-steps") {
                 ++k;
@@ -107,9 +114,17 @@ TEST(Readme, ExampleCommandsAreValidScenesAndOverrides) {
             for (const char* s : {"scenes/rod.yaml", "scenes/gear.yaml", "scenes/rotating-gear.yaml", "scenes/almen.yaml"})
                 scenes.push_back(s);
         for (const std::string& scene : scenes) {
-            std::ostringstream out, err;
-            EXPECT_EQ(peensim::check_job(source + "/" + scene, overrides, false, out, err), fails ? 2 : 0) << command << "\n" << err.str();
-            EXPECT_EQ(err.str().find("warning"), std::string::npos) << command << "\n" << err.str();
+            std::vector<std::vector<std::string>> variants{overrides};
+            if (!varied.empty()) variants.clear();
+            for (const std::string& v : varied) {
+                variants.push_back(overrides);
+                variants.back().push_back(v);
+            }
+            for (const std::vector<std::string>& set : variants) {
+                std::ostringstream out, err;
+                EXPECT_EQ(peensim::check_job(source + "/" + scene, set, false, out, err), fails ? 2 : 0) << command << "\n" << err.str();
+                EXPECT_EQ(err.str().find("warning"), std::string::npos) << command << "\n" << err.str();
+            }
             ++checked;
         }
     }

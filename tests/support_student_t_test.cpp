@@ -1,9 +1,9 @@
-// The Student's t helpers the statistical tests use (support/student_t.h), against tabulated values.
+// The Student's t helpers (analysis/student_t.h: the statistical tests and the sweep's confidence intervals), against tabulated values.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "support/student_t.h"
+#include "analysis/student_t.h"
 
 namespace peensim::testing {
 namespace {

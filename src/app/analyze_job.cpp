@@ -11,6 +11,7 @@
 
 #include "analysis/impact_stream.h"
 #include "analysis/part_coverage.h"
+#include "app/analysis_figures.h"
 #include "app/analysis_plots.h"
 #include "app/analysis_report.h"
 #include "app/analysis_tables.h"
@@ -114,7 +115,7 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
 
 
 // Adds one impact row to a component's statistics (the ParaView points are written by the reader thread).
-void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescription& scene) {
+void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescription& scene, double duration) {
     // The impacting shot: a mix's log names its diameter, a log of one size has that size.
     const double D = row.shot_diameter_m > 0.0 ? row.shot_diameter_m : scene.shot.sizes.front().diameter_m;
     if (row.shot_diameter_m == 0.0 && scene.shot.sizes.size() > 1)
@@ -123,6 +124,9 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
     const int t = a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s, mass);
     ++a.impacts;
     a.speed_sum += row.vn_in_m_per_s;
+    const auto batch = static_cast<std::size_t>(std::clamp(static_cast<int>(row.time_s / duration * kFigureBatches), 0, kFigureBatches - 1));
+    ++a.batch_impacts[batch];
+    a.batch_speed_sum[batch] += row.vn_in_m_per_s;
     double dent = std::numeric_limits<double>::quiet_NaN();
     if (a.coverage) {
         dent = dent_diameter(D, scene.shot.density_kg_per_m3, row.vn_in_m_per_s, a.yield_stress_pa);
@@ -220,7 +224,7 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
         for (auto block = stream.next_block(); !block.empty(); block = stream.next_block()) {
             for (const IndexedImpact& impact : block) {
                 sample_until(impact.row.time_s);
-                if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene);
+                if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene, duration);
             }
         }
         sample_until(duration);
@@ -233,6 +237,7 @@ int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& 
         read_flow_figures(dir, context);
         context.pngs = write_analysis_plots(adir.string(), names, context.plot_note);
         write_file_atomically((adir / "report.md").string(), analysis_report(scene, parts, context));
+        write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, duration));
         out << analysis_summary_table(parts, duration) << "analysis: " << adir.string()
             << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp"
             << (context.pngs.empty() ? "" : ", *.png") << "}\n";

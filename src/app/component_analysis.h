@@ -2,6 +2,7 @@
 // shared by the job (which fills it) and the writers of tables and of the report (which read it).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -20,6 +21,9 @@
 #include "scene/scene_description.h"
 
 namespace peensim {
+
+// Time batches the run is cut into for batch means (a confidence interval from one run).
+inline constexpr int kFigureBatches = 10;
 
 // The Almen side of a component with role almen.
 struct AlmenAnalysis {
@@ -62,6 +66,9 @@ struct ComponentAnalysis {
         double energy_J = 0.0;   // J, 1/2 m v_n^2 summed
     };
     std::vector<SizeTally> sizes;
+    // Per batch of the run's time (batch means, analysis_figures.h): impacts and their summed normal speed.
+    std::array<std::uint64_t, kFigureBatches> batch_impacts{};
+    std::array<double, kFigureBatches> batch_speed_sum{};  // m/s
 };
 
 }  // namespace peensim

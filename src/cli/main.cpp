@@ -1,4 +1,4 @@
-// The `peensim` command line: run, check, analyze, render-impacts, bench, trade, export-fem, generate, schema.
+// The `peensim` command line: run, check, analyze, render-impacts, sweep, bench, trade, export-fem, generate, schema.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -10,6 +10,7 @@
 #include "app/export_fem_job.h"
 #include "app/render_module.h"
 #include "app/run_job.h"
+#include "app/sweep_job.h"
 #include "cli/generate_command.h"
 #include "scene/schema.h"
 
@@ -64,6 +65,19 @@ int main(int argc, char** argv) {
     render_impacts_cmd->add_option("--field", render_impacts.fields, "impacts, speed or coverage (repeatable; default: all)");
     render_impacts_cmd->add_option("--width", render_impacts.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
     render_impacts_cmd->add_option("--height", render_impacts.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
+
+    SweepOptions sweep;
+    auto* sweep_cmd = app.add_subcommand(
+        "sweep", "what-if sweep: every combination of --vary values x --seeds replicates, run on the local cores, compared (DIR/sweep/)");
+    sweep_cmd->add_option("scene", sweep.scene_path, "scene file (YAML), or a sweep file naming one (see the README's \"What-if sweeps\")")->required();
+    sweep_cmd->add_option("-o,--output", sweep.output_dir, "the sweep's directory: a run directory per variant and seed, and sweep/")->required();
+    sweep_cmd->add_option("--vary", sweep.vary, "a scene field and its values: path=v1,v2,... (repeatable: every combination)")
+        ->allow_extra_args(false);
+    sweep_cmd->add_option("--seeds", sweep.seeds, "replicates per variant from process.seed, +1, ... (default: the sweep file's, else 1)")
+        ->check(CLI::Range(1, 1000));
+    sweep_cmd->add_option("--set", sweep.overrides, "override a scene field for every run")->allow_extra_args(false);
+    sweep_cmd->add_option("--jobs", sweep.jobs, "runs at once (default: every core)")->check(CLI::Range(1, 4096));
+    sweep_cmd->add_option("--baseline", sweep.baseline, "the variant the others are compared with (default: the first)");
 
     BenchOptions bench;
     auto* bench_cmd = app.add_subcommand(
@@ -146,6 +160,7 @@ int main(int argc, char** argv) {
             return kExitRuntimeError;
         }
     }
+    if (*sweep_cmd) return sweep_job(sweep, std::cout, std::cerr);
     if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
     if (*trade_cmd) return trade_job(trade, std::cout, std::cerr);
     if (*fem_cmd) return export_fem_job(fem, std::cout, std::cerr);

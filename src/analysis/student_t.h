@@ -1,4 +1,4 @@
-// Student's t distribution, for comparisons of means whose standard errors are themselves
+// Student's t distribution (the statistical tests, the sweep's confidence intervals), for comparisons of means whose standard errors are themselves
 // estimated from few samples (16 columns, 10 batches): their ratio |difference| / SE follows t
 // with (Welch-Satterthwaite) degrees of freedom, not the normal law, and its tails are much
 // heavier (a 4.24 SE excess has a chance 2.2e-5 under the normal law, 2.3e-4 under t with 30).
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-namespace peensim::testing {
+namespace peensim {
 
 // Regularized incomplete beta I_x(a, b), by its continued fraction (modified Lentz), on the side
 // of x where it converges fast.
@@ -61,4 +61,4 @@ inline double welch_dof(double se_a, double n_a, double se_b, double n_b) {
     return denominator > 0.0 ? (va + vb) * (va + vb) / denominator : std::numeric_limits<double>::infinity();
 }
 
-}  // namespace peensim::testing
+}  // namespace peensim

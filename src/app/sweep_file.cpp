@@ -1,0 +1,96 @@
+#include "app/sweep_file.h"
+
+#include <filesystem>
+
+#include <yaml-cpp/yaml.h>
+
+#include "common/input_error.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+SourceLocation at(const std::string& path, const YAML::Node& n) { return {path, n.Mark().line + 1, n.Mark().column + 1}; }
+
+// A value as --set reads it: a scalar as written, a list or map in YAML's flow form.
+std::string text_of(const YAML::Node& n) {
+    if (n.IsScalar()) return n.Scalar();
+    YAML::Emitter e;
+    e << YAML::Flow << n;
+    return e.c_str();
+}
+
+}  // namespace
+
+bool is_sweep_file(const std::string& path) {
+    try {
+        const YAML::Node root = YAML::LoadFile(path);
+        return root.IsMap() && root["scene"];
+    } catch (const std::exception&) {
+        return false;  // not readable YAML: read as a scene, which says what is wrong
+    }
+}
+
+SweepFile read_sweep_file(const std::string& path) {
+    YAML::Node root;
+    try {
+        root = YAML::LoadFile(path);
+    } catch (const YAML::Exception& e) {
+        throw InputError({path, e.mark.line + 1, e.mark.column + 1}, "", std::string("invalid YAML: ") + e.msg);
+    }
+    SweepFile f;
+    const auto fail = [&](const YAML::Node& n, const std::string& field, const std::string& problem) {
+        throw InputError(at(path, n), field, problem);
+    };
+    for (const auto& kv : root) {
+        const std::string key = kv.first.Scalar();
+        if (key != "scene" && key != "seeds" && key != "set" && key != "vary" && key != "variants" && key != "baseline")
+            fail(kv.first, key, "unknown key in a sweep file; expected scene, seeds, set, vary, variants, baseline");
+    }
+    const YAML::Node scene = root["scene"];
+    if (!scene.IsScalar()) fail(scene, "scene", "expected the scene file's path");
+    f.scene_path = (fs::path(path).parent_path() / scene.Scalar()).lexically_normal().string();
+    if (const YAML::Node seeds = root["seeds"]) {
+        try {
+            f.seeds = seeds.as<int>();
+        } catch (const YAML::Exception&) {
+            fail(seeds, "seeds", "expected a whole number of replicates, got '" + text_of(seeds) + "'");
+        }
+        if (f.seeds < 1 || f.seeds > 1000) fail(seeds, "seeds", "expected 1 to 1000 replicates, got " + std::to_string(f.seeds));
+    }
+    if (const YAML::Node set = root["set"]) {
+        if (!set.IsSequence()) fail(set, "set", "expected a list of path=value");
+        for (const auto& s : set) f.overrides.push_back(text_of(s));
+    }
+    const YAML::Node vary = root["vary"], variants = root["variants"];
+    if (vary && variants) fail(variants, "variants", "give either vary (a grid) or variants (a list), not both");
+    if (vary) {
+        if (!vary.IsMap()) fail(vary, "vary", "expected a map of path: [values]");
+        for (const auto& kv : vary) {
+            SweepAxis axis{kv.first.Scalar(), {}};
+            if (!kv.second.IsSequence() || kv.second.size() == 0) fail(kv.second, "vary." + axis.path, "expected a list of one or more values");
+            for (const auto& v : kv.second) axis.values.push_back(text_of(v));
+            f.axes.push_back(std::move(axis));
+        }
+    }
+    if (variants) {
+        if (!variants.IsSequence() || variants.size() == 0) fail(variants, "variants", "expected a list of {name, set}");
+        for (std::size_t k = 0; k < variants.size(); ++k) {
+            const YAML::Node v = variants[k];
+            const std::string field = "variants[" + std::to_string(k) + "]";
+            if (!v.IsMap() || !v["name"] || !v["name"].IsScalar()) fail(v, field + ".name", "expected each variant's name");
+            SweepVariant variant{v["name"].Scalar(), {}};
+            if (const YAML::Node set = v["set"]) {
+                if (!set.IsMap()) fail(set, field + ".set", "expected a map of path: value");
+                for (const auto& kv : set) variant.set.emplace_back(kv.first.Scalar(), text_of(kv.second));
+            }
+            f.variants.push_back(std::move(variant));
+        }
+    }
+    if (const YAML::Node b = root["baseline"]) f.baseline = text_of(b);
+    return f;
+}
+
+}  // namespace peensim

@@ -1,0 +1,30 @@
+// `peensim sweep`: the variants of a scene (sweep_plan.h) run as ordinary runs, several at once on
+// the local cores, each in its own directory with the outputs `run` gives it; then compared
+// (sweep_compare.h). Each run is the `peensim run` process itself, so a variant's results are
+// those of running it alone. Resumable: a finished run is never rerun, an interrupted one resumes
+// from its checkpoint; a failed run is retried once, then reported, and the sweep goes on.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace peensim {
+
+struct SweepOptions {
+    std::string scene_path;             // a scene file, or a sweep file (sweep_file.h) that names one
+    std::string output_dir;             // -o: the sweep's directory
+    std::vector<std::string> vary;      // --vary path=v1,v2,...
+    std::vector<std::string> overrides;  // --set, every run
+    int seeds = 0;                      // --seeds: replicates per variant (process.seed, seed + 1, ...); 0: the sweep file's, else 1
+    int jobs = 0;                       // --jobs: runs at once (0: every core)
+    std::string baseline;               // --baseline: the variant the others are compared with ("" = the first)
+    std::string executable;             // the peensim binary the runs are ("" = this process's own)
+};
+
+// Exit codes as `run`'s: 0 all runs finished, 2 a bad command line or scene, 1 a run failed twice
+// (the others finished and were compared), 130 interrupted (the runs checkpointed; run the same
+// command again to go on).
+int sweep_job(const SweepOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace peensim

@@ -1,0 +1,224 @@
+// `peensim sweep` (app/sweep_plan.h, sweep_job.h, sweep_compare.h): the plan (axes, grid order,
+// names, seeds, refusals), the statistics (Student's t interval, the verdict), and sweeps of the rod
+// scene run by the real binary: each run byte-identical to running it alone, whatever the number of
+// jobs; a finished run never rerun; a failing run retried once and reported; the comparison's
+// figures those of the runs' own analyses.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/run_job.h"
+#include "app/sweep_compare.h"
+#include "app/sweep_job.h"
+#include "app/sweep_plan.h"
+#include "support/child_process.h"
+#include "support/files.h"
+#include "support/temp_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim::testing {
+namespace {
+
+const std::string kRod = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
+
+TEST(SweepPlan, AxesSplitAtTopLevelCommasOnly) {
+    const SweepAxis speed = parse_sweep_axis("components[gear].motion.speed=15 rpm, 30 rpm,60 rpm");
+    EXPECT_EQ(speed.path, "components[gear].motion.speed");
+    EXPECT_EQ(speed.values, (std::vector<std::string>{"15 rpm", "30 rpm", "60 rpm"}));
+    const SweepAxis gravity = parse_sweep_axis("process.gravity=[0, 0, -9.81],[0, -9.81, 0]");
+    EXPECT_EQ(gravity.values, (std::vector<std::string>{"[0, 0, -9.81]", "[0, -9.81, 0]"}));
+    for (const char* bad : {"speed", "=1,2", "shot.diameter=1 mm,,2 mm", "process.gravity=[0, 0, -9.81"}) {
+        EXPECT_THROW(parse_sweep_axis(bad), std::invalid_argument) << bad;
+    }
+}
+
+TEST(SweepPlan, EveryCombinationFirstAxisSlowestTimesTheSeeds) {
+    const SweepPlan plan = plan_sweep({parse_sweep_axis("components[gear].motion.speed=30 rpm,60 rpm"), parse_sweep_axis("shot.diameter=1 mm,2 mm,3 mm")},
+                                      2, 7, {"process.duration=1 s"}, "out");
+    ASSERT_EQ(plan.variants.size(), 6u);
+    EXPECT_EQ(plan.variants[0].name, "speed-30rpm_diameter-1mm");
+    EXPECT_EQ(plan.variants[1].name, "speed-30rpm_diameter-2mm");
+    EXPECT_EQ(plan.variants[3].name, "speed-60rpm_diameter-1mm");
+    ASSERT_EQ(plan.runs.size(), 12u);
+    const SweepRun& r = plan.runs[3];  // variant 1, second seed
+    EXPECT_EQ(r.variant, 1u);
+    EXPECT_EQ(r.replicate, 1);
+    EXPECT_EQ(r.seed, 8u);
+    EXPECT_EQ(r.dir, "out/speed-30rpm_diameter-2mm/s1");
+    EXPECT_EQ(r.overrides, (std::vector<std::string>{"process.duration=1 s", "components[gear].motion.speed=30 rpm", "shot.diameter=2 mm",
+                                                     "process.seed=8"}));
+    // Names that would collide are numbered; no axis: one variant, the scene itself.
+    const SweepPlan close = plan_sweep({parse_sweep_axis("shot.diameter=1 mm,1mm")}, 1, 1, {}, "o");
+    EXPECT_EQ(close.variants[1].name, "diameter-1mm.2");
+    EXPECT_EQ(plan_sweep({}, 3, 1, {}, "o").runs.size(), 3u);
+    EXPECT_EQ(plan_sweep({}, 1, 1, {}, "o").variants[0].name, "base");
+    EXPECT_THROW(plan_sweep({parse_sweep_axis("shot.diameter=1 mm"), parse_sweep_axis("shot.diameter=2 mm")}, 1, 1, {}, "o"),
+                 std::invalid_argument);
+    EXPECT_THROW(plan_sweep({}, 0, 1, {}, "o"), std::invalid_argument);
+}
+
+TEST(SweepStatistics, StudentsIntervalAndTheVerdict) {
+    // Two values 1 and 3: mean 2, sd sqrt(2), interval t(0.975, 1) sd / sqrt(2) = 12.706.
+    const SweepFigure two = mean_with_ci95({1.0, 3.0});
+    EXPECT_DOUBLE_EQ(*two.mean, 2.0);
+    EXPECT_NEAR(*two.ci95, 12.7062, 1e-4);
+    // Ten values 0..9: sd 3.02765, interval 2.262157 * 3.02765 / sqrt(10) = 2.165851.
+    std::vector<double> ten;
+    for (int k = 0; k < 10; ++k) ten.push_back(k);
+    EXPECT_NEAR(*mean_with_ci95(ten).ci95, 2.165851, 1e-6);
+    EXPECT_FALSE(mean_with_ci95({5.0}).ci95);
+    EXPECT_EQ(*mean_with_ci95({5.0, NAN}).mean, 5.0);  // a missing figure is left out
+    // Differs when |a - b| exceeds sqrt(ci_a^2 + ci_b^2) = 5.
+    EXPECT_EQ(compare_figures({10.0, 3.0}, {4.0, 4.0}).verdict, "differs");
+    EXPECT_EQ(compare_figures({8.0, 3.0}, {4.0, 4.0}).verdict, "within noise");
+    EXPECT_EQ(*compare_figures({8.0, 3.0}, {4.0, 4.0}).delta, 4.0);
+    EXPECT_EQ(compare_figures({8.0, std::nullopt}, {4.0, 4.0}).verdict, "-");
+}
+
+// A small sweep of the rod: two shot counts, 20 ms, one seed.
+SweepOptions rod_sweep(const fs::path& dir, int jobs) {
+    SweepOptions o;
+    o.scene_path = kRod;
+    o.output_dir = dir.string();
+    o.vary = {"shot.count=64,128"};
+    o.overrides = {"process.duration=20 ms"};
+    o.jobs = jobs;
+    o.executable = PEENSIM_BINARY;
+    return o;
+}
+
+TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
+    TempDir dir;
+    std::ostringstream out1, err1, out2, err2;
+    ASSERT_EQ(sweep_job(rod_sweep(dir.path / "one", 1), out1, err1), kExitOk) << err1.str();
+    ASSERT_EQ(sweep_job(rod_sweep(dir.path / "two", 2), out2, err2), kExitOk) << err2.str();
+    EXPECT_NE(out2.str().find("sweep: 2 variants x 1 seeds = 2 runs, 2 at once"), std::string::npos) << out2.str();
+    // The same run alone, as `peensim run` does it.
+    RunOptions alone;
+    alone.scene_path = kRod;
+    alone.output_dir = (dir.path / "alone").string();
+    alone.overrides = {"process.duration=20 ms", "shot.count=128", "process.seed=1"};
+    alone.progress = false;
+    std::ostringstream o, e;
+    ASSERT_EQ(run_job(alone, o, e), kExitOk) << e.str();
+    const std::string log = read_file(dir.path / "alone" / "impacts.csv");
+    EXPECT_GT(log.size(), 1000u);
+    EXPECT_EQ(read_file(dir.path / "one" / "count-128" / "s0" / "impacts.csv"), log);
+    EXPECT_EQ(read_file(dir.path / "two" / "count-128" / "s0" / "impacts.csv"), log);
+    EXPECT_EQ(read_file(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), read_file(dir.path / "two" / "count-64" / "s0" / "impacts.csv"));
+    // The comparison: one row per variant, the run's own figures.
+    const std::string csv = read_file(dir.path / "one" / "sweep" / "comparison.csv");
+    EXPECT_EQ(csv.rfind("variant,shot.count,runs_finished,impact_rate_per_s,impact_rate_per_s_ci95,mean_vn_mps,", 0), 0u) << csv;
+    EXPECT_NE(csv.find("\ncount-64,\"64\",1,"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("\ncount-128,\"128\",1,"), std::string::npos) << csv;
+    const std::string report = read_file(dir.path / "one" / "sweep" / "report.md");
+    EXPECT_NE(report.find("| count-128 | 1/1 |"), std::string::npos) << report;
+    EXPECT_NE(report.find("baseline `count-64`"), std::string::npos) << report;
+    // Run again: nothing is rerun (the logs keep their bytes and times), the comparison is rewritten.
+    const auto written = fs::last_write_time(dir.path / "one" / "count-64" / "s0" / "impacts.csv");
+    std::ostringstream out3, err3;
+    ASSERT_EQ(sweep_job(rod_sweep(dir.path / "one", 1), out3, err3), kExitOk) << err3.str();
+    EXPECT_NE(out3.str().find("2 finished before"), std::string::npos) << out3.str();
+    EXPECT_EQ(fs::last_write_time(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), written);
+}
+
+TEST(SweepJob, AFailingRunIsRetriedOnceThenReportedAndBadInputsExitTwo) {
+    TempDir dir;
+    SweepOptions o = rod_sweep(dir.path / "fail", 2);
+    o.executable = "/bin/false";  // every run fails
+    std::ostringstream out, err;
+    EXPECT_EQ(sweep_job(o, out, err), kExitRuntimeError);
+    EXPECT_NE(err.str().find("count-64/s0 failed (exit 1"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("trying it once more"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("count-64/s0 failed again"), std::string::npos) << err.str();
+    EXPECT_NE(read_file(dir.path / "fail" / "sweep" / "report.md").find("| count-64 | 0/1 |"), std::string::npos);
+    // A bad value is refused before anything runs: exit 2, naming the field.
+    SweepOptions bad = rod_sweep(dir.path / "bad", 1);
+    bad.vary = {"shot.count=64,-5"};
+    std::ostringstream out2, err2;
+    EXPECT_EQ(sweep_job(bad, out2, err2), kExitInputError);
+    EXPECT_NE(err2.str().find("shot.count"), std::string::npos) << err2.str();
+    EXPECT_FALSE(fs::exists(dir.path / "bad" / "count-64"));
+    SweepOptions unknown = rod_sweep(dir.path / "unknown", 1);
+    unknown.vary = {"shot.colour=red,blue"};
+    std::ostringstream out3, err3;
+    EXPECT_EQ(sweep_job(unknown, out3, err3), kExitInputError);
+    EXPECT_NE(err3.str().find("colour"), std::string::npos) << err3.str();
+}
+
+// Ctrl-C stops a sweep with its runs checkpointed (exit 130); the same command goes on, and every
+// run's log is then the uninterrupted sweep's, byte for byte.
+TEST(SweepJob, AnInterruptedSweepGoesOnWhereItStopped) {
+    TempDir dir;
+    const auto args = [&](const fs::path& out) {
+        return std::vector<std::string>{PEENSIM_BINARY, "sweep", kRod, "-o", out.string(), "--vary", "shot.count=256,512",
+                                        "--set", "process.duration=6 s", "--set", "output.checkpoint_interval=0.2 s", "--jobs", "2"};
+    };
+    ChildProcess whole(args(dir.path / "whole"), (dir.path / "whole.out").string(), (dir.path / "whole.err").string());
+    ASSERT_EQ(whole.wait_exit(300.0), std::optional<int>(kExitOk)) << read_file(dir.path / "whole.err");
+    ChildProcess stopped(args(dir.path / "parts"), (dir.path / "parts.out").string(), (dir.path / "parts.err").string());
+    // Once the longer run has written a checkpoint it is well under way.
+    for (int k = 0; k < 3000 && !fs::exists(dir.path / "parts" / "count-512" / "s0" / "checkpoint.bin"); ++k)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    stopped.signal(SIGINT);
+    ASSERT_EQ(stopped.wait_exit(120.0), std::optional<int>(kExitInterrupted)) << read_file(dir.path / "parts.err");
+    EXPECT_NE(read_file(dir.path / "parts.err").find("sweep: interrupted"), std::string::npos) << read_file(dir.path / "parts.err");
+    EXPECT_FALSE(fs::exists(dir.path / "parts" / "count-512" / "s0" / "impacts.csv"));  // not finished: its log is partial
+    ChildProcess resumed(args(dir.path / "parts"), (dir.path / "resumed.out").string(), (dir.path / "resumed.err").string());
+    ASSERT_EQ(resumed.wait_exit(300.0), std::optional<int>(kExitOk)) << read_file(dir.path / "resumed.err");
+    for (const char* run : {"count-256/s0", "count-512/s0"})
+        EXPECT_EQ(read_file(dir.path / "parts" / run / "impacts.csv"), read_file(dir.path / "whole" / run / "impacts.csv")) << run;
+}
+
+// A sweep file: the variants listed by name, the seeds, the set and the baseline from the file.
+TEST(SweepJob, ASweepFileListsNamedVariants) {
+    TempDir dir;
+    const fs::path file = dir.path / "study.yaml";
+    std::ofstream(file) << "scene: " << kRod << "\n"
+                        << "seeds: 2\n"
+                        << "set: [\"process.duration=10 ms\"]\n"
+                        << "variants:\n"
+                        << "  - {name: few, set: {shot.count: 64}}\n"
+                        << "  - {name: many, set: {shot.count: 128, process.gravity: [0, 0, -9.81]}}\n"
+                        << "baseline: many\n";
+    SweepOptions o;
+    o.scene_path = file.string();
+    o.output_dir = (dir.path / "out").string();
+    o.jobs = 2;
+    o.executable = PEENSIM_BINARY;
+    std::ostringstream out, err;
+    ASSERT_EQ(sweep_job(o, out, err), kExitOk) << err.str();
+    EXPECT_NE(out.str().find("2 variants x 2 seeds = 4 runs"), std::string::npos) << out.str();
+    for (const char* run : {"few/s0", "few/s1", "many/s0", "many/s1"}) EXPECT_TRUE(fs::exists(dir.path / "out" / run / "impacts.csv")) << run;
+    // The seeds differ (process.seed 1 and 2): two runs of one variant are not the same run.
+    EXPECT_NE(read_file(dir.path / "out" / "few" / "s0" / "impacts.csv"), read_file(dir.path / "out" / "few" / "s1" / "impacts.csv"));
+    const std::string report = read_file(dir.path / "out" / "sweep" / "report.md");
+    EXPECT_NE(report.find("baseline `many`"), std::string::npos) << report;
+    EXPECT_NE(report.find("| few | 2/2 |"), std::string::npos) << report;
+    EXPECT_NE(report.find("Student's t over the seed replicates"), std::string::npos) << report;
+    // Every figure comes from the runs: the p90 speed from their summaries (none is missing).
+    EXPECT_EQ(report.find("| - |"), std::string::npos) << report;
+    const std::string csv = read_file(dir.path / "out" / "sweep" / "comparison.csv");
+    EXPECT_EQ(csv.rfind("variant,shot.count,process.gravity,runs_finished,", 0), 0u) << csv;
+    // A file's mistakes point at its line: an unknown key, a bad baseline.
+    std::ofstream(file) << "scene: " << kRod << "\nseed: 3\n";
+    std::ostringstream out2, err2;
+    EXPECT_EQ(sweep_job(o, out2, err2), kExitInputError);
+    EXPECT_NE(err2.str().find("study.yaml:2:1: seed: unknown key in a sweep file"), std::string::npos) << err2.str();
+    std::ofstream(file) << "scene: " << kRod << "\nvary: {shot.count: [64]}\nbaseline: nothing\n";
+    std::ostringstream out3, err3;
+    EXPECT_EQ(sweep_job(o, out3, err3), kExitInputError);
+    EXPECT_NE(err3.str().find("no variant is named 'nothing'"), std::string::npos) << err3.str();
+}
+
+}  // namespace
+}  // namespace peensim::testing
