@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -177,6 +178,30 @@ TEST(SweepJob, AnInterruptedSweepGoesOnWhereItStopped) {
     ASSERT_EQ(resumed.wait_exit(300.0), std::optional<int>(kExitOk)) << read_file(dir.path / "resumed.err");
     for (const char* run : {"count-256/s0", "count-512/s0"})
         EXPECT_EQ(read_file(dir.path / "parts" / run / "impacts.csv"), read_file(dir.path / "whole" / run / "impacts.csv")) << run;
+}
+
+// `mpirun -n 2 peensim sweep ...`: rank 0 hands the runs out, both ranks run them, and each run's
+// log is the one a local sweep (and the run alone) writes.
+TEST(SweepMpi, RanksShareTheRunsAndEachRunIsTheLocalOne) {
+    const std::string mpirun = "/usr/bin/mpirun";
+    ASSERT_TRUE(fs::exists(mpirun)) << "mpirun not found: .ci/install-deps installs openmpi-bin";
+    TempDir dir;
+    std::ostringstream out, err;
+    ASSERT_EQ(sweep_job(rod_sweep(dir.path / "local", 1), out, err), kExitOk) << err.str();
+    // Open MPI refuses root unless told; this machine's CI runs as root.
+    ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+    ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+    ChildProcess mpi({mpirun, "-n", "2", "--oversubscribe", PEENSIM_BINARY, "sweep", kRod, "-o", (dir.path / "mpi").string(), "--vary",
+                      "shot.count=64,128", "--set", "process.duration=20 ms"},
+                     (dir.path / "mpi.out").string(), (dir.path / "mpi.err").string());
+    ASSERT_EQ(mpi.wait_exit(300.0), std::optional<int>(kExitOk)) << read_file(dir.path / "mpi.err") << read_file(dir.path / "mpi.out");
+    const std::string said = read_file(dir.path / "mpi.out");
+    EXPECT_NE(said.find("sweep: 2 variants x 1 seeds = 2 runs over 2 MPI ranks"), std::string::npos) << said;
+    EXPECT_NE(said.find("comparison: "), std::string::npos) << said;  // rank 0's, once
+    EXPECT_EQ(said.find("comparison: "), said.rfind("comparison: ")) << said;
+    for (const char* run : {"count-64/s0", "count-128/s0"})
+        EXPECT_EQ(read_file(dir.path / "mpi" / run / "impacts.csv"), read_file(dir.path / "local" / run / "impacts.csv")) << run;
+    EXPECT_NE(read_file(dir.path / "mpi" / "sweep" / "report.md").find("| count-128 | 1/1 |"), std::string::npos);
 }
 
 // A sweep file: the variants listed by name, the seeds, the set and the baseline from the file.
