@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "analysis/sample_mean.h"
 #include "analysis/student_t.h"
 #include "app/analysis_format.h"
 #include "app/analysis_plots.h"
@@ -76,21 +77,14 @@ std::optional<RunFigures> read_run(const std::string& dir, std::string& componen
     return r;
 }
 
-std::vector<double> finite(const std::vector<double>& v) {
-    std::vector<double> out;
-    for (double x : v)
-        if (std::isfinite(x)) out.push_back(x);
-    return out;
-}
-
 // A figure over the variant's runs: with two or more, Student's t over the runs; with one,
 // `single` (its batch means, or a standard error of its own), or no interval.
 SweepFigure figure(const std::vector<RunFigures>& runs, double RunFigures::*member, const SweepFigure& single = {}) {
     std::vector<double> v;
     for (const RunFigures& r : runs) v.push_back(r.*member);
-    v = finite(v);
-    if (v.empty()) return {};
-    if (v.size() == 1 && runs.size() == 1) return {v[0], single.ci95};
+    const SampleMean s = sample_mean(v);
+    if (s.count == 0) return {};
+    if (runs.size() == 1) return {s.mean, single.ci95};
     return mean_with_ci95(v);
 }
 
@@ -133,15 +127,10 @@ std::string unit_of(const std::string& value) {
 }  // namespace
 
 SweepFigure mean_with_ci95(const std::vector<double>& values) {
-    const std::vector<double> v = finite(values);
-    if (v.empty()) return {};
-    double sum = 0.0;
-    for (double x : v) sum += x;
-    const double n = static_cast<double>(v.size()), mean = sum / n;
-    if (v.size() < 2) return {mean, std::nullopt};
-    double ss = 0.0;
-    for (double x : v) ss += (x - mean) * (x - mean);
-    return {mean, student_t_two_sided_quantile(0.05, n - 1.0) * std::sqrt(ss / (n - 1.0) / n)};
+    const SampleMean s = sample_mean(values);
+    if (s.count == 0) return {};
+    if (s.count < 2) return {s.mean, std::nullopt};
+    return {s.mean, student_t_two_sided_quantile(0.05, static_cast<double>(s.count) - 1.0) * s.standard_error};
 }
 
 SweepDifference compare_figures(const SweepFigure& a, const SweepFigure& b) {

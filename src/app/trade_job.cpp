@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "analysis/part_coverage.h"
+#include "analysis/sample_mean.h"
 #include "app/analysis_plots.h"
 #include "app/report_errors.h"
 #include "common/input_error.h"
@@ -87,17 +88,7 @@ void compare(Figure& f, const Figure& ref) {
 
 // Standard error of the mean of the batches' values (those that have one: a batch without impacts
 // has no mean speed); NaN with fewer than two.
-double mean_se(const std::array<double, kBatches>& x) {
-    double m = 0.0, n = 0.0;
-    for (double v : x)
-        if (std::isfinite(v)) m += v, n += 1.0;
-    if (n < 2.0) return kNaN;
-    m /= n;
-    double sq = 0.0;
-    for (double v : x)
-        if (std::isfinite(v)) sq += (v - m) * (v - m);
-    return std::sqrt(sq / (n - 1.0) / n);
-}
+double mean_se(const std::array<double, kBatches>& x) { return sample_mean(x).standard_error; }
 
 // The logged part's impacts of one run, binned as they come (nothing kept): counts, speeds and dent
 // areas per time batch of the measured window, speed histograms, and the coverage map (every impact).

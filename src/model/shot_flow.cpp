@@ -16,15 +16,16 @@ NozzleSource::NozzleSource(const NozzleSpec& spec) : spec_(spec) {
     e2_ = d.cross(e1_);
 }
 
+std::uint64_t NozzleSource::emission_stream(std::uint64_t k, unsigned attempt) const {
+    return spec_.seed * 0x9e3779b97f4a7c15ull ^ (static_cast<std::uint64_t>(spec_.index + 1) << 48) ^ (static_cast<std::uint64_t>(attempt) << 40) ^ k;
+}
+
 std::optional<Emission> NozzleSource::emission(std::uint64_t k, unsigned attempt) const {
     Emission e;
     e.time_s = spec_.start_s + static_cast<double>(k) / spec_.rate_per_s;
     if (!(e.time_s < spec_.stop_s)) return std::nullopt;
-    // Emission k's own generator: the scene's seed, the source and k mixed (Random's SplitMix64
-    // seeding spreads neighbouring seeds), so no generator state is carried between emissions; a
-    // redraw mixes its attempt in too (above bit 40: k never gets there).
-    Random rng(spec_.seed * 0x9e3779b97f4a7c15ull ^ (static_cast<std::uint64_t>(spec_.index + 1) << 48) ^
-               (static_cast<std::uint64_t>(attempt) << 40) ^ k);
+    // Emission k's own generator (emission_stream): no generator state is carried between emissions.
+    Random rng(emission_stream(k, attempt));
     const double r = spec_.exit_radius_m * std::sqrt(rng.uniform());  // uniform over the disc
     const double phi = 2.0 * M_PI * rng.uniform();
     e.position_m = spec_.position_m + r * (std::cos(phi) * e1_ + std::sin(phi) * e2_);
@@ -38,7 +39,7 @@ std::optional<Emission> NozzleSource::emission(std::uint64_t k, unsigned attempt
     // The size: a stream of its own (attempt 255, never a redraw's), so a redraw moves the shot but
     // keeps its size, and a scene of one size draws nothing.
     if (spec_.size_count_fraction.size() > 1) {
-        Random size_rng(spec_.seed * 0x9e3779b97f4a7c15ull ^ (static_cast<std::uint64_t>(spec_.index + 1) << 48) ^ (std::uint64_t{255} << 40) ^ k);
+        Random size_rng(emission_stream(k, kSizeStream));
         e.size = size_for_draw(spec_.size_count_fraction, size_rng.uniform());
     }
     return e;

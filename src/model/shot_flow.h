@@ -73,6 +73,10 @@ public:
     const NozzleSpec& spec() const { return spec_; }
 
 private:
+    // The seed of emission k's draw `attempt`: the scene's seed, the source and k mixed (Random's
+    // SplitMix64 seeding spreads neighbouring seeds), the attempt above bit 40 (k never gets there).
+    std::uint64_t emission_stream(std::uint64_t k, unsigned attempt) const;
+    static constexpr unsigned kSizeStream = 255;  // the size's own stream: never a redraw's attempt (at most 32)
     NozzleSpec spec_;
     Vec3 e1_, e2_;  // unit, completing `direction` to a right-handed frame
 };
