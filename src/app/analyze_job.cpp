@@ -31,7 +31,7 @@ namespace peensim {
 
 namespace {
 
-constexpr int kCoverageSamples = 50;  // points of the coverage- and dose-vs-time curves
+constexpr int kCoverageSamples = 50;       // points of the coverage- and dose-vs-time curves
 constexpr std::uint64_t kJetWindow = 500;  // impacts per window of the jet's figures
 
 const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
@@ -78,8 +78,8 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
     const MaterialDesc* m = material_named(scene, c.material);
     if (m && m->yield_stress_pa) {
         a.yield_stress_pa = *m->yield_stress_pa;
-        a.coverage = part_coverage_map(*a.mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot), scene.shot.density_kg_per_m3,
-                                       a.yield_stress_pa);
+        a.coverage = part_coverage_map(*a.mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot),
+                                       scene.shot.density_kg_per_m3, a.yield_stress_pa);
     }
     if (c.almen) {
         AlmenAnalysis almen;
@@ -113,7 +113,6 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
     return a;
 }
 
-
 // Adds one impact row to a component's statistics (the ParaView points are written by the reader thread).
 void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescription& scene, double duration) {
     // The impacting shot: a mix's log names its diameter, a log of one size has that size.
@@ -124,7 +123,8 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
     const int t = a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s, mass);
     ++a.impacts;
     a.speed_sum += row.vn_in_m_per_s;
-    const auto batch = static_cast<std::size_t>(std::clamp(static_cast<int>(row.time_s / duration * kFigureBatches), 0, kFigureBatches - 1));
+    const auto batch =
+        static_cast<std::size_t>(std::clamp(static_cast<int>(row.time_s / duration * kFigureBatches), 0, kFigureBatches - 1));
     ++a.batch_impacts[batch];
     a.batch_speed_sum[batch] += row.vn_in_m_per_s;
     double dent = std::numeric_limits<double>::quiet_NaN();
@@ -149,7 +149,8 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
         size->energy_J += 0.5 * mass * row.vn_in_m_per_s * row.vn_in_m_per_s;
     }
     if (a.jet) {
-        const double jet_normal = t >= 0 ? a.jet->v0_m_per_s() * std::abs(a.jet_axis.dot(triangle_normal(*a.mesh, static_cast<std::size_t>(t)))) : 0.0;
+        const double jet_normal =
+            t >= 0 ? a.jet->v0_m_per_s() * std::abs(a.jet_axis.dot(triangle_normal(*a.mesh, static_cast<std::size_t>(t)))) : 0.0;
         a.jet->add(row.time_s, row.v_in_m_per_s.norm(), row.vn_in_m_per_s, jet_normal);
     }
 }
@@ -171,78 +172,79 @@ void read_flow_figures(const fs::path& dir, ReportContext& context) {
 
 int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err) {
     return report_errors(err, [&] {
-        const fs::path dir(output_dir);
-        const fs::path scene_path = dir / "scene.resolved.yaml";
-        if (!fs::exists(scene_path)) throw std::runtime_error(output_dir + ": not a peensim run directory (no scene.resolved.yaml)");
-        const SceneDescription scene = parse_scene_file(scene_path.string());
-        bool finished = false;
-        const double duration = simulated_time(dir, scene, finished);
-        const fs::path log = finished ? dir / kImpactCsvFileName : dir / kImpactCsvPartialFileName;
-        if (!fs::exists(log)) throw std::runtime_error(output_dir + ": no impact log (impacts.csv or impacts.csv.partial)");
-        if (!finished) err << "note: " << output_dir << ": the run did not finish; analysing its partial impact log\n";
-
-        // Components whose impacts were logged.
-        std::vector<ComponentAnalysis> parts;
-        std::vector<std::string> names;
-        const double shot_mass = mean_shot_mass_kg(scene.shot);  // each impact brings its own (accumulate)
-        for (const ComponentDesc& c : scene.components) {
-            const auto& logged = scene.output.logged_components;
-            const bool is_logged =
-                logged.empty() ? logged_by_default(c.role) : std::find(logged.begin(), logged.end(), c.name) != logged.end();
-            if (!is_logged) continue;
-            parts.push_back(analysis_of(c, scene, shot_mass));
-            names.push_back(c.name);
-        }
-        if (parts.empty())
-            throw std::runtime_error(output_dir + ": the run logged no component (output.log is empty and the scene has no part)");
-
-        const fs::path adir = dir / "analysis";
-        fs::create_directories(adir);
-        for (ComponentAnalysis& a : parts)
-            a.points = std::make_unique<ImpactPointsVtpWriter>((adir / (a.name + "_impacts.vtp")).string(), impact_point_field_layouts());
-
-        int next_sample = 1;
-        auto sample_until = [&](double t) {
-            while (next_sample <= kCoverageSamples && t >= duration * next_sample / kCoverageSamples) {
-                const double at = duration * next_sample / kCoverageSamples;
-                for (ComponentAnalysis& a : parts) {
-                    if (a.coverage) a.curve.push_back({at, a.coverage->coverage()});
-                    if (a.almen) a.almen->curve.push_back({at, a.almen->dose->dose_J_per_m2()});
-                }
-                ++next_sample;
-            }
-        };
-        for (ComponentAnalysis& a : parts) {
-            if (a.coverage) a.curve.push_back({0.0, 0.0});
-            if (a.almen) a.almen->curve.push_back({0.0, 0.0});
-        }
-        // The reader thread parses the log and writes the ParaView points; this one does the rest.
-        ImpactStream stream(log.string(), names, [&parts](const ImpactRow& row, int component) {
-            const double values[5] = {row.v_in_m_per_s.x(), row.v_in_m_per_s.y(), row.v_in_m_per_s.z(), row.vn_in_m_per_s, row.time_s};
-            parts[static_cast<std::size_t>(component)].points->add(row.point_m, values);
-        });
-        for (auto block = stream.next_block(); !block.empty(); block = stream.next_block()) {
-            for (const IndexedImpact& impact : block) {
-                sample_until(impact.row.time_s);
-                if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene, duration);
-            }
-        }
-        sample_until(duration);
-
-        for (ComponentAnalysis& a : parts) {
-            a.points->finish();
-            write_component_tables(adir, a, duration);
-        }
-        ReportContext context{dir, duration, finished, stream.truncated(), {}, "", {}, {}};
-        read_flow_figures(dir, context);
-        context.pngs = write_analysis_plots(adir.string(), names, context.plot_note);
-        write_file_atomically((adir / "report.md").string(), analysis_report(scene, parts, context));
-        write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, duration));
-        out << analysis_summary_table(parts, duration) << "analysis: " << adir.string()
-            << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp"
-            << (context.pngs.empty() ? "" : ", *.png") << "}\n";
+        analyze_run(output_dir, out, err);
         return 0;
     });
+}
+
+void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err) {
+    const fs::path dir(output_dir);
+    const fs::path scene_path = dir / "scene.resolved.yaml";
+    if (!fs::exists(scene_path)) throw std::runtime_error(output_dir + ": not a peensim run directory (no scene.resolved.yaml)");
+    const SceneDescription scene = parse_scene_file(scene_path.string());
+    bool finished = false;
+    const double duration = simulated_time(dir, scene, finished);
+    const fs::path log = finished ? dir / kImpactCsvFileName : dir / kImpactCsvPartialFileName;
+    if (!fs::exists(log)) throw std::runtime_error(output_dir + ": no impact log (impacts.csv or impacts.csv.partial)");
+    if (!finished) err << "note: " << output_dir << ": the run did not finish; analysing its partial impact log\n";
+
+    // Components whose impacts were logged.
+    std::vector<ComponentAnalysis> parts;
+    std::vector<std::string> names;
+    const double shot_mass = mean_shot_mass_kg(scene.shot);  // each impact brings its own (accumulate)
+    for (const ComponentDesc& c : scene.components) {
+        if (!is_logged(scene, c)) continue;
+        parts.push_back(analysis_of(c, scene, shot_mass));
+        names.push_back(c.name);
+    }
+    if (parts.empty())
+        throw std::runtime_error(output_dir + ": the run logged no component (output.log is empty and the scene has no part)");
+
+    const fs::path adir = dir / "analysis";
+    fs::create_directories(adir);
+    for (ComponentAnalysis& a : parts)
+        a.points = std::make_unique<ImpactPointsVtpWriter>((adir / (a.name + "_impacts.vtp")).string(), impact_point_field_layouts());
+
+    int next_sample = 1;
+    auto sample_until = [&](double t) {
+        while (next_sample <= kCoverageSamples && t >= duration * next_sample / kCoverageSamples) {
+            const double at = duration * next_sample / kCoverageSamples;
+            for (ComponentAnalysis& a : parts) {
+                if (a.coverage) a.curve.push_back({at, a.coverage->coverage()});
+                if (a.almen) a.almen->curve.push_back({at, a.almen->dose->dose_J_per_m2()});
+            }
+            ++next_sample;
+        }
+    };
+    for (ComponentAnalysis& a : parts) {
+        if (a.coverage) a.curve.push_back({0.0, 0.0});
+        if (a.almen) a.almen->curve.push_back({0.0, 0.0});
+    }
+    // The reader thread parses the log and writes the ParaView points; this one does the rest.
+    ImpactStream stream(log.string(), names, [&parts](const ImpactRow& row, int component) {
+        const double values[5] = {row.v_in_m_per_s.x(), row.v_in_m_per_s.y(), row.v_in_m_per_s.z(), row.vn_in_m_per_s, row.time_s};
+        parts[static_cast<std::size_t>(component)].points->add(row.point_m, values);
+    });
+    for (auto block = stream.next_block(); !block.empty(); block = stream.next_block()) {
+        for (const IndexedImpact& impact : block) {
+            sample_until(impact.row.time_s);
+            if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene, duration);
+        }
+    }
+    sample_until(duration);
+
+    for (ComponentAnalysis& a : parts) {
+        a.points->finish();
+        write_component_tables(adir, a, duration);
+    }
+    ReportContext context{dir, duration, finished, stream.truncated(), {}, "", {}, {}};
+    read_flow_figures(dir, context);
+    context.pngs = write_analysis_plots(adir.string(), names, context.plot_note);
+    write_file_atomically((adir / "report.md").string(), analysis_report(scene, parts, context));
+    write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, duration));
+    out << analysis_summary_table(parts, duration) << "analysis: " << adir.string()
+        << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp" << (context.pngs.empty() ? "" : ", *.png")
+        << "}\n";
 }
 
 }  // namespace peensim

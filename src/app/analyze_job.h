@@ -11,4 +11,8 @@ namespace peensim {
 
 int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err);
 
+// The same, with errors thrown (InputError for a bad scene, std::runtime_error for a directory
+// that is not a run's) instead of reported: for a caller with exceptions of its own (Python).
+void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err);
+
 }  // namespace peensim

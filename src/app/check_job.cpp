@@ -85,31 +85,38 @@ void print_report(const Model& model, const AssemblyReport& assembly, std::size_
 
 }  // namespace
 
+std::size_t check_scene(const std::string& scene_path, const std::optional<std::string>& scene_text,
+                        const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err,
+                        const std::string& picture_png) {
+    const SceneDescription scene = parse_scene(scene_path, scene_text, overrides);
+    const auto model = compile_model(scene);
+    // The picture is drawn whatever the checks find: a misplaced part is what it is for.
+    const auto draw = [&](const std::vector<Vec3>& shot_positions, const char* what) {
+        if (picture_png.empty()) return;
+        SimulationState start;
+        start.shots.resize(shot_positions.size());
+        for (std::size_t i = 0; i < shot_positions.size(); ++i) start.shots.set_position(i, shot_positions[i]);
+        render_module().draw_assembly(*model, start, picture_png, 1280, 720);
+        out << "# picture of the assembly" << what << ": " << picture_png << "\n";
+    };
+    std::optional<SetupCheck> setup;
+    InitialShots shots;
+    try {
+        setup.emplace(check_setup(*model, strict, err));
+        if (setup->cavity) shots = place_shots(*model, *setup->cavity, setup->rng);
+    } catch (const InputError&) {
+        draw({}, " (without shot: the setup has an error)");
+        throw;
+    }
+    print_report(*model, setup->assembly, setup->warnings, shots, out);
+    draw(shots.positions, "");
+    return setup->warnings;
+}
+
 int check_job(const std::string& scene_path, const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err,
               const std::string& picture_png) {
     return report_errors(err, [&] {
-        const SceneDescription scene = parse_scene_file(scene_path, overrides);
-        const auto model = compile_model(scene);
-        // The picture is drawn whatever the checks find: a misplaced part is what it is for.
-        const auto draw = [&](const std::vector<Vec3>& shot_positions, const char* what) {
-            if (picture_png.empty()) return;
-            SimulationState start;
-            start.shots.resize(shot_positions.size());
-            for (std::size_t i = 0; i < shot_positions.size(); ++i) start.shots.set_position(i, shot_positions[i]);
-            render_module().draw_assembly(*model, start, picture_png, 1280, 720);
-            out << "# picture of the assembly" << what << ": " << picture_png << "\n";
-        };
-        std::optional<SetupCheck> setup;
-        InitialShots shots;
-        try {
-            setup.emplace(check_setup(*model, strict, err));
-            if (setup->cavity) shots = place_shots(*model, *setup->cavity, setup->rng);
-        } catch (const InputError&) {
-            draw({}, " (without shot: the setup has an error)");
-            throw;
-        }
-        print_report(*model, setup->assembly, setup->warnings, shots, out);
-        draw(shots.positions, "");
+        check_scene(scene_path, std::nullopt, overrides, strict, out, err, picture_png);
         return static_cast<int>(kExitOk);
     });
 }

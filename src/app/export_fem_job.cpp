@@ -42,10 +42,8 @@ constexpr double kCentreTolerance = 1e-9;        // -, in shot radii: the quarte
 
 const ComponentDesc& logged_component(const SceneDescription& scene, const std::string& wanted, const std::string& scene_file) {
     std::vector<const ComponentDesc*> logged;
-    for (const ComponentDesc& c : scene.components) {
-        const auto& l = scene.output.logged_components;
-        if (l.empty() ? logged_by_default(c.role) : std::find(l.begin(), l.end(), c.name) != l.end()) logged.push_back(&c);
-    }
+    for (const ComponentDesc& c : scene.components)
+        if (is_logged(scene, c)) logged.push_back(&c);
     std::string names;
     for (const ComponentDesc* c : logged) names += (names.empty() ? "'" : ", '") + c->name + "'";
     for (const ComponentDesc* c : logged)

@@ -55,4 +55,8 @@ InterruptGuard::~InterruptGuard() {
 
 bool InterruptGuard::requested() { return g_signals != 0; }
 
+StopRequest::StopRequest(std::function<bool()> caller_test, std::string abandon_message) : caller_test_(std::move(caller_test)) {
+    if (!caller_test_) guard_.emplace(std::move(abandon_message));
+}
+
 }  // namespace peensim

@@ -6,6 +6,8 @@
 // needs is lost: checkpoints replace each other by atomic rename, so the last complete one stays.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
 
 namespace peensim {
@@ -24,6 +26,20 @@ public:
 
 private:
     std::string abandon_message_;  // the handler reads it; it must outlive the handlers
+};
+
+// How a job learns it was asked to stop. The command line: Ctrl-C and SIGTERM, caught by an
+// InterruptGuard for the job's life. A caller that handles signals itself (the Python module,
+// whose interpreter owns SIGINT) passes its own test instead, and no handler is installed.
+class StopRequest {
+public:
+    // `caller_test`: empty = catch the signals here; else asked often (cheap, any thread of the job).
+    StopRequest(std::function<bool()> caller_test, std::string abandon_message);
+    bool requested() const { return caller_test_ ? caller_test_() : InterruptGuard::requested(); }
+
+private:
+    std::function<bool()> caller_test_;
+    std::optional<InterruptGuard> guard_;
 };
 
 }  // namespace peensim

@@ -39,12 +39,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string output_directory(const RunOptions& options, const SceneDescription& scene) {
-    if (!options.output_dir.empty()) return options.output_dir;
-    if (!scene.output.directory.empty()) return scene.output.directory;
-    return "out/" + fs::path(options.scene_path).stem().string();
-}
-
 // Slot of each component in the per-logged-component statistics (-1 if not logged).
 std::vector<int> logged_slots(const Model& model) {
     std::vector<int> slots;
@@ -64,11 +58,11 @@ public:
     Job(const RunOptions& options, std::ostream& out, std::ostream& err) : options_(options), out_(out), err_(err) {}
 
     int run() {
-        const SceneDescription scene = parse_scene_file(options_.scene_path, options_.overrides);
+        const SceneDescription scene = parse_scene(options_.scene_path, options_.scene_text, options_.overrides);
         model_ = compile_model(scene);
         // Before anything is written; a fresh run places its shot in the cavity the check built.
         SetupCheck setup = check_setup(*model_, options_.strict, err_);
-        dir_ = output_directory(options_, scene);
+        dir_ = run_output_directory(options_, scene);
         fs::create_directories(dir_);
         lock_ = std::make_unique<RunDirectoryLock>(dir_);
         if (!options_.resume) {
@@ -87,12 +81,12 @@ public:
                 // Signals are caught from before the start's checkpoint (so a checkpoint on disk means
                 // Ctrl-C is handled) until the final checkpoint of an interrupted run is written; a
                 // finished run's outputs and analysis are left to Ctrl-C's default (the run is complete).
-                InterruptGuard guard(abandon_message());
+                StopRequest stop(options_.stop_requested, abandon_message());
                 // A checkpoint from the start: whatever fails later (a full disk while streaming
                 // impacts, before the first periodic checkpoint), --resume has a state to continue from.
                 if (!options_.resume) checkpoint();
                 start_rendering();
-                if (!loop()) return interrupted();
+                if (!loop(stop)) return interrupted();
             }
             return complete();
         } catch (const std::exception&) {
@@ -107,6 +101,7 @@ private:
     std::string checkpoint_path() const { return (fs::path(dir_) / kCheckpointFileName).string(); }
 
     std::string resume_command() const {
+        if (options_.scene_text) return "the same run with resume into " + dir_;  // a scene in memory (Python): no command to give
         return "peensim run " + options_.scene_path + " -o " + dir_ + " --resume" +
                (options_.overrides.empty() ? "" : " (and the same --set options)");
     }
@@ -124,7 +119,8 @@ private:
             Checkpoint c = load_checkpoint(checkpoint_path());
             check_resumable(checkpoint_path(), c, *model_, logged);
             sim_ = std::make_unique<Simulation>(model_, std::move(c.state));
-            writer_ = std::make_unique<ImpactCsvWriter>(ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows, model_->has_size_mix()));
+            writer_ = std::make_unique<ImpactCsvWriter>(
+                ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows, model_->has_size_mix()));
             speeds_ = std::move(c.normal_speeds);
             wall_before_ = c.wall_time_s;
         } else {
@@ -147,17 +143,24 @@ private:
     }
 
     // Returns true when the scene's duration was reached, false when interrupted.
-    bool loop() {
+    bool loop(const StopRequest& stop) {
         // What the run does with each step, in this order: the impacts to impacts.csv and the speed
         // histograms, the recorder's frames, the progress bar; at restart points, checkpoints.
         struct Listener final : RunListener {
             Job& job;
             ProgressReporter progress;
             CheckpointCadence cadence;
+            Clock::time_point next_callback = Clock::now();
             Listener(Job& j, bool show_progress)
                 : job(j),
                   progress(j.err_, show_progress),
                   cadence(j.model_->description.output.checkpoint_interval_s, j.options_.checkpoint_clock) {}
+            void call_back(Clock::time_point now) {
+                next_callback =
+                    now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kProgressCallbackInterval_s));
+                job.options_.on_progress(
+                    RunProgress{job.sim_->state().time.seconds(), job.model_->duration_s, job.logged_impacts_, job.wall_time()});
+            }
             double pause_at_s() const override {
                 return job.recorder_ ? job.recorder_->next_frame_s() : std::numeric_limits<double>::infinity();
             }
@@ -172,6 +175,10 @@ private:
                 }
                 if (job.recorder_) job.recorder_->after_step(sim.state(), impacts, job.logged_impacts_);
                 progress.update(sim.state().time.seconds(), job.model_->duration_s, job.logged_impacts_);
+                if (job.options_.on_progress) {
+                    const auto now = Clock::now();
+                    if (now >= next_callback) call_back(now);
+                }
             }
             // The clock is read only here: reading it at every unit of work would decide the same.
             void at_restart_point(const Simulation&) override {
@@ -183,10 +190,10 @@ private:
         run.add(listener);
         // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
         // step, the event-driven scheme at its restart interval.
-        const bool finished = run.run([this](std::uint64_t steps) {
-            return InterruptGuard::requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps);
-        });
+        const bool finished = run.run(
+            [&](std::uint64_t steps) { return stop.requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps); });
         listener.progress.finish();
+        if (options_.on_progress) listener.call_back(Clock::now());
         return finished;
     }
 
@@ -270,8 +277,16 @@ private:
 
 }  // namespace
 
-int run_job(const RunOptions& options, std::ostream& out, std::ostream& err) {
-    return report_errors(err, [&] { return Job(options, out, err).run(); });
+std::string run_output_directory(const RunOptions& options, const SceneDescription& scene) {
+    if (!options.output_dir.empty()) return options.output_dir;
+    if (!scene.output.directory.empty()) return scene.output.directory;
+    return "out/" + fs::path(options.scene_path).stem().string();
 }
+
+int run_job(const RunOptions& options, std::ostream& out, std::ostream& err) {
+    return report_errors(err, [&] { return run_scene(options, out, err); });
+}
+
+int run_scene(const RunOptions& options, std::ostream& out, std::ostream& err) { return Job(options, out, err).run(); }
 
 }  // namespace peensim

@@ -51,91 +51,95 @@ int finish(const SweepBook& book, const SweepPlan& plan, const std::string& swee
 }  // namespace
 
 int sweep_job(const SweepOptions& options, std::ostream& out, std::ostream& err) {
-    return report_errors(err, [&]() -> int {
-        SweepOptions o = options;
-        if (o.output_dir.empty()) throw InputError({"-o"}, "", "expected the sweep's output directory (-o DIR)");
-        std::vector<SweepAxis> axes;
-        try {
-            for (const std::string& spec : o.vary) axes.push_back(parse_sweep_axis(spec));
-        } catch (const std::invalid_argument& e) {
-            throw InputError({"--vary"}, "", e.what());
-        }
-        // A sweep file: its scene, set, variants, seeds and baseline (the command line's --set after its own).
-        std::vector<SweepVariant> listed;
-        if (is_sweep_file(o.scene_path)) {
-            if (!o.vary.empty()) throw InputError({"--vary"}, "", "the sweep file gives the variants; expected no --vary with a sweep file");
-            SweepFile f = read_sweep_file(o.scene_path);
-            o.scene_path = f.scene_path;
-            f.overrides.insert(f.overrides.end(), o.overrides.begin(), o.overrides.end());
-            o.overrides = f.overrides;
-            if (o.seeds == 0) o.seeds = f.seeds;
-            if (o.baseline.empty()) o.baseline = f.baseline;
-            axes = f.axes;
-            listed = f.variants;
-        }
-        if (o.seeds == 0) o.seeds = 1;
-        // The scene as every run reads it: its errors (and each variant's) before anything runs.
-        const SceneDescription scene = parse_scene_file(o.scene_path, o.overrides);
-        SweepPlan plan;
-        try {
-            plan = listed.empty() ? plan_sweep(axes, o.seeds, scene.process.seed, o.overrides, o.output_dir)
-                                  : plan_sweep_variants(listed, o.seeds, scene.process.seed, o.overrides, o.output_dir);
-        } catch (const std::invalid_argument& e) {
-            throw InputError({"--vary"}, "", e.what());
-        }
-        for (const SweepRun& run : plan.runs)
-            if (run.replicate == 0) (void)parse_scene_file(o.scene_path, run.overrides);
-        if (!o.baseline.empty() &&
-            std::none_of(plan.variants.begin(), plan.variants.end(), [&](const SweepVariant& v) { return v.name == o.baseline; }))
-            throw InputError({"--baseline"}, "", "no variant is named '" + o.baseline + "'; expected one of the sweep's (e.g. '" + plan.variants.front().name + "')");
-        const std::string executable = o.executable.empty() ? this_executable() : o.executable;
-        const std::string sweep_dir = o.output_dir + "/sweep";
-        fs::create_directories(sweep_dir + "/logs");
-        InterruptGuard guard("peensim sweep: second interrupt, stopping at once (the runs keep their last checkpoints)\n");
+    return report_errors(err, [&] { return run_sweep(options, out, err); });
+}
 
-        if (launched_by_mpi()) {
-            // Across the ranks of an MPI job: rank 0 hands the runs out and compares them.
-            MpiSweep mpi;
-            const int slots = o.jobs > 0 ? o.jobs : 1;  // one run per rank, as MPI places one rank per core
-            if (mpi.rank() != 0) {
-                mpi.work(executable, o.scene_path, plan, sweep_dir + "/logs");
-                return kExitOk;
-            }
-            SweepBook book(plan, sweep_dir + "/logs", slots * mpi.size(), out, err);
-            out << "sweep: " << plan.variants.size() << " variants x " << plan.seeds << " seeds = " << book.total() << " runs over "
-                << mpi.size() << " MPI ranks" << (book.done() ? ", " + std::to_string(book.done()) + " finished before" : std::string())
-                << "\n";
-            mpi.coordinate(book, executable, o.scene_path, plan, slots);
-            return finish(book, plan, sweep_dir, o, scene, out, err);
+int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err) {
+    SweepOptions o = options;
+    if (o.output_dir.empty()) throw InputError({"-o"}, "", "expected the sweep's output directory (-o DIR)");
+    std::vector<SweepAxis> axes;
+    try {
+        for (const std::string& spec : o.vary) axes.push_back(parse_sweep_axis(spec));
+    } catch (const std::invalid_argument& e) {
+        throw InputError({"--vary"}, "", e.what());
+    }
+    // A sweep file: its scene, set, variants, seeds and baseline (the command line's --set after its own).
+    std::vector<SweepVariant> listed;
+    if (is_sweep_file(o.scene_path)) {
+        if (!o.vary.empty()) throw InputError({"--vary"}, "", "the sweep file gives the variants; expected no --vary with a sweep file");
+        SweepFile f = read_sweep_file(o.scene_path);
+        o.scene_path = f.scene_path;
+        f.overrides.insert(f.overrides.end(), o.overrides.begin(), o.overrides.end());
+        o.overrides = f.overrides;
+        if (o.seeds == 0) o.seeds = f.seeds;
+        if (o.baseline.empty()) o.baseline = f.baseline;
+        axes = f.axes;
+        listed = f.variants;
+    }
+    if (o.seeds == 0) o.seeds = 1;
+    // The scene as every run reads it: its errors (and each variant's) before anything runs.
+    const SceneDescription scene = parse_scene_file(o.scene_path, o.overrides);
+    SweepPlan plan;
+    try {
+        plan = listed.empty() ? plan_sweep(axes, o.seeds, scene.process.seed, o.overrides, o.output_dir)
+                              : plan_sweep_variants(listed, o.seeds, scene.process.seed, o.overrides, o.output_dir);
+    } catch (const std::invalid_argument& e) {
+        throw InputError({"--vary"}, "", e.what());
+    }
+    for (const SweepRun& run : plan.runs)
+        if (run.replicate == 0) (void)parse_scene_file(o.scene_path, run.overrides);
+    if (!o.baseline.empty() &&
+        std::none_of(plan.variants.begin(), plan.variants.end(), [&](const SweepVariant& v) { return v.name == o.baseline; }))
+        throw InputError(
+            {"--baseline"}, "",
+            "no variant is named '" + o.baseline + "'; expected one of the sweep's (e.g. '" + plan.variants.front().name + "')");
+    const std::string executable = o.executable.empty() ? this_executable() : o.executable;
+    const std::string sweep_dir = o.output_dir + "/sweep";
+    fs::create_directories(sweep_dir + "/logs");
+    const StopRequest stop(o.stop_requested, "peensim sweep: second interrupt, stopping at once (the runs keep their last checkpoints)\n");
+
+    if (launched_by_mpi()) {
+        // Across the ranks of an MPI job: rank 0 hands the runs out and compares them.
+        MpiSweep mpi;
+        const int slots = o.jobs > 0 ? o.jobs : 1;  // one run per rank, as MPI places one rank per core
+        if (mpi.rank() != 0) {
+            mpi.work(executable, o.scene_path, plan, sweep_dir + "/logs", stop);
+            return kExitOk;
         }
-        const int jobs = o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-        SweepBook book(plan, sweep_dir + "/logs", jobs, out, err);
-        out << "sweep: " << plan.variants.size() << " variants x " << plan.seeds << " seeds = " << book.total() << " runs, " << jobs << " at once"
-            << (book.done() ? ", " + std::to_string(book.done()) + " finished before" : std::string()) << "\n";
-        std::map<pid_t, std::size_t> running;
-        while (book.has_queued() || !running.empty()) {
-            if (InterruptGuard::requested() && !book.stopped()) {
-                book.stop();  // every run checkpoints and stops; nothing new starts
-                for (const auto& [pid, k] : running) ::kill(pid, SIGINT);
-            }
-            while (book.has_queued() && static_cast<int>(running.size()) < jobs) {
-                const std::size_t k = book.take();
-                running[start_sweep_run(executable, o.scene_path, plan.runs[k], book.log_of(k))] = k;
-            }
-            int status = 0;
-            const pid_t pid = ::waitpid(-1, &status, WNOHANG);
-            if (pid <= 0) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(20));
-                continue;
-            }
-            const auto it = running.find(pid);
-            if (it == running.end()) continue;
-            const std::size_t k = it->second;
-            running.erase(it);
-            book.outcome(k, exit_code_of(status));
-        }
+        SweepBook book(plan, sweep_dir + "/logs", slots * mpi.size(), out, err);
+        out << "sweep: " << plan.variants.size() << " variants x " << plan.seeds << " seeds = " << book.total() << " runs over "
+            << mpi.size() << " MPI ranks" << (book.done() ? ", " + std::to_string(book.done()) + " finished before" : std::string())
+            << "\n";
+        mpi.coordinate(book, executable, o.scene_path, plan, slots, stop);
         return finish(book, plan, sweep_dir, o, scene, out, err);
-    });
+    }
+    const int jobs = o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    SweepBook book(plan, sweep_dir + "/logs", jobs, out, err);
+    out << "sweep: " << plan.variants.size() << " variants x " << plan.seeds << " seeds = " << book.total() << " runs, " << jobs
+        << " at once" << (book.done() ? ", " + std::to_string(book.done()) + " finished before" : std::string()) << "\n";
+    std::map<pid_t, std::size_t> running;
+    while (book.has_queued() || !running.empty()) {
+        if (stop.requested() && !book.stopped()) {
+            book.stop();  // every run checkpoints and stops; nothing new starts
+            for (const auto& [pid, k] : running) ::kill(pid, SIGINT);
+        }
+        while (book.has_queued() && static_cast<int>(running.size()) < jobs) {
+            const std::size_t k = book.take();
+            running[start_sweep_run(executable, o.scene_path, plan.runs[k], book.log_of(k))] = k;
+        }
+        int status = 0;
+        const pid_t pid = ::waitpid(-1, &status, WNOHANG);
+        if (pid <= 0) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            continue;
+        }
+        const auto it = running.find(pid);
+        if (it == running.end()) continue;
+        const std::size_t k = it->second;
+        running.erase(it);
+        book.outcome(k, exit_code_of(status));
+    }
+    return finish(book, plan, sweep_dir, o, scene, out, err);
 }
 
 }  // namespace peensim

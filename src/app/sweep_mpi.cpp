@@ -29,12 +29,12 @@ constexpr int kTagAsk = 1;  // worker -> rank 0: {the run it ran, its exit code}
 constexpr int kTagRun = 2;  // rank 0 -> worker: the run to do next, -1: no more
 
 // Waits for child `pid`; on an interrupt passes one SIGINT on (it checkpoints) and goes on waiting.
-int wait_for(pid_t pid) {
+int wait_for(pid_t pid, const StopRequest& stop) {
     bool passed_on = false;
     for (;;) {
         int status = 0;
         if (::waitpid(pid, &status, WNOHANG) == pid) return exit_code_of(status);
-        if (InterruptGuard::requested() && !passed_on) {
+        if (stop.requested() && !passed_on) {
             ::kill(pid, SIGINT);
             passed_on = true;
         }
@@ -52,7 +52,8 @@ MpiSweep::MpiSweep() {
 
 MpiSweep::~MpiSweep() { MPI_Finalize(); }
 
-void MpiSweep::work(const std::string& executable, const std::string& scene, const SweepPlan& plan, const std::string& logs_dir) {
+void MpiSweep::work(const std::string& executable, const std::string& scene, const SweepPlan& plan, const std::string& logs_dir,
+                    const StopRequest& stop) {
     long report[2] = {-1, 0};
     for (;;) {
         MPI_Send(report, 2, MPI_LONG, 0, kTagAsk, MPI_COMM_WORLD);
@@ -63,16 +64,17 @@ void MpiSweep::work(const std::string& executable, const std::string& scene, con
         std::filesystem::create_directories(std::filesystem::path(plan.runs[run].dir).parent_path());
         const pid_t pid = start_sweep_run(executable, scene, plan.runs[run], sweep_run_log(plan, logs_dir, run));
         report[0] = k;
-        report[1] = wait_for(pid);
+        report[1] = wait_for(pid, stop);
     }
 }
 
-void MpiSweep::coordinate(SweepBook& book, const std::string& executable, const std::string& scene, const SweepPlan& plan, int slots) {
-    int workers = size_ - 1;  // ranks still asking (a rank told "no more" has ended)
+void MpiSweep::coordinate(SweepBook& book, const std::string& executable, const std::string& scene, const SweepPlan& plan, int slots,
+                          const StopRequest& stop) {
+    int workers = size_ - 1;               // ranks still asking (a rank told "no more" has ended)
     std::map<pid_t, std::size_t> running;  // this rank's own runs
     while (workers > 0 || !running.empty() || book.has_queued()) {
         bool busy = false;
-        if (InterruptGuard::requested() && !book.stopped()) {
+        if (stop.requested() && !book.stopped()) {
             book.stop();  // the other ranks' launcher passes the interrupt on to them
             for (const auto& [pid, k] : running) ::kill(pid, SIGINT);
         }
@@ -108,6 +110,5 @@ void MpiSweep::coordinate(SweepBook& book, const std::string& executable, const 
         if (!busy) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
 }
-
 
 }  // namespace peensim

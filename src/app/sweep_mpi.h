@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "app/interrupt.h"
 #include "app/sweep_book.h"
 #include "app/sweep_plan.h"
 
@@ -28,9 +29,11 @@ public:
 
     // Rank 0: hands out `book`'s runs to the other ranks and runs `slots` at once itself, until
     // every run has ended (or, interrupted, every running one has checkpointed).
-    void coordinate(SweepBook& book, const std::string& executable, const std::string& scene, const SweepPlan& plan, int slots);
+    void coordinate(SweepBook& book, const std::string& executable, const std::string& scene, const SweepPlan& plan, int slots,
+                    const StopRequest& stop);
     // The other ranks: ask rank 0 for a run, run it, report its exit code, until told to stop.
-    void work(const std::string& executable, const std::string& scene, const SweepPlan& plan, const std::string& logs_dir);
+    void work(const std::string& executable, const std::string& scene, const SweepPlan& plan, const std::string& logs_dir,
+              const StopRequest& stop);
 
 private:
     int rank_ = 0, size_ = 1;

@@ -309,4 +309,13 @@ struct SceneDescription {
     std::vector<Warning> warnings;
 };
 
+// Whether a run logs `component`'s impacts: named by output.log, or by default (a part, a strip).
+inline bool is_logged(const SceneDescription& scene, const ComponentDesc& component) {
+    const std::vector<std::string>& named = scene.output.logged_components;
+    if (named.empty()) return logged_by_default(component.role);
+    for (const std::string& n : named)
+        if (n == component.name) return true;
+    return false;
+}
+
 }  // namespace peensim

@@ -2,6 +2,7 @@
 // reference checked. The format is described by scene/schema.h (`peensim schema` prints it).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,5 +18,11 @@ SceneDescription parse_scene_file(const std::string& path, const std::vector<std
 // are resolved against its directory.
 SceneDescription parse_scene_text(const std::string& yaml_text, const std::string& virtual_path,
                                   const std::vector<std::string>& overrides = {});
+
+// The text when given (a scene in memory: Python's dict), else the file.
+inline SceneDescription parse_scene(const std::string& path, const std::optional<std::string>& text,
+                                    const std::vector<std::string>& overrides = {}) {
+    return text ? parse_scene_text(*text, path, overrides) : parse_scene_file(path, overrides);
+}
 
 }  // namespace peensim

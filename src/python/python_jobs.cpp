@@ -1,0 +1,209 @@
+#include "python/python_jobs.h"
+
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <exception>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/analyze_job.h"
+#include "app/check_job.h"
+#include "app/run_job.h"
+#include "app/sweep_job.h"
+#include "model/model.h"
+#include "python/python_stream.h"
+#include "scene/scene_parser.h"
+
+namespace py = pybind11;
+
+namespace peensim::python {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// How often a job looks at Python's signals (it takes the GIL to): Ctrl-C is answered within this.
+constexpr auto kSignalPollInterval = std::chrono::milliseconds(50);
+
+py::object sys_stream(const char* name) { return py::module_::import("sys").attr(name); }
+
+// A job's stop test: Python's pending signals (KeyboardInterrupt, or whatever a handler raises),
+// looked at every kSignalPollInterval, and a stop the progress callback asked for. The exception
+// is kept and raised once the job has stopped cleanly (checkpointed).
+class PythonStop {
+public:
+    bool operator()() {
+        if (stop_) return true;
+        const auto now = Clock::now();
+        if (now < next_poll_) return false;
+        next_poll_ = now + kSignalPollInterval;
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) fail(std::make_exception_ptr(py::error_already_set()));
+        return stop_;
+    }
+    void request() { stop_ = true; }
+    void fail(std::exception_ptr error) {
+        if (!error_) error_ = std::move(error);
+        stop_ = true;
+    }
+    // With the GIL: raises the kept exception, if any.
+    void raise_pending() const {
+        if (error_) std::rethrow_exception(error_);
+    }
+
+private:
+    Clock::time_point next_poll_{};
+    bool stop_ = false;
+    std::exception_ptr error_;
+};
+
+py::tuple check(const std::string& path, const std::optional<std::string>& text, const std::vector<std::string>& overrides, bool strict,
+                const std::string& picture) {
+    std::ostringstream report;
+    std::size_t warnings = 0;
+    {
+        PythonStream err(sys_stream("stderr"));
+        py::gil_scoped_release release;
+        warnings = check_scene(path, text, overrides, strict, report, err, picture);
+    }
+    return py::make_tuple(warnings, report.str());
+}
+
+std::string resolved_yaml(const std::string& path, const std::optional<std::string>& text, const std::vector<std::string>& overrides) {
+    py::gil_scoped_release release;
+    return compile_model(parse_scene(path, text, overrides))->resolved_scene_yaml;
+}
+
+std::string output_directory(const std::string& path, const std::optional<std::string>& text, const std::vector<std::string>& overrides,
+                             const std::string& output_dir) {
+    RunOptions o;
+    o.scene_path = path;
+    o.output_dir = output_dir;
+    return run_output_directory(o, parse_scene(path, text, overrides));
+}
+
+std::vector<std::string> logged_components(const std::string& scene_path) {
+    const SceneDescription scene = parse_scene_file(scene_path);
+    std::vector<std::string> names;
+    for (const ComponentDesc& c : scene.components)
+        if (is_logged(scene, c)) names.push_back(c.name);
+    return names;
+}
+
+int run(const std::string& path, const std::optional<std::string>& text, const std::vector<std::string>& overrides,
+        const std::string& output_dir, bool resume, bool strict, bool analyze, std::optional<bool> render, bool verbose,
+        const py::object& progress) {
+    PythonStop stop;
+    RunOptions o;
+    o.scene_path = path;
+    o.scene_text = text;
+    o.overrides = overrides;
+    o.output_dir = output_dir;
+    o.progress = false;  // the terminal's bar: a notebook has the callback instead
+    o.resume = resume;
+    o.strict = strict;
+    o.analyze = analyze;
+    o.render = render;
+    o.stop_requested = [&stop] { return stop(); };
+    if (!progress.is_none()) {
+        o.on_progress = [&](const RunProgress& p) {
+            py::gil_scoped_acquire gil;
+            try {
+                // Only an explicit False stops: a callback that returns nothing lets the run go on.
+                if (progress(p).is(py::bool_(false))) stop.request();
+            } catch (py::error_already_set&) {
+                stop.fail(std::current_exception());
+            }
+        };
+    }
+    int code = 0;
+    {
+        PythonStream out(verbose ? sys_stream("stdout") : py::none());
+        PythonStream err(sys_stream("stderr"));
+        {
+            py::gil_scoped_release release;
+            code = run_scene(o, out, err);
+        }
+    }
+    stop.raise_pending();
+    return code;
+}
+
+void analyze(const std::string& dir, bool verbose) {
+    PythonStream out(verbose ? sys_stream("stdout") : py::none());
+    PythonStream err(sys_stream("stderr"));
+    py::gil_scoped_release release;
+    analyze_run(dir, out, err);
+}
+
+int sweep(const std::string& scene_path, const std::string& output_dir, const std::vector<std::string>& vary,
+          const std::vector<std::string>& overrides, int seeds, int jobs, const std::string& baseline, const std::string& executable,
+          bool verbose) {
+    PythonStop stop;
+    SweepOptions o;
+    o.scene_path = scene_path;
+    o.output_dir = output_dir;
+    o.vary = vary;
+    o.overrides = overrides;
+    o.seeds = seeds;
+    o.jobs = jobs;
+    o.baseline = baseline;
+    o.executable = executable;
+    o.stop_requested = [&stop] { return stop(); };
+    int code = 0;
+    {
+        PythonStream out(verbose ? sys_stream("stdout") : py::none());
+        PythonStream err(sys_stream("stderr"));
+        {
+            py::gil_scoped_release release;
+            code = run_sweep(o, out, err);
+        }
+    }
+    stop.raise_pending();
+    return code;
+}
+
+}  // namespace
+
+void bind_jobs(py::module_& m) {
+    py::class_<RunProgress>(m, "RunProgress", "Where a run is: passed to the progress callback of peensim.run.")
+        .def_readonly("time_s", &RunProgress::time_s, "simulated time reached (s)")
+        .def_readonly("duration_s", &RunProgress::duration_s, "the scene's process.duration (s)")
+        .def_readonly("impacts", &RunProgress::impacts, "impacts logged so far")
+        .def_readonly("wall_s", &RunProgress::wall_s, "wall time of the run so far (s)")
+        .def_property_readonly(
+            "fraction", [](const RunProgress& p) { return p.duration_s > 0.0 ? p.time_s / p.duration_s : 1.0; }, "time_s / duration_s")
+        .def_property_readonly(
+            "eta_s",
+            [](const RunProgress& p) -> std::optional<double> {
+                if (p.time_s <= 0.0 || p.duration_s <= 0.0) return std::nullopt;
+                return p.wall_s * (p.duration_s - p.time_s) / p.time_s;
+            },
+            "wall time still to go at the pace so far (s), None before the run has moved")
+        .def("__repr__", [](const RunProgress& p) {
+            std::ostringstream s;
+            s << "RunProgress(time_s=" << p.time_s << ", duration_s=" << p.duration_s << ", impacts=" << p.impacts
+              << ", wall_s=" << p.wall_s << ")";
+            return s.str();
+        });
+    m.def("check", &check, py::arg("path"), py::arg("text"), py::arg("overrides"), py::arg("strict"), py::arg("picture"),
+          "Checks a scene as `peensim check` does: (warnings, report text); warnings go to sys.stderr.");
+    m.def("resolved_yaml", &resolved_yaml, py::arg("path"), py::arg("text"), py::arg("overrides"),
+          "The resolved scene (every default filled in, SI units, absolute paths) as YAML text.");
+    m.def("output_directory", &output_directory, py::arg("path"), py::arg("text"), py::arg("overrides"), py::arg("output_dir"),
+          "Where a run of the scene writes.");
+    m.def("logged_components", &logged_components, py::arg("scene_path"), "The components a scene's run logs, in the scene's order.");
+    m.def("run", &run, py::arg("path"), py::arg("text"), py::arg("overrides"), py::arg("output_dir"), py::arg("resume"), py::arg("strict"),
+          py::arg("analyze"), py::arg("render"), py::arg("verbose"), py::arg("progress"),
+          "Runs a scene as `peensim run` does; returns its exit code (0, 3 strict failure, 130 stopped).");
+    m.def("analyze", &analyze, py::arg("dir"), py::arg("verbose"), "Analyses a run directory as `peensim analyze` does.");
+    m.def("sweep", &sweep, py::arg("scene_path"), py::arg("output_dir"), py::arg("vary"), py::arg("overrides"), py::arg("seeds"),
+          py::arg("jobs"), py::arg("baseline"), py::arg("executable"), py::arg("verbose"),
+          "Runs a sweep as `peensim sweep` does; returns its exit code (0, 1 a run failed, 130 stopped).");
+}
+
+}  // namespace peensim::python
