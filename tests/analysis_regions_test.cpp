@@ -1,17 +1,20 @@
-// Regions: scene `regions` entries -> lists of triangles (centroid inside the selection).
+// Regions: scene `regions` entries -> selections of a surface: each triangle by the share of its
+// area inside (sub-triangle samples), each point exactly.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
-#include <set>
 #include <string>
 
 #include "analysis/region_stats.h"
 #include "analysis/regions.h"
 #include "common/input_error.h"
 #include "geometry/box_mesh.h"
+#include "geometry/cylinder_mesh.h"
 #include "geometry/mesh_builder.h"
+#include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
 #include "geometry/spur_gear_mesh.h"
 
@@ -19,125 +22,193 @@ namespace peensim {
 namespace {
 
 constexpr double deg = std::numbers::pi / 180.0;  // rad per degree
+constexpr double pi = std::numbers::pi;
 
-double triangle_area(const TriangleMesh& m, int t) {
-    const auto i = static_cast<std::size_t>(t);
-    return 0.5 * (m.corner(i, 1) - m.corner(i, 0)).cross(m.corner(i, 2) - m.corner(i, 0)).norm();  // m2
-}
+Vec3 centroid(const TriangleMesh& m, std::size_t t) { return (m.corner(t, 0) + m.corner(t, 1) + m.corner(t, 2)) / 3.0; }
 
-Vec3 centroid(const TriangleMesh& m, int t) {
-    const auto i = static_cast<std::size_t>(t);
-    return (m.corner(i, 0) + m.corner(i, 1) + m.corner(i, 2)) / 3.0;
-}
-
-RegionDesc gear_teeth() {
+RegionDesc named(const std::string& name) {
     RegionDesc r;
-    r.name = "teeth";
-    r.kind = RegionKind::sectors;
-    r.axis_direction = Vec3::UnitY();
-    r.reference = Vec3::UnitZ();
-    r.count = 20;
-    r.width_rad = 18 * deg;
-    r.offset_rad = 0.0;
-    r.name_prefix = "tooth-";
+    r.name = name;
     return r;
 }
 
-// Every triangle in exactly one tooth, the teeth alike (equal triangle counts, areas equal to
-// `area_tolerance` relative), tooth 0 along +z, tooth 5 along +x, tooth 10 along -z.
-void expect_twenty_equal_teeth(const TriangleMesh& gear, double area_tolerance) {
-    const std::vector<Region> teeth = select_regions(gear, {gear_teeth()});
-    ASSERT_EQ(teeth.size(), 20u);
-    std::vector<int> owners(gear.triangle_count(), 0);
-    for (std::size_t i = 0; i < teeth.size(); ++i) {
-        EXPECT_EQ(teeth[i].name, "tooth-" + std::to_string(i));
-        for (int t : teeth[i].triangles) ++owners[static_cast<std::size_t>(t)];
-    }
-    for (std::size_t t = 0; t < owners.size(); ++t) EXPECT_EQ(owners[t], 1) << "triangle " << t;
+RegionDesc gear_teeth() {
+    RegionDesc r = named("teeth");
+    r.sectors = SectorsCondition{{Vec3::Zero(), Vec3::UnitY(), Vec3::UnitZ()}, 20, 18 * deg, 0.0, "tooth-"};
+    return r;
+}
 
-    double area0 = 0.0;
-    for (int t : teeth[0].triangles) area0 += triangle_area(gear, t);
-    EXPECT_GT(area0, 0.0);
-    for (const Region& tooth : teeth) {
-        EXPECT_EQ(tooth.triangles.size(), teeth[0].triangles.size()) << tooth.name;
-        double area = 0.0;
-        for (int t : tooth.triangles) area += triangle_area(gear, t);
-        EXPECT_NEAR(area, area0, area_tolerance * area0) << tooth.name;
+RegionDesc half_space(const std::string& name, const Vec3& point, const Vec3& normal) {
+    RegionDesc r = named(name);
+    r.half_space = HalfSpaceCondition{point, normal};
+    return r;
+}
+
+// A flat square [-1, 1]^2 at z = 0 cut into `n` x `n` quads (2 n^2 triangles), normal +z.
+TriangleMesh plate(int n) {
+    MeshBuilder b;
+    const int g = b.group("plate");
+    const double h = 2.0 / n;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const Vec3 a(-1 + i * h, -1 + j * h, 0), c(-1 + (i + 1) * h, -1 + (j + 1) * h, 0);
+            b.add_triangle(a, Vec3(c.x(), a.y(), 0), c, g);
+            b.add_triangle(a, c, Vec3(a.x(), c.y(), 0), g);
+        }
+    return b.take();
+}
+
+double share_sum(const RegionSet& set, std::size_t r, const TriangleMesh& m) {
+    double area = 0.0;
+    for (const RegionShare& s : set.shares(r)) area += s.fraction * triangle_area(m, static_cast<std::size_t>(s.triangle));
+    return area;
+}
+
+// Every point of the gear in exactly one tooth (shares sum to 1 per triangle), the teeth alike
+// (equal areas to `area_tolerance` relative), tooth 0 along +z, tooth 5 along +x, tooth 10 along -z.
+void expect_twenty_equal_teeth(const TriangleMesh& gear, double area_tolerance) {
+    const RegionSet teeth(gear, {gear_teeth()});
+    ASSERT_EQ(teeth.size(), 20u);
+    std::vector<double> owned(gear.triangle_count(), 0.0);
+    double total = 0.0;
+    for (std::size_t t = 0; t < gear.triangle_count(); ++t) total += triangle_area(gear, t);
+    for (std::size_t i = 0; i < teeth.size(); ++i) {
+        EXPECT_EQ(teeth.name(i), "tooth-" + std::to_string(i));
+        for (const RegionShare& s : teeth.shares(i)) owned[static_cast<std::size_t>(s.triangle)] += s.fraction;
+        EXPECT_NEAR(teeth.area_m2(i), share_sum(teeth, i, gear), 1e-18);
     }
-    // Right-hand about +y from +z: the area-weighted mean direction of the tooth's centroids.
-    auto mean_direction = [&](const Region& r) {
+    for (std::size_t t = 0; t < owned.size(); ++t) EXPECT_NEAR(owned[t], 1.0, 1e-12) << "triangle " << t;
+    for (std::size_t i = 0; i < teeth.size(); ++i)
+        EXPECT_NEAR(teeth.area_m2(i), total / 20.0, area_tolerance * total / 20.0) << teeth.name(i);
+    auto mean_direction = [&](std::size_t r) {
         Vec3 s = Vec3::Zero();
-        for (int t : r.triangles) s += triangle_area(gear, t) * centroid(gear, t);
+        for (const RegionShare& x : teeth.shares(r))
+            s += x.fraction * triangle_area(gear, static_cast<std::size_t>(x.triangle)) *
+                 centroid(gear, static_cast<std::size_t>(x.triangle));
         return Vec3(Vec3(s.x(), 0.0, s.z()).normalized());
     };
-    EXPECT_GT(mean_direction(teeth[0]).z(), 0.999);
-    EXPECT_LT(mean_direction(teeth[10]).z(), -0.999);
-    EXPECT_GT(mean_direction(teeth[5]).x(), 0.999);
+    EXPECT_GT(mean_direction(0).z(), 0.999);
+    EXPECT_LT(mean_direction(10).z(), -0.999);
+    EXPECT_GT(mean_direction(5).x(), 0.999);
 }
 
 TEST(AnalysisRegions, ShippedGearTeethTileTheGearWithEqualTeeth) {
-    // assets/gear.stl stores float32 coordinates (relative rounding ~6e-8 each): the teeth's
-    // areas agree to ~3e-8 (measured), not to double round-off.
+    // assets/gear.stl stores float32 coordinates (relative rounding ~6e-8 each).
     expect_twenty_equal_teeth(load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/gear.stl", 1e-3), 1e-6);
 }
 
 TEST(AnalysisRegions, GeneratedGearTeethAreEqualToRoundOff) {
-    // The same gear built in double precision (as assets/regenerate.sh does before writing the STL).
     const SpurGearSpec spec;  // module 2 mm, 20 teeth, axis y, centred at the origin
     expect_twenty_equal_teeth(spur_gear(spec, gear_resolution_for_triangle_count(spec, 5000)), 1e-9);
 }
 
-TEST(AnalysisRegions, SingleSectorMatchesTheSectorsEntry) {
-    const TriangleMesh gear = load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/gear.stl", 1e-3);
-    RegionDesc sector;
-    sector.name = "lowest";
-    sector.kind = RegionKind::sector;
-    sector.axis_direction = Vec3::UnitY();
-    sector.reference = Vec3::UnitZ();
-    sector.from_rad = 171 * deg;  // tooth 10 is centred at 180 deg
-    sector.to_rad = 189 * deg;
-    const std::vector<Region> r = select_regions(gear, {sector, gear_teeth()});
-    ASSERT_EQ(r.size(), 21u);
-    EXPECT_EQ(r[0].name, "lowest");
-    EXPECT_EQ(r[0].triangles, r[1 + 10].triangles);
+TEST(AnalysisRegions, ATriangleCrossingABoundaryIsSplitByArea) {
+    // The plate as 2 triangles: x >= 0.3 holds 0.7 x 2 = 1.4 m2 of its 4 m2; centroids alone would
+    // give 0 or 2 m2. Each triangle gets kRegionSamplesPerEdge^2 samples; a straight cut of length L
+    // misplaces at most half the sub-triangles it crosses: |error| <= L h / 2, h their leg.
+    const TriangleMesh coarse = plate(1);
+    const RegionSet set(coarse, {half_space("right", Vec3(0.3, 0, 0), Vec3::UnitX())});
+    const double h = 2.0 / kRegionSamplesPerEdge;  // m
+    EXPECT_NEAR(set.area_m2(0), 1.4, 2.0 * h / 2.0);
+    ASSERT_EQ(set.shares(0).size(), 2u);
+    // A fine tessellation of the same plate gives the same area.
+    const RegionSet fine(plate(40), {half_space("right", Vec3(0.3, 0, 0), Vec3::UnitX())});
+    EXPECT_NEAR(fine.area_m2(0), 1.4, 1e-3);
+    // Points on either side of the cut within one triangle: exact membership.
+    const std::size_t t = 0;
+    EXPECT_TRUE(set.contains(0, Vec3(0.31, -0.9, 0), t));
+    EXPECT_FALSE(set.contains(0, Vec3(0.29, -0.9, 0), t));
+    std::vector<std::uint32_t> out{7, 7};
+    set.regions_at(Vec3(0.31, -0.9, 0), t, out);
+    EXPECT_EQ(out, (std::vector<std::uint32_t>{0}));
+    set.regions_at(Vec3(0.29, -0.9, 0), t, out);
+    EXPECT_TRUE(out.empty());
 }
 
-TEST(AnalysisRegions, BoxAndHalfSpaceOnABox) {
-    // Unit cube centred at the origin, 2 x 2 quads per face: 8 triangles per face, 48 in all.
+TEST(AnalysisRegions, SingleSectorMatchesTheSectorsEntry) {
+    const TriangleMesh gear = load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/gear.stl", 1e-3);
+    RegionDesc sector = named("lowest");
+    sector.sector = SectorCondition{{Vec3::Zero(), Vec3::UnitY(), Vec3::UnitZ()}, 171 * deg, 189 * deg};  // tooth 10 is centred at 180 deg
+    const RegionSet r(gear, {sector, gear_teeth()});
+    ASSERT_EQ(r.size(), 21u);
+    EXPECT_EQ(r.name(0), "lowest");
+    ASSERT_EQ(r.shares(0).size(), r.shares(11).size());
+    for (std::size_t k = 0; k < r.shares(0).size(); ++k) {
+        EXPECT_EQ(r.shares(0)[k].triangle, r.shares(11)[k].triangle);
+        EXPECT_EQ(r.shares(0)[k].fraction, r.shares(11)[k].fraction);
+    }
+}
+
+TEST(AnalysisRegions, FacingSelectsByTheTrianglesNormal) {
+    // Unit cube centred at the origin, outward normals: facing +z within 10 deg is the top face.
     const TriangleMesh cube = box(BoxSpec{Vec3::Ones(), Vec3::Zero(), Eigen::Vector3i(2, 2, 2)});
-    ASSERT_EQ(cube.triangle_count(), 48u);
-    RegionDesc top;
-    top.name = "top";
-    top.kind = RegionKind::box;
-    top.box_min_m = Vec3(-1, -1, 0.49);
-    top.box_max_m = Vec3(1, 1, 1);
-    RegionDesc quarter;  // the +z face's triangles with x > 0 (centroid)
-    quarter.name = "top-plus-x";
-    quarter.kind = RegionKind::box;
-    quarter.box_min_m = Vec3(0, -1, 0.49);
-    quarter.box_max_m = Vec3(1, 1, 0.51);
-    RegionDesc side;
-    side.name = "plus-x";
-    side.kind = RegionKind::half_space;
-    side.plane_point_m = Vec3(0.4, 0, 0);
-    side.plane_normal = Vec3::UnitX();
-    RegionDesc lower;
-    lower.name = "lower";
-    lower.kind = RegionKind::half_space;
-    lower.plane_normal = -Vec3::UnitZ();
-    const std::vector<Region> r = select_regions(cube, {top, quarter, side, lower});
-    ASSERT_EQ(r.size(), 4u);
-    EXPECT_EQ(r[0].triangles.size(), 8u);
-    for (int t : r[0].triangles)
-        for (int k = 0; k < 3; ++k) EXPECT_EQ(cube.corner(static_cast<std::size_t>(t), k).z(), 0.5);
-    EXPECT_EQ(r[1].triangles.size(), 4u);
-    for (int t : r[1].triangles) EXPECT_GT(centroid(cube, t).x(), 0.0);
-    EXPECT_EQ(r[2].triangles.size(), 8u);
-    for (int t : r[2].triangles)
-        for (int k = 0; k < 3; ++k) EXPECT_EQ(cube.corner(static_cast<std::size_t>(t), k).x(), 0.5);
-    // z <= 0: the bottom face (8) and, on the four side faces, the triangles below the middle (4 each).
-    EXPECT_EQ(r[3].triangles.size(), 8u + 4u * 4u);
-    for (int t : r[3].triangles) EXPECT_LE(centroid(cube, t).z(), 0.0);
+    RegionDesc top = named("top");
+    top.facing = FacingCondition{Vec3::UnitZ(), 10 * deg};
+    RegionDesc sides = named("sides");
+    sides.facing = FacingCondition{Vec3::UnitX(), 91 * deg};  // +x and the four faces at 90 deg
+    const RegionSet r(cube, {top, sides});
+    EXPECT_NEAR(r.area_m2(0), 1.0, 1e-15);
+    EXPECT_EQ(r.shares(0).size(), 8u);
+    for (const RegionShare& s : r.shares(0)) EXPECT_EQ(s.fraction, 1.0);
+    EXPECT_NEAR(r.area_m2(1), 5.0, 1e-14);
+}
+
+TEST(AnalysisRegions, DistancesToAnAxisAndToAPoint) {
+    // A capped cylinder r = 10 mm, h = 20 mm: its wall lies 10 mm from the axis (inscribed polygon:
+    // the wall's points lie between 10 cos(pi / 64) and 10 mm).
+    const TriangleMesh tube = cylinder(CylinderSpec{0.01, 0.02, 64, Axis::z, Vec3::Zero(), false, 1, 1});
+    const TriangleMesh can = cylinder(CylinderSpec{0.01, 0.02, 64, Axis::z, Vec3::Zero(), true, 1, 4});
+    RegionDesc wall = named("wall");
+    wall.distance_to_axis = AxisDistanceCondition{Vec3::Zero(), Vec3::UnitZ(), 0.0099, std::numeric_limits<double>::infinity()};
+    RegionDesc hub = named("hub");  // the caps within 5 mm of the axis
+    hub.distance_to_axis = AxisDistanceCondition{Vec3::Zero(), Vec3::UnitZ(), 0.0, 0.005};
+    RegionDesc spot = named("spot");  // a disc of 4 mm on the top cap
+    spot.distance_to_point = PointDistanceCondition{Vec3(0, 0, 0.01), 0.0, 0.004};
+    const double wall_area = 64 * 2 * 0.01 * std::sin(pi / 64) * 0.02;  // the 64 flat sides
+    EXPECT_NEAR(RegionSet(tube, {wall}).area_m2(0), wall_area, 1e-12);
+    const RegionSet r(can, {hub, spot});
+    EXPECT_NEAR(r.area_m2(0), 2 * pi * 0.005 * 0.005, 0.01 * 2 * pi * 0.005 * 0.005);
+    EXPECT_NEAR(r.area_m2(1), pi * 0.004 * 0.004, 0.01 * pi * 0.004 * 0.004);
+}
+
+TEST(AnalysisRegions, ConditionsOfOneEntrySelectTheirIntersection) {
+    // Sectors and facing together: each tooth's faces toward +y only (one end face's share).
+    const TriangleMesh gear = load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/gear.stl", 1e-3);
+    RegionDesc ends = gear_teeth();
+    ends.name = "ends";
+    ends.sectors->name_prefix = "end-";
+    ends.facing = FacingCondition{Vec3::UnitY(), 1 * deg};
+    RegionDesc end_faces = named("front");
+    end_faces.facing = FacingCondition{Vec3::UnitY(), 1 * deg};
+    const RegionSet r(gear, {ends, end_faces});
+    double sum = 0.0;
+    for (std::size_t i = 0; i < 20; ++i) sum += r.area_m2(i);
+    EXPECT_NEAR(sum, r.area_m2(20), 1e-12 * r.area_m2(20));
+    EXPECT_NEAR(r.area_m2(3), r.area_m2(20) / 20.0, 1e-6 * r.area_m2(20));
+    for (const RegionShare& s : r.shares(3)) EXPECT_GT(triangle_normal(gear, static_cast<std::size_t>(s.triangle)).y(), 0.999);
+}
+
+TEST(AnalysisRegions, ExcludedRegionsAreAUnionNotASum) {
+    const TriangleMesh p = plate(10);  // cells of 0.2 m: x = 0 and x = 0.4 lie on cell edges
+    RegionDesc left = half_space("left", Vec3::Zero(), -Vec3::UnitX());
+    left.exclude = true;
+    RegionDesc middle = named("middle");  // overlaps `left` on -0.4 <= x <= 0
+    middle.box = BoxCondition{Vec3(-0.4, -2, -1), Vec3(0.4, 2, 1)};
+    middle.exclude = true;
+    const RegionSet r(p, {left, middle, half_space("kept", Vec3::Zero(), Vec3::UnitX())});
+    EXPECT_TRUE(r.excluded(0));
+    EXPECT_FALSE(r.excluded(2));
+    double excluded = 0.0;
+    for (std::size_t t = 0; t < p.triangle_count(); ++t) {
+        excluded += r.excluded_fraction(t) * triangle_area(p, t);
+        const double x = centroid(p, t).x();
+        EXPECT_EQ(r.excluded_fraction(t), x < 0.4 ? 1.0 : 0.0) << x;
+        EXPECT_EQ(r.dominant_region(t), x < 0.0 ? 0 : x < 0.4 ? 1 : 2) << x;
+    }
+    EXPECT_NEAR(excluded, 1.4 * 2.0, 1e-12);
+    // Without an excluded region nothing is.
+    const RegionSet none(p, {half_space("kept", Vec3::Zero(), Vec3::UnitX())});
+    EXPECT_EQ(none.excluded_fraction(3), 0.0);
 }
 
 TEST(AnalysisRegions, GroupSelectsTheNamedSolid) {
@@ -148,18 +219,16 @@ TEST(AnalysisRegions, GroupSelectsTheNamedSolid) {
     b.add_triangle(Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(0, 1, 1), g);
     b.add_triangle(Vec3(0, 0, 2), Vec3(1, 0, 2), Vec3(0, 1, 2), a);
     const TriangleMesh m = b.take();
-    RegionDesc solid;
-    solid.name = "solid-A";
-    solid.kind = RegionKind::group;
+    RegionDesc solid = named("solid-A");
     solid.group = "A";
-    const std::vector<Region> r = select_regions(m, {solid});
+    const RegionSet r(m, {solid});
     ASSERT_EQ(r.size(), 1u);
-    EXPECT_EQ(r[0].triangles, (std::vector<int>{0, 2}));
+    EXPECT_EQ(r.triangles(0), (std::vector<int>{0, 2}));
 
     solid.group = "C";
     solid.where = SourceLocation{"scene.yaml", 12, 9};
     try {
-        select_regions(m, {solid});
+        RegionSet unknown(m, {solid});
         FAIL() << "an unknown group was accepted";
     } catch (const InputError& e) {
         EXPECT_EQ(e.where().line, 12);
@@ -168,28 +237,20 @@ TEST(AnalysisRegions, GroupSelectsTheNamedSolid) {
     }
 }
 
-TEST(AnalysisRegions, StatsSumAndWeightTheTrianglesFields) {
+TEST(AnalysisRegions, StatsOfATallyAndCoverageOverThePeenedArea) {
     const TriangleMesh cube = box(BoxSpec{Vec3::Ones(), Vec3::Zero(), Eigen::Vector3i(2, 2, 2)});
-    RegionDesc top;
-    top.name = "top";
-    top.kind = RegionKind::box;
-    top.box_min_m = Vec3(-1, -1, 0.49);
-    top.box_max_m = Vec3(1, 1, 1);
-    const Region region = select_regions(cube, {top})[0];
+    RegionDesc top = named("top");  // the +z face exactly (a box would take a band of the sides too: points count)
+    top.facing = FacingCondition{Vec3::UnitZ(), 1 * deg};
+    const RegionSet regions(cube, {top});
+    RegionTally tally;
     const double shot_mass = 0.01;  // kg
-    TriangleFields fields(cube, shot_mass);
-    const int a = region.triangles[0], b = region.triangles[5];
-    EXPECT_EQ(fields.add(cube.source_facet[static_cast<std::size_t>(a)], centroid(cube, a), 2.0), a);
-    EXPECT_EQ(fields.add(cube.source_facet[static_cast<std::size_t>(b)], centroid(cube, b), 4.0), b);
-    EXPECT_EQ(fields.add(cube.source_facet[static_cast<std::size_t>(b)], centroid(cube, b), 3.0), b);
-    const int outside = 0;  // a triangle of another face: not counted
-    ASSERT_EQ(std::count(region.triangles.begin(), region.triangles.end(), outside), 0);
-    fields.add(cube.source_facet[0], centroid(cube, outside), 9.0);
-
+    for (double v : {2.0, 4.0, 3.0}) tally.add(v, 0.5 * shot_mass * v * v, 1e-4, 0);
     const double duration = 2.0;  // s
-    const RegionStats s = region_stats(region, fields, nullptr, duration);
+    const std::vector<double> everywhere(cube.triangle_count(), 1.0);
+    const RegionStats s = region_stats(regions, 0, tally, nullptr, everywhere, duration);
     EXPECT_EQ(s.triangles, 8u);
     EXPECT_NEAR(s.area_m2, 1.0, 1e-15);
+    EXPECT_NEAR(s.peened_area_m2, 1.0, 1e-15);
     EXPECT_EQ(s.impacts, 3u);
     EXPECT_NEAR(s.impacts_per_mm2_s, 3.0 / 1e6 / duration, 1e-20);
     EXPECT_NEAR(s.mean_normal_speed, 3.0, 1e-15);
@@ -197,13 +258,17 @@ TEST(AnalysisRegions, StatsSumAndWeightTheTrianglesFields) {
     EXPECT_NEAR(s.energy_per_area, 0.5 * shot_mass * (4.0 + 16.0 + 9.0) / 1.0, 1e-15);
     EXPECT_TRUE(std::isnan(s.coverage));
 
-    // Grid cells of 0.13 m: a face lying exactly on a cell boundary (cells of 0.1 m on this unit
-    // cube) is missed by CoverageMap's box-plane test (reported; not this test's subject).
+    // A dent of 0.00785 m2 on the top face; half the face out of reach: coverage over the other half.
     CoverageMap coverage(cube, 0.01, 0.13);
-    coverage.add_dent(Vec3(0, 0, 0.5), 0.1);  // a disc of 0.00785 m2 on the top face
-    const RegionStats c = region_stats(region, fields, &coverage, duration);
-    EXPECT_NEAR(c.coverage, std::numbers::pi * 0.05 * 0.05, 2e-3);
-    EXPECT_EQ(c.coverage, coverage.coverage_of(region.triangles));
+    coverage.add_dent(Vec3(0.25, 0.25, 0.5), 0.1);
+    EXPECT_NEAR(region_stats(regions, 0, tally, &coverage, everywhere, duration).coverage, pi * 0.05 * 0.05, 2e-3);
+    std::vector<double> peened = everywhere;
+    for (std::size_t t = 0; t < cube.triangle_count(); ++t)
+        if (centroid(cube, t).x() < 0.0) peened[t] = 0.0;
+    const RegionStats half = region_stats(regions, 0, tally, &coverage, peened, duration);
+    EXPECT_NEAR(half.peened_area_m2, 0.5, 1e-15);
+    EXPECT_NEAR(half.coverage, pi * 0.05 * 0.05 / 0.5, 4e-3);
+    EXPECT_NEAR(peened_coverage(coverage, peened), coverage.covered_area() / 3.0, 1e-12);  // 6 faces, 3 m2 peened
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "model/assembly_checks.h"
 #include "model/shot_cavity.h"
 #include "scene/scene_parser.h"
+#include "support/temp_dir.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -158,12 +159,14 @@ TEST(AssemblyChecks, ARunRefusesAnAssemblyWithAnError) {
 }
 
 // Plausibility: values a valid scene may hold by a slip are warnings naming what was meant.
-std::string setup_warnings(const TestScene& scene, const std::vector<std::string>& overrides) {
+std::string setup_warnings_of(const std::string& scene_path, const std::vector<std::string>& overrides) {
     std::ostringstream out, err;
-    const int code = check_job(scene.scene_path(), overrides, false, out, err);
+    const int code = check_job(scene_path, overrides, false, out, err);
     EXPECT_EQ(code, kExitOk) << err.str();
     return err.str();
 }
+
+std::string setup_warnings(const TestScene& scene, const std::vector<std::string>& overrides) { return setup_warnings_of(scene.scene_path(), overrides); }
 
 TEST(SetupPlausibility, AnAmplitudeWithoutItsUnitIsNamed) {
     const TestScene scene(small_rod_scene("event", 0.1));
@@ -175,6 +178,21 @@ TEST(SetupPlausibility, AnAmplitudeWithoutItsUnitIsNamed) {
     EXPECT_NE(w.find("A0 2.5e+04 mm is far above ultrasonic peening's 10-100 um"), std::string::npos) << w;
     std::ostringstream out, err;
     EXPECT_EQ(check_job(scene.scene_path(), {"components[sonotrode].vibration.amplitude=25"}, true, out, err), kExitInputError);
+}
+
+// A file all in SI (a resolved scene, as the report's command and a Python sweep of a dict run it)
+// stays quiet when an override writes a unit: its plain numbers are not slips.
+TEST(SetupPlausibility, AnSiFileIsNotBlamedForAUnitInAnOverride) {
+    peensim::testing::TempDir dir;
+    std::ostringstream out, err;
+    ASSERT_EQ(check_job(std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml", {}, false, out, err), kExitOk) << err.str();
+    const std::string text = out.str();
+    const fs::path resolved = dir.path / "resolved.yaml";
+    std::ofstream(resolved) << text.substr(text.find("# Resolved scene"));
+    EXPECT_EQ(setup_warnings_of(resolved.string(), {"process.duration=1164 s", "components[gear].motion=static"}), "");
+    // A plain number in an override, in a scene written with units, still is.
+    EXPECT_NE(setup_warnings_of(std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml", {"shot.diameter=0.002"}).find("the plain number 0.002"),
+              std::string::npos);
 }
 
 TEST(SetupPlausibility, FrequencyGravityShotSizeAndMeshUnitOutsideTheWindow) {

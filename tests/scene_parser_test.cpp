@@ -480,56 +480,80 @@ components:
       - {name: upper, half_space: {point: [0, 0, 0], normal: [0, 0, 3]}}
       - {name: solid-A, group: "A"}
       - {name: rim, sectors: {axis_direction: [0, 1, 0], count: 2, width: 180 deg, reference: [1, 0, 0]}}
+      - {name: end-rim, facing: {direction: [0, 2, 0], within: 30 deg}, distance_to_axis: {axis_direction: [0, 1, 0], min: 15 mm}}
+      - {name: hole, distance_to_point: {point: [0, 5 mm, 0], max: 2 mm}, exclude: true}
 )";
 
 TEST(SceneParser, RegionsAreReadInSi) {
     const SceneDescription s = parse_scene_text(regions_scene, virtual_path);
     const std::vector<RegionDesc>& r = s.components[2].regions;
-    ASSERT_EQ(r.size(), 6u);
-    EXPECT_EQ(r[0].kind, RegionKind::sector);
-    EXPECT_EQ(r[0].axis_direction, Vec3(0, 1, 0));
-    EXPECT_DOUBLE_EQ(r[0].from_rad, -9 * pi / 180);
-    EXPECT_DOUBLE_EQ(r[0].to_rad, 9 * pi / 180);
+    ASSERT_EQ(r.size(), 8u);
+    ASSERT_TRUE(r[0].sector);
+    EXPECT_EQ(r[0].sector->frame.axis_direction, Vec3(0, 1, 0));
+    EXPECT_DOUBLE_EQ(r[0].sector->from_rad, -9 * pi / 180);
+    EXPECT_DOUBLE_EQ(r[0].sector->to_rad, 9 * pi / 180);
     EXPECT_EQ(r[0].where.line, 11);
-    EXPECT_EQ(r[1].kind, RegionKind::sectors);
-    EXPECT_EQ(r[1].count, 20);
-    EXPECT_DOUBLE_EQ(r[1].width_rad, 18 * pi / 180);
+    EXPECT_FALSE(r[0].exclude);
+    ASSERT_TRUE(r[1].sectors);
+    EXPECT_EQ(r[1].sectors->count, 20);
+    EXPECT_DOUBLE_EQ(r[1].sectors->width_rad, 18 * pi / 180);
     EXPECT_EQ(region_names(r[1]).back(), "tooth-x19");
-    EXPECT_EQ(r[2].kind, RegionKind::box);
-    EXPECT_EQ(r[2].box_min_m, Vec3(-1, -0.006, -1));
-    EXPECT_EQ(r[3].kind, RegionKind::half_space);
-    EXPECT_EQ(r[3].plane_normal, Vec3(0, 0, 1));
-    EXPECT_EQ(r[4].kind, RegionKind::group);
+    ASSERT_TRUE(r[2].box);
+    EXPECT_EQ(r[2].box->min_m, Vec3(-1, -0.006, -1));
+    ASSERT_TRUE(r[3].half_space);
+    EXPECT_EQ(r[3].half_space->normal, Vec3(0, 0, 1));
     EXPECT_EQ(r[4].group, "A");
-    EXPECT_EQ(r[5].name_prefix, "rim-");  // the default prefix is the entry's name and a dash
+    EXPECT_EQ(r[5].sectors->name_prefix, "rim-");  // the default prefix is the entry's name and a dash
     EXPECT_EQ(region_names(r[5]), (std::vector<std::string>{"rim-0", "rim-1"}));
+    // Several conditions in one entry, a distance with no upper bound, an excluded region.
+    ASSERT_TRUE(r[6].facing && r[6].distance_to_axis && !r[6].sector);
+    EXPECT_EQ(r[6].facing->direction, Vec3(0, 1, 0));
+    EXPECT_DOUBLE_EQ(r[6].facing->within_rad, 30 * pi / 180);
+    EXPECT_DOUBLE_EQ(r[6].distance_to_axis->min_m, 0.015);
+    EXPECT_TRUE(std::isinf(r[6].distance_to_axis->max_m));
+    EXPECT_TRUE(r[7].exclude);
+    EXPECT_EQ(r[7].distance_to_point->point_m, Vec3(0, 0.005, 0));
+    EXPECT_DOUBLE_EQ(r[7].distance_to_point->max_m, 0.002);
+    EXPECT_EQ(r[7].distance_to_point->min_m, 0.0);
 }
 
 TEST(SceneParser, AWholeNumberMayBeWrittenWithAnExponent) {
     std::string text = regions_scene;
     const std::string twenty = "count: 20, width: 18 deg";
     text.replace(text.find(twenty), twenty.size(), "count: 2e1, width: 18 deg");
-    EXPECT_EQ(parse_scene_text(text, virtual_path).components[2].regions[1].count, 20);
+    EXPECT_EQ(parse_scene_text(text, virtual_path).components[2].regions[1].sectors->count, 20);
 }
 
 TEST(SceneParser, RegionsReadBackTheSame) {
     const SceneDescription first = parse_scene_text(regions_scene, virtual_path);
     const std::string resolved = resolved_scene_yaml(first);
     EXPECT_NE(resolved.find("    regions:\n      - {name: tooth-0, sector: {"), std::string::npos) << resolved;
+    EXPECT_NE(resolved.find("distance_to_point: {point: [0, 0.005, 0], min: 0, max: 0.002}, exclude: true}"), std::string::npos) << resolved;
     const SceneDescription second = parse_scene_text(resolved, "/nonexistent/dir/resolved.yaml");
     EXPECT_EQ(resolved_scene_yaml(second), resolved);
-    ASSERT_EQ(second.components[2].regions.size(), 6u);
-    for (std::size_t i = 0; i < 6; ++i) {
+    ASSERT_EQ(second.components[2].regions.size(), 8u);
+    for (std::size_t i = 0; i < 8; ++i) {
         const RegionDesc& a = first.components[2].regions[i];
         const RegionDesc& b = second.components[2].regions[i];
         EXPECT_EQ(a.name, b.name);
-        EXPECT_EQ(a.kind, b.kind);
-        EXPECT_EQ(a.from_rad, b.from_rad);
-        EXPECT_EQ(a.width_rad, b.width_rad);
-        EXPECT_EQ(a.reference, b.reference);
-        EXPECT_EQ(a.box_max_m, b.box_max_m);
-        EXPECT_EQ(a.name_prefix, b.name_prefix);
+        EXPECT_EQ(a.sector.has_value(), b.sector.has_value());
+        if (a.sector) {
+            EXPECT_EQ(a.sector->from_rad, b.sector->from_rad);
+        }
+        if (a.sectors) {
+            EXPECT_EQ(a.sectors->width_rad, b.sectors->width_rad);
+            EXPECT_EQ(a.sectors->frame.reference, b.sectors->frame.reference);
+            EXPECT_EQ(a.sectors->name_prefix, b.sectors->name_prefix);
+        }
+        if (a.box) {
+            EXPECT_EQ(a.box->max_m, b.box->max_m);
+        }
         EXPECT_EQ(a.group, b.group);
+        EXPECT_EQ(a.facing.has_value(), b.facing.has_value());
+        if (a.distance_to_axis) {
+            EXPECT_EQ(a.distance_to_axis->max_m, b.distance_to_axis->max_m);
+        }
+        EXPECT_EQ(a.exclude, b.exclude);
     }
 }
 
@@ -570,8 +594,21 @@ TEST(SceneParser, BadRegionsNameLineAndField) {
          "components[2].regions[0].sectors.count", "expected a whole number in [1, 3600], got '2.5e0'"},
         {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 2, width: 361 deg, reference: [1, 0, 0]}}",
          "components[2].regions[0].sectors.width", "at most 360 deg"},
-        {"{name: a}", "components[2].regions[0]", "expected exactly one of sector, sectors, box, half_space, group"},
-        {"{name: a, group: A, half_space: {normal: [0, 0, 1]}}", "components[2].regions[0]", "expected exactly one of"},
+        {"{name: a}", "components[2].regions[0]", "expected at least one of sector, sectors, box, half_space, distance_to_axis"},
+        {"{name: a, sector: {axis_direction: [0, 1, 0], from: 0, to: 1, reference: [1, 0, 0]}, sectors: {axis_direction: [0, 1, 0], count: 2, "
+         "width: 1 deg, reference: [1, 0, 0]}}",
+         "components[2].regions[0].sectors", "expected `sector` or `sectors`, not both"},
+        {"{name: a, facing: {direction: [0, 0, 0], within: 10 deg}}", "components[2].regions[0].facing.direction",
+         "expected a direction, got the zero vector"},
+        {"{name: a, facing: {direction: [0, 0, 1], within: 181 deg}}", "components[2].regions[0].facing.within", "expected at most 180 deg"},
+        {"{name: a, facing: {direction: [0, 0, 1], within: 0 deg}}", "components[2].regions[0].facing.within", "expected an angle > 0"},
+        {"{name: a, distance_to_axis: {axis_direction: [0, 0, 1], min: 2 mm, max: 1 mm}}", "components[2].regions[0].distance_to_axis.max",
+         "expected a distance greater than `min`"},
+        {"{name: a, distance_to_axis: {axis_direction: [0, 0, 1]}}", "components[2].regions[0].distance_to_axis",
+         "expected `max`, or a `min` above 0"},
+        {"{name: a, distance_to_point: {point: [0, 0, 0], min: -1 mm}}", "components[2].regions[0].distance_to_point.min",
+         "expected a length >= 0"},
+        {"{name: a, group: A, exclude: yes}", "components[2].regions[0].exclude", "expected one of true, false"},
         {"{name: a b, group: A}", "components[2].regions[0].name", "invalid name 'a b'"},
     };
     for (const Bad& b : bad) {

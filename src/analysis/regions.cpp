@@ -1,36 +1,26 @@
 #include "analysis/regions.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "common/input_error.h"
+#include "geometry/mesh_checks.h"
 
 namespace peensim {
 namespace {
 
 constexpr double full_turn_rad = 2.0 * std::numbers::pi;  // rad
 
-Vec3 centroid(const TriangleMesh& mesh, std::size_t t) {
-    return (mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) / 3.0;  // m
+// Angle of `p` about the frame's axis, right-hand about axis_direction, 0 along the reference
+// projected normal to the axis; in [0, 2 pi) (rad). A point on the axis gets angle 0.
+double axis_angle(const AxisAngleFrame& f, const Vec3& p) {
+    const Vec3 u = (f.reference - f.reference.dot(f.axis_direction) * f.axis_direction).normalized();
+    const Vec3 v = f.axis_direction.cross(u);
+    const Vec3 d = p - f.axis_point_m;
+    const double a = std::atan2(d.dot(v), d.dot(u));  // rad, (-pi, pi]
+    return a < 0.0 ? a + full_turn_rad : a;
 }
-
-// Angle of `p` about the axis, right-hand about axis_direction, 0 along the reference projected
-// normal to the axis; in [0, 2 pi) (rad). A point on the axis gets angle 0.
-class AxisAngle {
-public:
-    explicit AxisAngle(const RegionDesc& r) : point_(r.axis_point_m), axis_(r.axis_direction) {
-        u_ = (r.reference - r.reference.dot(axis_) * axis_).normalized();
-        v_ = axis_.cross(u_);
-    }
-    double operator()(const Vec3& p) const {
-        const Vec3 d = p - point_;
-        const double a = std::atan2(d.dot(v_), d.dot(u_));  // rad, (-pi, pi]
-        return a < 0.0 ? a + full_turn_rad : a;
-    }
-
-private:
-    Vec3 point_, axis_, u_, v_;
-};
 
 // Whether `angle` lies in [from, from + width) modulo a full turn (rad).
 bool in_sector(double angle, double from, double width) {
@@ -39,71 +29,163 @@ bool in_sector(double angle, double from, double width) {
     return d < width || width >= full_turn_rad;
 }
 
-template <class Inside>
-Region select(const TriangleMesh& mesh, std::string name, Inside inside) {
-    Region out{std::move(name), {}};
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-        if (inside(t)) out.triangles.push_back(static_cast<int>(t));
-    return out;
+// Whether `angle_rad` lies in sector `sector` of a `sectors` condition.
+bool in_sector_of(const SectorsCondition& c, int sector, double angle_rad) {
+    const double centre = c.offset_rad + sector * full_turn_rad / c.count;
+    return in_sector(angle_rad, centre - 0.5 * c.width_rad, c.width_rad);
 }
 
-void add_sectors(const TriangleMesh& mesh, const RegionDesc& r, std::vector<Region>& out) {
-    const AxisAngle angle_of(r);
-    const double pitch = full_turn_rad / r.count;  // rad between sector centres
-    const std::vector<std::string> names = region_names(r);
-    const std::size_t first = out.size();
-    for (const std::string& n : names) out.push_back({n, {}});
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-        const double a = angle_of(centroid(mesh, t));
-        for (int i = 0; i < r.count; ++i)
-            if (in_sector(a, r.offset_rad + i * pitch - 0.5 * r.width_rad, r.width_rad))
-                out[first + static_cast<std::size_t>(i)].triangles.push_back(static_cast<int>(t));
+// Calls f(i) for every sector i of `c` that holds `angle_rad`: only the sectors whose start lies
+// within a width before the angle are looked at (one for sectors that tile the turn), not all.
+template <class F>
+void for_each_sector_holding(const SectorsCondition& c, double angle_rad, F&& f) {
+    const double pitch = full_turn_rad / c.count;                                         // rad between sector centres
+    double m = std::fmod(angle_rad - (c.offset_rad - 0.5 * c.width_rad), full_turn_rad);  // from sector 0's start
+    if (m < 0.0) m += full_turn_rad;
+    const int last = std::min(c.count - 1, static_cast<int>(m / pitch));  // the last sector starting at or before m
+    const int reach = std::min(c.count, static_cast<int>(std::ceil(c.width_rad / pitch)) + 1);
+    for (int j = 0; j < reach; ++j) {
+        const int i = ((last - j) % c.count + c.count) % c.count;
+        if (in_sector_of(c, i, angle_rad)) f(i);
     }
 }
 
+bool in_range(double x, double min, double max) { return x >= min && x <= max; }
+
+// The regions an entry yields (sectors: count).
+int entry_regions(const RegionDesc& r) { return r.sectors ? r.sectors->count : 1; }
+
 int group_index(const TriangleMesh& mesh, const RegionDesc& r) {
     for (std::size_t g = 0; g < mesh.group_names.size(); ++g)
-        if (mesh.group_names[g] == r.group) return static_cast<int>(g);
+        if (mesh.group_names[g] == *r.group) return static_cast<int>(g);
     std::string known;
     for (const std::string& g : mesh.group_names)
         if (!g.empty()) known += (known.empty() ? "'" : ", '") + g + "'";
     throw InputError(r.where, "regions." + r.name + ".group",
-                     "the mesh has no group '" + r.group + "'; its groups: " + (known.empty() ? "none named" : known));
+                     "the mesh has no group '" + *r.group + "'; its groups: " + (known.empty() ? "none named" : known));
+}
+
+// The sample spacing (m) for region shares: the finest, coarsened by 25 % steps while the mesh
+// would need more than the budget.
+double share_spacing(const TriangleMesh& mesh) {
+    double h = kRegionFinestSpacing_m;
+    for (;;) {
+        double samples = 0.0;
+        for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+            const double n = samples_per_edge(mesh, t, h, kRegionSamplesPerEdge);
+            samples += n * n;
+        }
+        if (samples <= kRegionSampleBudget) return h;
+        h *= 1.25;
+    }
 }
 
 }  // namespace
 
-std::vector<Region> select_regions(const TriangleMesh& mesh, const std::vector<RegionDesc>& regions) {
-    std::vector<Region> out;
-    for (const RegionDesc& r : regions) {
-        switch (r.kind) {
-            case RegionKind::sector: {
-                const AxisAngle angle_of(r);
-                out.push_back(select(mesh, r.name, [&](std::size_t t) {
-                    return in_sector(angle_of(centroid(mesh, t)), r.from_rad, r.to_rad - r.from_rad);
-                }));
-                break;
+bool RegionSet::holds_apart_from_sectors(const RegionDesc& r, const Vec3& p, std::size_t t) const {
+    if (r.facing && !(normals_[t].dot(r.facing->direction) >= std::cos(r.facing->within_rad))) return false;
+    if (r.group) {
+        const int g = group_of_entry_[static_cast<std::size_t>(&r - entries_.data())];
+        if (!(t < mesh_->group_of_triangle.size() && mesh_->group_of_triangle[t] == g)) return false;
+    }
+    if (r.sector && !in_sector(axis_angle(r.sector->frame, p), r.sector->from_rad, r.sector->to_rad - r.sector->from_rad)) return false;
+    if (r.box && !((p.array() >= r.box->min_m.array()).all() && (p.array() <= r.box->max_m.array()).all())) return false;
+    if (r.half_space && !((p - r.half_space->point_m).dot(r.half_space->normal) >= 0.0)) return false;
+    if (r.distance_to_axis) {
+        const AxisDistanceCondition& c = *r.distance_to_axis;
+        const Vec3 d = p - c.axis_point_m;
+        if (!in_range((d - d.dot(c.axis_direction) * c.axis_direction).norm(), c.min_m, c.max_m)) return false;
+    }
+    if (r.distance_to_point && !in_range((p - r.distance_to_point->point_m).norm(), r.distance_to_point->min_m, r.distance_to_point->max_m))
+        return false;
+    return true;
+}
+
+bool RegionSet::holds(const Selected& s, const Vec3& p, std::size_t t) const {
+    if (!holds_apart_from_sectors(*s.entry, p, t)) return false;
+    return !s.entry->sectors || in_sector_of(*s.entry->sectors, s.sector, axis_angle(s.entry->sectors->frame, p));
+}
+
+RegionSet::RegionSet(const TriangleMesh& mesh, const std::vector<RegionDesc>& regions) : mesh_(&mesh), entries_(regions) {
+    for (const RegionDesc& r : entries_) group_of_entry_.push_back(r.group ? group_index(mesh, r) : -1);
+    for (const RegionDesc& r : entries_) {
+        const std::vector<std::string> names = region_names(r);
+        for (std::size_t i = 0; i < names.size(); ++i) regions_.push_back({names[i], &r, r.sectors ? static_cast<int>(i) : -1, {}, 0.0});
+    }
+    if (regions_.empty()) return;
+    const std::size_t n_tri = mesh.triangle_count();
+    normals_.resize(n_tri);
+    areas_.resize(n_tri);
+    for (std::size_t t = 0; t < n_tri; ++t) {
+        normals_[t] = triangle_normal(mesh, t);
+        areas_[t] = triangle_area(mesh, t);
+    }
+
+    // Every triangle's samples against every region: the shares, the excluded union, the candidates.
+    const double h = share_spacing(mesh);
+    const std::size_t n_reg = regions_.size();
+    std::vector<std::uint32_t> inside(n_reg);  // samples of the current triangle in each region
+    excluded_.assign(n_tri, 0.0);
+    dominant_.assign(n_tri, -1);
+    candidate_start_.assign(n_tri + 1, 0);
+    for (std::size_t t = 0; t < n_tri; ++t) {
+        std::fill(inside.begin(), inside.end(), 0u);
+        std::uint32_t samples = 0, in_excluded = 0;
+        const int n = samples_per_edge(mesh, t, h, kRegionSamplesPerEdge);
+        for_each_sub_centroid(mesh, t, n, [&](const Vec3& p) {
+            ++samples;
+            bool excluded = false;
+            // Entry by entry: a `sectors` entry's other conditions and its angle once for all its sectors.
+            for (std::size_t e = 0, r = 0; e < entries_.size(); r += static_cast<std::size_t>(entry_regions(entries_[e])), ++e) {
+                const RegionDesc& entry = entries_[e];
+                if (!holds_apart_from_sectors(entry, p, t)) continue;
+                if (!entry.sectors) {
+                    ++inside[r];
+                    excluded = excluded || entry.exclude;
+                    continue;
+                }
+                for_each_sector_holding(*entry.sectors, axis_angle(entry.sectors->frame, p), [&](int i) {
+                    ++inside[r + static_cast<std::size_t>(i)];
+                    excluded = excluded || entry.exclude;
+                });
             }
-            case RegionKind::sectors: add_sectors(mesh, r, out); break;
-            case RegionKind::box:
-                out.push_back(select(mesh, r.name, [&](std::size_t t) {
-                    const Vec3 c = centroid(mesh, t);
-                    return (c.array() >= r.box_min_m.array()).all() && (c.array() <= r.box_max_m.array()).all();
-                }));
-                break;
-            case RegionKind::half_space:
-                out.push_back(
-                    select(mesh, r.name, [&](std::size_t t) { return (centroid(mesh, t) - r.plane_point_m).dot(r.plane_normal) >= 0.0; }));
-                break;
-            case RegionKind::group: {
-                const int g = group_index(mesh, r);
-                out.push_back(select(mesh, r.name,
-                                     [&](std::size_t t) { return t < mesh.group_of_triangle.size() && mesh.group_of_triangle[t] == g; }));
-                break;
+            in_excluded += excluded ? 1u : 0u;
+        });
+        const double area = areas_[t];
+        std::uint32_t best = 0;
+        for (std::size_t r = 0; r < n_reg; ++r) {
+            bool candidate = inside[r] > 0;
+            for (int k = 0; k < 3 && !candidate; ++k) candidate = holds(regions_[r], mesh.corner(t, k), t);
+            if (candidate) candidates_.push_back(static_cast<std::uint32_t>(r));
+            if (inside[r] == 0) continue;
+            const double fraction = static_cast<double>(inside[r]) / samples;
+            regions_[r].shares.push_back({static_cast<int>(t), fraction});
+            regions_[r].area_m2 += fraction * area;
+            if (inside[r] > best) {
+                best = inside[r];
+                dominant_[t] = static_cast<int>(r);
             }
         }
+        candidate_start_[t + 1] = static_cast<std::uint32_t>(candidates_.size());
+        excluded_[t] = static_cast<double>(in_excluded) / samples;
     }
+    if (std::none_of(entries_.begin(), entries_.end(), [](const RegionDesc& r) { return r.exclude; })) excluded_.clear();
+}
+
+std::vector<int> RegionSet::triangles(std::size_t r) const {
+    std::vector<int> out;
+    out.reserve(regions_[r].shares.size());
+    for (const RegionShare& s : regions_[r].shares) out.push_back(s.triangle);
     return out;
+}
+
+bool RegionSet::contains(std::size_t r, const Vec3& p, std::size_t t) const { return holds(regions_[r], p, t); }
+
+void RegionSet::regions_at(const Vec3& p, std::size_t t, std::vector<std::uint32_t>& out) const {
+    out.clear();
+    if (candidate_start_.empty()) return;
+    for (std::uint32_t k = candidate_start_[t]; k < candidate_start_[t + 1]; ++k)
+        if (holds(regions_[candidates_[k]], p, t)) out.push_back(candidates_[k]);
 }
 
 }  // namespace peensim

@@ -13,7 +13,7 @@
 
 namespace peensim {
 
-// The JSON text of the figures (duration_s: the simulated time the log covers).
-std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, double duration_s);
+// The JSON text of the figures (rates per the window's length).
+std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, const AnalysisWindow& window);
 
 }  // namespace peensim

@@ -15,19 +15,25 @@ namespace peensim {
 
 struct ReportContext {
     std::filesystem::path run_dir;
-    double duration_s = 0.0;        // s, simulated time the log covers
+    AnalysisWindow window;          // what of the log was analysed
+    double log_duration_s = 0.0;    // s, simulated time the log covers
     bool finished = true;           // false: the run was interrupted (partial log)
     bool truncated = false;         // the log ended inside a row
     std::vector<std::string> pngs;  // plots written (paths)
     std::string plot_note;          // why plots are missing, or ""
-    // From the run's summary.json, when it has them: shot-shot collisions, and each nozzle's eps.
+    // Per logged component (by name): the picture of its least-covered region, or why there is none.
+    std::vector<std::pair<std::string, std::string>> least_covered_pngs;
+    std::string picture_note;
+    // From the run's summary.json, when it has them: shot-shot collisions, each nozzle's eps, and
+    // the run's wall time per simulated second (what a longer run will cost).
     std::optional<std::uint64_t> shot_shot_impacts;
     std::vector<std::pair<std::string, double>> flow_rate_eps;
+    std::optional<double> wall_per_simulated_s;
 };
 
 std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, const ReportContext& context);
 
 // The summary table of the report (what `peensim run` and `analyze` print on the terminal).
-std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, double duration_s);
+std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, const AnalysisWindow& window);
 
 }  // namespace peensim

@@ -13,14 +13,21 @@ namespace peensim {
 
 namespace {
 
+// The name of the region holding most of triangle t's area ("" for none).
+std::string dominant_region_name(const ComponentAnalysis& c, std::size_t t) {
+    const int r = c.regions.dominant_region(t);
+    return r < 0 ? std::string() : c.regions.name(static_cast<std::size_t>(r));
+}
+
 void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double duration) {
     std::ostringstream s;
-    s << "triangle,facet,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
+    s << "triangle,facet,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage,reachable,excluded,region\n";
     for (std::size_t t = 0; t < c.fields->triangle_count(); ++t) {
         s << t << ',' << (c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t]) << ','
           << fmt(c.fields->area_m2(t) * 1e6, 8) << ',' << c.fields->count(t) << ',' << fmt(c.fields->rate_per_mm2_s(t, duration), 6) << ','
           << fmt(c.fields->mean_normal_speed(t)) << ',' << fmt(c.fields->max_normal_speed(t)) << ',' << fmt(c.fields->energy_per_area(t), 6)
-          << ',' << (c.coverage ? fmt(c.coverage->coverage_of_triangle(t)) : "") << '\n';
+          << ',' << (c.coverage ? fmt(c.coverage->coverage_of_triangle(t)) : "") << ',' << (c.reach.empty() ? "" : fmt(c.reach[t], 3))
+          << ',' << fmt(c.regions.excluded_fraction(t), 3) << ',' << dominant_region_name(c, t) << '\n';
     }
     write_file_atomically(path.string(), s.str());
 }
@@ -31,27 +38,61 @@ std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) 
     std::vector<CellField> f{
         {"impacts", 1, {}}, {"impacts_per_mm2_s", 1, {}}, {"mean_vn_mps", 1, {}}, {"max_vn_mps", 1, {}}, {"energy_J_per_m2", 1, {}}};
     if (c.coverage) f.push_back({"coverage", 1, {}});
+    if (!c.reach.empty()) f.push_back({"reachable", 1, {}});
+    if (!c.regions.empty()) f.push_back({"excluded", 1, {}}), f.push_back({"region", 1, {}});
     for (CellField& x : f) x.values.reserve(n);
     for (std::size_t t = 0; t < n; ++t) {
         const double mean = c.fields->mean_normal_speed(t);
-        f[0].values.push_back(static_cast<double>(c.fields->count(t)));
-        f[1].values.push_back(c.fields->rate_per_mm2_s(t, duration));
-        f[2].values.push_back(std::isfinite(mean) ? mean : 0.0);  // ParaView: 0 where nothing hit
-        f[3].values.push_back(c.fields->max_normal_speed(t));
-        f[4].values.push_back(c.fields->energy_per_area(t));
-        if (c.coverage) f[5].values.push_back(c.coverage->coverage_of_triangle(t));
+        std::size_t k = 0;
+        f[k++].values.push_back(static_cast<double>(c.fields->count(t)));
+        f[k++].values.push_back(c.fields->rate_per_mm2_s(t, duration));
+        f[k++].values.push_back(std::isfinite(mean) ? mean : 0.0);  // ParaView: 0 where nothing hit
+        f[k++].values.push_back(c.fields->max_normal_speed(t));
+        f[k++].values.push_back(c.fields->energy_per_area(t));
+        if (c.coverage) f[k++].values.push_back(c.coverage->coverage_of_triangle(t));
+        if (!c.reach.empty()) f[k++].values.push_back(c.reach[t]);
+        if (!c.regions.empty()) {
+            f[k++].values.push_back(c.regions.excluded_fraction(t));
+            f[k++].values.push_back(static_cast<double>(c.regions.dominant_region(t)));  // index into <c>_regions.csv's rows, -1: none
+        }
     }
     return f;
 }
 
+std::string interval(double low, double high) { return fmt(low) + "," + (std::isinf(high) ? std::string("inf") : fmt(high)); }
+
 void write_regions_csv(const fs::path& path, const ComponentAnalysis& c, double duration) {
     std::ostringstream s;
-    s << "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n";
-    for (const Region& region : c.regions) {
-        const RegionStats r = region_stats(region, *c.fields, c.coverage.get(), duration);
-        s << region.name << ',' << r.triangles << ',' << fmt(r.area_m2 * 1e6, 8) << ',' << r.impacts << ',' << fmt(r.impacts_per_mm2_s, 6)
-          << ',' << fmt(r.mean_normal_speed) << ',' << fmt(r.max_normal_speed) << ',' << fmt(r.energy_per_area, 6) << ',' << fmt(r.coverage)
-          << '\n';
+    s << "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage,excluded,peened_area_mm2,"
+         "avrami_k_per_s,avrami_k_low_per_s,avrami_k_high_per_s,time_to_98_s,time_to_98_low_s,time_to_98_high_s,run_multiple\n";
+    for (std::size_t r = 0; r < c.regions.size(); ++r) {
+        const RegionStats x = region_stats(c.regions, r, c.region_tallies[r], c.coverage.get(), c.peened, duration);
+        const CoverageOutlook o = c.region_outlooks.empty() ? CoverageOutlook{} : c.region_outlooks[r];
+        const bool fitted = !c.region_outlooks.empty() && o.fitted;
+        s << c.regions.name(r) << ',' << x.triangles << ',' << fmt(x.area_m2 * 1e6, 8) << ',' << x.impacts << ','
+          << fmt(x.impacts_per_mm2_s, 6) << ',' << fmt(x.mean_normal_speed) << ',' << fmt(x.max_normal_speed) << ','
+          << fmt(x.energy_per_area, 6) << ',' << fmt(x.coverage) << ',' << (c.regions.excluded(r) ? "true" : "false") << ','
+          << fmt(x.peened_area_m2 * 1e6, 8) << ',';
+        if (fitted)
+            s << fmt(o.k_per_s, 6) << ',' << fmt(o.k_low_per_s, 6) << ',' << fmt(o.k_high_per_s, 6) << ',' << fmt(o.time_to_98_s, 6) << ','
+              << interval(o.time_to_98_low_s, o.time_to_98_high_s) << ',' << fmt(o.run_multiple, 4);
+        else
+            s << ",,,,,,";
+        s << '\n';
+    }
+    write_file_atomically(path.string(), s.str());
+}
+
+// Coverage of every region against time (one column per region), as the report's fits see it.
+void write_region_curves_csv(const fs::path& path, const ComponentAnalysis& c, const AnalysisWindow& window) {
+    std::ostringstream s;
+    s << "time_s";
+    for (std::size_t r = 0; r < c.regions.size(); ++r) s << ',' << c.regions.name(r);
+    s << '\n';
+    for (std::size_t k = 0; k < c.curve.size(); ++k) {
+        s << fmt(window.from_s + c.curve[k].time_s, 8);
+        for (std::size_t r = 0; r < c.regions.size(); ++r) s << ',' << fmt(c.region_curves[r][k].coverage, 6);
+        s << '\n';
     }
     write_file_atomically(path.string(), s.str());
 }
@@ -71,22 +112,22 @@ void write_histograms_csv(const fs::path& path, const ComponentAnalysis& c) {
         rows(region, "dent_diameter", h.dent, 1e6, "um");
     };
     block("all", c.histograms);
-    for (std::size_t r = 0; r < c.regions.size(); ++r) block(c.regions[r].name, c.region_histograms[r]);
+    for (std::size_t r = 0; r < c.regions.size(); ++r) block(c.regions.name(r), c.region_histograms[r]);
     write_file_atomically(path.string(), s.str());
 }
 
-void write_curve_csv(const fs::path& path, const ComponentAnalysis& c) {
+void write_curve_csv(const fs::path& path, const ComponentAnalysis& c, const AnalysisWindow& window) {
     std::ostringstream s;
     s << "time_s,coverage\n";
-    for (const CoveragePoint& p : c.curve) s << fmt(p.time_s, 8) << ',' << fmt(p.coverage, 6) << '\n';
+    for (const CoveragePoint& p : c.curve) s << fmt(window.from_s + p.time_s, 8) << ',' << fmt(p.coverage, 6) << '\n';
     write_file_atomically(path.string(), s.str());
 }
 
-void write_almen_csv(const fs::path& path, const AlmenAnalysis& a) {
+void write_almen_csv(const fs::path& path, const AlmenAnalysis& a, const AnalysisWindow& window) {
     std::ostringstream s;
     s << "time_s,dose_J_per_m2,arc_height_mm\n";
     for (const AlmenDosePoint& p : a.curve)
-        s << fmt(p.time_s, 8) << ',' << fmt(p.dose_J_per_m2, 8) << ','
+        s << fmt(window.from_s + p.time_s, 8) << ',' << fmt(p.dose_J_per_m2, 8) << ','
           << (a.calibration ? fmt(almen_arc_height(p.dose_J_per_m2, *a.calibration) * 1e3, 6) : "") << '\n';
     write_file_atomically(path.string(), s.str());
 }
@@ -105,13 +146,15 @@ void write_jet_csv(const fs::path& path, const ComponentAnalysis& c) {
 
 }  // namespace
 
-void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, double duration) {
+void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, const AnalysisWindow& window) {
+    const double duration = window.length_s();
     write_mesh_vtp((dir / (c.name + ".vtp")).string(), *c.mesh, cell_fields(c, duration));
     write_triangle_csv(dir / (c.name + "_triangles.csv"), c, duration);
     write_histograms_csv(dir / (c.name + "_histograms.csv"), c);
-    if (c.coverage) write_curve_csv(dir / (c.name + "_coverage.csv"), c);
+    if (c.coverage) write_curve_csv(dir / (c.name + "_coverage.csv"), c, window);
     if (!c.regions.empty()) write_regions_csv(dir / (c.name + "_regions.csv"), c, duration);
-    if (c.almen) write_almen_csv(dir / (c.name + "_almen.csv"), *c.almen);
+    if (!c.regions.empty() && c.coverage) write_region_curves_csv(dir / (c.name + "_region_coverage.csv"), c, window);
+    if (c.almen) write_almen_csv(dir / (c.name + "_almen.csv"), *c.almen, window);
     if (c.jet) write_jet_csv(dir / (c.name + "_jet.csv"), c);
 }
 

@@ -9,7 +9,8 @@
 namespace peensim {
 
 // <c>_triangles.csv, <c>_histograms.csv, <c>.vtp, and those that apply of <c>_coverage.csv,
-// <c>_regions.csv and <c>_almen.csv. duration_s: the simulated time the log covers.
-void write_component_tables(const std::filesystem::path& analysis_dir, const ComponentAnalysis& c, double duration_s);
+// <c>_regions.csv, <c>_region_coverage.csv, <c>_almen.csv and <c>_jet.csv. Rates are per the
+// window's length; times are the log's.
+void write_component_tables(const std::filesystem::path& analysis_dir, const ComponentAnalysis& c, const AnalysisWindow& window);
 
 }  // namespace peensim

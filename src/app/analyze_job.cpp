@@ -12,16 +12,23 @@
 #include "analysis/impact_stream.h"
 #include "analysis/part_coverage.h"
 #include "app/analysis_figures.h"
+#include "app/analysis_format.h"
 #include "app/analysis_plots.h"
 #include "app/analysis_report.h"
 #include "app/analysis_tables.h"
 #include "app/component_analysis.h"
+#include "app/coverage_verdict.h"
+#include "app/render_module.h"
 #include "app/report_errors.h"
+#include "common/random.h"
 #include "contact/dent.h"
 #include "geometry/mesh_checks.h"
-#include "geometry/mesh_loader.h"
+#include "model/facet_reach.h"
+#include "model/model.h"
+#include "model/shot_cavity.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
+#include "output/markdown_html.h"
 #include "scene/scene_parser.h"
 #include "scene/shot_mix.h"
 
@@ -53,33 +60,28 @@ double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& 
     return scene.process.duration_s;
 }
 
-// Which regions hold each triangle, as compressed rows (a triangle may be in several regions).
-void index_regions(ComponentAnalysis& a) {
-    const std::size_t n = a.mesh->triangle_count();
-    std::vector<std::vector<std::uint32_t>> of(n);
-    for (std::size_t r = 0; r < a.regions.size(); ++r)
-        for (int t : a.regions[r].triangles) of[static_cast<std::size_t>(t)].push_back(static_cast<std::uint32_t>(r));
-    a.region_start.assign(n + 1, 0);
-    for (std::size_t t = 0; t < n; ++t) {
-        a.region_start[t + 1] = a.region_start[t] + static_cast<std::uint32_t>(of[t].size());
-        a.region_index.insert(a.region_index.end(), of[t].begin(), of[t].end());
-    }
-    a.region_histograms.assign(a.regions.size(), ImpactHistograms{});
-}
-
-ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& scene, double shot_mass) {
+// mc: the component in the compiled model (its mesh, its reach), c: its description.
+ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* cavity, const ComponentDesc& c, const SceneDescription& scene,
+                              double shot_mass) {
     ComponentAnalysis a;
     a.name = c.name;
+    a.index = ci;
     a.role = c.role;
-    a.mesh = std::make_unique<TriangleMesh>(load_mesh(c.mesh_path, c.mesh_unit_m));
+    a.mesh = model.components[ci].mesh;
     a.fields = std::make_unique<TriangleFields>(*a.mesh, shot_mass);
-    a.regions = select_regions(*a.mesh, c.regions);
-    index_regions(a);
+    a.regions = RegionSet(*a.mesh, c.regions);
+    a.region_tallies.assign(a.regions.size(), RegionTally{});
+    a.region_histograms.assign(a.regions.size(), ImpactHistograms{});
+    a.region_curves.assign(a.regions.size(), {});
     const MaterialDesc* m = material_named(scene, c.material);
     if (m && m->yield_stress_pa) {
         a.yield_stress_pa = *m->yield_stress_pa;
         a.coverage = part_coverage_map(*a.mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot),
                                        scene.shot.density_kg_per_m3, a.yield_stress_pa);
+        // Coverage counts only the area a shot can reach and that is to be peened.
+        a.reach = reachable_fractions(model, ci, cavity);
+        a.peened.resize(a.reach.size());
+        for (std::size_t t = 0; t < a.reach.size(); ++t) a.peened[t] = a.reach[t] * (1.0 - a.regions.excluded_fraction(t));
     }
     if (c.almen) {
         AlmenAnalysis almen;
@@ -113,50 +115,118 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
     return a;
 }
 
-// Adds one impact row to a component's statistics (the ParaView points are written by the reader thread).
-void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescription& scene, double duration) {
+// Adds one impact row (inside the window) to a component's statistics (the ParaView points are
+// written by the reader thread).
+void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescription& scene, const AnalysisWindow& window) {
     // The impacting shot: a mix's log names its diameter, a log of one size has that size.
     const double D = row.shot_diameter_m > 0.0 ? row.shot_diameter_m : scene.shot.sizes.front().diameter_m;
     if (row.shot_diameter_m == 0.0 && scene.shot.sizes.size() > 1)
         throw std::runtime_error("the scene has a shot mix but its impact log has no shot_diameter_m column: was it written by this run?");
     const double mass = sphere_mass_kg(D, scene.shot.density_kg_per_m3);
-    const int t = a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s, mass);
+    const double vn = row.vn_in_m_per_s;
+    const double energy = 0.5 * mass * vn * vn;  // J
+    const int t = a.fields->add(row.triangle, row.point_m, vn, mass);
     ++a.impacts;
-    a.speed_sum += row.vn_in_m_per_s;
-    const auto batch =
-        static_cast<std::size_t>(std::clamp(static_cast<int>(row.time_s / duration * kFigureBatches), 0, kFigureBatches - 1));
-    ++a.batch_impacts[batch];
-    a.batch_speed_sum[batch] += row.vn_in_m_per_s;
+    a.speed_sum += vn;
+    const int batch =
+        std::clamp(static_cast<int>((row.time_s - window.from_s) / window.length_s() * kFigureBatches), 0, kFigureBatches - 1);
+    const auto b = static_cast<std::size_t>(batch);
+    ++a.batch_impacts[b];
+    a.batch_speed_sum[b] += vn;
     double dent = std::numeric_limits<double>::quiet_NaN();
+    double dent_area = 0.0;  // m2
     if (a.coverage) {
-        dent = dent_diameter(D, scene.shot.density_kg_per_m3, row.vn_in_m_per_s, a.yield_stress_pa);
+        dent = dent_diameter(D, scene.shot.density_kg_per_m3, vn, a.yield_stress_pa);
+        dent_area = 0.25 * M_PI * dent * dent;
         a.coverage->add_dent(row.point_m, dent);
         a.dent_sum += dent;
+        if (t >= 0) a.batch_dent_area_m2[b] += dent_area * a.peened[static_cast<std::size_t>(t)];
     }
-    a.histograms.add(row.vn_in_m_per_s, row.vt_in_m_per_s, dent);
-    if (t >= 0) {
-        const auto ti = static_cast<std::size_t>(t);
-        for (std::uint32_t k = a.region_start[ti]; k < a.region_start[ti + 1]; ++k)
-            a.region_histograms[a.region_index[k]].add(row.vn_in_m_per_s, row.vt_in_m_per_s, dent);
+    a.histograms.add(vn, row.vt_in_m_per_s, dent);
+    if (t >= 0 && !a.regions.empty()) {
+        // Regions by the impact's own point (a triangle may straddle a boundary).
+        a.regions.regions_at(row.point_m, static_cast<std::size_t>(t), a.impact_regions);
+        for (std::uint32_t r : a.impact_regions) {
+            a.region_tallies[r].add(vn, energy, dent_area, batch);
+            a.region_histograms[r].add(vn, row.vt_in_m_per_s, dent);
+        }
     }
-    if (a.almen) a.almen->dose->add(t, row.vn_in_m_per_s, mass);
+    if (a.almen) a.almen->dose->add(t, vn, mass);
     if (row.shot_diameter_m > 0.0) {
         auto size = std::find_if(a.sizes.begin(), a.sizes.end(), [&](const ComponentAnalysis::SizeTally& z) { return z.diameter_m == D; });
         if (size == a.sizes.end()) size = a.sizes.insert(a.sizes.end(), ComponentAnalysis::SizeTally{D});
         ++size->impacts;
-        size->speed_sum += row.vn_in_m_per_s;
+        size->speed_sum += vn;
         if (a.coverage) size->dent_sum += dent;
-        size->energy_J += 0.5 * mass * row.vn_in_m_per_s * row.vn_in_m_per_s;
+        size->energy_J += energy;
     }
     if (a.jet) {
         const double jet_normal =
             t >= 0 ? a.jet->v0_m_per_s() * std::abs(a.jet_axis.dot(triangle_normal(*a.mesh, static_cast<std::size_t>(t)))) : 0.0;
-        a.jet->add(row.time_s, row.v_in_m_per_s.norm(), row.vn_in_m_per_s, jet_normal);
+        a.jet->add(row.time_s, row.v_in_m_per_s.norm(), vn, jet_normal);
     }
 }
 
+// The coverage of the peened area and of every region now, as points of their curves (t: since the window opened).
+void sample_coverage(ComponentAnalysis& a, double t) {
+    if (!a.coverage) return;
+    a.curve.push_back({t, peened_coverage(*a.coverage, a.peened)});
+    for (std::size_t r = 0; r < a.regions.size(); ++r)
+        a.region_curves[r].push_back({t, region_coverage(a.regions, r, *a.coverage, a.peened)});
+}
+
+// Once the log is read: where coverage is heading, for the whole peened area and per region.
+void finish_outlooks(ComponentAnalysis& a) {
+    if (!a.coverage) return;
+    a.outlook = coverage_outlook(a.curve, a.batch_dent_area_m2);
+    for (std::size_t r = 0; r < a.regions.size(); ++r)
+        a.region_outlooks.push_back(coverage_outlook(a.region_curves[r], a.region_tallies[r].batch_dent_area_m2));
+}
+
+// Each part's least-covered region drawn highlighted (render module), for the report: the picture's
+// file name per part, or a note on why there is none.
+void draw_least_covered(const Model& model, const std::vector<ComponentAnalysis>& parts, const fs::path& adir, ReportContext& context) {
+    for (const ComponentAnalysis& a : parts) {
+        if (!a.coverage || a.regions.empty()) continue;
+        const Everywhere e = everywhere(a);
+        if (e.least_covered < 0) continue;
+        const auto r = static_cast<std::size_t>(e.least_covered);
+        std::vector<double> weight(a.mesh->triangle_count(), 0.0);
+        for (const RegionShare& s : a.regions.shares(r)) weight[static_cast<std::size_t>(s.triangle)] = s.fraction;
+        const std::string png = a.name + "_least_covered.png";
+        const std::string title = a.name + ": the least-covered region, " + a.regions.name(r) + ", at " +
+                                  fmt(100.0 * a.region_outlooks[r].coverage, 3) + " % (dark: out of the shot's reach)";
+        try {
+            render_module().draw_region_highlight(model, a.index, weight, a.reach, a.regions.name(r), title, (adir / png).string(), 1200,
+                                                  900);
+            context.least_covered_pngs.emplace_back(a.name, png);
+        } catch (const std::exception& x) {
+            context.picture_note = std::string("no picture of the least-covered region: ") + x.what();
+        }
+    }
+}
+
+// The analysed window: [from, to] of the log's time, checked against it.
+AnalysisWindow window_of(const AnalyzeOptions& o, double duration) {
+    AnalysisWindow w;
+    w.from_s = o.from_s;
+    w.to_s = o.to_s.value_or(duration);
+    w.min_speed_m_per_s = o.min_speed_m_per_s;
+    w.target_coverage = o.target_coverage;
+    if (!(w.from_s >= 0.0 && w.from_s < duration))
+        throw InputError(
+            {"--from"}, "",
+            "expected a time in [0, " + fmt(duration) + ") s (the log covers " + fmt(duration) + " s), got " + fmt(w.from_s) + " s");
+    if (!(w.to_s > w.from_s && w.to_s <= duration))
+        throw InputError({"--to"}, "", "expected a time in (" + fmt(w.from_s) + ", " + fmt(duration) + "] s, got " + fmt(w.to_s) + " s");
+    if (!(w.min_speed_m_per_s >= 0.0)) throw InputError({"--min-speed"}, "", "expected a speed >= 0 m/s");
+    if (!(w.target_coverage > 0.0 && w.target_coverage <= 1.0))
+        throw InputError({"--target"}, "", "expected a coverage in (0, 1] (e.g. 0.98 or 98 %)");
+    return w;
+}
+
 // What the report takes from the run's summary.json, when it has it.
-void read_flow_figures(const fs::path& dir, ReportContext& context) {
+void read_summary_figures(const fs::path& dir, ReportContext& context) {
     std::ifstream in(dir / "summary.json");
     if (!in) return;
     try {
@@ -165,36 +235,46 @@ void read_flow_figures(const fs::path& dir, ReportContext& context) {
             if (c.value("component", "") == "shot-shot") context.shot_shot_impacts = c.value("impacts", std::uint64_t{0});
         for (const auto& e : j.value("flow_rate_eps", nlohmann::json::array()))
             context.flow_rate_eps.emplace_back(e.value("source", ""), e.value("eps", 0.0));
+        const double wall = j.value("wall_time_s", 0.0), simulated = j.value("simulated_time_s", 0.0);
+        if (wall > 0.0 && simulated > 0.0) context.wall_per_simulated_s = wall / simulated;
     } catch (const std::exception&) {}  // an older or damaged summary: the report goes without
 }
 
 }  // namespace
 
-int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err) {
+int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options) {
     return report_errors(err, [&] {
-        analyze_run(output_dir, out, err);
+        analyze_run(output_dir, out, err, options);
         return 0;
     });
 }
 
-void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err) {
+void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options) {
     const fs::path dir(output_dir);
     const fs::path scene_path = dir / "scene.resolved.yaml";
     if (!fs::exists(scene_path)) throw std::runtime_error(output_dir + ": not a peensim run directory (no scene.resolved.yaml)");
     const SceneDescription scene = parse_scene_file(scene_path.string());
     bool finished = false;
     const double duration = simulated_time(dir, scene, finished);
+    const AnalysisWindow window = window_of(options, duration);
     const fs::path log = finished ? dir / kImpactCsvFileName : dir / kImpactCsvPartialFileName;
     if (!fs::exists(log)) throw std::runtime_error(output_dir + ": no impact log (impacts.csv or impacts.csv.partial)");
     if (!finished) err << "note: " << output_dir << ": the run did not finish; analysing its partial impact log\n";
 
-    // Components whose impacts were logged.
+    // The model: the logged components' meshes, and which of their facets the shot can reach.
+    const std::shared_ptr<const Model> model = compile_model(scene);
+    std::unique_ptr<ShotCavity> cavity;
+    if (model->sonotrode >= 0) {
+        Random rng(model->seed);
+        cavity = std::make_unique<ShotCavity>(*model, rng);
+    }
     std::vector<ComponentAnalysis> parts;
     std::vector<std::string> names;
     const double shot_mass = mean_shot_mass_kg(scene.shot);  // each impact brings its own (accumulate)
-    for (const ComponentDesc& c : scene.components) {
+    for (std::size_t ci = 0; ci < scene.components.size(); ++ci) {
+        const ComponentDesc& c = scene.components[ci];
         if (!is_logged(scene, c)) continue;
-        parts.push_back(analysis_of(c, scene, shot_mass));
+        parts.push_back(analysis_of(*model, ci, cavity.get(), c, scene, shot_mass));
         names.push_back(c.name);
     }
     if (parts.empty())
@@ -205,46 +285,72 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     for (ComponentAnalysis& a : parts)
         a.points = std::make_unique<ImpactPointsVtpWriter>((adir / (a.name + "_impacts.vtp")).string(), impact_point_field_layouts());
 
+    // An impact is analysed when it lies in the window and is fast enough.
+    const auto taken = [&window](const ImpactRow& row) {
+        return row.time_s >= window.from_s && row.time_s <= window.to_s && row.vn_in_m_per_s >= window.min_speed_m_per_s;
+    };
     int next_sample = 1;
     auto sample_until = [&](double t) {
-        while (next_sample <= kCoverageSamples && t >= duration * next_sample / kCoverageSamples) {
-            const double at = duration * next_sample / kCoverageSamples;
+        // The last sample is the window's end exactly (from + length may round past it).
+        const auto sample_time = [&](int k) {
+            return k == kCoverageSamples ? window.to_s : window.from_s + window.length_s() * k / kCoverageSamples;
+        };
+        while (next_sample <= kCoverageSamples && t >= sample_time(next_sample)) {
+            const double since = sample_time(next_sample) - window.from_s;  // s since the window opened
             for (ComponentAnalysis& a : parts) {
-                if (a.coverage) a.curve.push_back({at, a.coverage->coverage()});
-                if (a.almen) a.almen->curve.push_back({at, a.almen->dose->dose_J_per_m2()});
+                sample_coverage(a, since);
+                if (a.almen) a.almen->curve.push_back({since, a.almen->dose->dose_J_per_m2()});
             }
             ++next_sample;
         }
     };
     for (ComponentAnalysis& a : parts) {
-        if (a.coverage) a.curve.push_back({0.0, 0.0});
+        sample_coverage(a, 0.0);
         if (a.almen) a.almen->curve.push_back({0.0, 0.0});
     }
     // The reader thread parses the log and writes the ParaView points; this one does the rest.
-    ImpactStream stream(log.string(), names, [&parts](const ImpactRow& row, int component) {
+    ImpactStream stream(log.string(), names, [&parts, &taken](const ImpactRow& row, int component) {
+        if (!taken(row)) return;
         const double values[5] = {row.v_in_m_per_s.x(), row.v_in_m_per_s.y(), row.v_in_m_per_s.z(), row.vn_in_m_per_s, row.time_s};
         parts[static_cast<std::size_t>(component)].points->add(row.point_m, values);
     });
     for (auto block = stream.next_block(); !block.empty(); block = stream.next_block()) {
         for (const IndexedImpact& impact : block) {
+            if (!taken(impact.row)) continue;
             sample_until(impact.row.time_s);
-            if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene, duration);
+            if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene, window);
         }
     }
-    sample_until(duration);
+    sample_until(window.to_s);
 
     for (ComponentAnalysis& a : parts) {
         a.points->finish();
-        write_component_tables(adir, a, duration);
+        finish_outlooks(a);
+        write_component_tables(adir, a, window);
     }
-    ReportContext context{dir, duration, finished, stream.truncated(), {}, "", {}, {}};
-    read_flow_figures(dir, context);
+    ReportContext context;
+    context.run_dir = dir;
+    context.window = window;
+    context.log_duration_s = duration;
+    context.finished = finished;
+    context.truncated = stream.truncated();
+    read_summary_figures(dir, context);
+    draw_least_covered(*model, parts, adir, context);
     context.pngs = write_analysis_plots(adir.string(), names, context.plot_note);
-    write_file_atomically((adir / "report.md").string(), analysis_report(scene, parts, context));
-    write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, duration));
-    out << analysis_summary_table(parts, duration) << "analysis: " << adir.string()
-        << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp" << (context.pngs.empty() ? "" : ", *.png")
-        << "}\n";
+    const std::string report = analysis_report(scene, parts, context);
+    write_file_atomically((adir / "report.md").string(), report);
+    // The same page with its pictures inside: one file to send.
+    write_file_atomically((adir / "report.html").string(),
+                          markdown_to_html(report, "peensim analysis: " + (scene.name.empty() ? output_dir : scene.name),
+                                           [&adir](const std::string& src) -> std::optional<std::string> {
+                                               std::ifstream png(adir / src, std::ios::binary);
+                                               if (!png) return std::nullopt;
+                                               return std::string(std::istreambuf_iterator<char>(png), {});
+                                           }));
+    write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, window));
+    out << analysis_summary_table(parts, window) << "analysis: " << adir.string()
+        << "/{report.md, report.html, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp"
+        << (context.pngs.empty() ? "" : ", *.png") << "}\n";
 }
 
 }  // namespace peensim

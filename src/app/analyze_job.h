@@ -5,14 +5,23 @@
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 namespace peensim {
 
-int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err);
+// What of the log to analyse, and the target the report measures coverage against.
+struct AnalyzeOptions {
+    double from_s = 0.0;                // s: impacts before are left out (drop a start-up transient)
+    std::optional<double> to_s;         // s: and after (default: the end of the log)
+    double min_speed_m_per_s = 0.0;     // m/s: slower impacts are left out (too slow to dent)
+    double target_coverage = 0.98;      // the report's share of the area below it
+};
+
+int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options = {});
 
 // The same, with errors thrown (InputError for a bad scene, std::runtime_error for a directory
 // that is not a run's) instead of reported: for a caller with exceptions of its own (Python).
-void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err);
+void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options = {});
 
 }  // namespace peensim

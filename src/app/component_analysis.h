@@ -12,8 +12,10 @@
 #include "analysis/almen.h"
 #include "analysis/avrami.h"
 #include "analysis/coverage_map.h"
+#include "analysis/coverage_outlook.h"
 #include "analysis/impact_histograms.h"
 #include "analysis/jet_stream.h"
+#include "analysis/region_stats.h"
 #include "analysis/regions.h"
 #include "analysis/triangle_fields.h"
 #include "geometry/triangle_mesh.h"
@@ -22,8 +24,14 @@
 
 namespace peensim {
 
-// Time batches the run is cut into for batch means (a confidence interval from one run).
-inline constexpr int kFigureBatches = 10;
+// What of the log an analysis takes (`peensim analyze --from --to --min-speed --target`).
+struct AnalysisWindow {
+    double from_s = 0.0;                               // s: impacts before are left out (a start-up transient)
+    double to_s = 0.0;                                 // s: and after (the run's end by default)
+    double min_speed_m_per_s = 0.0;                    // m/s: slower impacts are left out
+    double target_coverage = 0.98;                     // the share of the area below it is reported
+    double length_s() const { return to_s - from_s; }  // s, the analysed time: rates are per it
+};
 
 // The Almen side of a component with role almen.
 struct AlmenAnalysis {
@@ -34,22 +42,31 @@ struct AlmenAnalysis {
 
 struct ComponentAnalysis {
     std::string name;
+    std::size_t index = 0;  // in the scene's (and the model's) components
     ComponentRole role = ComponentRole::part;
-    std::unique_ptr<TriangleMesh> mesh;
+    std::shared_ptr<const TriangleMesh> mesh;  // the compiled model's (component frame, m)
     std::unique_ptr<TriangleFields> fields;
     std::unique_ptr<CoverageMap> coverage;  // empty if the material has no yield stress
     double yield_stress_pa = 0.0;           // Pa (0: none)
     ImpactHistograms histograms;
     std::uint64_t impacts = 0;
-    double speed_sum = 0.0;  // m/s, summed over impacts
-    double dent_sum = 0.0;   // m, summed over impacts
-    std::vector<CoveragePoint> curve;
-    std::unique_ptr<ImpactPointsVtpWriter> points;    // the impacts, for ParaView
-    std::vector<Region> regions;                      // the scene's regions of the component
-    std::vector<ImpactHistograms> region_histograms;  // per region, same order
-    // The regions holding triangle t: region_index_[region_start_[t] .. region_start_[t + 1]).
-    std::vector<std::uint32_t> region_start;
-    std::vector<std::uint32_t> region_index;
+    double speed_sum = 0.0;                                 // m/s, summed over impacts
+    double dent_sum = 0.0;                                  // m, summed over impacts
+    std::vector<CoveragePoint> curve;                       // coverage of the peened area vs time since the window opened
+    std::unique_ptr<ImpactPointsVtpWriter> points;          // the impacts, for ParaView
+    RegionSet regions;                                      // the scene's regions of the component
+    std::vector<RegionTally> region_tallies;                // per region: what its impacts brought
+    std::vector<ImpactHistograms> region_histograms;        // per region, same order
+    std::vector<std::vector<CoveragePoint>> region_curves;  // per region: coverage vs time since the window opened
+    std::vector<std::uint32_t> impact_regions;              // the regions of the impact being added (reused)
+    // Per triangle: the share of it a shot can reach (model/facet_reach.h), and the weight coverage
+    // gives its area: reach x (1 - its share in excluded regions).
+    std::vector<double> reach;
+    std::vector<double> peened;
+    std::array<double, kFigureBatches> batch_dent_area_m2{};  // m2, dents delivered on the peened area per batch
+    // Filled once the log has been read.
+    CoverageOutlook outlook;                       // the peened area's
+    std::vector<CoverageOutlook> region_outlooks;  // per region
     std::optional<AlmenAnalysis> almen;
     // Scenes with nozzles: how the jet arrives (analysis/jet_stream.h). The jet's axis in the
     // component's frame, and whether the normal-speed share means anything (one nozzle, a static

@@ -183,6 +183,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         std::vector<LoggedImpact> candidates;
         std::optional<TriangleMesh> mesh;
         std::vector<int> region_triangles;
+        std::optional<RegionSet> regions;  // with --region: the component's, and which one is asked for
+        std::size_t region_index = 0;
         std::vector<int> first_triangle_of_facet;
         if (component) {
             mesh = load_mesh(component->mesh_path, component->mesh_unit_m);
@@ -200,20 +202,25 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         }
         if (!o.region.empty()) {
             if (!mesh) throw InputError({"--region"}, "", "needs a run directory");
+            regions.emplace(*mesh, component->regions);
             std::string names;
-            for (const Region& r : select_regions(*mesh, component->regions)) {
-                names += (names.empty() ? "'" : ", '") + r.name + "'";
-                if (r.name == o.region) region_triangles = r.triangles;
+            for (std::size_t r = 0; r < regions->size(); ++r) {
+                names += (names.empty() ? "'" : ", '") + regions->name(r) + "'";
+                if (regions->name(r) == o.region) {
+                    region_index = r;
+                    region_triangles = regions->triangles(r);
+                }
             }
             if (region_triangles.empty())
                 throw InputError({"--region"}, "", "component '" + component->name + "' has no region '" + o.region + "'" +
                                                        (names.empty() ? std::string(" (it has no regions)") : "; expected one of " + names));
             if (!have_centre) {
+                // The region's centroid: each triangle's centroid weighted by its area inside.
                 Vec3 sum = Vec3::Zero();
                 double area = 0.0;
-                for (int t : region_triangles) {
-                    const auto ti = static_cast<std::size_t>(t);
-                    const double a = 0.5 * (mesh->corner(ti, 1) - mesh->corner(ti, 0)).cross(mesh->corner(ti, 2) - mesh->corner(ti, 0)).norm();
+                for (const RegionShare& share : regions->shares(region_index)) {
+                    const auto ti = static_cast<std::size_t>(share.triangle);
+                    const double a = share.fraction * regions->triangle_area_m2(ti);
                     sum += a * (mesh->corner(ti, 0) + mesh->corner(ti, 1) + mesh->corner(ti, 2)) / 3.0;
                     area += a;
                 }
@@ -270,7 +277,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
                 if (row.triangle >= 0 && static_cast<std::size_t>(row.triangle) < first_triangle_of_facet.size())
                     tri = first_triangle_of_facet[static_cast<std::size_t>(row.triangle)];
                 if (tri >= 0 && triangle_normal(*mesh, static_cast<std::size_t>(tri)).dot(frame.normal) < 0.5) continue;
-                if (!region_triangles.empty() && !std::binary_search(region_triangles.begin(), region_triangles.end(), tri)) continue;
+                if (regions && !(tri >= 0 && regions->contains(region_index, row.point_m, static_cast<std::size_t>(tri)))) continue;
                 candidates.push_back({reader.rows(), row.time_s, row.point_m, row.v_in_m_per_s, row.vn_in_m_per_s, tri});
             }
         }

@@ -39,6 +39,15 @@ struct RenderImpactsOptions {
     int height_px = 1200;
 };
 
+// `peensim render-regions`: the regions of the logged components, each in its own colour.
+struct RenderRegionsOptions {
+    std::string input;                   // a run directory, or a scene file
+    std::vector<std::string> overrides;  // --set, for a scene file
+    std::string output_dir;              // "" = the run's analysis/, or the current directory for a scene file
+    int width_px = 1600;                 // whole image (2 x 2 views)
+    int height_px = 1200;
+};
+
 // What the module exports (one C symbol returns it: peensim_render_module).
 struct RenderModule {
     std::unique_ptr<FrameSink> (*make_recorder)(const Model& model, const RenderDesc& desc, const std::string& dir,
@@ -46,6 +55,13 @@ struct RenderModule {
     int (*render_impacts)(const RenderImpactsOptions& options, std::ostream& out, std::ostream& err);
     // `check --render`: the assembly at t = 0 with the placed shot, into a PNG (throws on failure).
     void (*draw_assembly)(const Model& model, const SimulationState& start, const std::string& png_path, int width_px, int height_px);
+    int (*render_regions)(const RenderRegionsOptions& options, std::ostream& out, std::ostream& err);
+    // The analysis' picture of one region of component `ci`: the triangles with weight[t] >= 0.5
+    // highlighted and named `label`, the rest in grey, darkened by the share no shot reaches (reach);
+    // 2 x 2 views with `title` (throws on failure).
+    void (*draw_region_highlight)(const Model& model, std::size_t ci, std::span<const double> weight, std::span<const double> reach,
+                                  const std::string& label, const std::string& title, const std::string& png_path, int width_px,
+                                  int height_px);
 };
 
 // Loads the module on first use: $PEENSIM_RENDER_MODULE, else libpeensim_render.so next to the

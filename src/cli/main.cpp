@@ -1,18 +1,40 @@
-// The `peensim` command line: run, check, analyze, render-impacts, sweep, bench, trade, export-fem, generate, schema.
+// The `peensim` command line: run, check, analyze, render-impacts, render-regions, sweep, bench, trade, export-fem, generate, schema.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
 
 #include "app/analyze_job.h"
 #include "app/bench_job.h"
-#include "app/trade_job.h"
 #include "app/check_job.h"
 #include "app/export_fem_job.h"
 #include "app/render_module.h"
 #include "app/run_job.h"
 #include "app/sweep_job.h"
+#include "app/trade_job.h"
 #include "cli/generate_command.h"
+#include "common/input_error.h"
+#include "common/units.h"
 #include "scene/schema.h"
+
+namespace {
+
+// A quantity given on the command line, in SI; bad text is an input error naming the option.
+double parse_option_quantity(const char* option, std::string text, peensim::Dimension dim) {
+    // A fraction may be written in per cent ("98 %").
+    double scale = 1.0;
+    if (dim == peensim::Dimension::dimensionless && !text.empty() && text.back() == '%') {
+        text.pop_back();
+        while (!text.empty() && text.back() == ' ') text.pop_back();
+        scale = 0.01;
+    }
+    try {
+        return scale * peensim::parse_quantity(text, dim);
+    } catch (const peensim::QuantityError& e) {
+        throw peensim::InputError({option}, "", e.what());
+    }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     using namespace peensim;
@@ -55,8 +77,25 @@ int main(int argc, char** argv) {
     check_cmd->add_option("--render", check_picture, "also draw the assembly with the placed shot into this PNG (1280x720)");
 
     std::string analyze_dir;
+    AnalyzeOptions analyze;
+    std::string analyze_from, analyze_to, analyze_min_speed, analyze_target;
     auto* analyze_cmd = app.add_subcommand("analyze", "analyse a run's impacts: coverage, per-triangle fields, histograms, report.md");
     analyze_cmd->add_option("outdir", analyze_dir, "the run's output directory")->required();
+    analyze_cmd->add_option("--from", analyze_from, "leave out the impacts before this time, e.g. a start-up transient (s, or \"500 ms\")");
+    analyze_cmd->add_option("--to", analyze_to, "leave out the impacts after this time (default: the end of the run)");
+    analyze_cmd->add_option("--min-speed", analyze_min_speed, "leave out impacts with a slower normal speed (m/s, or \"20 cm/s\")");
+    analyze_cmd->add_option("--target", analyze_target, "the coverage the report measures against (default 98 %: \"0.98\" or \"98 %\")");
+
+    RenderRegionsOptions render_regions;
+    auto* render_regions_cmd = app.add_subcommand(
+        "render-regions",
+        "draw the regions of the logged parts in their own colours, and what no shot can reach (a run directory or a scene)");
+    render_regions_cmd->add_option("input", render_regions.input, "a run's output directory, or a scene file (YAML)")->required();
+    render_regions_cmd->add_option("--set", render_regions.overrides, "override a field of the scene file")->allow_extra_args(false);
+    render_regions_cmd->add_option("-o,--output", render_regions.output_dir,
+                                   "directory for <component>_region_map.png (default: the run's analysis/, or here for a scene)");
+    render_regions_cmd->add_option("--width", render_regions.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
+    render_regions_cmd->add_option("--height", render_regions.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
 
     RenderImpactsOptions render_impacts;
     auto* render_impacts_cmd =
@@ -69,8 +108,10 @@ int main(int argc, char** argv) {
     SweepOptions sweep;
     auto* sweep_cmd = app.add_subcommand(
         "sweep", "what-if sweep: every combination of --vary values x --seeds replicates, run on the local cores, compared (DIR/sweep/)");
-    sweep_cmd->add_option("scene", sweep.scene_path, "scene file (YAML), or a sweep file naming one (see the README's \"What-if sweeps\")")->required();
-    sweep_cmd->add_option("-o,--output", sweep.output_dir, "the sweep's directory: a run directory per variant and seed, and sweep/")->required();
+    sweep_cmd->add_option("scene", sweep.scene_path, "scene file (YAML), or a sweep file naming one (see the README's \"What-if sweeps\")")
+        ->required();
+    sweep_cmd->add_option("-o,--output", sweep.output_dir, "the sweep's directory: a run directory per variant and seed, and sweep/")
+        ->required();
     sweep_cmd->add_option("--vary", sweep.vary, "a scene field and its values: path=v1,v2,... (repeatable: every combination)")
         ->allow_extra_args(false);
     sweep_cmd->add_option("--seeds", sweep.seeds, "replicates per variant from process.seed, +1, ... (default: the sweep file's, else 1)")
@@ -100,14 +141,16 @@ int main(int argc, char** argv) {
     generate_cmd->set_help_flag();
 
     TradeOptions trade;
-    auto* trade_cmd = app.add_subcommand(
-        "trade", "the speed/accuracy trade: every accuracy knob (rigid event, time step, soft resolution and stiffness) against a converged soft reference");
+    auto* trade_cmd = app.add_subcommand("trade",
+                                         "the speed/accuracy trade: every accuracy knob (rigid event, time step, soft resolution and "
+                                         "stiffness) against a converged soft reference");
     trade_cmd->add_option("scene", trade.scene_path, "scene file (YAML) whose contacts are hertz-mindlin")->required();
     trade_cmd->add_option("--duration", trade.duration, "simulated time of every run (default: the scene's process.duration)");
     trade_cmd->add_option("--settle", trade.settle_s, "s left out of rates and speeds at the start (default: a tenth of the run)");
     trade_cmd->add_option("--reference-steps", trade.reference_steps, "soft steps per contact of the reference (default 80)")
         ->check(CLI::Range(20.0, 10000.0));
-    trade_cmd->add_option("--seeds", trade.seeds, "runs per knob from consecutive seeds, figures averaged (default 1)")->check(CLI::Range(1, 1000));
+    trade_cmd->add_option("--seeds", trade.seeds, "runs per knob from consecutive seeds, figures averaged (default 1)")
+        ->check(CLI::Range(1, 1000));
     trade_cmd->add_option("--set", trade.overrides, "override a scene field for every knob")->allow_extra_args(false);
     trade_cmd->add_option("--csv", trade.csv_path, "also write every figure to this CSV file");
     trade_cmd->add_option("--plot", trade.plot_path, "draw error against wall time to this PNG (gnuplot; its .gp and data beside it)");
@@ -123,10 +166,12 @@ int main(int argc, char** argv) {
     fem_cmd->add_option("--region", fem.region, "a region of the component: the patch is centred on it and takes only its impacts");
     fem_cmd->add_option("--impacts", fem.max_impacts, "only the first N impacts of the patch (default all)");
     fem_cmd->add_option("--single", fem.single, "one synthetic impact x,y,z,vx,vy,vz instead of the run's, e.g. \"0,0,0,0,0,-50 m/s\"");
-    fem_cmd->add_option("--shot-diameter", fem.shot_diameter, "shot diameter (needed without a run directory; a run of a shot mix: the size whose impacts to export)");
+    fem_cmd->add_option("--shot-diameter", fem.shot_diameter,
+                        "shot diameter (needed without a run directory; a run of a shot mix: the size whose impacts to export)");
     fem_cmd->add_option("--yield-stress", fem.yield_stress, "target yield stress (default: its material's, else 500 MPa)");
     fem_cmd->add_option("--hardening", fem.hardening, "slope of the yield stress against plastic strain (default 0: perfectly plastic)");
-    fem_cmd->add_option("--element-size", fem.element_size, "edge of the fine elements (default: smallest dent diameter / --elements-per-dent)");
+    fem_cmd->add_option("--element-size", fem.element_size,
+                        "edge of the fine elements (default: smallest dent diameter / --elements-per-dent)");
     fem_cmd->add_option("--elements-per-dent", fem.elements_per_dent, "fine elements across the smallest dent (default 6)");
     fem_cmd->add_option("--shot-divisions", fem.shot_divisions, "cells along the shot mesh's cube edge, even (default 8)");
     fem_cmd->add_flag("--quarter", fem.quarter, "quarter model with symmetry planes (one normal impact at the centre only)");
@@ -151,7 +196,28 @@ int main(int argc, char** argv) {
         return run_job(run, quiet ? null_stream : std::cout, std::cerr);
     }
     if (*check_cmd) return check_job(check_scene, check_overrides, check_strict, std::cout, std::cerr, check_picture);
-    if (*analyze_cmd) return analyze_job(analyze_dir, std::cout, std::cerr);
+    if (*analyze_cmd) {
+        try {
+            if (!analyze_from.empty()) analyze.from_s = parse_option_quantity("--from", analyze_from, Dimension::time);
+            if (!analyze_to.empty()) analyze.to_s = parse_option_quantity("--to", analyze_to, Dimension::time);
+            if (!analyze_min_speed.empty())
+                analyze.min_speed_m_per_s = parse_option_quantity("--min-speed", analyze_min_speed, Dimension::speed);
+            if (!analyze_target.empty())
+                analyze.target_coverage = parse_option_quantity("--target", analyze_target, Dimension::dimensionless);
+        } catch (const InputError& e) {
+            std::cerr << "error: " << e.what() << "\n";
+            return kExitInputError;
+        }
+        return analyze_job(analyze_dir, std::cout, std::cerr, analyze);
+    }
+    if (*render_regions_cmd) {
+        try {
+            return render_module().render_regions(render_regions, std::cout, std::cerr);
+        } catch (const std::exception& e) {
+            std::cerr << "error: " << e.what() << "\n";
+            return kExitRuntimeError;
+        }
+    }
     if (*render_impacts_cmd) {
         try {
             return render_module().render_impacts(render_impacts, std::cout, std::cerr);

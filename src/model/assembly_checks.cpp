@@ -9,6 +9,7 @@
 
 #include "common/random.h"
 #include "geometry/mesh_checks.h"
+#include "model/facet_reach.h"
 
 namespace peensim {
 
@@ -120,14 +121,7 @@ double reachable_fraction(const Model& m, std::size_t ci, ShotCavity& cavity) {
         const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
         const Vec3 x = (1.0 - r1) * w[0] + r1 * (1.0 - r2) * w[1] + r1 * r2 * w[2];
         const Vec3 n = (w[1] - w[0]).cross(w[2] - w[0]).normalized();
-        for (double side : {1.0, -1.0}) {
-            if (side < 0.0 && c.solid) break;  // a solid's outside is the side its normals point to
-            const Vec3 centre = x + side * 1.05 * R * n;
-            if (cavity.contains(centre) && clear_of_meshes(m, centre, R)) {
-                ++reachable;
-                break;
-            }
-        }
+        reachable += shot_fits_beside(m, &cavity, c, x, n, R) ? 1 : 0;
     }
     return static_cast<double>(reachable) / kReachSamples;
 }

@@ -133,11 +133,11 @@ int run(const std::string& path, const std::optional<std::string>& text, const s
     return code;
 }
 
-void analyze(const std::string& dir, bool verbose) {
+void analyze(const std::string& dir, bool verbose, double from_s, std::optional<double> to_s, double min_speed, double target) {
     PythonStream out(verbose ? sys_stream("stdout") : py::none());
     PythonStream err(sys_stream("stderr"));
     py::gil_scoped_release release;
-    analyze_run(dir, out, err);
+    analyze_run(dir, out, err, AnalyzeOptions{from_s, to_s, min_speed, target});
 }
 
 int sweep(const std::string& scene_path, const std::string& output_dir, const std::vector<std::string>& vary,
@@ -200,7 +200,8 @@ void bind_jobs(py::module_& m) {
     m.def("run", &run, py::arg("path"), py::arg("text"), py::arg("overrides"), py::arg("output_dir"), py::arg("resume"), py::arg("strict"),
           py::arg("analyze"), py::arg("render"), py::arg("verbose"), py::arg("progress"),
           "Runs a scene as `peensim run` does; returns its exit code (0, 3 strict failure, 130 stopped).");
-    m.def("analyze", &analyze, py::arg("dir"), py::arg("verbose"), "Analyses a run directory as `peensim analyze` does.");
+    m.def("analyze", &analyze, py::arg("dir"), py::arg("verbose"), py::arg("from_s"), py::arg("to_s"), py::arg("min_speed"), py::arg("target"),
+          "Analyses a run directory as `peensim analyze` does.");
     m.def("sweep", &sweep, py::arg("scene_path"), py::arg("output_dir"), py::arg("vary"), py::arg("overrides"), py::arg("seeds"),
           py::arg("jobs"), py::arg("baseline"), py::arg("executable"), py::arg("verbose"),
           "Runs a sweep as `peensim sweep` does; returns its exit code (0, 1 a run failed, 130 stopped).");

@@ -32,4 +32,12 @@ struct RgbaImage {
     }
 };
 
+// Copies `tile` into `image` with its top-left corner at (x0, y0) (the tile must fit).
+inline void blit(const RgbaImage& tile, RgbaImage& image, int x0, int y0) {
+    for (int y = 0; y < tile.height; ++y)
+        std::memcpy(image.pixels.data() +
+                        (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x0)) * 4,
+                    tile.pixels.data() + static_cast<std::size_t>(y) * tile.row_bytes(), tile.row_bytes());
+}
+
 }  // namespace peensim::render

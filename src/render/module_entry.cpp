@@ -1,8 +1,9 @@
 // The entry point of libpeensim_render.so (see app/render_module.h): the frame recorder and the
-// impact maps and the assembly picture, handed to a peensim that loaded this module on demand.
+// impact maps, the region maps and the assembly picture, handed to a peensim that loaded this module on demand.
 #include "app/render_module.h"
 #include "render/assembly_picture.h"
 #include "render/frame_recorder.h"
+#include "render/region_map.h"
 #include "render/render_impacts_job.h"
 
 namespace {
@@ -12,7 +13,8 @@ std::unique_ptr<peensim::FrameSink> make_recorder(const peensim::Model& model, c
     return std::make_unique<peensim::FrameRecorder>(model, desc, dir, now);
 }
 
-const peensim::RenderModule kModule{&make_recorder, &peensim::render_impacts_job, &peensim::draw_assembly_picture};
+const peensim::RenderModule kModule{&make_recorder,         &peensim::render_impacts_job, &peensim::draw_assembly_picture,
+                                    &peensim::render_regions_job, &peensim::draw_region_highlight};
 
 }  // namespace
 

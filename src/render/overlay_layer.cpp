@@ -136,7 +136,7 @@ void OverlayLayer::add_colour_bar(int width, int height, const ColourBar& bar) {
     add_shadowed_text(std::max(title_x, margin), margin + static_cast<float>(atlas_.ascender()), bar.title);
 }
 
-void OverlayLayer::draw(int width, int height, std::span<const std::string> lines, const ColourBar* bar) {
+void OverlayLayer::draw(int width, int height, std::span<const std::string> lines, const ColourBar* bar, std::span<const Label> labels) {
     vertices_.clear();
     const float margin = std::round(0.6f * static_cast<float>(atlas_.pixel_height()));
     float baseline = margin + static_cast<float>(atlas_.ascender());
@@ -145,6 +145,11 @@ void OverlayLayer::draw(int width, int height, std::span<const std::string> line
         baseline += static_cast<float>(atlas_.line_height());
     }
     if (bar != nullptr) add_colour_bar(width, height, *bar);
+    for (const Label& label : labels) {
+        const float x = std::round(label.x_px - 0.5f * static_cast<float>(atlas_.text_width(label.text)));
+        add_text(x + 1.0f, std::round(label.y_px) + 1.0f, label.text, kShadowColour);
+        add_text(x, std::round(label.y_px), label.text, label.colour);
+    }
     if (vertices_.empty()) return;
 
     glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());

@@ -21,7 +21,7 @@ public:
     explicit OverlayLayer(FontAtlas atlas);
 
     // Draws over whatever the frame holds (no depth test). `bar` may be null.
-    void draw(int width, int height, std::span<const std::string> lines, const ColourBar* bar);
+    void draw(int width, int height, std::span<const std::string> lines, const ColourBar* bar, std::span<const Label> labels = {});
 
     const FontAtlas& atlas() const { return atlas_; }
 

@@ -59,14 +59,6 @@ std::vector<double> read_column(const fs::path& csv, const std::string& column) 
     return values;
 }
 
-// Copies `tile` into `image` with its top-left corner at (x0, y0).
-void blit(const render::RgbaImage& tile, render::RgbaImage& image, int x0, int y0) {
-    for (int y = 0; y < tile.height; ++y)
-        std::memcpy(image.pixels.data() +
-                        (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x0)) * 4,
-                    tile.pixels.data() + static_cast<std::size_t>(y) * tile.row_bytes(), tile.row_bytes());
-}
-
 // The colour scale's top: the value that 98 % of the part's area does not exceed. A plain maximum
 // is set by a tiny triangle that took one impact (its rate per mm2 is huge), leaving the rest of
 // the map in the bottom colour; values above are drawn in the top colour.
@@ -153,7 +145,7 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
                         render::Camera::framing_points(points, static_cast<double>(tile_w) / tile_h, kViews[v].direction);
                     const std::vector<std::string> text{part.name + ": " + field->title, kViews[v].name};
                     renderer.render(camera, {.text = text, .colour_bar = &bar}, tile);
-                    blit(tile, image, static_cast<int>(v % 2) * tile_w, static_cast<int>(v / 2) * tile_h);
+                    render::blit(tile, image, static_cast<int>(v % 2) * tile_w, static_cast<int>(v / 2) * tile_h);
                 }
                 const fs::path png = dir / "analysis" / (part.name + "_map_" + field->name + ".png");
                 render::write_png(png.string(), image);

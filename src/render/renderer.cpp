@@ -65,7 +65,7 @@ void Renderer::set_triangle_colours(MeshId mesh, std::span<const Rgba8> colours)
 }
 
 void Renderer::draw(const Camera& camera, const FrameContent& content) {
-    if (!layers_->overlay && (!content.text.empty() || content.colour_bar != nullptr)) {
+    if (!layers_->overlay && (!content.text.empty() || content.colour_bar != nullptr || !content.labels.empty())) {
         throw std::logic_error("render: text or a colour bar requested from a renderer made without overlay");
     }
     context_.make_current();
@@ -86,7 +86,7 @@ void Renderer::draw(const Camera& camera, const FrameContent& content) {
     for (const SphereSet& set : content.spheres) layers_->spheres.draw(view, set);
     layers_->spheres.draw(view, content.markers);
     layers_->meshes.draw(view, /*transparent=*/true);
-    if (layers_->overlay) layers_->overlay->draw(w, h, content.text, content.colour_bar);
+    if (layers_->overlay) layers_->overlay->draw(w, h, content.text, content.colour_bar, content.labels);
     gl::check_errors("while drawing a frame");
 }
 

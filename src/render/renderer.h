@@ -42,6 +42,7 @@ struct FrameContent {
     std::span<const ImpactMarker> markers{};  // flashes (blended)
     std::span<const std::string> text{};      // lines at the top left
     const ColourBar* colour_bar = nullptr;    // at the right, or none
+    std::span<const Label> labels{};          // words placed in the frame
 };
 
 using MeshId = std::size_t;

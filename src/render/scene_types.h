@@ -54,6 +54,15 @@ struct ImpactMarker {
     Rgba colour;                  // typically ColourMap::map(normal speed, ...)
 };
 
+// A word of text at a pixel of the frame (e.g. a region's name over its projected centre), in its
+// own colour over a dark shadow.
+struct Label {
+    float x_px = 0.0f;  // px from the left edge: the text's centre
+    float y_px = 0.0f;  // px from the top edge: its baseline
+    std::string text;   // ASCII
+    Rgba8 colour{255, 255, 255, 255};
+};
+
 // A vertical colour bar at the right edge of the frame: `title` above, `max` at the top end,
 // `min` at the bottom end (labels printed with 3 significant digits).
 struct ColourBar {

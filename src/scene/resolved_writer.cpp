@@ -1,5 +1,7 @@
 #include "scene/resolved_writer.h"
 
+#include <cmath>
+
 #include <array>
 #include <cstdio>
 #include <stdexcept>
@@ -124,7 +126,8 @@ void write_flow(std::string& y, const SceneDescription& s) {
         y += "    speed_spread: " + num(d.speed_spread) + "\n";
         if (d.air_speed_m_per_s) y += "    air_speed: " + num(*d.air_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
         if (d.mass_flow_kg_per_s)
-            y += "    mass_flow: " + num(*d.mass_flow_kg_per_s) + unit_comment(Dimension::mass_flow) + "  # " + num(d.rate_per_s) + " shot per s\n";
+            y += "    mass_flow: " + num(*d.mass_flow_kg_per_s) + unit_comment(Dimension::mass_flow) + "  # " + num(d.rate_per_s) +
+                 " shot per s\n";
         else
             y += "    rate: " + num(d.rate_per_s) + "  # shot per s\n";
         y += "    exit_radius: " + num(d.exit_radius_m) + unit_comment(Dimension::length) + "\n";
@@ -182,25 +185,36 @@ std::string matrix_text(const Mat3& m) {
 }
 
 // One region as a flow map on one line (SI values; angles in rad).
+std::string frame_text(const AxisAngleFrame& f) {
+    return "axis_point: " + vec(f.axis_point_m) + ", axis_direction: " + vec(f.axis_direction) + ", reference: " + vec(f.reference);
+}
+
+// A distance range's min and max (no max: no upper bound).
+std::string distance_range_text(double min_m, double max_m) {
+    return "min: " + num(min_m) + (std::isfinite(max_m) ? ", max: " + num(max_m) : std::string());
+}
+
 std::string region_text(const RegionDesc& r) {
-    const std::string axis =
-        "axis_point: " + vec(r.axis_point_m) + ", axis_direction: " + vec(r.axis_direction) + ", reference: " + vec(r.reference);
-    std::string out = "{name: " + yaml_text(r.name) + ", ";
-    switch (r.kind) {
-        case RegionKind::sector:
-            out += "sector: {" + axis + ", from: " + num(r.from_rad) + ", to: " + num(r.to_rad) + "}}  # m, rad";
-            break;
-        case RegionKind::sectors:
-            out += "sectors: {" + axis + ", count: " + std::to_string(r.count) + ", width: " + num(r.width_rad) +
-                   ", offset: " + num(r.offset_rad) + ", name_prefix: " + yaml_text(r.name_prefix) + "}}  # m, rad";
-            break;
-        case RegionKind::box: out += "box: {min: " + vec(r.box_min_m) + ", max: " + vec(r.box_max_m) + "}}  # m"; break;
-        case RegionKind::half_space:
-            out += "half_space: {point: " + vec(r.plane_point_m) + ", normal: " + vec(r.plane_normal) + "}}  # m";
-            break;
-        case RegionKind::group: out += "group: " + yaml_text(r.group) + "}"; break;
-    }
-    return out;
+    std::string out = "{name: " + yaml_text(r.name);
+    if (r.sector)
+        out += ", sector: {" + frame_text(r.sector->frame) + ", from: " + num(r.sector->from_rad) + ", to: " + num(r.sector->to_rad) + "}";
+    if (r.sectors)
+        out += ", sectors: {" + frame_text(r.sectors->frame) + ", count: " + std::to_string(r.sectors->count) +
+               ", width: " + num(r.sectors->width_rad) + ", offset: " + num(r.sectors->offset_rad) +
+               ", name_prefix: " + yaml_text(r.sectors->name_prefix) + "}";
+    if (r.box) out += ", box: {min: " + vec(r.box->min_m) + ", max: " + vec(r.box->max_m) + "}";
+    if (r.half_space) out += ", half_space: {point: " + vec(r.half_space->point_m) + ", normal: " + vec(r.half_space->normal) + "}";
+    if (r.distance_to_axis)
+        out += ", distance_to_axis: {axis_point: " + vec(r.distance_to_axis->axis_point_m) +
+               ", axis_direction: " + vec(r.distance_to_axis->axis_direction) + ", " +
+               distance_range_text(r.distance_to_axis->min_m, r.distance_to_axis->max_m) + "}";
+    if (r.distance_to_point)
+        out += ", distance_to_point: {point: " + vec(r.distance_to_point->point_m) + ", " +
+               distance_range_text(r.distance_to_point->min_m, r.distance_to_point->max_m) + "}";
+    if (r.facing) out += ", facing: {direction: " + vec(r.facing->direction) + ", within: " + num(r.facing->within_rad) + "}";
+    if (r.group) out += ", group: " + yaml_text(*r.group);
+    if (r.exclude) out += ", exclude: true";
+    return out + "}  # m, rad";
 }
 
 void write_component(std::string& y, const ComponentDesc& k) {

@@ -51,45 +51,82 @@ struct RotationDesc {
     SourceLocation where;
 };
 
-// A named selection of a component's triangles, in the component's own frame (the mesh frame after
-// mesh_unit scaling). A triangle belongs to a region when its centroid lies inside the selection
-// (src/analysis/regions.h does the selecting).
-enum class RegionKind {
-    sector,      // angular sector [from, to) about an axis
-    sectors,     // `count` sectors of `width`, centred every 360/count deg from `offset`
-    box,         // axis-aligned box [min, max]
-    half_space,  // the side of a plane the normal points to (plane included)
-    group,       // a named solid / sub-mesh of the mesh file
-};
+// A component's regions: named selections of its surface (component frame, m: the mesh frame after
+// mesh_unit scaling), reported separately by the analysis. An entry holds one or more conditions, all
+// of which a point must meet (their intersection): angular sectors, a box, a half-space, a distance
+// to an axis or to a point (conditions on the point), a group of the mesh file, a facing direction
+// (conditions on the triangle it lies on). src/analysis/regions.h does the selecting, by area.
 
-struct RegionDesc {
-    std::string name;  // the region (for `sectors`: its entry; regions are <name_prefix><i>)
-    RegionKind kind = RegionKind::box;
-    // sector, sectors: angles measured about axis_direction (right-hand rule) from `reference`
-    // projected onto the plane normal to the axis.
+// Angles about an axis: right-hand about axis_direction, 0 along `reference` projected normal to it.
+struct AxisAngleFrame {
     Vec3 axis_point_m = Vec3::Zero();     // m, a point on the axis (component frame)
     Vec3 axis_direction = Vec3::UnitZ();  // unit vector (component frame)
     Vec3 reference = Vec3::UnitX();       // unit vector (component frame), not along the axis
-    double from_rad = 0.0;                // rad, sector start (included)
-    double to_rad = 0.0;                  // rad, sector end (excluded), from < to <= from + 2 pi
-    int count = 0;                        // sectors: number of sectors (>= 1)
-    double width_rad = 0.0;               // rad, sectors: width of each sector, (0, 2 pi]
-    double offset_rad = 0.0;              // rad, sectors: centre angle of sector 0
-    std::string name_prefix;              // sectors: sector i is named name_prefix + i
-    Vec3 box_min_m = Vec3::Zero();        // m, box: lowest corner (component frame)
-    Vec3 box_max_m = Vec3::Zero();        // m, box: highest corner (component frame)
-    Vec3 plane_point_m = Vec3::Zero();    // m, half_space: a point on the plane (component frame)
-    Vec3 plane_normal = Vec3::UnitZ();    // unit vector, half_space: points into the selected side
-    std::string group;                    // group: a name of the mesh file's solids / sub-meshes
-    SourceLocation where;                 // the region's entry in the file
+};
+
+struct SectorCondition {  // angles in [from, to)
+    AxisAngleFrame frame;
+    double from_rad = 0.0;  // rad, start (included)
+    double to_rad = 0.0;    // rad, end (excluded), from < to <= from + 2 pi
+};
+
+struct SectorsCondition {  // `count` sectors of `width`, sector i centred at offset + i 2 pi / count
+    AxisAngleFrame frame;
+    int count = 0;            // >= 1
+    double width_rad = 0.0;   // rad, (0, 2 pi]
+    double offset_rad = 0.0;  // rad, centre angle of sector 0
+    std::string name_prefix;  // sector i is the region name_prefix + i
+};
+
+struct BoxCondition {           // axis-aligned, faces included
+    Vec3 min_m = Vec3::Zero();  // m, lowest corner
+    Vec3 max_m = Vec3::Zero();  // m, highest corner
+};
+
+struct HalfSpaceCondition {       // the side of a plane its normal points to, the plane included
+    Vec3 point_m = Vec3::Zero();  // m, a point on the plane
+    Vec3 normal = Vec3::UnitZ();  // unit vector into the selected side
+};
+
+struct FacingCondition {             // triangles whose normal (by winding: outward on a closed part) is within `within` of `direction`
+    Vec3 direction = Vec3::UnitZ();  // unit vector (component frame)
+    double within_rad = 0.0;         // rad, (0, pi]
+};
+
+struct AxisDistanceCondition {            // points whose distance to an axis is in [min, max]
+    Vec3 axis_point_m = Vec3::Zero();     // m, a point on the axis
+    Vec3 axis_direction = Vec3::UnitZ();  // unit vector
+    double min_m = 0.0;                   // m
+    double max_m = 0.0;                   // m, > min (infinity: no upper bound)
+};
+
+struct PointDistanceCondition {   // points whose distance to `point` is in [min, max]
+    Vec3 point_m = Vec3::Zero();  // m
+    double min_m = 0.0;           // m
+    double max_m = 0.0;           // m, > min (infinity: no upper bound)
+};
+
+struct RegionDesc {
+    std::string name;  // the region (for `sectors`: the entry; its regions are <name_prefix><i>)
+    std::optional<SectorCondition> sector;
+    std::optional<SectorsCondition> sectors;
+    std::optional<BoxCondition> box;
+    std::optional<HalfSpaceCondition> half_space;
+    std::optional<AxisDistanceCondition> distance_to_axis;
+    std::optional<PointDistanceCondition> distance_to_point;
+    std::optional<FacingCondition> facing;
+    std::optional<std::string> group;  // a name of the mesh file's solids / sub-meshes
+    // Not to be peened (masked) or out of the shot's reach: left out of coverage and uniformity.
+    bool exclude = false;
+    SourceLocation where;  // the region's entry in the file
 };
 
 // The names a region entry yields: its name, or for `sectors` name_prefix + 0 .. count - 1.
 inline std::vector<std::string> region_names(const RegionDesc& r) {
-    if (r.kind != RegionKind::sectors) return {r.name};
+    if (!r.sectors) return {r.name};
     std::vector<std::string> names;
-    names.reserve(static_cast<std::size_t>(r.count));
-    for (int i = 0; i < r.count; ++i) names.push_back(r.name_prefix + std::to_string(i));
+    names.reserve(static_cast<std::size_t>(r.sectors->count));
+    for (int i = 0; i < r.sectors->count; ++i) names.push_back(r.sectors->name_prefix + std::to_string(i));
     return names;
 }
 
@@ -223,27 +260,27 @@ struct AirDesc {
 // A nozzle emitting shot during the run (model/shot_flow.h).
 // Where the jet aims, when the scene places a nozzle by its target (position and direction follow).
 struct NozzleAim {
-    Vec3 target_m = Vec3::Zero();    // m, world
-    double distance_m = 0.0;         // m, exit to target along the axis
-    double angle_of_attack_rad = 0.0;  // rad, axis to the target surface (pi/2: along its normal)
+    Vec3 target_m = Vec3::Zero();        // m, world
+    double distance_m = 0.0;             // m, exit to target along the axis
+    double angle_of_attack_rad = 0.0;    // rad, axis to the target surface (pi/2: along its normal)
     Vec3 target_normal = Vec3::UnitZ();  // unit, world
-    double azimuth_rad = 0.0;        // rad
+    double azimuth_rad = 0.0;            // rad
 };
 
 struct SourceDesc {
     std::string name;
-    Vec3 position_m = Vec3::Zero();   // m, world (given, or from `aim`)
-    Vec3 direction = -Vec3::UnitZ();  // unit, world (given, or from `aim`)
-    std::optional<NozzleAim> aim;     // the scene placed it by its target
-    double speed_m_per_s = 0.0;       // m/s, mean exit speed v0
-    double speed_spread = 0.05;       // -, exit speeds uniform in v0 (1 +- speed_spread)
-    std::optional<double> air_speed_m_per_s;  // m/s, the air jet's exit speed (kernels/free_jet.h); empty: none
-    double rate_per_s = 0.0;          // shot per second (given, or from mass_flow)
+    Vec3 position_m = Vec3::Zero();            // m, world (given, or from `aim`)
+    Vec3 direction = -Vec3::UnitZ();           // unit, world (given, or from `aim`)
+    std::optional<NozzleAim> aim;              // the scene placed it by its target
+    double speed_m_per_s = 0.0;                // m/s, mean exit speed v0
+    double speed_spread = 0.05;                // -, exit speeds uniform in v0 (1 +- speed_spread)
+    std::optional<double> air_speed_m_per_s;   // m/s, the air jet's exit speed (kernels/free_jet.h); empty: none
+    double rate_per_s = 0.0;                   // shot per second (given, or from mass_flow)
     std::optional<double> mass_flow_kg_per_s;  // kg/s, when the scene gives the flow as a mass
-    double exit_radius_m = 0.0;       // m
-    double spread_rad = 0.0;          // rad, half-angle of the jet's cone
-    double start_s = 0.0;             // s
-    double stop_s = 0.0;              // s (the run's end unless given)
+    double exit_radius_m = 0.0;                // m
+    double spread_rad = 0.0;                   // rad, half-angle of the jet's cone
+    double start_s = 0.0;                      // s
+    double stop_s = 0.0;                       // s (the run's end unless given)
     SourceLocation where;
 };
 
@@ -254,9 +291,9 @@ struct SinkDesc {
     std::string name;
     SinkRegion region = SinkRegion::box;
     Vec3 min_m = Vec3::Zero(), max_m = Vec3::Zero();  // m, world (box)
-    std::string mesh_path;                             // mesh: a closed mesh, its file
-    double mesh_unit_m = 1.0;                          // mesh: metres per mesh unit
-    Vec3 translation_m = Vec3::Zero();                 // mesh: where its frame sits in the world
+    std::string mesh_path;                            // mesh: a closed mesh, its file
+    double mesh_unit_m = 1.0;                         // mesh: metres per mesh unit
+    Vec3 translation_m = Vec3::Zero();                // mesh: where its frame sits in the world
     SourceLocation where;
 };
 

@@ -103,8 +103,11 @@ SceneDescription parse_scene_text(const std::string& yaml_text, const std::strin
         const std::filesystem::path scene_dir = std::filesystem::absolute(virtual_path).parent_path();
         SceneDescription d = build(top, scene_dir);
         d.source_file = virtual_path;
-        if (context.units_given)
-            for (const PlainQuantity& q : context.plain_quantities) d.warnings.push_back(plain_number_warning(q));
+        // A plain number in the file is a slip when the file writes units elsewhere (a file all in
+        // SI, such as a resolved scene, stays quiet whatever unit an override writes); one in an
+        // override, when the file or another override does.
+        for (const PlainQuantity& q : context.plain_quantities)
+            if (q.where.file == override_file_name ? context.units_given : context.units_in_file) d.warnings.push_back(plain_number_warning(q));
         return d;
     } catch (const YAML::Exception& e) {
         // The checks above should leave yaml-cpp nothing to throw; never let it escape as a crash.

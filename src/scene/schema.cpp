@@ -193,10 +193,12 @@ const std::array schema_table{
                 {}, "", "", "", "Angular speed (signed)."},
 
     SchemaEntry{"components[].regions", K::list, D::dimensionless, false, "", "none", {}, "", "", "",
-                "Named selections of the component's triangles, reported separately by `peensim analyze`. "
-                "Component frame (the mesh frame after `mesh_unit`); a triangle belongs to a region when its "
-                "centroid is inside. Each item has a `name` and exactly one of `sector`, `sectors`, `box`, "
-                "`half_space`, `group`."},
+                "Named selections of the component's surface, reported separately by `peensim analyze` (and drawn by "
+                "`peensim render-regions`). Component frame (the mesh frame after `mesh_unit`). Each item has a `name` "
+                "and one or more conditions, all of which hold in the region: `sector` or `sectors`, `box`, "
+                "`half_space`, `distance_to_axis`, `distance_to_point` (on the point of the surface), `facing`, "
+                "`group` (on the triangle). A triangle counts with the share of its area inside; an impact with "
+                "its point."},
     SchemaEntry{"components[].regions[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One region."},
     SchemaEntry{"components[].regions[].name", K::text, D::dimensionless, true, "", "", {}, "", "", "",
                 "Unique name on the component (`[A-Za-z0-9_-]+`)."},
@@ -242,8 +244,36 @@ const std::array schema_table{
                 "", "", "A point on the plane."},
     SchemaEntry{"components[].regions[].half_space.normal", K::vector3, D::dimensionless, true, "", "", {}, "",
                 "", "", "Plane normal (normalised; not zero), pointing into the region."},
+    SchemaEntry{"components[].regions[].distance_to_axis", K::map, D::dimensionless, false, "", "", {}, "", "", "",
+                "Points whose distance to an axis is in [min, max] (a bore: max; an outer rim: min)."},
+    SchemaEntry{"components[].regions[].distance_to_axis.axis_point", K::vector3, D::length, false, "[0, 0, 0]", "", {}, "",
+                "", "", "A point on the axis."},
+    SchemaEntry{"components[].regions[].distance_to_axis.axis_direction", K::vector3, D::dimensionless, true, "", "", {}, "",
+                "", "", "Axis direction (normalised; not zero)."},
+    SchemaEntry{"components[].regions[].distance_to_axis.min", K::quantity, D::length, false, "0", "", at_least(0), "", "", "",
+                "Smallest distance (included)."},
+    SchemaEntry{"components[].regions[].distance_to_axis.max", K::quantity, D::length, false, "", "no upper bound", above(0), "",
+                "", "", "Largest distance (included; > min)."},
+    SchemaEntry{"components[].regions[].distance_to_point", K::map, D::dimensionless, false, "", "", {}, "", "", "",
+                "Points whose distance to a point is in [min, max] (a spot: max)."},
+    SchemaEntry{"components[].regions[].distance_to_point.point", K::vector3, D::length, true, "", "", {}, "", "", "",
+                "The point."},
+    SchemaEntry{"components[].regions[].distance_to_point.min", K::quantity, D::length, false, "0", "", at_least(0), "", "", "",
+                "Smallest distance (included)."},
+    SchemaEntry{"components[].regions[].distance_to_point.max", K::quantity, D::length, false, "", "no upper bound", above(0), "",
+                "", "", "Largest distance (included; > min)."},
+    SchemaEntry{"components[].regions[].facing", K::map, D::dimensionless, false, "", "", {}, "", "", "",
+                "Triangles whose normal (by the mesh's winding: outward on a closed part) is within an angle of a "
+                "direction: flanks against end faces."},
+    SchemaEntry{"components[].regions[].facing.direction", K::vector3, D::dimensionless, true, "", "", {}, "", "", "",
+                "The direction (normalised; not zero)."},
+    SchemaEntry{"components[].regions[].facing.within", K::quantity, D::angle, true, "", "", above(0),
+                "", "", "", "Largest angle between the triangle's normal and `direction` (<= 180 deg)."},
     SchemaEntry{"components[].regions[].group", K::text, D::dimensionless, false, "", "", {}, "", "", "",
                 "A named solid / sub-mesh of the mesh file (checked when the mesh is loaded)."},
+    SchemaEntry{"components[].regions[].exclude", K::choice, D::dimensionless, false, "false", "", {}, "true|false", "", "",
+                "`true`: the region is not to be peened (masked) or out of the shot's reach: its impacts are still "
+                "logged and reported, but coverage, uniformity and the time to full coverage leave its area out."},
 
     SchemaEntry{"sources", K::list, D::dimensionless, false, "", "none", {}, "", "", "",
                 "Shot sources: nozzles that emit shot during the run (conventional peening). A scene with sources "

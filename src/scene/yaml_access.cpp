@@ -57,6 +57,7 @@ void note_unit_use(const Cursor& c, const std::string& text, std::string_view un
     const bool plain = !t.empty() && ec == std::errc() && ptr == t.data() + t.size();
     if (!plain) {
         c.context->units_given = true;
+        if (location_of(c).file != override_file_name) c.context->units_in_file = true;
     } else if (unit_for_plain.empty() && number != 0.0 && e.dimension == Dimension::length) {
         c.context->plain_quantities.push_back({location_of(c), c.field_path, std::string(t), e.dimension});
     }

@@ -37,7 +37,8 @@ struct SceneContext {
     std::vector<OverrideOrigin> overrides;  // filled by apply_overrides
     // Noted while reading (the cursors see the context as const).
     mutable std::vector<PlainQuantity> plain_quantities;
-    mutable bool units_given = false;  // some quantity was written with a unit
+    mutable bool units_given = false;    // some quantity was written with a unit
+    mutable bool units_in_file = false;  // ... in the file itself (not in a --set override)
 };
 
 // A direction whose length is already 1 within this tolerance is kept as written instead of being

@@ -80,8 +80,9 @@ class RunTest(TempDirTest):
         self.assertEqual(len(triangles["triangle"]), 4960)
         self.assertTrue(np.isnan(triangles["mean_vn_mps"][triangles["impacts"] == 0]).all())
         regions = run.regions("gear")
-        self.assertEqual(regions["region"].tolist(), [f"tooth-{k}" for k in range(20)])
-        self.assertEqual(int(regions["impacts"].sum()), len(impacts["time_s"]))
+        self.assertEqual(regions["region"].tolist(), [f"tooth-{k}" for k in range(20)] + ["bore"])
+        self.assertEqual(regions["excluded"].tolist(), ["false"] * 20 + ["true"])
+        self.assertEqual(int(regions["impacts"][:20].sum()), len(impacts["time_s"]))  # the teeth tile the gear; impacts by their points
         coverage = run.coverage()
         self.assertEqual(coverage["time_s"][-1], 0.5)
         figures = run.figures

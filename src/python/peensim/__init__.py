@@ -279,9 +279,11 @@ class Run:
         with open(self._analysis_file("report.md"), encoding="utf-8") as f:
             return f.read()
 
-    def analyze(self, verbose=False):
-        """Analyses the run (as `peensim analyze`): writes analysis/. Returns the run."""
-        _native.analyze(self.dir, verbose)
+    def analyze(self, verbose=False, *, from_s=0.0, to_s=None, min_speed=0.0, target=0.98):
+        """Analyses the run (as `peensim analyze`): writes analysis/. Returns the run.
+        from_s, to_s (s): analyse only the impacts in this window (drop a start-up transient);
+        min_speed (m/s): leave out slower impacts; target: the coverage the report measures against."""
+        _native.analyze(self.dir, verbose, float(from_s), None if to_s is None else float(to_s), float(min_speed), float(target))
         return self
 
 
@@ -310,9 +312,10 @@ def run(scene, output_dir=None, *, progress=None, resume=False, strict=False, an
     return result
 
 
-def analyze(directory, verbose=False):
-    """Analyses a run directory (as `peensim analyze`); returns its Run."""
-    return Run(directory).analyze(verbose)
+def analyze(directory, verbose=False, **window):
+    """Analyses a run directory (as `peensim analyze`); returns its Run. window: from_s, to_s,
+    min_speed, target, as Run.analyze takes them."""
+    return Run(directory).analyze(verbose, **window)
 
 
 def print_progress(p):
