@@ -6,6 +6,7 @@
 
 #include "analysis/avrami.h"
 #include "analysis/region_stats.h"
+#include "app/almen_analysis.h"
 
 namespace peensim {
 
@@ -38,7 +39,7 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, d
             o["time_to_98_s"] = number(fitted ? fit.time_to_98_percent_s : NAN);
             o["time_to_98_extrapolated"] = fitted && fit.extrapolated;
         }
-        if (c.almen) o["almen_dose_J_per_m2"] = number(c.almen->dose->dose_J_per_m2());
+        if (c.almen) add_almen_figures(o, *c.almen);
         // Batch means: each tenth of the run's impact rate and mean normal speed.
         auto rate = nlohmann::ordered_json::array(), speed = nlohmann::ordered_json::array();
         for (int b = 0; b < kFigureBatches; ++b) {

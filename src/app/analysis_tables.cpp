@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "analysis/region_stats.h"
+#include "app/almen_analysis.h"
 #include "app/analysis_format.h"
 #include "output/atomic_file.h"
 
@@ -79,15 +80,6 @@ void write_curve_csv(const fs::path& path, const ComponentAnalysis& c) {
     std::ostringstream s;
     s << "time_s,coverage\n";
     for (const CoveragePoint& p : c.curve) s << fmt(p.time_s, 8) << ',' << fmt(p.coverage, 6) << '\n';
-    write_file_atomically(path.string(), s.str());
-}
-
-void write_almen_csv(const fs::path& path, const AlmenAnalysis& a) {
-    std::ostringstream s;
-    s << "time_s,dose_J_per_m2,arc_height_mm\n";
-    for (const AlmenDosePoint& p : a.curve)
-        s << fmt(p.time_s, 8) << ',' << fmt(p.dose_J_per_m2, 8) << ','
-          << (a.calibration ? fmt(almen_arc_height(p.dose_J_per_m2, *a.calibration) * 1e3, 6) : "") << '\n';
     write_file_atomically(path.string(), s.str());
 }
 

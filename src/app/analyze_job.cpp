@@ -11,6 +11,7 @@
 
 #include "analysis/impact_stream.h"
 #include "analysis/part_coverage.h"
+#include "app/almen_analysis.h"
 #include "app/analysis_figures.h"
 #include "app/analysis_plots.h"
 #include "app/analysis_report.h"
@@ -81,20 +82,9 @@ ComponentAnalysis analysis_of(const ComponentDesc& c, const SceneDescription& sc
         a.coverage = part_coverage_map(*a.mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot),
                                        scene.shot.density_kg_per_m3, a.yield_stress_pa);
     }
-    if (c.almen) {
-        AlmenAnalysis almen;
-        try {
-            almen.dose = std::make_unique<AlmenDose>(*a.mesh, c.almen->face_normal, shot_mass);
-        } catch (const std::invalid_argument& e) {
-            throw InputError(c.almen->where, "almen.face_normal",
-                             std::string(e.what()) +
-                                 " (expected the outward normal of "
-                                 "one face of the strip, in the component's frame)");
-        }
-        if (c.almen->saturation_arc_height_m)
-            almen.calibration = AlmenCalibration{*c.almen->saturation_arc_height_m, *c.almen->dose_constant_J_per_m2};
-        a.almen = std::move(almen);
-    }
+    if (c.almen)
+        a.almen =
+            almen_analysis_of(c, *a.mesh, shot_mass, scene.shot.density_kg_per_m3, m && m->yield_stress_pa ? *m->yield_stress_pa : 0.0);
     if (!scene.sources.empty()) {
         // Several nozzles: their exit speeds and axes weighted by their rates.
         double rate = 0.0, v0 = 0.0;
@@ -139,7 +129,7 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
         for (std::uint32_t k = a.region_start[ti]; k < a.region_start[ti + 1]; ++k)
             a.region_histograms[a.region_index[k]].add(row.vn_in_m_per_s, row.vt_in_m_per_s, dent);
     }
-    if (a.almen) a.almen->dose->add(t, row.vn_in_m_per_s, mass);
+    if (a.almen) add_almen_impact(*a.almen, t, row.vn_in_m_per_s, D, mass);
     if (row.shot_diameter_m > 0.0) {
         auto size = std::find_if(a.sizes.begin(), a.sizes.end(), [&](const ComponentAnalysis::SizeTally& z) { return z.diameter_m == D; });
         if (size == a.sizes.end()) size = a.sizes.insert(a.sizes.end(), ComponentAnalysis::SizeTally{D});
@@ -211,14 +201,14 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
             const double at = duration * next_sample / kCoverageSamples;
             for (ComponentAnalysis& a : parts) {
                 if (a.coverage) a.curve.push_back({at, a.coverage->coverage()});
-                if (a.almen) a.almen->curve.push_back({at, a.almen->dose->dose_J_per_m2()});
+                if (a.almen) sample_almen(*a.almen, at);
             }
             ++next_sample;
         }
     };
     for (ComponentAnalysis& a : parts) {
         if (a.coverage) a.curve.push_back({0.0, 0.0});
-        if (a.almen) a.almen->curve.push_back({0.0, 0.0});
+        if (a.almen) sample_almen(*a.almen, 0.0);
     }
     // The reader thread parses the log and writes the ParaView points; this one does the rest.
     ImpactStream stream(log.string(), names, [&parts](const ImpactRow& row, int component) {
