@@ -94,10 +94,10 @@ RunStrip strip_of_run(const std::string& run_dir, const std::string& component) 
     s.exposure.dent_size_m = figure("almen_dent_size_m");
     s.exposure.covering_rate_per_s = figure("almen_covering_rate_per_s");
     if (!s.exposure.valid())
-        throw InputError(
-            kCommandLine, "--calibrate",
-            "the run's strip '" + s.name + "' has no dent figures (almen_dent_size_m, almen_covering_rate_per_s in " + figures.string() +
-                "): give the strip material a yield_stress in the scene, rerun the run (or `peensim analyze`), then calibrate");
+        throw InputError(kCommandLine, "--calibrate",
+                         "the run's strip '" + s.name + "' has no dent figures (almen_dent_size_m, almen_covering_rate_per_s in " +
+                             figures.string() +
+                             "): give the strip material a yield_stress in the scene, run it again, then calibrate on that run");
     return s;
 }
 
