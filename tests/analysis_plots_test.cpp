@@ -99,10 +99,12 @@ TEST(AnalysisPlots, RegionAndAlmenPlotsWhenTheirTablesExist) {
           "tooth0,10,20.5,30,0.3,1.5,3,0.01,0.2\ntooth1,10,20.5,60,0.6,2.5,4,0.02,0.4\n");
     write(dir.path / "strip_almen.csv", "time_s,dose_J_per_m2,arc_height_mm\n0,0,0\n1,2,0.05\n2,4,0.09\n");
     write(dir.path / "bare_almen.csv", "time_s,dose_J_per_m2,arc_height_mm\n0,0,\n1,2,\n2,4,\n");
+    write(dir.path / "model_almen.csv",
+          "time_s,dose_J_per_m2,arc_height_mm,dent_area_ratio,predicted_arc_height_mm\n0,0,,0,0\n1,2,,0.1,0.04\n2,4,,0.2,0.07\n");
     std::string note;
-    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear", "strip", "bare"}, note);
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear", "strip", "bare", "model"}, note);
     EXPECT_EQ(note, "");
-    ASSERT_EQ(pngs.size(), 3u);
+    ASSERT_EQ(pngs.size(), 4u);
     EXPECT_EQ(pngs[0], (dir.path / "gear_regions.png").string());
     EXPECT_EQ(pngs[1], (dir.path / "strip_almen.png").string());
     EXPECT_EQ(pngs[2], (dir.path / "bare_almen.png").string());
@@ -112,6 +114,10 @@ TEST(AnalysisPlots, RegionAndAlmenPlotsWhenTheirTablesExist) {
     const std::string without((std::istreambuf_iterator<char>(bare)), std::istreambuf_iterator<char>());
     EXPECT_NE(with.find("arc height (calibrated)"), std::string::npos);
     EXPECT_NE(without.find("not calibrated"), std::string::npos);
+    std::ifstream predicted(dir.path / "model_almen.gp");
+    const std::string model((std::istreambuf_iterator<char>(predicted)), std::istreambuf_iterator<char>());
+    EXPECT_NE(model.find("using 1:5 every ::1 axes x1y2"), std::string::npos) << model;
+    EXPECT_NE(model.find("arc height (predicted)"), std::string::npos);
 }
 
 TEST(AnalysisPlots, EmptyHistogramPanelAndQuotedNamesStillRender) {

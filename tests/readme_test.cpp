@@ -70,6 +70,17 @@ std::vector<std::string> shell_words(const std::string& line) {
     return words;
 }
 
+// A run's resolved scene (`out/gear/scene.resolved.yaml`) exists only after the README's earlier
+// command made it (a clean checkout has no `out/`): it is checked as the shipped scene it came from,
+// `scenes/gear.yaml`, with the same overrides.
+std::string run_scene_source(const std::string& path) {
+    const std::string prefix = "out/", suffix = "/scene.resolved.yaml";
+    if (path.rfind(prefix, 0) != 0 || path.size() <= prefix.size() + suffix.size() ||
+        path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0)
+        return path;
+    return "scenes/" + path.substr(prefix.size(), path.size() - prefix.size() - suffix.size()) + ".yaml";
+}
+
 }  // namespace
 
 TEST(Readme, ExampleCommandsAreValidScenesAndOverrides) {
@@ -107,7 +118,7 @@ TEST(Readme, ExampleCommandsAreValidScenesAndOverrides) {
                        words[k] == "--csv" || words[k] == "--stop-after-steps") {
                 ++k;
             } else if (words[k].size() > 5 && words[k].substr(words[k].size() - 5) == ".yaml") {
-                scenes.push_back(words[k]);
+                scenes.push_back(run_scene_source(words[k]));
             }
         }
         if (words[1] == "bench" && scenes.empty())

@@ -6,6 +6,7 @@
 
 #include "analysis/region_stats.h"
 #include "app/coverage_verdict.h"
+#include "app/almen_analysis.h"
 
 namespace peensim {
 
@@ -55,7 +56,7 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, c
             o["share_below_target"] = number(share_below(c, window.target_coverage));
             put_outlook(o, c.outlook);
         }
-        if (c.almen) o["almen_dose_J_per_m2"] = number(c.almen->dose->dose_J_per_m2());
+        if (c.almen) add_almen_figures(o, *c.almen);
         // Batch means: each tenth of the window's impact rate and mean normal speed.
         auto rate = nlohmann::ordered_json::array(), speed = nlohmann::ordered_json::array();
         for (int b = 0; b < kFigureBatches; ++b) {

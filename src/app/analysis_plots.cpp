@@ -160,28 +160,40 @@ std::string regions_script(const std::string& component) {
     return s.str();
 }
 
-// An Almen strip's dose vs time (from <c>_almen.csv), with its arc height when calibrated.
-std::string almen_script(const std::string& component, bool calibrated) {
+// An Almen strip's dose vs time (from <c>_almen.csv), with its arc height when calibrated:
+// `arc_height_column` 3 (the dose model's), 5 (the predictive model's), or 0 (none).
+std::string almen_script(const std::string& component, int arc_height_column) {
     const std::string csv = gnuplot_quoted(component + "_almen.csv");
     std::ostringstream s;
     s << script_header(component + "_almen") << "set title " << gnuplot_quoted(enhanced_text_escaped(component) + ": Almen strip") << "\n"
       << "set xlabel 'simulated time (s)'\nset ylabel 'impact energy dose (J/m^2)'\nset key top left\n";
-    if (calibrated)
+    if (arc_height_column > 0)
         s << "set y2label 'arc height (mm)'\nset y2tics\nset ytics nomirror\n"
           << "plot " << csv << " using 1:2 every ::1 with linespoints lw 2 pt 7 ps 0.6 title 'dose', \\\n"
-          << "     " << csv << " using 1:3 every ::1 axes x1y2 with linespoints lw 2 pt 5 ps 0.6 title 'arc height (calibrated)'\n";
+          << "     " << csv << " using 1:" << arc_height_column << " every ::1 axes x1y2 with linespoints lw 2 pt 5 ps 0.6 title "
+          << (arc_height_column == 5 ? "'arc height (predicted)'" : "'arc height (calibrated)'") << "\n";
     else
         s << "plot " << csv << " using 1:2 every ::1 with linespoints lw 2 pt 7 ps 0.6 title 'dose (arc height not calibrated)'\n";
     return s.str();
 }
 
-// True if the second line of an Almen CSV has an arc-height value.
-bool almen_calibrated(const fs::path& csv) {
+// Which column of an Almen CSV's first data row holds an arc height: 5 (predicted), 3 (the dose
+// model's), or 0 (neither).
+int almen_arc_height_column(const fs::path& csv) {
     std::ifstream in(csv);
     std::string line;
     std::getline(in, line);
     std::getline(in, line);
-    return !line.empty() && line.back() != ',';
+    std::vector<std::string> fields(1);
+    for (const char ch : line) {
+        if (ch == ',')
+            fields.emplace_back();
+        else
+            fields.back() += ch;
+    }
+    if (fields.size() >= 5 && !fields[4].empty()) return 5;
+    if (fields.size() >= 3 && !fields[2].empty()) return 3;
+    return 0;
 }
 
 // Runs `gnuplot script` in `dir` rendering to `png`.tmp, then renames it to `png`.
@@ -242,7 +254,7 @@ std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, c
         if (fs::exists(histograms)) plot(c + "_histograms", histograms_script(c, quantities_with_counts(histograms)));
         if (fs::exists(dir / (c + "_regions.csv"))) plot(c + "_regions", regions_script(c));
         const fs::path almen = dir / (c + "_almen.csv");
-        if (fs::exists(almen)) plot(c + "_almen", almen_script(c, almen_calibrated(almen)));
+        if (fs::exists(almen)) plot(c + "_almen", almen_script(c, almen_arc_height_column(almen)));
     }
     return written;
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "analysis/region_stats.h"
+#include "app/almen_analysis.h"
 #include "app/analysis_format.h"
 #include "app/coverage_verdict.h"
 
@@ -132,41 +133,6 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
     return r.str();
 }
 
-std::string almen_sections(const std::vector<ComponentAnalysis>& parts, double duration) {
-    std::ostringstream r;
-    for (const ComponentAnalysis& c : parts) {
-        if (!c.almen) continue;
-        const AlmenAnalysis& a = *c.almen;
-        const double rate = almen_dose_rate(a.curve);  // J/(m2 s)
-        r << "\n## Almen strip " << c.name << "\n\n"
-          << "Peened face: " << fmt(a.dose->face_area_m2() * 1e6) << " mm2, " << a.dose->face_impacts() << " impacts at a mean "
-          << "normal speed of " << fmt(a.dose->mean_normal_speed()) << " m/s. Impact energy dose (normal kinetic energy per "
-          << "area): " << fmt(a.dose->dose_J_per_m2()) << " J/m2 after " << fmt(duration)
-          << " s; steady rate (slope over the run's second half) r = " << fmt(rate) << " J/(m2 s) (`" << c.name << "_almen.csv`).\n\n"
-          << "**Arc height needs calibration.** peensim predicts the dose, not the arc height: with h = a (1 - exp(-E / E_c)) "
-             "the saturation curve is h = a (1 - exp(-b t)), b = r / E_c, saturation (SAE J443) at T = ln(10) / b with "
-             "intensity 0.9 a. Set `almen.saturation_arc_height` (a) and `almen.dose_constant` (E_c) from a measured "
-             "saturation curve of the same strip type, shot and process; from a measured saturation time T_m and intensity "
-             "h_m: a = h_m / 0.9, E_c = r T_m / ln 10 = "
-          << fmt(rate / std::log(10.0)) << " J/m2 per second of T_m for this run.\n";
-        if (!a.calibration) {
-            r << "\nNot calibrated in this scene: dose only.\n";
-            continue;
-        }
-        const auto sat = almen_saturation(rate, *a.calibration, duration);
-        r << "\nCalibration: a = " << fmt(a.calibration->saturation_arc_height_m * 1e3)
-          << " mm, E_c = " << fmt(a.calibration->dose_constant_J_per_m2) << " J/m2. Arc height after " << fmt(duration)
-          << " s: " << fmt(almen_arc_height(a.dose->dose_J_per_m2(), *a.calibration) * 1e3) << " mm.\n";
-        if (sat)
-            r << "Saturation curve h = " << fmt(a.calibration->saturation_arc_height_m * 1e3) << " mm (1 - exp(-"
-              << fmt(sat->rate_constant_per_s) << " t / s)); saturation time T = " << fmt(sat->saturation_time_s) << " s, intensity "
-              << fmt(sat->intensity_m * 1e3) << " mm" << (sat->extrapolated ? " (extrapolated: the run is shorter than 2T)" : "") << ".\n";
-        else
-            r << "No impact on the peened face: no saturation curve.\n";
-    }
-    return r.str();
-}
-
 // Scenes with nozzles: how the jet arrives on each logged component.
 std::string jet_sections(const std::vector<ComponentAnalysis>& parts, const ReportContext& x) {
     std::ostringstream r;
@@ -276,9 +242,9 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
          "diameter; whole component and per region), `<component>.vtp` (the mesh with the per-triangle fields as cell data, for "
          "ParaView), `<component>_impacts.vtp` (the impacts as points with their relative velocity, normal speed and time), "
          "`<component>_regions.csv` and `<component>_region_coverage.csv` (the scene's regions of the component), "
-         "`<component>_almen.csv` (Almen strips: dose and arc height vs time), `figures.json` (every figure, for programs).\n";
+         "`<component>_almen.csv` (Almen strips: dose, dents and arc height vs time), `figures.json` (every figure, for programs).\n";
     r << region_tables(parts, w.length_s());
-    r << almen_sections(parts, w.length_s());
+    r << almen_report_sections(parts, w.length_s());
     r << jet_sections(parts, x);
     r << size_sections(parts);
     if (!x.pngs.empty()) r << "\n## Plots\n\n";

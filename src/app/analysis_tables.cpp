@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "analysis/region_stats.h"
+#include "app/almen_analysis.h"
 #include "app/analysis_format.h"
 #include "output/atomic_file.h"
 
@@ -123,15 +124,6 @@ void write_curve_csv(const fs::path& path, const ComponentAnalysis& c, const Ana
     write_file_atomically(path.string(), s.str());
 }
 
-void write_almen_csv(const fs::path& path, const AlmenAnalysis& a, const AnalysisWindow& window) {
-    std::ostringstream s;
-    s << "time_s,dose_J_per_m2,arc_height_mm\n";
-    for (const AlmenDosePoint& p : a.curve)
-        s << fmt(window.from_s + p.time_s, 8) << ',' << fmt(p.dose_J_per_m2, 8) << ','
-          << (a.calibration ? fmt(almen_arc_height(p.dose_J_per_m2, *a.calibration) * 1e3, 6) : "") << '\n';
-    write_file_atomically(path.string(), s.str());
-}
-
 void write_jet_csv(const fs::path& path, const ComponentAnalysis& c) {
     std::ostringstream s;
     s << "first_impact,impacts,end_time_s,share_at_least_0_9_v0" << (c.jet_normal_meaningful ? ",share_keeping_0_9_jet_normal_speed" : "")
@@ -154,7 +146,7 @@ void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, con
     if (c.coverage) write_curve_csv(dir / (c.name + "_coverage.csv"), c, window);
     if (!c.regions.empty()) write_regions_csv(dir / (c.name + "_regions.csv"), c, duration);
     if (!c.regions.empty() && c.coverage) write_region_curves_csv(dir / (c.name + "_region_coverage.csv"), c, window);
-    if (c.almen) write_almen_csv(dir / (c.name + "_almen.csv"), *c.almen, window);
+    if (c.almen) write_almen_csv(dir / (c.name + "_almen.csv"), *c.almen, window.from_s);
     if (c.jet) write_jet_csv(dir / (c.name + "_jet.csv"), c);
 }
 

@@ -11,6 +11,7 @@
 
 #include "analysis/impact_stream.h"
 #include "analysis/part_coverage.h"
+#include "app/almen_analysis.h"
 #include "app/analysis_figures.h"
 #include "app/analysis_format.h"
 #include "app/analysis_plots.h"
@@ -83,20 +84,9 @@ ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* ca
         a.peened.resize(a.reach.size());
         for (std::size_t t = 0; t < a.reach.size(); ++t) a.peened[t] = a.reach[t] * (1.0 - a.regions.excluded_fraction(t));
     }
-    if (c.almen) {
-        AlmenAnalysis almen;
-        try {
-            almen.dose = std::make_unique<AlmenDose>(*a.mesh, c.almen->face_normal, shot_mass);
-        } catch (const std::invalid_argument& e) {
-            throw InputError(c.almen->where, "almen.face_normal",
-                             std::string(e.what()) +
-                                 " (expected the outward normal of "
-                                 "one face of the strip, in the component's frame)");
-        }
-        if (c.almen->saturation_arc_height_m)
-            almen.calibration = AlmenCalibration{*c.almen->saturation_arc_height_m, *c.almen->dose_constant_J_per_m2};
-        a.almen = std::move(almen);
-    }
+    if (c.almen)
+        a.almen =
+            almen_analysis_of(c, *a.mesh, shot_mass, scene.shot.density_kg_per_m3, m && m->yield_stress_pa ? *m->yield_stress_pa : 0.0);
     if (!scene.sources.empty()) {
         // Several nozzles: their exit speeds and axes weighted by their rates.
         double rate = 0.0, v0 = 0.0;
@@ -151,7 +141,7 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
             a.region_histograms[r].add(vn, row.vt_in_m_per_s, dent);
         }
     }
-    if (a.almen) a.almen->dose->add(t, vn, mass);
+    if (a.almen) add_almen_impact(*a.almen, t, vn, D, mass);
     if (row.shot_diameter_m > 0.0) {
         auto size = std::find_if(a.sizes.begin(), a.sizes.end(), [&](const ComponentAnalysis::SizeTally& z) { return z.diameter_m == D; });
         if (size == a.sizes.end()) size = a.sizes.insert(a.sizes.end(), ComponentAnalysis::SizeTally{D});
@@ -299,14 +289,14 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
             const double since = sample_time(next_sample) - window.from_s;  // s since the window opened
             for (ComponentAnalysis& a : parts) {
                 sample_coverage(a, since);
-                if (a.almen) a.almen->curve.push_back({since, a.almen->dose->dose_J_per_m2()});
+                if (a.almen) sample_almen(*a.almen, since);
             }
             ++next_sample;
         }
     };
     for (ComponentAnalysis& a : parts) {
         sample_coverage(a, 0.0);
-        if (a.almen) a.almen->curve.push_back({0.0, 0.0});
+        if (a.almen) sample_almen(*a.almen, 0.0);
     }
     // The reader thread parses the log and writes the ParaView points; this one does the rest.
     ImpactStream stream(log.string(), names, [&parts, &taken](const ImpactRow& row, int component) {

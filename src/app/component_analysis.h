@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/almen.h"
+#include "analysis/almen_model.h"
 #include "analysis/avrami.h"
 #include "analysis/coverage_map.h"
 #include "analysis/coverage_outlook.h"
@@ -36,8 +37,11 @@ struct AnalysisWindow {
 // The Almen side of a component with role almen.
 struct AlmenAnalysis {
     std::unique_ptr<AlmenDose> dose;
-    std::optional<AlmenCalibration> calibration;  // from the scene; empty = dose only
-    std::vector<AlmenDosePoint> curve;            // dose vs time, sampled like the coverage curve
+    std::optional<AlmenCalibration> calibration;  // the dose model's, from the scene; empty = none
+    std::optional<AlmenModelCalibration> model;   // the predictive model's, from the scene; empty = none
+    double shot_density_kg_per_m3 = 0.0;          // kg/m3
+    double yield_stress_pa = 0.0;                 // Pa, the strip material's (0: none, so no dents)
+    std::vector<AlmenDosePoint> curve;            // dose and dents vs time, sampled like the coverage curve
 };
 
 struct ComponentAnalysis {

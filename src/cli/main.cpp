@@ -1,8 +1,10 @@
-// The `peensim` command line: run, check, analyze, render-impacts, render-regions, sweep, bench, trade, export-fem, generate, schema.
+// The `peensim` command line: run, check, analyze, render-impacts, render-regions, sweep, bench, trade, export-fem,
+// almen-fit, generate, schema.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
 
+#include "app/almen_fit_job.h"
 #include "app/analyze_job.h"
 #include "app/bench_job.h"
 #include "app/check_job.h"
@@ -177,6 +179,26 @@ int main(int argc, char** argv) {
     fem_cmd->add_flag("--quarter", fem.quarter, "quarter model with symmetry planes (one normal impact at the centre only)");
     fem_cmd->add_option("--group-window", fem.group_window, "a step groups impacts within this much run time (default 1 ms)");
     fem_cmd->add_option("--contact-times", fem.contact_times, "a step lasts this many Hertz contact times (default 2.5)");
+    AlmenFitOptions almen_fit;
+    auto* almen_fit_cmd = app.add_subcommand("almen-fit",
+                                             "fit a measured Almen saturation curve (SAE J443: 2P and 3P forms, saturation time, "
+                                             "intensity); --calibrate the predictive model on a run");
+    almen_fit_cmd
+        ->add_option("curve", almen_fit.curve_path,
+                     "the measured curve: CSV with a header (e.g. time_min,arc_height_in) and a row per strip")
+        ->required();
+    almen_fit_cmd->add_option("--time-unit", almen_fit.time_unit,
+                              "the exposure's unit when the header does not say: s, min, h, passes, cycles");
+    almen_fit_cmd->add_option("--height-unit", almen_fit.height_unit,
+                              "the arc height's unit when the header does not say: mm, um, in, thou");
+    almen_fit_cmd->add_option("--strip", almen_fit.strip, "the SAE J442 strip type A, N or C (printed with the intensity: 0.0118A)");
+    almen_fit_cmd->add_option("--form", almen_fit.form, "use this fit, 2P or 3P, instead of the recommended one");
+    almen_fit_cmd->add_option("--json", almen_fit.json_path, "also write every figure to this JSON file");
+    almen_fit_cmd->add_option("--plot", almen_fit.plot_path,
+                              "draw the points, both fits, T and 2T to this PNG (gnuplot; its .gp and .csv beside it)");
+    almen_fit_cmd->add_option("--calibrate", almen_fit.calibrate_run,
+                              "the run (directory, analysed) that reproduced the measurement: print the scene's almen.calibration");
+    almen_fit_cmd->add_option("--component", almen_fit.component, "the Almen strip of that run (default: its only one)");
     app.add_subcommand("schema", "print the scene file reference (Markdown)");
 
     try {
@@ -230,6 +252,7 @@ int main(int argc, char** argv) {
     if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
     if (*trade_cmd) return trade_job(trade, std::cout, std::cerr);
     if (*fem_cmd) return export_fem_job(fem, std::cout, std::cerr);
+    if (*almen_fit_cmd) return almen_fit_job(almen_fit, std::cout, std::cerr);
     if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
     if (app.got_subcommand("schema")) {
         std::cout << scene_reference_markdown();

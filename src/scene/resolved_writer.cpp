@@ -245,8 +245,18 @@ void write_component(std::string& y, const ComponentDesc& k) {
         if (a.saturation_arc_height_m) {
             y += "      saturation_arc_height: " + num(*a.saturation_arc_height_m) + unit_comment(Dimension::length) + "\n";
             y += "      dose_constant: " + num(*a.dose_constant_J_per_m2) + unit_comment(Dimension::energy_per_area) + "\n";
-        } else {
+        } else if (!a.calibration) {
             y += "      # saturation_arc_height, dose_constant: not calibrated (dose only)\n";
+        }
+        if (a.calibration) {
+            const AlmenCalibrationDesc& m = *a.calibration;
+            y += "      calibration:\n";
+            y += "        saturation_arc_height: " + num(m.saturation_arc_height_m) + unit_comment(Dimension::length) + "\n";
+            y += "        time_constant: " + num(m.time_constant_s) + unit_comment(Dimension::time) + "\n";
+            y += "        shape: " + num(m.shape) + "\n";
+            y += "        dent_size: " + num(m.dent_size_m) + unit_comment(Dimension::length) + "\n";
+            y += "        covering_rate: " + num(m.covering_rate_per_s) + unit_comment(Dimension::frequency) + "\n";
+            if (!m.strip.empty()) y += "        strip: " + m.strip + "\n";
         }
     }
     if (!k.regions.empty()) y += "    regions:\n";

@@ -104,6 +104,20 @@ std::optional<AlmenDesc> read_almen(const Cursor& c, const ComponentDesc& k) {
         a.saturation_arc_height_m = read_quantity(height);
         a.dose_constant_J_per_m2 = read_quantity(dose);
     }
+    const Cursor model = c.child("calibration");
+    if (model.present()) {
+        if (height.present())
+            fail(model,
+                 "give either calibration (the predictive model) or saturation_arc_height and dose_constant (the dose model), not both");
+        AlmenCalibrationDesc m;
+        m.saturation_arc_height_m = read_quantity(model.child("saturation_arc_height"));
+        m.time_constant_s = read_quantity(model.child("time_constant"));
+        m.shape = read_quantity(model.child("shape"));
+        m.dent_size_m = read_quantity(model.child("dent_size"));
+        m.covering_rate_per_s = read_quantity(model.child("covering_rate"));
+        if (model.child("strip").present()) m.strip = read_choice(model.child("strip"));
+        a.calibration = m;
+    }
     a.where = location_of(c);
     return a;
 }

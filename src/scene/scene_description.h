@@ -133,10 +133,22 @@ inline std::vector<std::string> region_names(const RegionDesc& r) {
 // The Almen strip's peened face and the calibration that turns its impact-energy dose E (J/m2) into
 // an arc height h = a (1 - exp(-E / E_c)). The constants depend on strip type, shot and process and
 // must come from a measured saturation curve; without them only the dose is reported.
+// The predictive model's calibration (analysis/almen_model.h): the measured curve
+// h = a (1 - exp(-(t / tau)^c)) and the exposure of the run that reproduced it.
+struct AlmenCalibrationDesc {
+    double saturation_arc_height_m = 0.0;  // m, a
+    double time_constant_s = 0.0;          // s, tau
+    double shape = 1.0;                    // -, c
+    double dent_size_m = 0.0;              // m, the calibration run's dent-area-weighted mean dent diameter
+    double covering_rate_per_s = 0.0;      // 1/s, the calibration run's dent area ratio per second
+    std::string strip;                     // "A", "N", "C" or "" (not given)
+};
+
 struct AlmenDesc {
-    Vec3 face_normal = Vec3::UnitZ();               // unit vector, component frame: out of the peened face
-    std::optional<double> saturation_arc_height_m;  // m, a
-    std::optional<double> dose_constant_J_per_m2;   // J/m2, E_c
+    Vec3 face_normal = Vec3::UnitZ();                 // unit vector, component frame: out of the peened face
+    std::optional<double> saturation_arc_height_m;    // m, a
+    std::optional<double> dose_constant_J_per_m2;     // J/m2, E_c
+    std::optional<AlmenCalibrationDesc> calibration;  // the predictive model's; not with the two above
     SourceLocation where;
 };
 

@@ -170,9 +170,10 @@ const std::array schema_table{
     SchemaEntry{"components[].vibration.axis", K::vector3, D::dimensionless, false, "",
                 "mean face normal", {}, "", "", "", "Direction of vibration (normalised; not zero)."},
     SchemaEntry{"components[].almen", K::map, D::dimensionless, false, "", "", {}, "", "", "",
-                "Only for role `almen`: the strip's peened face and the arc-height calibration h = a (1 - "
-                "exp(-E / E_c)), E the normal impact energy per area. Arc height needs calibration against a "
-                "measured saturation curve; without it only the dose is reported."},
+                "Only for role `almen`: the strip's peened face and its arc-height calibration on a measured "
+                "saturation curve: `calibration` (the predictive model, as `peensim almen-fit --calibrate` prints it), "
+                "or the dose model h = a (1 - exp(-E / E_c)) (`saturation_arc_height`, `dose_constant`; E the normal "
+                "impact energy per area). Without either, only the dose and the dents are reported."},
     SchemaEntry{"components[].almen.face_normal", K::vector3, D::dimensionless, false, "[0, 0, 1]", "", {}, "",
                 "", "", "Outward normal of the peened face, component frame (normalised; not zero)."},
     SchemaEntry{"components[].almen.saturation_arc_height", K::quantity, D::length, false, "", "not calibrated",
@@ -181,6 +182,23 @@ const std::array schema_table{
                 "not calibrated", above(0), "", "", "",
                 "Calibration E_c: the dose that raises the arc height to 63 % of a (with "
                 "`saturation_arc_height`)."},
+    SchemaEntry{"components[].almen.calibration", K::map, D::dimensionless, false, "", "not calibrated", {}, "", "", "",
+                "The predictive model's calibration on one measured saturation curve and the run that reproduced it, "
+                "as `peensim almen-fit CURVE --calibrate RUNDIR` prints it: the analysis then predicts this strip's "
+                "saturation curve, J443 saturation time and intensity from its dents (README, \"Almen strips\"). "
+                "Not with `saturation_arc_height` and `dose_constant`."},
+    SchemaEntry{"components[].almen.calibration.saturation_arc_height", K::quantity, D::length, true, "", "", above(0), "", "", "",
+                "a of the measured curve h = a (1 - exp(-(t / tau)^c))."},
+    SchemaEntry{"components[].almen.calibration.time_constant", K::quantity, D::time, true, "", "", above(0), "", "", "",
+                "tau of the measured curve (2P fit: 1 / b)."},
+    SchemaEntry{"components[].almen.calibration.shape", K::quantity, D::dimensionless, false, "1", "", closed(0.05, 20), "", "", "",
+                "c of the measured curve (1: the 2P form)."},
+    SchemaEntry{"components[].almen.calibration.dent_size", K::quantity, D::length, true, "", "", above(0), "", "", "",
+                "The calibration run's dent size on the strip's face (dent-area-weighted mean dent diameter, eq. 10)."},
+    SchemaEntry{"components[].almen.calibration.covering_rate", K::quantity, D::frequency, true, "", "", above(0), "", "", "",
+                "The calibration run's covering rate on the strip's face (dent area ratio per second, steady)."},
+    SchemaEntry{"components[].almen.calibration.strip", K::choice, D::dimensionless, false, "", "not given", {}, "A|N|C", "", "",
+                "The SAE J442 strip type of the measured curve, printed with the intensity (0.0118A)."},
     SchemaEntry{"components[].motion", K::map, D::dimensionless, false, "", "static", {}, "static", "", "",
                 "`static`, or a rotation at constant speed; only for role `part`."},
     SchemaEntry{"components[].motion.type", K::choice, D::dimensionless, true, "", "", {}, "static|rotating",
