@@ -16,6 +16,8 @@
 #include "app/analysis_report.h"
 #include "app/analysis_tables.h"
 #include "app/component_analysis.h"
+#include "app/paraview_coverage_series.h"
+#include "app/paraview_script.h"
 #include "app/report_errors.h"
 #include "contact/dent.h"
 #include "geometry/mesh_checks.h"
@@ -216,6 +218,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
             ++next_sample;
         }
     };
+    CoverageSeries coverage_series(adir, parts, duration, scene.output.coverage_steps);  // for ParaView
     for (ComponentAnalysis& a : parts) {
         if (a.coverage) a.curve.push_back({0.0, 0.0});
         if (a.almen) a.almen->curve.push_back({0.0, 0.0});
@@ -228,10 +231,12 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     for (auto block = stream.next_block(); !block.empty(); block = stream.next_block()) {
         for (const IndexedImpact& impact : block) {
             sample_until(impact.row.time_s);
+            coverage_series.before(impact.row.time_s);
             if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene, duration);
         }
     }
     sample_until(duration);
+    coverage_series.finish();
 
     for (ComponentAnalysis& a : parts) {
         a.points->finish();
@@ -242,9 +247,10 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     context.pngs = write_analysis_plots(adir.string(), names, context.plot_note);
     write_file_atomically((adir / "report.md").string(), analysis_report(scene, parts, context));
     write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, duration));
+    write_paraview_script(dir, scene, parts, duration);
     out << analysis_summary_table(parts, duration) << "analysis: " << adir.string()
-        << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp" << (context.pngs.empty() ? "" : ", *.png")
-        << "}\n";
+        << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp, *_coverage_series.pvd"
+        << (context.pngs.empty() ? "" : ", *.png") << ", " << kParaviewScriptFileName << "}\n";
 }
 
 }  // namespace peensim
