@@ -51,8 +51,10 @@ void ShotSeriesRecorder::after_step(const Simulation& sim, const std::vector<Imp
 
 void ShotSeriesRecorder::write_due(const SimulationState& state, double tolerance_s) {
     while (next_ <= last_ && step_time(next_) <= state.time.seconds() + tolerance_s) {
+        const auto start = std::chrono::steady_clock::now();
         write_step(state, next_);
         ++next_;
+        write_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
 }
 
@@ -60,15 +62,18 @@ void ShotSeriesRecorder::flush() {
     std::vector<TimeStepFile> steps;
     steps.reserve(static_cast<std::size_t>(next_));
     for (std::int64_t k = 0; k < next_; ++k) steps.push_back({step_time(k), step_file(k)});
+    const auto start = std::chrono::steady_clock::now();
     write_pvd((fs::path(dir_) / kShotSeriesFileName).string(), steps, Durability::process_crash);
     pvd_written_ = std::chrono::steady_clock::now();
+    write_seconds_ += std::chrono::duration<double>(pvd_written_ - start).count();
 }
 
 std::string ShotSeriesRecorder::finish(const SimulationState& state) {
     write_due(state, kStepTolerance * interval_s_);
     flush();
     char note[160];
-    std::snprintf(note, sizeof note, "%lld steps, every %g s", static_cast<long long>(next_), interval_s_);
+    std::snprintf(note, sizeof note, "%lld steps, every %g s; writing took %.2f s", static_cast<long long>(next_), interval_s_,
+                  write_seconds_);
     return (fs::path(dir_) / kShotSeriesFileName).string() + " (" + note + ")";
 }
 

@@ -50,7 +50,8 @@ public:
     // Writes any step left at the run's end and the .pvd; returns a note for the user.
     std::string finish(const SimulationState& state);
 
-    std::int64_t steps_written() const { return next_; }  // steps 0 .. steps_written() - 1 exist
+    std::int64_t steps_written() const { return next_; }     // steps 0 .. steps_written() - 1 exist
+    double write_seconds() const { return write_seconds_; }  // wall s spent writing steps and .pvd (this session)
 
 private:
     double step_time(std::int64_t k) const { return static_cast<double>(k) * interval_s_; }
@@ -64,6 +65,7 @@ private:
     std::int64_t next_;        // the next step to write
     std::vector<int> moving_;  // indices of the components that move
     std::chrono::steady_clock::time_point pvd_written_;
+    double write_seconds_ = 0.0;  // s of wall time
 };
 
 }  // namespace peensim
