@@ -151,7 +151,6 @@ TEST_P(ShotSeriesFlight, StepsAreTheClosedFormFlightAtTheirTimes) {
         EXPECT_EQ(d.point_data.at("shot_diameter_m").values, std::vector<double>{2e-3});
         EXPECT_EQ(d.field_data.size(), 1u);  // the plate stands still: no pose to give
     }
-    EXPECT_EQ(p0[2], 1e-3);  // placed on the plate's top face (z = 0)
 }
 
 INSTANTIATE_TEST_SUITE_P(Schemes, ShotSeriesFlight, ::testing::Values("event", "step"));
@@ -222,7 +221,7 @@ TEST_P(ShotSeriesResume, EndsWithTheUninterruptedRunsFiles) {
     ASSERT_LT(listed.size(), 43u);
     for (std::size_t k = 0; k < listed.size(); ++k) {
         EXPECT_EQ(listed[k].time_s, static_cast<double>(k) * 0.007);
-        EXPECT_EQ(testing::read_file(fs::path(resumed) / "paraview" / listed[k].file), expected.at("paraview/" + listed[k].file));
+        EXPECT_EQ(testing::read_file(fs::path(resumed) / "paraview" / listed[k].file), expected.at(listed[k].file));
     }
     // What a session killed after that checkpoint would leave: the next steps written (here with
     // wrong bytes), and a .pvd that lists them.

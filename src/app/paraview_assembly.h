@@ -1,4 +1,5 @@
-// The whole assembly for ParaView, written by `peensim run` when it starts (fresh or resumed):
+// The whole assembly for ParaView, written by `peensim run` when it ends (finished or interrupted;
+// not at its start, where a full disk would stop the run before its first checkpoint):
 //
 //   DIR/paraview/assembly.vtm               a multiblock, one block per component, named by it
 //   DIR/paraview/assembly/<component>.vtp   its mesh in the world frame at t = 0

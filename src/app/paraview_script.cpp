@@ -17,7 +17,6 @@ namespace {
 // The script's code; the run's own values come before it, as RUN.
 constexpr const char* kScriptBody = R"PY(
 import builtins  # min and max: pvbatch's namespace may hold VTK's array versions
-import json
 import math
 import os
 import sys
@@ -176,18 +175,29 @@ def colour_by(view, display, association, array, preset, top, title, corner):
     bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
 
 
-def look_from_the_front(view, bounds, height):
-    """Frames `bounds` from the front, from above (height > 0) or below (height < 0)."""
+def unit(v):
+    norm = math.sqrt(builtins.sum(x * x for x in v))
+    return [x / norm for x in v]
+
+
+def front():
+    """The horizontal direction the views are seen from (-y unless up is along y)."""
     up = RUN["up"]
     side = [0.0, -1.0, 0.0] if abs(up[1]) < 0.9 else [1.0, 0.0, 0.0]
     along = builtins.sum(s * u for s, u in zip(side, up))
-    side = [s - along * u for s, u in zip(side, up)]
-    norm = math.sqrt(builtins.sum(s * s for s in side))
-    side = [s / norm for s in side]
+    return unit([s - along * u for s, u in zip(side, up)])
+
+
+def look_from(view, bounds, direction):
+    """Frames `bounds` seen from `direction` (from the centre towards the camera)."""
     centre = [(bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2]
     size = builtins.max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
+    direction = unit(direction)
+    up = RUN["up"]
+    if abs(builtins.sum(d * u for d, u in zip(direction, up))) > 0.95:  # looking along up: the front is up on screen
+        up = front()
     view.CameraFocalPoint = centre
-    view.CameraPosition = [c + size * (2.2 * s + height * u) for c, s, u in zip(centre, side, up)]
+    view.CameraPosition = [c + 2.6 * size * d for c, d in zip(centre, direction)]
     view.CameraViewUp = up
     view.CameraViewAngle = 30
 
@@ -286,7 +296,11 @@ def build():
             for i in range(3):
                 bounds[2 * i] = builtins.min(bounds[2 * i], b[2 * i])
                 bounds[2 * i + 1] = builtins.max(bounds[2 * i + 1], b[2 * i + 1])
-        look_from_the_front(view, bounds, 1.2 if view == process else -0.8)
+        f, u, hits = front(), RUN["up"], RUN["impacts_seen_from"]
+        if view == process or not builtins.any(hits):
+            look_from(view, bounds, [a + 0.6 * b for a, b in zip(f, u)])  # the front, from above
+        else:
+            look_from(view, bounds, [a + 0.8 * b for a, b in zip(hits, f)])  # where the impacts came from
     SetActiveView(process)
     return made, layout
 
@@ -298,7 +312,7 @@ def describe(made, time_s):
         data = servermanager.Fetch(proxy)
         if data.IsA("vtkMultiBlockDataSet"):
             from vtkmodules.vtkFiltersCore import vtkAppendPolyData
-            from vtkmodules.vtkCommonDataModel import vtkDataObjectTreeIterator
+
             append = vtkAppendPolyData()
             it = data.NewTreeIterator()
             it.InitTraversal()
@@ -363,6 +377,24 @@ double speed_scale(const SceneDescription& scene, const std::vector<ComponentAna
     return fastest > 0.0 ? fastest : 1.0;
 }
 
+// The side the impacts came from (world frame at rest, unit; zero without impacts): the outward
+// normals of the logged parts' triangles, each counted once per impact. The results view looks
+// from there (from below at a sonotrode, from above under a nozzle).
+Vec3 impacts_seen_from(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts) {
+    Vec3 sum = Vec3::Zero();
+    for (const ComponentAnalysis& a : parts) {
+        const auto c =
+            std::find_if(scene.components.begin(), scene.components.end(), [&](const ComponentDesc& d) { return d.name == a.name; });
+        const Mat3 rotation = c != scene.components.end() ? c->rotation : Mat3::Identity();
+        for (std::size_t t = 0; t < a.fields->triangle_count(); ++t) {
+            const TriangleMesh& m = *a.mesh;
+            const Vec3 n = (m.corner(t, 1) - m.corner(t, 0)).cross(m.corner(t, 2) - m.corner(t, 0));
+            if (n.norm() > 0.0) sum += static_cast<double>(a.fields->count(t)) * (rotation * n.normalized());
+        }
+    }
+    return sum.norm() > 0.0 ? Vec3(sum.normalized()) : Vec3::Zero();
+}
+
 }  // namespace
 
 void write_paraview_script(const fs::path& run_dir, const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts,
@@ -370,10 +402,12 @@ void write_paraview_script(const fs::path& run_dir, const SceneDescription& scen
     const fs::path analysis = fs::absolute(run_dir / "analysis");
     const Vec3& g = scene.process.gravity_m_per_s2;
     const Vec3 up = g.norm() > 0.0 ? Vec3(-g.normalized()) : Vec3(Vec3::UnitZ());
+    const Vec3 from = impacts_seen_from(scene, parts);
     nlohmann::json run = {{"analysis_dir", analysis.string()},
                           {"duration_s", duration_s},
                           {"up", {up.x(), up.y(), up.z()}},
                           {"speed_scale_mps", speed_scale(scene, parts)},
+                          {"impacts_seen_from", {from.x(), from.y(), from.z()}},
                           {"assembly", std::string("../") + kParaviewDirName + "/" + kAssemblyFileName},
                           {"shots", std::string("../") + kParaviewDirName + "/" + kShotSeriesFileName},
                           {"parts", nlohmann::json::array()}};

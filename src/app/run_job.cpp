@@ -76,7 +76,6 @@ public:
             }
         }
         write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
-        write_paraview_assembly(*model_, dir_);
         slots_ = logged_slots(*model_);
         start(setup);
         if (const std::optional<double> every = model_->description.output.shot_positions_s)
@@ -229,6 +228,7 @@ private:
         if (shot_series_) shot_series_->flush();
         checkpoint();
         write_summary((fs::path(dir_) / "summary.json").string(), summary(false));
+        write_paraview_assembly(*model_, dir_);
         err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s << " s; outputs in " << dir_
              << " are consistent up to that time.\n"
              << "resume with: " << resume_command() << "\n";
@@ -237,12 +237,15 @@ private:
 
     int complete() {
         writer_->finish();
+        // The ParaView files before the checkpoint goes: a full disk here still leaves a run to resume.
+        const std::string series = shot_series_ ? shot_series_->finish(sim_->state()) : "";
+        write_paraview_assembly(*model_, dir_);
         const RunSummary s = summary(true);
         write_summary((fs::path(dir_) / "summary.json").string(), s);
         fs::remove(checkpoint_path());
         out_ << summary_to_text(s);
         out_ << "outputs: " << dir_ << "/{impacts.csv, summary.json, scene.resolved.yaml, paraview/assembly.vtm}\n";
-        if (shot_series_) out_ << "shot positions: " << shot_series_->finish(sim_->state()) << "\n";
+        if (shot_series_) out_ << "shot positions: " << series << "\n";
         if (recorder_) {
             const int n = recorder_->frames_drawn();
             const std::string video = recorder_->finish_video();
