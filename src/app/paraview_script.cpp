@@ -423,7 +423,7 @@ void write_paraview_script(const fs::path& run_dir, const SceneDescription& scen
     const std::string script = "# ParaView view of the peensim run in " + fs::absolute(run_dir).lexically_normal().string() +
                                " (written by `peensim analyze`).\n"
                                "#   paraview --script=open_in_paraview.py          (or ParaView's Python Shell > Run Script)\n"
-                               "#   pvbatch open_in_paraview.py --screenshot view.png [--time T]   (no display: under xvfb-run)\n"
+                               "#   pvbatch open_in_paraview.py --screenshot view.png [--time T] [--describe]   (no display: under Xvfb)\n"
                                "import json\n\n"
                                "RUN = json.loads(r\"\"\"" +
                                run.dump(1) + "\"\"\")\n" + kScriptBody;
