@@ -19,16 +19,16 @@
 
 #include "geometry/box_mesh.h"
 #include "output/peak_memory.h"
+#include "output/vtk_collection.h"
 #include "output/vtp_writer.h"
+#include "support/vtk_python.h"
 
 namespace peensim {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Debian's interpreter: python3-vtk9 installs into /usr/lib/python3/dist-packages, which a
-// python3 earlier on PATH (pyenv, venv) does not see.
-constexpr const char* kSystemPython = "/usr/bin/python3";
+using testing::kSystemPython;  // Debian's, which sees python3-vtk9
 
 constexpr const char* kVtkDumpScript = R"PY(
 import sys
@@ -236,7 +236,7 @@ TEST_F(VtpWriterTest, StreamedImpactPointsReadBackExactlyInVtk) {
         for (std::uint64_t i = 0; i < kSingles; ++i) writer.add(impact_number(i));
         // A chunk of the same impacts, through the generic chunk API.
         std::vector<Vec3> points;
-        std::vector<PointField> chunk = {{"velocity_in_m_per_s", 3, {}}, {"normal_speed_in_m_per_s", 1, {}}, {"time_s", 1, {}}};
+        std::vector<PointField> chunk = {{"v_in_mps", 3, {}}, {"vn_in_mps", 1, {}}, {"time_s", 1, {}}};
         for (std::uint64_t i = kSingles; i < kSingles + kChunk; ++i) {
             const ImpactRecord r = impact_number(i);
             points.push_back(r.point_m);
@@ -260,17 +260,16 @@ TEST_F(VtpWriterTest, StreamedImpactPointsReadBackExactlyInVtk) {
     EXPECT_EQ(dump.counts.at("cells"), n);
     EXPECT_EQ(dump.counts.at("verts"), n);
     EXPECT_EQ(dump.counts.at("polys"), 0u);
-    EXPECT_EQ(dump.array_names, (std::vector<std::string>{"velocity_in_m_per_s", "normal_speed_in_m_per_s", "time_s"}));
-    EXPECT_EQ(dump.arrays.at("velocity_in_m_per_s").section, "PointData");
-    EXPECT_EQ(dump.arrays.at("velocity_in_m_per_s").components, 3);
+    EXPECT_EQ(dump.array_names, (std::vector<std::string>{"v_in_mps", "vn_in_mps", "time_s"}));
+    EXPECT_EQ(dump.arrays.at("v_in_mps").section, "PointData");
+    EXPECT_EQ(dump.arrays.at("v_in_mps").components, 3);
     EXPECT_EQ(dump.arrays.at("time_s").tuples, n);
     for (std::uint64_t i = 0; i < n; ++i) {
         const ImpactRecord r = impact_number(i);
         EXPECT_EQ(dump.points.at(i), (std::vector<double>{r.point_m.x(), r.point_m.y(), r.point_m.z()}));
         EXPECT_EQ(dump.cells.at(i), (std::vector<long long>{kVtkVertex, static_cast<long long>(i)}));
-        EXPECT_EQ(dump.values.at("velocity_in_m_per_s").at(i),
-                  (std::vector<double>{r.v_in_m_per_s.x(), r.v_in_m_per_s.y(), r.v_in_m_per_s.z()}));
-        EXPECT_EQ(dump.values.at("normal_speed_in_m_per_s").at(i), std::vector<double>{r.vn_in_m_per_s});
+        EXPECT_EQ(dump.values.at("v_in_mps").at(i), (std::vector<double>{r.v_in_m_per_s.x(), r.v_in_m_per_s.y(), r.v_in_m_per_s.z()}));
+        EXPECT_EQ(dump.values.at("vn_in_mps").at(i), std::vector<double>{r.vn_in_m_per_s});
         EXPECT_EQ(dump.values.at("time_s").at(i), std::vector<double>{r.time_s});
     }
 }
@@ -413,10 +412,112 @@ TEST_F(VtpWriterTest, MillionImpactsStreamWithBoundedMemory) {
     for (std::uint64_t i : {0ull, 123456ull, 999999ull}) {
         const ImpactRecord r = impact_number(i);
         EXPECT_EQ(dump.points.at(i), (std::vector<double>{r.point_m.x(), r.point_m.y(), r.point_m.z()}));
-        EXPECT_EQ(dump.values.at("velocity_in_m_per_s").at(i),
-                  (std::vector<double>{r.v_in_m_per_s.x(), r.v_in_m_per_s.y(), r.v_in_m_per_s.z()}));
+        EXPECT_EQ(dump.values.at("v_in_mps").at(i), (std::vector<double>{r.v_in_m_per_s.x(), r.v_in_m_per_s.y(), r.v_in_m_per_s.z()}));
         EXPECT_EQ(dump.values.at("time_s").at(i), std::vector<double>{r.time_s});
     }
+}
+
+// Int32, Int64 and Float64 arrays on points and cells, and field data (numbers, a text), as the
+// ParaView outputs use them (tests/paraview_outputs_test.cpp): read back exactly.
+TEST_F(VtpWriterTest, TypedArraysAndFieldDataReadBackExactlyInVtk) {
+    const fs::path vtp = dir_ / "typed.vtp";
+    PolyDataLayout layout{3,
+                          PolyDataLayout::Cells::vertices,
+                          0,
+                          {{"shot", VtkType::int64, 1}, {"v_mps", VtkType::float64, 3}},
+                          {{"role", VtkType::int32, 1}},
+                          {{"time_s", std::vector<double>{0.1}},
+                           {"component", std::string("gear-1")},
+                           {"pose_rotation", std::vector<double>{1.0 / 3.0, -2.5e-300, 7.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0}}}};
+    PolyDataWriter out(vtp.string(), layout);
+    const std::vector<Vec3> points = {Vec3(0.1, 0.2, 0.3), Vec3(-1.0 / 7.0, 0.0, 1e-20), Vec3(5.0, 6.0, 7.0)};
+    out.add_points(points);
+    for (const std::int64_t shot : std::vector<std::int64_t>{7, 123456789012, -1}) out.add(shot);
+    for (int i = 0; i < 9; ++i) out.add(0.5 * i + 1.0 / 3.0);
+    for (std::int32_t role : {0, 2, 4}) out.add(role);
+    EXPECT_FALSE(fs::exists(vtp));
+    out.finish();
+    EXPECT_EQ(files(), std::vector<std::string>{"typed.vtp"});
+
+    const testing::VtkReadPolyData d = testing::read_vtp_with_vtk(vtp.string());
+    EXPECT_EQ(d.points, 3u);
+    EXPECT_EQ(d.verts, 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(d.coordinates[i], (std::array<double, 3>{points[i].x(), points[i].y(), points[i].z()}));
+        EXPECT_EQ(d.cell_points[i], (std::vector<long long>{kVtkVertex, static_cast<long long>(i)}));
+    }
+    EXPECT_EQ(d.point_array_names, (std::vector<std::string>{"shot", "v_mps"}));
+    EXPECT_EQ(d.point_data.at("shot").type, "long long");
+    EXPECT_EQ(d.point_data.at("shot").values, (std::vector<double>{7.0, 123456789012.0, -1.0}));
+    EXPECT_EQ(d.point_data.at("v_mps").components, 3);
+    for (int i = 0; i < 9; ++i) EXPECT_EQ(d.point_data.at("v_mps").values[static_cast<std::size_t>(i)], 0.5 * i + 1.0 / 3.0);
+    EXPECT_EQ(d.cell_data.at("role").type, "int");
+    EXPECT_EQ(d.cell_data.at("role").values, (std::vector<double>{0.0, 2.0, 4.0}));
+    EXPECT_EQ(d.field_numbers("time_s"), std::vector<double>{0.1});
+    EXPECT_EQ(d.field_text("component"), "gear-1");
+    EXPECT_EQ(d.field_numbers("pose_rotation"), (std::vector<double>{1.0 / 3.0, -2.5e-300, 7.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0}));
+}
+
+TEST_F(VtpWriterTest, PolyDataWriterRefusesValuesOutOfTheLayoutsOrder) {
+    const std::string path = (dir_ / "order.vtp").string();
+    PolyDataLayout layout{1, PolyDataLayout::Cells::vertices, 0, {{"shot", VtkType::int64, 1}}, {}, {}};
+    {
+        PolyDataWriter out(path, layout);
+        EXPECT_THROW(out.add(1.0), std::logic_error);  // a value where the points are due
+        EXPECT_THROW(out.add_triangle({0, 0, 0}), std::logic_error);
+        out.add_point(Vec3::Zero());
+        EXPECT_THROW(out.add(1.0), std::logic_error);  // a double where the Int64 array is due
+        EXPECT_THROW(out.finish(), std::logic_error);  // `shot` has no value yet
+    }
+    EXPECT_TRUE(files().empty());  // an unfinished file leaves nothing
+    {
+        PolyDataWriter out(path, layout);
+        out.add_point(Vec3::Zero());
+        out.add(std::int64_t{3});
+        EXPECT_THROW(out.add(std::int64_t{4}), std::logic_error);  // past the last array
+        out.finish();
+    }
+    EXPECT_EQ(files(), std::vector<std::string>{"order.vtp"});
+    layout.triangles = 1;  // triangles in a file of vertices
+    EXPECT_THROW(PolyDataWriter(path + "2", layout), std::invalid_argument);
+    layout.triangles = 0;
+    layout.field_data = {{"a&b", std::vector<double>{1.0}}};
+    EXPECT_THROW(PolyDataWriter(path + "2", layout), std::invalid_argument);
+    layout.field_data = {{"empty", std::vector<double>{}}};
+    EXPECT_THROW(PolyDataWriter(path + "2", layout), std::invalid_argument);
+    EXPECT_EQ(files(), std::vector<std::string>{"order.vtp"});
+}
+
+TEST_F(VtpWriterTest, TimeSeriesAndMultiblockReadBackInVtk) {
+    fs::create_directories(dir_ / "steps");
+    const std::vector<TimeStepFile> steps = {{0.0, "steps/a.vtp"}, {0.005, "steps/b.vtp"}, {1.0 / 3.0, "steps/c.vtp"}};
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+        PolyDataLayout layout{k, PolyDataLayout::Cells::vertices, 0, {}, {}, {{"time_s", std::vector<double>{steps[k].time_s}}}};
+        PolyDataWriter out((dir_ / steps[k].file).string(), layout);
+        for (std::size_t i = 0; i < k; ++i) out.add_point(Vec3(static_cast<double>(i), 0.0, 0.0));
+        out.finish();
+    }
+    write_pvd((dir_ / "series.pvd").string(), steps);
+    const std::vector<testing::VtkReadStep> read = testing::read_pvd_with_vtk((dir_ / "series.pvd").string());
+    ASSERT_EQ(read.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(read[k].time_s, steps[k].time_s);  // shortest round-trip text: exact
+        EXPECT_EQ(read[k].file, steps[k].file);
+        EXPECT_EQ(read[k].data.points, k);
+        EXPECT_EQ(read[k].data.field_numbers("time_s"), std::vector<double>{steps[k].time_s});
+    }
+
+    const BoxSpec spec;
+    write_mesh_vtp((dir_ / "steps" / "box.vtp").string(), box(spec), {}, {{"component", std::string("box")}});
+    const std::vector<NamedBlock> blocks = {{"first", "steps/b.vtp"}, {"box", "steps/box.vtp"}};
+    write_vtm((dir_ / "assembly.vtm").string(), blocks);
+    const std::vector<testing::VtkReadBlock> got = testing::read_vtm_with_vtk((dir_ / "assembly.vtm").string());
+    ASSERT_EQ(got.size(), 2u);
+    EXPECT_EQ(got[0].name, "first");
+    EXPECT_EQ(got[0].data.points, 1u);
+    EXPECT_EQ(got[1].name, "box");
+    EXPECT_EQ(got[1].data.polys, box(spec).triangle_count());
+    EXPECT_EQ(got[1].data.field_text("component"), "box");
 }
 
 }  // namespace

@@ -19,6 +19,8 @@
 #include "app/analysis_tables.h"
 #include "app/component_analysis.h"
 #include "app/coverage_verdict.h"
+#include "app/paraview_coverage_series.h"
+#include "app/paraview_script.h"
 #include "app/render_module.h"
 #include "app/report_errors.h"
 #include "common/random.h"
@@ -294,6 +296,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
             ++next_sample;
         }
     };
+    CoverageSeries coverage_series(adir, parts, window, scene.output.coverage_steps);  // for ParaView
     for (ComponentAnalysis& a : parts) {
         sample_coverage(a, 0.0);
         if (a.almen) sample_almen(*a.almen, 0.0);
@@ -308,10 +311,12 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
         for (const IndexedImpact& impact : block) {
             if (!taken(impact.row)) continue;
             sample_until(impact.row.time_s);
+            coverage_series.before(impact.row.time_s);
             if (impact.component >= 0) accumulate(parts[static_cast<std::size_t>(impact.component)], impact.row, scene, window);
         }
     }
     sample_until(window.to_s);
+    coverage_series.finish();
 
     for (ComponentAnalysis& a : parts) {
         a.points->finish();
@@ -338,9 +343,10 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
                                                return std::string(std::istreambuf_iterator<char>(png), {});
                                            }));
     write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, window));
+    write_paraview_script(dir, scene, parts, duration, window);
     out << analysis_summary_table(parts, window) << "analysis: " << adir.string()
-        << "/{report.md, report.html, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp"
-        << (context.pngs.empty() ? "" : ", *.png") << "}\n";
+        << "/{report.md, report.html, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp, *_coverage_series.pvd"
+        << (context.pngs.empty() ? "" : ", *.png") << ", " << kParaviewScriptFileName << "}\n";
 }
 
 }  // namespace peensim

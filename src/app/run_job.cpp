@@ -14,6 +14,8 @@
 #include "app/checkpoint_cadence.h"
 #include "app/interrupt.h"
 #include "app/loss_report.h"
+#include "app/paraview_assembly.h"
+#include "app/paraview_shot_series.h"
 #include "app/render_module.h"
 #include "app/report_errors.h"
 #include "app/setup_checks.h"
@@ -76,6 +78,8 @@ public:
         write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
         slots_ = logged_slots(*model_);
         start(setup);
+        if (const std::optional<double> every = model_->description.output.shot_positions_s)
+            shot_series_ = std::make_unique<ShotSeriesRecorder>(*model_, dir_, *every, sim_->state());
         try {
             {
                 // Signals are caught from before the start's checkpoint (so a checkpoint on disk means
@@ -188,6 +192,7 @@ private:
         started_ = Clock::now();
         RunLoop run(*sim_);
         run.add(listener);
+        if (shot_series_) run.add(*shot_series_);
         // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
         // step, the event-driven scheme at its restart interval.
         const bool finished = run.run(
@@ -220,8 +225,10 @@ private:
 
     int interrupted() {
         if (recorder_) recorder_->flush();  // the frames drawn so far are complete files
+        if (shot_series_) shot_series_->flush();
         checkpoint();
         write_summary((fs::path(dir_) / "summary.json").string(), summary(false));
+        write_paraview_assembly(*model_, dir_);
         err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s << " s; outputs in " << dir_
              << " are consistent up to that time.\n"
              << "resume with: " << resume_command() << "\n";
@@ -230,11 +237,15 @@ private:
 
     int complete() {
         writer_->finish();
+        // The ParaView files before the checkpoint goes: a full disk here still leaves a run to resume.
+        const std::string series = shot_series_ ? shot_series_->finish(sim_->state()) : "";
+        write_paraview_assembly(*model_, dir_);
         const RunSummary s = summary(true);
         write_summary((fs::path(dir_) / "summary.json").string(), s);
         fs::remove(checkpoint_path());
         out_ << summary_to_text(s);
-        out_ << "outputs: " << dir_ << "/{impacts.csv, summary.json, scene.resolved.yaml}\n";
+        out_ << "outputs: " << dir_ << "/{impacts.csv, summary.json, scene.resolved.yaml, paraview/assembly.vtm}\n";
+        if (shot_series_) out_ << "shot positions: " << series << "\n";
         if (recorder_) {
             const int n = recorder_->frames_drawn();
             const std::string video = recorder_->finish_video();
@@ -267,7 +278,8 @@ private:
     std::vector<int> slots_;
     std::unique_ptr<Simulation> sim_;
     std::unique_ptr<ImpactCsvWriter> writer_;
-    std::unique_ptr<FrameSink> recorder_;  // only when rendering (the module is loaded then)
+    std::unique_ptr<FrameSink> recorder_;              // only when rendering (the module is loaded then)
+    std::unique_ptr<ShotSeriesRecorder> shot_series_;  // only when the scene asks (output.shot_positions)
     std::vector<SpeedHistogram> speeds_;
     std::uint64_t logged_impacts_ = 0;
     double wall_before_ = 0.0;     // s, wall time of earlier sessions of a resumed run

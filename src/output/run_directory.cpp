@@ -68,6 +68,7 @@ const std::vector<std::string>& run_output_names() {
                                                 "scene.resolved.yaml",
                                                 "animation.mp4",
                                                 "frames",
+                                                "paraview",
                                                 "analysis"};
     return names;
 }

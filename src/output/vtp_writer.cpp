@@ -1,15 +1,13 @@
 #include "output/vtp_writer.h"
 
 #include <fcntl.h>
-#include <unistd.h>
 #include <algorithm>
 #include <bit>
+#include <charconv>
 #include <cstring>
 #include <set>
 #include <stdexcept>
 #include <utility>
-
-#include "output/posix_file.h"
 
 namespace peensim {
 
@@ -19,147 +17,127 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed dou
 
 namespace {
 
-// An output file written through a fixed buffer. finish_as(path) flushes, fsyncs and renames
-// it; a file never finished is removed by the destructor.
-class BufferedFile {
-public:
-    BufferedFile(std::string path, int flags)
-        : path_(std::move(path)),
-          fd_(posix_file::open_or_throw(path_, flags | O_CREAT | O_TRUNC)),
-          buffer_(new char[kVtpStreamBufferBytes]) {}
-    ~BufferedFile() {
-        if (fd_ >= 0) {
-            ::close(fd_);
-            ::unlink(path_.c_str());
-        }
+const char* type_name(VtkType t) {
+    switch (t) {
+        case VtkType::float64: return "Float64";
+        case VtkType::int64: return "Int64";
+        case VtkType::int32: return "Int32";
     }
-    BufferedFile(const BufferedFile&) = delete;
-    BufferedFile& operator=(const BufferedFile&) = delete;
+    return "Float64";
+}
 
-    void write(const void* data, std::size_t size) {
-        const char* bytes = static_cast<const char*>(data);
-        if (size >= kVtpStreamBufferBytes) {  // large blocks skip the buffer
-            flush();
-            posix_file::write_all(fd_, bytes, size, path_);
-            bytes_ += size;
-            return;
-        }
-        if (used_ + size > kVtpStreamBufferBytes) flush();
-        std::memcpy(buffer_.get() + used_, bytes, size);
-        used_ += size;
-        bytes_ += size;
-    }
-    template <class T>
-    void put(T value) {
-        write(&value, sizeof value);
-    }
+std::uint64_t type_bytes(VtkType t) { return t == VtkType::int32 ? 4 : 8; }
 
-    void flush() {
-        posix_file::write_all(fd_, buffer_.get(), used_, path_);
-        used_ = 0;
-    }
-
-    // Appends the whole content of `source` (already flushed) after this file's bytes: in the
-    // kernel with copy_file_range (hundreds of MB for millions of impacts, never through our
-    // memory), or by reading and writing where the file system cannot.
-    void append_contents_of(BufferedFile& source) {
-        flush();
-        off64_t from = 0;
-        for (;;) {
-            const ssize_t n = ::copy_file_range(source.fd_, &from, fd_, nullptr, std::size_t{1} << 30, 0);
-            if (n > 0) {
-                bytes_ += static_cast<std::uint64_t>(n);
-                continue;
-            }
-            if (n == 0) return;
-            if (errno == EINTR) continue;
-            if (errno == EXDEV || errno == ENOSYS || errno == EINVAL || errno == EOPNOTSUPP) break;
-            posix_file::throw_errno("cannot copy", source.path_);
-        }
-        if (::lseek(source.fd_, from, SEEK_SET) < 0) posix_file::throw_errno("cannot seek", source.path_);
-        for (;;) {
-            const ssize_t n = ::read(source.fd_, buffer_.get(), kVtpStreamBufferBytes);
-            if (n < 0) {
-                if (errno == EINTR) continue;
-                posix_file::throw_errno("cannot read", source.path_);
-            }
-            if (n == 0) break;
-            posix_file::write_all(fd_, buffer_.get(), static_cast<std::size_t>(n), path_);
-            bytes_ += static_cast<std::uint64_t>(n);
-        }
-    }
-
-    void finish_as(const std::string& final_path) {
-        flush();
-        posix_file::fsync_or_throw(fd_, path_);
-        const int fd = std::exchange(fd_, -1);
-        try {
-            posix_file::close_or_throw(fd, path_);
-            posix_file::rename_or_throw(path_, final_path);
-        } catch (...) {
-            ::unlink(path_.c_str());
-            throw;
-        }
-        posix_file::fsync_directory(posix_file::parent_directory(final_path));
-    }
-
-    std::uint64_t bytes() const { return bytes_; }  // written so far, buffered ones included
-
-private:
-    std::string path_;
-    int fd_ = -1;
-    std::unique_ptr<char[]> buffer_;
-    std::size_t used_ = 0;
-    std::uint64_t bytes_ = 0;
-};
-
-void check_field(const std::string& name, int components, std::set<std::string>& seen) {
+void check_name(const std::string& name, std::set<std::string>& seen) {
     if (name.empty()) throw std::invalid_argument("vtp field with an empty name");
     if (name.find_first_of("<>&\"'") != std::string::npos) {
         throw std::invalid_argument("vtp field name '" + name + "' contains an XML special character");
     }
-    if (components < 1) throw std::invalid_argument("vtp field '" + name + "' has components < 1");
     if (!seen.insert(name).second) throw std::invalid_argument("duplicate vtp field '" + name + "'");
 }
 
-// One DataArray of the appended block; `tuples * components` values of `value_bytes` each.
-struct ArrayEntry {
+void check_field(const std::string& name, int components, std::set<std::string>& seen) {
+    check_name(name, seen);
+    if (components < 1) throw std::invalid_argument("vtp field '" + name + "' has components < 1");
+}
+
+// Shortest text that reads back as exactly `x`.
+std::string round_trip(double x) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, x).ptr;
+    return std::string(text, end);
+}
+
+// The <FieldData> element (empty string when there is none).
+std::string field_data_xml(const std::vector<FieldValue>& values) {
+    if (values.empty()) return "";
+    std::set<std::string> seen;
+    std::string xml = "    <FieldData>\n";
+    for (const FieldValue& f : values) {
+        check_name(f.name, seen);
+        if (const auto* text = std::get_if<std::string>(&f.value)) {
+            // VTK's String arrays in ASCII: each character's code, each string ended by a 0.
+            xml += "      <Array type=\"String\" Name=\"" + f.name + "\" NumberOfTuples=\"1\" format=\"ascii\">\n        ";
+            for (unsigned char c : *text) xml += std::to_string(static_cast<int>(c)) + " ";
+            xml += "0\n      </Array>\n";
+            continue;
+        }
+        const auto& numbers = std::get<std::vector<double>>(f.value);
+        if (numbers.empty()) throw std::invalid_argument("vtp field data '" + f.name + "' has no value");
+        xml += "      <DataArray type=\"Float64\" Name=\"" + f.name + "\" NumberOfComponents=\"" + std::to_string(numbers.size()) +
+               "\" NumberOfTuples=\"1\" format=\"ascii\">\n        ";
+        for (std::size_t i = 0; i < numbers.size(); ++i) xml += (i ? " " : "") + round_trip(numbers[i]);
+        xml += "\n      </DataArray>\n";
+    }
+    return xml + "    </FieldData>\n";
+}
+
+// The arrays of the appended block in their order there: points, connectivity, offsets, the point
+// arrays, the cell arrays. Checks the layout.
+struct AppendedArray {
     std::string name;
-    const char* type = "Float64";
+    VtkType type = VtkType::float64;
     int components = 1;
     std::uint64_t tuples = 0;
-    std::uint64_t value_bytes = 8;
-    std::uint64_t data_bytes() const { return tuples * static_cast<std::uint64_t>(components) * value_bytes; }
+    std::uint64_t data_bytes() const { return tuples * static_cast<std::uint64_t>(components) * type_bytes(type); }
 };
 
-// The XML before the raw data, with every array's offset in the appended block. `arrays` is:
-// points, topology connectivity, topology offsets, then the attribute fields; they must be
-// appended in this order, each after its UInt64 byte count.
-std::string polydata_header(std::uint64_t points, const std::string& topology, std::uint64_t cells, const std::string& attribute_section,
-                            const std::vector<ArrayEntry>& arrays) {
+std::vector<AppendedArray> appended_arrays(const PolyDataLayout& layout) {
+    const bool polys = layout.cells == PolyDataLayout::Cells::triangles;
+    if (!polys && layout.triangles != 0) throw std::invalid_argument("vtp layout: triangles given for a file of vertices");
+    const std::uint64_t cells = polys ? layout.triangles : layout.points;
+    std::vector<AppendedArray> arrays = {{"Points", VtkType::float64, 3, layout.points},
+                                         {"connectivity", VtkType::int64, 1, polys ? 3 * cells : cells},
+                                         {"offsets", VtkType::int64, 1, cells}};
+    std::set<std::string> point_names, cell_names;
+    for (const VtkArraySpec& a : layout.point_arrays) {
+        check_field(a.name, a.components, point_names);
+        arrays.push_back({a.name, a.type, a.components, layout.points});
+    }
+    for (const VtkArraySpec& a : layout.cell_arrays) {
+        check_field(a.name, a.components, cell_names);
+        arrays.push_back({a.name, a.type, a.components, cells});
+    }
+    return arrays;
+}
+
+// The XML before the raw data, with every array's offset in the appended block; the arrays must
+// be appended in appended_arrays' order, each after its UInt64 byte count.
+std::string polydata_header(const PolyDataLayout& layout, const std::vector<AppendedArray>& arrays) {
+    const bool polys = layout.cells == PolyDataLayout::Cells::triangles;
+    const std::uint64_t cells = polys ? layout.triangles : layout.points;
     std::string xml =
         "<?xml version=\"1.0\"?>\n"
         "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-        "  <PolyData>\n"
-        "    <Piece NumberOfPoints=\"" +
-        std::to_string(points) + "\" NumberOfVerts=\"" + std::to_string(topology == "Verts" ? cells : 0) +
-        "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" + std::to_string(topology == "Polys" ? cells : 0) + "\">\n";
+        "  <PolyData>\n" +
+        field_data_xml(layout.field_data) + "    <Piece NumberOfPoints=\"" + std::to_string(layout.points) + "\" NumberOfVerts=\"" +
+        std::to_string(polys ? 0 : cells) + "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" +
+        std::to_string(polys ? cells : 0) + "\">\n";
+    std::vector<std::uint64_t> offsets;
     std::uint64_t offset = 0;
-    auto data_array = [&](const ArrayEntry& a) {
-        xml += "        <DataArray type=\"" + std::string(a.type) + "\" Name=\"" + a.name + "\" NumberOfComponents=\"" +
-               std::to_string(a.components) + "\" format=\"appended\" offset=\"" + std::to_string(offset) + "\"/>\n";
+    for (const AppendedArray& a : arrays) {
+        offsets.push_back(offset);
         offset += sizeof(std::uint64_t) + a.data_bytes();
+    }
+    auto data_array = [&](std::size_t i) {
+        const AppendedArray& a = arrays[i];
+        xml += "        <DataArray type=\"" + std::string(type_name(a.type)) + "\" Name=\"" + a.name + "\" NumberOfComponents=\"" +
+               std::to_string(a.components) + "\" format=\"appended\" offset=\"" + std::to_string(offsets[i]) + "\"/>\n";
     };
+    const std::string topology = polys ? "Polys" : "Verts";
     xml += "      <Points>\n";
-    data_array(arrays[0]);
+    data_array(0);
     xml += "      </Points>\n      <" + topology + ">\n";
-    data_array(arrays[1]);
-    data_array(arrays[2]);
-    xml += "      </" + topology + ">\n      <" + attribute_section + ">\n";
-    for (std::size_t i = 3; i < arrays.size(); ++i) data_array(arrays[i]);
-    xml += "      </" + attribute_section +
-           ">\n    </Piece>\n  </PolyData>\n"
-           "  <AppendedData encoding=\"raw\">\n   _";
+    data_array(1);
+    data_array(2);
+    xml += "      </" + topology + ">\n      <PointData>\n";
+    std::size_t i = 3;
+    for (std::size_t k = 0; k < layout.point_arrays.size(); ++k) data_array(i++);
+    xml += "      </PointData>\n      <CellData>\n";
+    for (std::size_t k = 0; k < layout.cell_arrays.size(); ++k) data_array(i++);
+    xml +=
+        "      </CellData>\n    </Piece>\n  </PolyData>\n"
+        "  <AppendedData encoding=\"raw\">\n   _";
     return xml;
 }
 
@@ -167,50 +145,129 @@ constexpr const char* kPolyDataFooter = "\n  </AppendedData>\n</VTKFile>\n";
 
 }  // namespace
 
-void write_mesh_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<CellField>& cell_fields) {
+// One array of the appended block as the writer fills it: handed by the caller, or generated.
+struct PolyDataWriter::Segment {
+    enum class Kind { points, triangles, values, vertex_ids, offsets };
+    std::string name;
+    Kind kind = Kind::values;
+    VtkType type = VtkType::float64;
+    std::uint64_t values = 0;  // numbers (tuples * components)
+    std::uint64_t bytes = 0;
+    std::int64_t offset_step = 1;  // Kind::offsets: points per cell
+};
+
+PolyDataWriter::PolyDataWriter(std::string path, PolyDataLayout layout, Durability durability)
+    : path_(std::move(path)), durability_(durability) {
+    const std::vector<AppendedArray> arrays = appended_arrays(layout);
+    const bool polys = layout.cells == PolyDataLayout::Cells::triangles;
+    for (std::size_t i = 0; i < arrays.size(); ++i) {
+        const AppendedArray& a = arrays[i];
+        Segment s{a.name, Segment::Kind::values, a.type, a.tuples * static_cast<std::uint64_t>(a.components), a.data_bytes(), 1};
+        if (i == 0) s.kind = Segment::Kind::points;
+        if (i == 1) s.kind = polys ? Segment::Kind::triangles : Segment::Kind::vertex_ids;
+        if (i == 2) s.kind = Segment::Kind::offsets, s.offset_step = polys ? 3 : 1;
+        segments_.push_back(s);
+    }
+    const std::string header = polydata_header(layout, arrays);
+    out_ = std::make_unique<BufferedFile>(path_ + ".tmp", O_WRONLY);
+    out_->write(header.data(), header.size());
+    current_ = 0;
+    filled_ = 0;
+    open_next_segment();
+}
+
+// An unfinished file removes itself (BufferedFile's destructor).
+PolyDataWriter::~PolyDataWriter() = default;
+
+// Writes the byte count of segments_[current_] and of every following segment the writer
+// generates or that is empty, stopping at the first the caller must fill (or the end).
+void PolyDataWriter::open_next_segment() {
+    while (current_ < segments_.size()) {
+        const Segment& s = segments_[current_];
+        out_->put<std::uint64_t>(s.bytes);
+        if (s.kind == Segment::Kind::vertex_ids) {
+            for (std::uint64_t i = 0; i < s.values; ++i) out_->put<std::int64_t>(static_cast<std::int64_t>(i));
+        } else if (s.kind == Segment::Kind::offsets) {
+            for (std::uint64_t i = 1; i <= s.values; ++i) out_->put<std::int64_t>(static_cast<std::int64_t>(i) * s.offset_step);
+        } else if (s.values > 0) {
+            return;
+        }
+        ++current_;
+    }
+}
+
+void PolyDataWriter::write_values(VtkType type, const void* data, std::uint64_t count, const char* what) {
+    const char* bytes = static_cast<const char*>(data);
+    const std::string kind = what;
+    while (count > 0) {
+        if (current_ >= segments_.size()) throw std::logic_error(path_ + ": " + kind + " after the last array of the layout");
+        const Segment& s = segments_[current_];
+        const bool fits = (kind == "point" && s.kind == Segment::Kind::points) ||
+                          (kind == "triangle" && s.kind == Segment::Kind::triangles) ||
+                          (kind == "value" && s.kind == Segment::Kind::values && s.type == type);
+        if (!fits) {
+            throw std::logic_error(path_ + ": a " + kind + " (" + type_name(type) + ") where '" + s.name + "' (" + type_name(s.type) +
+                                   ") is due");
+        }
+        const std::uint64_t n = std::min(count, s.values - filled_);
+        out_->write(bytes, n * type_bytes(type));
+        bytes += n * type_bytes(type);
+        filled_ += n;
+        count -= n;
+        if (filled_ == s.values) {
+            ++current_;
+            filled_ = 0;
+            open_next_segment();
+        }
+    }
+}
+
+void PolyDataWriter::add_point(const Vec3& point_m) { write_values(VtkType::float64, point_m.data(), 3, "point"); }
+
+void PolyDataWriter::add_points(std::span<const Vec3> points_m) {
+    write_values(VtkType::float64, points_m.data(), 3 * points_m.size(), "point");
+}
+
+void PolyDataWriter::add_triangle(const std::array<int, 3>& vertices) {
+    const std::int64_t ids[3] = {vertices[0], vertices[1], vertices[2]};
+    write_values(VtkType::int64, ids, 3, "triangle");
+}
+
+void PolyDataWriter::add(double value) { write_values(VtkType::float64, &value, 1, "value"); }
+void PolyDataWriter::add(std::span<const double> values) { write_values(VtkType::float64, values.data(), values.size(), "value"); }
+void PolyDataWriter::add(std::int64_t value) { write_values(VtkType::int64, &value, 1, "value"); }
+void PolyDataWriter::add(std::int32_t value) { write_values(VtkType::int32, &value, 1, "value"); }
+
+void PolyDataWriter::finish() {
+    if (!out_) throw std::logic_error(path_ + ": PolyDataWriter::finish called twice");
+    if (current_ < segments_.size()) {
+        throw std::logic_error(path_ + ": '" + segments_[current_].name + "' has " + std::to_string(filled_) + " of its " +
+                               std::to_string(segments_[current_].values) + " values");
+    }
+    out_->write(kPolyDataFooter, std::strlen(kPolyDataFooter));
+    const std::unique_ptr<BufferedFile> out = std::move(out_);
+    out->finish_as(path_, durability_);
+}
+
+void write_mesh_vtp(const std::string& path, const TriangleMesh& mesh, const std::vector<CellField>& cell_fields,
+                    const std::vector<FieldValue>& field_data, Durability durability) {
     const std::uint64_t n_tri = mesh.triangle_count();
-    const std::uint64_t n_vert = mesh.vertices.size();
-    std::set<std::string> seen;
-    std::vector<ArrayEntry> arrays = {
-        {"Points", "Float64", 3, n_vert, 8}, {"connectivity", "Int64", 1, 3 * n_tri, 8}, {"offsets", "Int64", 1, n_tri, 8}};
+    PolyDataLayout layout{mesh.vertices.size(), PolyDataLayout::Cells::triangles, n_tri, {}, {}, field_data};
     for (const CellField& f : cell_fields) {
-        check_field(f.name, f.components, seen);
-        if (f.values.size() != n_tri * static_cast<std::uint64_t>(f.components)) {
+        layout.cell_arrays.push_back({f.name, VtkType::float64, f.components});
+        if (f.components >= 1 && f.values.size() != n_tri * static_cast<std::uint64_t>(f.components)) {
             throw std::invalid_argument("cell field '" + f.name + "' has " + std::to_string(f.values.size()) + " values for " +
                                         std::to_string(n_tri) + " triangles x " + std::to_string(f.components) + " components");
         }
-        arrays.push_back({f.name, "Float64", f.components, n_tri, 8});
     }
-
-    BufferedFile out(path + ".tmp", O_WRONLY);
-    const std::string header = polydata_header(n_vert, "Polys", n_tri, "CellData", arrays);
-    out.write(header.data(), header.size());
-
-    out.put<std::uint64_t>(arrays[0].data_bytes());
-    out.write(mesh.vertices.data(), n_vert * sizeof(Vec3));
-    out.put<std::uint64_t>(arrays[1].data_bytes());
-    for (const auto& tri : mesh.triangles) {
-        for (int v : tri) out.put<std::int64_t>(v);
-    }
-    out.put<std::uint64_t>(arrays[2].data_bytes());
-    for (std::uint64_t t = 1; t <= n_tri; ++t) out.put<std::int64_t>(static_cast<std::int64_t>(3 * t));
-    for (const CellField& f : cell_fields) {
-        out.put<std::uint64_t>(f.values.size() * sizeof(double));
-        out.write(f.values.data(), f.values.size() * sizeof(double));
-    }
-    out.write(kPolyDataFooter, std::strlen(kPolyDataFooter));
-    out.finish_as(path);
+    PolyDataWriter out(path, std::move(layout), durability);
+    out.add_points(mesh.vertices);
+    for (const auto& tri : mesh.triangles) out.add_triangle(tri);
+    for (const CellField& f : cell_fields) out.add(std::span<const double>(f.values));
+    out.finish();
 }
 
-std::vector<PointFieldLayout> impact_point_field_layouts() {
-    return {{"velocity_in_m_per_s", 3}, {"normal_speed_in_m_per_s", 1}, {"time_s", 1}};
-}
-
-// A scratch file holding one streamed array (read back by finish()).
-class ImpactPointsVtpWriter::ScratchArray : public BufferedFile {
-public:
-    using BufferedFile::BufferedFile;
-};
+std::vector<PointFieldLayout> impact_point_field_layouts() { return {{"v_in_mps", 3}, {"vn_in_mps", 1}, {"time_s", 1}}; }
 
 ImpactPointsVtpWriter::ImpactPointsVtpWriter(std::string path, std::vector<PointFieldLayout> fields)
     : path_(std::move(path)), fields_(std::move(fields)) {
@@ -223,9 +280,9 @@ ImpactPointsVtpWriter::ImpactPointsVtpWriter(std::string path, std::vector<Point
     impact_layout_ =
         std::equal(fields_.begin(), fields_.end(), impact.begin(), impact.end(),
                    [](const PointFieldLayout& a, const PointFieldLayout& b) { return a.name == b.name && a.components == b.components; });
-    points_ = std::make_unique<ScratchArray>(path_ + ".points.part", O_RDWR);
+    points_ = std::make_unique<BufferedFile>(path_ + ".points.part", O_RDWR);
     for (std::size_t i = 0; i < fields_.size(); ++i) {
-        field_arrays_.push_back(std::make_unique<ScratchArray>(path_ + ".field" + std::to_string(i) + ".part", O_RDWR));
+        field_arrays_.push_back(std::make_unique<BufferedFile>(path_ + ".field" + std::to_string(i) + ".part", O_RDWR));
     }
 }
 
@@ -280,15 +337,14 @@ void ImpactPointsVtpWriter::add(const ImpactRecord& impact) {
 void ImpactPointsVtpWriter::finish() {
     if (finished_) throw std::logic_error("ImpactPointsVtpWriter::finish called twice: " + path_);
     finished_ = true;
-    std::vector<ArrayEntry> arrays = {
-        {"Points", "Float64", 3, count_, 8}, {"connectivity", "Int64", 1, count_, 8}, {"offsets", "Int64", 1, count_, 8}};
-    for (const PointFieldLayout& f : fields_) arrays.push_back({f.name, "Float64", f.components, count_, 8});
+    PolyDataLayout layout{count_, PolyDataLayout::Cells::vertices, 0, {}, {}, {}};
+    for (const PointFieldLayout& f : fields_) layout.point_arrays.push_back({f.name, VtkType::float64, f.components});
+    const std::vector<AppendedArray> arrays = appended_arrays(layout);
 
     BufferedFile out(path_ + ".tmp", O_WRONLY);
-    const std::string header = polydata_header(count_, "Verts", count_, "PointData", arrays);
+    const std::string header = polydata_header(layout, arrays);
     out.write(header.data(), header.size());
 
-    points_->flush();
     out.put<std::uint64_t>(arrays[0].data_bytes());
     out.append_contents_of(*points_);
     out.put<std::uint64_t>(arrays[1].data_bytes());  // one vertex cell per point
@@ -296,7 +352,6 @@ void ImpactPointsVtpWriter::finish() {
     out.put<std::uint64_t>(arrays[2].data_bytes());
     for (std::uint64_t i = 1; i <= count_; ++i) out.put<std::int64_t>(static_cast<std::int64_t>(i));
     for (std::size_t i = 0; i < field_arrays_.size(); ++i) {
-        field_arrays_[i]->flush();
         out.put<std::uint64_t>(arrays[3 + i].data_bytes());
         out.append_contents_of(*field_arrays_[i]);
     }

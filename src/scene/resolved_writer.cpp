@@ -273,7 +273,13 @@ void write_component(std::string& y, const ComponentDesc& k) {
     y += "      speed: " + num(r.speed_rad_per_s) + unit_comment(Dimension::angular_speed) + "\n";
 }
 
-void write_output(std::string& y, const OutputDesc& o) {
+// What a scene's hash leaves out of the output block: the analysis' settings (they do not change
+// the run), and the shot-position series when there is none (scenes without one keep the hash
+// they had before the series existed). A series is hashed: a run resumes only with the interval
+// its files were written at.
+enum class OutputSettings { all, hashed };
+
+void write_output(std::string& y, const OutputDesc& o, OutputSettings settings) {
     y += "output:\n";
     std::string log;
     for (const std::string& n : o.logged_components) log += (log.empty() ? "" : ", ") + yaml_text(n);
@@ -283,6 +289,11 @@ void write_output(std::string& y, const OutputDesc& o) {
     else
         y += "  # directory: given on the command line\n";
     y += "  checkpoint_interval: " + num(o.checkpoint_interval_s) + unit_comment(Dimension::time) + "\n";
+    if (o.shot_positions_s)
+        y += "  shot_positions: " + num(*o.shot_positions_s) + unit_comment(Dimension::time) + "\n";
+    else if (settings == OutputSettings::all)
+        y += "  # shot_positions: off\n";
+    if (settings == OutputSettings::all) y += "  coverage_steps: " + std::to_string(o.coverage_steps) + "\n";
 }
 
 void write_render(std::string& y, const RenderDesc& r) {
@@ -308,9 +319,7 @@ void write_render(std::string& y, const RenderDesc& r) {
     y += std::string("  video: ") + (r.video ? "mp4" : "none") + "\n";
 }
 
-}  // namespace
-
-std::string resolved_scene_yaml(const SceneDescription& s) {
+std::string scene_yaml(const SceneDescription& s, OutputSettings settings) {
     std::string y;
     write_header(y, s);
     write_shot(y, s.shot);
@@ -319,10 +328,14 @@ std::string resolved_scene_yaml(const SceneDescription& s) {
     y += "components:\n";
     for (const ComponentDesc& k : s.components) write_component(y, k);
     write_flow(y, s);
-    write_output(y, s.output);
+    write_output(y, s.output, settings);
     if (s.render) write_render(y, *s.render);
     return y;
 }
+
+}  // namespace
+
+std::string resolved_scene_yaml(const SceneDescription& s) { return scene_yaml(s, OutputSettings::all); }
 
 std::uint64_t scene_hash(const SceneDescription& s) {
     // Rendering and the checkpoint interval do not change what is simulated: a run may be resumed
@@ -330,7 +343,7 @@ std::uint64_t scene_hash(const SceneDescription& s) {
     SceneDescription simulated = s;
     simulated.render.reset();
     simulated.output.checkpoint_interval_s = 0.0;
-    return fnv1a64(resolved_scene_yaml(simulated));
+    return fnv1a64(scene_yaml(simulated, OutputSettings::hashed));
 }
 
 }  // namespace peensim

@@ -12,7 +12,9 @@ namespace peensim {
 
 std::string resolved_scene_yaml(const SceneDescription& scene);
 
-// FNV-1a 64 of resolved_scene_yaml(scene): equal for scenes that differ only in how they were written.
+// FNV-1a 64 of resolved_scene_yaml(scene) without the settings that do not change the run (render
+// block, checkpoint interval, the analysis' output settings): equal for scenes that differ only in
+// how they were written.
 std::uint64_t scene_hash(const SceneDescription& scene);
 
 }  // namespace peensim

@@ -313,6 +313,8 @@ struct OutputDesc {
     std::vector<std::string> logged_components;  // names; default: every component with role part
     std::string directory;                       // "" = given on the command line
     double checkpoint_interval_s = 60.0;         // s of wall time between checkpoints (resume)
+    std::optional<double> shot_positions_s;      // s of simulated time between steps of the shot series; empty: none
+    int coverage_steps = 10;                     // steps of the analysis' coverage series after t = 0 (0: none)
     SourceLocation where;
 };
 

@@ -69,7 +69,7 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     const Vec3 up = d.process.gravity_m_per_s2.norm() > 0.0 ? Vec3(-d.process.gravity_m_per_s2.normalized()) : Vec3(Vec3::UnitZ());
     read_flow(root.child("sources"), root.child("sinks"), d.process.duration_s, shot_mass_kg, up, scene_dir, d.sources, d.sinks);
     check_shot_origin(root, d);
-    d.output = read_output(root.child("output"), d.components);
+    d.output = read_output(root.child("output"), d.components, d.process.duration_s);
     d.render = read_render(root.child("render"));
     return d;
 }

@@ -118,7 +118,9 @@ AirDesc read_air(const Cursor& c) {
     return d;
 }
 
-OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& components) {
+constexpr double kMaxShotPositionSteps = 100000;  // files of the shot-position series
+
+OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& components, double duration_s) {
     OutputDesc d;
     const Cursor log = c.child("log");
     if (log.present()) {
@@ -142,6 +144,14 @@ OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& compon
             d.logged_components.push_back(k.name);
     d.directory = read_text(c.child("directory"));
     d.checkpoint_interval_s = read_quantity(c.child("checkpoint_interval"));
+    d.shot_positions_s = read_optional_quantity(c.child("shot_positions"));
+    // Work the series plans: a slip of the unit (5 us for 5 ms) would write millions of files.
+    if (d.shot_positions_s && !(duration_s / *d.shot_positions_s <= kMaxShotPositionSteps))
+        fail(c.child("shot_positions"), "the shot-position series plans " +
+                                            std::to_string(static_cast<long long>(std::min(duration_s / *d.shot_positions_s, 1e18))) +
+                                            " steps (process.duration / shot_positions); expected at most " +
+                                            std::to_string(static_cast<long long>(kMaxShotPositionSteps)) + ": raise it");
+    d.coverage_steps = static_cast<int>(read_integer(c.child("coverage_steps")));
     d.where = location_of(c);
     return d;
 }

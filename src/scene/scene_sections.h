@@ -33,8 +33,9 @@ void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, do
                std::vector<SinkDesc>& out_sinks);
 // The `air` block (defaults: still air at 20 C, no drag).
 AirDesc read_air(const Cursor& air);
-// Needs the components (the logged names must be components; the default logs every part).
-OutputDesc read_output(const Cursor& output, const std::vector<ComponentDesc>& components);
+// Needs the components (the logged names must be components; the default logs every part) and
+// the run's duration (s; what the shot-position series plans).
+OutputDesc read_output(const Cursor& output, const std::vector<ComponentDesc>& components, double duration_s);
 
 // The `render` block, or nullopt when the scene has none.
 std::optional<RenderDesc> read_render(const Cursor& render);

@@ -369,6 +369,15 @@ const std::array schema_table{
                 "", "", "Output directory, relative to the working directory."},
     SchemaEntry{"output.checkpoint_interval", K::quantity, D::time, false, "60", "", above(0), "", "", "",
                 "Wall-clock time between resume checkpoints."},
+    SchemaEntry{"output.shot_positions", K::quantity, D::time, false, "", "off", above(0), "", "", "",
+                "Simulated time between the steps of the shot-position series for ParaView (`paraview/shots.pvd`: "
+                "every shot's centre, velocity, speed, diameter and index at 0, this, twice this... up to the run's "
+                "end; at most 100 000 steps). Written while the run goes; a resumed run continues it, and resumes "
+                "only with the same value. See the README's \"ParaView files\"."},
+    SchemaEntry{"output.coverage_steps", K::integer, D::dimensionless, false, "10", "", closed(0, 1000), "", "", "",
+                "Times at which the analysis writes each logged part's per-triangle coverage for ParaView "
+                "(`analysis/<part>_coverage_series.pvd`): at the analysed window's start (0 by default) and this many even steps to its end (the "
+                "part's mesh each time: 52 bytes a triangle, 15.6 MB a step for 300k triangles). 0: none."},
 
     SchemaEntry{"render", K::map, D::dimensionless, false, "", "no animation", {}, "", "", "",
                 "Record an off-screen animation while simulating (also `peensim run --render`): PNG frames "
