@@ -9,12 +9,6 @@ namespace peensim {
 
 namespace {
 
-// Offsets (in samples, from a triangle's first sample) of the rows of its sample grid. Rows are
-// stored in pairs, "up" row j (n - j samples) then "down" row j (n - 1 - j samples), so that a dent,
-// which marks neighbouring rows of both kinds, touches as few cache lines as possible.
-std::int64_t up_row_offset(std::int64_t n, std::int64_t j) { return j * (2 * n - 1) - j * (j - 1); }
-std::int64_t down_row_offset(std::int64_t n, std::int64_t j) { return up_row_offset(n, j) + n - j; }
-
 // Sets bits [begin, end) of `words`; returns how many of them were clear before.
 std::int64_t set_bits(std::uint64_t* words, std::int64_t begin, std::int64_t end) {
     std::int64_t newly = 0;

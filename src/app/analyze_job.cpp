@@ -16,6 +16,7 @@
 #include "app/analysis_report.h"
 #include "app/analysis_tables.h"
 #include "app/component_analysis.h"
+#include "app/map_smoothing.h"
 #include "app/report_errors.h"
 #include "contact/dent.h"
 #include "geometry/mesh_checks.h"
@@ -121,6 +122,7 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
         throw std::runtime_error("the scene has a shot mix but its impact log has no shot_diameter_m column: was it written by this run?");
     const double mass = sphere_mass_kg(D, scene.shot.density_kg_per_m3);
     const int t = a.fields->add(row.triangle, row.point_m, row.vn_in_m_per_s, mass);
+    smooth_impact(a, row, t, mass);
     ++a.impacts;
     a.speed_sum += row.vn_in_m_per_s;
     const auto batch =
@@ -170,14 +172,14 @@ void read_flow_figures(const fs::path& dir, ReportContext& context) {
 
 }  // namespace
 
-int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err) {
+int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options) {
     return report_errors(err, [&] {
-        analyze_run(output_dir, out, err);
+        analyze_run(output_dir, out, err, options);
         return 0;
     });
 }
 
-void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err) {
+void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options) {
     const fs::path dir(output_dir);
     const fs::path scene_path = dir / "scene.resolved.yaml";
     if (!fs::exists(scene_path)) throw std::runtime_error(output_dir + ": not a peensim run directory (no scene.resolved.yaml)");
@@ -195,6 +197,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     for (const ComponentDesc& c : scene.components) {
         if (!is_logged(scene, c)) continue;
         parts.push_back(analysis_of(c, scene, shot_mass));
+        start_smoothing(parts.back(), scene, c, dir, options.smoothing_radius);
         names.push_back(c.name);
     }
     if (parts.empty())
@@ -235,6 +238,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
 
     for (ComponentAnalysis& a : parts) {
         a.points->finish();
+        finish_smoothing(a);
         write_component_tables(adir, a, duration);
     }
     ReportContext context{dir, duration, finished, stream.truncated(), {}, "", {}, {}};
@@ -245,6 +249,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     out << analysis_summary_table(parts, duration) << "analysis: " << adir.string()
         << "/{report.md, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp" << (context.pngs.empty() ? "" : ", *.png")
         << "}\n";
+    for (const ComponentAnalysis& a : parts) out << smoothing_note(a) << '\n';
 }
 
 }  // namespace peensim

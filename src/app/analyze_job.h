@@ -9,10 +9,16 @@
 
 namespace peensim {
 
-int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err);
+struct AnalyzeOptions {
+    // The maps' smoothing radius as the user wrote it ("2 mm", `--smoothing-radius`): empty for the
+    // scene's `output.smoothing_radius` or the default (app/map_smoothing.h).
+    std::string smoothing_radius;
+};
+
+int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options = {});
 
 // The same, with errors thrown (InputError for a bad scene, std::runtime_error for a directory
 // that is not a run's) instead of reported: for a caller with exceptions of its own (Python).
-void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err);
+void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options = {});
 
 }  // namespace peensim

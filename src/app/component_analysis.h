@@ -15,6 +15,7 @@
 #include "analysis/impact_histograms.h"
 #include "analysis/jet_stream.h"
 #include "analysis/regions.h"
+#include "analysis/surface_smoothing.h"
 #include "analysis/triangle_fields.h"
 #include "geometry/triangle_mesh.h"
 #include "output/vtp_writer.h"
@@ -44,6 +45,11 @@ struct ComponentAnalysis {
     double speed_sum = 0.0;  // m/s, summed over impacts
     double dent_sum = 0.0;   // m, summed over impacts
     std::vector<CoveragePoint> curve;
+    // The per-area fields smoothed over a radius of the surface (app/map_smoothing.h): the
+    // binning while the log streams, why its radius, and the sums at each triangle at the end.
+    std::unique_ptr<SurfaceSmoothing> smoothing;
+    std::string smoothing_basis;
+    std::vector<SmoothedSums> smoothed;
     std::unique_ptr<ImpactPointsVtpWriter> points;    // the impacts, for ParaView
     std::vector<Region> regions;                      // the scene's regions of the component
     std::vector<ImpactHistograms> region_histograms;  // per region, same order

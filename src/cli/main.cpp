@@ -57,6 +57,10 @@ int main(int argc, char** argv) {
     std::string analyze_dir;
     auto* analyze_cmd = app.add_subcommand("analyze", "analyse a run's impacts: coverage, per-triangle fields, histograms, report.md");
     analyze_cmd->add_option("outdir", analyze_dir, "the run's output directory")->required();
+    AnalyzeOptions analyze_options;
+    analyze_cmd->add_option("--smoothing-radius", analyze_options.smoothing_radius,
+                            "radius of the surface the maps' fields are smoothed over, e.g. \"1.5 mm\" (default: the scene's "
+                            "output.smoothing_radius, else from the dent size and the impact density)");
 
     RenderImpactsOptions render_impacts;
     auto* render_impacts_cmd =
@@ -65,6 +69,9 @@ int main(int argc, char** argv) {
     render_impacts_cmd->add_option("--field", render_impacts.fields, "impacts, speed or coverage (repeatable; default: all)");
     render_impacts_cmd->add_option("--width", render_impacts.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
     render_impacts_cmd->add_option("--height", render_impacts.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
+    double coverage_target_percent = 98.0;
+    render_impacts_cmd->add_option("--target", coverage_target_percent, "coverage target marked on the coverage map's colour bar, % (default 98)")
+        ->check(CLI::Range(0.01, 100.0));
 
     SweepOptions sweep;
     auto* sweep_cmd = app.add_subcommand(
@@ -151,8 +158,9 @@ int main(int argc, char** argv) {
         return run_job(run, quiet ? null_stream : std::cout, std::cerr);
     }
     if (*check_cmd) return check_job(check_scene, check_overrides, check_strict, std::cout, std::cerr, check_picture);
-    if (*analyze_cmd) return analyze_job(analyze_dir, std::cout, std::cerr);
+    if (*analyze_cmd) return analyze_job(analyze_dir, std::cout, std::cerr, analyze_options);
     if (*render_impacts_cmd) {
+        render_impacts.coverage_target = coverage_target_percent / 100.0;
         try {
             return render_module().render_impacts(render_impacts, std::cout, std::cerr);
         } catch (const std::exception& e) {

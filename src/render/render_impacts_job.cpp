@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -22,11 +23,13 @@ namespace peensim {
 
 namespace {
 
+// The smoothed columns (app/map_smoothing.h): the raw per-triangle ones show the tessellation.
 const std::array<MapField, 3> kFields{{
-    {"impacts", "impacts_per_mm2_s", "impacts per mm2 per s"},
-    {"speed", "mean_vn_mps", "mean normal speed (m/s)"},
-    {"coverage", "coverage", "coverage (SAE J2277)"},
+    {"impacts", "impacts_per_mm2_s_smoothed", "impacts per mm2 per s"},
+    {"speed", "mean_vn_mps_smoothed", "mean normal speed (m/s)"},
+    {"coverage", "coverage_smoothed", "coverage (SAE J2277)"},
 }};
+constexpr const char* kRadiusColumn = "smoothing_radius_mm";
 
 const std::array<MapView, 4> kViews{{
     {"front-above", Vec3(0.34, 0.81, -0.47)},
@@ -47,7 +50,9 @@ std::vector<double> read_column(const fs::path& csv, const std::string& column) 
     std::stringstream hs(line);
     for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
     const auto it = std::find(header.begin(), header.end(), column);
-    if (it == header.end()) throw std::runtime_error(csv.string() + ": no column '" + column + "'");
+    if (it == header.end())
+        throw std::runtime_error(csv.string() + ": no column '" + column + "' (written by an older peensim? run `peensim analyze " +
+                                 csv.parent_path().parent_path().string() + "` again)");
     const auto col = static_cast<std::size_t>(it - header.begin());
     std::vector<double> values;
     while (std::getline(in, line)) {
@@ -88,7 +93,24 @@ double robust_top(const TriangleMesh& mesh, const std::vector<double>& values) {
     return by_value.empty() ? 0.0 : by_value.back().first;
 }
 
+std::string percent_text(double fraction) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g %%", fraction * 100.0);
+    return text;
+}
+
 }  // namespace
+
+// The coverage scale's top: the smoothed coverage's maximum (smoothing leaves no single-triangle
+// spike to set it), rounded up to two significant digits so that the label reads well.
+double coverage_scale_top(const std::vector<double>& values) {
+    double max = 0.0;
+    for (double v : values)
+        if (std::isfinite(v)) max = std::max(max, v);
+    if (!(max > 0.0)) return 0.01;  // nothing covered: a 1 % scale, all of it at the bottom
+    const double unit = std::pow(10.0, std::floor(std::log10(max)) - 1.0);
+    return std::min(1.0, std::ceil(max / unit * (1.0 - 1e-12)) * unit);
+}
 
 std::span<const MapField> map_fields() { return kFields; }
 std::span<const MapView> map_views() { return kViews; }
@@ -114,6 +136,10 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
         for (const std::string& name : options.fields)
             if (std::none_of(kFields.begin(), kFields.end(), [&](const MapField& f) { return f.name == name; }))
                 throw InputError({}, "--field", "unknown field '" + name + "'; expected impacts, speed or coverage");
+        if (!(options.coverage_target > 0.0 && options.coverage_target <= 1.0))
+            throw InputError(
+                {}, "--target",
+                "expected a coverage in per cent, above 0 and at most 100, got " + std::to_string(options.coverage_target * 100.0));
 
         const auto model = compile_model(parse_scene_file(scene_path.string()));
         const int tile_w = options.width_px / 2, tile_h = options.height_px / 2;
@@ -127,6 +153,9 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
             if (!part.logged) continue;
             const fs::path csv = dir / "analysis" / (part.name + "_triangles.csv");
             const std::vector<Vec3> points = world_vertices(part);
+            const std::vector<double> radius_mm = read_column(csv, kRadiusColumn);
+            char radius_line[64];
+            std::snprintf(radius_line, sizeof radius_line, "smoothed over a %.3g mm radius", radius_mm.empty() ? 0.0 : radius_mm.front());
             // Only the part: it is seen from all sides, with nothing in front of it.
             for (std::size_t j = 0; j < model->components.size(); ++j) {
                 render::MeshStyle style;
@@ -143,15 +172,23 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
                     out << part.name << ": no coverage (the material has no yield_stress)\n";
                     continue;
                 }
-                double max = field->name == "coverage" ? 1.0 : robust_top(*part.mesh, values);
+                const bool coverage = field->name == "coverage";
+                double max = coverage ? coverage_scale_top(values) : robust_top(*part.mesh, values);
                 if (!(max > 0.0)) max = 1.0;
                 renderer.set_triangle_colours(view.meshes[i], field_colours(values, max));
-                const render::ColourBar bar{render::ColourMap::viridis(), 0.0, max, field->title};
+                render::ColourBar bar{render::ColourMap::viridis(), 0.0, max, field->title};
+                if (coverage) {  // in per cent, the target marked
+                    bar.title += ", %";
+                    bar.label_scale = 100.0;
+                    bar.label_unit = " %";
+                    bar.mark = options.coverage_target;
+                    bar.mark_label = "target " + percent_text(options.coverage_target);
+                }
                 image.resize(2 * tile_w, 2 * tile_h);
                 for (std::size_t v = 0; v < kViews.size(); ++v) {
                     const render::Camera camera =
                         render::Camera::framing_points(points, static_cast<double>(tile_w) / tile_h, kViews[v].direction);
-                    const std::vector<std::string> text{part.name + ": " + field->title, kViews[v].name};
+                    const std::vector<std::string> text{part.name + ": " + field->title, kViews[v].name, radius_line};
                     renderer.render(camera, {.text = text, .colour_bar = &bar}, tile);
                     blit(tile, image, static_cast<int>(v % 2) * tile_w, static_cast<int>(v / 2) * tile_h);
                 }

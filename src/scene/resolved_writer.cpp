@@ -259,6 +259,10 @@ void write_output(std::string& y, const OutputDesc& o) {
     else
         y += "  # directory: given on the command line\n";
     y += "  checkpoint_interval: " + num(o.checkpoint_interval_s) + unit_comment(Dimension::time) + "\n";
+    if (o.smoothing_radius_m)
+        y += "  smoothing_radius: " + num(*o.smoothing_radius_m) + unit_comment(Dimension::length) + "\n";
+    else
+        y += "  # smoothing_radius: chosen by the analysis (dent size, impact density)\n";
 }
 
 void write_render(std::string& y, const RenderDesc& r) {
@@ -301,11 +305,12 @@ std::string resolved_scene_yaml(const SceneDescription& s) {
 }
 
 std::uint64_t scene_hash(const SceneDescription& s) {
-    // Rendering and the checkpoint interval do not change what is simulated: a run may be resumed
-    // with other settings for them.
+    // Rendering, the checkpoint interval and the maps' smoothing do not change what is simulated:
+    // a run may be resumed with other settings for them.
     SceneDescription simulated = s;
     simulated.render.reset();
     simulated.output.checkpoint_interval_s = 0.0;
+    simulated.output.smoothing_radius_m.reset();  // the analysis' maps only
     return fnv1a64(resolved_scene_yaml(simulated));
 }
 

@@ -264,6 +264,7 @@ struct OutputDesc {
     std::vector<std::string> logged_components;  // names; default: every component with role part
     std::string directory;                       // "" = given on the command line
     double checkpoint_interval_s = 60.0;         // s of wall time between checkpoints (resume)
+    std::optional<double> smoothing_radius_m;    // m, the analysis' maps; empty: chosen by the analysis
     SourceLocation where;
 };
 

@@ -142,6 +142,7 @@ OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& compon
             d.logged_components.push_back(k.name);
     d.directory = read_text(c.child("directory"));
     d.checkpoint_interval_s = read_quantity(c.child("checkpoint_interval"));
+    d.smoothing_radius_m = read_optional_quantity(c.child("smoothing_radius"));
     d.where = location_of(c);
     return d;
 }

@@ -321,6 +321,12 @@ const std::array schema_table{
                 "", "", "Output directory, relative to the working directory."},
     SchemaEntry{"output.checkpoint_interval", K::quantity, D::time, false, "60", "", above(0), "", "", "",
                 "Wall-clock time between resume checkpoints."},
+    SchemaEntry{"output.smoothing_radius", K::quantity, D::length, false, "",
+                "3 dents (eq. 10) at the part's mean normal speed (else 1 mm), widened to hold 25 impacts at its mean density",
+                closed(1e-6, 1), "", "", "",
+                "Radius of the surface over which `peensim analyze` smooths its per-area fields (the `*_smoothed` "
+                "columns and the maps of `render-impacts`): the maps' resolution, the same whatever the mesh's "
+                "tessellation; `analyze --smoothing-radius` overrides it. See the README's \"Smoothed maps\"."},
 
     SchemaEntry{"render", K::map, D::dimensionless, false, "", "no animation", {}, "", "", "",
                 "Record an off-screen animation while simulating (also `peensim run --render`): PNG frames "
