@@ -197,8 +197,8 @@ struct FrameRecorder::Impl {
             const Pose pose = model.components[static_cast<std::size_t>(f.component)].kinematics.pose(st.time, -behind);
             render::Rgba colour = bar.map.map(f.vn, bar.min, bar.max);
             colour.a = static_cast<float>(std::pow(1.0 - fade, kTrailFadePower));
-            // Lifted by its shot's radius: where the shot's centre was at the contact, on the eye's side.
-            glows.push_back({pose.to_world(f.point_c), f.radius_m, static_cast<float>(radius_px * (1.0 - kTrailShrink * fade)), colour});
+            glows.push_back({pose.to_world(f.point_c), kGlowLiftRadii * f.radius_m,
+                             static_cast<float>(radius_px * (1.0 - kTrailShrink * fade)), colour});
         }
         char line[96];
         text.clear();

@@ -9,7 +9,8 @@
 // at t_k. Impacts on logged components glow for kTrailFrames frames (the frame after them at full
 // strength, then fading and shrinking: a short trail of the last frames' impacts), each a sprite
 // of kGlowRadiusPerHeight x the image height in pixels whatever the zoom, its body coloured by
-// normal speed (render/glow_layer.h).
+// normal speed (render/glow_layer.h), depth-tested kGlowLiftRadii shot radii in front of the
+// contact point (the shot that made it, still there, does not hide it; a tooth in front does).
 // Frames are numbered by k, so a resumed run continues the sequence.
 #pragma once
 
@@ -25,8 +26,9 @@
 
 namespace peensim {
 
-inline constexpr int kTrailFrames = 8;                  // frames an impact stays visible, fading
-inline constexpr double kGlowRadiusPerHeight = 0.0125;  // glow radius / image height (9 px at 720 px)
+inline constexpr int kTrailFrames = 8;                 // frames an impact stays visible, fading
+inline constexpr double kGlowRadiusPerHeight = 0.025;  // glow radius / image height (18 px at 720 px)
+inline constexpr double kGlowLiftRadii = 2.5;          // a glow is lifted toward the eye by this many shot radii
 
 class FrameRecorder final : public FrameSink {
 public:

@@ -40,12 +40,13 @@ out vec4 fragment;
 void main() {
     float r = length(corner);
     if (r > 1.0) discard;
-    // Core (white, to r = 0.3), body (the colour, to r = 0.72), rim (dark, fading out to r = 1).
-    float core = 1.0 - smoothstep(0.15, 0.35, r);
-    float rim = smoothstep(0.62, 0.78, r);
-    vec3 body = mix(colour.rgb, vec3(1.0), 0.9 * core);
-    vec3 rgb = mix(body, vec3(0.0), rim);
-    float alpha = colour.a * mix(1.0, 0.7 * (1.0 - smoothstep(0.85, 1.0, r)), rim);
+    // A white-hot core (to r ~ 0.2), the colour (to 0.45), a thin dark ring (0.45 - 0.55), then a
+    // halo of the colour fading out to the edge: it reads as light, not as another shot.
+    float core = 1.0 - smoothstep(0.1, 0.25, r);
+    float ring = smoothstep(0.4, 0.47, r) * (1.0 - smoothstep(0.5, 0.58, r));
+    vec3 rgb = mix(mix(colour.rgb, vec3(1.0), 0.9 * core), vec3(0.0), 0.65 * ring);
+    float halo = 0.75 * (1.0 - smoothstep(0.5, 1.0, r));
+    float alpha = colour.a * (r < 0.5 ? 1.0 : halo);
     fragment = vec4(rgb, alpha);
 }
 )GLSL";

@@ -7,12 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "model/model.h"
+#include "render/map_mesh.h"
 #include "render/png_io.h"
 #include "render/render_view.h"
 #include "scene/scene_parser.h"
@@ -30,6 +32,9 @@ const std::array<MapField, 3> kFields{{
     {"coverage", "coverage_smoothed", "coverage (SAE J2277)"},
 }};
 constexpr const char* kRadiusColumn = "smoothing_radius_mm";
+// Sub-triangles of the map mesh: no longer than the smoothing radius / this (the field varies no
+// faster; render/map_mesh.h).
+constexpr double kMapSpacingPerRadius = 3.0;
 
 const std::array<MapView, 4> kViews{{
     {"front-above", Vec3(0.34, 0.81, -0.47)},
@@ -154,15 +159,18 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
             const fs::path csv = dir / "analysis" / (part.name + "_triangles.csv");
             const std::vector<Vec3> points = world_vertices(part);
             const std::vector<double> radius_mm = read_column(csv, kRadiusColumn);
+            const double radius_m = radius_mm.empty() ? 0.0 : radius_mm.front() * 1e-3;
+            if (!(radius_m > 0.0)) throw std::runtime_error(csv.string() + ": no smoothing radius (rerun the analysis)");
             char radius_line[64];
-            std::snprintf(radius_line, sizeof radius_line, "smoothed over a %.3g mm radius", radius_mm.empty() ? 0.0 : radius_mm.front());
-            // Only the part: it is seen from all sides, with nothing in front of it.
+            std::snprintf(radius_line, sizeof radius_line, "smoothed over a %.3g mm radius", radius_m * 1e3);
+            // Only the part, drawn as its map mesh: it is seen from all sides, with nothing in front of it.
             for (std::size_t j = 0; j < model->components.size(); ++j) {
                 render::MeshStyle style;
                 style.colour = role_colour(model->components[j].role);
-                style.visible = j == i;
+                style.visible = false;
                 renderer.set_style(view.meshes[j], style);
             }
+            std::optional<render::MeshId> map_id;
             for (const MapField* field : fields) {
                 const std::vector<double> values = read_column(csv, field->column);
                 if (values.size() != part.mesh->triangle_count())
@@ -175,7 +183,13 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
                 const bool coverage = field->name == "coverage";
                 double max = coverage ? coverage_scale_top(values) : robust_top(*part.mesh, values);
                 if (!(max > 0.0)) max = 1.0;
-                renderer.set_triangle_colours(view.meshes[i], field_colours(values, max));
+                const MapMesh map = map_mesh(*part.mesh, values, radius_m / kMapSpacingPerRadius);
+                if (!map_id) {  // the same sub-triangles for every field of the part
+                    map_id = renderer.add_mesh(map.mesh, {.colour = role_colour(part.role)});
+                    const Pose pose = part.kinematics.pose(SimTime{});
+                    renderer.set_pose(*map_id, render::make_pose(pose.rotation, pose.translation));
+                }
+                renderer.set_triangle_colours(*map_id, field_colours(map.values, max));
                 render::ColourBar bar{render::ColourMap::viridis(), 0.0, max, field->title};
                 if (coverage) {  // in per cent, the target marked
                     bar.title += ", %";
@@ -197,7 +211,7 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
                 out << "wrote " << png.string() << "\n";
                 ++written;
             }
-            renderer.set_triangle_colours(view.meshes[i], {});
+            if (map_id) renderer.set_style(*map_id, {.visible = false});
         }
         if (written == 0) throw std::runtime_error(options.output_dir + ": no logged component to draw");
         return 0;
