@@ -214,6 +214,8 @@ TEST(SurfaceSmoothing, TheGearAtTwoTessellationsGivesTheSameField) {
     ASSERT_GT(fine.triangle_count(), 250'000u);
     const double R = 1e-3;  // m
     SurfaceSmoothing on_coarse(coarse, R), on_fine(fine, R);
+    // Dents of 0.4 mm at the first 20 000 impacts: coverage ~0.5 where they concentrate.
+    CoverageMap coverage_coarse(coarse, 0.04e-3, 0.4e-3), coverage_fine(fine, 0.04e-3, 0.4e-3);
     // Impacts on the fine surface with a density that varies over a few mm: heavy on the teeth
     // facing -z (the sonotrode side), light above; each also given to the coarse gear at the
     // nearest point of its surface.
@@ -229,13 +231,19 @@ TEST(SurfaceSmoothing, TheGearAtTwoTessellationsGivesTheSameField) {
         on_fine.add_impact(p, t, 1.0 + p.z() * 10.0 + 0.5, 1e-6);
         const auto [tc, q] = nearest(p);
         on_coarse.add_impact(q, tc, 1.0 + p.z() * 10.0 + 0.5, 1e-6);
+        if (placed < 20'000) {
+            coverage_fine.add_dent(p, 0.4e-3);
+            coverage_coarse.add_dent(q, 0.4e-3);
+        }
         ++placed;
     }
     EXPECT_EQ(on_fine.unplaced_impacts(), 0u);
     EXPECT_EQ(on_coarse.unplaced_impacts(), 0u);
+    on_fine.add_coverage(coverage_fine);
+    on_coarse.add_coverage(coverage_coarse);
     // Probes: every 97th triangle of the fine gear, at its centroid; for the coarse one the
     // nearest point of its surface with the normal of the triangle there.
-    double worst = 0.0, sum2 = 0.0, worst_speed = 0.0, max_density = 0.0;
+    double worst = 0.0, sum2 = 0.0, worst_speed = 0.0, max_density = 0.0, worst_coverage = 0.0, sum2_coverage = 0.0;
     int probes = 0;
     std::vector<std::pair<double, double>> pairs;
     for (std::size_t t = 0; t < fine.triangle_count(); t += 97) {
@@ -245,6 +253,9 @@ TEST(SurfaceSmoothing, TheGearAtTwoTessellationsGivesTheSameField) {
         const SmoothedSums b = on_coarse.at(q, normal_of(coarse, tc));
         pairs.emplace_back(a.impacts_per_m2(), b.impacts_per_m2());
         max_density = std::max(max_density, a.impacts_per_m2());
+        const double dc = std::abs(a.coverage() - b.coverage());
+        worst_coverage = std::max(worst_coverage, dc);
+        sum2_coverage += dc * dc;
         if (a.impacts > 50.0) worst_speed = std::max(worst_speed, std::abs(a.mean_normal_speed() - b.mean_normal_speed()));
         ++probes;
     }
@@ -254,13 +265,16 @@ TEST(SurfaceSmoothing, TheGearAtTwoTessellationsGivesTheSameField) {
         sum2 += d * d;
     }
     const double rms = std::sqrt(sum2 / probes);
+    const double rms_coverage = std::sqrt(sum2_coverage / probes);
     std::printf(
         "  gear, 4960 vs %zu triangles, R = 1 mm, %d probes: density differs by %.2f %% rms, %.2f %% at worst (of the "
-        "largest); mean speed by %.4f m/s at worst\n",
-        fine.triangle_count(), probes, 100.0 * rms, 100.0 * worst, worst_speed);
+        "largest); mean speed by %.4f m/s at worst; coverage by %.4f rms, %.4f at worst\n",
+        fine.triangle_count(), probes, 100.0 * rms, 100.0 * worst, worst_speed, rms_coverage, worst_coverage);
     EXPECT_LT(rms, 0.01);
     EXPECT_LT(worst, 0.05);
     EXPECT_LT(worst_speed, 0.01);
+    EXPECT_LT(rms_coverage, 0.005);
+    EXPECT_LT(worst_coverage, 0.03);
 }
 
 TEST(SurfaceSmoothing, MemoryIsBoundedByTheSurfaceNotTheImpacts) {

@@ -223,6 +223,18 @@ void CoverageMap::clear() {
     std::fill(covered_count_.begin(), covered_count_.end(), 0);
 }
 
+std::int64_t CoverageMap::covered_samples(std::int64_t index, std::int64_t count) const {
+    std::int64_t covered = 0;
+    for (std::int64_t end = index + count; index < end;) {
+        const std::int64_t word = index >> 6, bit = index & 63;
+        const std::int64_t n = std::min<std::int64_t>(64 - bit, end - index);
+        const std::uint64_t mask = (n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1)) << bit;
+        covered += std::popcount(covered_[static_cast<std::size_t>(word)] & mask);
+        index += n;
+    }
+    return covered;
+}
+
 std::int64_t CoverageMap::samples_of_triangle(std::size_t t) const { return static_cast<std::int64_t>(patches_[t].n) * patches_[t].n; }
 
 double CoverageMap::coverage_of_triangle(std::size_t t) const {

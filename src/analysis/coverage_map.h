@@ -61,9 +61,11 @@ public:
     // Forgets all dents.
     void clear();
 
-    // Calls f(triangle, position (m), area (m^2), covered) for every sample, triangle by triangle.
+    // Calls f(triangle, first (m), step (m), count, area (m^2), index) for every row of samples,
+    // triangle by triangle: the row's samples lie at first + i step, i = 0 .. count - 1, each of
+    // `area`; covered_samples(index, count) says how many of them a dent covers.
     template <class F>
-    void for_each_sample(F&& f) const {
+    void for_each_sample_row(F&& f) const {
         for (std::size_t t = 0; t < patches_.size(); ++t) {
             const Patch& p = patches_[t];
             if (p.n == 0) continue;
@@ -74,16 +76,14 @@ public:
                 const std::int64_t last_row = kind == 0 ? n - 1 : n - 2;
                 for (std::int64_t j = 0; j <= last_row; ++j) {
                     const std::int64_t row = p.first_sample + (kind == 0 ? up_row_offset(n, j) : down_row_offset(n, j));
-                    const Vec3 start = p.origin + (static_cast<double>(j) + offset) * p.step_v + offset * p.step_u;
-                    for (std::int64_t i = 0; i <= last_row - j; ++i) {
-                        const std::int64_t bit = row + i;
-                        const bool covered = (covered_[static_cast<std::size_t>(bit >> 6)] >> (bit & 63)) & 1u;
-                        f(t, Vec3(start + static_cast<double>(i) * p.step_u), area, covered);
-                    }
+                    const Vec3 first = p.origin + (static_cast<double>(j) + offset) * p.step_v + offset * p.step_u;
+                    f(t, first, p.step_u, last_row - j + 1, area, row);
                 }
             }
         }
     }
+    // Covered samples among [index, index + count) of the numbering of for_each_sample_row.
+    std::int64_t covered_samples(std::int64_t index, std::int64_t count) const;
 
     double coverage() const;                                                // covered area / total area, 0..1
     double coverage_of_triangle(std::size_t t) const;                       // 0..1; 0 for a degenerate triangle

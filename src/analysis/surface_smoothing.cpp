@@ -63,6 +63,7 @@ SurfaceSmoothing::SurfaceSmoothing(const TriangleMesh& mesh, double radius_m) : 
         cell_ *= std::sqrt(patches_wanted / static_cast<double>(kMaxSmoothingPatches));
     cell_ = std::max(cell_, (hi - lo).maxCoeff() / static_cast<double>(kAxisBins - 4));
     origin_ = lo - Vec3::Constant(cell_);
+    inverse_cell_ = 1.0 / cell_;
 
     const std::size_t expected = static_cast<std::size_t>(std::min(patches_wanted, static_cast<double>(kMaxSmoothingPatches))) + 16;
     const std::size_t slots = std::bit_ceil(2 * expected);
@@ -126,12 +127,16 @@ SurfaceSmoothing::SurfaceSmoothing(const TriangleMesh& mesh, double radius_m) : 
     build_neighbour_grid();
 }
 
+// Called for every area and coverage sample (tens of millions on a part): a multiplication and a
+// truncation per axis (bins are counted from origin_, below every vertex, so the values are >= 0
+// on the surface; a point off it is clamped to the grid).
 std::uint64_t SurfaceSmoothing::key_of(const Vec3& p, int facing) const {
     std::uint64_t key = static_cast<std::uint64_t>(facing) << 60;
+    constexpr double top = static_cast<double>(kAxisBins - 1);
     for (int k = 0; k < 3; ++k) {
-        const double f = std::floor((p[k] - origin_[k]) / cell_);
-        const std::int64_t i = f < 0.0 ? 0 : (f > static_cast<double>(kAxisBins - 1) ? kAxisBins - 1 : static_cast<std::int64_t>(f));
-        key |= static_cast<std::uint64_t>(i) << (20 * k);
+        const double f = (p[k] - origin_[k]) * inverse_cell_;
+        const auto i = static_cast<std::uint64_t>(f > 0.0 ? (f < top ? f : top) : 0.0);
+        key |= i << (20 * k);
     }
     return key;
 }
@@ -247,24 +252,39 @@ void SurfaceSmoothing::add_impact(const Vec3& point_m, std::size_t triangle, dou
     vn_sum_[k] += vn_m_per_s;
 }
 
+// Row by row: the samples of a row lie on a line, so the runs of them that fall in one bin are
+// found in closed form (where the line crosses the next bin boundary on each axis) and counted at
+// once, their covered ones by a popcount. A sample on a boundary may be counted in the bin beside
+// it: its position is off by rounding only.
 void SurfaceSmoothing::add_coverage(const CoverageMap& coverage) {
     if (coverage.triangle_count() != triangle_facing_.size())
         throw std::invalid_argument("SurfaceSmoothing::add_coverage: the coverage map is of another mesh");
-    std::uint64_t last_key = ~std::uint64_t{0};
-    std::int64_t patch = -1;
-    coverage.for_each_sample([&](std::size_t t, const Vec3& p, double area_m2, bool covered) {
-        const int facing = triangle_facing_[t];
-        if (facing < 0) return;
-        const std::uint64_t key = key_of(p, facing);
-        if (key != last_key) {
-            last_key = key;
-            patch = patch_for(p, triangle_normal_[t], facing);
-        }
-        if (patch < 0) return;
-        const auto k = static_cast<std::size_t>(patch);
-        sampled_[k] += area_m2;
-        if (covered) covered_[k] += area_m2;
-    });
+    coverage.for_each_sample_row(
+        [&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double area_m2, std::int64_t index) {
+            const int facing = triangle_facing_[t];
+            if (facing < 0) return;
+            const Vec3 q0 = (first - origin_) * inverse_cell_;  // bins
+            const Vec3 dq = step * inverse_cell_;               // bins per sample
+            for (std::int64_t i = 0; i < count;) {
+                std::int64_t run = count - i;
+                for (int k = 0; k < 3; ++k) {
+                    if (dq[k] == 0.0) continue;
+                    const double q = q0[k] + static_cast<double>(i) * dq[k];
+                    const double boundary = dq[k] > 0.0 ? std::floor(q) + 1.0 : std::floor(q);
+                    // The first sample past the boundary (at least the next one).
+                    const double steps = std::ceil((boundary - q) / dq[k]);
+                    run = std::min(run, std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(steps, 1e15))));
+                }
+                const Vec3 p = first + static_cast<double>(i) * step;
+                const std::int64_t patch = patch_for(p, triangle_normal_[t], facing);
+                if (patch >= 0) {
+                    const auto k = static_cast<std::size_t>(patch);
+                    sampled_[k] += static_cast<double>(run) * area_m2;
+                    covered_[k] += static_cast<double>(coverage.covered_samples(index + i, run)) * area_m2;
+                }
+                i += run;
+            }
+        });
 }
 
 SmoothedSums SurfaceSmoothing::at(const Vec3& x, const Vec3& n) const {

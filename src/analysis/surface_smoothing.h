@@ -108,6 +108,7 @@ private:
     const TriangleMesh* mesh_;
     double radius_ = 0.0;                // m
     double cell_ = 0.0;                  // m, bin side
+    double inverse_cell_ = 0.0;          // 1/m
     Vec3 origin_ = Vec3::Zero();         // m, corner of bin (0, 0, 0)
     std::vector<Vec3> triangle_normal_;  // unit (zero for a degenerate triangle)
     std::vector<std::int8_t> triangle_facing_;
