@@ -237,6 +237,8 @@ TEST(SurfaceSmoothing, TheGearAtTwoTessellationsGivesTheSameField) {
         }
         ++placed;
     }
+    std::printf("  patches: %zu (4960 triangles), %zu (%zu triangles); memory %.1f MB, %.1f MB\n", on_coarse.patch_count(),
+                on_fine.patch_count(), fine.triangle_count(), on_coarse.memory_bytes() / 1e6, on_fine.memory_bytes() / 1e6);
     EXPECT_EQ(on_fine.unplaced_impacts(), 0u);
     EXPECT_EQ(on_coarse.unplaced_impacts(), 0u);
     on_fine.add_coverage(coverage_fine);

@@ -67,8 +67,7 @@ SurfaceSmoothing::SurfaceSmoothing(const TriangleMesh& mesh, double radius_m) : 
 
     const std::size_t expected = static_cast<std::size_t>(std::min(patches_wanted, static_cast<double>(kMaxSmoothingPatches))) + 16;
     const std::size_t slots = std::bit_ceil(2 * expected);
-    slot_key_.assign(slots, 0);
-    slot_patch_.assign(slots, 0);
+    slots_.assign(slots, Slot{});
 
     // The area: each triangle cut into n^2 congruent sub-triangles of edge <= c / 2, each counted
     // at its centroid ("up" ones at (i + 1/3, j + 1/3) steps from corner A, "down" ones at
@@ -118,10 +117,7 @@ SurfaceSmoothing::SurfaceSmoothing(const TriangleMesh& mesh, double radius_m) : 
         const double norm = normal_sum[k].norm();
         normal_[k] = norm > 0.0 ? Vec3(normal_sum[k] / norm) : Vec3::Zero();
     }
-    impacts_.assign(count, 0.0);
-    impact_sum_.assign(count, Vec3::Zero());
-    energy_.assign(count, 0.0);
-    vn_sum_.assign(count, 0.0);
+    impacts_.assign(count, ImpactSums{});
     covered_.assign(count, 0.0);
     sampled_.assign(count, 0.0);
     build_neighbour_grid();
@@ -142,36 +138,32 @@ std::uint64_t SurfaceSmoothing::key_of(const Vec3& p, int facing) const {
 }
 
 std::int64_t SurfaceSmoothing::find(std::uint64_t key) const {
-    const std::size_t mask = slot_key_.size() - 1;
+    const std::size_t mask = slots_.size() - 1;
     for (std::size_t s = slot_of(key) & mask;; s = (s + 1) & mask) {
-        if (slot_key_[s] == 0) return -1;
-        if (slot_key_[s] == key + 1) return slot_patch_[s];
+        if (slots_[s].key_plus_one == 0) return -1;
+        if (slots_[s].key_plus_one == key + 1) return slots_[s].patch;
     }
 }
 
 // The patch of `key`, a new one (index = the patch count) if it has none yet.
 std::uint32_t SurfaceSmoothing::insert(std::uint64_t key) {
-    if (2 * (area_.size() + 1) > slot_key_.size()) {  // keep the table at most half full
-        std::vector<std::uint64_t> keys(2 * slot_key_.size(), 0);
-        std::vector<std::uint32_t> patches(keys.size(), 0);
-        std::swap(keys, slot_key_);
-        std::swap(patches, slot_patch_);
-        const std::size_t mask = slot_key_.size() - 1;
-        for (std::size_t s = 0; s < keys.size(); ++s) {
-            if (keys[s] == 0) continue;
-            std::size_t t = slot_of(keys[s] - 1) & mask;
-            while (slot_key_[t] != 0) t = (t + 1) & mask;
-            slot_key_[t] = keys[s];
-            slot_patch_[t] = patches[s];
+    if (2 * (area_.size() + 1) > slots_.size()) {  // keep the table at most half full
+        std::vector<Slot> old(2 * slots_.size());
+        std::swap(old, slots_);
+        const std::size_t mask = slots_.size() - 1;
+        for (const Slot& slot : old) {
+            if (slot.key_plus_one == 0) continue;
+            std::size_t t = slot_of(slot.key_plus_one - 1) & mask;
+            while (slots_[t].key_plus_one != 0) t = (t + 1) & mask;
+            slots_[t] = slot;
         }
     }
-    const std::size_t mask = slot_key_.size() - 1;
+    const std::size_t mask = slots_.size() - 1;
     for (std::size_t s = slot_of(key) & mask;; s = (s + 1) & mask) {
-        if (slot_key_[s] == key + 1) return slot_patch_[s];
-        if (slot_key_[s] == 0) {
-            slot_key_[s] = key + 1;
-            slot_patch_[s] = static_cast<std::uint32_t>(area_.size());
-            return slot_patch_[s];
+        if (slots_[s].key_plus_one == key + 1) return slots_[s].patch;
+        if (slots_[s].key_plus_one == 0) {
+            slots_[s] = {key + 1, static_cast<std::uint32_t>(area_.size())};
+            return slots_[s].patch;
         }
     }
 }
@@ -246,10 +238,11 @@ void SurfaceSmoothing::add_impact(const Vec3& point_m, std::size_t triangle, dou
         return;
     }
     const auto k = static_cast<std::size_t>(patch);
-    impacts_[k] += 1.0;
-    impact_sum_[k] += point_m;
-    energy_[k] += energy_J;
-    vn_sum_[k] += vn_m_per_s;
+    ImpactSums& sums = impacts_[k];
+    sums.count += 1.0;
+    sums.point_sum += point_m;
+    sums.energy_J += energy_J;
+    sums.vn_sum += vn_m_per_s;
 }
 
 // Row by row: the samples of a row lie on a line, so the runs of them that fall in one bin are
@@ -313,15 +306,16 @@ SmoothedSums SurfaceSmoothing::at(const Vec3& x, const Vec3& n) const {
                         s.covered_m2 += w * covered_[p];
                         s.sampled_m2 += w * sampled_[p];
                     }
-                    const double count = impacts_[p];
+                    const ImpactSums& hits = impacts_[p];
+                    const double count = hits.count;
                     if (count > 0.0) {
-                        const double dq2 = (impact_sum_[p] / count - x).squaredNorm();
+                        const double dq2 = (hits.point_sum / count - x).squaredNorm();
                         if (dq2 >= r2) continue;
                         const double w = quartic(dq2, inv_r2) * facing;
                         s.impacts += w * count;
                         s.impacts_sq += w * w * count;
-                        s.energy_J += w * energy_[p];
-                        s.vn_sum_m_per_s += w * vn_sum_[p];
+                        s.energy_J += w * hits.energy_J;
+                        s.vn_sum_m_per_s += w * hits.vn_sum;
                     }
                 }
             }
@@ -338,11 +332,9 @@ std::vector<SmoothedSums> SurfaceSmoothing::at_triangles() const {
 }
 
 std::size_t SurfaceSmoothing::memory_bytes() const {
-    const std::size_t vec3 = sizeof(Vec3), d = sizeof(double);
-    return (centroid_.capacity() + normal_.capacity() + impact_sum_.capacity() + triangle_normal_.capacity()) * vec3 +
-           (area_.capacity() + impacts_.capacity() + energy_.capacity() + vn_sum_.capacity() + covered_.capacity() + sampled_.capacity()) *
-               d +
-           slot_key_.capacity() * sizeof(std::uint64_t) + (slot_patch_.capacity() + grid_start_.capacity() + grid_patch_.capacity()) * 4 +
+    return (centroid_.capacity() + normal_.capacity() + triangle_normal_.capacity()) * sizeof(Vec3) +
+           impacts_.capacity() * sizeof(ImpactSums) + (area_.capacity() + covered_.capacity() + sampled_.capacity()) * sizeof(double) +
+           slots_.capacity() * sizeof(Slot) + (grid_start_.capacity() + grid_patch_.capacity()) * sizeof(std::uint32_t) +
            triangle_facing_.capacity();
 }
 

@@ -26,9 +26,9 @@
 
 namespace peensim {
 
-inline constexpr int kTrailFrames = 8;                 // frames an impact stays visible, fading
-inline constexpr double kGlowRadiusPerHeight = 0.025;  // glow radius / image height (18 px at 720 px)
-inline constexpr double kGlowLiftRadii = 2.5;          // a glow is lifted toward the eye by this many shot radii
+inline constexpr int kTrailFrames = 8;                // frames an impact stays visible, fading
+inline constexpr double kGlowRadiusPerHeight = 0.03;  // glow radius / image height (22 px at 720 px)
+inline constexpr double kGlowLiftRadii = 2.5;         // a glow is lifted toward the eye by this many shot radii
 
 class FrameRecorder final : public FrameSink {
 public:

@@ -33,6 +33,9 @@ void main() {
 }
 )GLSL";
 
+// Premultiplied output, blended as ONE, ONE_MINUS_SRC_ALPHA: the disc (r < 0.5) is laid over the
+// scene (alpha = its opacity), the halo (r > 0.5) adds light to it (alpha 0), so that it shows on
+// the dark background, a grey wall and the orange part alike.
 constexpr const char* kFragmentShader = R"GLSL(#version 330 core
 in vec2 corner;
 flat in vec4 colour;
@@ -40,14 +43,15 @@ out vec4 fragment;
 void main() {
     float r = length(corner);
     if (r > 1.0) discard;
-    // A white-hot core (to r ~ 0.2), the colour (to 0.45), a thin dark ring (0.45 - 0.55), then a
-    // halo of the colour fading out to the edge: it reads as light, not as another shot.
-    float core = 1.0 - smoothstep(0.1, 0.25, r);
+    // A white-hot core (to r ~ 0.3), the colour (to 0.45), a thin dark ring (0.45 - 0.55).
+    float core = 1.0 - smoothstep(0.16, 0.32, r);
     float ring = smoothstep(0.4, 0.47, r) * (1.0 - smoothstep(0.5, 0.58, r));
-    vec3 rgb = mix(mix(colour.rgb, vec3(1.0), 0.9 * core), vec3(0.0), 0.65 * ring);
-    float halo = 0.75 * (1.0 - smoothstep(0.5, 1.0, r));
-    float alpha = colour.a * (r < 0.5 ? 1.0 : halo);
-    fragment = vec4(rgb, alpha);
+    vec3 disc = mix(mix(colour.rgb, vec3(1.0), 0.9 * core), vec3(0.0), 0.65 * ring);
+    float opacity = colour.a * (1.0 - smoothstep(0.52, 0.58, r));
+    // The halo: the colour lightened (the slowest, darkest impacts too), falling off outward.
+    float halo = colour.a * 0.7 * exp(-9.0 * (r - 0.5) * (r - 0.5)) * smoothstep(0.45, 0.55, r) * (1.0 - smoothstep(0.85, 1.0, r));
+    vec3 light = mix(colour.rgb, vec3(1.0), 0.5) * halo;
+    fragment = vec4(disc * opacity + light, opacity);
 }
 )GLSL";
 
@@ -94,11 +98,13 @@ void GlowLayer::draw(const FrameView& view, int width_px, int height_px, std::sp
     glUniformMatrix4fv(u_projection_, 1, GL_FALSE, p.data());
     glUniform2f(u_viewport_, static_cast<float>(width_px), static_cast<float>(height_px));
     glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);  // premultiplied; the frame's alpha kept
     glDepthMask(GL_FALSE);
     glBindVertexArray(vao_.get());
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(instances_.size()));
     glBindVertexArray(0);
     glDepthMask(GL_TRUE);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // the renderer's (renderer.cpp)
     glDisable(GL_BLEND);
 }
 

@@ -5,8 +5,9 @@
 // depth. Internal to render/.
 //
 // The sprite, from the centre out: a white-hot core, the impact's colour (its colour-map colour),
-// a thin dark ring that makes it read on a light surface as the core does on a dark one, and a
-// halo of the colour fading to the edge. colour.a fades the whole sprite (the recorder's trail of
+// a thin dark ring that makes it read on a light surface as the core does on a dark one (a disc
+// laid over the scene out to half the radius), and a halo of the lightened colour that adds light
+// to what is behind it out to the radius. colour.a fades the whole sprite (the recorder's trail of
 // earlier frames' impacts).
 #pragma once
 
