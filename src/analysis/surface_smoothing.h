@@ -75,8 +75,8 @@ struct SmoothedSums {
 
 class SurfaceSmoothing {
 public:
-    // mesh: the component's surface (m, component frame); radius_m: the kernel's support R (m).
-    // Throws std::invalid_argument for a radius that is not positive and finite.
+    // mesh: the component's surface (m, component frame; it must outlive this); radius_m: the
+    // kernel's support R (m). Throws std::invalid_argument for a radius that is not positive and finite.
     SurfaceSmoothing(const TriangleMesh& mesh, double radius_m);
 
     // One impact at point_m (component frame) on triangle `triangle` of the mesh (its normal picks

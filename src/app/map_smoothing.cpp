@@ -149,6 +149,14 @@ std::string smoothing_note(const ComponentAnalysis& a) {
         std::snprintf(line, sizeof line, "; impact density +-%.0f %% (median standard error where hit)", 100.0 * median);
         note += line;
     }
+    const double cell = a.smoothing->cell_m();
+    if (cell > 1.01 * a.smoothing->radius_m() / kSmoothingCellsPerRadius) {
+        std::snprintf(line, sizeof line, "; binned in %s cubes, coarser than a quarter radius (a large part: at most %zu patches)",
+                      millimetres(cell).c_str(), kMaxSmoothingPatches);
+        note += line;
+    }
+    if (a.smoothing->unplaced_impacts() > 0)
+        note += "; " + std::to_string(a.smoothing->unplaced_impacts()) + " impacts off the surface left out";
     return note;
 }
 
