@@ -325,8 +325,10 @@ TEST(ParaviewAnalysis, CoverageSeriesFollowsTheCoverageCurve) {
     EXPECT_EQ(peened_mean(steps[0].data.cell_data.at("coverage").values), 0.0);
     EXPECT_GT(peened_mean(previous), 0.005);
     EXPECT_EQ(fields.cell_data.at("coverage").values, previous);
-    EXPECT_EQ(fields.cell_array_names, (std::vector<std::string>{"impacts", "impacts_per_mm2_s", "mean_vn_mps", "max_vn_mps", "energy_J_per_m2",
-                                                                 "coverage", "reachable", "excluded", "region"}));
+    EXPECT_EQ(fields.cell_array_names,
+              (std::vector<std::string>{"impacts", "impacts_per_mm2_s", "mean_vn_mps", "max_vn_mps", "energy_J_per_m2", "coverage",
+                                        "impacts_per_mm2_s_smoothed", "mean_vn_mps_smoothed", "energy_J_per_m2_smoothed", "coverage_smoothed",
+                                        "smoothing_radius_mm", "reachable", "excluded", "region"}));
 
     const testing::VtkReadPolyData impacts = testing::read_vtp_with_vtk((analysis / "gear_impacts.vtp").string());
     EXPECT_EQ(impacts.point_array_names, (std::vector<std::string>{"v_in_mps", "vn_in_mps", "time_s"}));

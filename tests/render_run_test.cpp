@@ -2,7 +2,7 @@
 // count, show the part where it projects and a shot at its known place, the MP4 holds every
 // frame (when ffmpeg is there; without it the run still succeeds with a note), a resumed run
 // continues the sequence, and a run that does not render writes no frame. Then the impact map
-// of `render-impacts` puts the hot colour on the hit triangles.
+// of `render-impacts` puts the hot colour on the hit triangles, its coverage map scaled to the data.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -182,10 +182,10 @@ TEST(RenderImpacts, TheHotColourLandsOnTheHitTriangles) {
     const Component& rod = model->components[static_cast<std::size_t>(model->component_index("rod"))];
     {
         std::ofstream csv(dir.path / "analysis" / "rod_triangles.csv");
-        csv << "triangle,impacts_per_mm2_s,mean_vn_mps,coverage\n";
+        csv << "triangle,impacts_per_mm2_s_smoothed,mean_vn_mps_smoothed,coverage_smoothed,smoothing_radius_mm\n";
         for (std::size_t t = 0; t < rod.mesh->triangle_count(); ++t) {
             const double x = (rod.mesh->corner(t, 0) + rod.mesh->corner(t, 1) + rod.mesh->corner(t, 2)).x() / 3.0;
-            csv << t << ',' << (x > 0.0 ? 10.0 : 0.0) << ",,\n";
+            csv << t << ',' << (x > 0.0 ? 10.0 : 0.0) << ",," << (x > 0.0 ? 0.03 : 0.001) << ",0.5\n";
         }
     }
     RenderImpactsOptions r{dir.path.string(), {"impacts"}, 320, 240};
@@ -206,6 +206,19 @@ TEST(RenderImpacts, TheHotColourLandsOnTheHitTriangles) {
     EXPECT_GT(h.g, h.b + 60) << int(h.r) << " " << int(h.g) << " " << int(h.b);
     EXPECT_GT(h.r, h.b + 40);
     EXPECT_GT(c.b, c.g + 20) << int(c.r) << " " << int(c.g) << " " << int(c.b);
+    // The coverage map is scaled to its data (0 to 3 %, not 0 to 100 %): the covered half is in
+    // the top colour, the rest at the bottom.
+    RenderImpactsOptions cov{dir.path.string(), {"coverage"}, 320, 240};
+    ASSERT_EQ(render_impacts_job(cov, out2, err2), kExitOk) << err2.str();
+    const render::RgbaImage coverage = render::read_png((dir.path / "analysis" / "rod_map_coverage.png").string());
+    const render::Rgba8 ch = coverage.at(static_cast<int>(hot->x()), static_cast<int>(hot->y()));
+    const render::Rgba8 cc = coverage.at(static_cast<int>(cold->x()), static_cast<int>(cold->y()));
+    EXPECT_GT(ch.g, ch.b + 60) << int(ch.r) << " " << int(ch.g) << " " << int(ch.b);
+    EXPECT_GT(cc.b, cc.g + 20) << int(cc.r) << " " << int(cc.g) << " " << int(cc.b);
+    RenderImpactsOptions bad_target = cov;
+    bad_target.coverage_target = 1.5;
+    EXPECT_EQ(render_impacts_job(bad_target, out2, err2), kExitInputError);
+    EXPECT_NE(err2.str().find("--target"), std::string::npos) << err2.str();
     // An unknown field is a clear input error.
     RenderImpactsOptions bad{dir.path.string(), {"heat"}, 320, 240};
     std::ostringstream out3, err3;

@@ -9,12 +9,6 @@ namespace peensim {
 
 namespace {
 
-// Offsets (in samples, from a triangle's first sample) of the rows of its sample grid. Rows are
-// stored in pairs, "up" row j (n - j samples) then "down" row j (n - 1 - j samples), so that a dent,
-// which marks neighbouring rows of both kinds, touches as few cache lines as possible.
-std::int64_t up_row_offset(std::int64_t n, std::int64_t j) { return j * (2 * n - 1) - j * (j - 1); }
-std::int64_t down_row_offset(std::int64_t n, std::int64_t j) { return up_row_offset(n, j) + n - j; }
-
 // Sets bits [begin, end) of `words`; returns how many of them were clear before.
 std::int64_t set_bits(std::uint64_t* words, std::int64_t begin, std::int64_t end) {
     std::int64_t newly = 0;
@@ -227,6 +221,18 @@ void CoverageMap::cover_patch(std::size_t t, const Vec3& centre, double radius_m
 void CoverageMap::clear() {
     std::fill(covered_.begin(), covered_.end(), std::uint64_t{0});
     std::fill(covered_count_.begin(), covered_count_.end(), 0);
+}
+
+std::int64_t CoverageMap::covered_samples(std::int64_t index, std::int64_t count) const {
+    std::int64_t covered = 0;
+    for (std::int64_t end = index + count; index < end;) {
+        const std::int64_t word = index >> 6, bit = index & 63;
+        const std::int64_t n = std::min<std::int64_t>(64 - bit, end - index);
+        const std::uint64_t mask = (n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1)) << bit;
+        covered += std::popcount(covered_[static_cast<std::size_t>(word)] & mask);
+        index += n;
+    }
+    return covered;
 }
 
 std::int64_t CoverageMap::samples_of_triangle(std::size_t t) const { return static_cast<std::int64_t>(patches_[t].n) * patches_[t].n; }

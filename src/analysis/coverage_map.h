@@ -61,6 +61,30 @@ public:
     // Forgets all dents.
     void clear();
 
+    // Calls f(triangle, first (m), step (m), count, area (m^2), index) for every row of samples,
+    // triangle by triangle: the row's samples lie at first + i step, i = 0 .. count - 1, each of
+    // `area`; covered_samples(index, count) says how many of them a dent covers.
+    template <class F>
+    void for_each_sample_row(F&& f) const {
+        for (std::size_t t = 0; t < patches_.size(); ++t) {
+            const Patch& p = patches_[t];
+            if (p.n == 0) continue;
+            const std::int64_t n = p.n;
+            const double area = p.area / static_cast<double>(n * n);
+            for (int kind = 0; kind < 2; ++kind) {
+                const double offset = kind == 0 ? 1.0 / 3.0 : 2.0 / 3.0;
+                const std::int64_t last_row = kind == 0 ? n - 1 : n - 2;
+                for (std::int64_t j = 0; j <= last_row; ++j) {
+                    const std::int64_t row = p.first_sample + (kind == 0 ? up_row_offset(n, j) : down_row_offset(n, j));
+                    const Vec3 first = p.origin + (static_cast<double>(j) + offset) * p.step_v + offset * p.step_u;
+                    f(t, first, p.step_u, last_row - j + 1, area, row);
+                }
+            }
+        }
+    }
+    // Covered samples among [index, index + count) of the numbering of for_each_sample_row.
+    std::int64_t covered_samples(std::int64_t index, std::int64_t count) const;
+
     double coverage() const;                                                // covered area / total area, 0..1
     double coverage_of_triangle(std::size_t t) const;                       // 0..1; 0 for a degenerate triangle
     double coverage_of(const std::vector<int>& triangles) const;            // area-weighted over a region, 0..1
@@ -91,6 +115,12 @@ private:
         std::int64_t first_sample = 0;
         int n = 0;  // subdivisions per edge; 0 = degenerate triangle, no samples
     };
+
+    // Offsets (in samples, from a triangle's first sample) of the rows of its sample grid. Rows are
+    // stored in pairs, "up" row j (n - j samples) then "down" row j (n - 1 - j samples), so that a
+    // dent, which marks neighbouring rows of both kinds, touches as few cache lines as possible.
+    static std::int64_t up_row_offset(std::int64_t n, std::int64_t j) { return j * (2 * n - 1) - j * (j - 1); }
+    static std::int64_t down_row_offset(std::int64_t n, std::int64_t j) { return up_row_offset(n, j) + n - j; }
 
     void build_grid(const TriangleMesh& mesh, double largest_dent_diameter_m);
     void cover_patch(std::size_t t, const Vec3& centre, double radius_m);

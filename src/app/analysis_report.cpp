@@ -237,12 +237,14 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
          "peened area: facets no shot can reach (no room for a shot centre beside them, e.g. a bore an axle fills) and regions "
          "marked `exclude` are left out. 98 % counts as full coverage, its time from the fit C(t) = 1 - exp(-k t); the 95 % "
          "interval of k is the larger of the fit's and the scatter of the dent area delivered in 10 time batches.\n\nFiles (per "
-         "component): `<component>_triangles.csv` (per-triangle fields, with the share a shot can reach, the excluded share and the "
-         "region), `<component>_coverage.csv` (coverage vs time), `<component>_histograms.csv` (normal speed, impact angle, dent "
-         "diameter; whole component and per region), `<component>.vtp` (the mesh with the per-triangle fields as cell data, for "
-         "ParaView), `<component>_impacts.vtp` (the impacts as points with their relative velocity, normal speed and time), "
-         "`<component>_regions.csv` and `<component>_region_coverage.csv` (the scene's regions of the component), "
-         "`<component>_almen.csv` (Almen strips: dose, dents and arc height vs time), `figures.json` (every figure, for programs).\n";
+         "component): `<component>_triangles.csv` (per-triangle fields, the same smoothed over a radius of the surface, the share a "
+         "shot can reach, the excluded share and the region), `<component>_coverage.csv` (coverage vs time), "
+         "`<component>_histograms.csv` (normal speed, impact angle, dent diameter; whole component and per region), "
+         "`<component>.vtp` (the mesh with the per-triangle fields as cell data, for ParaView), `<component>_impacts.vtp` (the "
+         "impacts as points with their relative velocity, normal speed and time), `<component>_coverage_series.pvd` (the coverage "
+         "over time, for ParaView), `<component>_regions.csv` and `<component>_region_coverage.csv` (the scene's regions of the "
+         "component), `<component>_almen.csv` (Almen strips: dose, dents and arc height vs time), `figures.json` (every figure, for "
+         "programs), `open_in_paraview.py` (the whole run in ParaView: `paraview --script=open_in_paraview.py`).\n";
     r << region_tables(parts, w.length_s());
     r << almen_report_sections(parts, w.length_s());
     r << jet_sections(parts, x);

@@ -19,6 +19,7 @@
 #include "app/analysis_tables.h"
 #include "app/component_analysis.h"
 #include "app/coverage_verdict.h"
+#include "app/map_smoothing.h"
 #include "app/paraview_coverage_series.h"
 #include "app/paraview_script.h"
 #include "app/render_module.h"
@@ -118,6 +119,7 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
     const double vn = row.vn_in_m_per_s;
     const double energy = 0.5 * mass * vn * vn;  // J
     const int t = a.fields->add(row.triangle, row.point_m, vn, mass);
+    smooth_impact(a, row, t, mass);
     ++a.impacts;
     a.speed_sum += vn;
     const int batch =
@@ -267,6 +269,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
         const ComponentDesc& c = scene.components[ci];
         if (!is_logged(scene, c)) continue;
         parts.push_back(analysis_of(*model, ci, cavity.get(), c, scene, shot_mass));
+        start_smoothing(parts.back(), scene, c, dir, options.smoothing_radius, std::min(1.0, window.length_s() / duration));
         names.push_back(c.name);
     }
     if (parts.empty())
@@ -321,6 +324,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     for (ComponentAnalysis& a : parts) {
         a.points->finish();
         finish_outlooks(a);
+        finish_smoothing(a);
         write_component_tables(adir, a, window);
     }
     ReportContext context;
@@ -347,6 +351,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     out << analysis_summary_table(parts, window) << "analysis: " << adir.string()
         << "/{report.md, report.html, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp, *_coverage_series.pvd"
         << (context.pngs.empty() ? "" : ", *.png") << ", " << kParaviewScriptFileName << "}\n";
+    for (const ComponentAnalysis& a : parts) out << smoothing_note(a) << '\n';
 }
 
 }  // namespace peensim

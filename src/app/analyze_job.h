@@ -13,9 +13,12 @@ namespace peensim {
 // What of the log to analyse, and the target the report measures coverage against.
 struct AnalyzeOptions {
     double from_s = 0.0;                // s: impacts before are left out (drop a start-up transient)
-    std::optional<double> to_s;         // s: and after (default: the end of the log)
+    std::optional<double> to_s{};       // s: and after (default: the end of the log)
     double min_speed_m_per_s = 0.0;     // m/s: slower impacts are left out (too slow to dent)
     double target_coverage = 0.98;      // the report's share of the area below it
+    // The maps' smoothing radius as the user wrote it ("2 mm", `--smoothing-radius`): empty for the
+    // scene's `output.smoothing_radius` or the default (app/map_smoothing.h).
+    std::string smoothing_radius;
 };
 
 int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options = {});

@@ -18,6 +18,7 @@
 #include "analysis/jet_stream.h"
 #include "analysis/region_stats.h"
 #include "analysis/regions.h"
+#include "analysis/surface_smoothing.h"
 #include "analysis/triangle_fields.h"
 #include "geometry/triangle_mesh.h"
 #include "output/vtp_writer.h"
@@ -57,6 +58,11 @@ struct ComponentAnalysis {
     double speed_sum = 0.0;                                 // m/s, summed over impacts
     double dent_sum = 0.0;                                  // m, summed over impacts
     std::vector<CoveragePoint> curve;                       // coverage of the peened area vs time since the window opened
+    // The per-area fields smoothed over a radius of the surface (app/map_smoothing.h): the
+    // binning while the log streams, why its radius, and the sums at each triangle at the end.
+    std::unique_ptr<SurfaceSmoothing> smoothing;
+    std::string smoothing_basis;
+    std::vector<SmoothedSums> smoothed;
     std::unique_ptr<ImpactPointsVtpWriter> points;          // the impacts, for ParaView
     RegionSet regions;                                      // the scene's regions of the component
     std::vector<RegionTally> region_tallies;                // per region: what its impacts brought

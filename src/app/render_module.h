@@ -37,6 +37,7 @@ struct RenderImpactsOptions {
     std::vector<std::string> fields;  // impacts, speed, coverage; empty = all
     int width_px = 1600;              // whole image (2 x 2 views)
     int height_px = 1200;
+    double coverage_target = 0.98;  // fraction marked on the coverage map's colour bar (`--target`, in %)
 };
 
 // `peensim render-regions`: the regions of the logged components, each in its own colour.

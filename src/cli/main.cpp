@@ -87,6 +87,9 @@ int main(int argc, char** argv) {
     analyze_cmd->add_option("--to", analyze_to, "leave out the impacts after this time (default: the end of the run)");
     analyze_cmd->add_option("--min-speed", analyze_min_speed, "leave out impacts with a slower normal speed (m/s, or \"20 cm/s\")");
     analyze_cmd->add_option("--target", analyze_target, "the coverage the report measures against (default 98 %: \"0.98\" or \"98 %\")");
+    analyze_cmd->add_option("--smoothing-radius", analyze.smoothing_radius,
+                            "radius of the surface the maps' fields are smoothed over, e.g. \"1.5 mm\" (default: the scene's "
+                            "output.smoothing_radius, else from the dent size and the impact density)");
 
     RenderRegionsOptions render_regions;
     auto* render_regions_cmd = app.add_subcommand(
@@ -106,6 +109,9 @@ int main(int argc, char** argv) {
     render_impacts_cmd->add_option("--field", render_impacts.fields, "impacts, speed or coverage (repeatable; default: all)");
     render_impacts_cmd->add_option("--width", render_impacts.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
     render_impacts_cmd->add_option("--height", render_impacts.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
+    double coverage_target_percent = 98.0;
+    render_impacts_cmd->add_option("--target", coverage_target_percent, "coverage target marked on the coverage map's colour bar, % (default 98)")
+        ->check(CLI::Range(0.01, 100.0));
 
     SweepOptions sweep;
     auto* sweep_cmd = app.add_subcommand(
@@ -241,6 +247,7 @@ int main(int argc, char** argv) {
         }
     }
     if (*render_impacts_cmd) {
+        render_impacts.coverage_target = coverage_target_percent / 100.0;
         try {
             return render_module().render_impacts(render_impacts, std::cout, std::cerr);
         } catch (const std::exception& e) {

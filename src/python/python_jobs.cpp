@@ -133,11 +133,12 @@ int run(const std::string& path, const std::optional<std::string>& text, const s
     return code;
 }
 
-void analyze(const std::string& dir, bool verbose, double from_s, std::optional<double> to_s, double min_speed, double target) {
+void analyze(const std::string& dir, bool verbose, double from_s, std::optional<double> to_s, double min_speed, double target,
+             const std::string& smoothing_radius) {
     PythonStream out(verbose ? sys_stream("stdout") : py::none());
     PythonStream err(sys_stream("stderr"));
     py::gil_scoped_release release;
-    analyze_run(dir, out, err, AnalyzeOptions{from_s, to_s, min_speed, target});
+    analyze_run(dir, out, err, AnalyzeOptions{from_s, to_s, min_speed, target, smoothing_radius});
 }
 
 int sweep(const std::string& scene_path, const std::string& output_dir, const std::vector<std::string>& vary,
@@ -201,6 +202,7 @@ void bind_jobs(py::module_& m) {
           py::arg("analyze"), py::arg("render"), py::arg("verbose"), py::arg("progress"),
           "Runs a scene as `peensim run` does; returns its exit code (0, 3 strict failure, 130 stopped).");
     m.def("analyze", &analyze, py::arg("dir"), py::arg("verbose"), py::arg("from_s"), py::arg("to_s"), py::arg("min_speed"), py::arg("target"),
+          py::arg("smoothing_radius"),
           "Analyses a run directory as `peensim analyze` does.");
     m.def("sweep", &sweep, py::arg("scene_path"), py::arg("output_dir"), py::arg("vary"), py::arg("overrides"), py::arg("seeds"),
           py::arg("jobs"), py::arg("baseline"), py::arg("executable"), py::arg("verbose"),

@@ -23,9 +23,11 @@ namespace peensim {
 
 namespace {
 
-// Most recent impacts kept for flashing; older ones have faded long before the ring wraps at any
-// impact rate a frame can show.
+// Most recent impacts kept for their glow; older ones have faded long before the ring wraps at
+// any impact rate a frame can show.
 constexpr std::size_t kFlashCapacity = 16384;
+constexpr double kTrailShrink = 0.4;     // a glow's radius shrinks by this share over its trail
+constexpr double kTrailFadePower = 1.5;  // its alpha: (1 - age / trail)^this
 
 std::string frame_name(std::int64_t k) {
     char name[32];
@@ -96,8 +98,8 @@ private:
 struct Flash {
     double time_s = 0.0;  // s
     int component = 0;
-    Vec3 point_c;         // m, component frame
-    double vn = 0.0;      // m/s
+    Vec3 point_c;           // m, component frame
+    double vn = 0.0;        // m/s
     double radius_m = 0.0;  // m, its shot's
 };
 
@@ -124,7 +126,7 @@ struct FrameRecorder::Impl {
     std::size_t flash_next = 0;
     std::vector<double> x, y, z;  // shot centres moved back to the frame time
     std::vector<double> radii;    // m, per shot (a shot mix)
-    std::vector<render::ImpactMarker> markers;
+    std::vector<render::ImpactGlow> glows;
     std::vector<std::string> text;
 
     Impl(const Model& m, const RenderDesc& d, const std::string& dir, const SimulationState& now)
@@ -145,7 +147,7 @@ struct FrameRecorder::Impl {
         bar.max = d.speed_scale_m_per_s;
         bar.title = "impact normal speed (m/s)";
         flashes.reserve(kFlashCapacity);
-        markers.reserve(kFlashCapacity);
+        glows.reserve(kFlashCapacity);
         const std::size_t n = static_cast<std::size_t>(m.shot_count);
         x.resize(n), y.resize(n), z.resize(n);
     }
@@ -183,15 +185,20 @@ struct FrameRecorder::Impl {
         }
         pose_model(renderer, view, model, st.time, -behind);
 
-        const double window = kFlashFrames * interval_s;
-        markers.clear();
-        for (const Flash& f : flashes) {
+        const double window = kTrailFrames * interval_s;
+        const double radius_px = std::max(3.0, kGlowRadiusPerHeight * desc.height_px);
+        glows.clear();
+        // Oldest first, so that the newest glows are drawn over them.
+        for (std::size_t k = 0; k < flashes.size(); ++k) {
+            const Flash& f = flashes[flashes.size() < kFlashCapacity ? k : (flash_next + k) % kFlashCapacity];
             const double age = t - f.time_s;
             if (age < 0.0 || age >= window) continue;
+            const double fade = age / window;  // 0 for an impact of the frame's own interval
             const Pose pose = model.components[static_cast<std::size_t>(f.component)].kinematics.pose(st.time, -behind);
             render::Rgba colour = bar.map.map(f.vn, bar.min, bar.max);
-            colour.a = static_cast<float>(1.0 - age / window);
-            markers.push_back({pose.to_world(f.point_c), f.radius_m, colour});  // a disc the size of its shot on the surface
+            colour.a = static_cast<float>(std::pow(1.0 - fade, kTrailFadePower));
+            glows.push_back({pose.to_world(f.point_c), kGlowLiftRadii * f.radius_m,
+                             static_cast<float>(radius_px * (1.0 - kTrailShrink * fade)), colour});
         }
         char line[96];
         text.clear();
@@ -209,7 +216,7 @@ struct FrameRecorder::Impl {
                                      model.shot_sizes.front().radius_m,
                                      {0.85f, 0.86f, 0.9f, 1.0f},
                                      model.has_size_mix() ? std::span<const double>(radii.data(), n) : std::span<const double>()};
-        renderer.render(camera, {.spheres = {&shot, 1}, .markers = markers, .text = text, .colour_bar = &bar}, image);
+        renderer.render(camera, {.spheres = {&shot, 1}, .glows = glows, .text = text, .colour_bar = &bar}, image);
         writer.write(image, (frames_dir / frame_name(k)).string());
     }
 };

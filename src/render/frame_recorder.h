@@ -6,7 +6,11 @@
 // Frame k shows the state at t_k = start + k * slow_motion / fps exactly: the step that passes
 // t_k is followed by drawing its shot moved back along their flight to t_k (a shot that bounced
 // within that step is off by at most one step's travel, R/4) and the components at their poses
-// at t_k. Impacts on logged components flash for kFlashFrames frames, coloured by normal speed.
+// at t_k. Impacts on logged components glow for kTrailFrames frames (the frame after them at full
+// strength, then fading and shrinking: a short trail of the last frames' impacts), each a sprite
+// of kGlowRadiusPerHeight x the image height in pixels whatever the zoom, its body coloured by
+// normal speed (render/glow_layer.h), depth-tested kGlowLiftRadii shot radii in front of the
+// contact point (the shot that made it, still there, does not hide it; a tooth in front does).
 // Frames are numbered by k, so a resumed run continues the sequence.
 #pragma once
 
@@ -22,7 +26,9 @@
 
 namespace peensim {
 
-inline constexpr int kFlashFrames = 4;  // frames an impact stays visible, fading
+inline constexpr int kTrailFrames = 8;                // frames an impact stays visible, fading
+inline constexpr double kGlowRadiusPerHeight = 0.03;  // glow radius / image height (22 px at 720 px)
+inline constexpr double kGlowLiftRadii = 2.5;         // a glow is lifted toward the eye by this many shot radii
 
 class FrameRecorder final : public FrameSink {
 public:

@@ -111,11 +111,11 @@ void OverlayLayer::add_colour_bar(int width, int height, const ColourBar& bar) {
     const float top = margin + std::round(1.9f * s);  // below the title and clear of its descenders
     const float bottom = top + std::round(0.45f * static_cast<float>(height));
 
-    std::snprintf(label_, sizeof label_, "%.3g", bar.max);
+    std::snprintf(label_, sizeof label_, "%.3g%s", bar.max * bar.label_scale, bar.label_unit.c_str());
     const std::string_view max_label(label_);
     const int max_width = atlas_.text_width(max_label);
     char min_text[sizeof label_];
-    std::snprintf(min_text, sizeof min_text, "%.3g", bar.min);
+    std::snprintf(min_text, sizeof min_text, "%.3g%s", bar.min * bar.label_scale, bar.label_unit.c_str());
     const std::string_view min_label(min_text);
     const float label_width = static_cast<float>(std::max(max_width, atlas_.text_width(min_label)));
 
@@ -134,6 +134,26 @@ void OverlayLayer::add_colour_bar(int width, int height, const ColourBar& bar) {
     add_shadowed_text(label_x, bottom + half_cap, min_label);
     const float title_x = std::min(x0, static_cast<float>(width) - margin - static_cast<float>(atlas_.text_width(bar.title)));
     add_shadowed_text(std::max(title_x, margin), margin + static_cast<float>(atlas_.ascender()), bar.title);
+    if (std::isfinite(bar.mark)) add_mark(width, bar, x0, x1, top, bottom);
+}
+
+// The marked value: a white line across the bar (outlined in black, so it reads on every colour)
+// with its label at the left; above the scale, a note under the bar instead.
+void OverlayLayer::add_mark(int width, const ColourBar& bar, float x0, float x1, float top, float bottom) {
+    const float s = static_cast<float>(atlas_.pixel_height());
+    const float margin = std::round(0.6f * s);
+    const float reach = std::round(0.3f * s);  // the line sticks out of the bar by this much
+    if (bar.max > bar.min && bar.mark <= bar.max && bar.mark >= bar.min) {
+        const float y = std::round(bottom - static_cast<float>((bar.mark - bar.min) / (bar.max - bar.min)) * (bottom - top));
+        add_solid(x0 - reach - 1.0f, y - 2.0f, x1 + reach + 1.0f, y + 2.0f, kFrameColour, kFrameColour);
+        add_solid(x0 - reach, y - 1.0f, x1 + reach, y + 1.0f, kTextColour, kTextColour);
+        const float text_x = x0 - reach - std::round(0.3f * s) - static_cast<float>(atlas_.text_width(bar.mark_label));
+        add_shadowed_text(std::max(text_x, margin), y + 0.35f * s, bar.mark_label);
+        return;
+    }
+    const std::string note = bar.mark > bar.max ? bar.mark_label + ": above the scale" : bar.mark_label + ": below the scale";
+    const float text_x = static_cast<float>(width) - margin - static_cast<float>(atlas_.text_width(note));
+    add_shadowed_text(std::max(text_x, margin), bottom + std::round(1.6f * s), note);
 }
 
 void OverlayLayer::draw(int width, int height, std::span<const std::string> lines, const ColourBar* bar, std::span<const Label> labels) {

@@ -36,6 +36,7 @@ private:
     void add_text(float x, float baseline, std::string_view text, Rgba8 colour);
     void add_shadowed_text(float x, float baseline, std::string_view text);
     void add_colour_bar(int width, int height, const ColourBar& bar);
+    void add_mark(int width, const ColourBar& bar, float x0, float x1, float top, float bottom);
 
     FontAtlas atlas_;
     gl::Program program_;

@@ -2,16 +2,19 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "model/model.h"
+#include "render/map_mesh.h"
 #include "render/png_io.h"
 #include "render/render_view.h"
 #include "scene/scene_parser.h"
@@ -22,11 +25,16 @@ namespace peensim {
 
 namespace {
 
+// The smoothed columns (app/map_smoothing.h): the raw per-triangle ones show the tessellation.
 const std::array<MapField, 3> kFields{{
-    {"impacts", "impacts_per_mm2_s", "impacts per mm2 per s"},
-    {"speed", "mean_vn_mps", "mean normal speed (m/s)"},
-    {"coverage", "coverage", "coverage (SAE J2277)"},
+    {"impacts", "impacts_per_mm2_s_smoothed", "impacts per mm2 per s"},
+    {"speed", "mean_vn_mps_smoothed", "mean normal speed (m/s)"},
+    {"coverage", "coverage_smoothed", "coverage (SAE J2277)"},
 }};
+constexpr const char* kRadiusColumn = "smoothing_radius_mm";
+// Sub-triangles of the map mesh: no longer than the smoothing radius / this (the field varies no
+// faster; render/map_mesh.h).
+constexpr double kMapSpacingPerRadius = 3.0;
 
 const std::array<MapView, 4> kViews{{
     {"front-above", Vec3(0.34, 0.81, -0.47)},
@@ -47,7 +55,9 @@ std::vector<double> read_column(const fs::path& csv, const std::string& column) 
     std::stringstream hs(line);
     for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
     const auto it = std::find(header.begin(), header.end(), column);
-    if (it == header.end()) throw std::runtime_error(csv.string() + ": no column '" + column + "'");
+    if (it == header.end())
+        throw std::runtime_error(csv.string() + ": no column '" + column + "' (written by an older peensim? run `peensim analyze " +
+                                 csv.parent_path().parent_path().string() + "` again)");
     const auto col = static_cast<std::size_t>(it - header.begin());
     std::vector<double> values;
     while (std::getline(in, line)) {
@@ -80,7 +90,24 @@ double robust_top(const TriangleMesh& mesh, const std::vector<double>& values) {
     return by_value.empty() ? 0.0 : by_value.back().first;
 }
 
+std::string percent_text(double fraction) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g %%", fraction * 100.0);
+    return text;
+}
+
 }  // namespace
+
+// The coverage scale's top: the smoothed coverage's maximum (smoothing leaves no single-triangle
+// spike to set it), rounded up to two significant digits so that the label reads well.
+double coverage_scale_top(const std::vector<double>& values) {
+    double max = 0.0;
+    for (double v : values)
+        if (std::isfinite(v)) max = std::max(max, v);
+    if (!(max > 0.0)) return 0.01;  // nothing covered: a 1 % scale, all of it at the bottom
+    const double unit = std::pow(10.0, std::floor(std::log10(max)) - 1.0);
+    return std::min(1.0, std::ceil(max / unit * (1.0 - 1e-12)) * unit);
+}
 
 std::span<const MapField> map_fields() { return kFields; }
 std::span<const MapView> map_views() { return kViews; }
@@ -106,6 +133,10 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
         for (const std::string& name : options.fields)
             if (std::none_of(kFields.begin(), kFields.end(), [&](const MapField& f) { return f.name == name; }))
                 throw InputError({}, "--field", "unknown field '" + name + "'; expected impacts, speed or coverage");
+        if (!(options.coverage_target > 0.0 && options.coverage_target <= 1.0))
+            throw InputError(
+                {}, "--target",
+                "expected a coverage in per cent, above 0 and at most 100, got " + std::to_string(options.coverage_target * 100.0));
 
         const auto model = compile_model(parse_scene_file(scene_path.string()));
         const int tile_w = options.width_px / 2, tile_h = options.height_px / 2;
@@ -119,13 +150,19 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
             if (!part.logged) continue;
             const fs::path csv = dir / "analysis" / (part.name + "_triangles.csv");
             const std::vector<Vec3> points = world_vertices(part);
-            // Only the part: it is seen from all sides, with nothing in front of it.
+            const std::vector<double> radius_mm = read_column(csv, kRadiusColumn);
+            const double radius_m = radius_mm.empty() ? 0.0 : radius_mm.front() * 1e-3;
+            if (!(radius_m > 0.0)) throw std::runtime_error(csv.string() + ": no smoothing radius (rerun the analysis)");
+            char radius_line[64];
+            std::snprintf(radius_line, sizeof radius_line, "smoothed over a %.3g mm radius", radius_m * 1e3);
+            // Only the part, drawn as its map mesh: it is seen from all sides, with nothing in front of it.
             for (std::size_t j = 0; j < model->components.size(); ++j) {
                 render::MeshStyle style;
                 style.colour = role_colour(model->components[j].role);
-                style.visible = j == i;
+                style.visible = false;
                 renderer.set_style(view.meshes[j], style);
             }
+            std::optional<render::MeshId> map_id;
             for (const MapField* field : fields) {
                 const std::vector<double> values = read_column(csv, field->column);
                 if (values.size() != part.mesh->triangle_count())
@@ -135,15 +172,29 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
                     out << part.name << ": no coverage (the material has no yield_stress)\n";
                     continue;
                 }
-                double max = field->name == "coverage" ? 1.0 : robust_top(*part.mesh, values);
+                const bool coverage = field->name == "coverage";
+                double max = coverage ? coverage_scale_top(values) : robust_top(*part.mesh, values);
                 if (!(max > 0.0)) max = 1.0;
-                renderer.set_triangle_colours(view.meshes[i], field_colours(values, max));
-                const render::ColourBar bar{render::ColourMap::viridis(), 0.0, max, field->title};
+                const MapMesh map = map_mesh(*part.mesh, values, radius_m / kMapSpacingPerRadius);
+                if (!map_id) {  // the same sub-triangles for every field of the part
+                    map_id = renderer.add_mesh(map.mesh, {.colour = role_colour(part.role)});
+                    const Pose pose = part.kinematics.pose(SimTime{});
+                    renderer.set_pose(*map_id, render::make_pose(pose.rotation, pose.translation));
+                }
+                renderer.set_triangle_colours(*map_id, field_colours(map.values, max));
+                render::ColourBar bar{render::ColourMap::viridis(), 0.0, max, field->title};
+                if (coverage) {  // in per cent, the target marked
+                    bar.title += ", %";
+                    bar.label_scale = 100.0;
+                    bar.label_unit = " %";
+                    bar.mark = options.coverage_target;
+                    bar.mark_label = "target " + percent_text(options.coverage_target);
+                }
                 image.resize(2 * tile_w, 2 * tile_h);
                 for (std::size_t v = 0; v < kViews.size(); ++v) {
                     const render::Camera camera =
                         render::Camera::framing_points(points, static_cast<double>(tile_w) / tile_h, kViews[v].direction);
-                    const std::vector<std::string> text{part.name + ": " + field->title, kViews[v].name};
+                    const std::vector<std::string> text{part.name + ": " + field->title, kViews[v].name, radius_line};
                     renderer.render(camera, {.text = text, .colour_bar = &bar}, tile);
                     render::blit(tile, image, static_cast<int>(v % 2) * tile_w, static_cast<int>(v / 2) * tile_h);
                 }
@@ -152,7 +203,7 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
                 out << "wrote " << png.string() << "\n";
                 ++written;
             }
-            renderer.set_triangle_colours(view.meshes[i], {});
+            if (map_id) renderer.set_style(*map_id, {.visible = false});
         }
         if (written == 0) throw std::runtime_error(options.output_dir + ": no logged component to draw");
         return 0;

@@ -1,8 +1,10 @@
 // `peensim render-impacts OUTDIR`: stills of every logged component coloured by a per-triangle
 // field of the run's analysis (impacts per mm2 per s, mean normal speed, coverage), each from
 // four viewpoints tiled in one PNG with its colour bar: OUTDIR/analysis/<component>_map_<field>.png.
-// The colour bar spans 0 to the value 98 % of the area stays under (coverage: 0 to 1); higher
-// values take the top colour.
+// The fields are the analysis' smoothed ones (`*_smoothed` columns: the same map whatever the
+// tessellation), and every picture states their smoothing radius. The colour bar spans 0 to the
+// value 98 % of the area stays under (higher values take the top colour); coverage's spans 0 to
+// its maximum, in per cent, with the target coverage marked on it (or noted above the scale).
 #pragma once
 
 #include <iosfwd>
@@ -31,6 +33,10 @@ struct MapView {
     Vec3 direction;  // the camera looks along it
 };
 std::span<const MapView> map_views();
+
+// The top of the coverage map's scale: the largest finite value (a fraction) rounded up to two
+// significant digits, at most 1; 0.01 when nothing is covered.
+double coverage_scale_top(const std::vector<double>& values);
 
 // Per-triangle colours of `values` on [0, max]: NaN (no data, e.g. a mean speed without impacts)
 // in neutral grey.

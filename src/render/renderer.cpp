@@ -4,6 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "render/glow_layer.h"
 #include "render/mesh_layer.h"
 #include "render/overlay_layer.h"
 #include "render/sphere_layer.h"
@@ -35,6 +36,7 @@ FontAtlas load_font(const RenderOptions& options, int image_height) {
 struct Renderer::Layers {
     MeshLayer meshes;
     SphereLayer spheres;
+    GlowLayer glows;
     std::optional<OverlayLayer> overlay;
 };
 
@@ -85,6 +87,7 @@ void Renderer::draw(const Camera& camera, const FrameContent& content) {
     layers_->meshes.draw(view, /*transparent=*/false);
     for (const SphereSet& set : content.spheres) layers_->spheres.draw(view, set);
     layers_->spheres.draw(view, content.markers);
+    layers_->glows.draw(view, w, h, content.glows);
     layers_->meshes.draw(view, /*transparent=*/true);
     if (layers_->overlay) layers_->overlay->draw(w, h, content.text, content.colour_bar, content.labels);
     gl::check_errors("while drawing a frame");

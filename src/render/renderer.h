@@ -40,6 +40,7 @@ struct RenderOptions {
 struct FrameContent {
     std::span<const SphereSet> spheres{};     // shot (opaque)
     std::span<const ImpactMarker> markers{};  // flashes (blended)
+    std::span<const ImpactGlow> glows{};      // impacts as sprites of a size in pixels (blended, over the markers)
     std::span<const std::string> text{};      // lines at the top left
     const ColourBar* colour_bar = nullptr;    // at the right, or none
     std::span<const Label> labels{};          // words placed in the frame
@@ -67,7 +68,7 @@ public:
     // colour (std::invalid_argument on a size mismatch). Uploaded now, kept until replaced.
     void set_triangle_colours(MeshId mesh, std::span<const Rgba8> colours);
 
-    // Draws one frame: opaque meshes, spheres, markers, transparent meshes, overlay; then
+    // Draws one frame: opaque meshes, spheres, markers, glows, transparent meshes, overlay; then
     // reads it into `image` (resized to the context's size, top row first).
     void render(const Camera& camera, const FrameContent& content, RgbaImage& image);
     // The same without the read-back, for a caller that reads the context itself.

@@ -2,6 +2,7 @@
 // the colour bar. The Renderer draws them; the caller owns the data.
 #pragma once
 
+#include <limits>
 #include <span>
 #include <string>
 
@@ -63,13 +64,28 @@ struct Label {
     Rgba8 colour{255, 255, 255, 255};
 };
 
+// An impact drawn as a glow of a fixed size in pixels (render/glow_layer.h): the recorder's way to
+// make impacts visible in a chamber-wide view. The caller fades it by lowering colour.a.
+struct ImpactGlow {
+    Vec3 point_m = Vec3::Zero();  // m, world: the contact point
+    double lift_m = 0.0;          // m, moved toward the eye for the depth test (its own surface must not hide it)
+    float radius_px = 0.0f;       // px, the sprite's radius in the image
+    Rgba colour;                  // its body's colour (typically ColourMap::map(normal speed, ...)); a fades it
+};
+
 // A vertical colour bar at the right edge of the frame: `title` above, `max` at the top end,
 // `min` at the bottom end (labels printed with 3 significant digits).
 struct ColourBar {
     ColourMap map = ColourMap::viridis();
     double min = 0.0;
     double max = 1.0;
-    std::string title{};  // e.g. "normal speed (m/s)"; ASCII (other characters print as '?')
+    std::string title{};       // e.g. "normal speed (m/s)"; ASCII (other characters print as '?')
+    double label_scale = 1.0;  // the labels show value x this (100: a fraction in per cent)
+    std::string label_unit{};  // after each label's number (" %")
+    // A value marked across the bar with mark_label beside it (a coverage target); NaN: none. A
+    // mark above max is written under the bar as "<mark_label>: above the scale".
+    double mark = std::numeric_limits<double>::quiet_NaN();
+    std::string mark_label{};
 };
 
 }  // namespace peensim::render

@@ -294,6 +294,10 @@ void write_output(std::string& y, const OutputDesc& o, OutputSettings settings) 
     else if (settings == OutputSettings::all)
         y += "  # shot_positions: off\n";
     if (settings == OutputSettings::all) y += "  coverage_steps: " + std::to_string(o.coverage_steps) + "\n";
+    if (o.smoothing_radius_m)
+        y += "  smoothing_radius: " + num(*o.smoothing_radius_m) + unit_comment(Dimension::length) + "\n";
+    else if (settings == OutputSettings::all)
+        y += "  # smoothing_radius: chosen by the analysis (dent size, impact density)\n";
 }
 
 void write_render(std::string& y, const RenderDesc& r) {
@@ -338,8 +342,8 @@ std::string scene_yaml(const SceneDescription& s, OutputSettings settings) {
 std::string resolved_scene_yaml(const SceneDescription& s) { return scene_yaml(s, OutputSettings::all); }
 
 std::uint64_t scene_hash(const SceneDescription& s) {
-    // Rendering and the checkpoint interval do not change what is simulated: a run may be resumed
-    // with other settings for them.
+    // Rendering, the checkpoint interval and the maps' smoothing do not change what is simulated:
+    // a run may be resumed with other settings for them.
     SceneDescription simulated = s;
     simulated.render.reset();
     simulated.output.checkpoint_interval_s = 0.0;

@@ -315,6 +315,7 @@ struct OutputDesc {
     double checkpoint_interval_s = 60.0;         // s of wall time between checkpoints (resume)
     std::optional<double> shot_positions_s;      // s of simulated time between steps of the shot series; empty: none
     int coverage_steps = 10;                     // steps of the analysis' coverage series after t = 0 (0: none)
+    std::optional<double> smoothing_radius_m;    // m, the analysis' maps; empty: chosen by the analysis
     SourceLocation where;
 };
 

@@ -152,6 +152,7 @@ OutputDesc read_output(const Cursor& c, const std::vector<ComponentDesc>& compon
                                             " steps (process.duration / shot_positions); expected at most " +
                                             std::to_string(static_cast<long long>(kMaxShotPositionSteps)) + ": raise it");
     d.coverage_steps = static_cast<int>(read_integer(c.child("coverage_steps")));
+    d.smoothing_radius_m = read_optional_quantity(c.child("smoothing_radius"));
     d.where = location_of(c);
     return d;
 }

@@ -378,6 +378,12 @@ const std::array schema_table{
                 "Times at which the analysis writes each logged part's per-triangle coverage for ParaView "
                 "(`analysis/<part>_coverage_series.pvd`): at the analysed window's start (0 by default) and this many even steps to its end (the "
                 "part's mesh each time: 52 bytes a triangle, 15.6 MB a step for 300k triangles). 0: none."},
+    SchemaEntry{"output.smoothing_radius", K::quantity, D::length, false, "",
+                "3 dents (eq. 10) at the part's mean normal speed (else 1 mm), widened to hold 25 impacts at its mean density",
+                closed(1e-6, 1), "", "", "",
+                "Radius of the surface over which `peensim analyze` smooths its per-area fields (the `*_smoothed` "
+                "columns and the maps of `render-impacts`): the maps' resolution, the same whatever the mesh's "
+                "tessellation; `analyze --smoothing-radius` overrides it. See the README's \"Smoothed maps\"."},
 
     SchemaEntry{"render", K::map, D::dimensionless, false, "", "no animation", {}, "", "", "",
                 "Record an off-screen animation while simulating (also `peensim run --render`): PNG frames "

@@ -99,6 +99,12 @@ class RunTest(TempDirTest):
         self.assertIn("run.analyze()", str(caught.exception))
         self.assertEqual(int(run.analyze().triangles()["impacts"].sum()), len(run.impacts()["time_s"]))
         self.assertEqual(peensim.analyze(run.dir).figures["components"][0]["impacts"], len(run.impacts()["time_s"]))
+        # The maps' radius as --smoothing-radius takes it: metres or text with a unit; a bad one is an InputError.
+        self.assertEqual(set(run.analyze(smoothing_radius=0.002).triangles()["smoothing_radius_mm"].tolist()), {2.0})
+        self.assertEqual(set(run.analyze(smoothing_radius="1.5 mm").triangles()["smoothing_radius_mm"].tolist()), {1.5})
+        with self.assertRaises(peensim.InputError) as bad:
+            run.analyze(smoothing_radius="2 kg")
+        self.assertIn("--smoothing-radius", str(bad.exception))
         with self.assertRaises(FileNotFoundError):
             peensim.Run(self.path("nothing"))
 

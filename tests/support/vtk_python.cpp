@@ -15,7 +15,7 @@ namespace {
 
 // Prints one JSON document: the file's content as VTK's readers see it.
 constexpr const char* kDumpScript = R"PY(
-import json, os, sys
+import json, math, os, sys
 import xml.etree.ElementTree as ElementTree
 from vtkmodules.vtkCommonCore import vtkStringArray
 from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet
@@ -26,6 +26,9 @@ window = vtkFileOutputWindow()
 window.SetFileName(sys.argv[2])
 vtkOutputWindow.SetInstance(window)
 
+def number(x):  # JSON has no NaN or infinity: those go as text ("nan", "inf", "-inf")
+    return x if math.isfinite(x) else repr(x)
+
 def arrays(attributes):
     out, names = {}, []
     for i in range(attributes.GetNumberOfArrays()):
@@ -33,7 +36,7 @@ def arrays(attributes):
         names.append(a.GetName())
         nc = a.GetNumberOfComponents()
         out[a.GetName()] = {"type": a.GetDataTypeAsString(), "components": nc, "tuples": a.GetNumberOfTuples(),
-                            "values": [a.GetComponent(t, c) for t in range(a.GetNumberOfTuples()) for c in range(nc)]}
+                            "values": [number(a.GetComponent(t, c)) for t in range(a.GetNumberOfTuples()) for c in range(nc)]}
     return out, names
 
 def polydata(d):
@@ -111,8 +114,10 @@ nlohmann::json run_dump(const std::string& path) {
 }
 
 VtkReadArray array_of(const nlohmann::json& j) {
-    return {j["type"].get<std::string>(), j["components"].get<int>(), j["tuples"].get<std::uint64_t>(),
-            j["values"].get<std::vector<double>>()};
+    std::vector<double> values;
+    values.reserve(j["values"].size());
+    for (const nlohmann::json& v : j["values"]) values.push_back(v.is_string() ? std::stod(v.get<std::string>()) : v.get<double>());
+    return {j["type"].get<std::string>(), j["components"].get<int>(), j["tuples"].get<std::uint64_t>(), std::move(values)};
 }
 
 VtkReadPolyData polydata_of(const nlohmann::json& j) {

@@ -279,11 +279,20 @@ class Run:
         with open(self._analysis_file("report.md"), encoding="utf-8") as f:
             return f.read()
 
-    def analyze(self, verbose=False, *, from_s=0.0, to_s=None, min_speed=0.0, target=0.98):
+    def analyze(self, verbose=False, *, from_s=0.0, to_s=None, min_speed=0.0, target=0.98, smoothing_radius=None):
         """Analyses the run (as `peensim analyze`): writes analysis/. Returns the run.
         from_s, to_s (s): analyse only the impacts in this window (drop a start-up transient);
-        min_speed (m/s): leave out slower impacts; target: the coverage the report measures against."""
-        _native.analyze(self.dir, verbose, float(from_s), None if to_s is None else float(to_s), float(min_speed), float(target))
+        min_speed (m/s): leave out slower impacts; target: the coverage the report measures against;
+        smoothing_radius: the maps' radius, in m or as text with a unit ("1.5 mm"); None: the
+        scene's output.smoothing_radius, else the analysis' choice."""
+        if smoothing_radius is None:
+            radius = ""
+        elif isinstance(smoothing_radius, str):
+            radius = smoothing_radius
+        else:
+            radius = repr(float(smoothing_radius)) + " m"
+        _native.analyze(self.dir, verbose, float(from_s), None if to_s is None else float(to_s), float(min_speed), float(target),
+                        radius)
         return self
 
 
@@ -314,7 +323,7 @@ def run(scene, output_dir=None, *, progress=None, resume=False, strict=False, an
 
 def analyze(directory, verbose=False, **window):
     """Analyses a run directory (as `peensim analyze`); returns its Run. window: from_s, to_s,
-    min_speed, target, as Run.analyze takes them."""
+    min_speed, target, smoothing_radius, as Run.analyze takes them."""
     return Run(directory).analyze(verbose, **window)
 
 
