@@ -14,6 +14,7 @@
 #include "analysis/impact_log_reader.h"
 #include "app/analyze_job.h"
 #include "app/run_job.h"
+#include "support/csv_columns.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -32,24 +33,6 @@ RunOptions rod_run(const fs::path& dir, double duration) {
     return o;
 }
 
-// Sum of a column of a CSV file with a header.
-double column_sum(const fs::path& path, const std::string& column) {
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::string> header;
-    std::stringstream hs(line);
-    for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
-    const auto col = static_cast<std::size_t>(std::find(header.begin(), header.end(), column) - header.begin());
-    double sum = 0.0;
-    while (std::getline(in, line)) {
-        std::stringstream ls(line);
-        std::string field;
-        for (std::size_t k = 0; k <= col; ++k) std::getline(ls, field, ',');
-        if (!field.empty()) sum += std::stod(field);
-    }
-    return sum;
-}
 
 }  // namespace
 
@@ -66,8 +49,8 @@ TEST(AnalyzeJob, CountsAddUpAndCoverageOnlyGrows) {
     }
     ASSERT_GT(rows, 50u);
     const fs::path a = dir.path / "analysis";
-    EXPECT_EQ(column_sum(a / "rod_triangles.csv", "impacts"), static_cast<double>(rows));
-    EXPECT_EQ(column_sum(a / "rod_histograms.csv", "count"), 3.0 * static_cast<double>(rows));  // three histograms
+    EXPECT_EQ(peensim::testing::csv_column_sum(a / "rod_triangles.csv", "impacts"), static_cast<double>(rows));
+    EXPECT_EQ(peensim::testing::csv_column_sum(a / "rod_histograms.csv", "count"), 3.0 * static_cast<double>(rows));  // three histograms
     std::ifstream curve(a / "rod_coverage.csv");
     std::string line;
     std::getline(curve, line);

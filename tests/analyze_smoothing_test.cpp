@@ -19,6 +19,7 @@
 #include "app/run_job.h"
 #include "contact/dent.h"
 #include "geometry/mesh_loader.h"
+#include "support/csv_columns.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -38,28 +39,6 @@ RunOptions rod_run(const fs::path& dir, std::vector<std::string> extra = {}) {
     return o;
 }
 
-// The columns of a CSV file by name (empty cells and text as NaN).
-std::map<std::string, std::vector<double>> read_csv(const fs::path& path) {
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::string> header;
-    std::stringstream hs(line);
-    for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
-    std::map<std::string, std::vector<double>> columns;
-    while (std::getline(in, line)) {
-        std::stringstream ls(line);
-        std::string field;
-        for (const std::string& h : header) {
-            std::getline(ls, field, ',');
-            // A text column (the region's name) reads as NaN: only the numbers are compared.
-            char* end = nullptr;
-            const double value = std::strtod(field.c_str(), &end);
-            columns[h].push_back(field.empty() || *end != '\0' ? std::numeric_limits<double>::quiet_NaN() : value);
-        }
-    }
-    return columns;
-}
 
 std::string read_text(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -74,7 +53,7 @@ TEST(AnalyzeSmoothing, WritesTheSmoothedFieldsWithTheirRadius) {
     ASSERT_EQ(run_job(rod_run(dir.path), out, err), kExitOk) << err.str();
     std::ostringstream aout;
     ASSERT_EQ(analyze_job(dir.path.string(), aout, err), kExitOk) << err.str();
-    const auto t = read_csv(dir.path / "analysis" / "rod_triangles.csv");
+    const auto t = peensim::testing::read_csv_columns(dir.path / "analysis" / "rod_triangles.csv");
     for (const char* column : {"impacts_per_mm2_s_smoothed", "impacts_smoothed_rel_error", "mean_vn_mps_smoothed",
                                "energy_J_per_m2_smoothed", "coverage_smoothed", "smoothing_radius_mm"})
         ASSERT_TRUE(t.count(column)) << column;
@@ -125,10 +104,10 @@ TEST(AnalyzeSmoothing, TheRadiusComesFromTheOptionThenTheScene) {
     std::ostringstream out, err;
     ASSERT_EQ(run_job(rod_run(dir.path, {"output.smoothing_radius=2 mm"}), out, err), kExitOk) << err.str();
     ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
-    EXPECT_DOUBLE_EQ(read_csv(dir.path / "analysis" / "rod_triangles.csv").at("smoothing_radius_mm").front(), 2.0);
+    EXPECT_DOUBLE_EQ(peensim::testing::read_csv_columns(dir.path / "analysis" / "rod_triangles.csv").at("smoothing_radius_mm").front(), 2.0);
     std::ostringstream aout;
     ASSERT_EQ(analyze_job(dir.path.string(), aout, err, {.smoothing_radius = "1.5 mm"}), kExitOk) << err.str();
-    EXPECT_DOUBLE_EQ(read_csv(dir.path / "analysis" / "rod_triangles.csv").at("smoothing_radius_mm").front(), 1.5);
+    EXPECT_DOUBLE_EQ(peensim::testing::read_csv_columns(dir.path / "analysis" / "rod_triangles.csv").at("smoothing_radius_mm").front(), 1.5);
     EXPECT_NE(aout.str().find("set by --smoothing-radius"), std::string::npos) << aout.str();
     for (const char* bad : {"-1 mm", "2 kg", "5 m", "wide"}) {
         std::ostringstream e;

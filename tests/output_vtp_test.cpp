@@ -1,7 +1,7 @@
-// The .vtp writers checked with a real VTK reader: Debian's python3-vtk9 (installed by
+// The .vtp writers checked with a real VTK reader: VTK's Python modules in Debian's python3-paraview (installed by
 // .ci/install-deps) reads each file with vtkXMLPolyDataReader and prints counts, array names
 // and values (floats as Python repr, which round-trips exactly); the tests compare them with
-// what was written, bit for bit. A missing python3-vtk9 is a test failure, not a skip.
+// what was written, bit for bit. A missing VTK Python is a test failure, not a skip.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,13 +22,14 @@
 #include "output/vtk_collection.h"
 #include "output/vtp_writer.h"
 #include "support/vtk_python.h"
+#include "support/shell_command.h"
 
 namespace peensim {
 namespace {
 
 namespace fs = std::filesystem;
 
-using testing::kSystemPython;  // Debian's, which sees python3-vtk9
+using testing::kSystemPython;  // Debian's, which sees python3-paraview's VTK
 
 constexpr const char* kVtkDumpScript = R"PY(
 import sys
@@ -80,14 +81,9 @@ struct VtkDump {
 };
 
 std::string run(const std::string& command, int& exit_status) {
-    std::string output;
-    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-    if (pipe == nullptr) return "popen failed";
-    char chunk[4096];
-    std::size_t n = 0;
-    while ((n = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) output.append(chunk, n);
-    exit_status = ::pclose(pipe);
-    return output;
+    peensim::testing::ShellResult r = peensim::testing::run_shell(command);
+    exit_status = r.status;
+    return std::move(r.output);
 }
 
 bool vtk_python_available(std::string& why) {
@@ -99,8 +95,8 @@ bool vtk_python_available(std::string& why) {
 #define ASSERT_VTK_PYTHON()                                                                                                          \
     do {                                                                                                                             \
         std::string why;                                                                                                             \
-        ASSERT_TRUE(vtk_python_available(why)) << "python3-vtk9 is missing (needed to check .vtp files with a real VTK reader): "    \
-                                               << "install it with `apt-get install python3-vtk9` (.ci/install-deps does). " << why; \
+        ASSERT_TRUE(vtk_python_available(why)) << "VTK's Python (python3-paraview) is missing (needed to check .vtp files with a real VTK reader): "    \
+                                               << "install it with `apt-get install python3-paraview` (.ci/install-deps does). " << why; \
     } while (0)
 
 // `indices`: "all" or a comma list of the point/cell/tuple indices to print.

@@ -1,5 +1,5 @@
 // The ParaView outputs of a run and its analysis (README "ParaView"), read back with VTK's own
-// readers (python3-vtk9, tests/support/vtk_python.h): the assembly in the world frame at t = 0,
+// readers (VTK's Python from python3-paraview, tests/support/vtk_python.h): the assembly in the world frame at t = 0,
 // the shot-position series against the closed-form flight and across a resume, the moving
 // components' poses, the coverage series against the analysis' coverage curve, the field names of
 // every file; and the ParaView script run by ParaView itself (pvbatch under Xvfb), rendering a
@@ -29,6 +29,7 @@
 #include "support/temp_dir.h"
 #include "support/test_scene.h"
 #include "support/vtk_python.h"
+#include "support/shell_command.h"
 
 namespace peensim {
 namespace {
@@ -386,14 +387,9 @@ std::map<std::string, DescribedItem> described(const std::string& output) {
 }
 
 std::string run_command(const std::string& command, int& status) {
-    std::string output;
-    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-    if (pipe == nullptr) return "popen failed";
-    char chunk[4096];
-    std::size_t n = 0;
-    while ((n = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) output.append(chunk, n);
-    status = ::pclose(pipe);
-    return output;
+    testing::ShellResult r = testing::run_shell(command);
+    status = r.status;
+    return std::move(r.output);
 }
 
 // `command` run with a virtual X display of its own (pvbatch needs one): Xvfb picks a free display

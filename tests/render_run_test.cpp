@@ -21,6 +21,7 @@
 #include "render/video_encoder.h"
 #include "scene/scene_parser.h"
 #include "support/temp_dir.h"
+#include "support/shell_command.h"
 
 namespace fs = std::filesystem;
 using peensim::testing::TempDir;
@@ -73,14 +74,8 @@ std::string ffprobe(const fs::path& mp4) {
     const std::string command =
         "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
         "stream=nb_read_frames,width,height -of csv=p=0 '" +
-        mp4.string() + "' 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    std::string text;
-    std::array<char, 256> buffer{};
-    while (pipe && std::fgets(buffer.data(), buffer.size(), pipe)) text += buffer.data();
-    if (pipe) ::pclose(pipe);
-    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-    return text;
+        mp4.string() + "'";
+    return peensim::testing::trimmed(peensim::testing::run_shell(command).output);
 }
 
 }  // namespace
@@ -230,13 +225,7 @@ TEST(RenderRun, ThePeensimBinaryDoesNotLinkOpenGL) {
     // OSMesa (and the LLVM it brings, ~50 MB resident) is loaded only by a run that renders:
     // the binary itself must not depend on it.
     if (std::system("command -v ldd >/dev/null 2>&1") != 0) GTEST_SKIP() << "no ldd";
-    const std::string command = std::string("ldd '") + PEENSIM_BINARY + "' 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    std::string text;
-    std::array<char, 256> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe)) text += buffer.data();
-    ::pclose(pipe);
+    const std::string text = peensim::testing::run_shell(std::string("ldd '") + PEENSIM_BINARY + "'").output;
     EXPECT_NE(text.find("libc.so"), std::string::npos) << text;
     EXPECT_EQ(text.find("libOSMesa"), std::string::npos) << text;
     EXPECT_EQ(text.find("libLLVM"), std::string::npos) << text;

@@ -13,6 +13,7 @@
 
 #include "render/video_encoder.h"
 #include "support/temp_dir.h"
+#include "support/shell_command.h"
 
 namespace peensim::render {
 namespace {
@@ -31,12 +32,7 @@ std::string probe(const std::string& ffprobe_path, const std::string& video) {
                                 " -v error -count_frames -select_streams v:0 -show_entries stream=width,height,nb_read_frames"
                                 " -of csv=p=0 '" +
                                 video + "'";
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen(command.c_str(), "r"), ::pclose);
-    std::string out;
-    std::array<char, 256> buffer{};
-    while (pipe && std::fgets(buffer.data(), buffer.size(), pipe.get()) != nullptr) out += buffer.data();
-    while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-    return out;
+    return peensim::testing::trimmed(peensim::testing::run_shell(command).output);
 }
 
 RgbaImage frame(int w, int h, int index) {

@@ -4,24 +4,11 @@
 #include <string_view>
 #include <vector>
 
+#include "output/xml_text.h"
+
 namespace peensim {
 
 namespace {
-
-std::string escaped(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
 
 // **bold** and `code` inside a line of text (escaped); other characters as they are.
 std::string inline_html(std::string_view text) {
@@ -30,7 +17,7 @@ std::string inline_html(std::string_view text) {
         if (text[i] == '`') {
             const std::size_t end = text.find('`', i + 1);
             if (end != std::string_view::npos) {
-                out += "<code>" + escaped(text.substr(i + 1, end - i - 1)) + "</code>";
+                out += "<code>" + xml_text(text.substr(i + 1, end - i - 1)) + "</code>";
                 i = end + 1;
                 continue;
             }
@@ -43,7 +30,7 @@ std::string inline_html(std::string_view text) {
                 continue;
             }
         }
-        out += escaped(text.substr(i, 1));
+        out += xml_text(text.substr(i, 1));
         ++i;
     }
     return out;
@@ -103,7 +90,7 @@ std::string markdown_to_html(const std::string& markdown, const std::string& tit
     std::istringstream in(markdown);
     for (std::string l; std::getline(in, l);) lines.push_back(l);
     std::ostringstream h;
-    h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << escaped(title) << "</title>\n<style>" << kStyle
+    h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << xml_text(title) << "</title>\n<style>" << kStyle
       << "</style>\n</head>\n<body>\n";
     std::string paragraph;  // text lines of the paragraph being read
     const auto end_paragraph = [&] {
@@ -127,7 +114,7 @@ std::string markdown_to_html(const std::string& markdown, const std::string& tit
             end_paragraph();
             h << "<pre>";
             for (; i < lines.size() && (starts_with(lines[i], "    ") || lines[i].empty()); ++i)
-                if (!lines[i].empty()) h << escaped(std::string_view(lines[i]).substr(4)) << "\n";
+                if (!lines[i].empty()) h << xml_text(std::string_view(lines[i]).substr(4)) << "\n";
             h << "</pre>\n";
         } else if (starts_with(line, "- ")) {
             end_paragraph();
@@ -149,8 +136,8 @@ std::string markdown_to_html(const std::string& markdown, const std::string& tit
         } else if (image_line(line, alt, src)) {
             end_paragraph();
             const std::optional<std::string> bytes = image_bytes(src);
-            const std::string target = bytes ? "data:image/png;base64," + base64(*bytes) : escaped(src);
-            h << "<figure><img src=\"" << target << "\" alt=\"" << escaped(alt) << "\"><figcaption>" << inline_html(alt)
+            const std::string target = bytes ? "data:image/png;base64," + base64(*bytes) : xml_text(src);
+            h << "<figure><img src=\"" << target << "\" alt=\"" << xml_text(alt) << "\"><figcaption>" << inline_html(alt)
               << "</figcaption></figure>\n";
             ++i;
         } else {

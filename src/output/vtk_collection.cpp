@@ -2,27 +2,9 @@
 
 #include <charconv>
 
+#include "output/xml_text.h"
+
 namespace peensim {
-
-namespace {
-
-// `text` as an XML attribute value.
-std::string attribute(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
-
-}  // namespace
 
 void write_pvd(const std::string& path, std::span<const TimeStepFile> steps, Durability durability) {
     std::string xml =
@@ -32,7 +14,7 @@ void write_pvd(const std::string& path, std::span<const TimeStepFile> steps, Dur
     char time[32];
     for (const TimeStepFile& s : steps) {
         const auto end = std::to_chars(time, time + sizeof time, s.time_s).ptr;  // shortest round-trip form
-        xml += "    <DataSet timestep=\"" + std::string(time, end) + "\" part=\"0\" file=\"" + attribute(s.file) + "\"/>\n";
+        xml += "    <DataSet timestep=\"" + std::string(time, end) + "\" part=\"0\" file=\"" + xml_text(s.file) + "\"/>\n";
     }
     xml += "  </Collection>\n</VTKFile>\n";
     write_file_atomically(path, xml, durability);
@@ -44,8 +26,8 @@ void write_vtm(const std::string& path, std::span<const NamedBlock> blocks) {
         "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
         "  <vtkMultiBlockDataSet>\n";
     for (std::size_t i = 0; i < blocks.size(); ++i) {
-        xml += "    <DataSet index=\"" + std::to_string(i) + "\" name=\"" + attribute(blocks[i].name) + "\" file=\"" +
-               attribute(blocks[i].file) + "\"/>\n";
+        xml += "    <DataSet index=\"" + std::to_string(i) + "\" name=\"" + xml_text(blocks[i].name) + "\" file=\"" +
+               xml_text(blocks[i].file) + "\"/>\n";
     }
     xml += "  </vtkMultiBlockDataSet>\n</VTKFile>\n";
     write_file_atomically(path, xml);

@@ -91,6 +91,13 @@ GLint uniform(const Program& program, const char* name) {
 
 Eigen::Matrix4f to_float(const Mat4& m) { return m.cast<float>(); }
 
+void vertex_attribute(GLuint index, GLint components, GLenum type, std::size_t stride, std::size_t offset, Step step) {
+    glEnableVertexAttribArray(index);
+    glVertexAttribPointer(index, components, type, type == GL_UNSIGNED_BYTE ? GL_TRUE : GL_FALSE, static_cast<GLsizei>(stride),
+                          reinterpret_cast<const void*>(offset));
+    glVertexAttribDivisor(index, step == Step::instance ? 1 : 0);
+}
+
 void check_errors(const char* where) {
     const GLenum error = glGetError();
     if (error != GL_NO_ERROR) {

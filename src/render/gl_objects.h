@@ -3,6 +3,7 @@
 // render/: the objects must be created and destroyed while their context is current.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <utility>
 
@@ -64,5 +65,11 @@ Eigen::Matrix4f to_float(const Mat4& m);
 
 // Throws std::runtime_error "render: OpenGL error <code> <where>" when GL has an error flagged.
 void check_errors(const char* where);
+
+// How the bound vertex array reads the bound array buffer's attribute `index`: `components`
+// values of `type` at byte `offset` of every record of `stride` bytes (GL_UNSIGNED_BYTE values are
+// normalised to 0..1: colours). Records per vertex, or per instance (`Step::instance`).
+enum class Step { vertex, instance };
+void vertex_attribute(GLuint index, GLint components, GLenum type, std::size_t stride, std::size_t offset, Step step);
 
 }  // namespace peensim::render::gl

@@ -64,15 +64,9 @@ GlowLayer::GlowLayer()
     u_viewport_ = gl::uniform(program_, "viewport");
     glBindVertexArray(vao_.get());
     glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Instance), reinterpret_cast<const void*>(offsetof(Instance, x)));
-    glVertexAttribDivisor(0, 1);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 1, GL_FLOAT, GL_FALSE, sizeof(Instance), reinterpret_cast<const void*>(offsetof(Instance, radius_px)));
-    glVertexAttribDivisor(1, 1);
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance), reinterpret_cast<const void*>(offsetof(Instance, colour)));
-    glVertexAttribDivisor(2, 1);
+    gl::vertex_attribute(0, 4, GL_FLOAT, sizeof(Instance), offsetof(Instance, x), gl::Step::instance);
+    gl::vertex_attribute(1, 1, GL_FLOAT, sizeof(Instance), offsetof(Instance, radius_px), gl::Step::instance);
+    gl::vertex_attribute(2, 4, GL_UNSIGNED_BYTE, sizeof(Instance), offsetof(Instance, colour), gl::Step::instance);
     glBindVertexArray(0);
     gl::check_errors("while setting up the impact glows");
 }

@@ -81,8 +81,7 @@ std::size_t MeshLayer::add(const TriangleMesh& mesh, const MeshStyle& style) {
     glBindVertexArray(gpu.vao.get());
     glBindBuffer(GL_ARRAY_BUFFER, gpu.vertices.get());
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    gl::vertex_attribute(0, 3, GL_FLOAT, 3 * sizeof(float), 0, gl::Step::vertex);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indices.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(), GL_STATIC_DRAW);
     glBindVertexArray(0);

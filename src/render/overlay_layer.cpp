@@ -60,12 +60,9 @@ OverlayLayer::OverlayLayer(FontAtlas atlas)
 
     glBindVertexArray(vao_.get());
     glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, x)));
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, u)));
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, colour)));
+    gl::vertex_attribute(0, 2, GL_FLOAT, sizeof(Vertex), offsetof(Vertex, x), gl::Step::vertex);
+    gl::vertex_attribute(1, 2, GL_FLOAT, sizeof(Vertex), offsetof(Vertex, u), gl::Step::vertex);
+    gl::vertex_attribute(2, 4, GL_UNSIGNED_BYTE, sizeof(Vertex), offsetof(Vertex, colour), gl::Step::vertex);
     glBindVertexArray(0);
     gl::check_errors("while setting up the overlay");
 }

@@ -96,12 +96,8 @@ SphereLayer::SphereLayer()
     u_light_ = gl::uniform(program_, "light");
     glBindVertexArray(vao_.get());
     glBindBuffer(GL_ARRAY_BUFFER, buffer_.get());
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(Instance), reinterpret_cast<const void*>(offsetof(Instance, x)));
-    glVertexAttribDivisor(0, 1);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Instance), reinterpret_cast<const void*>(offsetof(Instance, colour)));
-    glVertexAttribDivisor(1, 1);
+    gl::vertex_attribute(0, 4, GL_FLOAT, sizeof(Instance), offsetof(Instance, x), gl::Step::instance);
+    gl::vertex_attribute(1, 4, GL_UNSIGNED_BYTE, sizeof(Instance), offsetof(Instance, colour), gl::Step::instance);
     glBindVertexArray(0);
     gl::check_errors("while setting up the sphere impostors");
 }

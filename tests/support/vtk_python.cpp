@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "support/shell_command.h"
+
 namespace peensim::testing {
 
 namespace {
@@ -92,14 +94,7 @@ nlohmann::json run_dump(const std::string& path) {
     const std::string messages = script + ".messages";
     std::ofstream(script) << kDumpScript;
     std::remove(messages.c_str());
-    const std::string command = std::string(kSystemPython) + " " + script + " '" + path + "' '" + messages + "' 2>&1";
-    std::string output;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) throw std::runtime_error("popen failed");
-    char chunk[65536];
-    std::size_t n = 0;
-    while ((n = std::fread(chunk, 1, sizeof chunk, pipe)) > 0) output.append(chunk, n);
-    const int status = ::pclose(pipe);
+    const auto [status, output] = run_shell(std::string(kSystemPython) + " " + script + " '" + path + "' '" + messages + "'");
     std::ifstream in(messages);
     const std::string vtk_messages((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     std::remove(script.c_str());

@@ -1,4 +1,4 @@
-// ParaView files read back with VTK's own readers (Debian's python3-vtk9, run as a child python3):
+// ParaView files read back with VTK's own readers (VTK's Python modules of Debian's python3-paraview, run as a child python3):
 // a .vtp with vtkXMLPolyDataReader, a .vtm with vtkXMLMultiBlockDataReader (its blocks by name),
 // a .pvd's steps (the collection's XML, each step's file with vtkXMLPolyDataReader). Everything
 // the reader saw comes back as values (floats printed in Python's repr, which round-trips), so
@@ -14,7 +14,7 @@
 
 namespace peensim::testing {
 
-// Debian's interpreter: python3-vtk9 installs into /usr/lib/python3/dist-packages, which a
+// Debian's interpreter: python3-paraview installs VTK into /usr/lib/python3/dist-packages, which a
 // python3 earlier on PATH (pyenv, venv) does not see.
 inline constexpr const char* kSystemPython = "/usr/bin/python3";
 
@@ -49,7 +49,7 @@ struct VtkReadStep {
 };
 
 // What went wrong is thrown as std::runtime_error with the reader's whole output (a missing
-// python3-vtk9 included: a test failure, not a skip).
+// VTK's Python included: a test failure, not a skip).
 VtkReadPolyData read_vtp_with_vtk(const std::string& path);
 std::vector<VtkReadBlock> read_vtm_with_vtk(const std::string& path);
 std::vector<VtkReadStep> read_pvd_with_vtk(const std::string& path);
