@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <utility>
 
+#include "analysis/area_percentile.h"
 #include "app/paraview_assembly.h"
 #include "app/paraview_shot_series.h"
 #include "output/atomic_file.h"
@@ -352,18 +353,8 @@ else:
 double area_percentile_98(const ComponentAnalysis& a, double duration_s) {
     const TriangleFields& f = *a.fields;
     std::vector<std::pair<double, double>> rate_area;  // impacts per mm2 per s, m2
-    double total = 0.0;
-    for (std::size_t t = 0; t < f.triangle_count(); ++t) {
-        rate_area.emplace_back(f.rate_per_mm2_s(t, duration_s), f.area_m2(t));
-        total += f.area_m2(t);
-    }
-    std::sort(rate_area.begin(), rate_area.end());
-    double below = 0.0;
-    for (const auto& [rate, area] : rate_area) {
-        below += area;
-        if (below >= 0.98 * total) return rate;
-    }
-    return rate_area.empty() ? 0.0 : rate_area.back().first;
+    for (std::size_t t = 0; t < f.triangle_count(); ++t) rate_area.emplace_back(f.rate_per_mm2_s(t, duration_s), f.area_m2(t));
+    return area_percentile(std::move(rate_area), 0.98);
 }
 
 // m/s, the top of the speed colour scales (shot and impacts alike): the animation's scale when the

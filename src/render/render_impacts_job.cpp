@@ -11,6 +11,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "analysis/area_percentile.h"
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "model/model.h"
@@ -69,25 +70,14 @@ std::vector<double> read_column(const fs::path& csv, const std::string& column) 
     return values;
 }
 
-// The colour scale's top: the value that 98 % of the part's area does not exceed. A plain maximum
-// is set by a tiny triangle that took one impact (its rate per mm2 is huge), leaving the rest of
-// the map in the bottom colour; values above are drawn in the top colour.
+// The colour scale's top: the value that 98 % of the part's area does not exceed (values above are
+// drawn in the top colour).
 double robust_top(const TriangleMesh& mesh, const std::vector<double>& values) {
     std::vector<std::pair<double, double>> by_value;  // (value, area m2)
-    double total = 0.0;
-    for (std::size_t t = 0; t < values.size(); ++t) {
-        if (!std::isfinite(values[t])) continue;
-        const double area = 0.5 * (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).norm();
-        by_value.emplace_back(values[t], area);
-        total += area;
-    }
-    std::sort(by_value.begin(), by_value.end());
-    double covered = 0.0;
-    for (const auto& [value, area] : by_value) {
-        covered += area;
-        if (covered >= 0.98 * total) return value;
-    }
-    return by_value.empty() ? 0.0 : by_value.back().first;
+    for (std::size_t t = 0; t < values.size(); ++t)
+        if (std::isfinite(values[t]))
+            by_value.emplace_back(values[t], 0.5 * (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).norm());
+    return area_percentile(std::move(by_value), 0.98);
 }
 
 std::string percent_text(double fraction) {
