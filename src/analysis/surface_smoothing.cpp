@@ -205,28 +205,33 @@ void SurfaceSmoothing::build_neighbour_grid() {
     for (std::size_t k = 0; k < centroid_.size(); ++k) grid_patch_[fill[cube_of(centroid_[k])]++] = static_cast<std::uint32_t>(k);
 }
 
-std::int64_t SurfaceSmoothing::patch_for(const Vec3& p, const Vec3& unit_normal, int facing) const {
-    const std::int64_t direct = find(key_of(p, facing));
-    if (direct >= 0) return direct;
-    // The surface only grazes this bin: the nearest patch around that faces the same way.
+template <typename Visit>
+void SurfaceSmoothing::for_each_patch_near(const Vec3& p, Visit&& visit) const {
     std::int64_t lo[3], hi[3];
     for (int k = 0; k < 3; ++k) {
-        const auto i = static_cast<std::int64_t>(std::floor((p[k] - grid_min_[k]) / grid_cell_));
+        const double f = std::floor((p[k] - grid_min_[k]) / grid_cell_);
+        const auto i = static_cast<std::int64_t>(std::clamp(f, -2.0, static_cast<double>(grid_dims_[k] + 1)));
         lo[k] = std::max<std::int64_t>(i - 1, 0);
         hi[k] = std::min(i + 1, grid_dims_[k] - 1);
     }
-    std::int64_t best = -1;
-    double best_d2 = 4.0 * cell_ * cell_;  // m2: no farther than 2 c
     for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
         for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
             for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
                 const auto g = static_cast<std::size_t>((z * grid_dims_[1] + y) * grid_dims_[0] + x);
-                for (std::uint32_t k = grid_start_[g]; k < grid_start_[g + 1]; ++k) {
-                    const std::uint32_t q = grid_patch_[k];
-                    const double d2 = (centroid_[q] - p).squaredNorm();
-                    if (d2 < best_d2 && normal_[q].dot(unit_normal) > 0.0) best_d2 = d2, best = q;
-                }
+                for (std::uint32_t k = grid_start_[g]; k < grid_start_[g + 1]; ++k) visit(grid_patch_[k]);
             }
+}
+
+std::int64_t SurfaceSmoothing::patch_for(const Vec3& p, const Vec3& unit_normal, int facing) const {
+    const std::int64_t direct = find(key_of(p, facing));
+    if (direct >= 0) return direct;
+    // The surface only grazes this bin: the nearest patch around that faces the same way.
+    std::int64_t best = -1;
+    double best_d2 = 4.0 * cell_ * cell_;  // m2: no farther than 2 c
+    for_each_patch_near(p, [&](std::uint32_t q) {
+        const double d2 = (centroid_[q] - p).squaredNorm();
+        if (d2 < best_d2 && normal_[q].dot(unit_normal) > 0.0) best_d2 = d2, best = q;
+    });
     return best;
 }
 
@@ -284,41 +289,28 @@ SmoothedSums SurfaceSmoothing::at(const Vec3& x, const Vec3& n) const {
     SmoothedSums s;
     if (centroid_.empty() || !(n.squaredNorm() > 0.0)) return s;
     const double r2 = radius_ * radius_, inv_r2 = 1.0 / r2;
-    std::int64_t lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) {
-        const double f = std::floor((x[k] - grid_min_[k]) / grid_cell_);
-        const auto i = static_cast<std::int64_t>(std::clamp(f, -2.0, static_cast<double>(grid_dims_[k] + 1)));
-        lo[k] = std::max<std::int64_t>(i - 1, 0);
-        hi[k] = std::min(i + 1, grid_dims_[k] - 1);
-    }
-    for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-            for (std::int64_t gx = lo[0]; gx <= hi[0]; ++gx) {
-                const auto g = static_cast<std::size_t>((z * grid_dims_[1] + y) * grid_dims_[0] + gx);
-                for (std::uint32_t k = grid_start_[g]; k < grid_start_[g + 1]; ++k) {
-                    const std::uint32_t p = grid_patch_[k];
-                    const double facing = n.dot(normal_[p]);
-                    if (facing <= 0.0) continue;
-                    const double d2 = (centroid_[p] - x).squaredNorm();
-                    if (d2 < r2) {
-                        const double w = quartic(d2, inv_r2) * facing;
-                        s.area_m2 += w * area_[p];
-                        s.covered_m2 += w * covered_[p];
-                        s.sampled_m2 += w * sampled_[p];
-                    }
-                    const ImpactSums& hits = impacts_[p];
-                    const double count = hits.count;
-                    if (count > 0.0) {
-                        const double dq2 = (hits.point_sum / count - x).squaredNorm();
-                        if (dq2 >= r2) continue;
-                        const double w = quartic(dq2, inv_r2) * facing;
-                        s.impacts += w * count;
-                        s.impacts_sq += w * w * count;
-                        s.energy_J += w * hits.energy_J;
-                        s.vn_sum_m_per_s += w * hits.vn_sum;
-                    }
-                }
-            }
+    for_each_patch_near(x, [&](std::uint32_t p) {
+        const double facing = n.dot(normal_[p]);
+        if (facing <= 0.0) return;
+        const double d2 = (centroid_[p] - x).squaredNorm();
+        if (d2 < r2) {
+            const double w = quartic(d2, inv_r2) * facing;
+            s.area_m2 += w * area_[p];
+            s.covered_m2 += w * covered_[p];
+            s.sampled_m2 += w * sampled_[p];
+        }
+        const ImpactSums& hits = impacts_[p];
+        const double count = hits.count;
+        if (count > 0.0) {
+            const double dq2 = (hits.point_sum / count - x).squaredNorm();
+            if (dq2 >= r2) return;
+            const double w = quartic(dq2, inv_r2) * facing;
+            s.impacts += w * count;
+            s.impacts_sq += w * w * count;
+            s.energy_J += w * hits.energy_J;
+            s.vn_sum_m_per_s += w * hits.vn_sum;
+        }
+    });
     return s;
 }
 

@@ -105,6 +105,10 @@ private:
     std::int64_t find(std::uint64_t key) const;
     std::uint32_t insert(std::uint64_t key);
     void build_neighbour_grid();
+    // Calls visit(patch) for every patch in the neighbour grid's cube holding p and the 26 around
+    // it (none for a point more than a cube outside the grid).
+    template <typename Visit>
+    void for_each_patch_near(const Vec3& p, Visit&& visit) const;
 
     const TriangleMesh* mesh_;
     double radius_ = 0.0;                // m
