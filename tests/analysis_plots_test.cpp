@@ -71,7 +71,7 @@ TEST(AnalysisPlots, RendersCoverageAndHistogramPngsOfTheRequestedSize) {
     TempDir dir;
     write_csvs(dir.path, "gear", true);
     std::string note = "stale";
-    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear"}, note);
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear"}, 0.98, note);
     EXPECT_EQ(note, "");
     ASSERT_EQ(pngs.size(), 2u);
     EXPECT_EQ(pngs[0], (dir.path / "gear_coverage.png").string());
@@ -102,7 +102,7 @@ TEST(AnalysisPlots, RegionAndAlmenPlotsWhenTheirTablesExist) {
     write(dir.path / "model_almen.csv",
           "time_s,dose_J_per_m2,arc_height_mm,dent_area_ratio,predicted_arc_height_mm\n0,0,,0,0\n1,2,,0.1,0.04\n2,4,,0.2,0.07\n");
     std::string note;
-    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear", "strip", "bare", "model"}, note);
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear", "strip", "bare", "model"}, 0.98, note);
     EXPECT_EQ(note, "");
     ASSERT_EQ(pngs.size(), 4u);
     EXPECT_EQ(pngs[0], (dir.path / "gear_regions.png").string());
@@ -126,7 +126,7 @@ TEST(AnalysisPlots, EmptyHistogramPanelAndQuotedNamesStillRender) {
     const std::string name = "Tom's gear_1";  // a quote for the shell and gnuplot, an _ for enhanced text
     write_csvs(dir.path, name, false);        // no dent rows: material without yield_stress
     std::string note;
-    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {name}, note);
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {name}, 0.98, note);
     EXPECT_EQ(note, "");
     ASSERT_EQ(pngs.size(), 2u);
     for (const std::string& png : pngs) EXPECT_TRUE(read_png_info(png).signature_ok) << png;
@@ -137,7 +137,7 @@ TEST(AnalysisPlots, MissingCsvsGiveNoPlotAndNoError) {
     TempDir dir;
     write(dir.path / "rod_histograms.csv", "region,quantity,bin_low,bin_high,unit,count\nall,normal_speed,0,0.25,m/s,2\n");
     std::string note;
-    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"rod", "absent"}, note);
+    const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"rod", "absent"}, 0.98, note);
     EXPECT_EQ(note, "");
     ASSERT_EQ(pngs.size(), 1u);  // rod has no coverage CSV (no yield stress), "absent" nothing
     EXPECT_EQ(pngs[0], (dir.path / "rod_histograms.png").string());
@@ -150,7 +150,7 @@ TEST(AnalysisPlots, WithoutGnuplotOnPathNoPngAndANote) {
     std::vector<std::string> pngs;
     {
         const PathOverride empty_path(dir.path.string());  // a directory without gnuplot
-        pngs = write_analysis_plots(dir.path.string(), {"gear"}, note);
+        pngs = write_analysis_plots(dir.path.string(), {"gear"}, 0.98, note);
     }
     EXPECT_TRUE(pngs.empty());
     EXPECT_EQ(note, kNoGnuplotNote);

@@ -8,7 +8,9 @@
 #include <numbers>
 #include <string>
 
+#include "analysis/coverage_progress.h"
 #include "analysis/region_stats.h"
+#include "analysis/sample_classes.h"
 #include "analysis/regions.h"
 #include "common/input_error.h"
 #include "geometry/box_mesh.h"
@@ -244,13 +246,12 @@ TEST(AnalysisRegions, StatsOfATallyAndCoverageOverThePeenedArea) {
     const RegionSet regions(cube, {top});
     RegionTally tally;
     const double shot_mass = 0.01;  // kg
-    for (double v : {2.0, 4.0, 3.0}) tally.add(v, 0.5 * shot_mass * v * v, 1e-4, 0);
+    for (double v : {2.0, 4.0, 3.0}) tally.add(v, 0.5 * shot_mass * v * v);
     const double duration = 2.0;  // s
-    const std::vector<double> everywhere(cube.triangle_count(), 1.0);
-    const RegionStats s = region_stats(regions, 0, tally, nullptr, everywhere, duration);
+    const RegionStats s = region_stats(regions, 0, tally, nullptr, duration);
     EXPECT_EQ(s.triangles, 8u);
     EXPECT_NEAR(s.area_m2, 1.0, 1e-15);
-    EXPECT_NEAR(s.peened_area_m2, 1.0, 1e-15);
+    EXPECT_TRUE(std::isnan(s.peened_area_m2));  // no coverage: no peened area either
     EXPECT_EQ(s.impacts, 3u);
     EXPECT_NEAR(s.impacts_per_mm2_s, 3.0 / 1e6 / duration, 1e-20);
     EXPECT_NEAR(s.mean_normal_speed, 3.0, 1e-15);
@@ -258,17 +259,25 @@ TEST(AnalysisRegions, StatsOfATallyAndCoverageOverThePeenedArea) {
     EXPECT_NEAR(s.energy_per_area, 0.5 * shot_mass * (4.0 + 16.0 + 9.0) / 1.0, 1e-15);
     EXPECT_TRUE(std::isnan(s.coverage));
 
-    // A dent of 0.00785 m2 on the top face; half the face out of reach: coverage over the other half.
-    CoverageMap coverage(cube, 0.01, 0.13);
-    coverage.add_dent(Vec3(0.25, 0.25, 0.5), 0.1);
-    EXPECT_NEAR(region_stats(regions, 0, tally, &coverage, everywhere, duration).coverage, pi * 0.05 * 0.05, 2e-3);
-    std::vector<double> peened = everywhere;
-    for (std::size_t t = 0; t < cube.triangle_count(); ++t)
-        if (centroid(cube, t).x() < 0.0) peened[t] = 0.0;
-    const RegionStats half = region_stats(regions, 0, tally, &coverage, peened, duration);
-    EXPECT_NEAR(half.peened_area_m2, 0.5, 1e-15);
+    // A dent of 0.00785 m2 on the top face, everything in reach, then half of the cube out of reach
+    // (x < 0): coverage over the other half.
+    const auto progress = [&](const ReachTest& reach) {
+        auto map = std::make_unique<CoverageMap>(cube, 0.01, 0.13);
+        SampleClasses classes(*map, cube, regions, reach, 0.01, 0.05);
+        CoverageProgress p(std::move(map), std::move(classes), 0.98);
+        p.add_dent(Vec3(0.25, 0.25, 0.5), 0.1, 1.0);
+        return p;
+    };
+    const CoverageProgress all = progress([](const Vec3&, std::size_t, double) { return true; });
+    const RegionStats whole = region_stats(regions, 0, tally, &all, duration);
+    EXPECT_NEAR(whole.peened_area_m2, 1.0, 1e-12);
+    EXPECT_NEAR(whole.coverage, pi * 0.05 * 0.05, 2e-3);
+    const CoverageProgress half_reach = progress([](const Vec3& p, std::size_t, double) { return p.x() >= 0.0; });
+    const RegionStats half = region_stats(regions, 0, tally, &half_reach, duration);
+    EXPECT_NEAR(half.peened_area_m2, 0.5, 1e-12);
+    EXPECT_NEAR(half.unreachable_area_m2, 0.5, 1e-12);
     EXPECT_NEAR(half.coverage, pi * 0.05 * 0.05 / 0.5, 4e-3);
-    EXPECT_NEAR(peened_coverage(coverage, peened), coverage.covered_area() / 3.0, 1e-12);  // 6 faces, 3 m2 peened
+    EXPECT_NEAR(half_reach.coverage(), half_reach.map().covered_area() / 3.0, 1e-12);  // 6 faces, 3 m2 peened
 }
 
 }  // namespace

@@ -69,6 +69,37 @@ TEST(AlmenFitJob, FitsAMeasuredCurveAndWritesItsFigures) {
     EXPECT_TRUE(j["warnings"].empty());
 }
 
+// No output writes over the curve: `--plot X.png` next to X.csv keeps X.csv (its points go to
+// X_points.csv), and an output that is the curve itself is refused before anything is written.
+TEST(AlmenFitJob, NoOutputWritesOverTheCurve) {
+    TempDir dir;
+    const std::string text = exact_curve_csv({1, 2, 3, 4, 6, 8, 12, 16});
+    AlmenFitOptions o;
+    o.curve_path = write(dir.path / "curve.csv", text);
+    o.plot_path = (dir.path / "curve.png").string();
+    std::ostringstream out, err;
+    ASSERT_EQ(almen_fit_job(o, out, err), kExitOk) << err.str();
+    EXPECT_EQ(read_file(dir.path / "curve.csv"), text);
+    if (fs::exists(dir.path / "curve.png")) {
+        EXPECT_TRUE(fs::exists(dir.path / "curve_points.csv"));  // gnuplot present
+    }
+    AlmenFitOptions clash = o;
+    clash.curve_path = write(dir.path / "c_points.csv", text);
+    clash.plot_path = (dir.path / "c.png").string();
+    std::ostringstream out2, err2;
+    EXPECT_EQ(almen_fit_job(clash, out2, err2), kExitInputError);
+    EXPECT_NE(err2.str().find("--plot"), std::string::npos) << err2.str();
+    EXPECT_NE(err2.str().find("the curve being read"), std::string::npos) << err2.str();
+    EXPECT_FALSE(fs::exists(dir.path / "c.gp"));
+    AlmenFitOptions json = o;
+    json.plot_path.clear();
+    json.json_path = o.curve_path;
+    std::ostringstream out3, err3;
+    EXPECT_EQ(almen_fit_job(json, out3, err3), kExitInputError);
+    EXPECT_NE(err3.str().find("--json"), std::string::npos) << err3.str();
+    EXPECT_EQ(read_file(dir.path / "curve.csv"), text);
+}
+
 TEST(AlmenFitJob, WarnsWhereTheDataMissJ443sConditions) {
     TempDir dir;
     AlmenFitOptions o;

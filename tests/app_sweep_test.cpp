@@ -79,13 +79,76 @@ TEST(SweepStatistics, StudentsIntervalAndTheVerdict) {
     EXPECT_FALSE(mean_with_ci95({5.0}).ci95);
     EXPECT_EQ(*mean_with_ci95({5.0, NAN}).mean, 5.0);  // a missing figure is left out
     // Differs when |a - b| exceeds sqrt(ci_a^2 + ci_b^2) = 5.
-    EXPECT_EQ(compare_figures({10.0, 3.0}, {4.0, 4.0}).verdict, "differs");
-    EXPECT_EQ(compare_figures({8.0, 3.0}, {4.0, 4.0}).verdict, "within noise");
-    EXPECT_EQ(*compare_figures({8.0, 3.0}, {4.0, 4.0}).delta, 4.0);
-    EXPECT_EQ(compare_figures({8.0, std::nullopt}, {4.0, 4.0}).verdict, "-");
+    EXPECT_EQ(compare_figures({10.0, 3.0, ""}, {4.0, 4.0, ""}).verdict, "differs");
+    EXPECT_EQ(compare_figures({8.0, 3.0, ""}, {4.0, 4.0, ""}).verdict, "within noise");
+    EXPECT_EQ(*compare_figures({8.0, 3.0, ""}, {4.0, 4.0, ""}).delta, 4.0);
+    EXPECT_EQ(compare_figures({8.0, std::nullopt, ""}, {4.0, 4.0, ""}).verdict, "-");
 }
 
 // A small sweep of the rod: two shot counts, 20 ms, one seed.
+
+// The comparison reads what decides from each run's figures.json: the slowest region's time, the
+// time everywhere, uniformity and the share below the target, each with its interval and verdict.
+// Two variants whose whole-part times agree but whose slowest tooth halves must differ there.
+void write_fake_run(const fs::path& dir, double whole_s, double slow_tooth_s, double everywhere_s, double uniformity, double share_below,
+                    const std::string& too_short = "") {
+    fs::create_directories(dir / "analysis");
+    std::ofstream(dir / "summary.json") << R"({"finished": true, "normal_speed": [{"component": "gear", "p90_normal_speed_mps": 3.0}]})";
+    const auto forecast = [&](double t) {
+        if (!too_short.empty()) return std::string(R"({"status": "too_short", "time_s": 100, "run_for_s": )") + too_short + "}";
+        return R"({"status": "forecast", "time_s": )" + std::to_string(t) + R"(, "low_s": )" + std::to_string(0.95 * t) +
+               R"(, "high_s": )" + std::to_string(1.08 * t) + "}";
+    };
+    std::ofstream(dir / "analysis" / "figures.json")
+        << R"({"target_coverage": 0.9, "components": [{"component": "gear", "impact_rate_per_s": 1000, "mean_vn_mps": 2.0, "coverage": 0.1,)"
+        << R"("share_below_target": )" << share_below << R"(, "time_to_target": )" << forecast(whole_s)
+        << R"(, "time_to_target_everywhere": )" << forecast(everywhere_s) << R"(, "uniformity": {"value": )" << uniformity
+        << R"(, "low": )" << uniformity - 0.02 << R"(, "high": )" << uniformity + 0.02 << R"(}, "regions": [)"
+        << R"({"region": "tooth-0", "excluded": false, "impact_rate_per_s": 50, "coverage": 0.1, "time_to_target": )" << forecast(slow_tooth_s) << "},"
+        << R"({"region": "tooth-1", "excluded": false, "impact_rate_per_s": 60, "coverage": 0.2, "time_to_target": )" << forecast(0.5 * slow_tooth_s)
+        << "},"
+        << R"({"region": "bore", "excluded": true, "impact_rate_per_s": 0, "coverage": null, "time_to_target": {"status": "none"}}]}]})";
+}
+
+TEST(SweepCompare, TheSlowestRegionEverywhereUniformityAndShareBelowEachWithAVerdict) {
+    TempDir dir;
+    SweepPlan plan = plan_sweep({parse_sweep_axis("components[gear].motion.speed=0 rpm,30 rpm,60 rpm")}, 2, 1, {}, (dir.path / "s").string());
+    for (const SweepRun& run : plan.runs) {
+        const double jitter = run.replicate == 0 ? 1.0 : 1.02;
+        if (run.variant == 0) write_fake_run(run.dir, 450.0 * jitter, 1400.0 * jitter, 1500.0 * jitter, 0.35, 0.2 * jitter);
+        if (run.variant == 1) write_fake_run(run.dir, 455.0 * jitter, 700.0 * jitter, 720.0 * jitter, 0.8, 0.1 * jitter);
+        if (run.variant == 2) write_fake_run(run.dir, 0, 0, 0, 0.8, 0.1, run.replicate == 0 ? "600" : "900");
+    }
+    write_sweep_comparison(plan, (dir.path / "s" / "sweep").string(), "", "gear");
+    const std::string csv = read_file(dir.path / "s" / "sweep" / "comparison.csv");
+    const std::string header = csv.substr(0, csv.find('\n'));
+    for (const char* column : {"slowest_region_time_to_target_s", "slowest_region_time_to_target_s_ci95", "time_to_target_everywhere_s",
+                               "uniformity_ci95", "share_below_target_ci95", "verdict_slowest_region_time_to_target_s",
+                               "verdict_time_to_target_everywhere_s", "verdict_uniformity", "verdict_share_below_target", "verdict_time_to_target_s",
+                               "region_tooth-0_time_to_target_s", "region_tooth-0_time_to_target_ci95_s", "slowest_region"})
+        EXPECT_NE(header.find(std::string(",") + column), std::string::npos) << column << " in " << header;
+    const std::string report = read_file(dir.path / "s" / "sweep" / "report.md");
+    EXPECT_NE(report.find("## What decides: time to 90 %"), std::string::npos) << report;
+    // The 30 rpm row: the whole part's time is within noise, the slowest tooth halves and differs.
+    const auto row_of = [&](const std::string& text, const std::string& name) {
+        const auto b = text.find("| " + name + " |");
+        return b == std::string::npos ? std::string() : text.substr(b, text.find('\n', b) - b);
+    };
+    const std::string rotating = row_of(report, "speed-30rpm");
+    EXPECT_NE(rotating.find("| tooth-0 | 707 +- "), std::string::npos) << rotating;
+    EXPECT_NE(rotating.find("(differs) | 727.2 +- "), std::string::npos) << rotating;
+    EXPECT_NE(rotating.find("(within noise) |"), std::string::npos) << rotating;  // the whole part: 459.5 vs 454.5
+    EXPECT_EQ(rotating.find("within noise"), rotating.rfind("within noise")) << rotating;  // only there
+    // A variant whose runs are too short says so and how long to run, instead of a number.
+    EXPECT_NE(row_of(report, "speed-60rpm").find("too short: run 900 s"), std::string::npos) << report;
+    // The one-seed interval is the run's own (its wider side).
+    SweepPlan one = plan_sweep({parse_sweep_axis("components[gear].motion.speed=0 rpm")}, 1, 1, {}, (dir.path / "o").string());
+    write_fake_run(one.runs[0].dir, 400.0, 1000.0, 1100.0, 0.5, 0.2);
+    write_sweep_comparison(one, (dir.path / "o" / "sweep").string(), "", "gear");
+    EXPECT_NE(read_file(dir.path / "o" / "sweep" / "report.md").find("| tooth-0 | 1000 +- 80 |"), std::string::npos)
+        << read_file(dir.path / "o" / "sweep" / "report.md");
+}
+
 SweepOptions rod_sweep(const fs::path& dir, int jobs) {
     SweepOptions o;
     o.scene_path = kRod;
@@ -118,7 +181,7 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
     EXPECT_EQ(read_file(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), read_file(dir.path / "two" / "count-64" / "s0" / "impacts.csv"));
     // The comparison: one row per variant, the run's own figures.
     const std::string csv = read_file(dir.path / "one" / "sweep" / "comparison.csv");
-    EXPECT_EQ(csv.rfind("variant,shot.count,runs_finished,impact_rate_per_s,impact_rate_per_s_ci95,mean_vn_mps,", 0), 0u) << csv;
+    EXPECT_EQ(csv.rfind("variant,shot.count,runs_finished,target_coverage,impact_rate_per_s,impact_rate_per_s_ci95,mean_vn_mps,", 0), 0u) << csv;
     EXPECT_NE(csv.find("\ncount-64,\"64\",1,"), std::string::npos) << csv;
     EXPECT_NE(csv.find("\ncount-128,\"128\",1,"), std::string::npos) << csv;
     const std::string report = read_file(dir.path / "one" / "sweep" / "report.md");
@@ -238,8 +301,8 @@ TEST(SweepJob, ASweepFileListsNamedVariants) {
     EXPECT_NE(report.find("baseline `many`"), std::string::npos) << report;
     EXPECT_NE(report.find("| few | 2/2 |"), std::string::npos) << report;
     EXPECT_NE(report.find("Student's t over the seed replicates"), std::string::npos) << report;
-    // Every figure comes from the runs: the p90 speed from their summaries (none is missing).
-    EXPECT_EQ(report.find("| - |"), std::string::npos) << report;
+    // Every figure of the runs comes from the runs: the p90 speed from their summaries (none is missing).
+    EXPECT_EQ(report.substr(report.find("## The runs' figures")).find("| - |"), std::string::npos) << report;
     const std::string csv = read_file(dir.path / "out" / "sweep" / "comparison.csv");
     EXPECT_EQ(csv.rfind("variant,shot.count,process.gravity,runs_finished,", 0), 0u) << csv;
     // A file's mistakes point at its line: an unknown key, a bad baseline.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -13,9 +14,11 @@
 #include <set>
 
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "app/check_job.h"
 #include "app/run_job.h"
+#include "app/sweep_file.h"
 #include "app/sweep_plan.h"
 #include "scene/schema.h"
 #include "support/temp_dir.h"
@@ -194,4 +197,57 @@ TEST(Readme, SummaryKeysHealthCountersAndAlmenFiguresAreTheProgramsOwn) {
     std::smatch p;
     ASSERT_TRUE(std::regex_search(report, p, report_figures)) << report;
     for (int k = 1; k <= 4; ++k) EXPECT_EQ(r[k].str(), p[k].str()) << "figure " << k << " of the README's Almen sentence";
+}
+
+// Every YAML block of the README (```yaml) parses; a sweep file among them is read by the sweep's
+// own reader with its scene found (the README's variants example once was not YAML at all), and a
+// block that is a scene's section parses with the scene's key names.
+TEST(Readme, EveryYamlBlockParsesAndSweepFilesAreReadable) {
+    const std::string source = PEENSIM_SOURCE_DIR;
+    std::istringstream readme(read_file(source + "/README.md"));
+    std::vector<std::pair<int, std::string>> blocks;  // (first line, text)
+    std::string line, text;
+    int number = 0, start = 0;
+    bool inside = false;
+    while (std::getline(readme, line)) {
+        ++number;
+        if (!inside && line == "```yaml") {
+            inside = true, start = number + 1, text.clear();
+        } else if (inside && line == "```") {
+            inside = false, blocks.emplace_back(start, text);
+        } else if (inside) {
+            text += line + "\n";
+        }
+    }
+    EXPECT_FALSE(inside) << "a ```yaml block from line " << start << " is not closed";
+    ASSERT_GE(blocks.size(), 5u);
+    peensim::testing::TempDir dir;
+    int sweeps = 0;
+    for (const auto& [first, yaml] : blocks) {
+        YAML::Node node;
+        try {
+            node = YAML::Load(yaml);
+        } catch (const YAML::Exception& e) {
+            ADD_FAILURE() << "README.md:" << first + e.mark.line << ": not YAML: " << e.what() << "\n" << yaml;
+            continue;
+        }
+        EXPECT_TRUE(node.IsMap()) << "README.md:" << first << ": a YAML block that is not a map";
+        if (!node["scene"]) continue;
+        // A sweep file: its scene path is relative to the file, which the README puts in a folder
+        // beside scenes/.
+        const auto path = dir.path / "study" / ("readme-" + std::to_string(first) + ".yaml");
+        std::filesystem::create_directories(path.parent_path());
+        std::error_code exists;  // the link is made once
+        std::filesystem::create_directory_symlink(source + "/scenes", dir.path / "scenes", exists);
+        std::ofstream(path) << yaml;
+        try {
+            const peensim::SweepFile f = peensim::read_sweep_file(path.string());
+            EXPECT_TRUE(!f.axes.empty() || !f.variants.empty()) << "README.md:" << first;
+            EXPECT_TRUE(std::filesystem::exists(f.scene_path)) << f.scene_path;
+            ++sweeps;
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "README.md:" << first << ": not a sweep file: " << e.what();
+        }
+    }
+    EXPECT_EQ(sweeps, 2);
 }

@@ -9,20 +9,6 @@ namespace peensim {
 
 namespace {
 
-// Sets bits [begin, end) of `words`; returns how many of them were clear before.
-std::int64_t set_bits(std::uint64_t* words, std::int64_t begin, std::int64_t end) {
-    std::int64_t newly = 0;
-    while (begin < end) {
-        const std::int64_t word = begin >> 6, bit = begin & 63;
-        const std::int64_t count = std::min<std::int64_t>(64 - bit, end - begin);
-        const std::uint64_t mask = (count == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << count) - 1)) << bit;
-        newly += std::popcount(mask & ~words[word]);
-        words[word] |= mask;
-        begin += count;
-    }
-    return newly;
-}
-
 // Cells [lo, hi] (inclusive, clamped to [0, dim - 1]) overlapped by [a, b] on one axis; false if none.
 bool cell_range(double a, double b, double origin, double cell, std::int64_t dim, std::int64_t& lo, std::int64_t& hi) {
     const double fa = std::floor((a - origin) / cell);
@@ -145,77 +131,14 @@ void CoverageMap::build_grid(const TriangleMesh& mesh, double largest_dent_diame
     }
 }
 
-void CoverageMap::add_dent(const Vec3& centre, double diameter_m) {
-    if (!(diameter_m > 0.0) || patches_.empty()) return;
-    const double radius = 0.5 * diameter_m;  // m
-    std::int64_t r0[3] = {0, 0, 0}, r1[3] = {-1, -1, -1};
+bool CoverageMap::dent_cells(const Vec3& centre, double radius_m, std::int64_t lo[3], std::int64_t hi[3]) const {
     for (int k = 0; k < 3; ++k)
-        if (!cell_range(centre[k] - radius, centre[k] + radius, grid_min_[k], cell_, dims_[k], r0[k], r1[k])) return;
+        if (!cell_range(centre[k] - radius_m, centre[k] + radius_m, grid_min_[k], cell_, dims_[k], lo[k], hi[k])) return false;
     if (++dent_stamp_ == 0) {  // wrapped after 2^32 dents: restart the stamps
         std::fill(stamp_.begin(), stamp_.end(), 0u);
         dent_stamp_ = 1;
     }
-    for (std::int64_t z = r0[2]; z <= r1[2]; ++z)
-        for (std::int64_t y = r0[1]; y <= r1[1]; ++y)
-            for (std::int64_t x = r0[0]; x <= r1[0]; ++x) {
-                const std::size_t c = static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x);
-                for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-                    const std::uint32_t t = cell_triangles_[k];
-                    if (stamp_[t] == dent_stamp_) continue;
-                    stamp_[t] = dent_stamp_;
-                    if (covered_count_[t] == samples_of_triangle(t)) continue;  // fully covered already
-                    cover_patch(t, centre, radius);
-                }
-            }
-}
-
-// Marks the samples of triangle t within radius_m of centre. A sample at grid coordinates (u, v)
-// lies at in-plane offset u step_u + v step_v from the corner; inside the dent iff
-// G11 u^2 + 2 G12 u v + G22 v^2 - 2 b1 u - 2 b2 v + |w|^2 <= rho^2 (w: the centre projected on the
-// plane, rho: radius of the dent sphere's cut through the plane). Per row (v fixed) that is an
-// interval of u, found in closed form.
-void CoverageMap::cover_patch(std::size_t t, const Vec3& centre, double radius_m) {
-    const Patch& p = patches_[t];
-    // A dent that cannot reach the triangle's bounding sphere marks nothing: skip the row search
-    // (most triangles a dent's cells hold are coplanar neighbours, found by the plane test alone).
-    const double reach = p.reach + radius_m;
-    if ((centre - p.centre).squaredNorm() > reach * reach) return;
-    const Vec3 rel = centre - p.origin;
-    const double height = rel.dot(p.unit_normal);               // m
-    const double rho2 = radius_m * radius_m - height * height;  // m^2
-    if (rho2 <= 0.0) return;
-    const Vec3 w = rel - height * p.unit_normal;
-    const double g11 = p.step_u.squaredNorm(), g12 = p.step_u.dot(p.step_v), g22 = p.step_v.squaredNorm();
-    const double b1 = p.step_u.dot(w), b2 = p.step_v.dot(w);
-    const double det = g11 * g22 - g12 * g12;
-    const double v_centre = (g11 * b2 - g12 * b1) / det;
-    const double v_half = std::sqrt(rho2 * g11 / det);
-    const double c0 = w.squaredNorm() - rho2;
-    const std::int64_t n = p.n;
-    std::int64_t newly = 0;
-
-    // offset 1/3: the "up" samples (rows 0..n-1, row j has n-j); 2/3: the "down" ones (rows 0..n-2).
-    for (int kind = 0; kind < 2; ++kind) {
-        const double offset = kind == 0 ? 1.0 / 3.0 : 2.0 / 3.0;
-        const std::int64_t last_row = kind == 0 ? n - 1 : n - 2;
-        const double j_lo = std::max(0.0, std::ceil(v_centre - v_half - offset));
-        const double j_hi = std::min(static_cast<double>(last_row), std::floor(v_centre + v_half - offset));
-        for (std::int64_t j = static_cast<std::int64_t>(j_lo); j <= static_cast<std::int64_t>(j_hi); ++j) {
-            const double v = static_cast<double>(j) + offset;
-            const double beta = g12 * v - b1;
-            const double gamma = g22 * v * v - 2.0 * b2 * v + c0;
-            const double disc = beta * beta - g11 * gamma;
-            if (disc < 0.0) continue;
-            const double root = std::sqrt(disc);
-            const std::int64_t i_last = last_row - j;
-            const double i_lo = std::max(0.0, std::ceil((-beta - root) / g11 - offset));
-            const double i_hi = std::min(static_cast<double>(i_last), std::floor((-beta + root) / g11 - offset));
-            if (i_lo > i_hi) continue;
-            const std::int64_t row = p.first_sample + (kind == 0 ? up_row_offset(n, j) : down_row_offset(n, j));
-            newly += set_bits(covered_.data(), row + static_cast<std::int64_t>(i_lo), row + static_cast<std::int64_t>(i_hi) + 1);
-        }
-    }
-    covered_count_[t] += newly;
+    return true;
 }
 
 void CoverageMap::clear() {

@@ -32,6 +32,9 @@
 // 4 bytes per grid cell (see memory_bytes()).
 #pragma once
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -57,7 +60,56 @@ public:
     static std::int64_t samples_needed(const TriangleMesh& mesh, double spacing_m);
 
     // Marks every sample within diameter_m / 2 (3D distance, m) of centre (m, component frame).
-    void add_dent(const Vec3& centre, double diameter_m);
+    void add_dent(const Vec3& centre, double diameter_m) {
+        add_dent(centre, diameter_m, [](std::size_t, std::int64_t, std::uint64_t) {});
+    }
+    // The same, telling on_new(triangle, first, bits) of every sample it newly covers: bit k of
+    // `bits` set for sample first + k (first a multiple of 64; bits only ever of that triangle).
+    template <class OnNewlyCovered>
+    void add_dent(const Vec3& centre, double diameter_m, OnNewlyCovered&& on_new) {
+        visit_dent(
+            centre, diameter_m, [this](std::size_t t) { return covered_count_[t] == samples_of_triangle(t); },  // fully covered already
+            [&](std::size_t t, std::int64_t begin, std::int64_t count) {
+                for (const std::int64_t end = begin + count; begin < end;) {
+                    const std::int64_t word = begin >> 6, bit = begin & 63;
+                    const std::int64_t n = std::min<std::int64_t>(64 - bit, end - begin);
+                    const std::uint64_t mask = (n == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << n) - 1)) << bit;
+                    const std::uint64_t fresh = mask & ~covered_[static_cast<std::size_t>(word)];
+                    if (fresh != 0) {
+                        covered_[static_cast<std::size_t>(word)] |= fresh;
+                        covered_count_[t] += std::popcount(fresh);
+                        on_new(t, word << 6, fresh);
+                    }
+                    begin += n;
+                }
+            });
+    }
+    // Whether sample `index` (numbering of for_each_sample_row) is covered.
+    bool covered(std::int64_t index) const { return (covered_[static_cast<std::size_t>(index >> 6)] >> (index & 63)) & 1u; }
+
+    // The samples a dent of diameter_m centred at centre (m) covers, whether or not they are
+    // covered already: calls visit(triangle, first, count) for each run of them (indices in the
+    // numbering of for_each_sample_row), each triangle at most once per dent; skip(triangle) ->
+    // true leaves a triangle out before its rows are searched. No allocation.
+    template <class Skip, class Visit>
+    void visit_dent(const Vec3& centre, double diameter_m, Skip&& skip, Visit&& visit) const {
+        if (!(diameter_m > 0.0) || patches_.empty()) return;
+        const double radius = 0.5 * diameter_m;  // m
+        std::int64_t lo[3], hi[3];
+        if (!dent_cells(centre, radius, lo, hi)) return;
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+            for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+                for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
+                    const std::size_t c = static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x);
+                    for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+                        const std::uint32_t t = cell_triangles_[k];
+                        if (stamp_[t] == dent_stamp_) continue;
+                        stamp_[t] = dent_stamp_;
+                        if (skip(static_cast<std::size_t>(t))) continue;
+                        visit_patch(t, centre, radius, visit);
+                    }
+                }
+    }
     // Forgets all dents.
     void clear();
 
@@ -82,6 +134,31 @@ public:
             }
         }
     }
+    // Calls f(index, point (m), u, v) for every sample of triangle t: (u, v) its coordinates along
+    // the edges AB and AC (the point is A + u (B - A) + v (C - A)).
+    template <class F>
+    void for_each_sample_of_triangle(std::size_t t, F&& f) const {
+        const Patch& p = patches_[t];
+        const std::int64_t n = p.n;
+        for (int kind = 0; kind < 2; ++kind) {
+            const double offset = kind == 0 ? 1.0 / 3.0 : 2.0 / 3.0;
+            const std::int64_t last_row = kind == 0 ? n - 1 : n - 2;
+            for (std::int64_t j = 0; j <= last_row; ++j) {
+                const std::int64_t row = p.first_sample + (kind == 0 ? up_row_offset(n, j) : down_row_offset(n, j));
+                const double v = (static_cast<double>(j) + offset) / static_cast<double>(n);
+                for (std::int64_t i = 0; i <= last_row - j; ++i) {
+                    const double u = (static_cast<double>(i) + offset) / static_cast<double>(n);
+                    f(row + i, p.origin + (static_cast<double>(i) + offset) * p.step_u + (static_cast<double>(j) + offset) * p.step_v, u, v);
+                }
+            }
+        }
+    }
+    std::int64_t first_sample_of_triangle(std::size_t t) const { return patches_[t].first_sample; }
+    // m2, the area each sample of triangle t stands for
+    double sample_area(std::size_t t) const {
+        return patches_[t].n == 0 ? 0.0 : patches_[t].area / (static_cast<double>(patches_[t].n) * patches_[t].n);
+    }
+
     // Covered samples among [index, index + count) of the numbering of for_each_sample_row.
     std::int64_t covered_samples(std::int64_t index, std::int64_t count) const;
 
@@ -123,7 +200,56 @@ private:
     static std::int64_t down_row_offset(std::int64_t n, std::int64_t j) { return up_row_offset(n, j) + n - j; }
 
     void build_grid(const TriangleMesh& mesh, double largest_dent_diameter_m);
-    void cover_patch(std::size_t t, const Vec3& centre, double radius_m);
+    // The grid cells [lo, hi] a dent of radius_m at centre may touch (false: none), and a new
+    // stamp for the triangles it visits.
+    bool dent_cells(const Vec3& centre, double radius_m, std::int64_t lo[3], std::int64_t hi[3]) const;
+
+    // The samples of triangle t within radius_m of centre, row by row. A sample at grid
+    // coordinates (u, v) lies at in-plane offset u step_u + v step_v from the corner; inside the
+    // dent iff G11 u^2 + 2 G12 u v + G22 v^2 - 2 b1 u - 2 b2 v + |w|^2 <= rho^2 (w: the centre
+    // projected on the plane, rho: radius of the dent sphere's cut through the plane). Per row (v
+    // fixed) that is an interval of u, found in closed form.
+    template <class Visit>
+    void visit_patch(std::size_t t, const Vec3& centre, double radius_m, Visit& visit) const {
+        const Patch& p = patches_[t];
+        // A dent that cannot reach the triangle's bounding sphere marks nothing: skip the row search
+        // (most triangles a dent's cells hold are coplanar neighbours, found by the plane test alone).
+        const double reach = p.reach + radius_m;
+        if ((centre - p.centre).squaredNorm() > reach * reach) return;
+        const Vec3 rel = centre - p.origin;
+        const double height = rel.dot(p.unit_normal);               // m
+        const double rho2 = radius_m * radius_m - height * height;  // m^2
+        if (rho2 <= 0.0) return;
+        const Vec3 w = rel - height * p.unit_normal;
+        const double g11 = p.step_u.squaredNorm(), g12 = p.step_u.dot(p.step_v), g22 = p.step_v.squaredNorm();
+        const double b1 = p.step_u.dot(w), b2 = p.step_v.dot(w);
+        const double det = g11 * g22 - g12 * g12;
+        const double v_centre = (g11 * b2 - g12 * b1) / det;
+        const double v_half = std::sqrt(rho2 * g11 / det);
+        const double c0 = w.squaredNorm() - rho2;
+        const std::int64_t n = p.n;
+        // offset 1/3: the "up" samples (rows 0..n-1, row j has n-j); 2/3: the "down" ones (rows 0..n-2).
+        for (int kind = 0; kind < 2; ++kind) {
+            const double offset = kind == 0 ? 1.0 / 3.0 : 2.0 / 3.0;
+            const std::int64_t last_row = kind == 0 ? n - 1 : n - 2;
+            const double j_lo = std::max(0.0, std::ceil(v_centre - v_half - offset));
+            const double j_hi = std::min(static_cast<double>(last_row), std::floor(v_centre + v_half - offset));
+            for (std::int64_t j = static_cast<std::int64_t>(j_lo); j <= static_cast<std::int64_t>(j_hi); ++j) {
+                const double v = static_cast<double>(j) + offset;
+                const double beta = g12 * v - b1;
+                const double gamma = g22 * v * v - 2.0 * b2 * v + c0;
+                const double disc = beta * beta - g11 * gamma;
+                if (disc < 0.0) continue;
+                const double root = std::sqrt(disc);
+                const std::int64_t i_last = last_row - j;
+                const double i_lo = std::max(0.0, std::ceil((-beta - root) / g11 - offset));
+                const double i_hi = std::min(static_cast<double>(i_last), std::floor((-beta + root) / g11 - offset));
+                if (i_lo > i_hi) continue;
+                const std::int64_t row = p.first_sample + (kind == 0 ? up_row_offset(n, j) : down_row_offset(n, j));
+                visit(t, row + static_cast<std::int64_t>(i_lo), static_cast<std::int64_t>(i_hi - i_lo) + 1);
+            }
+        }
+    }
 
     double spacing_ = 0.0;     // m
     double total_area_ = 0.0;  // m^2
@@ -131,8 +257,8 @@ private:
     std::int64_t sample_count_ = 0;
     std::vector<std::uint64_t> covered_;       // one bit per sample: 1 = inside a dent
     std::vector<std::int64_t> covered_count_;  // per triangle: covered samples
-    std::vector<std::uint32_t> stamp_;         // per triangle: last dent that visited it
-    std::uint32_t dent_stamp_ = 0;
+    mutable std::vector<std::uint32_t> stamp_;  // per triangle: last dent that visited it
+    mutable std::uint32_t dent_stamp_ = 0;
 
     // Triangle grid: cell (x, y, z) holds triangles cell_triangles_[cell_start_[c] .. cell_start_[c+1]).
     Vec3 grid_min_ = Vec3::Zero();  // m

@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "analysis/coverage_map.h"
+#include "analysis/row_runs.h"
+#include "analysis/surface_kernel.h"
 
 namespace peensim {
 
@@ -16,24 +18,8 @@ constexpr std::int64_t kAxisBins = std::int64_t{1} << 20;  // bins per axis a ke
 constexpr double kPatchesPerCellArea = 1.5;
 constexpr std::int64_t kMaxNeighbourCells = std::int64_t{1} << 22;  // cubes of the neighbour grid at most (16 MB)
 
-// Which of the 6 axis directions a unit normal faces most: 0..2 for +x, +y, +z, 3..5 for -x, -y, -z;
-// -1 for a zero normal (a degenerate triangle).
-int facing_of(const Vec3& n) {
-    if (!(n.squaredNorm() > 0.0)) return -1;
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-        if (std::abs(n[k]) > std::abs(n[axis])) axis = k;
-    return n[axis] >= 0.0 ? axis : axis + 3;
-}
-
 // Fibonacci hashing: the high half of key x 2^64 / golden ratio (the table is masked to its size).
 std::size_t slot_of(std::uint64_t key) { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32); }
-
-// The quartic kernel's radial factor (1 - d^2/R^2)^2, 0 from R on.
-double quartic(double d2, double inv_r2) {
-    const double u = 1.0 - d2 * inv_r2;
-    return u > 0.0 ? u * u : 0.0;
-}
 
 }  // namespace
 
@@ -261,27 +247,14 @@ void SurfaceSmoothing::add_coverage(const CoverageMap& coverage) {
         [&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double area_m2, std::int64_t index) {
             const int facing = triangle_facing_[t];
             if (facing < 0) return;
-            const Vec3 q0 = (first - origin_) * inverse_cell_;  // bins
-            const Vec3 dq = step * inverse_cell_;               // bins per sample
-            for (std::int64_t i = 0; i < count;) {
-                std::int64_t run = count - i;
-                for (int k = 0; k < 3; ++k) {
-                    if (dq[k] == 0.0) continue;
-                    const double q = q0[k] + static_cast<double>(i) * dq[k];
-                    const double boundary = dq[k] > 0.0 ? std::floor(q) + 1.0 : std::floor(q);
-                    // The first sample past the boundary (at least the next one).
-                    const double steps = std::ceil((boundary - q) / dq[k]);
-                    run = std::min(run, std::max<std::int64_t>(1, static_cast<std::int64_t>(std::min(steps, 1e15))));
-                }
+            for_each_cube_run(first, step, count, origin_, inverse_cell_, [&](std::int64_t i, std::int64_t run) {
                 const Vec3 p = first + static_cast<double>(i) * step;
                 const std::int64_t patch = patch_for(p, triangle_normal_[t], facing);
-                if (patch >= 0) {
-                    const auto k = static_cast<std::size_t>(patch);
-                    sampled_[k] += static_cast<double>(run) * area_m2;
-                    covered_[k] += static_cast<double>(coverage.covered_samples(index + i, run)) * area_m2;
-                }
-                i += run;
-            }
+                if (patch < 0) return;
+                const auto k = static_cast<std::size_t>(patch);
+                sampled_[k] += static_cast<double>(run) * area_m2;
+                covered_[k] += static_cast<double>(coverage.covered_samples(index + i, run)) * area_m2;
+            });
         });
 }
 

@@ -173,12 +173,38 @@ std::vector<std::string> j443_warnings(const MeasuredCurve& m, const SaturationF
     return w;
 }
 
+// The files --plot writes beside its PNG: the script and the points (named so that a curve called
+// like the PNG is not the points file).
+struct PlotFiles {
+    std::string dir, stem;
+    std::vector<fs::path> written() const {
+        return {fs::path(dir) / (stem + ".png"), fs::path(dir) / (stem + ".gp"), fs::path(dir) / (stem + "_points.csv")};
+    }
+};
+
+PlotFiles plot_files(const std::string& png) {
+    const fs::path path(png);
+    PlotFiles f{path.parent_path().empty() ? "." : path.parent_path().string(), path.filename().string()};
+    if (f.stem.size() > 4 && f.stem.substr(f.stem.size() - 4) == ".png") f.stem.resize(f.stem.size() - 4);
+    return f;
+}
+
+// No output may be the curve being read: refused (exit 2) before anything is written.
+void refuse_writing_over_input(const AlmenFitOptions& o) {
+    std::error_code ec;
+    const auto same = [&](const fs::path& a) { return fs::exists(a, ec) && fs::equivalent(a, o.curve_path, ec); };
+    if (!o.json_path.empty() && same(o.json_path))
+        throw InputError(kCommandLine, "--json", "'" + o.json_path + "' is the curve being read; give the JSON another name");
+    if (!o.plot_path.empty())
+        for (const fs::path& p : plot_files(o.plot_path).written())
+            if (same(p))
+                throw InputError(kCommandLine, "--plot",
+                                 "'" + o.plot_path + "' would write " + p.string() + ", the curve being read; give the plot another name");
+}
+
 std::string plot_fits(const std::string& png, const MeasuredCurve& m, const SaturationFit& two, const SaturationFit& three,
                       const SaturationFit& used, const std::string& strip) {
-    const fs::path path(png);
-    const std::string dir = path.parent_path().empty() ? "." : path.parent_path().string();
-    std::string stem = path.filename().string();
-    if (stem.size() > 4 && stem.substr(stem.size() - 4) == ".png") stem.resize(stem.size() - 4);
+    const auto [dir, stem] = plot_files(png);
     fs::create_directories(dir);
     const double scale = 1.0 / m.height_unit.metres;  // m -> the curve's unit
     std::ostringstream data;
@@ -188,7 +214,7 @@ std::string plot_fits(const std::string& png, const MeasuredCurve& m, const Satu
         data << exact(p.exposure) << "," << exact(p.arc_height * scale) << "\n";
         longest = std::max(longest, p.exposure);
     }
-    write_file_atomically((fs::path(dir) / (stem + ".csv")).string(), data.str());
+    write_file_atomically((fs::path(dir) / (stem + "_points.csv")).string(), data.str());
     const double right = 1.15 * std::max(longest, used.point.exists ? 2.0 * used.point.time : 0.0);
     std::ostringstream s;
     s << "# Written by peensim almen-fit; rerun from this directory: gnuplot " << stem << ".gp\n"
@@ -198,7 +224,7 @@ std::string plot_fits(const std::string& png, const MeasuredCurve& m, const Satu
       << "set xlabel " << gnuplot_string(gnuplot_text("exposure (" + m.exposure_unit.name + ")")) << "\n"
       << "set ylabel " << gnuplot_string(gnuplot_text("arc height (" + m.height_unit.name + ")")) << "\n"
       << "set xrange [0:" << exact(right) << "]\nset yrange [0:*]\nset key bottom right\nset samples 400\n";
-    std::string plot = "plot " + gnuplot_string(stem + ".csv") + " using 1:2 with points pt 7 ps 1.4 lc rgb '#202020' title 'measured'";
+    std::string plot = "plot " + gnuplot_string(stem + "_points.csv") + " using 1:2 with points pt 7 ps 1.4 lc rgb '#202020' title 'measured'";
     const auto curve = [&](const SaturationFit& f, const char* style) {
         if (!f.fitted) return;
         const std::string name = saturation_form_name(f.form);
@@ -227,6 +253,7 @@ int run(const AlmenFitOptions& o, std::ostream& out, std::ostream& err) {
         throw InputError(kCommandLine, "--strip", "expected A, N or C (the SAE J442 strip type), got '" + o.strip + "'");
     if (!o.form.empty() && o.form != "2P" && o.form != "3P")
         throw InputError(kCommandLine, "--form", "expected 2P or 3P, got '" + o.form + "'");
+    refuse_writing_over_input(o);
     const MeasuredCurve m = read_measured_curve(o.curve_path, o.time_unit, o.height_unit);
     const SaturationFit two = fit_saturation_curve(m.points, SaturationForm::two_parameter);
     const SaturationFit three = fit_saturation_curve(m.points, SaturationForm::three_parameter);

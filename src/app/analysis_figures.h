@@ -1,9 +1,9 @@
 // The figures of an analysis as data: `analysis/figures.json`, what the report's tables show, for
 // programs (a sweep's comparison, a notebook) rather than readers. Per logged component: impacts,
-// their rate and mean normal speed, the mean dent, coverage and its Avrami fit (k, its standard
-// error, time to 98 %), the Almen dose, per region its rate, speed and coverage, and the impact
-// rate and mean normal speed of each tenth of the run (batch means: a confidence interval from one
-// run).
+// their rate and mean normal speed, the mean dent, coverage, the time to the target (whole peened
+// area, per region, everywhere) with its status and interval, uniformity, the share below the
+// target, the Almen dose, per region its rate, speed and coverage, and the impact rate and mean
+// normal speed of each tenth of the run (batch means: a confidence interval from one run).
 #pragma once
 
 #include <string>

@@ -19,9 +19,6 @@ namespace peensim {
 
 namespace {
 
-// Full coverage by SAE J2277 (drawn as a dashed line on the coverage plot), percent.
-constexpr double kFullCoveragePercent = 98.0;
-
 // One histogram panel: the `quantity` column's value in <c>_histograms.csv and how to label it.
 struct HistogramPanel {
     const char* quantity;
@@ -101,7 +98,7 @@ std::string script_header(const std::string& stem) {
     return s.str();
 }
 
-std::string coverage_script(const std::string& component) {
+std::string coverage_script(const std::string& component, double target_percent) {
     const std::string csv = component + "_coverage.csv";
     std::ostringstream s;
     s << script_header(component + "_coverage") << "set title "
@@ -114,8 +111,8 @@ std::string coverage_script(const std::string& component) {
       << "set yrange [0:top]\n"
       << "set key bottom right\n"
       << "plot " << gnuplot_quoted(csv) << " using 1:(100*$2) every ::1 with linespoints lw 2 pt 7 ps 0.6 title 'coverage', \\\n"
-      << "     " << kFullCoveragePercent << " with lines dt 2 lc rgb 'gray40' title (top > " << kFullCoveragePercent
-      << " ? 'full coverage (" << kFullCoveragePercent << " %)' : '')\n";
+      << "     " << target_percent << " with lines dt 2 lc rgb 'gray40' title (top > " << target_percent << " ? 'target ("
+      << target_percent << " %)' : '')\n";
     return s.str();
 }
 
@@ -231,7 +228,7 @@ std::string plot_with_gnuplot(const std::string& dir, const std::string& stem, c
 }
 
 std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, const std::vector<std::string>& components,
-                                              std::string& note) {
+                                              double target_coverage, std::string& note) {
     note.clear();
     std::vector<std::string> written;
     const std::string gnuplot = find_gnuplot();
@@ -249,7 +246,7 @@ std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, c
             note += (note.empty() ? "" : "; ") + problem;
     };
     for (const std::string& c : components) {
-        if (fs::exists(dir / (c + "_coverage.csv"))) plot(c + "_coverage", coverage_script(c));
+        if (fs::exists(dir / (c + "_coverage.csv"))) plot(c + "_coverage", coverage_script(c, target_coverage * 100.0));
         const fs::path histograms = dir / (c + "_histograms.csv");
         if (fs::exists(histograms)) plot(c + "_histograms", histograms_script(c, quantities_with_counts(histograms)));
         if (fs::exists(dir / (c + "_regions.csv"))) plot(c + "_regions", regions_script(c));

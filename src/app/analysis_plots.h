@@ -27,8 +27,9 @@ inline constexpr std::string_view kNoGnuplotNote = "gnuplot not found: no PNG pl
 // Returns the paths of the PNGs written. `note` is empty when all went well; otherwise it says
 // why plots are missing (gnuplot not found, or gnuplot's own error message).
 // Throws std::runtime_error only if a script cannot be written.
+// target_coverage (0..1): the dashed line on the coverage plot, the report's target.
 std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, const std::vector<std::string>& components,
-                                              std::string& note);
+                                              double target_coverage, std::string& note);
 
 // Writes `dir/stem.gp` and renders `dir/stem.png` with it (through `stem.png.tmp`, renamed: complete
 // or absent). Returns "" when done, else why not (gnuplot missing, or its messages). The script

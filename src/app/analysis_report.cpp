@@ -8,6 +8,7 @@
 #include "app/almen_analysis.h"
 #include "app/analysis_format.h"
 #include "app/coverage_verdict.h"
+#include "app/report_changes.h"
 
 namespace fs = std::filesystem;
 
@@ -32,35 +33,81 @@ std::string interval_text(double low, double high) {
     return fmt(low) + "-" + fmt(high) + " s";
 }
 
-// Per component with regions: one table row per region.
-std::string region_tables(const std::vector<ComponentAnalysis>& parts, double duration) {
+// "98 %": the target as the headings write it.
+std::string target_text(double target) { return fmt(100.0 * target, 4) + " %"; }
+
+// A forecast in a table cell: "1320 s [1279-1383]", "reached at 41 s", "too short (run 40 s)".
+std::string forecast_cell(const AreaForecast& f) {
+    switch (f.status) {
+        case AreaForecast::Status::reached: return "reached at " + fmt(f.time_s) + " s";
+        case AreaForecast::Status::forecast: return fmt(f.time_s) + " s [" + interval_text(f.low_s, f.high_s) + "]";
+        case AreaForecast::Status::too_short:
+            return "too short to say (run " + (std::isfinite(f.run_for_s) ? fmt(std::ceil(f.run_for_s), 6) + " s" : std::string("far longer")) + ")";
+        case AreaForecast::Status::never: return "never at this rate";
+        case AreaForecast::Status::none: return "";
+    }
+    return "";
+}
+
+// A forecast as a sentence of the report, ending with a full stop.
+std::string forecast_sentence(const AreaForecast& f, double analysed_s, const ReportContext& x) {
     std::ostringstream r;
-    for (const ComponentAnalysis& c : parts) {
-        if (c.regions.empty()) continue;
-        r << "\n### Regions of " << c.name
-          << "\n\n| region | area (mm2) | peened (mm2) | impacts | per mm2 per s | mean v_n (m/s) | energy (J/m2) | coverage "
-             "| Avrami k (1/s) | time to 98 % [95 %] | x the analysed time |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
-        for (std::size_t k = 0; k < c.regions.size(); ++k) {
-            const RegionStats s = region_stats(c.regions, k, c.region_tallies[k], c.coverage.get(), c.peened, duration);
-            r << "| " << c.regions.name(k) << (c.regions.excluded(k) ? " (excluded)" : "") << " | " << fmt(s.area_m2 * 1e6) << " | "
-              << fmt(s.peened_area_m2 * 1e6) << " | " << s.impacts << " | " << fmt(s.impacts_per_mm2_s) << " | " << fmt(s.mean_normal_speed)
-              << " | " << fmt(s.energy_per_area) << " | " << percent(s.coverage) << " | ";
-            const bool fitted = !c.region_outlooks.empty() && c.region_outlooks[k].fitted && !c.regions.excluded(k);
-            if (fitted) {
-                const CoverageOutlook& o = c.region_outlooks[k];
-                r << fmt(o.k_per_s) << " | " << fmt(o.time_to_98_s) << " s [" << interval_text(o.time_to_98_low_s, o.time_to_98_high_s)
-                  << "] | " << fmt(o.run_multiple, 3) << " |\n";
+    switch (f.status) {
+        case AreaForecast::Status::reached:
+            r << "**reached at " << duration_text(f.time_s) << "** of the " << fmt(analysed_s) << " s analysed.";
+            break;
+        case AreaForecast::Status::forecast:
+            r << "**" << duration_text(f.time_s) << "** (95 % interval " << interval_text(f.low_s, f.high_s) << "), forecast from where "
+              << "the dents landed in the " << fmt(analysed_s) << " s analysed (" << fmt(f.time_s / analysed_s, 3) << "x).";
+            break;
+        case AreaForecast::Status::too_short:
+            r << "**too short to say** from " << fmt(analysed_s) << " s: the 95 % interval would be " << interval_text(f.low_s, f.high_s)
+              << ". ";
+            if (std::isfinite(f.run_for_s)) {
+                r << "A run of about " << fmt(std::ceil(f.run_for_s), 6) << " s gives a number";
+                if (x.wall_per_simulated_s) r << " (about " << duration_text(f.run_for_s * *x.wall_per_simulated_s) << " to simulate here)";
+                r << ".";
             } else {
-                r << " | | |\n";
+                r << "Some of it has had no impact near it yet: run longer.";
             }
-        }
-        r << "\nA region counts each triangle with the share of its area inside, and each impact by its point. Coverage is over "
-             "the peened area (reachable, not excluded); an excluded region's over its whole area, for information. Per region: `"
-          << c.name << "_regions.csv`, coverage against time `" << c.name << "_region_coverage.csv`, distributions `" << c.name
-          << "_histograms.csv`; `peensim render-regions "
-          << "<run>` draws them.\n";
+            break;
+        case AreaForecast::Status::never:
+            r << "**never at this rate**: part of it has had no impact near it (within the forecast's radius); change the chamber, "
+                 "the part's position or its motion, or run longer to see whether any shot reaches it.";
+            break;
+        case AreaForecast::Status::none: r << "not known: no dent on the peened area yet."; break;
     }
     return r.str();
+}
+
+// Per component with regions: one table row per region.
+std::string region_tables(const std::vector<ComponentAnalysis>& parts, const AnalysisWindow& window) {
+    std::ostringstream r;
+    const double duration = window.length_s();
+    for (const ComponentAnalysis& c : parts) {
+        if (c.regions.empty()) continue;
+        r << "\n### Regions of " << c.name << "\n\n| region | area (mm2) | peened (mm2) | out of reach (mm2) | impacts | per mm2 per s | mean v_n (m/s) "
+             "| energy (J/m2) | coverage | time to " << target_text(window.target_coverage) << " [95 %] |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        for (std::size_t k = 0; k < c.regions.size(); ++k) {
+            const RegionStats s = region_stats(c.regions, k, c.region_tallies[k], c.coverage.get(), duration);
+            r << "| " << c.regions.name(k) << (c.regions.excluded(k) ? " (excluded)" : "") << " | " << fmt(s.area_m2 * 1e6) << " | "
+              << fmt(s.peened_area_m2 * 1e6) << " | " << fmt(s.unreachable_area_m2 * 1e6) << " | " << s.impacts << " | "
+              << fmt(s.impacts_per_mm2_s) << " | " << fmt(s.mean_normal_speed) << " | " << fmt(s.energy_per_area) << " | "
+              << percent(s.coverage) << " | " << (c.coverage && k < c.forecast.regions.size() ? forecast_cell(c.forecast.regions[k]) : "")
+              << " |\n";
+        }
+        r << "\nA region counts each coverage sample inside it and each impact by its point. Coverage is over the peened area "
+             "(reachable, not excluded); an excluded region's over its reachable area, for information. Per region: `"
+          << c.name << "_regions.csv`, coverage against time `" << c.name << "_region_coverage.csv`, distributions `" << c.name
+          << "_histograms.csv`; `peensim render-regions <run>` draws them.\n";
+    }
+    return r.str();
+}
+
+// The command that peens until the target is reached everywhere (brute force), capped.
+std::string until_command(const ReportContext& x, double target, double cap_s) {
+    return "peensim run " + (x.run_dir / "scene.resolved.yaml").string() + " -o " + x.run_dir.string() + "-until --until-coverage \"" +
+           fmt(100.0 * target, 4) + " %\" --set \"process.duration=" + fmt(std::ceil(cap_s), 8) + " s\" --no-render";
 }
 
 // The decision a chamber designer needs for each part with coverage: is it reached, where not,
@@ -68,66 +115,52 @@ std::string region_tables(const std::vector<ComponentAnalysis>& parts, double du
 std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const ReportContext& x) {
     std::ostringstream r;
     const double analysed = x.window.length_s();
+    const double target = x.window.target_coverage;
+    const std::string goal = target_text(target);
     for (const ComponentAnalysis& c : parts) {
         if (!c.coverage) continue;
         const PeenedAreas areas = peened_areas(c);
-        const CoverageOutlook& o = c.outlook;
-        r << "\n## " << c.name << ": is coverage reached?\n\n";
-        r << "- **Coverage now: " << percent(o.coverage) << "** of the peened area (" << fmt(areas.peened_m2 * 1e6) << " of "
+        const AreaForecast& w = c.forecast.whole;
+        r << "\n## " << c.name << ": how long to peen to " << goal << "\n\n";
+        r << "- **Coverage now: " << percent(w.coverage_now) << "** of the peened area (" << fmt(areas.peened_m2 * 1e6) << " of "
           << fmt(areas.total_m2 * 1e6) << " mm2";
         if (areas.unreachable_m2 > 0.0)
             r << "; " << fmt(areas.unreachable_m2 * 1e6) << " mm2 (" << percent(areas.unreachable_m2 / areas.total_m2, 2)
-              << ") no shot can reach, left out";
+              << ") no shot can reach, left out: see below";
         if (areas.excluded_m2 > 0.0)
             r << "; " << fmt(areas.excluded_m2 * 1e6) << " mm2 (" << percent(areas.excluded_m2 / areas.total_m2, 2) << ") excluded";
-        r << "). " << percent(share_below(c, x.window.target_coverage)) << " of the peened area is below the target of "
-          << percent(x.window.target_coverage) << ".\n";
-        if (o.fitted) {
-            r << "- **Time to 98 %: " << duration_text(o.time_to_98_s) << "** (95 % interval "
-              << interval_text(o.time_to_98_low_s, o.time_to_98_high_s) << "; Avrami k = " << fmt(o.k_per_s) << " 1/s +- "
-              << fmt(100.0 * o.k_relative_se, 2) << " %)";
-            if (o.run_multiple > 1.0)
-                r << ", extrapolated from " << percent(o.coverage) << " to 98 %: " << fmt(o.run_multiple, 3) << "x the analysed "
-                  << fmt(analysed) << " s";
-            r << ".\n";
-        } else {
-            r << "- **Time to 98 %: not known**: " << (o.coverage >= 1.0 ? "fully covered already" : "no dent on the peened area yet")
-              << ".\n";
-        }
+        r << "). " << percent(share_below(c, target)) << " of the peened area is below " << goal << ".\n";
+        r << "- **Time to " << goal << "** (the whole peened area): " << forecast_sentence(w, analysed, x) << "\n";
+        const Everywhere e = everywhere(c);
         if (c.regions.empty()) {
             r << "- **Everywhere: not known.** The part has no regions, and a whole-part time hides its least-peened places (on "
-                 "the shipped gear the teeth's times span ~4x). Define regions (`sectors` for teeth, `facing` for flanks and end "
-                 "faces, `distance_to_axis` for a bore) and check them with `peensim render-regions`.\n";
-            continue;
-        }
-        const Everywhere e = everywhere(c);
-        if (e.counted == 0) {
+                 "the shipped gear the slowest tooth needs 1.4x the whole gear's time). Define regions (`sectors` for teeth, "
+                 "`facing` for flanks and end faces, `distance_to_axis` for a bore) and check them with `peensim render-regions`.\n";
+        } else if (e.counted == 0) {
             r << "- **Everywhere:** every region is excluded or out of reach.\n";
-            continue;
-        }
-        const std::string least = c.regions.name(static_cast<std::size_t>(e.least_covered));
-        r << "- **Everywhere:** the least-covered region, **" << least << "**, reaches 98 % last: **" << duration_text(e.time_to_98_s)
-          << "**";
-        if (std::isfinite(e.time_to_98_s))
-            r << (std::isfinite(e.time_to_98_high_s) ? " (up to " + duration_text(e.time_to_98_high_s) + " at 95 %)"
-                                                     : std::string(" (at 95 %, with no upper bound yet: a region has too few impacts)"));
-        r << ".";
-        if (std::isfinite(e.time_to_98_s)) {
-            const double needed = std::ceil(e.time_to_98_s);
-            r << " To reach 98 % everywhere: " << fmt(needed, 8) << " s of peening";
-            if (x.wall_per_simulated_s)
-                r << "; simulating it takes about " << duration_text(needed * *x.wall_per_simulated_s) << " here (this run's pace)";
-            r << ":\n\n      peensim run " << (x.run_dir / "scene.resolved.yaml").string() << " -o " << x.run_dir.string()
-              << "-98 --set \"process.duration=" << fmt(needed, 8) << " s\" --no-render\n\n";
         } else {
-            r << " It has had no impact: no peening time covers it at this rate; change the chamber, the part's position or "
-                 "its motion.\n";
+            const std::string least = slowest_area_name(c, e.least_covered);
+            r << "- **Everywhere** (every region at " << goal << "): " << forecast_sentence(e.time, analysed, x);
+            if (!least.empty()) r << " The last region there: **" << least << "**.";
+            r << "\n";
+            if (std::isfinite(e.uniformity))
+                r << "- **Uniformity:** " << fmt(e.uniformity, 3) << " (" << fmt(e.uniformity_low, 3) << "-" << fmt(e.uniformity_high, 3)
+                  << "): the whole part's time over everywhere's (1: the slowest region is no slower than the part). Coverage now "
+                  << percent(e.coverage_min) << " in the least-covered region, " << percent(e.coverage_mean) << " over the " << e.counted
+                  << " regions counted.\n";
+            // Peening to the target everywhere: the forecast's upper end, or brute force.
+            const AreaForecast& t = e.time;
+            if (t.status == AreaForecast::Status::forecast) {
+                r << "\n  To peen every region to " << goal << ", peen " << fmt(std::ceil(t.high_s), 8)
+                  << " s (the interval's upper end). To see it rather than forecast it, run until every region reaches it";
+                if (x.wall_per_simulated_s)
+                    r << " (about " << duration_text(t.time_s * *x.wall_per_simulated_s) << " of simulation at this run's pace)";
+                r << ":\n\n      " << until_command(x, target, 1.5 * t.high_s) << "\n";
+            }
+            for (const auto& [name, png] : x.least_covered_pngs)
+                if (name == c.name) r << "\n![" << c.name << ": the least-covered region, " << least << "](" << png << ")\n";
         }
-        r << "- **Uniformity:** the slowest region's rate over the mean rate, " << fmt(e.uniformity, 3) << " (1: even); coverage now "
-          << percent(e.coverage_min) << " in the least-covered region, " << percent(e.coverage_mean) << " over the " << e.counted
-          << " regions counted.\n";
-        for (const auto& [name, png] : x.least_covered_pngs)
-            if (name == c.name) r << "\n![" << c.name << ": the least-covered region, " << least << "](" << png << ")\n";
+        r << unreachable_section(c, x);
     }
     if (!x.picture_note.empty()) r << "\nPictures: " << x.picture_note << ".\n";
     return r.str();
@@ -197,32 +230,74 @@ std::string size_sections(const std::vector<ComponentAnalysis>& parts) {
 
 std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, const AnalysisWindow& window) {
     const double duration = window.length_s();
+    const std::string goal = target_text(window.target_coverage);
     std::ostringstream r;
-    r << "| component | impacts | per s | mean v_n (m/s) | mean dent (um) | coverage | Avrami k (1/s) | time to 98 % (s) |\n";
+    r << "| component | impacts | per s | mean v_n (m/s) | mean dent (um) | coverage | time to " << goal << " [95 %] | everywhere [95 %] |\n";
     r << "|---|---|---|---|---|---|---|---|\n";
     for (const ComponentAnalysis& c : parts) {
         const double n = static_cast<double>(c.impacts);
         const double mean_v = c.impacts ? c.speed_sum / n : NAN;
         const double mean_d = c.impacts && c.coverage ? c.dent_sum / n * 1e6 : NAN;
-        std::string k, t98, cov = "no yield_stress";
+        std::string cov = "no yield_stress", whole, every;
         if (c.coverage) {
-            cov = percent(c.outlook.coverage);
-            if (c.outlook.fitted) {
-                k = fmt(c.outlook.k_per_s) + " +- " + fmt(c.outlook.k_relative_se * c.outlook.k_per_s, 2);
-                t98 = fmt(c.outlook.time_to_98_s) +
-                      (c.outlook.run_multiple > 1.0 ? " (extrapolated " + fmt(c.outlook.run_multiple, 3) + "x)" : "");
-            }
+            cov = percent(c.coverage->coverage());
+            whole = forecast_cell(c.forecast.whole);
+            if (!c.regions.empty()) every = forecast_cell(c.forecast.everywhere);
         }
         r << "| " << c.name << " | " << c.impacts << " | " << fmt(n / duration) << " | " << fmt(mean_v) << " | " << fmt(mean_d) << " | "
-          << cov << " | " << k << " | " << t98 << " |\n";
+          << cov << " | " << whole << " | " << every << " |\n";
     }
     return r.str();
 }
 
+namespace {
+
+// A rotating part is analysed over whole turns: what the window holds of them, and the run that
+// would fix a window too short or not whole.
+std::string turn_sentences(const AnalysisWindow& w) {
+    if (w.turn_s <= 0.0) return "";
+    std::ostringstream r;
+    const std::string turn = fmt(w.turn_s, 4) + " s";
+    if (w.shorter_than_a_turn()) {
+        r << "\n**The window is " << fmt(w.turns(), 2) << " of a turn of the rotating part (a turn takes " << turn
+          << ")**: the sides that have not faced the sonotrode yet are not peened like the others, so no region, no uniformity and no "
+             "time to the target here is the part's. Run at least " << fmt(w.from_s + w.turn_s, 4)
+          << " s (a whole turn): `--set \"process.duration=" << fmt(std::ceil((w.from_s + w.turn_s) * 1000.0) / 1000.0, 8) << " s\"`.\n";
+    } else if (w.to_s < w.asked_to_s - 1e-9 * w.turn_s) {
+        const double whole = std::round(w.turns());
+        r << "\nAnalysed over " << fmt(whole, 6) << " whole turn" << (whole == 1.0 ? "" : "s") << " of the rotating part (" << turn
+          << " each): to " << fmt(w.to_s) << " s; the last " << fmt(w.asked_to_s - w.to_s, 3)
+          << " s, part of a turn, is left out, as it would weigh the side that faced the sonotrode in it more than the others. A run of "
+          << fmt(w.from_s + (whole + 1.0) * w.turn_s, 6) << " s (" << fmt(whole + 1.0, 6) << " turns) uses every impact.\n";
+    } else if (w.to_given) {
+        const double fraction = w.turns() - std::floor(w.turns());
+        // A part of a turn matters while it is a noticeable share of the window.
+        if (fraction > 0.02 && fraction < 0.98 && w.turns() < 20.0)
+            r << "\n**--to makes the window " << fmt(w.turns(), 3) << " turns of the rotating part** (" << turn
+              << " each): the part of the last turn weighs the side that faced the sonotrode in it more than the others. Analyse a "
+                 "whole number: `--to "
+              << fmt(w.from_s + std::max(1.0, std::floor(w.turns())) * w.turn_s, 6) << " s`.\n";
+    }
+    return r.str();
+}
+
+// The scene's name, and the --set options the run changed it with: the title says what was run.
+std::string report_title(const SceneDescription& scene, const ReportContext& x) {
+    std::string title = scene.name.empty() ? x.run_dir.string() : scene.name;
+    if (!x.overrides.empty()) {
+        title += " (run with";
+        for (const std::string& o : x.overrides) title += " --set " + o;
+        title += ")";
+    }
+    return title;
+}
+
+}  // namespace
+
 std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, const ReportContext& x) {
     std::ostringstream r;
     const AnalysisWindow& w = x.window;
-    r << "# peensim analysis: " << (scene.name.empty() ? x.run_dir.string() : scene.name) << "\n\n";
+    r << "# peensim analysis: " << report_title(scene, x) << "\n\n";
     r << "Run: `" << x.run_dir.string() << "`, " << fmt(x.log_duration_s) << " s of peening simulated"
       << (x.finished ? "" : " (the run did not finish: its impact log is partial)") << ".";
     if (w.from_s > 0.0 || w.to_s < x.log_duration_s)
@@ -230,13 +305,17 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
     if (w.min_speed_m_per_s > 0.0) r << " Impacts slower than " << fmt(w.min_speed_m_per_s) << " m/s are left out.";
     r << "\n";
     if (x.truncated) r << "The impact log ended inside a row (a run killed mid-write): that row was left out.\n";
+    r << turn_sentences(w);
     r << verdict_sections(parts, x);
     r << "\n## Summary\n\n" << analysis_summary_table(parts, w);
     r << "\nCoverage follows SAE J2277: the area fraction covered by at least one dent, each dent of diameter "
          "phi = D (8 rho v_n^2 / (9 sigma_y))^(1/4) (eq. 10), sampled on a grid of spacing a fifth of the dent at 1 m/s, over the "
-         "peened area: facets no shot can reach (no room for a shot centre beside them, e.g. a bore an axle fills) and regions "
-         "marked `exclude` are left out. 98 % counts as full coverage, its time from the fit C(t) = 1 - exp(-k t); the 95 % "
-         "interval of k is the larger of the fit's and the scatter of the dent area delivered in 10 time batches.\n\nFiles (per "
+         "peened area: the samples no shot can touch (no room for a shot centre a radius away along the normal, e.g. a bore an "
+         "axle fills) and regions marked `exclude` are left out. The time to the target is forecast point by point: every "
+         "uncovered sample stays uncovered with probability exp(-mu tau), mu its local rate of dents (their area per area around "
+         "it, from the impacts on faces, smoothed over the radius the extrapolation allows, counting noise removed), and the "
+         "area's time is when the expected uncovered share falls to 1 - target; its 95 % interval from a jackknife over 10 time "
+         "batches, widened by the smoothing's bias (the forecast at twice the radius). See the README's \"How long to peen\".\n\nFiles (per "
          "component): `<component>_triangles.csv` (per-triangle fields, the same smoothed over a radius of the surface, the share a "
          "shot can reach, the excluded share and the region), `<component>_coverage.csv` (coverage vs time), "
          "`<component>_histograms.csv` (normal speed, impact angle, dent diameter; whole component and per region), "
@@ -245,7 +324,7 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
          "over time, for ParaView), `<component>_regions.csv` and `<component>_region_coverage.csv` (the scene's regions of the "
          "component), `<component>_almen.csv` (Almen strips: dose, dents and arc height vs time), `figures.json` (every figure, for "
          "programs), `open_in_paraview.py` (the whole run in ParaView: `paraview --script=open_in_paraview.py`).\n";
-    r << region_tables(parts, w.length_s());
+    r << region_tables(parts, w);
     r << almen_report_sections(parts, w.length_s());
     r << jet_sections(parts, x);
     r << size_sections(parts);
@@ -257,6 +336,7 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
         r << "![" << kind << "](" << name << ")\n\n";
     }
     if (!x.plot_note.empty()) r << (x.pngs.empty() ? "\n" : "") << "Plots: " << x.plot_note << ".\n";
+    r << changes_section(scene, parts, x);
     return r.str();
 }
 

@@ -23,12 +23,14 @@ struct ReportContext {
     std::string plot_note;          // why plots are missing, or ""
     // Per logged component (by name): the picture of its least-covered region, or why there is none.
     std::vector<std::pair<std::string, std::string>> least_covered_pngs;
+    std::vector<std::pair<std::string, std::string>> unreachable_pngs;  // the area out of the shot's reach
     std::string picture_note;
     // From the run's summary.json, when it has them: shot-shot collisions, each nozzle's eps, and
     // the run's wall time per simulated second (what a longer run will cost).
     std::optional<std::uint64_t> shot_shot_impacts;
     std::vector<std::pair<std::string, double>> flow_rate_eps;
     std::optional<double> wall_per_simulated_s;
+    std::vector<std::string> overrides;  // the run's --set options (summary.json): the title says them
 };
 
 std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, const ReportContext& context);

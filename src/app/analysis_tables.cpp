@@ -31,7 +31,7 @@ void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double
         s << t << ',' << (c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t]) << ','
           << fmt(c.fields->area_m2(t) * 1e6, 8) << ',' << c.fields->count(t) << ',' << fmt(c.fields->rate_per_mm2_s(t, duration), 6) << ','
           << fmt(c.fields->mean_normal_speed(t)) << ',' << fmt(c.fields->max_normal_speed(t)) << ',' << fmt(c.fields->energy_per_area(t), 6)
-          << ',' << (c.coverage ? fmt(c.coverage->coverage_of_triangle(t)) : "") << ',' << fmt(m.impacts_per_m2() / 1e6 / duration, 6)
+          << ',' << (c.coverage ? fmt(c.coverage->map().coverage_of_triangle(t)) : "") << ',' << fmt(m.impacts_per_m2() / 1e6 / duration, 6)
           << ',' << fmt(m.relative_error(), 4) << ',' << fmt(m.mean_normal_speed()) << ',' << fmt(m.energy_J_per_m2(), 6) << ','
           << (c.coverage ? fmt(m.coverage()) : "") << ',' << radius_mm << ',' << (c.reach.empty() ? "" : fmt(c.reach[t], 3)) << ','
           << fmt(c.regions.excluded_fraction(t), 3) << ',' << dominant_region_name(c, t) << '\n';
@@ -64,7 +64,7 @@ std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) 
         f[k++].values.push_back(std::isfinite(mean) ? mean : 0.0);  // ParaView: 0 where nothing hit
         f[k++].values.push_back(c.fields->max_normal_speed(t));
         f[k++].values.push_back(c.fields->energy_per_area(t));
-        if (c.coverage) f[k++].values.push_back(c.coverage->coverage_of_triangle(t));
+        if (c.coverage) f[k++].values.push_back(c.coverage->map().coverage_of_triangle(t));
         f[k++].values.push_back(m.impacts_per_m2() / 1e6 / duration);
         f[k++].values.push_back(m.mean_normal_speed());
         f[k++].values.push_back(m.energy_J_per_m2());
@@ -81,29 +81,33 @@ std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) 
 
 std::string interval(double low, double high) { return fmt(low) + "," + (std::isinf(high) ? std::string("inf") : fmt(high)); }
 
+// The forecast's columns: status, time to the target with its interval (s of peening), the run
+// length that would give a number (too_short).
+std::string forecast_columns(const AreaForecast& f) {
+    std::string s = std::string(status_name(f.status)) + ',';
+    const bool timed = f.status == AreaForecast::Status::reached || f.status == AreaForecast::Status::forecast ||
+                       f.status == AreaForecast::Status::too_short;
+    s += timed ? fmt(f.time_s, 6) + ',' + interval(f.low_s, f.high_s) : std::string(",,");
+    s += ',' + (f.status == AreaForecast::Status::too_short ? (std::isinf(f.run_for_s) ? std::string("inf") : fmt(f.run_for_s, 6)) : "");
+    return s;
+}
+
 void write_regions_csv(const fs::path& path, const ComponentAnalysis& c, double duration) {
     std::ostringstream s;
     s << "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage,excluded,peened_area_mm2,"
-         "avrami_k_per_s,avrami_k_low_per_s,avrami_k_high_per_s,time_to_98_s,time_to_98_low_s,time_to_98_high_s,run_multiple\n";
+         "unreachable_area_mm2,time_to_target_status,time_to_target_s,time_to_target_low_s,time_to_target_high_s,run_for_s\n";
     for (std::size_t r = 0; r < c.regions.size(); ++r) {
-        const RegionStats x = region_stats(c.regions, r, c.region_tallies[r], c.coverage.get(), c.peened, duration);
-        const CoverageOutlook o = c.region_outlooks.empty() ? CoverageOutlook{} : c.region_outlooks[r];
-        const bool fitted = !c.region_outlooks.empty() && o.fitted;
+        const RegionStats x = region_stats(c.regions, r, c.region_tallies[r], c.coverage.get(), duration);
         s << c.regions.name(r) << ',' << x.triangles << ',' << fmt(x.area_m2 * 1e6, 8) << ',' << x.impacts << ','
           << fmt(x.impacts_per_mm2_s, 6) << ',' << fmt(x.mean_normal_speed) << ',' << fmt(x.max_normal_speed) << ','
           << fmt(x.energy_per_area, 6) << ',' << fmt(x.coverage) << ',' << (c.regions.excluded(r) ? "true" : "false") << ','
-          << fmt(x.peened_area_m2 * 1e6, 8) << ',';
-        if (fitted)
-            s << fmt(o.k_per_s, 6) << ',' << fmt(o.k_low_per_s, 6) << ',' << fmt(o.k_high_per_s, 6) << ',' << fmt(o.time_to_98_s, 6) << ','
-              << interval(o.time_to_98_low_s, o.time_to_98_high_s) << ',' << fmt(o.run_multiple, 4);
-        else
-            s << ",,,,,,";
-        s << '\n';
+          << fmt(x.peened_area_m2 * 1e6, 8) << ',' << fmt(x.unreachable_area_m2 * 1e6, 8) << ',';
+        s << (c.coverage && r < c.forecast.regions.size() ? forecast_columns(c.forecast.regions[r]) : std::string(",,,,,")) << '\n';
     }
     write_file_atomically(path.string(), s.str());
 }
 
-// Coverage of every region against time (one column per region), as the report's fits see it.
+// Coverage of every region against time (one column per region).
 void write_region_curves_csv(const fs::path& path, const ComponentAnalysis& c, const AnalysisWindow& window) {
     std::ostringstream s;
     s << "time_s";

@@ -6,11 +6,11 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "analysis/impact_stream.h"
-#include "analysis/part_coverage.h"
 #include "app/almen_analysis.h"
 #include "app/analysis_figures.h"
 #include "app/analysis_format.h"
@@ -18,6 +18,7 @@
 #include "app/analysis_report.h"
 #include "app/analysis_tables.h"
 #include "app/component_analysis.h"
+#include "app/coverage_setup.h"
 #include "app/coverage_verdict.h"
 #include "app/map_smoothing.h"
 #include "app/paraview_coverage_series.h"
@@ -64,9 +65,9 @@ double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& 
     return scene.process.duration_s;
 }
 
-// mc: the component in the compiled model (its mesh, its reach), c: its description.
+// The analysis of component ci (c its description) as the log starts streaming.
 ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* cavity, const ComponentDesc& c, const SceneDescription& scene,
-                              double shot_mass) {
+                              double shot_mass, double target) {
     ComponentAnalysis a;
     a.name = c.name;
     a.index = ci;
@@ -77,16 +78,19 @@ ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* ca
     a.region_tallies.assign(a.regions.size(), RegionTally{});
     a.region_histograms.assign(a.regions.size(), ImpactHistograms{});
     a.region_curves.assign(a.regions.size(), {});
-    const MaterialDesc* m = material_named(scene, c.material);
-    if (m && m->yield_stress_pa) {
-        a.yield_stress_pa = *m->yield_stress_pa;
-        a.coverage = part_coverage_map(*a.mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot),
-                                       scene.shot.density_kg_per_m3, a.yield_stress_pa);
-        // Coverage counts only the area a shot can reach and that is to be peened.
-        a.reach = reachable_fractions(model, ci, cavity);
-        a.peened.resize(a.reach.size());
-        for (std::size_t t = 0; t < a.reach.size(); ++t) a.peened[t] = a.reach[t] * (1.0 - a.regions.excluded_fraction(t));
+    // Coverage counts only the samples a shot can reach, outside excluded regions.
+    a.coverage = part_coverage(model, ci, cavity, scene, a.regions, target);
+    if (a.coverage) {
+        a.yield_stress_pa = part_yield_stress(scene, ci);
+        const CoverageMap& map = a.coverage->map();
+        a.reach.resize(map.triangle_count());
+        for (std::size_t t = 0; t < a.reach.size(); ++t) {
+            const std::int64_t n = map.samples_of_triangle(t);
+            a.reach[t] = n > 0 ? static_cast<double>(a.coverage->classes().reachable_samples(t)) / static_cast<double>(n) : 0.0;
+        }
+        a.unreachable = find_unreachable_area(map, a.coverage->classes(), a.regions, reach_test(model, ci, cavity), model.min_shot_radius_m);
     }
+    const MaterialDesc* m = material_named(scene, c.material);
     if (c.almen)
         a.almen =
             almen_analysis_of(c, *a.mesh, shot_mass, scene.shot.density_kg_per_m3, m && m->yield_stress_pa ? *m->yield_stress_pa : 0.0);
@@ -128,20 +132,32 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
     ++a.batch_impacts[b];
     a.batch_speed_sum[b] += vn;
     double dent = std::numeric_limits<double>::quiet_NaN();
-    double dent_area = 0.0;  // m2
     if (a.coverage) {
         dent = dent_diameter(D, scene.shot.density_kg_per_m3, vn, a.yield_stress_pa);
-        dent_area = 0.25 * M_PI * dent * dent;
-        a.coverage->add_dent(row.point_m, dent);
+        a.coverage->add_dent(row.point_m, dent, row.time_s - window.from_s);
         a.dent_sum += dent;
-        if (t >= 0) a.batch_dent_area_m2[b] += dent_area * a.peened[static_cast<std::size_t>(t)];
+        if (t >= 0) {
+            // The forecast's rates come from the impacts on faces; one on an edge of its triangle
+            // dents a strip along that edge (analysis/coverage_forecast.h).
+            const auto tt = static_cast<std::size_t>(t);
+            if (on_triangle_edge(*a.mesh, tt, row.point_m)) {
+                ++a.edge_impacts;
+            } else {
+                ForecastImpact f;
+                for (int k = 0; k < 3; ++k) f.point_m[k] = static_cast<float>(row.point_m[k]);
+                f.triangle = static_cast<std::uint32_t>(tt);
+                f.dent_area_m2 = static_cast<float>(0.25 * M_PI * dent * dent);
+                f.batch = static_cast<std::uint8_t>(batch);
+                a.forecast_impacts.push_back(f);
+            }
+        }
     }
     a.histograms.add(vn, row.vt_in_m_per_s, dent);
     if (t >= 0 && !a.regions.empty()) {
         // Regions by the impact's own point (a triangle may straddle a boundary).
         a.regions.regions_at(row.point_m, static_cast<std::size_t>(t), a.impact_regions);
         for (std::uint32_t r : a.impact_regions) {
-            a.region_tallies[r].add(vn, energy, dent_area, batch);
+            a.region_tallies[r].add(vn, energy);
             a.region_histograms[r].add(vn, row.vt_in_m_per_s, dent);
         }
     }
@@ -164,17 +180,27 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
 // The coverage of the peened area and of every region now, as points of their curves (t: since the window opened).
 void sample_coverage(ComponentAnalysis& a, double t) {
     if (!a.coverage) return;
-    a.curve.push_back({t, peened_coverage(*a.coverage, a.peened)});
-    for (std::size_t r = 0; r < a.regions.size(); ++r)
-        a.region_curves[r].push_back({t, region_coverage(a.regions, r, *a.coverage, a.peened)});
+    a.curve.push_back({t, a.coverage->coverage()});
+    for (std::size_t r = 0; r < a.regions.size(); ++r) a.region_curves[r].push_back({t, a.coverage->region_coverage(r)});
 }
 
-// Once the log is read: where coverage is heading, for the whole peened area and per region.
-void finish_outlooks(ComponentAnalysis& a) {
+// Once the log is read: where coverage is heading, for the peened area, every region and everywhere.
+void finish_forecast(ComponentAnalysis& a, const AnalysisWindow& window) {
     if (!a.coverage) return;
-    a.outlook = coverage_outlook(a.curve, a.batch_dent_area_m2);
-    for (std::size_t r = 0; r < a.regions.size(); ++r)
-        a.region_outlooks.push_back(coverage_outlook(a.region_curves[r], a.region_tallies[r].batch_dent_area_m2));
+    a.forecast = forecast_coverage(*a.coverage, *a.mesh, a.forecast_impacts, window.length_s(), kFigureBatches, a.edge_impacts);
+    a.forecast_impacts = {};  // done with them: the memory back before the report
+    if (window.shorter_than_a_turn()) {
+        // Less than a turn: the sides that have not faced the sonotrode yet have rates of no use,
+        // so no time is given, only how long a run would (a turn; coverage reached stays reached).
+        const auto one_turn = [&](AreaForecast& f) {
+            if (f.status != AreaForecast::Status::forecast && f.status != AreaForecast::Status::never) return;
+            f.status = AreaForecast::Status::too_short;
+            f.run_for_s = window.turn_s;
+        };
+        one_turn(a.forecast.whole);
+        one_turn(a.forecast.everywhere);
+        for (AreaForecast& f : a.forecast.regions) one_turn(f);
+    }
 }
 
 // Each part's least-covered region drawn highlighted (render module), for the report: the picture's
@@ -189,7 +215,7 @@ void draw_least_covered(const Model& model, const std::vector<ComponentAnalysis>
         for (const RegionShare& s : a.regions.shares(r)) weight[static_cast<std::size_t>(s.triangle)] = s.fraction;
         const std::string png = a.name + "_least_covered.png";
         const std::string title = a.name + ": the least-covered region, " + a.regions.name(r) + ", at " +
-                                  fmt(100.0 * a.region_outlooks[r].coverage, 3) + " % (dark: out of the shot's reach)";
+                                  fmt(100.0 * a.coverage->region_coverage(r), 3) + " % (dark: out of the shot's reach)";
         try {
             render_module().draw_region_highlight(model, a.index, weight, a.reach, a.regions.name(r), title, (adir / png).string(), 1200,
                                                   900);
@@ -198,15 +224,28 @@ void draw_least_covered(const Model& model, const std::vector<ComponentAnalysis>
             context.picture_note = std::string("no picture of the least-covered region: ") + x.what();
         }
     }
+    for (const ComponentAnalysis& a : parts) {
+        if (!a.coverage || !(a.unreachable.whole.area_m2 > 0.0)) continue;
+        const std::string png = a.name + "_out_of_reach.png";
+        const std::string title = a.name + ": " + fmt(a.unreachable.whole.area_m2 * 1e6, 4) + " mm2 out of the reach of " +
+                                  fmt(a.unreachable.shot_diameter_m * 1e3, 3) + " mm shot";
+        try {
+            render_module().draw_region_highlight(model, a.index, a.unreachable.triangle_share, a.reach, "out of reach", title,
+                                                  (adir / png).string(), 1200, 900);
+            context.unreachable_pngs.emplace_back(a.name, png);
+        } catch (const std::exception& x) {
+            context.picture_note = std::string("no picture of the area out of reach: ") + x.what();
+        }
+    }
 }
 
 // The analysed window: [from, to] of the log's time, checked against it.
-AnalysisWindow window_of(const AnalyzeOptions& o, double duration) {
+AnalysisWindow window_of(const AnalyzeOptions& o, double duration, const SceneDescription& scene) {
     AnalysisWindow w;
     w.from_s = o.from_s;
     w.to_s = o.to_s.value_or(duration);
     w.min_speed_m_per_s = o.min_speed_m_per_s;
-    w.target_coverage = o.target_coverage;
+    w.target_coverage = o.target_coverage.value_or(scene.process.until_coverage.value_or(kFullCoverage));
     if (!(w.from_s >= 0.0 && w.from_s < duration))
         throw InputError(
             {"--from"}, "",
@@ -216,7 +255,29 @@ AnalysisWindow window_of(const AnalyzeOptions& o, double duration) {
     if (!(w.min_speed_m_per_s >= 0.0)) throw InputError({"--min-speed"}, "", "expected a speed >= 0 m/s");
     if (!(w.target_coverage > 0.0 && w.target_coverage <= 1.0))
         throw InputError({"--target"}, "", "expected a coverage in (0, 1] (e.g. 0.98 or 98 %)");
+    w.asked_to_s = w.to_s;
+    w.to_given = o.to_s.has_value();
     return w;
+}
+
+// The turn of the logged parts that rotate (the slowest, if several do): 0 when none does.
+double logged_turn_s(const Model& model, const SceneDescription& scene) {
+    double turn = 0.0;  // s
+    for (std::size_t ci = 0; ci < scene.components.size(); ++ci) {
+        const Kinematics& k = model.components[ci].kinematics;
+        if (!is_logged(scene, scene.components[ci]) || k.kind != Kinematics::Kind::rotating || k.omega_rad_per_s == 0.0) continue;
+        turn = std::max(turn, 2.0 * std::numbers::pi / std::abs(k.omega_rad_per_s));
+    }
+    return turn;
+}
+
+// Ends the window at a whole number of turns of the rotating part (unless --to says where): the
+// rest of the last turn would weigh the side that faced the sonotrode in it more than the others.
+void whole_turns(AnalysisWindow& w, double turn_s) {
+    w.turn_s = turn_s;
+    if (turn_s <= 0.0 || w.to_given) return;
+    const double turns = std::floor(w.length_s() / turn_s * (1.0 + 1e-12));
+    if (turns >= 1.0) w.to_s = std::min(w.to_s, w.from_s + turns * turn_s);
 }
 
 // What the report takes from the run's summary.json, when it has it.
@@ -229,6 +290,7 @@ void read_summary_figures(const fs::path& dir, ReportContext& context) {
             if (c.value("component", "") == "shot-shot") context.shot_shot_impacts = c.value("impacts", std::uint64_t{0});
         for (const auto& e : j.value("flow_rate_eps", nlohmann::json::array()))
             context.flow_rate_eps.emplace_back(e.value("source", ""), e.value("eps", 0.0));
+        context.overrides = j.value("overrides", std::vector<std::string>{});
         const double wall = j.value("wall_time_s", 0.0), simulated = j.value("simulated_time_s", 0.0);
         if (wall > 0.0 && simulated > 0.0) context.wall_per_simulated_s = wall / simulated;
     } catch (const std::exception&) {}  // an older or damaged summary: the report goes without
@@ -250,13 +312,14 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     const SceneDescription scene = parse_scene_file(scene_path.string());
     bool finished = false;
     const double duration = simulated_time(dir, scene, finished);
-    const AnalysisWindow window = window_of(options, duration);
+    AnalysisWindow window = window_of(options, duration, scene);
     const fs::path log = finished ? dir / kImpactCsvFileName : dir / kImpactCsvPartialFileName;
     if (!fs::exists(log)) throw std::runtime_error(output_dir + ": no impact log (impacts.csv or impacts.csv.partial)");
     if (!finished) err << "note: " << output_dir << ": the run did not finish; analysing its partial impact log\n";
 
     // The model: the logged components' meshes, and which of their facets the shot can reach.
     const std::shared_ptr<const Model> model = compile_model(scene);
+    whole_turns(window, logged_turn_s(*model, scene));
     std::unique_ptr<ShotCavity> cavity;
     if (model->sonotrode >= 0) {
         Random rng(model->seed);
@@ -268,7 +331,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     for (std::size_t ci = 0; ci < scene.components.size(); ++ci) {
         const ComponentDesc& c = scene.components[ci];
         if (!is_logged(scene, c)) continue;
-        parts.push_back(analysis_of(*model, ci, cavity.get(), c, scene, shot_mass));
+        parts.push_back(analysis_of(*model, ci, cavity.get(), c, scene, shot_mass, window.target_coverage));
         start_smoothing(parts.back(), scene, c, dir, options.smoothing_radius, std::min(1.0, window.length_s() / duration));
         names.push_back(c.name);
     }
@@ -323,7 +386,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
 
     for (ComponentAnalysis& a : parts) {
         a.points->finish();
-        finish_outlooks(a);
+        finish_forecast(a, window);
         finish_smoothing(a);
         write_component_tables(adir, a, window);
     }
@@ -335,7 +398,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     context.truncated = stream.truncated();
     read_summary_figures(dir, context);
     draw_least_covered(*model, parts, adir, context);
-    context.pngs = write_analysis_plots(adir.string(), names, context.plot_note);
+    context.pngs = write_analysis_plots(adir.string(), names, window.target_coverage, context.plot_note);
     const std::string report = analysis_report(scene, parts, context);
     write_file_atomically((adir / "report.md").string(), report);
     // The same page with its pictures inside: one file to send.

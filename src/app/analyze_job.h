@@ -15,7 +15,9 @@ struct AnalyzeOptions {
     double from_s = 0.0;                // s: impacts before are left out (drop a start-up transient)
     std::optional<double> to_s{};       // s: and after (default: the end of the log)
     double min_speed_m_per_s = 0.0;     // m/s: slower impacts are left out (too slow to dent)
-    double target_coverage = 0.98;      // the report's share of the area below it
+    // The coverage the report measures against (0..1]: empty for the run's own (its scene's
+    // process.until_coverage), else 98 % (SAE J2277's "full" coverage).
+    std::optional<double> target_coverage = std::nullopt;
     // The maps' smoothing radius as the user wrote it ("2 mm", `--smoothing-radius`): empty for the
     // scene's `output.smoothing_radius` or the default (app/map_smoothing.h).
     std::string smoothing_radius;

@@ -11,28 +11,38 @@
 
 #include "analysis/almen.h"
 #include "analysis/almen_model.h"
-#include "analysis/avrami.h"
-#include "analysis/coverage_map.h"
-#include "analysis/coverage_outlook.h"
+#include "analysis/coverage_forecast.h"
+#include "analysis/coverage_progress.h"
 #include "analysis/impact_histograms.h"
 #include "analysis/jet_stream.h"
 #include "analysis/region_stats.h"
 #include "analysis/regions.h"
 #include "analysis/surface_smoothing.h"
 #include "analysis/triangle_fields.h"
+#include "analysis/unreachable_area.h"
 #include "geometry/triangle_mesh.h"
 #include "output/vtp_writer.h"
 #include "scene/scene_description.h"
 
 namespace peensim {
 
+// SAE J2277's "full" coverage: 98 % of the area dented.
+inline constexpr double kFullCoverage = 0.98;
+
 // What of the log an analysis takes (`peensim analyze --from --to --min-speed --target`).
 struct AnalysisWindow {
     double from_s = 0.0;                               // s: impacts before are left out (a start-up transient)
     double to_s = 0.0;                                 // s: and after (the run's end by default)
     double min_speed_m_per_s = 0.0;                    // m/s: slower impacts are left out
-    double target_coverage = 0.98;                     // the share of the area below it is reported
+    double target_coverage = kFullCoverage;            // what the times to the target and the share below it are of
     double length_s() const { return to_s - from_s; }  // s, the analysed time: rates are per it
+    // A rotating part is analysed over whole turns: a part of a turn favours the side that faced
+    // the sonotrode in it.
+    double turn_s = 0.0;        // s, the logged part's turn (0: nothing logged rotates)
+    double asked_to_s = 0.0;    // s, the end asked for (the log's end by default) before whole turns
+    bool to_given = false;      // --to was given: kept as asked, warned about if not whole turns
+    double turns() const { return turn_s > 0.0 ? length_s() / turn_s : 0.0; }
+    bool shorter_than_a_turn() const { return turn_s > 0.0 && turns() < 1.0 - 1e-9; }
 };
 
 // The Almen side of a component with role almen.
@@ -51,7 +61,8 @@ struct ComponentAnalysis {
     ComponentRole role = ComponentRole::part;
     std::shared_ptr<const TriangleMesh> mesh;  // the compiled model's (component frame, m)
     std::unique_ptr<TriangleFields> fields;
-    std::unique_ptr<CoverageMap> coverage;  // empty if the material has no yield stress
+    // Coverage of the peened area as the dents land (empty if the material has no yield stress).
+    std::unique_ptr<CoverageProgress> coverage;
     double yield_stress_pa = 0.0;           // Pa (0: none)
     ImpactHistograms histograms;
     std::uint64_t impacts = 0;
@@ -69,14 +80,16 @@ struct ComponentAnalysis {
     std::vector<ImpactHistograms> region_histograms;        // per region, same order
     std::vector<std::vector<CoveragePoint>> region_curves;  // per region: coverage vs time since the window opened
     std::vector<std::uint32_t> impact_regions;              // the regions of the impact being added (reused)
-    // Per triangle: the share of it a shot can reach (model/facet_reach.h), and the weight coverage
-    // gives its area: reach x (1 - its share in excluded regions).
+    // Per triangle: the share of its samples a shot can reach (sample_classes.h).
     std::vector<double> reach;
-    std::vector<double> peened;
-    std::array<double, kFigureBatches> batch_dent_area_m2{};  // m2, dents delivered on the peened area per batch
-    // Filled once the log has been read.
-    CoverageOutlook outlook;                       // the peened area's
-    std::vector<CoverageOutlook> region_outlooks;  // per region
+    // The area out of reach, per region, and the shot that would reach it (unreachable_area.h).
+    UnreachableFindings unreachable;
+    // The forecast's impacts (those on faces; an impact on an edge of its triangle dents a strip
+    // along it: coverage_forecast.h), how many were on edges, and, once the log has been read, the
+    // forecast.
+    std::vector<ForecastImpact> forecast_impacts;
+    std::uint64_t edge_impacts = 0;
+    CoverageForecast forecast;
     std::optional<AlmenAnalysis> almen;
     // Scenes with nozzles: how the jet arrives (analysis/jet_stream.h). The jet's axis in the
     // component's frame, and whether the normal-speed share means anything (one nozzle, a static

@@ -119,7 +119,7 @@ void smooth_impact(ComponentAnalysis& a, const ImpactRow& row, int t, double mas
 
 void finish_smoothing(ComponentAnalysis& a) {
     if (!a.smoothing) return;
-    if (a.coverage) a.smoothing->add_coverage(*a.coverage);
+    if (a.coverage) a.smoothing->add_coverage(a.coverage->map());
     a.smoothed = a.smoothing->at_triangles();
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -37,7 +38,9 @@ struct RenderImpactsOptions {
     std::vector<std::string> fields;  // impacts, speed, coverage; empty = all
     int width_px = 1600;              // whole image (2 x 2 views)
     int height_px = 1200;
-    double coverage_target = 0.98;  // fraction marked on the coverage map's colour bar (`--target`, in %)
+    // The coverage marked on the coverage map's colour bar (0..1, `--target`); empty: the run's
+    // analysis's target (analysis/figures.json), else 98 %.
+    std::optional<double> coverage_target;
 };
 
 // `peensim render-regions`: the regions of the logged components, each in its own colour.

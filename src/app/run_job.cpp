@@ -12,6 +12,7 @@
 #include "app/analyze_job.h"
 #include "app/checkpoint.h"
 #include "app/checkpoint_cadence.h"
+#include "app/coverage_watch.h"
 #include "app/interrupt.h"
 #include "app/loss_report.h"
 #include "app/paraview_assembly.h"
@@ -80,6 +81,14 @@ public:
         start(setup);
         if (const std::optional<double> every = model_->description.output.shot_positions_s)
             shot_series_ = std::make_unique<ShotSeriesRecorder>(*model_, dir_, *every, sim_->state());
+        if (model_->description.process.until_coverage) {
+            // Coverage from the dents logged so far (a resumed run's), then as they come.
+            coverage_watch_ = std::make_unique<CoverageWatch>(
+                *model_, options_.resume ? (fs::path(dir_) / kImpactCsvPartialFileName).string() : std::string());
+            if (coverage_watch_->done()) {
+                err_ << "note: the coverage target was reached before this resumed run's checkpoint\n";
+            }
+        }
         try {
             {
                 // Signals are caught from before the start's checkpoint (so a checkpoint on disk means
@@ -191,6 +200,7 @@ private:
         } listener(*this, options_.progress && isatty(STDERR_FILENO));
         started_ = Clock::now();
         RunLoop run(*sim_);
+        if (coverage_watch_) run.add(*coverage_watch_);  // first: the others see a step after its dents count
         run.add(listener);
         if (shot_series_) run.add(*shot_series_);
         // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
@@ -218,6 +228,14 @@ private:
 
     RunSummary summary(bool finished) const {
         RunSummary s = build_summary(*sim_, options_.scene_path, speeds_, wall_time(), finished);
+        s.overrides = options_.overrides;
+        if (coverage_watch_) {
+            RunSummary::CoverageGoal g;
+            g.target = coverage_watch_->target();
+            for (const WatchedArea& a : coverage_watch_->areas()) g.areas.push_back({a.name, a.reached_at_s, a.coverage});
+            g.reached = coverage_watch_->done();
+            s.until_coverage = std::move(g);
+        }
         for (StageTime& st : s.stage_times)
             if (st.stage == "record_impacts") st.seconds += output_seconds_;
         return s;
@@ -280,6 +298,7 @@ private:
     std::unique_ptr<ImpactCsvWriter> writer_;
     std::unique_ptr<FrameSink> recorder_;              // only when rendering (the module is loaded then)
     std::unique_ptr<ShotSeriesRecorder> shot_series_;  // only when the scene asks (output.shot_positions)
+    std::unique_ptr<CoverageWatch> coverage_watch_;    // only when running until coverage
     std::vector<SpeedHistogram> speeds_;
     std::uint64_t logged_impacts_ = 0;
     double wall_before_ = 0.0;     // s, wall time of earlier sessions of a resumed run

@@ -1,9 +1,11 @@
 // The comparison of a sweep's variants (`DIR/sweep/`): one row per variant in comparison.csv and
-// report.md, the logged part's impact rate, mean and p90 normal speed, coverage, time to 98 %,
-// Almen dose and per-region rate and coverage, each with its 95 % confidence interval (from the
-// seed replicates with Student's t; with one seed, from the run's batch means for rate and speed
-// and from the Avrami fit's standard error for the time to 98 %), the difference from the baseline
-// variant and a verdict (differs / within noise); and a plot per varied field.
+// report.md. What decides a process comes first: the slowest region's time to the target, the time
+// to it everywhere, the uniformity and the share of the area below it; then the whole part's time,
+// impact rate, mean and p90 normal speed, coverage, Almen dose and per-region rate, coverage and
+// time. Each has its 95 % confidence interval (from the seed replicates with Student's t; with one
+// seed, from the run's batch means for rate and speed and from the run's own forecast interval for
+// the times and the uniformity), the difference from the baseline variant and a verdict (differs /
+// within noise); and a plot per varied field.
 #pragma once
 
 #include <optional>
@@ -19,6 +21,7 @@ namespace peensim {
 struct SweepFigure {
     std::optional<double> mean;
     std::optional<double> ci95;
+    std::string missing;  // why there is no mean ("too short: run 600 s"); "" = none given
 };
 
 // mean +- t_{0.975, n-1} sd / sqrt(n) of `values` (empty ci95 for fewer than two).

@@ -21,16 +21,9 @@
 namespace {
 
 // A quantity given on the command line, in SI; bad text is an input error naming the option.
-double parse_option_quantity(const char* option, std::string text, peensim::Dimension dim) {
-    // A fraction may be written in per cent ("98 %").
-    double scale = 1.0;
-    if (dim == peensim::Dimension::dimensionless && !text.empty() && text.back() == '%') {
-        text.pop_back();
-        while (!text.empty() && text.back() == ' ') text.pop_back();
-        scale = 0.01;
-    }
+double parse_option_quantity(const char* option, const std::string& text, peensim::Dimension dim) {
     try {
-        return scale * peensim::parse_quantity(text, dim);
+        return peensim::parse_quantity(text, dim);
     } catch (const peensim::QuantityError& e) {
         throw peensim::InputError({option}, "", e.what());
     }
@@ -65,6 +58,10 @@ int main(int argc, char** argv) {
     std::string scheme;
     run_cmd->add_option("--scheme", scheme, "stepping scheme, overriding the scene's accuracy.scheme")
         ->check(CLI::IsMember({"step", "event", "soft"}));
+    std::string until_coverage;
+    run_cmd->add_option("--until-coverage", until_coverage,
+                        "run until coverage reaches this (e.g. 98%) on every region of the logged parts (or process.until_coverage_of); "
+                        "process.duration caps the run");
     std::uint64_t stop_after = 0;
     run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
 
@@ -86,7 +83,7 @@ int main(int argc, char** argv) {
     analyze_cmd->add_option("--from", analyze_from, "leave out the impacts before this time, e.g. a start-up transient (s, or \"500 ms\")");
     analyze_cmd->add_option("--to", analyze_to, "leave out the impacts after this time (default: the end of the run)");
     analyze_cmd->add_option("--min-speed", analyze_min_speed, "leave out impacts with a slower normal speed (m/s, or \"20 cm/s\")");
-    analyze_cmd->add_option("--target", analyze_target, "the coverage the report measures against (default 98 %: \"0.98\" or \"98 %\")");
+    analyze_cmd->add_option("--target", analyze_target, "the coverage the report measures against: \"0.98\" or \"98 %\" (default: the scene's process.until_coverage, else 98 %)");
     analyze_cmd->add_option("--smoothing-radius", analyze.smoothing_radius,
                             "radius of the surface the maps' fields are smoothed over, e.g. \"1.5 mm\" (default: the scene's "
                             "output.smoothing_radius, else from the dent size and the impact density)");
@@ -109,9 +106,9 @@ int main(int argc, char** argv) {
     render_impacts_cmd->add_option("--field", render_impacts.fields, "impacts, speed or coverage (repeatable; default: all)");
     render_impacts_cmd->add_option("--width", render_impacts.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
     render_impacts_cmd->add_option("--height", render_impacts.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
-    double coverage_target_percent = 98.0;
-    render_impacts_cmd->add_option("--target", coverage_target_percent, "coverage target marked on the coverage map's colour bar, % (default 98)")
-        ->check(CLI::Range(0.01, 100.0));
+    std::string render_target;
+    render_impacts_cmd->add_option("--target", render_target,
+                                   "coverage target marked on the coverage map's colour bar: \"0.98\" or \"98 %\" (default: the analysis's)");
 
     SweepOptions sweep;
     auto* sweep_cmd = app.add_subcommand(
@@ -201,7 +198,7 @@ int main(int argc, char** argv) {
     almen_fit_cmd->add_option("--form", almen_fit.form, "use this fit, 2P or 3P, instead of the recommended one");
     almen_fit_cmd->add_option("--json", almen_fit.json_path, "also write every figure to this JSON file");
     almen_fit_cmd->add_option("--plot", almen_fit.plot_path,
-                              "draw the points, both fits, T and 2T to this PNG (gnuplot; its .gp and .csv beside it)");
+                              "draw the points, both fits, T and 2T to this PNG (gnuplot; its .gp and <name>_points.csv beside it)");
     almen_fit_cmd->add_option("--calibrate", almen_fit.calibrate_run,
                               "the run (directory, analysed) that reproduced the measurement: print the scene's almen.calibration");
     almen_fit_cmd->add_option("--component", almen_fit.component, "the Almen strip of that run (default: its only one)");
@@ -216,6 +213,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) {
         if (stop_after > 0) run.stop_after_steps = stop_after;
         if (!scheme.empty()) run.overrides.push_back("accuracy.scheme=" + scheme);
+        if (!until_coverage.empty()) run.overrides.push_back("process.until_coverage=" + until_coverage);
         std::ostream null_stream(nullptr);
         run.progress = !quiet;
         run.analyze = !no_analyze;
@@ -247,7 +245,13 @@ int main(int argc, char** argv) {
         }
     }
     if (*render_impacts_cmd) {
-        render_impacts.coverage_target = coverage_target_percent / 100.0;
+        try {
+            if (!render_target.empty())
+                render_impacts.coverage_target = parse_option_quantity("--target", render_target, Dimension::dimensionless);
+        } catch (const InputError& e) {
+            std::cerr << "error: " << e.what() << "\n";
+            return kExitInputError;
+        }
         try {
             return render_module().render_impacts(render_impacts, std::cout, std::cerr);
         } catch (const std::exception& e) {

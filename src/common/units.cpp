@@ -119,7 +119,7 @@ std::size_t read_leading_number(std::string_view text, double& value) {
 }
 
 std::string units_hint(Dimension dim) {
-    if (dim == Dimension::dimensionless) return "a plain number without unit";
+    if (dim == Dimension::dimensionless) return "a plain number (or a percentage: \"98 %\")";
     return std::string(dimension_noun(dim)) + " (a number in " + std::string(si_unit(dim)) + ", or a number with one of the units " +
            accepted_units_text(dim) + ")";
 }
@@ -192,7 +192,9 @@ double parse_quantity(std::string_view text, Dimension dim, std::string_view pla
     std::string_view symbol = trim(trimmed.substr(used));
     if (symbol.empty()) symbol = plain_number_unit;
     if (symbol.empty()) return number;  // SI
-    if (dim == Dimension::dimensionless) throw QuantityError("expected a plain number without unit, got " + quoted);
+    // A fraction may be written in per cent ("98 %").
+    if (dim == Dimension::dimensionless && symbol == "%") return number / 100.0;
+    if (dim == Dimension::dimensionless) throw QuantityError("expected a plain number (or a percentage: \"98 %\"), got " + quoted);
     if (const UnitDef* u = find_unit(symbol, dim)) {
         const double si = number / u->divisor * u->multiplier;
         if (!std::isfinite(si)) throw QuantityError("value out of range: " + quoted);

@@ -28,6 +28,9 @@ public:
     // At each restart point (a checkpoint of the state now resumes into exactly this run: every
     // step of time stepping, each restart interval of the event-driven scheme).
     virtual void at_restart_point(const Simulation& /*sim*/) {}
+    // Whether the run has what it came for (run until coverage): asked at each restart point, after
+    // at_restart_point; yes ends the run there as finished, before the scene's duration.
+    virtual bool done() const { return false; }
 };
 
 class RunLoop {
@@ -37,9 +40,9 @@ public:
     // Listeners are called in the order they were added; they must outlive the loop's run().
     void add(RunListener& listener) { listeners_.push_back(&listener); }
 
-    // Runs to the scene's end: true. `stop`, asked after every step with the number of steps
-    // taken, ends the run at the next restart point once it has said yes: false (the state there
-    // is a clean place to checkpoint and resume from).
+    // Runs to the scene's end, or to a restart point where a listener is done: true. `stop`, asked
+    // after every step with the number of steps taken, ends the run at the next restart point once
+    // it has said yes: false (the state there is a clean place to checkpoint and resume from).
     bool run(const std::function<bool(std::uint64_t steps)>& stop = {}) {
         std::uint64_t steps = 0;
         bool stopping = false;
@@ -54,6 +57,8 @@ public:
             if (!sim_.at_restart_point()) continue;
             if (stopping) return false;
             for (RunListener* l : listeners_) l->at_restart_point(sim_);
+            for (const RunListener* l : listeners_)
+                if (l->done()) return true;
         }
         return true;
     }

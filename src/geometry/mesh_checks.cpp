@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace peensim {
@@ -22,6 +23,18 @@ Vec3 triangle_normal(const TriangleMesh& mesh, std::size_t t) {
 }
 
 double triangle_area(const TriangleMesh& mesh, std::size_t t) { return 0.5 * doubled_area_vector(mesh, t).norm(); }
+
+bool on_triangle_edge(const TriangleMesh& mesh, std::size_t t, const Vec3& p) {
+    double longest = 0.0, nearest = std::numeric_limits<double>::infinity();  // m
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 a = mesh.corner(t, k), ab = mesh.corner(t, (k + 1) % 3) - a;
+        const double length2 = ab.squaredNorm();
+        longest = std::max(longest, length2);
+        const double u = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+        nearest = std::min(nearest, (p - (a + u * ab)).squaredNorm());
+    }
+    return nearest <= 1e-12 * longest;
+}
 
 double surface_area(const TriangleMesh& mesh) {
     double area = 0.0;

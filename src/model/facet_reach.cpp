@@ -44,4 +44,12 @@ std::vector<double> reachable_fractions(const Model& model, std::size_t ci, Shot
     return reach;
 }
 
+std::function<bool(const Vec3&, std::size_t, double)> reach_test(const Model& model, std::size_t ci, ShotCavity* cavity) {
+    const Component& c = model.components[ci];
+    const Pose pose = c.kinematics.pose(SimTime{});
+    return [&model, &c, cavity, pose](const Vec3& p, std::size_t t, double R) {
+        return shot_fits_beside(model, cavity, c, pose.to_world(p), pose.rotation * triangle_normal(*c.mesh, t), R);
+    };
+}
+
 }  // namespace peensim

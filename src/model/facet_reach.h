@@ -6,6 +6,7 @@
 // The same test `check` uses for a part's share of reachable surface (assembly_checks.h).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "model/model.h"
@@ -22,7 +23,17 @@ inline constexpr int kReachProbesPerEdge = 4;
 bool shot_fits_beside(const Model& model, ShotCavity* cavity, const Component& c, const Vec3& x, const Vec3& n, double R);
 
 // Per triangle of component `ci`: the share of its probe points a shot of the model's smallest
-// radius can reach (0..1).
+// radius can reach (0..1). A preview (render-regions before any run); the analysis decides reach
+// per coverage sample (analysis/sample_classes.h) with reach_test below.
 std::vector<double> reachable_fractions(const Model& model, std::size_t ci, ShotCavity* cavity);
+
+// The reach of component ci's surface in the assembly at t = 0 as a test of (point, triangle, shot
+// radius): point (m) and triangle in the component's own frame, shot radius in m. The model and
+// the cavity must outlive it.
+std::function<bool(const Vec3& point_m, std::size_t triangle, double shot_radius_m)> reach_test(const Model& model, std::size_t ci,
+                                                                                                ShotCavity* cavity);
+
+// The per-sample reach is probed at R / kReachProbesPerRadius (R the smallest shot radius).
+inline constexpr double kReachProbesPerRadius = 4.0;
 
 }  // namespace peensim

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,7 @@ struct StageTime {
 
 struct RunSummary {
     std::string scene_file;  // path as the user gave it
+    std::vector<std::string> overrides;  // the --set options, as given ("path=value"), in order
     std::string scene_hash;  // hex digest of the scene and everything it references
     std::string scheme;      // time-integration scheme name
     std::string flight;      // flight model between contacts ("parabola", "air drag")
@@ -84,6 +86,20 @@ struct RunSummary {
     std::vector<StageTime> stage_times;  // in step order
 
     std::uint64_t peak_memory_bytes = 0;  // bytes, peak resident set size
+
+    // A run until coverage (process.until_coverage): the target, and each watched area's coverage
+    // now and when it reached the target (NaN: not yet).
+    struct CoverageGoal {
+        double target = 0.98;
+        struct Area {
+            std::string name;
+            double reached_at_s = 0.0;  // s of simulated time (NaN: not yet)
+            double coverage = 0.0;      // 0..1
+        };
+        std::vector<Area> areas;
+        bool reached = false;  // every area reached it (the run ended there, before the duration)
+    };
+    std::optional<CoverageGoal> until_coverage;
 };
 
 }  // namespace peensim

@@ -1,5 +1,7 @@
 #include "output/summary_json.h"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "output/atomic_file.h"
@@ -11,6 +13,7 @@ std::string summary_to_json(const RunSummary& s) {
     nlohmann::ordered_json j;
     j["scene_file"] = s.scene_file;
     j["scene_hash"] = s.scene_hash;
+    j["overrides"] = s.overrides;
     j["scheme"] = s.scheme;
     j["flight"] = s.flight;
     j["finished"] = s.finished;
@@ -23,6 +26,15 @@ std::string summary_to_json(const RunSummary& s) {
     j["sim_seconds_per_wall_second"] = s.sim_seconds_per_wall_second;
     j["shot_count"] = s.shot_count;
     j["shot_lost"] = s.shot_lost;
+    if (s.until_coverage) {
+        // JSON has no NaN: an area not reached yet has null.
+        auto areas = nlohmann::ordered_json::array();
+        for (const auto& a : s.until_coverage->areas)
+            areas.push_back({{"area", a.name},
+                             {"coverage", a.coverage},
+                             {"reached_at_s", std::isfinite(a.reached_at_s) ? nlohmann::ordered_json(a.reached_at_s) : nlohmann::ordered_json(nullptr)}});
+        j["until_coverage"] = {{"target", s.until_coverage->target}, {"reached", s.until_coverage->reached}, {"areas", std::move(areas)}};
+    }
 
     auto impacts = nlohmann::ordered_json::array();
     for (const auto& c : s.impacts_per_component) {

@@ -1,5 +1,7 @@
 #include "output/summary_text.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <cstdarg>
 #include <cstdio>
@@ -70,6 +72,26 @@ std::string summary_to_text(const RunSummary& s) {
     rows.emplace_back("simulated",
                       printf_string("%.6g s of %.6g s (%s)", s.simulated_time_s, s.duration_s, s.finished ? "finished" : "interrupted"));
     rows.emplace_back("wall time", printf_string("%.3f s (%.4g simulated s per wall s)", s.wall_time_s, s.sim_seconds_per_wall_second));
+    if (s.until_coverage) {
+        // Until coverage: reached where, when; the slowest area last.
+        double last = 0.0;
+        std::string slowest, missing;
+        int reached = 0;
+        for (const auto& a : s.until_coverage->areas) {
+            if (std::isfinite(a.reached_at_s)) {
+                ++reached;
+                if (a.reached_at_s >= last) last = a.reached_at_s, slowest = a.name;
+            } else if (missing.empty()) {
+                missing = a.name + printf_string(" at %.4g %%", 100.0 * a.coverage);
+            }
+        }
+        const double target = 100.0 * s.until_coverage->target;
+        rows.emplace_back("until coverage",
+                          s.until_coverage->reached
+                              ? printf_string("%.4g %% reached everywhere watched (%d areas) at %.6g s, last %s", target, reached, last, slowest.c_str())
+                              : printf_string("%.4g %% reached in %d of %zu areas; not yet: %s%s", target, reached,
+                                              s.until_coverage->areas.size(), missing.c_str(), reached + 1 < static_cast<int>(s.until_coverage->areas.size()) ? ", ..." : ""));
+    }
     // Flights other than the exact parabola (air drag) run with time stepping only: say why.
     if (!s.flight.empty() && s.flight != "parabola")
         rows.emplace_back("flight", s.flight + " (time stepping: the event scheme solves exact parabolas only)");

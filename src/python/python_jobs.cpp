@@ -133,7 +133,7 @@ int run(const std::string& path, const std::optional<std::string>& text, const s
     return code;
 }
 
-void analyze(const std::string& dir, bool verbose, double from_s, std::optional<double> to_s, double min_speed, double target,
+void analyze(const std::string& dir, bool verbose, double from_s, std::optional<double> to_s, double min_speed, std::optional<double> target,
              const std::string& smoothing_radius) {
     PythonStream out(verbose ? sys_stream("stdout") : py::none());
     PythonStream err(sys_stream("stderr"));

@@ -11,6 +11,8 @@
 #include <ostream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "analysis/area_percentile.h"
 #include "app/report_errors.h"
 #include "app/run_job.h"
@@ -86,6 +88,16 @@ std::string percent_text(double fraction) {
     return text;
 }
 
+// The target the run's analysis measured against (analysis/figures.json), else 98 % (SAE J2277).
+double analysed_target(const fs::path& dir) {
+    std::ifstream in(dir / "analysis" / "figures.json");
+    if (!in) return 0.98;
+    const auto figures = nlohmann::json::parse(in, nullptr, false);
+    if (figures.is_discarded()) return 0.98;
+    const auto it = figures.find("target_coverage");
+    return it != figures.end() && it->is_number() ? it->get<double>() : 0.98;
+}
+
 }  // namespace
 
 // The coverage scale's top: the smoothed coverage's maximum (smoothing leaves no single-triangle
@@ -123,10 +135,9 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
         for (const std::string& name : options.fields)
             if (std::none_of(kFields.begin(), kFields.end(), [&](const MapField& f) { return f.name == name; }))
                 throw InputError({}, "--field", "unknown field '" + name + "'; expected impacts, speed or coverage");
-        if (!(options.coverage_target > 0.0 && options.coverage_target <= 1.0))
-            throw InputError(
-                {}, "--target",
-                "expected a coverage in per cent, above 0 and at most 100, got " + std::to_string(options.coverage_target * 100.0));
+        const double target = options.coverage_target.value_or(analysed_target(dir));
+        if (!(target > 0.0 && target <= 1.0))
+            throw InputError({}, "--target", "expected a coverage in (0, 1] (e.g. 0.98 or 98 %), got " + std::to_string(target));
 
         const auto model = compile_model(parse_scene_file(scene_path.string()));
         const int tile_w = options.width_px / 2, tile_h = options.height_px / 2;
@@ -177,8 +188,8 @@ int render_impacts_job(const RenderImpactsOptions& options, std::ostream& out, s
                     bar.title += ", %";
                     bar.label_scale = 100.0;
                     bar.label_unit = " %";
-                    bar.mark = options.coverage_target;
-                    bar.mark_label = "target " + percent_text(options.coverage_target);
+                    bar.mark = target;
+                    bar.mark_label = "target " + percent_text(target);
                 }
                 image.resize(2 * tile_w, 2 * tile_h);
                 for (std::size_t v = 0; v < kViews.size(); ++v) {

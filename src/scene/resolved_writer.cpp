@@ -62,6 +62,12 @@ void write_header(std::string& y, const SceneDescription& s) {
     y += "  duration: " + num(s.process.duration_s) + unit_comment(Dimension::time) + "\n";
     y += "  gravity: " + vec(s.process.gravity_m_per_s2) + unit_comment(Dimension::acceleration) + "\n";
     y += "  seed: " + std::to_string(s.process.seed) + "\n";
+    if (s.process.until_coverage) {
+        y += "  until_coverage: " + num(*s.process.until_coverage) + "\n";
+        std::string of;
+        for (const std::string& n : s.process.until_coverage_of) of += (of.empty() ? "" : ", ") + yaml_text(n);
+        if (!of.empty()) y += "  until_coverage_of: [" + of + "]\n";
+    }
     y += "accuracy:\n";
     y += "  travel_fraction: " + num(s.accuracy.travel_fraction) + "  # of the shot radius\n";
     y += "  impact_speed: " + num(s.accuracy.impact_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";

@@ -223,9 +223,15 @@ struct ShotDesc {
 };
 
 struct ProcessDesc {
-    double duration_s = 0.0;                    // s
+    double duration_s = 0.0;                    // s (with until_coverage: the longest the run may go on)
     Vec3 gravity_m_per_s2 = Vec3(0, 0, -9.81);  // m/s2
     std::uint64_t seed = 1;
+    // Run until coverage (as the analysis counts it) reaches this share (0..1] on every area named
+    // in until_coverage_of ("part" or "part/region"; empty: every counted region of every logged
+    // part with a yield stress, or a part's peened area where it has no regions). Empty: run for
+    // `duration`.
+    std::optional<double> until_coverage;
+    std::vector<std::string> until_coverage_of;
     SourceLocation where;
 };
 

@@ -1,5 +1,7 @@
 #include "scene/scene_parser.h"
 
+#include <algorithm>
+
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -45,6 +47,44 @@ void check_shot_origin(const Cursor& root, const SceneDescription& d) {
         fail(root.child("components"), "no component has role chamber; expected at least one chamber around the sonotrode");
 }
 
+// until_coverage needs a logged part with a yield stress (coverage counts dents), and its names
+// must name such parts and their regions.
+void check_until_coverage(const Cursor& process, const SceneDescription& d) {
+    if (!d.process.until_coverage) return;
+    const auto covered = [&d](const ComponentDesc& c) {
+        const bool logged = std::find(d.output.logged_components.begin(), d.output.logged_components.end(), c.name) !=
+                            d.output.logged_components.end();
+        const auto m = std::find_if(d.materials.begin(), d.materials.end(), [&c](const MaterialDesc& x) { return x.name == c.material; });
+        return logged && m != d.materials.end() && m->yield_stress_pa.has_value();
+    };
+    std::string parts;
+    for (const ComponentDesc& c : d.components)
+        if (covered(c)) parts += (parts.empty() ? "" : ", ") + c.name;
+    if (parts.empty())
+        fail(process.child("until_coverage"),
+             "coverage needs a logged part whose material has a yield_stress (the dents' size, eq. 10); expected one in `output.log`");
+    for (const std::string& name : d.process.until_coverage_of) {
+        const std::size_t slash = name.find('/');
+        const std::string part = name.substr(0, slash);
+        const auto c = std::find_if(d.components.begin(), d.components.end(), [&part](const ComponentDesc& x) { return x.name == part; });
+        if (c == d.components.end() || !covered(*c))
+            fail(process.child("until_coverage_of"),
+                 "unknown part '" + part + "' in '" + name + "'; expected `part` or `part/region` of a logged part with a yield stress: " + parts);
+        if (slash == std::string::npos) continue;
+        const std::string region = name.substr(slash + 1);
+        std::string names;
+        bool found = false;
+        for (const RegionDesc& r : c->regions)
+            for (const std::string& n : region_names(r)) {
+                found = found || n == region;
+                names += (names.empty() ? "" : ", ") + n;
+            }
+        if (!found)
+            fail(process.child("until_coverage_of"), "part '" + part + "' has no region '" + region + "'; expected one of: " +
+                                                          (names.empty() ? std::string("(none: it has no regions)") : names));
+    }
+}
+
 SceneDescription build(const Cursor& root, const std::filesystem::path& scene_dir) {
     SceneDescription d;
     d.name = read_text(root.child("name"));
@@ -70,6 +110,7 @@ SceneDescription build(const Cursor& root, const std::filesystem::path& scene_di
     read_flow(root.child("sources"), root.child("sinks"), d.process.duration_s, shot_mass_kg, up, scene_dir, d.sources, d.sinks);
     check_shot_origin(root, d);
     d.output = read_output(root.child("output"), d.components, d.process.duration_s);
+    check_until_coverage(root.child("process"), d);
     d.render = read_render(root.child("render"));
     return d;
 }

@@ -12,6 +12,11 @@ ProcessDesc read_process(const Cursor& c) {
     d.duration_s = read_quantity(c.child("duration"));
     d.gravity_m_per_s2 = read_vector(c.child("gravity"));
     d.seed = static_cast<std::uint64_t>(read_integer(c.child("seed")));
+    d.until_coverage = read_optional_quantity(c.child("until_coverage"));
+    if (c.child("until_coverage_of").present()) {
+        if (!d.until_coverage) fail(c.child("until_coverage_of"), "until_coverage_of needs until_coverage (the target, e.g. 98 %)");
+        d.until_coverage_of = read_names(c.child("until_coverage_of"));
+    }
     d.where = location_of(c);
     return d;
 }

@@ -31,6 +31,14 @@ const std::array schema_table{
     SchemaEntry{"process.seed", K::integer, D::dimensionless, false, "1", "",
                 at_least(0), "", "", "",
                 "Seed of the random numbers (shot placement, initial directions)."},
+    SchemaEntry{"process.until_coverage", K::quantity, D::dimensionless, false, "", "none: run for `duration`", open_closed(0, 1), "", "", "",
+                "Run until coverage reaches this share (e.g. `98 %`) on every area `until_coverage_of` names, counted as the "
+                "analysis counts it (the peened area: reachable by the shot, outside excluded regions); `duration` is then the "
+                "longest the run may go on. The run ends at the first restart point after the target is reached and says when "
+                "each area reached it (`summary.json`'s `until_coverage`). `peensim run --until-coverage 98%` sets it."},
+    SchemaEntry{"process.until_coverage_of", K::name_list, D::dimensionless, false, "",
+                "every counted region of every logged part with a yield stress (a part without regions: its peened area)", {}, "", "", "",
+                "The areas `until_coverage` waits for: `part` (its whole peened area) or `part/region`."},
 
     SchemaEntry{"accuracy", K::map, D::dimensionless, false, "", "", {}, "", "", "",
                 "Speed/accuracy settings."},

@@ -6,7 +6,7 @@
     run = peensim.run(scene, "out/py-gear", progress=peensim.print_progress)
     hits = run.impacts("gear")                      # {"time_s": array, "vn_in_mps": array, ...}
     study = peensim.sweep(scene, "out/rpm", vary={"components[gear].motion.speed": ["15 rpm", "60 rpm"]}, seeds=2)
-    study.comparison["time_to_98_s"]
+    study.comparison["time_to_target_everywhere_s"]
 
 Every job is the command line's own (`peensim run`, `analyze`, `check`, `sweep`): the same outputs in
 the same run directories, byte for byte. Units are SI, and every column name carries its unit.
@@ -269,8 +269,8 @@ class Run:
 
     @property
     def figures(self):
-        """analysis/figures.json as a dict: per component its impacts, rate, speeds, coverage, Avrami
-        fit and time to 98 %, per region too."""
+        """analysis/figures.json as a dict: per component its impacts, rate, speeds, coverage and the
+        time to the target coverage (whole part, everywhere, per region) with its interval."""
         return _json(self._analysis_file("figures.json"))
 
     @property
@@ -279,10 +279,11 @@ class Run:
         with open(self._analysis_file("report.md"), encoding="utf-8") as f:
             return f.read()
 
-    def analyze(self, verbose=False, *, from_s=0.0, to_s=None, min_speed=0.0, target=0.98, smoothing_radius=None):
+    def analyze(self, verbose=False, *, from_s=0.0, to_s=None, min_speed=0.0, target=None, smoothing_radius=None):
         """Analyses the run (as `peensim analyze`): writes analysis/. Returns the run.
         from_s, to_s (s): analyse only the impacts in this window (drop a start-up transient);
-        min_speed (m/s): leave out slower impacts; target: the coverage the report measures against;
+        min_speed (m/s): leave out slower impacts; target: the coverage the report measures against
+        (a fraction; None: the run's process.until_coverage, else 0.98);
         smoothing_radius: the maps' radius, in m or as text with a unit ("1.5 mm"); None: the
         scene's output.smoothing_radius, else the analysis' choice."""
         if smoothing_radius is None:
@@ -291,8 +292,8 @@ class Run:
             radius = smoothing_radius
         else:
             radius = repr(float(smoothing_radius)) + " m"
-        _native.analyze(self.dir, verbose, float(from_s), None if to_s is None else float(to_s), float(min_speed), float(target),
-                        radius)
+        _native.analyze(self.dir, verbose, float(from_s), None if to_s is None else float(to_s), float(min_speed),
+                        None if target is None else float(target), radius)
         return self
 
 

@@ -1,0 +1,259 @@
+// Coverage per sample (reach, regions), coverage as dents land, and the forecast of the time to a
+// coverage target against exact answers: dents at random on a closed surface at known rates.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "analysis/coverage_forecast.h"
+#include "analysis/coverage_progress.h"
+#include "analysis/regions.h"
+#include "analysis/sample_classes.h"
+#include "common/random.h"
+#include "geometry/box_mesh.h"
+#include "geometry/mesh_checks.h"
+
+namespace peensim {
+namespace {
+
+constexpr double kTarget = 0.98;
+
+RegionDesc half_space_region(const std::string& name, const Vec3& normal) {
+    RegionDesc r;
+    r.name = name;
+    r.half_space = HalfSpaceCondition{Vec3::Zero(), normal};
+    return r;
+}
+
+const ReachTest kEverywhere = [](const Vec3&, std::size_t, double) { return true; };
+
+std::unique_ptr<CoverageProgress> progress_of(const TriangleMesh& mesh, const RegionSet& regions, const ReachTest& reach, double spacing,
+                                              double dent) {
+    auto map = std::make_unique<CoverageMap>(mesh, spacing, dent);
+    SampleClasses classes(*map, mesh, regions, reach, 1.0, 10.0 * spacing);
+    return std::make_unique<CoverageProgress>(std::move(map), std::move(classes), kTarget);
+}
+
+TEST(SampleClasses, ATriangleIsPartlyReachableAtTheSamplesResolution) {
+    // One square of 2 triangles, 1 m; a shot reaches x < 0.3 only: the boundary cuts both triangles.
+    const TriangleMesh plate = box(BoxSpec{Vec3(1, 1, 1), Vec3(0.5, 0.5, -0.5), Eigen::Vector3i(1, 1, 1)});
+    const RegionSet none(plate, {});
+    const ReachTest left = [](const Vec3& p, std::size_t, double) { return p.x() < 0.3; };
+    const double spacing = 0.01;  // m
+    CoverageMap map(plate, spacing, 0.05);
+    const SampleClasses classes(map, plate, none, left, 1.0, 0.1);
+    // The 6 faces: the top (z = 0) and bottom have 0.3 m2 each in reach, x = 0 face wholly, x = 1 not,
+    // the y faces 0.3 each: 0.3 * 4 + 1 = 2.2 m2, to the samples' resolution (a row of them).
+    EXPECT_NEAR(classes.reachable_area_m2(), 2.2, 2 * spacing);
+    EXPECT_NEAR(classes.peened_area_m2(), classes.reachable_area_m2(), 1e-12);
+    // Only the triangles the boundary crosses were tested sample by sample.
+    int mixed = 0;
+    for (std::size_t t = 0; t < plate.triangle_count(); ++t) mixed += classes.triangle_class(t) == SampleClasses::kMixed;
+    EXPECT_EQ(mixed, 8);  // 2 per face crossed by x = 0.3: top, bottom, y = 0, y = 1
+    EXPECT_LT(classes.sample_tests(), map.sample_count() / 4);
+    // Every sample agrees with the test at its own position.
+    for (std::size_t t = 0; t < plate.triangle_count(); ++t)
+        map.for_each_sample_of_triangle(t, [&](std::int64_t index, const Vec3& p, double, double) {
+            EXPECT_EQ(classes.info(classes.class_of(t, index)).reachable, p.x() < 0.3) << p.transpose();
+        });
+}
+
+TEST(SampleClasses, RegionsAndExclusionPerSample) {
+    // Unit cube at the origin: an excluded region x > 0.25 (crossing triangles), a region z > 0.
+    const TriangleMesh cube = box(BoxSpec{Vec3::Ones(), Vec3::Zero(), Eigen::Vector3i(2, 2, 2)});
+    RegionDesc masked = half_space_region("masked", Vec3::UnitX());
+    masked.half_space->point_m = Vec3(0.25, 0, 0);
+    masked.exclude = true;
+    const RegionSet regions(cube, {masked, half_space_region("top", Vec3::UnitZ())});
+    auto p = progress_of(cube, regions, kEverywhere, 0.01, 0.05);
+    const SampleClasses& c = p->classes();
+    // Peened: x < 0.25 of the 6 m2: faces y, z (4 of them) 0.75 each, the x = -0.5 face 1.
+    EXPECT_NEAR(c.peened_area_m2(), 4 * 0.75 + 1.0, 0.02);
+    EXPECT_NEAR(c.region_peened_area_m2(1), 0.75 + 2 * 0.5 * 0.75 + 0.5, 0.02);  // top half: +z face and half of 3 sides
+    EXPECT_NEAR(c.region_peened_area_m2(0), 0.0, 1e-12);                         // excluded: never peened
+    EXPECT_NEAR(c.region_counted_area_m2(0), 4 * 0.25 + 1.0, 0.02);              // its coverage, for information, over it all
+}
+
+TEST(CoverageProgress, CoverageOfAreasAndWhenTheyReachTheTarget) {
+    const TriangleMesh cube = box(BoxSpec{Vec3::Ones(), Vec3::Zero(), Eigen::Vector3i(1, 1, 1)});
+    RegionDesc top;
+    top.name = "top";
+    top.facing = FacingCondition{Vec3::UnitZ(), 1e-3};
+    const RegionSet regions(cube, {top});
+    auto p = progress_of(cube, regions, kEverywhere, 0.01, 0.5);
+    EXPECT_EQ(p->coverage(), 0.0);
+    EXPECT_TRUE(std::isnan(p->region_reached_at_s(0)));
+    // Dents of 0.5 m on the top face's grid: the face is covered once the last lands.
+    double t = 0.0;
+    for (double x = -0.45; x < 0.5; x += 0.15)
+        for (double y = -0.45; y < 0.5; y += 0.15) p->add_dent(Vec3(x, y, 0.5), 0.5, t += 1.0);
+    EXPECT_NEAR(p->region_coverage(0), 1.0, 1e-12);
+    const double reached = p->region_reached_at_s(0);
+    ASSERT_FALSE(std::isnan(reached));
+    EXPECT_LE(reached, t);
+    EXPECT_TRUE(std::isnan(p->reached_at_s()));  // the whole cube is not
+    EXPECT_NEAR(p->coverage(), p->map().covered_area() / 6.0, 1e-12);
+}
+
+// Dents at random on the faces of a closed cube (side `side`): face f gets impacts at rate rate[f]
+// (1/(m2 s)) for `window` s, dents of area `dent_area`, impacts in equal time batches.
+struct Peening {
+    TriangleMesh cube;
+    std::vector<double> rate;  // per face (-x, +x, -y, +y, -z, +z): 1/(m2 s)
+    double dent_area = 0.0;    // m2
+    double side = 0.0;         // m
+};
+
+// The exact time to the target of the whole cube (or of face `only`) from t = 0: sum_f A_f exp(-mu_f t)
+// = (1 - target) sum_f A_f, mu_f = rate_f dent_area (dents covering a point at random, per s).
+double exact_time(const Peening& p, int only = -1) {
+    const auto uncovered = [&](double t) {
+        double u = 0.0, area = 0.0;
+        for (int f = 0; f < 6; ++f) {
+            if (only >= 0 && f != only) continue;
+            u += std::exp(-p.rate[static_cast<std::size_t>(f)] * p.dent_area * t);
+            area += 1.0;
+        }
+        return u / area;
+    };
+    double lo = 0.0, hi = 1.0;
+    while (uncovered(hi) > 1.0 - kTarget) hi *= 2.0;
+    for (int i = 0; i < 200; ++i) (uncovered(0.5 * (lo + hi)) > 1.0 - kTarget ? lo : hi) = 0.5 * (lo + hi);
+    return 0.5 * (lo + hi);
+}
+
+// Peens for `window` s (a start-up burst of `burst` x the rate in the first tenth) and forecasts.
+CoverageForecast peen_and_forecast(const Peening& p, const RegionSet& regions, double window, std::uint64_t seed, double burst = 1.0) {
+    const double diameter = 2.0 * std::sqrt(p.dent_area / M_PI);
+    auto progress = progress_of(p.cube, regions, kEverywhere, diameter / 5.0, diameter);
+    Random rng(seed);
+    std::vector<ForecastImpact> impacts;
+    const int batches = 10;
+    const double half = 0.5 * p.side;
+    for (int f = 0; f < 6; ++f) {
+        const int axis = f / 2;
+        const double sign = f % 2 == 0 ? -1.0 : 1.0;
+        for (int b = 0; b < batches; ++b) {
+            // Poisson count per batch: exponential gaps.
+            const double length = window / batches, rate = p.rate[static_cast<std::size_t>(f)] * p.side * p.side * (b == 0 ? burst : 1.0);
+            for (double t = -std::log(1.0 - rng.uniform()) / rate; t < length; t += -std::log(1.0 - rng.uniform()) / rate) {
+                Vec3 x;
+                x[axis] = sign * half;
+                x[(axis + 1) % 3] = (rng.uniform() - 0.5) * p.side;
+                x[(axis + 2) % 3] = (rng.uniform() - 0.5) * p.side;
+                progress->add_dent(x, diameter, b * length + t);
+                // The triangle it lies on: the one of its face whose closest point it is.
+                std::size_t tri = 0;
+                double best = 1e300;
+                for (std::size_t k = 0; k < p.cube.triangle_count(); ++k) {
+                    const Vec3 n = triangle_normal(p.cube, k);
+                    if (n[axis] * sign < 0.99) continue;
+                    const Vec3 c = (p.cube.corner(k, 0) + p.cube.corner(k, 1) + p.cube.corner(k, 2)) / 3.0;
+                    if ((c - x).squaredNorm() < best) best = (c - x).squaredNorm(), tri = k;
+                }
+                ForecastImpact i;
+                for (int k = 0; k < 3; ++k) i.point_m[k] = static_cast<float>(x[k]);
+                i.triangle = static_cast<std::uint32_t>(tri);
+                i.dent_area_m2 = static_cast<float>(p.dent_area);
+                i.batch = static_cast<std::uint8_t>(b);
+                impacts.push_back(i);
+            }
+        }
+    }
+    return forecast_coverage(*progress, p.cube, impacts, window, batches, 0);
+}
+
+Peening cube_peening(std::vector<double> rate) {
+    Peening p;
+    p.side = 0.02;  // 20 mm
+    p.cube = box(BoxSpec{Vec3::Constant(p.side), Vec3::Zero(), Eigen::Vector3i(4, 4, 4)});
+    p.rate = std::move(rate);
+    p.dent_area = M_PI * 0.125e-3 * 0.125e-3;  // a 0.25 mm dent
+    return p;
+}
+
+TEST(CoverageForecast, AnEvenRateGivesTheExactTimeWithinItsInterval) {
+    // mu = rate x dent area = 0.01 /s everywhere: 98 % at ln(50) / 0.01 = 391 s; 10 s of peening
+    // cover 9.5 %: a forecast 39x past the window.
+    const double rate = 0.01 / (M_PI * 0.125e-3 * 0.125e-3);
+    const Peening p = cube_peening(std::vector<double>(6, rate));
+    const double exact = exact_time(p);
+    EXPECT_NEAR(exact, std::log(50.0) / 0.01, 1e-6);
+    const RegionSet none(p.cube, {});
+    int inside = 0;
+    const int seeds = 12;
+    for (int seed = 1; seed <= seeds; ++seed) {
+        const CoverageForecast f = peen_and_forecast(p, none, 10.0, static_cast<std::uint64_t>(seed));
+        ASSERT_EQ(f.whole.status, AreaForecast::Status::forecast) << seed;
+        EXPECT_NEAR(f.whole.time_s, exact, 0.1 * exact) << seed;
+        EXPECT_LT(f.whole.low_s, f.whole.time_s);
+        EXPECT_GT(f.whole.high_s, f.whole.time_s);
+        inside += f.whole.low_s <= exact && exact <= f.whole.high_s;
+        // Without regions, everywhere is the whole peened area.
+        EXPECT_EQ(f.everywhere.time_s, f.whole.time_s);
+        EXPECT_FALSE(f.summary.startup_left_out);
+    }
+    EXPECT_GE(inside, seeds - 2) << "the 95 % interval must contain the exact time about 95 % of the time";
+}
+
+TEST(CoverageForecast, UnevenRatesArePredictedPointByPointNotAsOneRate) {
+    // The top face peened 4x faster than the rest. One rate fitted to the whole (the mean) would say
+    // ln(50) / mean mu; the least-peened faces decide the time instead.
+    const double base = 0.01 / (M_PI * 0.125e-3 * 0.125e-3);
+    const Peening p = cube_peening({base, base, base, base, base, 4.0 * base});
+    RegionDesc top;
+    top.name = "top";
+    top.facing = FacingCondition{Vec3::UnitZ(), 1e-3};
+    const RegionSet regions(p.cube, {top});
+    const double exact = exact_time(p), exact_top = exact_time(p, 5);
+    const double one_rate = std::log(50.0) / (0.01 * (5.0 + 4.0) / 6.0);
+    EXPECT_GT(exact, 1.25 * one_rate);
+    const CoverageForecast f = peen_and_forecast(p, regions, 10.0, 7);
+    ASSERT_EQ(f.whole.status, AreaForecast::Status::forecast);
+    EXPECT_NEAR(f.whole.time_s, exact, 0.1 * exact);
+    EXPECT_LE(f.whole.low_s, exact);
+    EXPECT_GE(f.whole.high_s, exact);
+    ASSERT_EQ(f.regions[0].status, AreaForecast::Status::forecast);
+    EXPECT_NEAR(f.regions[0].time_s, exact_top, 0.1 * exact_top);
+    // Everywhere: the region and the rest of the part, which is slower (ln(50) / 0.01).
+    EXPECT_EQ(f.slowest_region, CoverageForecast::kRestOfPart);
+    EXPECT_NEAR(f.everywhere.time_s, std::log(50.0) / 0.01, 0.1 * std::log(50.0) / 0.01);
+    EXPECT_GT(f.everywhere.time_s, f.regions[0].time_s);
+}
+
+TEST(CoverageForecast, AStartUpBurstIsLeftOutOfTheRates) {
+    const double rate = 0.01 / (M_PI * 0.125e-3 * 0.125e-3);
+    const Peening p = cube_peening(std::vector<double>(6, rate));
+    const RegionSet none(p.cube, {});
+    const CoverageForecast f = peen_and_forecast(p, none, 10.0, 3, 3.0);
+    EXPECT_TRUE(f.summary.startup_left_out);
+    EXPECT_EQ(f.summary.batches, 9);
+    EXPECT_NEAR(f.summary.rate_window_s, 9.0, 1e-12);
+    // The burst's extra dents (2x the rate for 1 s) are on the map: 2 s of peening saved.
+    const double exact = exact_time(p) - 2.0;
+    EXPECT_NEAR(f.whole.time_s, exact, 0.1 * exact);
+}
+
+TEST(CoverageForecast, TooFewImpactsIsTooShortToSayAndSaysHowLongToRun) {
+    const double rate = 0.01 / (M_PI * 0.125e-3 * 0.125e-3);
+    const Peening p = cube_peening(std::vector<double>(6, rate));
+    const RegionSet none(p.cube, {});
+    const CoverageForecast f = peen_and_forecast(p, none, 0.05, 5);  // ~40 impacts over 2400 mm2
+    ASSERT_EQ(f.whole.status, AreaForecast::Status::too_short);
+    EXPECT_GT(f.whole.run_for_s, 0.05);
+    EXPECT_GT(f.whole.high_s, kTooShortFactor * f.whole.time_s);
+}
+
+TEST(MeshChecks, APointOnAnEdgeOfItsTriangle) {
+    const TriangleMesh cube = box(BoxSpec{Vec3::Ones(), Vec3::Zero(), Eigen::Vector3i(1, 1, 1)});
+    const Vec3 a = cube.corner(0, 0), b = cube.corner(0, 1), c = cube.corner(0, 2);
+    EXPECT_TRUE(on_triangle_edge(cube, 0, 0.5 * (a + b)));
+    EXPECT_TRUE(on_triangle_edge(cube, 0, a));
+    EXPECT_FALSE(on_triangle_edge(cube, 0, (a + b + c) / 3.0));
+    EXPECT_FALSE(on_triangle_edge(cube, 0, 0.5 * (a + b) + 1e-5 * ((a + b + c) / 3.0 - 0.5 * (a + b)).normalized()));
+}
+
+}  // namespace
+}  // namespace peensim
