@@ -190,10 +190,13 @@ TEST(AnalysisReport, TheDecisionsAgreeWithTheRegionsAndTheFigures) {
     EXPECT_GT(out_of_reach["half_reached_by_m"].get<double>(), out_of_reach["most_reached_by_m"].get<double>());
     EXPECT_LT(out_of_reach["half_reached_by_m"].get<double>(), 2e-3);  // the shot is 2 mm
     for (const auto& r : gear["regions"]) {
-        if (!r["excluded"].get<bool>())
+        if (!r["excluded"].get<bool>()) {
             EXPECT_NEAR(r["out_of_reach"]["area_m2"].get<double>(), r["unreachable_area_m2"].get<double>(), 1e-9 * total) << r;
+        }
     }
-    // "Everywhere" is the counted region with the longest time to 98 %.
+    // "Everywhere" is when the last counted region gets there: the region with the longest time to
+    // 98 % is the slowest, and with the regions' own spread (several teeth close behind it) the
+    // last of them comes no earlier than it.
     double longest = 0.0;
     std::string slowest;
     for (const auto& r : j["components"][0]["regions"]) {
@@ -211,15 +214,16 @@ TEST(AnalysisReport, TheDecisionsAgreeWithTheRegionsAndTheFigures) {
     EXPECT_EQ(gear["slowest_region"], slowest);
     const auto& every = gear["time_to_target_everywhere"];
     EXPECT_EQ(every["status"], "forecast");
-    EXPECT_EQ(every["time_s"].get<double>(), longest);
+    EXPECT_GE(every["time_s"].get<double>(), longest);
+    EXPECT_LT(every["time_s"].get<double>(), 1.25 * longest);
     const auto& whole = gear["time_to_target"];
     EXPECT_EQ(whole["status"], "forecast");
     EXPECT_LT(whole["time_s"].get<double>(), longest);
     EXPECT_LT(whole["low_s"].get<double>(), whole["time_s"].get<double>());
     EXPECT_GT(whole["high_s"].get<double>(), whole["time_s"].get<double>());
-    EXPECT_NEAR(gear["uniformity"]["value"].get<double>(), whole["time_s"].get<double>() / longest, 1e-12);
+    EXPECT_NEAR(gear["uniformity"]["value"].get<double>(), whole["time_s"].get<double>() / every["time_s"].get<double>(), 1e-12);
     EXPECT_LT(gear["uniformity"]["low"].get<double>(), gear["uniformity"]["value"].get<double>());
-    EXPECT_EQ(gear["share_below_target"].get<double>(), 1.0);  // 1 s of peening: nowhere near 98 %
+    EXPECT_EQ(gear["share_below_target"].get<double>(), 1.0);  // 5 s of peening: nowhere near 98 %
     // The report says it, with the command that peens until every region is there.
     const std::string report = read_file(dir.path / "analysis" / "report.md");
     EXPECT_NE(report.find("## gear: how long to peen to 98 %"), std::string::npos);

@@ -40,7 +40,11 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, c
     const double duration_s = window.length_s();
     nlohmann::ordered_json j;
     j["duration_s"] = duration_s;
-    j["window"] = {{"from_s", window.from_s}, {"to_s", window.to_s}, {"min_speed_mps", window.min_speed_m_per_s}};
+    j["window"] = {{"from_s", window.from_s},
+                   {"to_s", window.to_s},
+                   {"min_speed_mps", window.min_speed_m_per_s},
+                   {"turn_s", number(window.turn_s > 0.0 ? window.turn_s : NAN)},  // the rotating part's turn (null: none)
+                   {"asked_to_s", window.asked_to_s}};  // before the window was cut to whole turns
     j["target_coverage"] = window.target_coverage;
     j["batches"] = kFigureBatches;
     auto components = nlohmann::ordered_json::array();
@@ -67,7 +71,8 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, c
                              {"rate_window_s", f.rate_window_s},
                              {"startup_left_out", f.startup_left_out},
                              {"face_impacts", f.face_impacts},
-                             {"edge_impacts", f.edge_impacts}};
+                             {"edge_impacts", f.edge_impacts},
+                             {"edge_lines", f.edge_lines}};
         }
         if (c.almen) add_almen_figures(o, *c.almen);
         // Batch means: each tenth of the window's impact rate and mean normal speed.

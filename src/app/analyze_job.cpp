@@ -137,19 +137,16 @@ void accumulate(ComponentAnalysis& a, const ImpactRow& row, const SceneDescripti
         a.coverage->add_dent(row.point_m, dent, row.time_s - window.from_s);
         a.dent_sum += dent;
         if (t >= 0) {
-            // The forecast's rates come from the impacts on faces; one on an edge of its triangle
-            // dents a strip along that edge (analysis/coverage_forecast.h).
+            // The forecast's rates: over the faces, and along the edge lines for an impact on an
+            // edge of its triangle, which dents a strip along it (analysis/coverage_forecast.h).
             const auto tt = static_cast<std::size_t>(t);
-            if (on_triangle_edge(*a.mesh, tt, row.point_m)) {
-                ++a.edge_impacts;
-            } else {
-                ForecastImpact f;
-                for (int k = 0; k < 3; ++k) f.point_m[k] = static_cast<float>(row.point_m[k]);
-                f.triangle = static_cast<std::uint32_t>(tt);
-                f.dent_area_m2 = static_cast<float>(0.25 * M_PI * dent * dent);
-                f.batch = static_cast<std::uint8_t>(batch);
-                a.forecast_impacts.push_back(f);
-            }
+            ForecastImpact f;
+            for (int k = 0; k < 3; ++k) f.point_m[k] = static_cast<float>(row.point_m[k]);
+            f.triangle = static_cast<std::uint32_t>(tt);
+            f.dent_area_m2 = static_cast<float>(0.25 * M_PI * dent * dent);
+            f.batch = static_cast<std::uint8_t>(batch);
+            f.edge = static_cast<std::int8_t>(triangle_edge_at(*a.mesh, tt, row.point_m));
+            a.forecast_impacts.push_back(f);
         }
     }
     a.histograms.add(vn, row.vt_in_m_per_s, dent);
@@ -187,7 +184,7 @@ void sample_coverage(ComponentAnalysis& a, double t) {
 // Once the log is read: where coverage is heading, for the peened area, every region and everywhere.
 void finish_forecast(ComponentAnalysis& a, const AnalysisWindow& window) {
     if (!a.coverage) return;
-    a.forecast = forecast_coverage(*a.coverage, *a.mesh, a.forecast_impacts, window.length_s(), kFigureBatches, a.edge_impacts);
+    a.forecast = forecast_coverage(*a.coverage, *a.mesh, a.forecast_impacts, window.length_s(), kFigureBatches);
     a.forecast_impacts = {};  // done with them: the memory back before the report
     if (window.shorter_than_a_turn()) {
         // Less than a turn: the sides that have not faced the sonotrode yet have rates of no use,

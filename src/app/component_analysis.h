@@ -84,11 +84,9 @@ struct ComponentAnalysis {
     std::vector<double> reach;
     // The area out of reach, per region, and the shot that would reach it (unreachable_area.h).
     UnreachableFindings unreachable;
-    // The forecast's impacts (those on faces; an impact on an edge of its triangle dents a strip
-    // along it: coverage_forecast.h), how many were on edges, and, once the log has been read, the
-    // forecast.
+    // The forecast's impacts (on faces, and on edges, which dent a strip along them:
+    // coverage_forecast.h) and, once the log has been read, the forecast.
     std::vector<ForecastImpact> forecast_impacts;
-    std::uint64_t edge_impacts = 0;
     CoverageForecast forecast;
     std::optional<AlmenAnalysis> almen;
     // Scenes with nozzles: how the jet arrives (analysis/jet_stream.h). The jet's axis in the

@@ -24,16 +24,18 @@ Vec3 triangle_normal(const TriangleMesh& mesh, std::size_t t) {
 
 double triangle_area(const TriangleMesh& mesh, std::size_t t) { return 0.5 * doubled_area_vector(mesh, t).norm(); }
 
-bool on_triangle_edge(const TriangleMesh& mesh, std::size_t t, const Vec3& p) {
-    double longest = 0.0, nearest = std::numeric_limits<double>::infinity();  // m
+int triangle_edge_at(const TriangleMesh& mesh, std::size_t t, const Vec3& p) {
+    double longest = 0.0, nearest = std::numeric_limits<double>::infinity();  // m2
+    int edge = -1;
     for (int k = 0; k < 3; ++k) {
         const Vec3 a = mesh.corner(t, k), ab = mesh.corner(t, (k + 1) % 3) - a;
         const double length2 = ab.squaredNorm();
         longest = std::max(longest, length2);
         const double u = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-        nearest = std::min(nearest, (p - (a + u * ab)).squaredNorm());
+        const double d2 = (p - (a + u * ab)).squaredNorm();
+        if (d2 < nearest) nearest = d2, edge = k;
     }
-    return nearest <= 1e-12 * longest;
+    return nearest <= 1e-12 * longest ? edge : -1;
 }
 
 double surface_area(const TriangleMesh& mesh) {

@@ -13,9 +13,11 @@ namespace peensim {
 Vec3 triangle_normal(const TriangleMesh& mesh, std::size_t t);
 
 double triangle_area(const TriangleMesh& mesh, std::size_t t);  // m2
-// Whether point p (m) of triangle t lies on one of its edges (within 1e-6 of its longest edge):
-// where a sphere touching a convex edge or corner of the mesh touches it.
-bool on_triangle_edge(const TriangleMesh& mesh, std::size_t t, const Vec3& p);
+// Which edge of triangle t point p (m) lies on (within 1e-6 of its longest edge): k for the edge from
+// corner k to corner (k + 1) % 3, the nearest at a corner; -1 inside. Where a sphere touching a
+// convex edge or corner of the mesh touches it.
+int triangle_edge_at(const TriangleMesh& mesh, std::size_t t, const Vec3& p);
+inline bool on_triangle_edge(const TriangleMesh& mesh, std::size_t t, const Vec3& p) { return triangle_edge_at(mesh, t, p) >= 0; }
 double surface_area(const TriangleMesh& mesh);                  // m2, sum over all triangles
 
 // m3, signed volume by the divergence theorem. For a closed mesh whose normals point out of
