@@ -1,0 +1,142 @@
+// `peensim run --until-coverage` (app/coverage_watch.h) and the analysis of rotating parts over
+// whole turns: the run stops at the first restart point after the target, at the time the
+// analysis of its own log says the target was reached; a resumed run stops where the whole run
+// did, with the same log; bad targets and areas exit 2 naming them. A rotating part's window ends
+// at its last whole turn, and a window shorter than a turn gives no time, only the run that would.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/analyze_job.h"
+#include "app/run_job.h"
+#include "support/child_process.h"
+#include "support/files.h"
+#include "support/temp_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim::testing {
+namespace {
+
+const std::string kRod = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
+
+nlohmann::json json_of(const fs::path& path) { return nlohmann::json::parse(read_file(path)); }
+
+std::vector<std::string> until_args(const fs::path& out) {
+    return {PEENSIM_BINARY, "run", kRod, "-o", out.string(), "--until-coverage", "20 %", "--set", "process.duration=10 s",
+            "--set", "output.checkpoint_interval=0.1 s", "--no-render", "--no-analyze", "--quiet"};
+}
+
+TEST(UntilCoverage, StopsWhenTheAnalysisSaysTheTargetIsReachedAndResumesToTheSameEnd) {
+    TempDir dir;
+    ChildProcess whole(until_args(dir.path / "whole"), (dir.path / "whole.out").string(), (dir.path / "whole.err").string());
+    ASSERT_EQ(whole.wait_exit(300.0), std::optional<int>(0)) << read_file(dir.path / "whole.err");
+    const auto summary = json_of(dir.path / "whole" / "summary.json");
+    const auto& goal = summary["until_coverage"];
+    EXPECT_EQ(goal["target"].get<double>(), 0.2);
+    EXPECT_TRUE(goal["reached"].get<bool>());
+    ASSERT_EQ(goal["areas"].size(), 1u);  // the rod has no regions: its peened area
+    EXPECT_EQ(goal["areas"][0]["area"], "rod");
+    const double reached = goal["areas"][0]["reached_at_s"].get<double>();
+    const double stopped = summary["simulated_time_s"].get<double>();
+    EXPECT_LE(reached, stopped);
+    EXPECT_LT(stopped, 10.0);                    // not the cap
+    EXPECT_LE(stopped - reached, 0.1 + 1e-9);    // the first restart point after it
+    EXPECT_TRUE(summary["finished"].get<bool>());
+    // The analysis of the log counts coverage the same way: reached at the same time, exactly.
+    std::ostringstream out, err;
+    AnalyzeOptions o;
+    o.to_s = stopped;
+    ASSERT_EQ(analyze_job((dir.path / "whole").string(), out, err, o), kExitOk) << err.str();
+    const auto figures = json_of(dir.path / "whole" / "analysis" / "figures.json");
+    EXPECT_EQ(figures["target_coverage"].get<double>(), 0.2);  // the run's own target
+    const auto& rod = figures["components"][0]["time_to_target"];
+    EXPECT_EQ(rod["status"], "reached");
+    EXPECT_NEAR(rod["time_s"].get<double>(), reached, 1e-9 * reached);
+
+    // Interrupted and resumed: the same end and the same log, byte for byte.
+    ChildProcess stopped_run(until_args(dir.path / "parts"), (dir.path / "p.out").string(), (dir.path / "p.err").string());
+    for (int k = 0; k < 3000 && !fs::exists(dir.path / "parts" / "checkpoint.bin"); ++k)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    stopped_run.signal(SIGINT);
+    const auto code = stopped_run.wait_exit(120.0);
+    ASSERT_TRUE(code.has_value());
+    if (*code == 130) {  // caught before the end (else it had already finished: nothing to resume)
+        std::vector<std::string> resume = until_args(dir.path / "parts");
+        resume.push_back("--resume");
+        ChildProcess resumed(resume, (dir.path / "r.out").string(), (dir.path / "r.err").string());
+        ASSERT_EQ(resumed.wait_exit(300.0), std::optional<int>(0)) << read_file(dir.path / "r.err");
+    }
+    EXPECT_EQ(json_of(dir.path / "parts" / "summary.json")["simulated_time_s"].get<double>(), stopped);
+    EXPECT_EQ(read_file(dir.path / "parts" / "impacts.csv"), read_file(dir.path / "whole" / "impacts.csv"));
+}
+
+TEST(UntilCoverage, BadTargetsAndAreasExitTwoNamingThem) {
+    TempDir dir;
+    const auto run = [&](std::vector<std::string> extra, const std::string& name) {
+        std::vector<std::string> args = {PEENSIM_BINARY, "run", kRod, "-o", (dir.path / name).string(), "--no-render", "--quiet"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        ChildProcess p(args, (dir.path / (name + ".out")).string(), (dir.path / (name + ".err")).string());
+        const auto code = p.wait_exit(60.0);
+        return std::make_pair(code.value_or(-1), read_file(dir.path / (name + ".err")));
+    };
+    auto [code1, err1] = run({"--until-coverage", "150 %"}, "over");
+    EXPECT_EQ(code1, 2) << err1;
+    EXPECT_NE(err1.find("until_coverage"), std::string::npos) << err1;
+    auto [code2, err2] = run({"--until-coverage", "90 %", "--set", "process.until_coverage_of=[rod/tip]"}, "region");
+    EXPECT_EQ(code2, 2) << err2;
+    EXPECT_NE(err2.find("rod/tip"), std::string::npos) << err2;
+    auto [code3, err3] = run({"--until-coverage", "90 %", "--set", "process.until_coverage_of=[chamber]"}, "no-yield");
+    EXPECT_EQ(code3, 2) << err3;
+    EXPECT_NE(err3.find("chamber"), std::string::npos) << err3;
+    EXPECT_FALSE(fs::exists(dir.path / "over" / "impacts.csv"));
+}
+
+// The rotating gear turns at 30 rpm (a turn: 2 s). 5 s: analysed over 2 whole turns; 1 s: half a
+// turn, no time at all.
+TEST(RotatingAnalysis, WholeTurnsAndNoTimeFromLessThanATurn) {
+    TempDir dir;
+    RunOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
+    o.output_dir = dir.path.string();
+    o.overrides = {"process.duration=5 s", "components[gear].motion.speed=30 rpm"};
+    o.progress = false;
+    o.analyze = false;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    auto figures = json_of(dir.path / "analysis" / "figures.json");
+    EXPECT_NEAR(figures["window"]["turn_s"].get<double>(), 2.0, 1e-12);
+    EXPECT_NEAR(figures["window"]["to_s"].get<double>(), 4.0, 1e-9);
+    EXPECT_EQ(figures["window"]["asked_to_s"].get<double>(), 5.0);
+    std::string report = read_file(dir.path / "analysis" / "report.md");
+    EXPECT_NE(report.find("Analysed over 2 whole turns of the rotating part"), std::string::npos) << report;
+    EXPECT_NE(report.find("A run of 6 s (3 turns) uses every impact"), std::string::npos) << report;
+    // The title says what the run changed.
+    EXPECT_NE(report.find("(run with --set process.duration=5 s --set components[gear].motion.speed=30 rpm)"), std::string::npos)
+        << report.substr(0, 300);
+    AnalyzeOptions half;
+    half.to_s = 1.0;
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err, half), kExitOk) << err.str();
+    figures = json_of(dir.path / "analysis" / "figures.json");
+    const auto& gear = figures["components"][0];
+    for (const char* key : {"time_to_target", "time_to_target_everywhere"}) {
+        EXPECT_EQ(gear[key]["status"], "too_short") << key;
+        EXPECT_NEAR(gear[key]["run_for_s"].get<double>(), 2.0, 1e-9) << key;
+    }
+    report = read_file(dir.path / "analysis" / "report.md");
+    EXPECT_NE(report.find("**The window is 0.5 of a turn of the rotating part"), std::string::npos) << report;
+    EXPECT_NE(report.find("Run at least 2 s (a whole turn)"), std::string::npos) << report;
+}
+
+}  // namespace
+}  // namespace peensim::testing
