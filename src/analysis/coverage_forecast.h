@@ -25,10 +25,10 @@
 //
 // Smoothing bias. A kernel of radius h averages the rate over h and so forecasts early where the
 // rate varies within h. The forecast is made at h and at 2 h; their difference estimates the bias
-// at h (linear in h: the rate jumps at edges and between faces), and widens the interval's upper
-// end by as much; when the wider kernel forecasts later (the field is not smooth at h's scale: the
-// part has features about h across) the upper end reaches that forecast too. The point is not
-// corrected: far past the window the two radii also differ by the estimator's counting noise.
+// at h (linear in h: the rate jumps at edges and between faces) and corrects the forecast; the
+// interval runs from the uncorrected lower end to the corrected upper end, and when the wider
+// kernel forecasts later (the field is not smooth at h's scale: the part has features about h
+// across) the upper end reaches that forecast too.
 //
 // The selection of the uncovered. A sample still uncovered has no impact within its dent radius
 // (that is why it is uncovered), so the impacts around it are fewer than the kernel expects by the
