@@ -263,14 +263,14 @@ TEST(ShotSeries, TooManyStepsIsAnInputError) {
     EXPECT_NE(r.err.find("output.shot_positions: the shot-position series plans 5000000 steps"), std::string::npos) << r.err;
 }
 
-// The mean of a per-triangle value over the peened area: each triangle's area times its share a
-// shot can reach and that no excluded region holds (the coverage curve's weights).
-double peened_area_mean(const TriangleMesh& mesh, const std::vector<double>& per_triangle, const std::vector<double>& reachable,
-                        const std::vector<double>& excluded) {
+// The mean of a per-triangle value over the peened area: each triangle's area times its share
+// that coverage counts (a shot can reach it, no excluded region holds it: the coverage curve's
+// weights, sample by sample).
+double peened_area_mean(const TriangleMesh& mesh, const std::vector<double>& per_triangle, const std::vector<double>& peened) {
     double sum = 0.0, area = 0.0;
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-        const double a = 0.5 * (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).norm() *
-                         reachable[t] * (1.0 - excluded[t]);
+        if (!(peened[t] > 0.0)) continue;
+        const double a = 0.5 * (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).norm() * peened[t];
         sum += a * per_triangle[t];
         area += a;
     }
@@ -302,9 +302,8 @@ TEST(ParaviewAnalysis, CoverageSeriesFollowsTheCoverageCurve) {
     }
     // The last step is the part's final coverage, as gear.vtp has it; every file's names are the CSVs'.
     const testing::VtkReadPolyData fields = testing::read_vtp_with_vtk((analysis / "gear.vtp").string());
-    const std::vector<double>& reachable = fields.cell_data.at("reachable").values;
-    const std::vector<double>& excluded = fields.cell_data.at("excluded").values;
-    const auto peened_mean = [&](const std::vector<double>& v) { return peened_area_mean(gear, v, reachable, excluded); };
+    const std::vector<double>& peened = fields.cell_data.at("peened").values;
+    const auto peened_mean = [&](const std::vector<double>& v) { return peened_area_mean(gear, v, peened); };
     std::vector<double> previous(gear.triangle_count(), 0.0);
     for (std::size_t j = 0; j < steps.size(); ++j) {
         SCOPED_TRACE("step " + std::to_string(j));
@@ -329,7 +328,7 @@ TEST(ParaviewAnalysis, CoverageSeriesFollowsTheCoverageCurve) {
     EXPECT_EQ(fields.cell_array_names,
               (std::vector<std::string>{"impacts", "impacts_per_mm2_s", "mean_vn_mps", "max_vn_mps", "energy_J_per_m2", "coverage",
                                         "impacts_per_mm2_s_smoothed", "mean_vn_mps_smoothed", "energy_J_per_m2_smoothed", "coverage_smoothed",
-                                        "smoothing_radius_mm", "reachable", "excluded", "region"}));
+                                        "smoothing_radius_mm", "reachable", "peened", "excluded", "region"}));
 
     const testing::VtkReadPolyData impacts = testing::read_vtp_with_vtk((analysis / "gear_impacts.vtp").string());
     EXPECT_EQ(impacts.point_array_names, (std::vector<std::string>{"v_in_mps", "vn_in_mps", "time_s"}));

@@ -41,7 +41,7 @@ TEST(SceneSchema, DefaultsAreValidValues) {
 }
 
 TEST(SceneSchema, ChildKeysComeFromTheTable) {
-    EXPECT_EQ(join_names(schema_child_keys("process")), "duration, gravity, seed");
+    EXPECT_EQ(join_names(schema_child_keys("process")), "duration, gravity, seed, until_coverage, until_coverage_of");
     EXPECT_EQ(join_names(schema_child_keys("")),
               "name, process, accuracy, shot, air, materials, contacts, components, sources, sinks, output, render");
     EXPECT_EQ(join_names(schema_child_keys("contacts.*")), "law, C0, V0, mu, f, restitution_by_hits, e, plastic_speed");

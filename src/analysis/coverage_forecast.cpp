@@ -899,6 +899,13 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
                     sd = latest.sd_s;
                 }
                 if (any) finish(f.everywhere, tau, taus, wide_tau, sd);
+                // Never before any of its areas (each has its own bias correction).
+                if (f.everywhere.status == AreaForecast::Status::forecast)
+                    for (std::size_t a : everywhere_areas) {
+                        if (!pending(a) || out[a].status != AreaForecast::Status::forecast) continue;
+                        f.everywhere.time_s = std::max(f.everywhere.time_s, out[a].time_s);
+                        f.everywhere.high_s = std::max(f.everywhere.high_s, out[a].high_s);
+                    }
             }
             break;
         }

@@ -6,6 +6,7 @@
 // Pure computation: no file I/O.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -37,6 +38,17 @@ public:
     // excluded region's reachable area), of triangle t's peened samples (NaN where there is none).
     double coverage() const { return share(0); }
     double region_coverage(std::size_t r) const { return share(r + 1); }
+    // What a map shows for triangle t: the coverage of its peened samples, or of all its samples
+    // when it has none (a triangle out of reach or excluded still shows the dents that fell on it).
+    double shown_triangle_coverage(std::size_t t) const {
+        const double c = triangle_coverage(t);
+        return std::isfinite(c) ? c : map_->coverage_of_triangle(t);
+    }
+    // The share of triangle t's samples that coverage counts (reachable, not excluded), 0..1.
+    double peened_share(std::size_t t) const {
+        const std::int64_t n = map_->samples_of_triangle(t);
+        return n > 0 ? static_cast<double>(classes_.peened_samples(t)) / static_cast<double>(n) : 0.0;
+    }
     double triangle_coverage(std::size_t t) const;
     // When the peened area, region r reached the target (NaN: not yet).
     double reached_at_s() const { return reached_at_[0]; }

@@ -24,17 +24,17 @@ void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double
     std::ostringstream s;
     s << "triangle,facet,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage,"
          "impacts_per_mm2_s_smoothed,impacts_smoothed_rel_error,mean_vn_mps_smoothed,energy_J_per_m2_smoothed,coverage_smoothed,"
-         "smoothing_radius_mm,reachable,excluded,region\n";
+         "smoothing_radius_mm,reachable,peened,excluded,region\n";
     const std::string radius_mm = fmt(c.smoothing->radius_m() * 1e3, 6);
     for (std::size_t t = 0; t < c.fields->triangle_count(); ++t) {
         const SmoothedSums& m = c.smoothed[t];
         s << t << ',' << (c.mesh->source_facet.empty() ? static_cast<int>(t) : c.mesh->source_facet[t]) << ','
           << fmt(c.fields->area_m2(t) * 1e6, 8) << ',' << c.fields->count(t) << ',' << fmt(c.fields->rate_per_mm2_s(t, duration), 6) << ','
           << fmt(c.fields->mean_normal_speed(t)) << ',' << fmt(c.fields->max_normal_speed(t)) << ',' << fmt(c.fields->energy_per_area(t), 6)
-          << ',' << (c.coverage ? fmt(c.coverage->map().coverage_of_triangle(t)) : "") << ',' << fmt(m.impacts_per_m2() / 1e6 / duration, 6)
+          << ',' << (c.coverage ? fmt(c.coverage->shown_triangle_coverage(t)) : "") << ',' << fmt(m.impacts_per_m2() / 1e6 / duration, 6)
           << ',' << fmt(m.relative_error(), 4) << ',' << fmt(m.mean_normal_speed()) << ',' << fmt(m.energy_J_per_m2(), 6) << ','
           << (c.coverage ? fmt(m.coverage()) : "") << ',' << radius_mm << ',' << (c.reach.empty() ? "" : fmt(c.reach[t], 3)) << ','
-          << fmt(c.regions.excluded_fraction(t), 3) << ',' << dominant_region_name(c, t) << '\n';
+          << (c.coverage ? fmt(c.coverage->peened_share(t), 3) : "") << ',' << fmt(c.regions.excluded_fraction(t), 3) << ',' << dominant_region_name(c, t) << '\n';
     }
     write_file_atomically(path.string(), s.str());
 }
@@ -53,6 +53,7 @@ std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) 
     if (c.coverage) f.push_back({"coverage_smoothed", 1, {}});
     f.push_back({"smoothing_radius_mm", 1, {}});
     if (!c.reach.empty()) f.push_back({"reachable", 1, {}});
+    if (c.coverage) f.push_back({"peened", 1, {}});
     if (!c.regions.empty()) f.push_back({"excluded", 1, {}}), f.push_back({"region", 1, {}});
     for (CellField& x : f) x.values.reserve(n);
     for (std::size_t t = 0; t < n; ++t) {
@@ -64,13 +65,14 @@ std::vector<CellField> cell_fields(const ComponentAnalysis& c, double duration) 
         f[k++].values.push_back(std::isfinite(mean) ? mean : 0.0);  // ParaView: 0 where nothing hit
         f[k++].values.push_back(c.fields->max_normal_speed(t));
         f[k++].values.push_back(c.fields->energy_per_area(t));
-        if (c.coverage) f[k++].values.push_back(c.coverage->map().coverage_of_triangle(t));
+        if (c.coverage) f[k++].values.push_back(c.coverage->shown_triangle_coverage(t));
         f[k++].values.push_back(m.impacts_per_m2() / 1e6 / duration);
         f[k++].values.push_back(m.mean_normal_speed());
         f[k++].values.push_back(m.energy_J_per_m2());
         if (c.coverage) f[k++].values.push_back(m.coverage());
         f[k++].values.push_back(c.smoothing->radius_m() * 1e3);
         if (!c.reach.empty()) f[k++].values.push_back(c.reach[t]);
+        if (c.coverage) f[k++].values.push_back(c.coverage->peened_share(t));
         if (!c.regions.empty()) {
             f[k++].values.push_back(c.regions.excluded_fraction(t));
             f[k++].values.push_back(static_cast<double>(c.regions.dominant_region(t)));  // index into <c>_regions.csv's rows, -1: none

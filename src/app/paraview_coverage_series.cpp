@@ -56,7 +56,7 @@ void CoverageSeries::write_step(int j) {
         PolyDataWriter out((dir_ / step_file(a, j)).string(), std::move(layout));
         out.add_points(mesh.vertices);
         for (const auto& tri : mesh.triangles) out.add_triangle(tri);
-        for (std::size_t t = 0; t < mesh.triangle_count(); ++t) out.add(a.coverage->map().coverage_of_triangle(t));
+        for (std::size_t t = 0; t < mesh.triangle_count(); ++t) out.add(a.coverage->shown_triangle_coverage(t));
         out.finish();
     }
 }
