@@ -658,8 +658,16 @@ LatestOf latest_of(const std::vector<std::pair<double, double>>& crossings, doub
     return {mean, std::sqrt(std::max(0.0, sum2 / kDraws - mean * mean))};
 }
 
-// The radius that keeps s kappa <= q for the dent area a_q at span s (see the header).
-double radius_for(double span, double dent_area_q) { return std::sqrt(3.0 * span * dent_area_q / (M_PI * kForecastKappaBound)); }
+// The smallest kernel: kHoleMargin dent radii (of a_q). An uncovered point has no impact within a
+// dent radius of it, so a kernel that reaches no farther sees none and says "never"; a short
+// extrapolation (a long run near its target) would otherwise shrink h below that.
+double smallest_radius(double dent_area_q) { return kHoleMargin * std::sqrt(dent_area_q / M_PI); }
+
+// The radius that keeps s kappa <= q for the dent area a_q at span s (see the header), at least
+// the smallest.
+double radius_for(double span, double dent_area_q) {
+    return std::max(std::sqrt(3.0 * span * dent_area_q / (M_PI * kForecastKappaBound)), smallest_radius(dent_area_q));
+}
 
 // Along an edge line: kappa_j peaks at the largest chord 2 rho over the 1D kernel's integral
 // 16 h / 15, so s kappa <= q asks for h >= 15 s rho_q / (8 q) (rho_q the dent radius of a_q), and
