@@ -33,19 +33,23 @@ struct Pinned {
 // ones last moved when the pool's clock became each step's end time instead of a sum of steps (a
 // change in the last bits of the steps, which the bed's chaos spreads: rod-soft 2372 -> 2430 rows,
 // gear-soft 727 -> 779 in the first 0.5 s; statistics unchanged).
-// Last moved by: time stepping follows slow touches on the pressing plate as rebounds down to the
+// Last moved by: a moving mesh's search takes a gap that stays within 1e-6 R as a touch (a shot
+// skimming the sonotrode's moving sides or the turning gear: conservative advancement crawled
+// there, and stalled a rotating gear's run for good; issue 28): rotating-gear event 878 -> 883
+// rows, gear-soft event 794 -> 799, nozzle-gear event 10925 -> 10813 (50 ms of a 100 m/s jet, the
+// difference spread by the load's chaos). Before that: time stepping follows slow touches on the pressing plate as rebounds down to the
 // ride speed, as the event scheme does (rotating-gear step: 794 -> 784 rows); before that, the
 // launch from a ride started from the free flight since the release (e64ce17).
 const Pinned kPinned[] = {
     {"gear", "event", 871, "f59bc50898df1087"},           {"gear", "step", 822, "96deb7baad68fdb5"},
     {"rod", "event", 1585, "9b406f77de933fb2"},           {"rod", "step", 1550, "49c0d4fb4815fbee"},
-    {"rotating-gear", "event", 878, "39f8f555c075679a"},  {"rotating-gear", "step", 784, "75faf08347826696"},
+    {"rotating-gear", "event", 883, "1397b5fde58f0127"},  {"rotating-gear", "step", 784, "75faf08347826696"},
     {"almen", "event", 946, "14acb11530796b00"},          {"almen", "step", 835, "4553c21722f5a983"},
     {"nozzle-almen", "event", 10301, "bb678520f6b17aae"}, {"nozzle-almen", "step", 10305, "442b3f8829756d0b"},
     {"rod-soft", "soft", 2430, "48744af6e79a19bd"},       {"rod-soft", "event", 2451, "fb40376583a3a876"},
-    {"gear-soft", "soft", 779, "3e29fce2cec7b068"},       {"gear-soft", "event", 794, "43bb77a63129baa9"},
+    {"gear-soft", "soft", 779, "3e29fce2cec7b068"},       {"gear-soft", "event", 799, "1691f3d176d906ba"},
     {"nozzle-study", "event", 4356, "0e5490f59b3f306e", "30 ms"}, {"nozzle-study", "step", 4350, "5532dd3e16620419", "30 ms"},
-    {"nozzle-gear", "event", 10925, "2f0542406346fb56", "50 ms"},  {"nozzle-gear", "step", 11020, "150022a6e60e6991", "50 ms"},
+    {"nozzle-gear", "event", 10813, "23ca88bf3bc9b778", "50 ms"},  {"nozzle-gear", "step", 11020, "150022a6e60e6991", "50 ms"},
     {"nozzle-mix", "event", 5055, "974f1bd363d56f50", "30 ms"},   {"nozzle-mix", "step", 5091, "4ef5efafadc78182", "30 ms"},
 };
 

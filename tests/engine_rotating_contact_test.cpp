@@ -185,5 +185,40 @@ TEST(EngineRotatingContact, ThrowsAtACylinderTurningAt1000RpmLogTheExactNormalAn
     expect_exact(throw_at_turning_cylinder(1000.0, 100, 12), 100);
 }
 
+// A shot gliding along the end cap of a turning cylinder (a face in the plane of the turn, so
+// the gap stays what it is) at 1e-8 R (a graze leaves it at 1e-9 R): conservative advancement stepped
+// gap / speed there, a fraction of a nanosecond per search, and a rotating gear's run stopped
+// advancing for good (issue 28). A gap that stays within a hair of the surface is a touch (a
+// graze): the run crosses the cap and goes on.
+TEST(EngineRotatingContact, AShotGlidingAlongATurningFaceAtAHairKeepsAdvancing) {
+    TestSceneSpec spec;
+    spec.chamber_size_m = Vec3(30e-3, 24e-3, 36e-3);
+    spec.scheme = "event";
+    spec.duration_s = 0.02;
+    spec.gravity_m_per_s2 = Vec3::Zero();
+    PartSpec part;
+    part.shape = PartShape::cylinder;
+    part.radius_m = kCylinderRadius;
+    part.length_m = 10e-3;
+    part.axis = Axis::y;
+    part.segments = kFacets;
+    part.center_m = Vec3(0.0, 0.0, 18e-3);
+    part.speed_rad_per_s = 300.0 * kRpm;
+    part.axis_point_m = part.center_m;
+    part.axis_direction = Vec3::UnitY();
+    spec.part = part;
+    spec.log = {"part"};
+    const TestScene scene(spec);
+    const std::shared_ptr<const Model> model = scene.compile();
+    const double R = model->max_shot_radius_m;
+    const Vec3 start = part.center_m + Vec3(-4e-3, 5e-3 + R + 1e-8 * R, 0.0);
+    Simulation sim(model);
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start, Vec3(3.77, 0.0, 0.0)); });
+    std::vector<ImpactRecord> impacts;
+    while (!sim.finished()) sim.step(impacts);
+    EXPECT_GE(sim.state().time.seconds(), 0.02 - 1e-12);
+    EXPECT_EQ(sim.state().health.shot_lost, 0u);
+}
+
 }  // namespace
 }  // namespace peensim::testing
