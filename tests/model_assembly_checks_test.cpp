@@ -158,6 +158,44 @@ TEST(AssemblyChecks, ARunRefusesAnAssemblyWithAnError) {
     EXPECT_FALSE(fs::exists(fs::path(o.output_dir) / "summary.json"));
 }
 
+// A shot too large for the gaps is refused for that, with the gap and the diameter, not as a
+// misplaced part or a missing chamber (issue 28: "check its translation, rotation and mesh_unit",
+// "found nothing above its upper face" misled).
+std::string refusal_of(const std::string& scene_path, const std::vector<std::string>& overrides, const std::string& out_dir) {
+    RunOptions o;
+    o.scene_path = scene_path;
+    o.output_dir = out_dir;
+    o.overrides = overrides;
+    o.progress = false;
+    std::ostringstream out, err;
+    EXPECT_EQ(run_job(o, out, err), kExitInputError) << err.str();
+    return err.str();
+}
+
+TEST(AssemblyChecks, AShotWiderThanTheGapUnderThePartSaysSo) {
+    // The rod scene's rod is 15 mm over the sonotrode and held by the chamber's walls at its ends.
+    const TestScene scene(small_rod_scene("event", 0.01));
+    const std::string err = refusal_of(std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml", {"shot.diameter=19.9 mm", "shot.count=1"},
+                                       scene.make_subdirectory("out"));
+    EXPECT_NE(err.find("part 'rod': only 12 % of its surface can be reached by the shot: the shot (19.9 mm) is wider than the gap between it and "
+                       "the sonotrode (15 mm)"),
+              std::string::npos)
+        << err;
+    EXPECT_EQ(err.find("check its translation"), std::string::npos) << err;
+}
+
+TEST(AssemblyChecks, AShotThatFitsNowhereOnTheSonotrodeSaysSo) {
+    // A plate 16 x 16 mm hung 2 mm over the sonotrode, 2 mm from the walls: no room for 3 mm shot.
+    TestSceneSpec spec = with_box(Vec3(0.0, 0.0, 4e-3), Vec3(16e-3, 16e-3, 4e-3));
+    spec.shot_diameter_m = 3e-3;
+    const TestScene scene(spec);
+    const std::string err = refusal_of(scene.scene_path(), {}, scene.make_subdirectory("out"));
+    EXPECT_NE(err.find("shot.diameter: the shot (3 mm) does not fit anywhere over the sonotrode's upper face: the widest room there fits a shot of "),
+              std::string::npos)
+        << err;
+    EXPECT_EQ(err.find("found nothing above"), std::string::npos) << err;
+}
+
 // Plausibility: values a valid scene may hold by a slip are warnings naming what was meant.
 std::string setup_warnings_of(const std::string& scene_path, const std::vector<std::string>& overrides) {
     std::ostringstream out, err;

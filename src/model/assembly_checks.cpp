@@ -15,6 +15,14 @@ namespace peensim {
 
 namespace {
 
+// A length for a message: mm, 3 significant digits.
+std::string mm_text(double m) {
+    std::ostringstream s;
+    s.precision(3);
+    s << m * 1e3 << " mm";
+    return s.str();
+}
+
 constexpr double kTouch = 1e-7;      // m: surfaces this close (float STL rounding) touch, they do not cross
 constexpr int kReachSamples = 1500;  // surface points per component for the reach test
 constexpr int kMaxSubdivision = 64;  // per triangle edge, when sampling surfaces for the sweep test
@@ -316,9 +324,20 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
             s << (facts.reachable_fraction == 0.0
                       ? "no part"
                       : "only " + std::to_string(static_cast<int>(std::round(100.0 * facts.reachable_fraction))) + " %")
-              << " of its surface can be reached by the shot (the rest lies outside the chamber's cavity, in the sonotrode or in "
-                 "another component); "
-              << where.str() << ": check its translation, rotation and mesh_unit";
+              << " of its surface can be reached by the shot";
+            // The shot wider than the gaps around the part is the likelier cause than a misplaced
+            // part: name it with the gaps.
+            const double diameter = 2.0 * m.max_shot_radius_m;  // m
+            const bool sono_gap = diameter > facts.clearance_to_sonotrode_m, chamber_gap = facts.clearance_to_chamber_m > 0.0 && diameter > facts.clearance_to_chamber_m;  // 0: held by the chamber
+            if (sono_gap || chamber_gap) {
+                s << ": the shot (" << 1e3 * diameter << " mm) is wider than the gap between it and the "
+                  << (sono_gap ? "sonotrode (" + mm_text(facts.clearance_to_sonotrode_m) + ")" : "")
+                  << (sono_gap && chamber_gap ? " and the " : "") << (chamber_gap ? "chamber (" + mm_text(facts.clearance_to_chamber_m) + ")" : "")
+                  << "; expected shot that pass between them: a smaller shot.diameter, or the part further from them";
+            } else {
+                s << " (the rest lies outside the chamber's cavity, in the sonotrode or in another component); " << where.str()
+                  << ": check its translation, rotation and mesh_unit";
+            }
             add(report, m, i, true, "", s.str());
         }
         Vec3 at;

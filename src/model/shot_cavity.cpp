@@ -77,10 +77,15 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
     const SourceLocation sono_where = scene.components[static_cast<std::size_t>(model.sonotrode)].where;
     std::vector<int> scratch;
     int roofed = 0;
+    std::vector<Vec3> covered_face;  // face points under a roof where no shot of radius R fits
     for (int k = 0; k < 256 && roofed < 64; ++k) {
-        const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance));
+        const Vec3 face = faces.sample(rng);
+        const Vec3 p = face + up * (R * (1.0 + kClearance));
         // Only points where a shot fits (a point hugging a wall may sit in a cell the walls mark).
-        if (!clear_of_meshes(model, p, R) || !has_roof(model, p, up, scratch)) continue;
+        if (!clear_of_meshes(model, p, R) || !has_roof(model, p, up, scratch)) {
+            if (covered_face.size() < 64 && has_roof(model, face + up * (kClearance * R), up, scratch)) covered_face.push_back(face);
+            continue;
+        }
         ++roofed;
         if (enclosure.inside(p)) continue;
         Vec3 lo = Vec3::Constant(1e300), hi = -lo;
@@ -101,6 +106,26 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
                          "the chamber is not closed around the sonotrode: a shot placed on the sonotrode at " + mm_point(p) +
                              " can leave the assembly near " + mm_point(where) +
                              " (expected chamber, sonotrode, parts and fixtures to enclose the shot)");
+    }
+    if (roofed == 0 && !covered_face.empty()) {
+        // A chamber is there, but the shot fits nowhere under it (or under the parts over the
+        // face): say so, with the largest shot that would (bisection on the radius at each covered
+        // face point).
+        double widest = 0.0;  // m, radius
+        for (const Vec3& face : covered_face) {
+            double lo = widest, hi = R;
+            if (!clear_of_meshes(model, face + up * (lo * (1.0 + kClearance)), lo)) continue;
+            for (int i = 0; i < 40; ++i) {
+                const double mid = 0.5 * (lo + hi);
+                (clear_of_meshes(model, face + up * (mid * (1.0 + kClearance)), mid) ? lo : hi) = mid;
+            }
+            widest = std::max(widest, lo);
+        }
+        std::ostringstream s;
+        s.precision(3);
+        s << "the shot (" << 2e3 * R << " mm) does not fit anywhere over the sonotrode's upper face: the widest room there fits a shot of "
+          << 2e3 * widest << " mm, under the parts and the chamber (expected shot smaller than the gaps over the sonotrode)";
+        throw InputError(scene.shot.where, scene.shot.sizes_given ? "shot.sizes" : "shot.diameter", s.str());
     }
     if (roofed == 0)
         throw InputError(sono_where, "components", "expected a chamber above the sonotrode, found nothing above its upper face");
