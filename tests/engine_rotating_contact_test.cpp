@@ -103,16 +103,16 @@ struct Errors {
     double time_s = 0.0;       // largest |t logged - t exact|
 };
 
-Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
+// The cylinder (axis y, 18 mm over the plate) turning at `rpm` in a chamber as small as the throws
+// allow (the distance gates a run builds cost in the chamber's volume), the part logged.
+TestSceneSpec turning_cylinder(double rpm, double length_m, double duration_s) {
     TestSceneSpec spec;
-    // As small as the throws allow: the distance gates a run builds cost in the chamber's volume.
     spec.chamber_size_m = Vec3(30e-3, 24e-3, 36e-3);
-    spec.duration_s = 0.1;
-    spec.part_pair = {0.6, 5.0, 0.8, 0.1};  // C = 0.6 (elastic), mu = 0.8
+    spec.duration_s = duration_s;
     PartSpec part;
     part.shape = PartShape::cylinder;
     part.radius_m = kCylinderRadius;
-    part.length_m = 20e-3;
+    part.length_m = length_m;
     part.axis = Axis::y;
     part.segments = kFacets;
     part.center_m = Vec3(0.0, 0.0, 18e-3);
@@ -121,6 +121,13 @@ Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
     part.axis_direction = Vec3::UnitY();
     spec.part = part;
     spec.log = {"part"};
+    return spec;
+}
+
+Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
+    TestSceneSpec spec = turning_cylinder(rpm, 20e-3, 0.1);
+    spec.part_pair = {0.6, 5.0, 0.8, 0.1};  // C = 0.6 (elastic), mu = 0.8
+    const PartSpec part = *spec.part;
     const TestScene scene(spec);
     const std::shared_ptr<const Model> model = scene.compile();
     const auto part_index = static_cast<std::size_t>(model->component_index("part"));
@@ -191,23 +198,10 @@ TEST(EngineRotatingContact, ThrowsAtACylinderTurningAt1000RpmLogTheExactNormalAn
 // advancing for good (issue 28). A gap that stays within a hair of the surface is a touch (a
 // graze): the run crosses the cap and goes on.
 TEST(EngineRotatingContact, AShotGlidingAlongATurningFaceAtAHairKeepsAdvancing) {
-    TestSceneSpec spec;
-    spec.chamber_size_m = Vec3(30e-3, 24e-3, 36e-3);
+    TestSceneSpec spec = turning_cylinder(300.0, 10e-3, 0.02);
     spec.scheme = "event";
-    spec.duration_s = 0.02;
     spec.gravity_m_per_s2 = Vec3::Zero();
-    PartSpec part;
-    part.shape = PartShape::cylinder;
-    part.radius_m = kCylinderRadius;
-    part.length_m = 10e-3;
-    part.axis = Axis::y;
-    part.segments = kFacets;
-    part.center_m = Vec3(0.0, 0.0, 18e-3);
-    part.speed_rad_per_s = 300.0 * kRpm;
-    part.axis_point_m = part.center_m;
-    part.axis_direction = Vec3::UnitY();
-    spec.part = part;
-    spec.log = {"part"};
+    const PartSpec part = *spec.part;
     const TestScene scene(spec);
     const std::shared_ptr<const Model> model = scene.compile();
     const double R = model->max_shot_radius_m;
