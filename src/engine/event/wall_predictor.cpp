@@ -14,8 +14,8 @@ namespace peensim {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kMaxAdvancement = 2000;
-constexpr double kSkimBand = 1e-6;  // gap (x R) within which a gap that stops closing is a touch  // conservative-advancement iterations per search (then it resumes later)
+constexpr int kMaxAdvancement = 2000;  // conservative-advancement iterations per search (then it resumes later)
+constexpr double kSkimBand = 1e-6;     // gap (x R) within which a gap that stops closing is a touch
 }  // namespace
 
 WallPredictor::WallPredictor(std::shared_ptr<const Model> model) : model_(std::move(model)) {
