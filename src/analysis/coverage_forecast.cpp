@@ -39,6 +39,20 @@ std::array<std::int64_t, 3> cube_of(const Vec3& p, double inverse_side) {
             static_cast<std::int64_t>(std::floor(p.z() * inverse_side))};
 }
 
+// Ids sorted by their cube keys -> the map from a key to its run [first, end) in `ids`: every id
+// of a cube in one look-up.
+template <class Id>
+void index_by_cube(std::vector<std::pair<std::uint64_t, Id>>& keyed, std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>>& grid,
+                   std::vector<Id>& ids) {
+    std::sort(keyed.begin(), keyed.end());
+    ids.resize(keyed.size());
+    for (std::size_t i = 0; i < keyed.size(); ++i) {
+        ids[i] = keyed[i].second;
+        auto [it, added] = grid.try_emplace(keyed[i].first, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i));
+        it->second.second = static_cast<std::uint32_t>(i + 1);
+    }
+}
+
 // What an area holds of a cell (m2); group >= 0: of the cell's samples near an edge line, that
 // group's (EdgeGroup).
 struct AreaTerm {
@@ -123,13 +137,7 @@ struct EdgeLines {
                 for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
                     for (std::int64_t x = lo[0]; x <= hi[0]; ++x) keyed.emplace_back(cube_key(x, y, z, -1), static_cast<std::int32_t>(k));
         }
-        std::sort(keyed.begin(), keyed.end());
-        grid_lines_.resize(keyed.size());
-        for (std::size_t i = 0; i < keyed.size(); ++i) {
-            grid_lines_[i] = keyed[i].second;
-            auto [it, added] = grid_.try_emplace(keyed[i].first, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i));
-            it->second.second = static_cast<std::uint32_t>(i + 1);
-        }
+        index_by_cube(keyed, grid_, grid_lines_);
         // The triangles some line passes near: their samples are placed one by one.
         near_triangle_.assign(mesh.triangle_count(), false);
         for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
@@ -500,13 +508,7 @@ private:
             const auto q = cube_of(centroid_[c], inverse);
             keyed[c] = {cube_key(q[0], q[1], q[2], -1), static_cast<std::uint32_t>(c)};
         }
-        std::sort(keyed.begin(), keyed.end());
-        grid_cells_.resize(keyed.size());
-        for (std::size_t i = 0; i < keyed.size(); ++i) {
-            grid_cells_[i] = keyed[i].second;
-            auto [it, added] = grid_.try_emplace(keyed[i].first, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i));
-            it->second.second = static_cast<std::uint32_t>(i + 1);
-        }
+        index_by_cube(keyed, grid_, grid_cells_);
     }
 
     template <class Visit>
