@@ -189,8 +189,10 @@ TEST(CoverageForecast, AnEvenRateGivesTheExactTimeWithinItsInterval) {
     const RegionSet none(p.cube, {});
     int inside = 0;
     const int seeds = 12;
+    double sum = 0.0;
     for (int seed = 1; seed <= seeds; ++seed) {
         const CoverageForecast f = peen_and_forecast(p, none, 10.0, static_cast<std::uint64_t>(seed));
+        sum += f.whole.time_s;
         ASSERT_EQ(f.whole.status, AreaForecast::Status::forecast) << seed;
         EXPECT_NEAR(f.whole.time_s, exact, 0.1 * exact) << seed;
         EXPECT_LT(f.whole.low_s, f.whole.time_s);
@@ -201,6 +203,10 @@ TEST(CoverageForecast, AnEvenRateGivesTheExactTimeWithinItsInterval) {
         EXPECT_FALSE(f.summary.startup_left_out);
     }
     EXPECT_GE(inside, seeds - 2) << "the 95 % interval must contain the exact time about 95 % of the time";
+    // On average unbiased: the estimator's series is long enough that its truncation does not show
+    // (three terms made every forecast here 1.4 % late before the smoothing correction doubled it).
+    std::printf("even rate: mean forecast %+.2f %% of the exact time over %d seeds\n", 100.0 * (sum / seeds / exact - 1.0), seeds);
+    EXPECT_NEAR(sum / seeds, exact, 0.015 * exact);
 }
 
 TEST(CoverageForecast, UnevenRatesArePredictedPointByPointNotAsOneRate) {

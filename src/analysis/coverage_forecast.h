@@ -16,8 +16,8 @@
 // naive plug-in exp(-tau sum kappa_i / T) is biased late (counting noise widens the spread of rates
 // it sees, and exp is convex). Because the impacts form a Poisson process, prod_i (1 - s kappa_i),
 // s = tau / T, is an unbiased estimator of exp(-tau mu_h(x)); its logarithm is the series
-// -(s S1 + s^2 S2 / 2 + s^3 S3 / 3 + ...), S_m = sum_i kappa_i^m, which we take to the third order:
-// the estimator exp(-(s S1 + s^2 S2 / 2 + s^3 S3 / 3)) is unbiased to O((s kappa)^4) per impact and,
+// -(s S1 + s^2 S2 / 2 + s^3 S3 / 3 + ...), S_m = sum_i kappa_i^m, which we take to the sixth order:
+// the estimator exp(-sum_(m <= 6) s^m S_m / m) is unbiased to O((s kappa)^7) per impact and,
 // unlike the product, never negative. It holds while s kappa stays below 1, so the radius follows
 // the extrapolation: h = sqrt(3 s a_q / (pi q)) (a_q the 99th percentile of the dent areas, q =
 // kForecastKappaBound), which keeps s kappa <= q for 99 % of the impacts, and never less than
