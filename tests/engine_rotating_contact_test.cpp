@@ -214,5 +214,36 @@ TEST(EngineRotatingContact, AShotGlidingAlongATurningFaceAtAHairKeepsAdvancing) 
     EXPECT_EQ(sim.state().health.shot_lost, 0u);
 }
 
+// The net under that fix: a shot gliding at 1e-5 R (ten times the skim band, so no touch) over
+// the end face of a part turning at 3000 rpm, slowly (0.05 m/s). Conservative advancement must
+// allow for the face's 1.6 m/s at the rim, so each of its steps gains 1e-5 R / 1.6 m/s = 6 ns and
+// a search of 2000 steps 12.5 us: without the net these 0.02 s took 1620 searches and 4.7 s of
+// wall time for this one shot (and ten times longer at 1e-6 R). After kMaxResumedSearches
+// fruitless searches in a row the shot goes on in sustained-contact substeps (0.05 s), counted and
+// located in the health report.
+TEST(EngineRotatingContact, AShotThatTheExactSearchCannotAdvanceFallsBackToSubstepsAndIsCounted) {
+    TestSceneSpec spec = turning_cylinder(3000.0, 10e-3, 0.02);
+    spec.scheme = "event";
+    spec.gravity_m_per_s2 = Vec3::Zero();
+    const PartSpec part = *spec.part;
+    const TestScene scene(spec);
+    const std::shared_ptr<const Model> model = scene.compile();
+    const double R = model->max_shot_radius_m;
+    const Vec3 start = part.center_m + Vec3(-2e-3, 5e-3 + R + 1e-5 * R, 0.0);
+    Simulation sim(model);
+    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start, Vec3(0.05, 0.0, 0.0)); });
+    std::vector<ImpactRecord> impacts;
+    while (!sim.finished()) sim.step(impacts);
+    EXPECT_GE(sim.state().time.seconds(), 0.02 - 1e-12);
+    EXPECT_EQ(sim.state().health.shot_lost, 0u);
+    EXPECT_GE(sim.state().health.search_fallbacks, 1u);
+    const SearchFallback& first = sim.state().first_search_fallback;
+    EXPECT_GE(first.time_s, 0.0);
+    EXPECT_EQ(first.shot, 0);
+    ASSERT_GE(first.component, 0);
+    EXPECT_EQ(model->components[static_cast<std::size_t>(first.component)].name, "part");
+    EXPECT_LT((first.position_m - start).norm(), 2e-3);
+}
+
 }  // namespace
 }  // namespace peensim::testing

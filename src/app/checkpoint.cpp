@@ -21,8 +21,8 @@ namespace {
 // in-flight flags; 3 a checksum of everything before it (the file's last 8 bytes); 4 the contact
 // laws' per-triangle state; 5 the counts of the shot sources and sinks; 6 the laws' per-contact state;
 // 7 the shot's angular velocities and the soft scheme's contacts in progress; 8 each shot's size
-// (a mix) and a lost shot's radius.
-constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '8'};
+// (a mix) and a lost shot's radius; 9 the search fallbacks (their count and where the first was).
+constexpr char kMagic[8] = {'P', 'E', 'E', 'N', 'C', 'K', 'P', '9'};
 
 // Any single flipped bit (and almost any damage) changes it.
 std::uint64_t checksum(std::string_view bytes) { return fnv1a64(bytes); }
@@ -75,6 +75,11 @@ void save_checkpoint(const std::string& path, const Checkpoint& c) {
         w.put(l.clearance_m);
         w.put(l.radius_m);
     }
+    const SearchFallback& f = s.first_search_fallback;
+    w.put(f.time_s);
+    w.put(f.shot);
+    w.put(f.component);
+    for (int k = 0; k < 3; ++k) w.put(f.position_m[k]);
     for (const auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz, &s.shots.wx, &s.shots.wy, &s.shots.wz})
         w.put_vector(*v);
     w.put_vector(s.shots.active);
@@ -163,6 +168,11 @@ Checkpoint load_checkpoint(const std::string& path) {
         l.radius_m = r.get<double>();
         s.lost.push_back(l);
     }
+    SearchFallback& f = s.first_search_fallback;
+    f.time_s = r.get<double>();
+    f.shot = r.get<int>();
+    f.component = r.get<int>();
+    for (int a = 0; a < 3; ++a) f.position_m[a] = r.get<double>();
     for (auto* v : {&s.shots.x, &s.shots.y, &s.shots.z, &s.shots.vx, &s.shots.vy, &s.shots.vz, &s.shots.wx, &s.shots.wy, &s.shots.wz})
         *v = r.get_vector<double>();
     s.shots.active = r.get_vector<unsigned char>();

@@ -68,6 +68,13 @@ RunSummary build_summary(const Simulation& sim, const std::string& scene_file, c
         if (!text.empty()) s.law_states.emplace_back(model.components[c].name, std::string(model.components[c].law->name()) + ": " + text);
     }
     state.health.for_each([&](const char* name, std::uint64_t count) { s.health_counters.push_back({name, count}); });
+    if (const SearchFallback& f = state.first_search_fallback; f.time_s >= 0.0) {
+        s.first_search_fallback.time_s = f.time_s;
+        s.first_search_fallback.shot = f.shot;
+        const auto c = static_cast<std::size_t>(f.component);
+        s.first_search_fallback.component = f.component >= 0 && c < model.components.size() ? model.components[c].name : "?";
+        for (int k = 0; k < 3; ++k) s.first_search_fallback.position_m[k] = f.position_m[k];
+    }
     const StepStats& stats = sim.scheme().stats();
     for (std::size_t k = 0; k < kStageNames.size(); ++k) s.stage_times.push_back({std::string(kStageNames[k]), stats.seconds[k]});
     s.peak_memory_bytes = peak_resident_bytes();

@@ -56,6 +56,10 @@ struct HealthCounters {
     std::uint64_t deep_penetrations = 0;         // a shot found deeper than R/2 inside a surface
     std::uint64_t unresolved_contacts = 0;       // contact passes exhausted within one step
     std::uint64_t engine_errors = 0;             // lost shot that crossed a surface (not through an opening)
+    // Flights whose exact contact search made no headway (kMaxResumedSearches searches in a row ran
+    // out of iterations near a moving surface) and went on in sustained-contact substeps instead:
+    // the net under "time always advances" (SimulationState::first_search_fallback says where).
+    std::uint64_t search_fallbacks = 0;
 
     template <class Visit>
     void for_each(Visit&& visit) const {
@@ -66,6 +70,7 @@ struct HealthCounters {
         visit("deep_penetrations", deep_penetrations);
         visit("unresolved_contacts", unresolved_contacts);
         visit("engine_errors", engine_errors);
+        visit("search_fallbacks", search_fallbacks);
     }
     // Counters that mean a wrong result (the others are routine corrections).
     std::uint64_t serious() const { return shot_lost + non_finite + deep_penetrations + unresolved_contacts + engine_errors; }
@@ -90,6 +95,14 @@ struct LostShot {
     double radius_m = 0.0;        // m, the shot's radius R (diagnosed losses)
 };
 
+// The first search fallback of a run (HealthCounters::search_fallbacks): where and why.
+struct SearchFallback {
+    double time_s = -1.0;            // s; negative: none yet
+    int shot = -1;
+    int component = -1;              // the moving component whose search ran out
+    Vec3 position_m = Vec3::Zero();  // m, world, the shot's centre then
+};
+
 struct SimulationState {
     ShotArrays shots;
     SimTime time;
@@ -112,6 +125,7 @@ struct SimulationState {
     std::vector<SoftContact> soft_contacts;
     HealthCounters health;
     std::vector<LostShot> lost;  // one entry per lost shot (bounded by the shot count)
+    SearchFallback first_search_fallback;
     // Shot sources and sinks (model/shot_flow.h), in the model's order: how many each source has
     // emitted (the number of its next emission) and each sink collected. An emitted shot takes
     // the lowest inactive slot of `shots` (one collected or lost), else a new one at the end.

@@ -83,6 +83,14 @@ struct RunSummary {
     // Per component whose contact law keeps state: the law's one-line account of it (text summary).
     std::vector<std::pair<std::string, std::string>> law_states;
     std::vector<NamedCount> health_counters;
+    // The first search fallback (health counter search_fallbacks): when, which shot, near which
+    // component, where (m, world); shot < 0: none.
+    struct SearchFallbackAt {
+        double time_s = 0.0;
+        int shot = -1;
+        std::string component;
+        double position_m[3] = {0.0, 0.0, 0.0};
+    } first_search_fallback;
     std::vector<StageTime> stage_times;  // in step order
 
     std::uint64_t peak_memory_bytes = 0;  // bytes, peak resident set size

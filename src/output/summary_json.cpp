@@ -76,6 +76,9 @@ std::string summary_to_json(const RunSummary& s) {
     auto health = nlohmann::ordered_json::object();
     for (const auto& h : s.health_counters) health[h.name] = h.count;
     j["health_counters"] = std::move(health);
+    if (const auto& f = s.first_search_fallback; f.shot >= 0)
+        j["first_search_fallback"] = {{"time_s", f.time_s}, {"shot", f.shot}, {"component", f.component},
+                                      {"position_m", {f.position_m[0], f.position_m[1], f.position_m[2]}}};
 
     auto stages = nlohmann::ordered_json::object();
     for (const auto& t : s.stage_times) stages[t.stage] = t.seconds;

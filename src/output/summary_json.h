@@ -13,6 +13,7 @@
 //                     "p10_normal_speed_mps": ..., "p50_normal_speed_mps": ...,
 //                     "p90_normal_speed_mps": ..., "max_normal_speed_mps": ...}, ...],
 //   "health_counters": {"<counter>": 0, ...},
+//   "first_search_fallback": {"time_s": .., "shot": .., "component": "..", "position_m": [x, y, z]}  (only after one),
 //   "step_stage_time_s": {"<stage>": 1.25, ...},
 //   "peak_memory_bytes": ...
 // }

@@ -128,6 +128,11 @@ std::string summary_to_text(const RunSummary& s) {
     rows.emplace_back("slow contacts", slow_contacts_text(s.slow_contacts_per_component, s.impact_speed_m_per_s));
     for (const auto& [component, text] : s.law_states) rows.emplace_back("law " + component, text);
     rows.emplace_back("health", health_text(s.health_counters));
+    if (const auto& f = s.first_search_fallback; f.shot >= 0)
+        rows.emplace_back("search fallback",
+                          printf_string("first at t = %.6g s: shot %d near '%s' at (%.3f, %.3f, %.3f) mm, its exact contact search gaining no "
+                                        "time; it went on in sustained-contact substeps",
+                                        f.time_s, f.shot, f.component.c_str(), 1e3 * f.position_m[0], 1e3 * f.position_m[1], 1e3 * f.position_m[2]));
     rows.emplace_back("peak memory", printf_string("%.1f MiB", static_cast<double>(s.peak_memory_bytes) / (1024.0 * 1024.0)));
 
     std::size_t width = 0;

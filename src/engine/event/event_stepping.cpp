@@ -187,6 +187,10 @@ void EventStepping::advance(SimulationState& state, double t_end_s, double pause
     events_since_sync_ = 0;
     state.health.unresolved_contacts += unresolved_;
     unresolved_ = 0;
+    state.health.search_fallbacks += search_fallbacks_;
+    search_fallbacks_ = 0;
+    if (state.first_search_fallback.time_s < 0.0 && first_fallback_.time_s >= 0.0) state.first_search_fallback = first_fallback_;
+    first_fallback_ = SearchFallback{};
     if (stop_s >= next_restart_) started_ = false;  // the next advance() starts afresh from this state
     // Most shot in sustained contact or asleep, and the state says the load is at rest: restart at
     // this grid point, to hand the load over to time stepping (see above). Looked at on the grid only,
@@ -461,6 +465,14 @@ void EventStepping::predict_wall(int i, double t) {
     // 1e-9 R: anything it could enter meanwhile is found overlapping by this search.
     const double t_search = t == s.graze_at ? t + kTouchDistance * s.radius_m / std::max(path.v0.norm(), resting_speed_) : t;
     w = walls_.first_event(path, s.radius_m, t, t_search, t + window, stats_);
+    s.resumed_searches = w.resumed ? s.resumed_searches + 1 : 0;
+    if (s.resumed_searches < kMaxResumedSearches) return;
+    // The search fallback (see the header): the exact search makes no headway; substeps do.
+    ++search_fallbacks_;
+    if (first_fallback_.time_s < 0.0) first_fallback_ = SearchFallback{absolute_seconds(t), i, w.component, position(i, t)};
+    s.resumed_searches = 0;
+    set_flight(i, position(i, t), velocity(i, t), t, Motion::sustained);
+    predict_wall(i, t);
 }
 
 void EventStepping::renew_box(int i, double t) {

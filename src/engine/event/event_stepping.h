@@ -79,6 +79,12 @@ public:
     // Predicts the new shot's flights at once (the scheme stopped at their emission time).
     void shots_added(SimulationState& state, const std::vector<int>& shots) override;
     static constexpr double kRestartInterval = 0.1;  // s
+    // The search fallback: a flight whose contact search runs out of iterations this many times in a
+    // row (each kMaxAdvancement conservative-advancement steps within a hair of a moving surface,
+    // gaining almost no time) goes on in sustained-contact substeps, which always advance time by
+    // a substep; counted in HealthCounters::search_fallbacks. No known scene reaches it: it is the
+    // net under "simulated time always advances" (a blade turning at 1000 rpm once stalled so).
+    static constexpr int kMaxResumedSearches = 4;
 
     // Simulated time (s) one advance() covers at most: it stops on a grid of this spacing (absolute
     // multiples), where the state is brought up to date for progress, checkpoints and interrupts.
@@ -200,6 +206,8 @@ private:
     double substep_ = 0.0;          // s, sustained-contact substep
     double box_travel_ = 0.0;       // m, how far a flight box reaches along the path
     std::uint64_t unresolved_ = 0;  // searches that ran out of iterations, added to the health at sync
+    std::uint64_t search_fallbacks_ = 0;  // flights moved to substeps by the search fallback, added at sync
+    SearchFallback first_fallback_;       // the first of them since the last sync (time_s < 0: none)
     std::uint64_t events_since_sync_ = 0;
 };
 

@@ -36,6 +36,7 @@ struct EventShot {
     double substep_s = 0.0;      // s, length of the current sustained-contact substep
     int quiet_substeps = 0;      // consecutive still substeps (sleep)
     double window_travel = 0.0;  // m, travel the next search window of this flight covers
+    int resumed_searches = 0;    // its searches in a row that ran out of iterations (search fallback; a search that does not resets it)
     // Riding sonotrode ride_component since ride_start (s): centre at ride_point + a (s(t) -
     // s(ride_start)) + ride_tangential (t - ride_start).
     int ride_component = -1;

@@ -30,6 +30,9 @@ struct WallEvent {
     Vec3 surface_velocity = Vec3::Zero();      // m/s
     Vec3 surface_acceleration = Vec3::Zero();  // m/s2
     double depth = 0.0;                        // m, overlap depth if overlapping
+    // kind none: the search of `component` ran out of iterations and resumes from `time` (nothing
+    // found before it); see EventStepping's search fallback.
+    bool resumed = false;
 };
 
 }  // namespace peensim

@@ -98,7 +98,7 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double R, double t,
                     WallEvent side;
                     const AdvancementResult r = advance_to_contact(c, *face.rest_collider, face.rest_mesh->source_facet, surface_speed_[k],
                                                                    path, R, near.contact.time, t_limit, side);
-                    if (r.exhausted) resume_search_at(w, r.searched_until, stats);
+                    if (r.exhausted) resume_search_at(w, r.searched_until, c, stats);
                     if (r.found && (!hit || side.time < found.time || side.overlapping)) found = side, hit = true;
                 }
             }
@@ -108,7 +108,7 @@ WallEvent WallPredictor::first_event(const Trajectory& path, double R, double t,
             if (sweep.span(comp.world_lo, comp.world_hi, span)) {
                 const AdvancementResult r = advance_to_contact(c, *comp.collider, facets_[k], surface_speed_[k], path, R,
                                                                std::max(t_search, span.first), std::min(w.time, span.last), found);
-                if (r.exhausted) resume_search_at(w, r.searched_until, stats);
+                if (r.exhausted) resume_search_at(w, r.searched_until, c, stats);
                 hit = r.found;
             }
         } else {
@@ -129,12 +129,14 @@ double WallPredictor::leave_time(const Trajectory& path, double t) const {
     return first_time_outside_box(path, model_->world_lo, model_->world_hi, t, kInf).value_or(kInf);
 }
 
-void WallPredictor::resume_search_at(WallEvent& w, double t, StepStats& stats) {
+void WallPredictor::resume_search_at(WallEvent& w, double t, int component, StepStats& stats) {
     ++stats.search_resumes;
     if (!(t < w.time)) return;
     w = WallEvent{};
     w.time = t;
     w.kind = WallKind::none;
+    w.component = component;
+    w.resumed = true;
 }
 
 bool WallPredictor::put_out_of_solid(std::size_t c, double R, double t, WallEvent& w, Vec3& p) const {

@@ -65,7 +65,7 @@ private:
                                          const Trajectory& path, double R, double t, double t_end, WallEvent& out) const;
     // The search found nothing up to t and must go on from there: the event becomes a window end at t
     // if that comes before what `w` holds.
-    static void resume_search_at(WallEvent& w, double t, StepStats& stats);
+    static void resume_search_at(WallEvent& w, double t, int component, StepStats& stats);
     const TriangleMesh& collider_mesh(int c, const MeshCollider& collider) const;  // the mesh `collider` was built over
 
     std::shared_ptr<const Model> model_;
