@@ -1,6 +1,7 @@
 // Ctrl-C and SIGTERM. The guard: a first signal only raises the flag, a second ends the process at
 // once with exit 130 and one line on stderr, and the previous handlers come back. The `peensim`
-// binary on the rod scene: one SIGINT stops the run within 1 s of wall time (each stepping scheme)
+// binary on the rod scene: one SIGINT stops the run within 1 s of wall time (each stepping scheme;
+// SIGTERM too on the gear turning at 3000 rpm and the soft scheme's gear)
 // with exit 130 and a checkpoint; a second SIGINT abandons the stop at once, exit 130, leaving the
 // last periodic checkpoint whole, and a run resumed from it ends with the uninterrupted impacts.csv.
 #include <gtest/gtest.h>
@@ -130,6 +131,44 @@ TEST_P(RunInterrupt, OneSignalStopsWithinASecondWithACheckpoint) {
 
 INSTANTIATE_TEST_SUITE_P(Schemes, RunInterrupt, ::testing::Values(std::string("step"), std::string("event")),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+// SIGTERM (what a batch system sends) on the scenes that work the engine hardest: the gear turning
+// at 3000 rpm (moving-mesh searches, grazes, sustained contact) in each rigid scheme, and the soft
+// scheme's gear. Each stops within 1 s of wall time with a checkpoint.
+struct HardRun {
+    std::string name, scene, scheme;
+    std::vector<std::string> sets;
+};
+class RunInterruptHard : public ::testing::TestWithParam<HardRun> {};
+
+TEST_P(RunInterruptHard, SigtermStopsWithinASecondWithACheckpoint) {
+    const HardRun& p = GetParam();
+    TempDir dir;
+    std::vector<std::string> args = {PEENSIM_BINARY, "run", std::string(PEENSIM_SOURCE_DIR) + "/scenes/" + p.scene, "-o", (dir.path / "out").string(),
+                                     "--quiet", "--no-analyze", "--scheme", p.scheme, "--set", "process.duration=100", "--set",
+                                     "output.checkpoint_interval=0.2"};
+    for (const std::string& set : p.sets) args.insert(args.end(), {"--set", set});
+    ChildProcess run(args, (dir.path / "stdout").string(), (dir.path / "stderr").string());
+    ASSERT_TRUE(wait_for_file(run, dir.path / "out" / kCheckpointFileName)) << read_file(dir.path / "stderr");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // well into the run
+    const auto t0 = std::chrono::steady_clock::now();
+    run.signal(SIGTERM);
+    const std::optional<int> code = run.wait_exit(kRunLimitS);
+    const double stop_s = seconds_since(t0);
+    std::cout << "[ stop     ] " << p.name << ": exit " << code.value_or(-1) << " " << stop_s << " s after SIGTERM\n";
+    const std::string err = read_file(dir.path / "stderr");
+    ASSERT_EQ(code, kExitInterrupted) << err;
+    EXPECT_LT(stop_s, kStopLimitS) << err;
+    EXPECT_NE(err.find("interrupted at t ="), std::string::npos) << err;
+    const Checkpoint c = load_checkpoint((dir.path / "out" / kCheckpointFileName).string());
+    EXPECT_GT(c.state.time.seconds(), 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, RunInterruptHard,
+                         ::testing::Values(HardRun{"gear_3000rpm_event", "rotating-gear.yaml", "event", {"components[gear].motion.speed=3000 rpm"}},
+                                           HardRun{"gear_3000rpm_step", "rotating-gear.yaml", "step", {"components[gear].motion.speed=3000 rpm"}},
+                                           HardRun{"gear_soft", "gear-soft.yaml", "soft", {}}),
+                         [](const ::testing::TestParamInfo<HardRun>& info) { return info.param.name; });
 
 TEST(RunInterruptTwice, SecondSignalAbandonsAtOnceAndTheLastCheckpointResumes) {
     // The event-driven scheme (its stop waits for a restart point, so the second SIGINT finds the
