@@ -1,6 +1,6 @@
 // Generated meshes against closed forms: areas and volumes (exact for the polygonal shapes,
 // within discretisation error of the round ones), watertightness, outward orientation, the
-// involute gear's profile, tooth count and triangle counts.
+// involute gear's profile, tooth count and triangle counts; the blade's volume, sharp edges and twist.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -309,6 +309,72 @@ TEST(GeometryGenerators, GearAlongZWithManyTeethHasNoRadialFlank) {
     expect_closed_and_outward(m);
     EXPECT_NEAR(enclosed_volume(m), ideal_gear_area(spec) * spec.face_width_m, 0.005 * enclosed_volume(m));
     EXPECT_NEAR(bounds(m).max_m.z(), 0.305, 1e-12);
+}
+
+// The blade: closed and outward; its volume the lens area (2/3) t c times the span (the cosine
+// spacing resolves the section's parabolas); its edges sharp wedges of 2 atan(2 t / c); its ends
+// turned by +-twist/2 about the span axis.
+TEST(GeometryGenerators, BladeIsAClosedTwistedLensWithSharpEdges) {
+    BladeSpec spec;
+    spec.chord_m = 0.02;
+    spec.span_m = 0.04;
+    spec.thickness_m = 0.0008;
+    spec.twist_rad = kPi / 4.0;
+    spec.axis = Axis::x;
+    spec.center_m = Vec3(0.001, 0.002, 0.003);
+    const TriangleMesh m = blade(spec);
+    expect_closed_and_outward(m);
+    EXPECT_EQ(m.triangle_count(), static_cast<std::size_t>(2 * 2 * spec.chord_points * (spec.span_stations - 1) + 2 * (2 * spec.chord_points - 2)));
+    EXPECT_NEAR(enclosed_volume(m), 2.0 / 3.0 * spec.thickness_m * spec.chord_m * spec.span_m, 0.005 * enclosed_volume(m));
+    // The end caps face along the span axis.
+    EXPECT_NEAR(group_normal(m, "end-high").dot(Vec3::UnitX()), 1.0, 1e-12);
+    EXPECT_NEAR(group_normal(m, "end-low").dot(Vec3::UnitX()), -1.0, 1e-12);
+    // Leading edge at each end: the point farthest from the span axis, turned by +-twist/2 from y.
+    const auto edge_angle_at = [&](double x) {
+        double best = -1.0, angle = 0.0;
+        for (const Vec3& v : m.vertices) {
+            if (std::abs(v.x() - (spec.center_m.x() + x)) > 1e-12) continue;
+            const Vec3 r = v - spec.center_m;
+            if (r.y() > 0.0 && r.squaredNorm() > best) best = r.squaredNorm(), angle = std::atan2(r.z(), r.y());
+        }
+        return angle;
+    };
+    EXPECT_NEAR(edge_angle_at(0.5 * spec.span_m), spec.twist_rad / 2.0, 1e-12);
+    EXPECT_NEAR(edge_angle_at(-0.5 * spec.span_m), -spec.twist_rad / 2.0, 1e-12);
+    // Sharp: untwisted (so that no quad is warped), the two surface facets at the edge meet at the
+    // lens's wedge angle (to the first chord point's secant, within 2 %).
+    BladeSpec straight = spec;
+    straight.twist_rad = 0.0;
+    const TriangleMesh m2 = blade(straight);
+    const double wedge = 2.0 * std::atan(2.0 * spec.thickness_m / spec.chord_m);
+    double sharpest = 0.0;
+    for (std::size_t t = 0; t < m2.triangle_count(); ++t)
+        for (std::size_t u = t + 1; u < m2.triangle_count(); ++u) {
+            if (m2.group_names[static_cast<std::size_t>(m2.group_of_triangle[t])] != "surface" || m2.group_of_triangle[u] != m2.group_of_triangle[t]) continue;
+            int shared = 0;
+            for (int a = 0; a < 3; ++a)
+                for (int b = 0; b < 3; ++b) shared += m2.triangles[t][static_cast<std::size_t>(a)] == m2.triangles[u][static_cast<std::size_t>(b)];
+            if (shared == 2) sharpest = std::max(sharpest, std::acos(std::clamp(triangle_normal(m2, t).dot(triangle_normal(m2, u)), -1.0, 1.0)));
+            if (u > t + 8 * static_cast<std::size_t>(spec.chord_points)) break;  // neighbours lie within a few rows
+        }
+    EXPECT_NEAR(kPi - sharpest, wedge, 0.02 * wedge);
+}
+
+TEST(GeometryGenerators, ImpossibleBladesAreRejected) {
+    BladeSpec thick;
+    thick.thickness_m = thick.chord_m;
+    EXPECT_THROW(blade(thick), InputError);
+    BladeSpec coarse;
+    coarse.span_stations = 1;
+    EXPECT_THROW(blade(coarse), InputError);
+    BladeSpec flat;
+    flat.span_m = 0.0;
+    try {
+        blade(flat);
+        ADD_FAILURE() << "a blade without span was built";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "blade");
+    }
 }
 
 TEST(GeometryGenerators, ImpossibleGearsAreRejected) {

@@ -159,6 +159,19 @@ TriangleMesh build_chamber(const Options& o) {
     return stepped_tube_chamber(spec);
 }
 
+TriangleMesh build_blade(const Options& o) {
+    BladeSpec spec;
+    spec.chord_m = o.millimetres("chord-mm");
+    spec.span_m = o.millimetres("span-mm");
+    spec.thickness_m = o.millimetres("thickness-mm");
+    spec.twist_rad = o.degrees("twist-deg");
+    spec.span_stations = o.count("span-stations");
+    spec.chord_points = o.count("chord-points");
+    spec.axis = o.axis();
+    spec.center_m = o.centre();
+    return blade(spec);
+}
+
 TriangleMesh build_gear(const Options& o) {
     SpurGearSpec spec;
     spec.module_m = o.millimetres("module-mm");
@@ -223,6 +236,15 @@ const std::vector<Shape>& shapes() {
                       {"triangles", "5000", "target triangle count (the closest resolution is used)"},
                       {"edge-mm", "", "target edge length (mm) instead of --triangles", true}}),
          build_gear},
+        {"blade", "thin twisted blade, biconvex section with sharp edges, closed (a part nobody ships: stress tests)",
+         with_centre({{"chord-mm", "", "edge to edge (mm)"},
+                      {"span-mm", "", "length along the axis (mm)"},
+                      {"thickness-mm", "", "at mid-chord (mm); the edges are wedges of 2 atan(2 t / c)"},
+                      {"twist-deg", "30", "turn of the section from one end to the other (deg)"},
+                      {"span-stations", "40", "sections along the span"},
+                      {"chord-points", "40", "points per side along the chord (cosine-spaced)"},
+                      {"axis", "x", "the span's axis: x, y or z"}}),
+         build_blade},
     };
     return list;
 }
@@ -275,7 +297,7 @@ int run_generate_command(const std::vector<std::string>& args, std::ostream& out
         for (const Shape& s : shapes()) {
             if (s.name == args[0]) shape = &s;
         }
-        if (shape == nullptr) throw UsageError("unknown shape '" + args[0] + "' (box, cylinder, chamber, gear)");
+        if (shape == nullptr) throw UsageError("unknown shape '" + args[0] + "' (box, cylinder, chamber, gear, blade)");
         if (args[1].rfind("--", 0) == 0) throw UsageError("expected the output file after the shape, got '" + args[1] + "'");
         const Options options(shape->options, args, 2);
         mesh = shape->build(options);

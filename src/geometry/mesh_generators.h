@@ -3,6 +3,7 @@
 // cavity instead.
 #pragma once
 
+#include "geometry/blade_mesh.h"
 #include "geometry/box_mesh.h"
 #include "geometry/cylinder_mesh.h"
 #include "geometry/spur_gear_mesh.h"
