@@ -193,8 +193,12 @@ def read_scheme(directory, duration_s, cylinder_segments):
         "lost": health["shot_lost"], "non_finite": health["non_finite"],
         "deep": health["deep_penetrations"], "unresolved": health["unresolved_contacts"],
         "engine_errors": health.get("engine_errors", 0),  # serious; in builds that count it
+        "fallbacks": health.get("search_fallbacks", 0),  # the net under "time advances" (not a failure: counted)
         "inside": inside if cylinder_segments else None, "inside_worst": inside_worst, "cap_impacts": caps,
     }
+
+
+TIMED_OUT = 124  # `timeout`'s exit status: the run exceeded its wall-time bound (run.sh)
 
 
 def fmt(v, digits):
@@ -211,7 +215,11 @@ def row_failures(row):
     for scheme in ("step", "event"):
         s = row.get(scheme)
         if s is None:
-            out.append(f"{scheme} run failed (exit {row.get(scheme + '_exit')})")
+            code = row.get(scheme + "_exit")
+            if code == TIMED_OUT:
+                out.append(f"{scheme} exceeded the wall-time bound ({row.get('wall_bound_s')} s for {row['duration_s']:g} simulated s)")
+            else:
+                out.append(f"{scheme} run failed (exit {code})")
             continue
         if not s["finished"]:
             out.append(f"{scheme} did not finish")
@@ -254,7 +262,7 @@ def judge(row):
 
 def make_row(a):
     row = {"case": a.case, "what": a.what, "duration_s": a.duration, "closed_part": a.closed_part,
-           "cylinder_segments": a.cylinder}
+           "cylinder_segments": a.cylinder, "wall_bound_s": a.wall_bound}
     runs = {}
     for scheme, directory, code in (("step", a.step, a.step_exit), ("event", a.event, a.event_exit)):
         row[scheme + "_exit"] = code
@@ -283,18 +291,18 @@ def cells(row):
         inside = "(deep)" if row["closed_part"] else "-"
     return [row["case"], f"{row['duration_s']:g}", both("wall_per_sim_s", 3), fmt(row["speedup"], 2) + "x",
             both("rate", 0), both("mean_vn", 3), counts("lost"), counts("deep"), counts("unresolved"), inside,
-            row["verdict"]]
+            str(e.get("fallbacks", 0)) if e else "-", row["verdict"]]
 
 
 HEADER = ["case", "sim s", "wall s/sim s step / event", "event speed-up", "part impacts/s step / event",
-          "part mean vn m/s step / event", "lost", "deep", "unresolved", "inside", "schemes"]
+          "part mean vn m/s step / event", "lost", "deep", "unresolved", "inside", "search fallbacks (event)", "schemes"]
 
 
 def text_line(values, widths):
     return "  ".join(v.ljust(w) for v, w in zip(values, widths)).rstrip()
 
 
-WIDTHS = [22, 5, 17, 8, 17, 15, 5, 5, 10, 8, 12]
+WIDTHS = [26, 5, 17, 8, 17, 15, 5, 5, 10, 8, 9, 12]
 
 
 def cmd_row(a):
@@ -398,6 +406,7 @@ def main():
     r.add_argument("--event-exit", type=int, default=0)
     r.add_argument("--cylinder", type=int, default=0, help="facets round the cylinder part (inside check)")
     r.add_argument("--closed-part", action="store_true", help="a closed part without the radial check (the gear)")
+    r.add_argument("--wall-bound", type=float, default=0.0, help="s, the wall-time bound each scheme's run had (run.sh)")
     r.add_argument("--out", required=True)
     t = sub.add_parser("report")
     t.add_argument("rows")
