@@ -197,21 +197,35 @@ TEST(EngineRotatingContact, ThrowsAtACylinderTurningAt1000RpmLogTheExactNormalAn
 // gap / speed there, a fraction of a nanosecond per search, and a rotating gear's run stopped
 // advancing for good (issue 28). A gap that stays within a hair of the surface is a touch (a
 // graze): the run crosses the cap and goes on.
-TEST(EngineRotatingContact, AShotGlidingAlongATurningFaceAtAHairKeepsAdvancing) {
-    TestSceneSpec spec = turning_cylinder(300.0, 10e-3, 0.02);
+// One shot gliding along the +y end cap (5 mm from the middle) of the 10 mm cylinder turning at
+// `rpm`, without gravity, from x = x0_m at `gap` radii off the cap at speed_m_per_s along x, run
+// for 0.02 s by the event scheme: the model, where it started, and the simulation after.
+struct Glide {
+    std::shared_ptr<const Model> model;
+    Vec3 start = Vec3::Zero();  // m
+    std::unique_ptr<Simulation> sim;
+};
+Glide glide_over_the_cap(double rpm, double x0_m, double gap, double speed_m_per_s) {
+    TestSceneSpec spec = turning_cylinder(rpm, 10e-3, 0.02);
     spec.scheme = "event";
     spec.gravity_m_per_s2 = Vec3::Zero();
     const PartSpec part = *spec.part;
     const TestScene scene(spec);
-    const std::shared_ptr<const Model> model = scene.compile();
-    const double R = model->max_shot_radius_m;
-    const Vec3 start = part.center_m + Vec3(-4e-3, 5e-3 + R + 1e-8 * R, 0.0);
-    Simulation sim(model);
-    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start, Vec3(3.77, 0.0, 0.0)); });
+    Glide g;
+    g.model = scene.compile();
+    const double R = g.model->max_shot_radius_m;
+    g.start = part.center_m + Vec3(x0_m, 5e-3 + R + gap * R, 0.0);
+    g.sim = std::make_unique<Simulation>(g.model);
+    g.sim->edit_state([&](SimulationState& edited) { set_shot(edited, 0, g.start, Vec3(speed_m_per_s, 0.0, 0.0)); });
     std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) sim.step(impacts);
-    EXPECT_GE(sim.state().time.seconds(), 0.02 - 1e-12);
-    EXPECT_EQ(sim.state().health.shot_lost, 0u);
+    while (!g.sim->finished()) g.sim->step(impacts);
+    return g;
+}
+
+TEST(EngineRotatingContact, AShotGlidingAlongATurningFaceAtAHairKeepsAdvancing) {
+    const Glide g = glide_over_the_cap(300.0, -4e-3, 1e-8, 3.77);
+    EXPECT_GE(g.sim->state().time.seconds(), 0.02 - 1e-12);
+    EXPECT_EQ(g.sim->state().health.shot_lost, 0u);
 }
 
 // The net under that fix: a shot gliding at 1e-5 R (ten times the skim band, so no touch) over
@@ -222,27 +236,17 @@ TEST(EngineRotatingContact, AShotGlidingAlongATurningFaceAtAHairKeepsAdvancing) 
 // fruitless searches in a row the shot goes on in sustained-contact substeps (0.05 s), counted and
 // located in the health report.
 TEST(EngineRotatingContact, AShotThatTheExactSearchCannotAdvanceFallsBackToSubstepsAndIsCounted) {
-    TestSceneSpec spec = turning_cylinder(3000.0, 10e-3, 0.02);
-    spec.scheme = "event";
-    spec.gravity_m_per_s2 = Vec3::Zero();
-    const PartSpec part = *spec.part;
-    const TestScene scene(spec);
-    const std::shared_ptr<const Model> model = scene.compile();
-    const double R = model->max_shot_radius_m;
-    const Vec3 start = part.center_m + Vec3(-2e-3, 5e-3 + R + 1e-5 * R, 0.0);
-    Simulation sim(model);
-    sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start, Vec3(0.05, 0.0, 0.0)); });
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) sim.step(impacts);
-    EXPECT_GE(sim.state().time.seconds(), 0.02 - 1e-12);
-    EXPECT_EQ(sim.state().health.shot_lost, 0u);
-    EXPECT_GE(sim.state().health.search_fallbacks, 1u);
-    const SearchFallback& first = sim.state().first_search_fallback;
+    const Glide g = glide_over_the_cap(3000.0, -2e-3, 1e-5, 0.05);
+    const SimulationState& state = g.sim->state();
+    EXPECT_GE(state.time.seconds(), 0.02 - 1e-12);
+    EXPECT_EQ(state.health.shot_lost, 0u);
+    EXPECT_GE(state.health.search_fallbacks, 1u);
+    const SearchFallback& first = state.first_search_fallback;
     EXPECT_GE(first.time_s, 0.0);
     EXPECT_EQ(first.shot, 0);
     ASSERT_GE(first.component, 0);
-    EXPECT_EQ(model->components[static_cast<std::size_t>(first.component)].name, "part");
-    EXPECT_LT((first.position_m - start).norm(), 2e-3);
+    EXPECT_EQ(g.model->components[static_cast<std::size_t>(first.component)].name, "part");
+    EXPECT_LT((first.position_m - g.start).norm(), 2e-3);
 }
 
 }  // namespace
