@@ -41,6 +41,11 @@ double hertz_normal_force(const HertzPair& p, double delta_m, double delta_rate_
     return 4.0 / 3.0 * p.E_star_pa * root * d - kDampingFactor * p.beta * std::sqrt(s_n * p.m_star_kg) * delta_rate_m_per_s;
 }
 
+HertzCoefficients hertz_coefficients(const HertzPair& p) {
+    const double root_r = std::sqrt(p.R_star_m);
+    return {4.0 / 3.0 * p.E_star_pa * root_r, -kDampingFactor * p.beta * std::sqrt(2.0 * p.E_star_pa * root_r * p.m_star_kg)};
+}
+
 Vec3 mindlin_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, double dt_s, Vec3& spring_m) {
     return mindlin_tangential_force(p, delta_m, normal_force_n, v_t, Vec3(v_t * dt_s), spring_m);
 }

@@ -40,6 +40,15 @@ HertzPair hertz_pair(const ElasticMaterial& a, const ElasticMaterial& b, double 
 // restitution (the caller decides).
 double hertz_normal_force(const HertzPair& p, double delta_m, double delta_rate_m_per_s);
 
+// The normal force's two coefficients: hertz_normal_force = elastic delta^3/2 + damping delta^1/4
+// delta_rate (elastic 4/3 E* sqrt(R*) in N/m^3/2; damping -2 sqrt(5/6) beta sqrt(2 E* sqrt(R*) m*)
+// in N s/m^5/4, >= 0), for an integrator that needs the force's shape rather than its value.
+struct HertzCoefficients {
+    double elastic = 0.0;  // N/m^3/2
+    double damping = 0.0;  // N s/m^5/4
+};
+HertzCoefficients hertz_coefficients(const HertzPair& p);
+
 // N, the tangential force on body a (opposing the slip) and the spring's new extension (m), after
 // dt (s) of tangential relative velocity v_t (m/s, of a against b, in the contact plane) at overlap
 // delta (m) under normal force f_n (N): S_t = 8 G* sqrt(R* delta), F_t = -S_t s - 2 sqrt(5/6) beta

@@ -38,6 +38,14 @@ TEST(HertzMindlin, NormalForceIsHertzPlusDamping) {
     EXPECT_GT(damping, 0.0);  // resists the approach
     EXPECT_EQ(hertz_normal_force(p, 0.0, 0.0), 0.0);
     EXPECT_LT(hertz_normal_force(p, d, -rate), elastic);  // and the separation
+    // Its two coefficients give the same force (the soft scheme integrates it through them).
+    const HertzCoefficients c = hertz_coefficients(p);
+    for (const double delta : {1e-9, 1e-7, 1e-5})
+        for (const double r : {-3.0, 0.0, 0.5})
+            EXPECT_NEAR(c.elastic * std::pow(delta, 1.5) + c.damping * std::pow(delta, 0.25) * r, hertz_normal_force(p, delta, r),
+                        1e-12 * std::abs(hertz_normal_force(p, delta, 3.0)));
+    EXPECT_GT(c.damping, 0.0);
+    EXPECT_EQ(hertz_coefficients(hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 1.0, 0.1)).damping, 0.0);
 }
 
 struct Rebound {

@@ -71,7 +71,7 @@ TEST(SoftScheme, SameSeedSameBytesOtherSeedOtherBytes) {
 TEST(SoftScheme, ResumedTwiceAcrossSoftContactsEqualsUninterrupted) {
     // At a restart point the pool steps exactly there and its contacts in progress (springs, where
     // and how each began) go into the state and the checkpoint; the resumed run restores them.
-    // 192 shot (a busy pool); seed 7 has contacts in progress at both restart points.
+    // 192 shot (a busy pool); seed 7 has contacts in progress at the first restart point.
     TestSceneSpec spec = soft_rod_scene(0.35, kBusySeed);
     spec.shot_count = 192;
     const TestScene scene(spec);

@@ -57,6 +57,7 @@ SoftPool::SoftPool(std::shared_ptr<const Model> model, const WallPredictor& wall
     steps_per_contact_ = m.soft_steps_per_contact;
     poses_.resize(m.components.size());
     sliding_.assign(m.components.size(), Vec3::Zero());
+    shaking_.assign(m.components.size(), Vec3::Zero());
     for (std::size_t c = 0; c < m.components.size(); ++c) {
         const Component& comp = m.components[c];
         poses_[c] = comp.kinematics.rest;
@@ -75,6 +76,8 @@ void SoftPool::reset(const SimTime& epoch, std::size_t shot_count) {
     members_.clear();
     member_of_.assign(shot_count, -1);
     live_.clear();
+    paths_.clear();
+    node_paths_.clear();
 }
 
 void SoftPool::grow(std::size_t shot_count) {
@@ -110,6 +113,11 @@ int SoftPool::add_member(int shot, const Vec3& p, const Vec3& v, const Vec3& w) 
     M.w = w;
     M.a = g_;
     M.alpha = Vec3::Zero();
+    M.v_rate = v;
+    M.w_rate = w;
+    M.f = M.f_kick = mass_ * g_;
+    M.tau = Vec3::Zero();
+    M.impulse = Vec3::Zero();
     M.touching = M.was_touching = false;
     M.box_set = false;
     M.candidates.clear();
@@ -179,6 +187,9 @@ void SoftPool::join(int shot, double t, const Vec3& p, const Vec3& v, const Vec3
                     SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts, std::vector<SoftExit>& exits,
                     StepStats& stats) {
     if (!members_.empty() && t > t_) step_to(t, around, state, impacts, exits, stats);
+    // It touched a member on the way there and joined then: the pool has it (and finds this
+    // touch among its paths).
+    if (contains(shot)) return;
     if (members_.empty()) t_ = t;
     const int slot = add_member(shot, p, v, w);
     around.joined(shot, t);
@@ -191,6 +202,7 @@ void SoftPool::join(int shot, double t, const Vec3& p, const Vec3& v, const Vec3
     }
     if (pending_step_ > 0.0) dt_ = members_.size() == 1 || !(dt_ > 0.0) ? pending_step_ : std::min(dt_, pending_step_);
     if (!(dt_ > 0.0)) dt_ = hertz_step(model_->shot_shot_law->soft()->contact(line_speed_), 0.0);
+    look_around(slot);
     renew_box(slot, around);
 }
 
@@ -252,42 +264,45 @@ void SoftPool::step(SoftSurroundings& around, SimulationState& state, std::vecto
                     StepStats& stats) {
     if (members_.empty()) return;
     StageTimer timer(stats, Stage::soft_contacts);
-    const double t_end = t_ + dt_;
-    int shot = -1;
-    const double touch = first_join(t_end, around, shot, stats);
-    if (touch <= t_end && shot >= 0) {
-        // A shot outside reaches a member within this step: the pool steps exactly to its touch,
-        // where it joins (its contact then starts at a step's start, at zero overlap).
-        if (touch > t_) {
-            integrate(touch, around, state, impacts, stats);
-            leave(state, impacts, exits, stats);
-        }
-        Trajectory path;
-        if (!around.path_of(shot, touch, path)) return;
-        const Vec3 p = path.position(touch), v = path.velocity(touch);
-        // Its approach to the nearest member (the one it touches): the contact's first step.
-        double approach = 0.0;
-        for (const Member& M : members_) {
-            const Vec3 d = M.p - p;
-            const double dist = d.norm();
-            if (dist > 0.0 && dist < 2.0 * R_ * (1.0 + 1e-6)) approach = std::max(approach, (v - M.v).dot(d / dist));
-        }
-        join(shot, touch, p, v, state.shots.spin(static_cast<std::size_t>(shot)), approach, model_->shot_shot_law->soft(), around, state,
-             impacts, exits, stats);
-        return;
-    }
-    integrate(t_end, around, state, impacts, stats);
-    leave(state, impacts, exits, stats);
+    advance(t_ + dt_, around, state, impacts, exits, stats);
 }
 
 void SoftPool::step_to(double t, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts,
                        std::vector<SoftExit>& exits, StepStats& stats) {
     StageTimer timer(stats, Stage::soft_contacts);
-    while (!members_.empty() && t_ < t) {
-        integrate(std::min(t_ + dt_, t), around, state, impacts, stats);
-        leave(state, impacts, exits, stats);
-    }
+    while (!members_.empty() && t_ < t) advance(std::min(t_ + dt_, t), around, state, impacts, exits, stats);
     if (members_.empty()) t_ = std::max(t_, t);
+}
+
+void SoftPool::advance(double t_end, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts,
+                       std::vector<SoftExit>& exits, StepStats& stats) {
+    int shot = -1;
+    const double touch = first_join(t_end, around, shot, stats);
+    if (!(touch <= t_end && shot >= 0)) {
+        integrate(t_end, around, state, impacts, stats);
+        leave(state, impacts, exits, stats);
+        return;
+    }
+    // A shot outside reaches a member within this step: the pool steps exactly to its touch, where
+    // it joins (its contact then starts at a node, at zero overlap). Nobody leaves there: the
+    // member it touches may have just ended its other contacts, and must meet it in the pool
+    // (the others leave at the next node).
+    if (touch > t_) integrate(touch, around, state, impacts, stats);
+    Trajectory path;
+    if (!around.path_of(shot, touch, path)) return;
+    const Vec3 p = path.position(touch), v = path.velocity(touch);
+    // Its approach to the nearest member (the one it touches; the member's path there is the
+    // parabola of its last node, so not exactly at contact distance): the contact's first step.
+    double approach = 0.0, nearest = std::numeric_limits<double>::infinity();
+    for (const Member& M : members_) {
+        const Vec3 d = M.p - p;
+        const double dist = d.norm();
+        if (!(dist > 0.0) || !(dist < nearest)) continue;
+        nearest = dist;
+        approach = std::max(0.0, (v - M.v).dot(d / dist));
+    }
+    join(shot, touch, p, v, state.shots.spin(static_cast<std::size_t>(shot)), approach, model_->shot_shot_law->soft(), around, state,
+         impacts, exits, stats);
 }
 
 void SoftPool::integrate(double t_end, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts,
@@ -297,17 +312,31 @@ void SoftPool::integrate(double t_end, SoftSurroundings& around, SimulationState
     for (Member& M : members_) {
         M.p_before = M.p;
         M.v_before = M.v;
-        M.v += 0.5 * dt * M.a;
+        M.predicted = Vec3::Zero();
+    }
+    // The first half kick: each contact's normal impulse over the half step ahead, along its path
+    // from the node (exact where it begins or ends within the step), and the point forces.
+    for (std::size_t i = 0; i < paths_.size(); ++i) {
+        const Path& k = paths_[i];
+        const HalfStepImpulse j = node_paths_[i].half_step(dt);
+        Member& A = members_[static_cast<std::size_t>(k.a)];
+        A.v += j.near / mass_;
+        A.predicted += j.far;
+        if (k.b < 0) continue;
+        Member& B = members_[static_cast<std::size_t>(k.b)];
+        B.v -= j.near / mass_;
+        B.predicted -= j.far;
+    }
+    for (Member& M : members_) {
+        M.v += (0.5 * dt / mass_) * M.f_kick;
         M.w += 0.5 * dt * M.alpha;
         M.p += dt * M.v;
     }
     // The step's end, on the scheme's clock: exactly the join's or the restart's time when it is one.
+    // The evaluation there gives the velocities' second half kick.
     t_ = t_end;
     evaluate(t_, dt, state, impacts, stats);
-    for (Member& M : members_) {
-        M.v += 0.5 * dt * M.a;
-        M.w += 0.5 * dt * M.alpha;
-    }
+    for (Member& M : members_) M.w += 0.5 * dt * M.alpha;
     ++stats.soft_steps;
     stats.soft_member_steps += members_.size();
     report(around);
@@ -316,28 +345,43 @@ void SoftPool::integrate(double t_end, SoftSurroundings& around, SimulationState
 // ---------------------------------------------------------------------------------------------
 // Contacts and forces
 
-void SoftPool::evaluate(double t, double spring_dt, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats) {
+void SoftPool::set_poses(double t) {
     const Model& m = *model_;
     for (std::size_t c = 0; c < m.components.size(); ++c) {
         const Kinematics& k = m.components[c].kinematics;
         if (!k.moves()) continue;
         if (k.kind == Kinematics::Kind::vibrating) {
-            // Both from one phase: the plate's offset and its velocity (a turning part's pose is a rotation).
+            // All from one phase: the plate's offset, velocity and acceleration (a turning part's pose is a rotation).
             const double phase = 2.0 * M_PI * epoch_.cycle_fraction(k.frequency_hz, t) + k.phase_rad;
-            const double sn = std::sin(phase), cs = std::cos(phase);
+            const double sn = std::sin(phase), cs = std::cos(phase), w = k.angular_frequency();
             poses_[c] = {k.rest.rotation, k.rest.translation + k.axis * (k.amplitude_m * sn)};
-            sliding_[c] = k.axis * (k.amplitude_m * k.angular_frequency() * cs);
+            sliding_[c] = k.axis * (k.amplitude_m * w * cs);
+            shaking_[c] = k.axis * (-k.amplitude_m * w * w * sn);
         } else {
             poses_[c] = k.pose(epoch_, t);
         }
     }
+}
+
+Vec3 SoftPool::surface_acceleration(std::size_t c, const Vec3& q) const {
+    const Kinematics& k = model_->components[c].kinematics;
+    if (k.kind == Kinematics::Kind::rotating) {
+        const Vec3 spin = k.omega_rad_per_s * k.axis_direction;
+        return spin.cross(spin.cross(q - k.axis_point_m));  // centripetal
+    }
+    return shaking_[c];  // vibrating (the same everywhere), or still (zero)
+}
+
+void SoftPool::evaluate(double t, double dt, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats) {
+    set_poses(t);
     for (Member& M : members_) {
-        // Damping acts on the velocities at the step's end, predicted from the last forces (the
-        // half-step velocities, which the springs' slip takes, would lag half a step: an error of
-        // the first order in the step, 0.2 % of e at 40 steps per contact).
-        M.v_rate = M.v + 0.5 * spring_dt * M.a;
-        M.w_rate = M.w + 0.5 * spring_dt * M.alpha;
-        M.f = mass_ * g_;
+        // The node velocities, first as the last node predicts them (its point forces, and its
+        // paths' impulses over the half step before this node): the springs' damping takes these
+        // (the half-step velocities, which the springs' slip takes, lag half a step); the normal
+        // impulses along this node's paths correct them (normal_impulses).
+        M.v_rate = dt > 0.0 ? Vec3(M.v + (0.5 * dt / mass_) * M.f_kick + M.predicted / mass_) : M.v;
+        M.w_rate = M.w + 0.5 * dt * M.alpha;
+        M.f_kick = mass_ * g_;
         M.tau = Vec3::Zero();
         M.touching = false;
         M.contacts.clear();
@@ -351,12 +395,18 @@ void SoftPool::evaluate(double t, double spring_dt, SimulationState& state, std:
     }
     continued_.assign(live_.size(), 0);
     next_live_.clear();
-    for (std::size_t k = 0; k < members_.size(); ++k) wall_contacts(static_cast<int>(k), t, spring_dt, state);
-    shot_contacts(t, spring_dt);
+    paths_.clear();
+    for (std::size_t k = 0; k < members_.size(); ++k) wall_contacts(static_cast<int>(k), t, dt, state);
+    shot_contacts(t, dt);
+    ended_.clear();
     for (std::size_t k = 0; k < live_.size(); ++k)
-        if (!continued_[k]) end_contact(live_[k], t, state, impacts);
+        if (!continued_[k]) ended_.push_back(live_[k]);
     std::swap(live_, next_live_);
+    // The normal forces at the node, the paths' rates and outer accelerations.
+    normal_forces();
     double step = kInf;
+    for (const Path& k : paths_)
+        if (k.live >= 0) settle_step(live_[static_cast<std::size_t>(k.live)], k.path.rate_m_per_s, t);
     for (Live& l : live_) {
         step = std::min(step, l.step_s);
         if (l.c.partner >= 0) {
@@ -366,15 +416,152 @@ void SoftPool::evaluate(double t, double spring_dt, SimulationState& state, std:
             members_[static_cast<std::size_t>(l.a)].touching = true;
         }
     }
-    if (spring_dt > 0.0) pending_step_ = 0.0;
+    // A gap closing fast enough to open a contact within about a step asks for that contact's step
+    // before it begins.
+    const double ahead = 2.0 * std::min(step, dt_ > 0.0 ? dt_ : step);
+    for (const Path& k : paths_) {
+        if (k.live >= 0 || !(k.path.rate_m_per_s > 0.0) || !(k.path.overlap_m + k.path.rate_m_per_s * ahead > 0.0)) continue;
+        step = std::min(step, hertz_step(k.pair, 0.5 * k.pair.m_star_kg * k.path.rate_m_per_s * k.path.rate_m_per_s));
+    }
+    if (dt > 0.0) pending_step_ = 0.0;
     if (pending_step_ > 0.0) step = std::min(step, pending_step_);
     if (step < kInf) dt_ = step;
+    // The second half kick (the normal impulses of the half step before the node along the
+    // paths), and the next step's first, as the paths from the velocities predicted here give
+    // them (one path both ways round a node keeps the errors of its two sides opposite).
+    normal_impulses(dt, dt_);
+    for (Member& M : members_) M.v = M.v_rate;
+    // Contacts that ended are recorded with the velocities after them.
+    for (const Live& l : ended_) end_contact(l, t, state, impacts);
+    for (Member& M : members_) M.alpha = M.tau / inertia_;
+    stats.soft_contact_evaluations += live_.size();
+}
+
+void SoftPool::shape(Path& k, bool rate_only) const {
+    const Member& A = members_[static_cast<std::size_t>(k.a)];
+    const auto c = static_cast<std::size_t>(k.component);
+    const Vec3 other_v = k.b >= 0 ? members_[static_cast<std::size_t>(k.b)].v_rate : surface_velocity(c, k.point_m);
+    const Vec3& n = k.path.normal;
+    const Vec3 rel_v = A.v_rate - other_v;
+    if (rate_only) {
+        k.path.rate_m_per_s = -n.dot(rel_v);
+        k.force_n = k.path.overlap_m > 0.0 ? contact::hertz_normal_force(k.pair, k.path.overlap_m, k.path.rate_m_per_s) : 0.0;
+        return;
+    }
+    const Vec3 other_a = k.b >= 0 ? members_[static_cast<std::size_t>(k.b)].a : surface_acceleration(c, k.point_m);
+    const Vec3 rel_a = A.a - other_a;
+    // What the contact's own normal force adds to d2 delta/dt2 (-F/m*) is taken out: the path
+    // integrates it along the way (contact_impulse.h).
+    const double own = k.force_n / k.pair.m_star_kg;
+    if (k.b >= 0) {
+        // Two shot: the line of centres turns as they pass, and bends the overlap's path
+        // (|d|'' = n . d'' + |d'_t|^2 / |d|).
+        const Vec3 slide = rel_v + k.path.rate_m_per_s * n;  // tangential relative velocity
+        k.path.turn_per_s = slide / k.distance_m;
+        k.path.outer_accel_m_per_s2 = -n.dot(rel_a) - slide.squaredNorm() / k.distance_m + own;
+        return;
+    }
+    const Kinematics& kin = model_->components[c].kinematics;
+    if (kin.kind == Kinematics::Kind::rotating && kin.omega_rad_per_s != 0.0) {
+        // A face of a turning part: its normal turns with it (n' = omega x n), which adds to the
+        // overlap's acceleration 2 n' . (v - v_q) and |n'|^2 times the centre's distance.
+        const Vec3 turn = (kin.omega_rad_per_s * kin.axis_direction).cross(n);
+        k.path.turn_per_s = turn;
+        k.path.outer_accel_m_per_s2 = -n.dot(rel_a) - 2.0 * turn.dot(rel_v) + turn.squaredNorm() * k.distance_m + own;
+        return;
+    }
+    k.path.turn_per_s = Vec3::Zero();
+    k.path.outer_accel_m_per_s2 = -n.dot(rel_a) + own;
+}
+
+void SoftPool::normal_forces() {
+    for (Member& M : members_) M.f = M.f_kick;
+    // The rates from the velocities at the node, and the normal forces there (for the accelerations).
+    for (Path& k : paths_) {
+        shape(k, true);
+        if (k.force_n == 0.0) continue;
+        const Vec3 f = k.force_n * k.path.normal;
+        members_[static_cast<std::size_t>(k.a)].f += f;
+        if (k.b >= 0) members_[static_cast<std::size_t>(k.b)].f -= f;
+    }
     for (Member& M : members_) {
         M.a = M.f / mass_;
-        M.alpha = M.tau / inertia_;
         if (!std::isfinite(M.a.squaredNorm())) M.a = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
     }
-    stats.soft_contact_evaluations += live_.size();
+    // The paths' outer accelerations from those.
+    for (Path& k : paths_) shape(k, false);
+}
+
+void SoftPool::normal_impulses(double dt_before, double dt_after) {
+    for (Member& M : members_) M.impulse = Vec3::Zero();
+    node_paths_.resize(paths_.size());
+    for (std::size_t i = 0; i < paths_.size(); ++i) {
+        const Path& k = paths_[i];
+        node_paths_[i] = node_path(k.pair, k.path, dt_before, dt_after);
+        if (!(dt_before > 0.0)) continue;
+        const Vec3 j = node_paths_[i].half_step(-dt_before).near;
+        members_[static_cast<std::size_t>(k.a)].impulse += j;
+        if (k.b >= 0) members_[static_cast<std::size_t>(k.b)].impulse -= j;
+    }
+    if (!(dt_before > 0.0)) return;
+    for (Member& M : members_) M.v_rate = M.v + (0.5 * dt_before / mass_) * M.f_kick + M.impulse / mass_;
+}
+
+void SoftPool::look_around(int m) {
+    set_poses(t_);
+    const Model& model = *model_;
+    const std::size_t first = paths_.size();
+    Member& M = members_[static_cast<std::size_t>(m)];
+    const double reach_R = (1.0 + kNearMargin) * R_;
+    for (std::size_t c = 0; c < model.components.size(); ++c) {
+        if ((M.p.array() < reach_lo_[c].array()).any() || (M.p.array() > reach_hi_[c].array()).any()) continue;  // nowhere near
+        const Component& comp = model.components[c];
+        const Pose& pose = poses_[c];
+        overlaps_.clear();
+        M.patches[c].overlaps(pose.to_component(M.p), reach_R, kGatherMargin * R_, *comp.collider, *comp.mesh, overlaps_);
+        for (const SurfaceOverlap& o : overlaps_) {
+            Path k;
+            k.a = m;
+            k.shot = M.shot;
+            k.component = static_cast<int>(c);
+            k.path.overlap_m = o.depth_m - kNearMargin * R_;
+            k.path.normal = pose.rotation * o.normal;
+            k.point_m = pose.to_world(o.point_m);
+            k.distance_m = R_ - k.path.overlap_m;
+            const double approach = -k.path.normal.dot(M.v - surface_velocity(c, k.point_m));
+            k.pair = comp.law->soft()->contact(std::max(0.0, approach));
+            paths_.push_back(k);
+        }
+    }
+    for (std::size_t j = 0; j < members_.size(); ++j) {
+        if (static_cast<int>(j) == m) continue;
+        const Member& B = members_[j];
+        const Vec3 d = M.p - B.p;
+        const double dist = d.norm();
+        if (!(dist < 2.0 * R_ + kNearMargin * R_) || !(dist > 0.0)) continue;
+        Path k;
+        // The lower index is the contact's shot (the path's normal points towards it).
+        const bool first_is_m = M.shot < B.shot;
+        k.a = first_is_m ? m : static_cast<int>(j);
+        k.b = first_is_m ? static_cast<int>(j) : m;
+        k.shot = members_[static_cast<std::size_t>(k.a)].shot;
+        k.partner = members_[static_cast<std::size_t>(k.b)].shot;
+        k.path.overlap_m = 2.0 * R_ - dist;
+        k.path.normal = (first_is_m ? d : Vec3(-d)) / dist;
+        k.distance_m = dist;
+        const double approach = -k.path.normal.dot(members_[static_cast<std::size_t>(k.a)].v - members_[static_cast<std::size_t>(k.b)].v);
+        k.pair = model.shot_shot_law->soft()->contact(std::max(0.0, approach));
+        paths_.push_back(k);
+    }
+    // It flew freely until now: its paths start at the node (no half step behind), and their
+    // force there is nil (it joins at its touch).
+    node_paths_.resize(paths_.size());
+    for (std::size_t k = first; k < paths_.size(); ++k) {
+        Path& path = paths_[k];
+        shape(path, true);
+        shape(path, false);
+        node_paths_[k] = node_path(path.pair, path.path, 0.0, dt_);
+    }
 }
 
 void SoftPool::settle_step(Live& l, double rate, double t) const {
@@ -418,12 +605,38 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
         const Component& comp = model.components[c];
         const Pose& pose = poses_[c];
         overlaps_.clear();
-        M.patches[c].overlaps(pose.to_component(M.p), R_, kGatherMargin * R_, *comp.collider, *comp.mesh, overlaps_);
+        // Everything within the near margin: the overlaps, and the gaps that get a path.
+        M.patches[c].overlaps(pose.to_component(M.p), (1.0 + kNearMargin) * R_, kGatherMargin * R_, *comp.collider, *comp.mesh, overlaps_);
         for (const SurfaceOverlap& o : overlaps_) {
             const Vec3 n = pose.rotation * o.normal;
             const Vec3 q = pose.to_world(o.point_m);
-            const Vec3 r = q - M.p;  // centre to contact point
+            const double delta = o.depth_m - kNearMargin * R_;  // m, the overlap (negative: a gap)
+            Path path;
+            path.a = m;
+            path.shot = M.shot;
+            path.component = static_cast<int>(c);
+            path.path.overlap_m = delta;
+            path.path.normal = n;
+            path.point_m = q;
+            path.distance_m = R_ - delta;
             const Vec3 vs = surface_velocity(c, q);
+            if (!(delta > 0.0)) {
+                // Apart: the pair of the contact that just ended here (its damping), else the law's
+                // at the approach now.
+                int ended = -1;
+                double best = SurfacePatch::kSameContactCos;
+                for (const int k : M.contacts) {
+                    const Live& l = live_[static_cast<std::size_t>(k)];
+                    if (l.c.partner >= 0 || l.c.component != static_cast<int>(c) || !(l.c.normal.dot(n) > best)) continue;
+                    best = l.c.normal.dot(n);
+                    ended = k;
+                }
+                path.pair = ended >= 0 ? live_[static_cast<std::size_t>(ended)].pair
+                                       : comp.law->soft()->contact(std::max(0.0, -n.dot(M.v_rate - vs)));
+                paths_.push_back(path);
+                continue;
+            }
+            const Vec3 r = q - M.p;                         // centre to contact point
             const Vec3 slip_rel = M.v + M.w.cross(r) - vs;  // mid-step: the springs' slip
             const Vec3 slip = slip_rel - slip_rel.dot(n) * n;
             const Vec3 v_rel = M.v_rate + M.w_rate.cross(r) - vs;
@@ -448,9 +661,9 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
                 // It began within this step, when the gap closed (linear in the step).
                 const double gap_before = (M.p_before - q).dot(n) - R_;
                 const double t_step = t - spring_dt;
-                const double began = gap_before > 0.0 ? t_step + spring_dt * gap_before / (gap_before + o.depth_m) : t_step;
+                const double began = gap_before > 0.0 ? t_step + spring_dt * gap_before / (gap_before + delta) : t_step;
                 key.start_time_s = epoch_.hi + (epoch_.lo + began);
-                approach = onset_speed(comp.law->soft()->contact(0.0), gap_before, -(M.v_before - vs).dot(n), rate, o.depth_m);
+                approach = onset_speed(comp.law->soft()->contact(0.0), gap_before, -(M.v_before - vs).dot(n), rate, delta);
                 key.start_point_m = o.point_m;
                 key.start_velocity_m_per_s = pose.rotation.transpose() * (M.v - vs);
                 const Vec3 rel = M.v - vs;
@@ -461,7 +674,7 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
             Live& l = next_live_[static_cast<std::size_t>(idx)];
             l.a = m;
             l.b = -1;
-            const double delta = o.depth_m;
+            // Its normal force here caps the tangential one (the normal kicks take it along its path).
             const double fn = contact::hertz_normal_force(l.pair, delta, rate);
             Vec3 spring = onto_plane(l.c.spring_m, n);
             const Vec3 ft = contact::mindlin_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), spring);
@@ -469,9 +682,11 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
             l.c.normal = n;
             l.delta_m = delta;
             l.point_m = q;
-            M.f += fn * n + ft;
+            M.f_kick += ft;
             M.tau += r.cross(ft);
-            settle_step(l, rate, t);
+            path.live = idx;
+            path.pair = l.pair;
+            paths_.push_back(path);
             if (delta > contact::kDeepPenetration * R_ && !l.deep) {
                 l.deep = true;
                 ++state.health.deep_penetrations;
@@ -481,7 +696,8 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
 }
 
 void SoftPool::shot_contacts(double t, double spring_dt) {
-    // A few members: every pair; more: sorted by x and swept, a pair within 2 R along x tested.
+    // A few members: every pair; more: sorted by x and swept, a pair within 2 R (and the near
+    // margin) along x tested.
     const std::size_t n = members_.size();
     if (n < 2) return;
     order_.resize(n);
@@ -492,7 +708,7 @@ void SoftPool::shot_contacts(double t, double spring_dt) {
             const double xa = members_[static_cast<std::size_t>(a)].p.x(), xb = members_[static_cast<std::size_t>(b)].p.x();
             return xa < xb || (xa == xb && members_[static_cast<std::size_t>(a)].shot < members_[static_cast<std::size_t>(b)].shot);
         });
-    const double reach = 2.0 * R_;
+    const double touch = 2.0 * R_, reach = touch + kNearMargin * R_;
     for (std::size_t u = 0; u < n; ++u) {
         for (std::size_t w = u + 1; w < n; ++w) {
             int ma = order_[u], mb = order_[w];
@@ -505,8 +721,27 @@ void SoftPool::shot_contacts(double t, double spring_dt) {
             const Vec3 d = B.p - A.p;
             const double dist = d.norm();
             if (!(dist < reach) || !(dist > 0.0)) continue;
-            const Vec3 n = d / dist;  // from A towards B
-            const double delta = reach - dist;
+            const Vec3 n = d / dist;            // from A towards B
+            const double delta = touch - dist;  // m, the overlap (negative: a gap)
+            Path path;
+            path.a = ma;
+            path.b = mb;
+            path.shot = A.shot;
+            path.partner = B.shot;
+            path.path.overlap_m = delta;
+            path.path.normal = -n;  // from the partner towards the shot
+            path.distance_m = dist;
+            if (!(delta > 0.0)) {
+                // Apart: the pair of the contact that just ended here (its damping), else the law's
+                // at the approach now.
+                int ended = -1;
+                for (const int k : A.contacts)
+                    if (live_[static_cast<std::size_t>(k)].c.partner == B.shot) ended = k;
+                path.pair = ended >= 0 ? live_[static_cast<std::size_t>(ended)].pair
+                                       : model_->shot_shot_law->soft()->contact(std::max(0.0, (A.v_rate - B.v_rate).dot(n)));
+                paths_.push_back(path);
+                continue;
+            }
             const double arm = R_ - 0.5 * delta;
             const Vec3 slip_rel = (A.v + A.w.cross(arm * n)) - (B.v + B.w.cross(-arm * n));  // mid-step, A's contact point against B's
             const Vec3 slip = slip_rel - slip_rel.dot(n) * n;
@@ -523,7 +758,7 @@ void SoftPool::shot_contacts(double t, double spring_dt) {
             if (before < 0) {
                 key.shot = A.shot;
                 key.partner = B.shot;
-                const double gap_before = (B.p_before - A.p_before).norm() - reach;
+                const double gap_before = (B.p_before - A.p_before).norm() - touch;
                 const double t_step = t - spring_dt;
                 const double began = gap_before > 0.0 ? t_step + spring_dt * gap_before / (gap_before + delta) : t_step;
                 key.start_time_s = epoch_.hi + (epoch_.lo + began);
@@ -535,6 +770,7 @@ void SoftPool::shot_contacts(double t, double spring_dt) {
             Live& l = next_live_[static_cast<std::size_t>(idx)];
             l.a = ma;
             l.b = mb;
+            // Its normal force here caps the tangential one (the normal kicks take it along its path).
             const double fn = contact::hertz_normal_force(l.pair, delta, rate);
             Vec3 spring = onto_plane(l.c.spring_m, n);
             const Vec3 ft = contact::mindlin_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), spring);  // on A
@@ -542,12 +778,13 @@ void SoftPool::shot_contacts(double t, double spring_dt) {
             l.c.normal = -n;  // from the partner towards the shot
             l.delta_m = delta;
             l.point_m = A.p + arm * n;
-            const Vec3 force_on_a = -fn * n + ft;
-            A.f += force_on_a;
-            B.f -= force_on_a;
+            A.f_kick += ft;
+            B.f_kick -= ft;
             A.tau += (arm * n).cross(ft);
             B.tau += (-arm * n).cross(-ft);
-            settle_step(l, rate, t);
+            path.live = idx;
+            path.pair = l.pair;
+            paths_.push_back(path);
         }
     }
 }
@@ -682,11 +919,29 @@ void SoftPool::leave(SimulationState& state, std::vector<ImpactRecord>& impacts,
         end_contact(l, t_, state, impacts);
     }
     std::swap(live_, next_live_);
+    // Their paths go with them, a pair's both ways: a member that stays feels nothing more from
+    // one that left (the scheme around finds their touch, if any, exactly).
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < paths_.size(); ++i) {
+        const Path& k = paths_[i];
+        if (leaving_[static_cast<std::size_t>(k.a)] != 0 || (k.b >= 0 && leaving_[static_cast<std::size_t>(k.b)] != 0)) continue;
+        if (kept != i) {
+            paths_[kept] = paths_[i];
+            node_paths_[kept] = node_paths_[i];
+        }
+        ++kept;
+    }
+    paths_.resize(kept);
+    node_paths_.resize(kept);
     for (std::size_t m = n; m-- > 0;)
         if (leaving_[m]) remove_member(static_cast<int>(m));
     for (Live& l : live_) {
         l.a = member_of_[static_cast<std::size_t>(l.c.shot)];
         l.b = l.c.partner >= 0 ? member_of_[static_cast<std::size_t>(l.c.partner)] : -1;
+    }
+    for (Path& k : paths_) {
+        k.a = member_of_[static_cast<std::size_t>(k.shot)];
+        k.b = k.partner >= 0 ? member_of_[static_cast<std::size_t>(k.partner)] : -1;
     }
     if (members_.empty()) pending_step_ = 0.0;
 }

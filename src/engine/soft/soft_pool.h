@@ -5,14 +5,25 @@
 // surface or another shot, and takes it back when it leaves. Cost follows the contacts' duration,
 // not the number of shot times the run's steps.
 //
-// The step (velocity Verlet, as LIGGGHTS's nve/sphere): half a kick with the forces at the step's
-// start, a drift, the forces at the step's end from the half-step velocities (Hertz-Mindlin: the
-// pair's law, contact/hertz_mindlin.h; the tangential springs advanced by the half-step slip), the
-// second half kick; the same for the spin, with the moment of inertia 2/5 m R^2 of a solid sphere.
-// Its length: the smallest, over the contacts, of the Hertz contact time at the speed that carries
-// the contact's energy now, divided by `accuracy.soft_steps_per_contact` (the rule and its error:
-// README "Soft-sphere contacts"). A vibrating or turning component is at its exact pose at every
-// step.
+// The step (kick-drift-kick, as LIGGGHTS's nve/sphere velocity Verlet, but for the normal
+// forces): half a kick, a drift, the contacts at the step's end (its node), the second half kick;
+// the same for the spin, with the moment of inertia 2/5 m R^2 of a solid sphere. The point forces
+// (gravity; Mindlin's tangential springs, advanced by the half-step slip, damped at the node
+// velocities the last node predicts) kick as in Verlet, with their value at the node. Each
+// contact's normal force (Hertz with its damping: the pair's law, contact/hertz_mindlin.h) kicks
+// with its impulse over the half step, weighted 1 - |s|/h, integrated along the contact's path
+// from the node (engine/soft/contact_impulse.h): the kick that puts the next node on the true
+// path, right where a contact begins or ends inside a step, where Verlet's kick (the force at the
+// node) gives each contact an energy error of either sign depending on where in the step it ends.
+// Every pair of a member and a surface or another member within kNearMargin R at a node
+// (overlapping or not) has a path, so a contact about to begin, or just ended, gets its share of
+// the half steps around the node. The node velocities the paths start from are those the last
+// node's paths predict (their impulses over the step, weighted the other way); both half steps
+// around a node are integrated along the one path (so their errors cancel to a higher order).
+// Its length: the smallest, over the contacts (and the gaps that may close within about a step),
+// of the Hertz contact time at the speed that carries the contact's energy now, divided by
+// `accuracy.soft_steps_per_contact` (the rule and its error: README "Soft-sphere contacts"). A
+// vibrating or turning component is at its exact pose at every node.
 //
 // Who is a member: a shot joins when the scheme finds its exact touch (an impact, or any touch on a
 // moving surface), or when a shot outside the pool would overlap a member by the end of the next
@@ -39,6 +50,7 @@
 #include "engine/event/wall_predictor.h"
 #include "engine/impact_record.h"
 #include "engine/simulation_state.h"
+#include "engine/soft/contact_impulse.h"
 #include "engine/soft/soft_contact.h"
 #include "engine/soft/surface_patch.h"
 #include "engine/step_stats.h"
@@ -107,7 +119,8 @@ public:
     // where the shot joins). Members that leave are appended to `exits`.
     void step(SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts, std::vector<SoftExit>& exits,
               StepStats& stats);
-    // Steps exactly to t (>= time()), without taking anyone in: a restart point.
+    // Steps exactly to t (>= time()): a restart point, or a touch of the scheme around (a shot
+    // outside that touches a member before t joins at its touch on the way).
     void step_to(double t, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts,
                  std::vector<SoftExit>& exits, StepStats& stats);
 
@@ -132,6 +145,11 @@ public:
     static constexpr double kGatherMargin = 0.25;
     // Members up to which every pair is tested for contact (beyond, a sweep along x).
     static constexpr std::size_t kAllPairsUpTo = 12;
+    // of R: a member and a surface or another member this close at a node have a path (a gap
+    // that may close within the next step, a contact that just ended); well beyond what two
+    // members close in a step (40 m/s over a 1 us step is 0.04 R of a 1 mm shot), and within
+    // kGatherMargin (the gathered triangles cover it).
+    static constexpr double kNearMargin = 0.1;
 
 private:
     // A contact in progress.
@@ -148,6 +166,19 @@ private:
         bool deep = false;            // counted once as a deep penetration
         Vec3 point_m = Vec3::Zero();  // m, world: the contact point now (on the surface)
     };
+    // A member and a surface or another member within kNearMargin R at the last node: the path
+    // along which the half kicks integrate its normal force (a superset of the live contacts).
+    struct Path {
+        int a = -1, b = -1;           // member slots of shot and partner (b: -1 for a component)
+        int shot = -1, partner = -1;  // shot (partner: -1 for a component)
+        int component = -1;           // -1 between two shot
+        int live = -1;                // its contact in live_ while they overlap at the node, else -1
+        contact::HertzPair pair;
+        ContactPath path;
+        Vec3 point_m = Vec3::Zero();  // m, world: the surface point nearest the centre (a component's)
+        double distance_m = 0.0;      // m, centre to centre (two shot) or to that point
+        double force_n = 0.0;         // N, its normal force at the node (0 apart)
+    };
     // A shot outside the pool near a member, and until when it cannot reach it (s): it is looked
     // at again then, or when it flies anew (offered again), or when a member faster than
     // speed_bound (m/s) could close the gap sooner.
@@ -160,9 +191,12 @@ private:
         int shot = -1;
         Vec3 p, v, w;               // m, m/s, rad/s
         Vec3 p_before, v_before;    // m, m/s: at the step's start
-        Vec3 v_rate, w_rate;        // m/s, rad/s: at the step's end as the last forces predict it (the damping's)
-        Vec3 a, alpha;              // m/s2, rad/s2: at the last force evaluation
-        Vec3 f, tau;                // N, N m: accumulated by the force evaluation
+        Vec3 v_rate, w_rate;        // m/s, rad/s: at the node, as the last node predicts it (then the normal impulses)
+        Vec3 a, alpha;              // m/s2, rad/s2: at the last node (every force at its value there)
+        Vec3 f, tau;                // N, N m: every force at the node (scratch of the evaluation), torque
+        Vec3 f_kick;                // N: gravity and the tangential forces at the last node (the half kicks' point forces)
+        Vec3 impulse;               // N s: scratch, the normal impulses of a half kick
+        Vec3 predicted;             // N s: the next node's normal impulses before it, as the last node's paths predict them
         bool touching = false;      // had a contact at the last evaluation
         bool was_touching = false;  // had one at the evaluation before (a whole step without: it flies)
         Vec3 box_centre;            // m, where its neighbour box and candidates were gathered
@@ -173,16 +207,35 @@ private:
     };
 
     int add_member(int shot, const Vec3& p, const Vec3& v, const Vec3& w);
+    // One step up to t_end (s), or exactly up to the touch of a shot outside within it, which joins there.
+    void advance(double t_end, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts,
+                 std::vector<SoftExit>& exits, StepStats& stats);
     void remove_member(int slot);
-    // Velocity Verlet up to t_end (s, the scheme's clock; the pool's time is then exactly t_end);
-    // forces at the end found by evaluate().
+    // One step up to t_end (s, the scheme's clock; the pool's time is then exactly t_end): the
+    // first half kick, the drift, and evaluate() at the end.
     void integrate(double t_end, SoftSurroundings& around, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats);
-    // Contacts and forces at the members' current positions, at time t (s), with the springs
-    // advanced by spring_dt (s; 0: a look without advancing); contacts no longer found end (their
-    // impact records).
-    void evaluate(double t, double spring_dt, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats);
+    // Contacts and forces at the members' current positions, the node at time t (s), after a step
+    // of dt (s) whose second half kick it gives (the springs advanced by dt; 0: a look at the node
+    // velocities, nothing advanced); contacts no longer found end (their impact records).
+    void evaluate(double t, double dt, SimulationState& state, std::vector<ImpactRecord>& impacts, StepStats& stats);
     void wall_contacts(int m, double t, double spring_dt, SimulationState& state);
     void shot_contacts(double t, double spring_dt);
+    // Every path's rate and normal force from the members' v_rate, the members' accelerations a
+    // from those forces, and every path's outer acceleration.
+    void normal_forces();
+    // Every path's NodePath (followed up to the longer of dt_before and dt_after, s), and the
+    // normal impulses of the half step dt_before before the node (v_rate becomes the node
+    // velocity they give; 0: none).
+    void normal_impulses(double dt_before, double dt_after);
+    // A path's rate and force at the node from its members' v_rate (rate_only), or its turn and
+    // outer acceleration from their accelerations a.
+    void shape(Path& k, bool rate_only) const;
+    // The paths of a member that just joined, at its touch (its half step ahead needs them).
+    void look_around(int m);
+    // Components and their surfaces' motion at time t (s).
+    void set_poses(double t);
+    // m/s2, the acceleration of component c's material point at q (m, world) at the evaluation's time.
+    Vec3 surface_acceleration(std::size_t c, const Vec3& q) const;
     // A contact found now: the one in progress (`before`, an index into live_) or a new one from
     // `key` beginning at approach_now (m/s). Its index in next_live_; spring_step: how long (s) its
     // spring slipped in this step.
@@ -215,9 +268,14 @@ private:
     std::vector<Member> spare_;   // retired members' records, reused by the next to join
     std::vector<int> member_of_;  // per shot: its slot in members_, -1 outside the pool
     std::vector<Live> live_, next_live_;
+    std::vector<Live> ended_;  // scratch: the contacts that ended at the node (recorded once its velocities are known)
+    std::vector<Path> paths_;  // at the last node
+    // Per path: the path as its normal force is integrated, both half steps round the node.
+    std::vector<NodePath> node_paths_;
     std::vector<Pose> poses_;  // per component, at the evaluation's time (a still one's set once)
     // Per component, at the evaluation's time: a vibrating one's (uniform) surface velocity (m/s).
     std::vector<Vec3> sliding_;
+    std::vector<Vec3> shaking_;              // ... and its acceleration (m/s2)
     std::vector<Vec3> reach_lo_, reach_hi_;  // m, world, per component: a centre outside them touches nothing of it
     std::vector<Vec3> velocities_scratch_;
     std::vector<SurfaceOverlap> overlaps_;  // scratch
