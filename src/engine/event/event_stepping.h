@@ -82,8 +82,9 @@ public:
     // The search fallback: a flight whose contact search runs out of iterations this many times in a
     // row (each kMaxAdvancement conservative-advancement steps within a hair of a moving surface,
     // gaining almost no time) goes on in sustained-contact substeps, which always advance time by
-    // a substep; counted in HealthCounters::search_fallbacks. No known scene reaches it: it is the
-    // net under "simulated time always advances" (a blade turning at 1000 rpm once stalled so).
+    // a substep; counted in HealthCounters::search_fallbacks. The net under "simulated time always
+    // advances" (a blade turning at 1000 rpm once stalled so); rare: nozzle-gear 7 times in 30 s,
+    // a shot pressed by a turning surface chattering in arcs of about 1 um (README, health counters).
     static constexpr int kMaxResumedSearches = 4;
 
     // Simulated time (s) one advance() covers at most: it stops on a grid of this spacing (absolute
