@@ -10,6 +10,7 @@
 #include <random>
 #include <unordered_map>
 
+#include "analysis/reach_boundary.h"
 #include "analysis/row_runs.h"
 #include "analysis/sample_mean.h"
 #include "analysis/student_t.h"
@@ -22,12 +23,12 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr int kRadiusRounds = 3;         // h is re-chosen at most this often as the extrapolation settles
-constexpr double kRadiusSettled = 0.25;  // relative change of the extrapolation below which h stays
-constexpr int kRootIterations = 60;      // bisection steps on the span
-constexpr double kLargestSpan = 1e6;     // tau / T beyond which a target counts as never reached
-constexpr double kRestAreaShare = 1e-6;
-constexpr double kLeastThinnedShare = 0.1;  // the kernel left to an impact after its hole, at least (see "The selection")  // a rest smaller than this share of the peened area is round-off of the regions
+constexpr int kRadiusRounds = 3;            // h is re-chosen at most this often as the extrapolation settles
+constexpr double kRadiusSettled = 0.25;     // relative change of the extrapolation below which h stays
+constexpr int kRootIterations = 60;         // bisection steps on the span
+constexpr double kLargestSpan = 1e6;        // tau / T beyond which a target counts as never reached
+constexpr double kRestAreaShare = 1e-6;     // a rest smaller than this share of the peened area is round-off of the regions
+constexpr double kLeastThinnedShare = 0.1;  // the kernel left to an impact after its hole, at least (see "The selection")
 
 // Bins of (cube, facing) keyed into 64 bits: 20 bits per cube coordinate, 3 for the facing.
 std::uint64_t cube_key(std::int64_t x, std::int64_t y, std::int64_t z, int facing) {
@@ -42,8 +43,8 @@ std::array<std::int64_t, 3> cube_of(const Vec3& p, double inverse_side) {
 // Ids sorted by their cube keys -> the map from a key to its run [first, end) in `ids`: every id
 // of a cube in one look-up.
 template <class Id>
-void index_by_cube(std::vector<std::pair<std::uint64_t, Id>>& keyed, std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>>& grid,
-                   std::vector<Id>& ids) {
+void index_by_cube(std::vector<std::pair<std::uint64_t, Id>>& keyed,
+                   std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>>& grid, std::vector<Id>& ids) {
     std::sort(keyed.begin(), keyed.end());
     ids.resize(keyed.size());
     for (std::size_t i = 0; i < keyed.size(); ++i) {
@@ -59,16 +60,17 @@ struct AreaTerm {
     std::uint32_t cell = 0;
     double m2 = 0.0;
     std::int32_t group = -1;
+    std::int32_t reach_group = -1;  // >= 0: of the cell's samples near a reach boundary (ReachGroup)
 };
 
 // The edge lines with impacts on them (see the header): each a segment of the mesh shared by the
 // triangles that have it, with its impacts sorted along it.
 struct EdgeLines {
     struct Line {
-        Vec3 start = Vec3::Zero();      // m
-        Vec3 along = Vec3::UnitX();     // unit
-        double length_m = 0.0;          // m
-        double largest_radius_m = 0.0;  // m, of its impacts' dents
+        Vec3 start = Vec3::Zero();         // m
+        Vec3 along = Vec3::UnitX();        // unit
+        double length_m = 0.0;             // m
+        double largest_radius_m = 0.0;     // m, of its impacts' dents
         std::size_t first = 0, count = 0;  // its impacts in `impacts`
     };
     struct Impact {
@@ -77,8 +79,8 @@ struct EdgeLines {
         std::uint8_t batch = 0;
     };
     std::vector<Line> lines;
-    std::vector<Impact> impacts;                         // line by line, increasing s
-    std::uint64_t count = 0;                            // edge impacts
+    std::vector<Impact> impacts;  // line by line, increasing s
+    std::uint64_t count = 0;      // edge impacts
 
     EdgeLines(const TriangleMesh& mesh, std::span<const ForecastImpact> all) {
         // A segment is known by its two end points, in a fixed order: the triangles on both sides
@@ -113,7 +115,8 @@ struct EdgeLines {
             const Vec3 p(i.point_m[0], i.point_m[1], i.point_m[2]);
             const double radius = std::sqrt(static_cast<double>(i.dent_area_m2) / M_PI);
             l.largest_radius_m = std::max(l.largest_radius_m, radius);
-            per_line[static_cast<std::size_t>(it->second)].push_back({std::clamp((p - l.start).dot(l.along), 0.0, l.length_m), radius, i.batch});
+            per_line[static_cast<std::size_t>(it->second)].push_back(
+                {std::clamp((p - l.start).dot(l.along), 0.0, l.length_m), radius, i.batch});
         }
         for (std::size_t k = 0; k < lines.size(); ++k) {
             std::vector<Impact>& v = per_line[k];
@@ -203,9 +206,18 @@ struct EdgeGroup {
     std::uint32_t cell = 0;
     std::uint16_t cls = 0;
     std::int32_t line[2] = {-1, -1};
-    double uncovered_m2 = 0.0;       // m2
+    double uncovered_m2 = 0.0;          // m2
     double s_m[2] = {0.0, 0.0};         // m, the area-weighted mean position along each line
     double distance_m[2] = {0.0, 0.0};  // m, and distance to it
+};
+
+// The uncovered samples of one cell and class within a dent radius of the reach boundary, in the
+// same band of distance to it (kReachBands per largest dent radius).
+struct ReachGroup {
+    std::uint32_t cell = 0;
+    std::uint16_t cls = 0;
+    double uncovered_m2 = 0.0;  // m2
+    double distance_m = 0.0;    // m, the area-weighted mean distance to the boundary
 };
 
 // The surface binned into cells of (cube of side `side`, facing), each with its reachable area,
@@ -214,18 +226,23 @@ struct SurfaceCells {
     double side = 0.0;  // m
     std::vector<std::array<std::int64_t, 3>> cube;
     std::vector<int> facing;
-    std::vector<double> reach_m2;       // m2
-    std::vector<Vec3> point_sum;        // m3: sum of area x position
-    std::vector<Vec3> normal_sum;       // m2: sum of area x unit normal
+    std::vector<double> reach_m2;                             // m2
+    std::vector<Vec3> point_sum;                              // m3: sum of area x position
+    std::vector<Vec3> normal_sum;                             // m2: sum of area x unit normal
     std::vector<std::pair<std::uint64_t, double>> uncovered;  // (cell << 16 | class, m2), sorted, away from edge lines
     std::vector<EdgeGroup> edge_groups;                       // the uncovered samples near edge lines
+    std::vector<ReachGroup> reach_groups;                     // the uncovered samples near the reach boundary, by cell
 
-    SurfaceCells(const CoverageProgress& progress, const TriangleMesh& mesh, const EdgeLines& edges, double side_m) : side(side_m) {
+    SurfaceCells(const CoverageProgress& progress, const TriangleMesh& mesh, const EdgeLines& edges, const ReachBoundary& boundary,
+                 double side_m)
+        : side(side_m) {
         const CoverageMap& map = progress.map();
         const SampleClasses& classes = progress.classes();
         const double inverse_side = 1.0 / side;
         std::unordered_map<std::uint64_t, std::uint32_t> cell_of;
         std::unordered_map<std::uint64_t, double> uncovered_of;
+        std::map<std::uint64_t, std::pair<double, double>> near_boundary_of;  // (cell << 16 | class) << 8 | band -> (m2, m3)
+        const double band_width = boundary.reach_m() / kReachBands;
         // Edge groups by (cell, class, line, band).
         struct GroupKey {
             std::uint32_t cell;
@@ -255,29 +272,30 @@ struct SurfaceCells {
             }
             return it->second;
         };
-        map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double area, std::int64_t index) {
+        map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double area,
+                                    std::int64_t index) {
             if (classes.reachable_samples(t) == 0) return;
             const Vec3 normal = triangle_normal(mesh, t);
             const int face = facing_of(normal);
-            // A triangle along an edge line with impacts has its samples placed one by one.
+            // A triangle along an edge line with impacts has its samples placed one by one; near the
+            // reach boundary, those of the voxels within reach of it (ReachBoundary).
             const bool near_edges = edges.near(t);
-            const std::uint16_t uniform = near_edges ? SampleClasses::kMixed : classes.triangle_class(t);
-            for_each_cube_run(first, step, count, Vec3::Zero(), inverse_side, [&](std::int64_t i, std::int64_t run) {
+            const bool near_boundary = boundary.near(t);
+            const std::uint16_t own = classes.triangle_class(t);
+            // The run [i, i + run) of cell `cell` at once: its area, its positions' sum in closed
+            // form, its uncovered samples by a popcount (all of class `own`).
+            const auto whole_run = [&](std::int64_t i, std::int64_t run, std::uint32_t cell) {
+                if (!classes.info(own).reachable) return;
                 const Vec3 p = first + static_cast<double>(i) * step;
-                const std::uint32_t cell = cell_at(p + 0.5 * static_cast<double>(run - 1) * step, face);
-                if (uniform != SampleClasses::kMixed) {
-                    // The whole run at once: its area, its positions' sum in closed form, its
-                    // uncovered samples by a popcount.
-                    if (!classes.info(uniform).reachable) return;
-                    const double n = static_cast<double>(run);
-                    reach_m2[cell] += n * area;
-                    point_sum[cell] += area * (n * p + 0.5 * n * (n - 1.0) * step);
-                    normal_sum[cell] += n * area * normal;
-                    if (!classes.info(uniform).peened()) return;
-                    const std::int64_t open = run - map.covered_samples(index + i, run);
-                    if (open > 0) uncovered_of[static_cast<std::uint64_t>(cell) << 16 | uniform] += static_cast<double>(open) * area;
-                    return;
-                }
+                const double n = static_cast<double>(run);
+                reach_m2[cell] += n * area;
+                point_sum[cell] += area * (n * p + 0.5 * n * (n - 1.0) * step);
+                normal_sum[cell] += n * area * normal;
+                if (!classes.info(own).peened()) return;
+                const std::int64_t open = run - map.covered_samples(index + i, run);
+                if (open > 0) uncovered_of[static_cast<std::uint64_t>(cell) << 16 | own] += static_cast<double>(open) * area;
+            };
+            const auto each_sample = [&](std::int64_t i, std::int64_t run, std::uint32_t cell, std::uint32_t source) {
                 for (std::int64_t j = i; j < i + run; ++j) {
                     const std::uint16_t k = classes.class_of(t, index + j);
                     if (!classes.info(k).reachable) continue;
@@ -289,13 +307,24 @@ struct SurfaceCells {
                     std::array<EdgeLines::Near, 2> lines;
                     const int n = near_edges ? edges.nearest(x, lines) : 0;
                     if (n == 0) {
-                        uncovered_of[static_cast<std::uint64_t>(cell) << 16 | k] += area;
+                        const double d = near_boundary
+                                             ? boundary.distance(x, source != ReachBoundary::kNoSource ? source : boundary.source_near(x))
+                                             : kInf;
+                        if (std::isfinite(d)) {
+                            const auto band = static_cast<std::uint64_t>(std::min<double>(kReachBands - 1, std::floor(d / band_width)));
+                            auto& [m2, m3] = near_boundary_of[(static_cast<std::uint64_t>(cell) << 16 | k) << 8 | band];
+                            m2 += area, m3 += area * d;
+                        } else {
+                            uncovered_of[static_cast<std::uint64_t>(cell) << 16 | k] += area;
+                        }
                         continue;
                     }
                     const auto band = [&](int m) {
                         if (m >= n) return std::uint8_t{0};
-                        const double width = edges.lines[static_cast<std::size_t>(lines[static_cast<std::size_t>(m)].line)].largest_radius_m / kEdgeBands;
-                        return static_cast<std::uint8_t>(std::min<double>(kEdgeBands - 1, std::floor(lines[static_cast<std::size_t>(m)].distance_m / width)));
+                        const double width =
+                            edges.lines[static_cast<std::size_t>(lines[static_cast<std::size_t>(m)].line)].largest_radius_m / kEdgeBands;
+                        return static_cast<std::uint8_t>(
+                            std::min<double>(kEdgeBands - 1, std::floor(lines[static_cast<std::size_t>(m)].distance_m / width)));
                     };
                     const GroupKey key{cell, lines[0].line, n > 1 ? lines[1].line : -1, k, band(0), band(1)};
                     const auto [it, added] = group_of.try_emplace(key, edge_groups.size());
@@ -311,10 +340,30 @@ struct SurfaceCells {
                         g.distance_m[m] += area * lines[static_cast<std::size_t>(m)].distance_m;
                     }
                 }
+            };
+            for_each_cube_run(first, step, count, Vec3::Zero(), inverse_side, [&](std::int64_t i, std::int64_t run) {
+                const Vec3 p = first + static_cast<double>(i) * step;
+                const std::uint32_t cell = cell_at(p + 0.5 * static_cast<double>(run - 1) * step, face);
+                if (near_edges || own == SampleClasses::kMixed) {
+                    each_sample(i, run, cell, ReachBoundary::kNoSource);
+                } else if (!near_boundary) {
+                    whole_run(i, run, cell);
+                } else {
+                    for_each_cube_run(p, step, run, Vec3::Zero(), boundary.inverse_side(), [&](std::int64_t k, std::int64_t part) {
+                        const std::uint32_t source = boundary.source_near(p + static_cast<double>(k) * step);
+                        if (source != ReachBoundary::kNoSource)
+                            each_sample(i + k, part, cell, source);
+                        else
+                            whole_run(i + k, part, cell);
+                    });
+                }
             });
         });
         uncovered.assign(uncovered_of.begin(), uncovered_of.end());
         std::sort(uncovered.begin(), uncovered.end());
+        for (const auto& [key, sums] : near_boundary_of)  // in cell order (the key's high bits)
+            reach_groups.push_back({static_cast<std::uint32_t>(key >> 24), static_cast<std::uint16_t>(key >> 8 & 0xFFFF), sums.first,
+                                    sums.second / sums.first});
         for (EdgeGroup& g : edge_groups)
             for (int m = 0; m < 2; ++m) g.s_m[m] /= g.uncovered_m2, g.distance_m[m] /= g.uncovered_m2;
     }
@@ -399,10 +448,10 @@ double uncovered_pair_integral(double m_now, double m_then) {
 class KernelField {
 public:
     KernelField(const CoverageProgress& progress, const TriangleMesh& mesh, std::span<const ForecastImpact> impacts, const EdgeLines& edges,
-                int batches, const std::vector<bool>& batch_used, double radius_m, double line_radius_m,
+                const ReachBoundary& boundary, int batches, const std::vector<bool>& batch_used, double radius_m, double line_radius_m,
                 const std::vector<std::vector<std::uint32_t>>& areas_of_class, std::size_t area_count)
         : batches_(batches), batch_used_(batch_used), radius_(radius_m), line_radius_(line_radius_m) {
-        adopt(SurfaceCells(progress, mesh, edges, radius_m / kForecastCellsPerRadius), areas_of_class, area_count);
+        adopt(SurfaceCells(progress, mesh, edges, boundary, radius_m / kForecastCellsPerRadius), areas_of_class, area_count);
         build_neighbours();
         sum_kernels(mesh, impacts);
         sum_edges(edges);
@@ -448,12 +497,13 @@ public:
     // the variance (m4) of area a's uncovered area at `span`, and its slope there (m2 per unit of
     // span), from every uncovered term as a stationary Boolean model of dents of area dent_area_m2
     // (m2) that has had window_per_rate x its moment m1 of dents so far.
-    void uncovered_spread(std::size_t a, double span, double dent_area_m2, double window_per_rate, double& variance_m4, double& slope_m2) const {
+    void uncovered_spread(std::size_t a, double span, double dent_area_m2, double window_per_rate, double& variance_m4,
+                          double& slope_m2) const {
         variance_m4 = slope_m2 = 0.0;
         for (const AreaTerm& t : terms_[a]) {
             const auto m = term_moments(t, -1);
             if (!(m[0] > 0.0)) continue;
-            const double future = series(m, span);  // dents expected from now on
+            const double future = series(m, span);      // dents expected from now on
             const double rate = series_slope(m, span);  // d future / d span
             const double kept = std::exp(-future);
             slope_m2 += t.m2 * kept * rate;
@@ -471,10 +521,16 @@ private:
         std::array<double, kSeriesTerms> m{}, e{};
         for (int b = 0; b < batches_; ++b) {
             if (!batch_used_[static_cast<std::size_t>(b)] || b == left_out) continue;
-            const double* s = &sums_[(c * static_cast<std::size_t>(batches_) + static_cast<std::size_t>(b)) * kSeriesTerms];
+            const double* s = t.reach_group >= 0
+                                  ? &reach_sums_[(static_cast<std::size_t>(t.reach_group) * static_cast<std::size_t>(batches_) +
+                                                  static_cast<std::size_t>(b)) *
+                                                 kSeriesTerms]
+                                  : &sums_[(c * static_cast<std::size_t>(batches_) + static_cast<std::size_t>(b)) * kSeriesTerms];
             for (std::size_t j = 0; j < kSeriesTerms; ++j) m[j] += s[j];
             if (t.group < 0) continue;
-            const double* x = &edge_sums_[(static_cast<std::size_t>(t.group) * static_cast<std::size_t>(batches_) + static_cast<std::size_t>(b)) * kSeriesTerms];
+            const double* x =
+                &edge_sums_[(static_cast<std::size_t>(t.group) * static_cast<std::size_t>(batches_) + static_cast<std::size_t>(b)) *
+                            kSeriesTerms];
             for (std::size_t j = 0; j < kSeriesTerms; ++j) e[j] += x[j];
         }
         const double inv = norm_[c] > 0.0 ? 1.0 / norm_[c] : 0.0;
@@ -495,10 +551,10 @@ private:
             // A cell of unreachable samples only (of a triangle crossing the reach boundary) has no
             // area: its cube's centre stands in.
             centroid_[c] = reach_m2_[c] > 0.0 ? Vec3(cells.point_sum[c] / reach_m2_[c])
-                                               : Vec3((Vec3(static_cast<double>(cells.cube[c][0]), static_cast<double>(cells.cube[c][1]),
-                                                            static_cast<double>(cells.cube[c][2])) +
-                                                       Vec3::Constant(0.5)) *
-                                                      cells.side);
+                                              : Vec3((Vec3(static_cast<double>(cells.cube[c][0]), static_cast<double>(cells.cube[c][1]),
+                                                           static_cast<double>(cells.cube[c][2])) +
+                                                      Vec3::Constant(0.5)) *
+                                                     cells.side);
             const double norm = cells.normal_sum[c].norm();
             normal_[c] = norm > 0.0 ? Vec3(cells.normal_sum[c] / norm) : Vec3::Zero();
         }
@@ -516,11 +572,23 @@ private:
                     terms.push_back({c, m2});
             }
         }
+        // The samples near the reach boundary: a term per group, and each cell's groups.
+        reach_groups_ = cells.reach_groups;
+        reach_first_.assign(n + 1, 0);
+        for (const ReachGroup& g : reach_groups_) ++reach_first_[g.cell + 1];
+        for (std::size_t c = 0; c < n; ++c) reach_first_[c + 1] += reach_first_[c];
+        for (std::size_t g = 0; g < reach_groups_.size(); ++g) {
+            const ReachGroup& group = reach_groups_[g];
+            uncovered_cell_[group.cell] = true;
+            for (std::uint32_t a : areas_of_class[group.cls])
+                terms_[a].push_back({group.cell, group.uncovered_m2, -1, static_cast<std::int32_t>(g)});
+        }
         // The samples near edge lines: a term per group.
         groups_ = cells.edge_groups;
         for (std::size_t g = 0; g < groups_.size(); ++g) {
             uncovered_cell_[groups_[g].cell] = true;
-            for (std::uint32_t a : areas_of_class[groups_[g].cls]) terms_[a].push_back({groups_[g].cell, groups_[g].uncovered_m2, static_cast<std::int32_t>(g)});
+            for (std::uint32_t a : areas_of_class[groups_[g].cls])
+                terms_[a].push_back({groups_[g].cell, groups_[g].uncovered_m2, static_cast<std::int32_t>(g)});
         }
         uncovered_cells_ = static_cast<std::size_t>(std::count(uncovered_cell_.begin(), uncovered_cell_.end(), true));
     }
@@ -565,11 +633,13 @@ private:
             });
         }
         sums_.assign(cells * static_cast<std::size_t>(batches_) * kSeriesTerms, 0.0);
+        reach_sums_.assign(reach_groups_.size() * static_cast<std::size_t>(batches_) * kSeriesTerms, 0.0);
         for (const ForecastImpact& i : impacts) {
             if (i.edge >= 0) continue;  // along its edge line (sum_edges)
             const Vec3 p(i.point_m[0], i.point_m[1], i.point_m[2]);
             const Vec3 n = triangle_normal(mesh, i.triangle);
             const double a = i.dent_area_m2;
+            const double rho = std::sqrt(a / M_PI);                                   // m, the dent's radius
             const double hole = quartic_disc_integral(std::sqrt(a / M_PI), radius_);  // m2
             for_each_cell_near(p, [&](std::uint32_t c, double d2) {
                 if (!uncovered_cell_[c]) return;
@@ -578,6 +648,10 @@ private:
                 const double w = quartic(d2, inv_r2) * std::max(0.0, normal_[c].dot(n)) * a * thinned;
                 if (!(w > 0.0)) return;
                 add_powers(&sums_[(c * static_cast<std::size_t>(batches_) + i.batch) * kSeriesTerms], w);
+                // Near the reach boundary only the dent's share on the reachable side covers.
+                for (std::uint32_t g = reach_first_[c]; g < reach_first_[c + 1]; ++g)
+                    add_powers(&reach_sums_[(g * static_cast<std::size_t>(batches_) + i.batch) * kSeriesTerms],
+                               w * disc_share_inside(reach_groups_[g].distance_m, rho));
             });
         }
     }
@@ -625,14 +699,17 @@ private:
     double radius_;
     double line_radius_;  // m, along edge lines
     std::vector<EdgeGroup> groups_;
-    std::vector<double> edge_sums_;  // per edge group, batch: sums of kappa^1 .. kappa^kSeriesTerms
+    std::vector<ReachGroup> reach_groups_;
+    std::vector<std::uint32_t> reach_first_;  // per cell: its reach groups [reach_first_[c], reach_first_[c + 1])
+    std::vector<double> reach_sums_;          // per reach group, batch: sums of (w a f)^1 .. (w a f)^kSeriesTerms
+    std::vector<double> edge_sums_;           // per edge group, batch: sums of kappa^1 .. kappa^kSeriesTerms
     // Cells (structure of arrays).
     std::vector<double> reach_m2_;  // m2: reachable area
     std::vector<Vec3> centroid_;    // m
     std::vector<Vec3> normal_;      // unit
     std::vector<bool> uncovered_cell_;
-    std::vector<double> norm_;  // m2: sum_q w A_q
-    std::vector<double> sums_;  // per cell, batch: sums of (w a)^1 .. (w a)^kSeriesTerms (m2, m4, ...)
+    std::vector<double> norm_;                  // m2: sum_q w A_q
+    std::vector<double> sums_;                  // per cell, batch: sums of (w a)^1 .. (w a)^kSeriesTerms (m2, m4, ...)
     std::vector<std::vector<AreaTerm>> terms_;  // per area: its cells' uncovered area
     std::size_t uncovered_cells_ = 0;
     std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> grid_;
@@ -815,8 +892,10 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
         // The dents' area weighted by itself: the run's noise comes in uncovered islands whose size
         // goes with the larger dents.
         double dent_sum = 0.0, dent_sum2 = 0.0;
-        for (const ForecastImpact& i : impacts) dent_sum += i.dent_area_m2, dent_sum2 += static_cast<double>(i.dent_area_m2) * i.dent_area_m2;
+        for (const ForecastImpact& i : impacts)
+            dent_sum += i.dent_area_m2, dent_sum2 += static_cast<double>(i.dent_area_m2) * i.dent_area_m2;
         const double dent_spread_area = dent_sum > 0.0 ? dent_sum2 / dent_sum : 0.0;
+        const ReachBoundary boundary(progress, mesh, std::sqrt(*std::max_element(dents.begin(), dents.end()) / M_PI));
 
         // The first extrapolation span: as if each area's rate were even (C = 1 - exp(-k t)), doubled.
         double span = 0.0;
@@ -833,7 +912,7 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
         for (int round = 0; round < kRadiusRounds; ++round) {
             radius = radius_for(span, dent_q);
             const double line_radius = line_radius_for(span, dent_q, radius);
-            const KernelField field(progress, mesh, impacts, edges, batches, used, radius, line_radius, areas_of_class, areas);
+            const KernelField field(progress, mesh, impacts, edges, boundary, batches, used, radius, line_radius, areas_of_class, areas);
             f.summary.cells = field.uncovered_cells();
             double slowest = 0.0;
             for (std::size_t a = 0; a < areas; ++a) {
@@ -847,7 +926,8 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
 
             // The jackknife at h (each used batch left out in turn: the rate window shrinks with
             // it), and the smoothing bias from 2 h.
-            const KernelField wide(progress, mesh, impacts, edges, batches, used, 2.0 * radius, 2.0 * line_radius, areas_of_class, areas);
+            const KernelField wide(progress, mesh, impacts, edges, boundary, batches, used, 2.0 * radius, 2.0 * line_radius, areas_of_class,
+                                   areas);
             const double quantile = student_t_two_sided_quantile(0.05, std::max(1.0, used_count - 1.0));
             const double left_out_window = rate_window * (used_count - 1) / std::max(1, used_count);
             std::vector<std::vector<double>> replicate(areas);  // per area: tau of each replicate (s)
@@ -947,7 +1027,8 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
     }
     // Everywhere already reached: when its last area did.
     if (f.everywhere.status == AreaForecast::Status::none && !everywhere_areas.empty() &&
-        std::all_of(everywhere_areas.begin(), everywhere_areas.end(), [&](std::size_t a) { return out[a].status == AreaForecast::Status::reached; })) {
+        std::all_of(everywhere_areas.begin(), everywhere_areas.end(),
+                    [&](std::size_t a) { return out[a].status == AreaForecast::Status::reached; })) {
         f.everywhere.status = AreaForecast::Status::reached;
         f.everywhere.time_s = 0.0;
         for (std::size_t a : everywhere_areas)
@@ -959,7 +1040,8 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
     }
     f.everywhere.coverage_now = kNaN;
     for (std::size_t a : everywhere_areas)
-        f.everywhere.coverage_now = std::isnan(f.everywhere.coverage_now) ? out[a].coverage_now : std::min(f.everywhere.coverage_now, out[a].coverage_now);
+        f.everywhere.coverage_now =
+            std::isnan(f.everywhere.coverage_now) ? out[a].coverage_now : std::min(f.everywhere.coverage_now, out[a].coverage_now);
     f.whole = out[0];
     std::copy(out.begin() + 1, out.begin() + 1 + static_cast<std::ptrdiff_t>(regions), f.regions.begin());
     return f;

@@ -1,0 +1,207 @@
+#include "analysis/reach_boundary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <unordered_set>
+
+#include "analysis/row_runs.h"
+#include "geometry/mesh_checks.h"
+
+namespace peensim {
+
+namespace {
+
+constexpr double kSameFacingCos = 0.5;  // a source within 60 degrees of a sample's normal bounds its dents
+// The sources' voxels are finer (a source's place is its samples' mean: off the boundary by up to
+// half its voxel, which would read as distance).
+constexpr double kSourceVoxelsPerVoxel = 4.0;
+
+std::uint64_t cube_key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto axis = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0xFFFFF; };
+    return axis(x) | axis(y) << 20 | axis(z) << 40;
+}
+std::int64_t cell(double v, double inverse_side) { return static_cast<std::int64_t>(std::floor(v * inverse_side)); }
+std::uint64_t cube_key(const Vec3& p, double inverse_side) {
+    return cube_key(cell(p.x(), inverse_side), cell(p.y(), inverse_side), cell(p.z(), inverse_side));
+}
+
+}  // namespace
+
+double disc_share_inside(double d_m, double rho_m) {
+    if (!(rho_m > 0.0) || d_m >= rho_m) return 1.0;
+    const double d = std::max(d_m, -rho_m) / rho_m;                    // in radii
+    const double segment = std::acos(d) - d * std::sqrt(1.0 - d * d);  // / rho^2: the part beyond the line
+    return 1.0 - segment / M_PI;
+}
+
+std::uint64_t ReachBoundary::key(const Vec3& p, bool reachable) const {
+    return reachable ? cube_key(p, inverse_side_) | std::uint64_t{1} << 63 : cube_key(p, kSourceVoxelsPerVoxel * inverse_side_);
+}
+
+ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMesh& mesh, double reach_m) : reach_m_(reach_m) {
+    if (!(reach_m > 0.0)) return;
+    const SampleClasses& classes = progress.classes();
+    const CoverageMap& map = progress.map();
+    const double inverse_reach = 1.0 / reach_m;
+    const auto reachable_triangle = [&](std::size_t t) {
+        const std::uint16_t k = classes.triangle_class(t);
+        return k != SampleClasses::kMixed && classes.info(k).reachable;
+    };
+    // Cubes of side reach_m holding unreachable samples; the triangles with reachable samples whose
+    // bounding box comes within reach of one.
+    std::unordered_set<std::uint64_t> unreachable_cubes;
+    map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
+        if (reachable_triangle(t)) return;
+        const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
+        for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
+            for (std::int64_t j = i; j < i + run; ++j)
+                if (!mixed || !classes.info(classes.class_of(t, index + j)).reachable) {
+                    unreachable_cubes.insert(cube_key(first + static_cast<double>(j) * step, inverse_reach));
+                    return;
+                }
+        });
+    });
+    if (unreachable_cubes.empty()) return;
+    near_triangle_.assign(mesh.triangle_count(), false);
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        if (classes.reachable_samples(t) == 0) continue;
+        const Vec3 a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+        const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(reach_m), hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(reach_m);
+        bool found = false;
+        for (std::int64_t z = cell(lo.z(), inverse_reach); z <= cell(hi.z(), inverse_reach) && !found; ++z)
+            for (std::int64_t y = cell(lo.y(), inverse_reach); y <= cell(hi.y(), inverse_reach) && !found; ++y)
+                for (std::int64_t x = cell(lo.x(), inverse_reach); x <= cell(hi.x(), inverse_reach) && !found; ++x)
+                    found = unreachable_cubes.count(cube_key(x, y, z)) != 0;
+        near_triangle_[t] = found;
+    }
+    // Cubes of side reach_m with reachable samples of those triangles.
+    std::unordered_set<std::uint64_t> reachable_cubes;
+    map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
+        if (!near_triangle_[t]) return;
+        const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
+        for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
+            for (std::int64_t j = i; j < i + run; ++j)
+                if (!mixed || classes.info(classes.class_of(t, index + j)).reachable) {
+                    reachable_cubes.insert(cube_key(first + static_cast<double>(j) * step, inverse_reach));
+                    return;
+                }
+        });
+    });
+    // Whether a cube of side reach_m or one of its neighbours is in `cubes`: only there can a
+    // sample lie within reach_m of one in `cubes`.
+    const auto next_to = [&](const std::unordered_set<std::uint64_t>& cubes, const Vec3& p) {
+        const std::int64_t cx = cell(p.x(), inverse_reach), cy = cell(p.y(), inverse_reach), cz = cell(p.z(), inverse_reach);
+        for (std::int64_t dz = -1; dz <= 1; ++dz)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dx = -1; dx <= 1; ++dx)
+                    if (cubes.count(cube_key(cx + dx, cy + dy, cz + dz)) != 0) return true;
+        return false;
+    };
+
+    // The voxels, in the cubes next to the boundary: the reachable samples of the near triangles,
+    // and the unreachable samples (the sources), each voxel of the run by its first sample.
+    inverse_side_ = kReachVoxelsPerRadius * inverse_reach;
+    const auto voxel_of = [&](const Vec3& p, bool reachable, const Vec3& n) -> Voxel& {
+        const auto [it, added] = index_.try_emplace(key(p, reachable), static_cast<std::uint32_t>(voxels_.size()));
+        if (added) {
+            Voxel v;
+            v.reachable = reachable;
+            for (int k = 0; k < 3; ++k) v.normal[k] = static_cast<float>(n[k]);
+            if (reachable) v.point = p;
+            voxels_.push_back(v);
+        }
+        return voxels_[it->second];
+    };
+    map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
+        const bool all_reachable = reachable_triangle(t);
+        if (all_reachable && !near_triangle_[t]) return;
+        const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
+        const Vec3 n = triangle_normal(mesh, t);
+        for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
+            const Vec3 p = first + static_cast<double>(i) * step;
+            const bool reachable_here = near_triangle_[t] && next_to(unreachable_cubes, p);
+            const bool sources_here = !all_reachable && next_to(reachable_cubes, p);
+            if (!reachable_here && !sources_here) return;
+            // The voxels nest in the cubes (the sources' in the reachable ones): the run's voxel runs.
+            for_each_cube_run(p, step, run, Vec3::Zero(), (all_reachable ? 1.0 : kSourceVoxelsPerVoxel) * inverse_side_,
+                              [&](std::int64_t k, std::int64_t part) {
+                                  const Vec3 q = p + static_cast<double>(k) * step;
+                                  if (!mixed) {  // one class: the part at once
+                                      if (all_reachable) {
+                                          voxel_of(q, true, n);
+                                          return;
+                                      }
+                                      Voxel& v = voxel_of(q, false, n);
+                                      const Vec3 mean = q + 0.5 * static_cast<double>(part - 1) * step;
+                                      v.count += static_cast<std::uint32_t>(part);
+                                      v.point += (mean - v.point) * (static_cast<double>(part) / static_cast<double>(v.count));
+                                      return;
+                                  }
+                                  for (std::int64_t j = i + k; j < i + k + part; ++j) {
+                                      const Vec3 x = first + static_cast<double>(j) * step;
+                                      if (classes.info(classes.class_of(t, index + j)).reachable) {
+                                          if (reachable_here) voxel_of(x, true, n);
+                                      } else if (sources_here) {
+                                          Voxel& v = voxel_of(x, false, n);
+                                          v.point += (x - v.point) / static_cast<double>(++v.count);
+                                      }
+                                  }
+                              });
+        });
+    });
+
+    // Vector propagation from the sources through the reachable voxels, while within reach.
+    std::deque<std::uint32_t> queue;
+    for (std::uint32_t i = 0; i < voxels_.size(); ++i) {
+        Voxel& v = voxels_[i];
+        if (v.reachable) continue;
+        v.source = i, v.source_d2 = 0.0f;
+        queue.push_back(i);
+    }
+    // A voxel whose first sample lies beyond reach may still hold samples within it: out to reach
+    // plus the voxel's diagonal (each sample's own distance decides, in distance()).
+    const double reach2 = std::pow(reach_m + std::sqrt(3.0) / inverse_side_, 2);
+    while (!queue.empty()) {
+        const Voxel& from = voxels_[queue.front()];
+        queue.pop_front();
+        const Voxel& source = voxels_[from.source];
+        const Vec3 source_point = source.point;
+        const Vec3 source_normal(source.normal[0], source.normal[1], source.normal[2]);
+        const Vec3 from_point = from.point;
+        const double side = 1.0 / inverse_side_;
+        const std::uint32_t source_index = from.source;
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const auto it = index_.find(key(from_point + side * Vec3(dx, dy, dz), true));
+                    if (it == index_.end()) continue;
+                    Voxel& to = voxels_[it->second];
+                    if (Vec3(to.normal[0], to.normal[1], to.normal[2]).dot(source_normal) < kSameFacingCos) continue;
+                    const auto d2 = static_cast<float>((to.point - source_point).squaredNorm());
+                    if (!(d2 < to.source_d2) || !(d2 < reach2)) continue;
+                    to.source = source_index, to.source_d2 = d2;
+                    queue.push_back(it->second);
+                }
+    }
+}
+
+std::uint32_t ReachBoundary::source_near(const Vec3& x) const {
+    const auto it = index_.find(key(x, true));
+    return it == index_.end() || voxels_[it->second].source == kNoSource ? kNoSource : it->second;
+}
+
+double ReachBoundary::distance(const Vec3& x, std::uint32_t voxel) const {
+    if (voxel == kNoSource) return std::numeric_limits<double>::infinity();
+    const Voxel& v = voxels_[voxel];
+    const Vec3& s = voxels_[v.source].point;
+    // To the boundary as a straight line through the source, across the direction from it to the
+    // voxel's own point (the nearest point of a line lies square to it): not to the source itself,
+    // which for a sample beside the voxel's point lies off to the side.
+    const Vec3 across = v.point - s;
+    const double length = across.norm();
+    const double d = length > 0.0 ? std::max(0.0, (x - s).dot(across) / length) : (x - s).norm();
+    return d < reach_m_ ? d : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace peensim
