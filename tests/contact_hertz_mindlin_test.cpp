@@ -4,7 +4,9 @@
 // when elastic; the tangential spring sticks below Coulomb's cap and slides at it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "contact/hertz_mindlin.h"
 
@@ -108,6 +110,81 @@ TEST(HertzMindlin, TheTangentialSpringSticksBelowCoulombsCapAndSlidesAtIt) {
     EXPECT_NEAR(f2.norm(), p.friction * fn, 1e-12 * fn);
     EXPECT_NEAR((-s_t * spring - f2).norm(), 0.0, 1e-9 * fn);
     EXPECT_LT(f2.y(), 0.0);  // against the slip
+}
+
+// LIGGGHTS 3.8's `tangential history` (its src/tangential_model_history.h), written out for the
+// comparison of tests/bench/soft_vs_liggghts (README, "Soft-sphere contacts"): the same spring and
+// damping, but its Coulomb cap compares the spring's force alone with f |F_n| (the magnitude of the
+// damped normal force, which pulls at the end of a damped contact) and drops the damping while
+// sliding; mindlin_tangential_force caps the spring and its damping together at f max(0, F_n).
+Vec3 liggghts_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, double dt_s, Vec3& shear_m) {
+    const double s_t = 8.0 * p.G_star_pa * std::sqrt(p.R_star_m * std::max(0.0, delta_m));
+    shear_m += v_t * dt_s;
+    Vec3 force = -s_t * shear_m;
+    const double cap = p.friction * std::abs(normal_force_n);
+    if (force.norm() > cap) {
+        force *= cap / force.norm();
+        shear_m = -force / s_t;
+        return force;
+    }
+    return force + 2.0 * std::sqrt(5.0 / 6.0) * p.beta * std::sqrt(s_t * p.m_star_kg) * v_t;  // beta < 0: opposes v_t
+}
+
+TEST(HertzMindlin, CoulombsCapTakesTheSpringWithItsDampingAndNoPullUnlikeLiggghts) {
+    const HertzPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.8, 0.3);
+    const double d = 1e-6, s_t = 8.0 * p.G_star_pa * std::sqrt(kR * d);
+    const double gamma_t = -2.0 * std::sqrt(5.0 / 6.0) * p.beta * std::sqrt(s_t * kMass);  // N s/m, > 0
+    const double fn = hertz_normal_force(p, d, 0.0), cap = p.friction * fn;
+    // The spring's force at 0.9 of the cap and its damping's 0.3 of it. Opposed, both laws give
+    // their sum, 0.6 of the cap.
+    const Vec3 v_t(0.3 * cap / gamma_t, 0.0, 0.0);
+    Vec3 spring(-0.9 * cap / s_t, 0.0, 0.0), shear = spring;
+    EXPECT_NEAR(mindlin_tangential_force(p, d, fn, v_t, Vec3::Zero(), spring).x(), 0.6 * cap, 1e-12 * cap);
+    EXPECT_NEAR(liggghts_tangential_force(p, d, fn, v_t, 0.0, shear).x(), 0.6 * cap, 1e-12 * cap);
+    // Together (the spring loading while the contact point still slips): LIGGGHTS holds 1.2 times
+    // Coulomb's cap (its spring alone is below it); this law slides at the cap.
+    spring = shear = Vec3(0.9 * cap / s_t, 0.0, 0.0);
+    EXPECT_NEAR(mindlin_tangential_force(p, d, fn, v_t, Vec3::Zero(), spring).x(), -cap, 1e-12 * cap);
+    EXPECT_NEAR(liggghts_tangential_force(p, d, fn, v_t, 0.0, shear).x(), -1.2 * cap, 1e-12 * cap);
+    // At the end of a damped contact the normal force pulls (F_n < 0): no friction here, f |F_n| there.
+    const double pull = hertz_normal_force(p, d, -5.0);
+    ASSERT_LT(pull, 0.0);
+    spring = shear = Vec3(10.0 * cap / s_t, 0.0, 0.0);  // far past either cap: sliding
+    EXPECT_EQ(mindlin_tangential_force(p, d, pull, Vec3::Zero(), Vec3::Zero(), spring).norm(), 0.0);
+    EXPECT_NEAR(liggghts_tangential_force(p, d, pull, Vec3::Zero(), 0.0, shear).norm(), p.friction * -pull, 1e-12 * cap);
+}
+
+// A sliding impact on a wall (2 m/s normal, 8 m/s tangential, no spin; e 0.8, f 0.3), integrated as
+// LIGGGHTS's nve/sphere does (half kick, drift, forces, half kick) at 1.5e-9 s (4000 steps per
+// contact), with either cap. Returns the tangential speed lost over Coulomb's f (1 + e) v_n.
+template <class Tangential>
+double sliding_loss_over_coulomb(const HertzPair& p, Tangential tangential) {
+    const double vn0 = 2.0, vt0 = 8.0, dt = 1.5e-9, inertia = 0.4 * kMass * kR * kR;
+    double z = kR, vz = -vn0, vx = vt0, w = 0.0, fn = 0.0, ft = 0.0;  // the centre's height, m; spin about y, rad/s
+    Vec3 spring = Vec3::Zero();
+    for (int k = 0; k < 100000; ++k) {
+        vz += 0.5 * dt * fn / kMass, vx += 0.5 * dt * ft / kMass, w -= 0.5 * dt * kR * ft / inertia;
+        z += vz * dt;
+        const double d = kR - z;
+        if (d <= 0.0 && k > 0) return (vt0 - vx) / (p.friction * 1.8 * vn0);
+        fn = hertz_normal_force(p, d, -vz);
+        ft = tangential(d, fn, Vec3(vx - kR * w, 0.0, 0.0), dt, spring).x();  // the contact point's slip: v - w R
+        vz += 0.5 * dt * fn / kMass, vx += 0.5 * dt * ft / kMass, w -= 0.5 * dt * kR * ft / inertia;
+    }
+    return NAN;
+}
+
+TEST(HertzMindlin, ASlidingImpactLosesCoulombsImpulseWhereLiggghtsLosesTwoPercentMore) {
+    const HertzPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.8, 0.3);
+    const double ours = sliding_loss_over_coulomb(
+        p, [&](double d, double fn, const Vec3& v, double dt, Vec3& s) { return mindlin_tangential_force(p, d, fn, v, dt, s); });
+    const double theirs = sliding_loss_over_coulomb(
+        p, [&](double d, double fn, const Vec3& v, double dt, Vec3& s) { return liggghts_tangential_force(p, d, fn, v, dt, s); });
+    std::printf("[ sliding  ] tangential loss / Coulomb's: this law %.5f, LIGGGHTS's cap %.5f\n", ours, theirs);
+    // Measured: 0.99250 and 1.01906. LIGGGHTS 3.8 itself, the same impact
+    // (tests/bench/soft_vs_liggghts/liggghts_single_impact.py --vn 2 --vt 8): 1.01902.
+    EXPECT_NEAR(ours, 0.9925, 0.0002);
+    EXPECT_NEAR(theirs, 1.0190, 0.0002);
 }
 
 }  // namespace

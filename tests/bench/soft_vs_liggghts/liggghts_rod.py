@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""LIGGGHTS reference half of the soft-sphere comparison on the "rod" ultrasonic-peening scene.
+"""LIGGGHTS reference half of the soft-sphere comparison on the "rod" ultrasonic-peening scene
+(and, with --scene plate, on the "plate" scene: the rod replaced by a flat plate hung under the lid).
 
 Two sub-commands, both driven by liggghts_rod.sh (standard library only: no numpy):
 
   liggghts_rod.py setup OUTDIR [--duration S] [--settle S] [--seed N] [--shots N] [--dump-every K]
+                              [--scene rod|plate] [--restitution E] [--friction F]
       writes the meshes (ASCII STL, metres), the shot positions, the LIGGGHTS input deck and
       params.json (every number the parser needs, so that the deck and the parser cannot disagree).
   liggghts_rod.py parse OUTDIR [--wall-time S]
@@ -47,8 +49,18 @@ TIMESTEP = 1.5e-7                # s
 SKIN = 0.0004                    # m
 GRAVITY = 9.81                   # m/s2, along -z
 SHOT_Z_RANGE = (0.0013, 0.0065)  # m: initial shot centres above the floor
+IMPACT_LINE = 0.05               # m/s: peensim's default accuracy.impact_speed (parse only)
 
-# Mesh order in the one fix wall/gran: the dump's mesh index is this position.
+# The plate scene (--scene plate): the rod left out, a flat plate of 40 x 20 x 4 mm hung under the
+# lid instead, centred in x and y, its top face in the lid's plane (z 36 to 40 mm). 300 shot, e 0.8,
+# Coulomb 0.3 (issue 28, item 4).
+PLATE_SIZE = (0.040, 0.020, 0.004)    # m, along x, y, z
+PLATE_CENTER = (0.0, 0.0, 0.038)      # m
+SCENE_DEFAULTS = {"rod": {"shots": 512, "restitution": RESTITUTION, "friction": FRICTION},
+                  "plate": {"shots": 300, "restitution": 0.8, "friction": 0.3}}
+
+# Mesh order in the one fix wall/gran: the dump's mesh index is this position (the part last: the
+# rod or the plate).
 MESHES = ["sonotrode", "walls", "rod"]
 
 
@@ -71,6 +83,20 @@ def rod_triangles():
             # winding chosen so that (b-a)x(c-a) points away from the axis
             tris.append((p00, p01, p10))
             tris.append((p10, p01, p11))
+    return tris
+
+
+def plate_triangles():
+    """The plate's bottom face (normal -z, toward the sonotrode) and its four sides (outward
+    normals), two triangles each. No top face: it lies in the lid's plane, where no shot can
+    touch it."""
+    (x0, x1), (y0, y1), (z0, z1) = [(c - h / 2.0, c + h / 2.0) for c, h in zip(PLATE_CENTER, PLATE_SIZE)]
+    tris = []
+    tris += quad((x0, y0, z0), (x0, y1, z0), (x1, y1, z0), (x1, y0, z0))  # bottom, normal -z
+    tris += quad((x0, y0, z0), (x0, y0, z1), (x0, y1, z1), (x0, y1, z0))  # x-, normal -x
+    tris += quad((x1, y0, z0), (x1, y1, z0), (x1, y1, z1), (x1, y0, z1))  # x+, normal +x
+    tris += quad((x0, y0, z0), (x1, y0, z0), (x1, y0, z1), (x0, y0, z1))  # y-, normal -y
+    tris += quad((x0, y1, z0), (x0, y1, z1), (x1, y1, z1), (x1, y1, z0))  # y+, normal +y
     return tris
 
 
@@ -160,7 +186,7 @@ def place_shots(count, seed):
 
 
 DECK = """\
-# LIGGGHTS 3.8 input deck, written by liggghts_rod.py setup: the "rod" ultrasonic shot-peening
+# LIGGGHTS 3.8 input deck, written by liggghts_rod.py setup: the "{scene}" ultrasonic shot-peening
 # scene with Hertz-Mindlin contacts for every pair. SI units.
 units           si
 atom_style      granular
@@ -175,7 +201,7 @@ read_data       shots.data         # the box and the shot (diameter, density, po
 neighbor        {skin} bin
 neigh_modify    delay 0
 
-# One material (type 1) for shot, rod, walls and sonotrode; surfaces are told apart by mesh index.
+# One material (type 1) for shot, {scene}, walls and sonotrode; surfaces are told apart by mesh index.
 fix             m1 all property/global youngsModulus peratomtype {young}
 fix             m2 all property/global poissonsRatio peratomtype {poisson}
 fix             m3 all property/global coefficientRestitution peratomtypepair 1 {restitution}
@@ -188,11 +214,11 @@ fix             grav all gravity {g} vector 0.0 0.0 -1.0
 
 fix             sonotrode all mesh/surface file meshes/sonotrode.stl type 1
 fix             walls all mesh/surface file meshes/walls.stl type 1
-fix             rod all mesh/surface file meshes/rod.stl type 1
+fix             {scene} all mesh/surface file meshes/{scene}.stl type 1
 # z(t) = A sin(2 pi t / P) from t = 0 (the fix is defined at step 0); the mesh velocity is set too
 fix             vibrate all move/mesh mesh sonotrode wiggle amplitude 0.0 0.0 {amp} period {period}
-# Mesh index in the contact output = position here: 0 sonotrode, 1 walls + lid, 2 rod
-fix             meshwalls all wall/gran model hertz tangential history mesh n_meshes 3 meshes sonotrode walls rod
+# Mesh index in the contact output = position here: 0 sonotrode, 1 walls + lid, 2 {scene}
+fix             meshwalls all wall/gran model hertz tangential history mesh n_meshes 3 meshes sonotrode walls {scene}
 
 fix             integrate all nve/sphere
 
@@ -231,16 +257,22 @@ def cmd_setup(args):
 
     write_ascii_stl(os.path.join(out, "meshes", "sonotrode.stl"), "sonotrode", sonotrode_triangles())
     write_ascii_stl(os.path.join(out, "meshes", "walls.stl"), "walls", wall_triangles())
-    write_ascii_stl(os.path.join(out, "meshes", "rod.stl"), "rod", rod_triangles())
+    scene = args.scene
+    defaults = SCENE_DEFAULTS[scene]
+    shots = args.shots if args.shots is not None else defaults["shots"]
+    restitution = args.restitution if args.restitution is not None else defaults["restitution"]
+    friction = args.friction if args.friction is not None else defaults["friction"]
+    part_triangles = rod_triangles() if scene == "rod" else plate_triangles()
+    write_ascii_stl(os.path.join(out, "meshes", scene + ".stl"), scene, part_triangles)
 
-    pts = place_shots(args.shots, args.seed)
+    pts = place_shots(shots, args.seed)
     # read_data rather than create_atoms: one file, and the box comes with it
     box = ((CHAMBER_X[0] - 0.001, CHAMBER_X[1] + 0.001), (CHAMBER_Y[0] - 0.001, CHAMBER_Y[1] + 0.001),
            (WALL_BOTTOM_Z - 0.001, CHAMBER_Z[1] + 0.001))
     with open(os.path.join(out, "shots.data"), "w") as f:
         f.write("LIGGGHTS data file: %d shot at rest, seed %d, written by liggghts_rod.py setup (SI)\n\n"
                 % (len(pts), args.seed))
-        f.write("%d atoms\n1 atom types\n\n" % len(pts))
+        f.write("%d atoms\n%d atom types\n\n" % (len(pts), 1 if args.friction_shot_shot is None else 2))
         for (a, b), ax in zip(box, "xyz"):
             f.write("%.6f %.6f %slo %shi\n" % (a, b, ax, ax))
         # atom_style granular: id type diameter (m) density (kg/m3) x y z (m)
@@ -249,25 +281,39 @@ def cmd_setup(args):
             f.write("%d 1 %g %g %.9e %.9e %.9e\n" % ((i + 1, SHOT_DIAMETER, SHOT_DENSITY) + p))
 
     deck = DECK.format(
-        skin=SKIN, young=YOUNG, poisson=POISSON, restitution=RESTITUTION, friction=FRICTION,
+        scene=scene, skin=SKIN, young=YOUNG, poisson=POISSON, restitution=restitution, friction=friction,
         dt=TIMESTEP, g=GRAVITY, amp=AMPLITUDE, period=PERIOD,
         thermo_every=max(1, int(round(0.005 / TIMESTEP))),
         settle_steps=settle_steps, prod_steps=prod_steps, dump_every=args.dump_every)
-    with open(os.path.join(out, "in.rod"), "w") as f:
+    if args.friction_shot_shot is not None:
+        # A second material type for the meshes, the same data, so that the shot-shot pair can
+        # have its own friction (a controlled variant: the rest of the deck unchanged).
+        deck = deck.replace("peratomtype %s\n" % YOUNG, "peratomtype %s %s\n" % (YOUNG, YOUNG))
+        deck = deck.replace("peratomtype %s\n" % POISSON, "peratomtype %s %s\n" % (POISSON, POISSON))
+        deck = deck.replace("peratomtypepair 1 %s\n" % restitution, "peratomtypepair 2 %s %s %s %s\n" % ((restitution,) * 4))
+        deck = deck.replace("peratomtypepair 1 %s\n" % friction,
+                            "peratomtypepair 2 %s %s %s %s\n" % (args.friction_shot_shot, friction, friction, friction))
+        deck = deck.replace(".stl type 1", ".stl type 2")
+        assert deck.count(".stl type 2") == 3 and deck.count("peratomtypepair 2") == 2
+    with open(os.path.join(out, "in." + scene), "w") as f:
         f.write(deck)
 
     params = {
-        "scene": "rod", "shots": args.shots, "seed": args.seed,
+        "scene": scene, "shots": shots, "seed": args.seed,
         "timestep_s": TIMESTEP, "dump_every_steps": args.dump_every,
         "settle_steps": settle_steps, "production_steps": prod_steps,
         "settle_s": settle_steps * TIMESTEP, "duration_s": (settle_steps + prod_steps) * TIMESTEP,
         "shot_diameter_m": SHOT_DIAMETER, "shot_density_kg_m3": SHOT_DENSITY,
-        "young_pa": YOUNG, "poisson": POISSON, "restitution": RESTITUTION, "friction": FRICTION,
+        "young_pa": YOUNG, "poisson": POISSON, "restitution": restitution, "friction": friction,
+        "friction_shot_shot": friction if args.friction_shot_shot is None else args.friction_shot_shot,
         "amplitude_m": AMPLITUDE, "period_s": PERIOD, "skin_m": SKIN, "gravity_m_s2": GRAVITY,
-        "meshes": MESHES, "wall_faces": WALL_FACE_NAMES,
-        "rod": {"radius_m": ROD_RADIUS, "facets_around": ROD_FACETS, "segments_along": ROD_SEGMENTS,
-                "end_caps": False, "axis": "y", "x_m": ROD_AXIS_X, "z_m": ROD_AXIS_Z},
+        "meshes": MESHES[:-1] + [scene], "wall_faces": WALL_FACE_NAMES,
     }
+    if scene == "rod":
+        params["rod"] = {"radius_m": ROD_RADIUS, "facets_around": ROD_FACETS, "segments_along": ROD_SEGMENTS,
+                         "end_caps": False, "axis": "y", "x_m": ROD_AXIS_X, "z_m": ROD_AXIS_Z}
+    else:
+        params["plate"] = {"size_m": list(PLATE_SIZE), "center_m": list(PLATE_CENTER), "top_face": False}
     with open(os.path.join(out, "params.json"), "w") as f:
         json.dump(params, f, indent=2)
         f.write("\n")
@@ -412,7 +458,8 @@ def cmd_parse(args):
     omega = 2.0 * math.pi / P["period_s"]
     A = P["amplitude_m"]
 
-    surfaces = {name: Surface(name) for name in ("rod", "sonotrode", "walls", "shot-shot")}
+    part = P.get("scene", "rod")
+    surfaces = {name: Surface(name) for name in (part, "sonotrode", "walls", "shot-shot")}
     mesh_names = P["meshes"]
     diag = {"sonotrode_wall_velocity_max_error_m_s": 0.0, "walls_impacts_by_face": {}, "max_rows_per_frame": {"wall": 0, "pair": 0}}
 
@@ -533,6 +580,11 @@ def cmd_parse(args):
             "rate_by_window_per_s": wrates,
             "normal_speed_corrected_m_s": speed_stats(s.speed_corr, s.starts),
             "normal_speed_raw_m_s": speed_stats(s.speed_raw, s.starts),
+            # peensim's impact line (accuracy.impact_speed, 5 cm/s): slower contacts are not impacts
+            # there; the same statistics over the impacts at or above it, and how many fall below
+            "impacts_below_impact_line": sum(1 for v in s.speed_corr if v < IMPACT_LINE),
+            "normal_speed_corrected_above_impact_line_m_s": speed_stats(
+                [v for v in s.speed_corr if v >= IMPACT_LINE], [t for t, v in zip(s.starts, s.speed_corr) if v >= IMPACT_LINE]),
             "first_frame_overlap_median_m": percentile(sorted(s.delta0), 50),
             "contact_duration_median_s": percentile(sorted(s.durations), 50),
             "contact_duration_mean_s": mean(s.durations),
@@ -589,8 +641,8 @@ def fmt(x, scale=1.0, spec="%.3f"):
 def print_table(st):
     P = st["params"]
     print()
-    print("LIGGGHTS rod scene: %d shot, window %.4f..%.4f s (%.4f s), contact frames every %d steps (%.2f us)"
-          % (P["shots"], st["window_s"][0], st["window_s"][1], st["window_length_s"], P["dump_every_steps"],
+    print("LIGGGHTS %s scene: %d shot, window %.4f..%.4f s (%.4f s), contact frames every %d steps (%.2f us)"
+          % (P.get("scene", "rod"), P["shots"], st["window_s"][0], st["window_s"][1], st["window_length_s"], P["dump_every_steps"],
              P["dump_every_steps"] * P["timestep_s"] * 1e6))
     hdr = "%-10s %9s %10s %8s %8s %7s %7s %7s %7s %7s %8s %8s %9s" % (
         "surface", "impacts", "rate /s", "se_pois", "se_batch", "v mean", "v sem", "v p10", "v p50", "v p90",
@@ -627,7 +679,11 @@ def main():
     a.add_argument("--duration", type=float, default=0.35, help="simulated time, s")
     a.add_argument("--settle", type=float, default=0.15, help="time before the statistics start, s")
     a.add_argument("--seed", type=int, default=1)
-    a.add_argument("--shots", type=int, default=512)
+    a.add_argument("--shots", type=int, default=None, help="number of shot (default 512 rod, 300 plate)")
+    a.add_argument("--scene", choices=sorted(SCENE_DEFAULTS), default="rod")
+    a.add_argument("--restitution", type=float, default=None, help="every pair (default 0.9 rod, 0.8 plate)")
+    a.add_argument("--friction", type=float, default=None, help="Coulomb, every pair (default 0.1 rod, 0.3 plate)")
+    a.add_argument("--friction-shot-shot", type=float, default=None, help="Coulomb, shot-shot only (default: --friction)")
     a.add_argument("--dump-every", type=int, default=2, help="contact output interval, steps")
     b = sub.add_parser("parse")
     b.add_argument("outdir")

@@ -1,25 +1,31 @@
 #!/usr/bin/env bash
 # LIGGGHTS reference run of the "rod" ultrasonic shot-peening scene with Hertz-Mindlin contacts
-# (the reference half of the soft-sphere side-by-side comparison; see README.md beside this file).
+# (the reference half of the soft-sphere side-by-side comparison; see README.md beside this file);
+# with --scene plate the "plate" scene (a flat plate hung under the lid in place of the rod).
 #
 #   liggghts_rod.sh OUTDIR [--duration S] [--settle S] [--seed N] [--shots N] [--dump-every K]
-#                          [--delete-dumps]
+#                          [--delete-dumps] [--scene rod|plate] [--restitution E] [--friction F]
+#                          [--friction-shot-shot F]
 #
 #   --duration S     simulated time, s (default 0.35)
 #   --settle S       time left out of the statistics at the start, s (default 0.15)
 #   --seed N         seed of the random shot placement (default 1)
-#   --shots N        number of shot (default 512)
+#   --shots N        number of shot (default 512; plate 300)
 #   --dump-every K   per-contact output interval, steps of 0.15 us (default 2; see README)
 #   --delete-dumps   remove the contact dumps after a successful parse (~480 MB for the default run)
+#   --scene S        rod (default) or plate
+#   --restitution E  every pair (default 0.9; plate 0.8)
+#   --friction F     Coulomb's coefficient, every pair (default 0.1; plate 0.3)
+#   --friction-shot-shot F   the shot-shot pair's alone (default: --friction's)
 #
-# Writes into OUTDIR: in.rod (the deck), meshes/*.stl, shots.data, params.json, log.liggghts,
+# Writes into OUTDIR: in.rod or in.plate (the deck), meshes/*.stl, shots.data, params.json, log.liggghts,
 # screen.txt, wall_contacts.dump, pair_contacts.dump, liggghts_stats.json; prints a table.
 # Needs Debian's liggghts (installed here with apt-get if missing: needs root) and python3.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 
-usage() { sed -n '2,17p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+usage() { sed -n '2,23p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 
 [[ $# -ge 1 ]] || usage
 outdir="$1"; shift
@@ -27,9 +33,11 @@ outdir="$1"; shift
 duration=0.35
 settle=0.15
 seed=1
-shots=512
+shots=
 dump_every=2
 delete_dumps=0
+scene=rod
+material=()
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --duration) duration="$2"; shift 2 ;;
@@ -38,6 +46,8 @@ while [[ $# -gt 0 ]]; do
         --shots) shots="$2"; shift 2 ;;
         --dump-every) dump_every="$2"; shift 2 ;;
         --delete-dumps) delete_dumps=1; shift ;;
+        --scene) scene="$2"; shift 2 ;;
+        --restitution|--friction|--friction-shot-shot) material+=("$1" "$2"); shift 2 ;;
         -h|--help) usage ;;
         *) echo "liggghts_rod.sh: unknown option $1" >&2; usage ;;
     esac
@@ -55,13 +65,13 @@ fi
 mkdir -p "$outdir"
 outdir="$(cd "$outdir" && pwd)"
 python3 "$here/liggghts_rod.py" setup "$outdir" --duration "$duration" --settle "$settle" \
-    --seed "$seed" --shots "$shots" --dump-every "$dump_every"
+    --seed "$seed" ${shots:+--shots "$shots"} --dump-every "$dump_every" --scene "$scene" ${material[@]+"${material[@]}"}
 rm -f "$outdir/wall_contacts.dump" "$outdir/pair_contacts.dump" "$outdir/liggghts_stats.json"
 
 # The deck uses relative paths (meshes/, shots.data, the dumps): run inside OUTDIR.
 echo "liggghts_rod.sh: running LIGGGHTS in $outdir (log: log.liggghts, progress: screen.txt)" >&2
 start=$(date +%s.%N)
-if ! (cd "$outdir" && liggghts -in in.rod -log log.liggghts -echo none > screen.txt 2>&1); then
+if ! (cd "$outdir" && liggghts -in "in.$scene" -log log.liggghts -echo none > screen.txt 2>&1); then
     echo "liggghts_rod.sh: LIGGGHTS failed; the end of its output:" >&2
     tail -n 20 "$outdir/screen.txt" >&2
     exit 1
