@@ -185,6 +185,17 @@ def place_shots(count, seed):
     return pts
 
 
+# The contact model of every deck of the comparison (one material, type 1; format with young,
+# poisson, restitution, friction): Hertz-Mindlin with the tangential history, E, nu, e, Coulomb's f.
+CONTACT_MODEL = """fix             m1 all property/global youngsModulus peratomtype {young}
+fix             m2 all property/global poissonsRatio peratomtype {poisson}
+fix             m3 all property/global coefficientRestitution peratomtypepair 1 {restitution}
+fix             m4 all property/global coefficientFriction peratomtypepair 1 {friction}
+
+pair_style      gran model hertz tangential history
+pair_coeff      * *
+"""
+
 DECK = """\
 # LIGGGHTS 3.8 input deck, written by liggghts_rod.py setup: the "{scene}" ultrasonic shot-peening
 # scene with Hertz-Mindlin contacts for every pair. SI units.
@@ -202,14 +213,7 @@ neighbor        {skin} bin
 neigh_modify    delay 0
 
 # One material (type 1) for shot, {scene}, walls and sonotrode; surfaces are told apart by mesh index.
-fix             m1 all property/global youngsModulus peratomtype {young}
-fix             m2 all property/global poissonsRatio peratomtype {poisson}
-fix             m3 all property/global coefficientRestitution peratomtypepair 1 {restitution}
-fix             m4 all property/global coefficientFriction peratomtypepair 1 {friction}
-
-pair_style      gran model hertz tangential history
-pair_coeff      * *
-timestep        {dt}
+""" + CONTACT_MODEL + """timestep        {dt}
 fix             grav all gravity {g} vector 0.0 0.0 -1.0
 
 fix             sonotrode all mesh/surface file meshes/sonotrode.stl type 1

@@ -39,7 +39,7 @@ def main():
         f.write("one shot\n\n1 atoms\n1 atom types\n\n-0.01 0.01 xlo xhi\n-0.01 0.01 ylo yhi\n-0.002 0.01 zlo zhi\n\n"
                 "Atoms\n\n1 1 %g %g 0 0 %.12e\n" % (L.SHOT_DIAMETER, L.SHOT_DENSITY, R + gap))
     steps = int(round((gap / a.vn + 30e-6) / DT))
-    deck = """units si
+    deck = ("""units si
 atom_style granular
 atom_modify map array
 boundary f f f
@@ -49,13 +49,7 @@ hard_particles yes
 read_data shot.data
 neighbor {skin} bin
 neigh_modify delay 0
-fix m1 all property/global youngsModulus peratomtype {young}
-fix m2 all property/global poissonsRatio peratomtype {poisson}
-fix m3 all property/global coefficientRestitution peratomtypepair 1 {e}
-fix m4 all property/global coefficientFriction peratomtypepair 1 {f}
-pair_style gran model hertz tangential history
-pair_coeff * *
-timestep {dt}
+""" + L.CONTACT_MODEL + """timestep {dt}
 fix floor all mesh/surface file floor.stl type 1
 fix wall all wall/gran model hertz tangential history mesh n_meshes 1 meshes floor
 fix integrate all nve/sphere
@@ -65,7 +59,7 @@ dump d all local 1 contacts.dump c_wallc[1] c_wallc[2] c_wallc[3] c_wallc[4] c_w
 dump f all custom {steps} final.dump id vx vy vz omegax omegay omegaz
 dump_modify f format "%d %.12g %.12g %.12g %.12g %.12g %.12g"
 run {steps}
-""".format(skin=L.SKIN, young=L.YOUNG, poisson=L.POISSON, e=a.restitution, f=a.friction, dt=DT,
+""").format(skin=L.SKIN, young=L.YOUNG, poisson=L.POISSON, restitution=a.restitution, friction=a.friction, dt=DT,
            vt=a.vt, vz=-a.vn, steps=steps)
     with open(os.path.join(a.outdir, "in.single"), "w") as f:
         f.write(deck)
