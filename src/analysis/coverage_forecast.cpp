@@ -10,6 +10,7 @@
 #include <random>
 #include <unordered_map>
 
+#include "analysis/cube_keys.h"
 #include "analysis/reach_boundary.h"
 #include "analysis/row_runs.h"
 #include "analysis/sample_mean.h"
@@ -29,16 +30,6 @@ constexpr int kRootIterations = 60;         // bisection steps on the span
 constexpr double kLargestSpan = 1e6;        // tau / T beyond which a target counts as never reached
 constexpr double kRestAreaShare = 1e-6;     // a rest smaller than this share of the peened area is round-off of the regions
 constexpr double kLeastThinnedShare = 0.1;  // the kernel left to an impact after its hole, at least (see "The selection")
-
-// Bins of (cube, facing) keyed into 64 bits: 20 bits per cube coordinate, 3 for the facing.
-std::uint64_t cube_key(std::int64_t x, std::int64_t y, std::int64_t z, int facing) {
-    const auto axis = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0xFFFFF; };
-    return axis(x) | axis(y) << 20 | axis(z) << 40 | static_cast<std::uint64_t>(facing + 1) << 60;
-}
-std::array<std::int64_t, 3> cube_of(const Vec3& p, double inverse_side) {
-    return {static_cast<std::int64_t>(std::floor(p.x() * inverse_side)), static_cast<std::int64_t>(std::floor(p.y() * inverse_side)),
-            static_cast<std::int64_t>(std::floor(p.z() * inverse_side))};
-}
 
 // Ids sorted by their cube keys -> the map from a key to its run [first, end) in `ids`: every id
 // of a cube in one look-up.

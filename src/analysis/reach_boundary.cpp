@@ -5,6 +5,7 @@
 #include <deque>
 #include <unordered_set>
 
+#include "analysis/cube_keys.h"
 #include "analysis/row_runs.h"
 #include "geometry/mesh_checks.h"
 
@@ -17,15 +18,6 @@ constexpr double kSameFacingCos = 0.5;  // a source within 60 degrees of a sampl
 // half its voxel, which would read as distance).
 constexpr double kSourceVoxelsPerVoxel = 4.0;
 
-std::uint64_t cube_key(std::int64_t x, std::int64_t y, std::int64_t z) {
-    const auto axis = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0xFFFFF; };
-    return axis(x) | axis(y) << 20 | axis(z) << 40;
-}
-std::int64_t cell(double v, double inverse_side) { return static_cast<std::int64_t>(std::floor(v * inverse_side)); }
-std::uint64_t cube_key(const Vec3& p, double inverse_side) {
-    return cube_key(cell(p.x(), inverse_side), cell(p.y(), inverse_side), cell(p.z(), inverse_side));
-}
-
 }  // namespace
 
 double disc_share_inside(double d_m, double rho_m) {
@@ -36,7 +28,7 @@ double disc_share_inside(double d_m, double rho_m) {
 }
 
 std::uint64_t ReachBoundary::key(const Vec3& p, bool reachable) const {
-    return reachable ? cube_key(p, inverse_side_) | std::uint64_t{1} << 63 : cube_key(p, kSourceVoxelsPerVoxel * inverse_side_);
+    return reachable ? cube_key_of(p, inverse_side_) | std::uint64_t{1} << 63 : cube_key_of(p, kSourceVoxelsPerVoxel * inverse_side_);
 }
 
 ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMesh& mesh, double reach_m) : reach_m_(reach_m) {
@@ -48,54 +40,49 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
         const std::uint16_t k = classes.triangle_class(t);
         return k != SampleClasses::kMixed && classes.info(k).reachable;
     };
-    // Cubes of side reach_m holding unreachable samples; the triangles with reachable samples whose
-    // bounding box comes within reach of one.
-    std::unordered_set<std::uint64_t> unreachable_cubes;
-    map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
-        if (reachable_triangle(t)) return;
-        const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
-        for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
-            for (std::int64_t j = i; j < i + run; ++j)
-                if (!mixed || !classes.info(classes.class_of(t, index + j)).reachable) {
-                    unreachable_cubes.insert(cube_key(first + static_cast<double>(j) * step, inverse_reach));
-                    return;
-                }
+    // The cubes of side reach_m holding a sample of the triangles `of` picks that is (not)
+    // `reachable`.
+    const auto cubes_with = [&](bool reachable, const auto& of) {
+        std::unordered_set<std::uint64_t> cubes;
+        map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
+            if (!of(t)) return;
+            const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
+            for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
+                for (std::int64_t j = i; j < i + run; ++j)
+                    if (!mixed || classes.info(classes.class_of(t, index + j)).reachable == reachable) {
+                        cubes.insert(cube_key_of(first + static_cast<double>(j) * step, inverse_reach));
+                        return;
+                    }
+            });
         });
-    });
+        return cubes;
+    };
+    // Cubes holding unreachable samples; the triangles with reachable samples whose bounding box
+    // comes within reach of one.
+    const std::unordered_set<std::uint64_t> unreachable_cubes = cubes_with(false, [&](std::size_t t) { return !reachable_triangle(t); });
     if (unreachable_cubes.empty()) return;
     near_triangle_.assign(mesh.triangle_count(), false);
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
         if (classes.reachable_samples(t) == 0) continue;
         const Vec3 a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
         const Vec3 lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(reach_m), hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(reach_m);
+        const auto from = cube_of(lo, inverse_reach), to = cube_of(hi, inverse_reach);
         bool found = false;
-        for (std::int64_t z = cell(lo.z(), inverse_reach); z <= cell(hi.z(), inverse_reach) && !found; ++z)
-            for (std::int64_t y = cell(lo.y(), inverse_reach); y <= cell(hi.y(), inverse_reach) && !found; ++y)
-                for (std::int64_t x = cell(lo.x(), inverse_reach); x <= cell(hi.x(), inverse_reach) && !found; ++x)
-                    found = unreachable_cubes.count(cube_key(x, y, z)) != 0;
+        for (std::int64_t z = from[2]; z <= to[2] && !found; ++z)
+            for (std::int64_t y = from[1]; y <= to[1] && !found; ++y)
+                for (std::int64_t x = from[0]; x <= to[0] && !found; ++x) found = unreachable_cubes.count(cube_key(x, y, z)) != 0;
         near_triangle_[t] = found;
     }
-    // Cubes of side reach_m with reachable samples of those triangles.
-    std::unordered_set<std::uint64_t> reachable_cubes;
-    map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
-        if (!near_triangle_[t]) return;
-        const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
-        for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
-            for (std::int64_t j = i; j < i + run; ++j)
-                if (!mixed || classes.info(classes.class_of(t, index + j)).reachable) {
-                    reachable_cubes.insert(cube_key(first + static_cast<double>(j) * step, inverse_reach));
-                    return;
-                }
-        });
-    });
+    // Cubes with reachable samples of those triangles.
+    const std::unordered_set<std::uint64_t> reachable_cubes = cubes_with(true, [&](std::size_t t) { return near_triangle_[t]; });
     // Whether a cube of side reach_m or one of its neighbours is in `cubes`: only there can a
     // sample lie within reach_m of one in `cubes`.
     const auto next_to = [&](const std::unordered_set<std::uint64_t>& cubes, const Vec3& p) {
-        const std::int64_t cx = cell(p.x(), inverse_reach), cy = cell(p.y(), inverse_reach), cz = cell(p.z(), inverse_reach);
+        const auto c = cube_of(p, inverse_reach);
         for (std::int64_t dz = -1; dz <= 1; ++dz)
             for (std::int64_t dy = -1; dy <= 1; ++dy)
                 for (std::int64_t dx = -1; dx <= 1; ++dx)
-                    if (cubes.count(cube_key(cx + dx, cy + dy, cz + dz)) != 0) return true;
+                    if (cubes.count(cube_key(c[0] + dx, c[1] + dy, c[2] + dz)) != 0) return true;
         return false;
     };
 
