@@ -234,7 +234,7 @@ TEST(AnalysisRegions, GroupSelectsTheNamedSolid) {
         FAIL() << "an unknown group was accepted";
     } catch (const InputError& e) {
         EXPECT_EQ(e.where().line, 12);
-        EXPECT_EQ(e.field(), "regions.solid-A.group");
+        EXPECT_EQ(e.field(), "regions[solid-A].group");
         EXPECT_NE(std::string(e.what()).find("no group 'C'; its groups: 'A', 'B'"), std::string::npos) << e.what();
     }
 }

@@ -184,6 +184,24 @@ TEST(DistanceGate, ALowerBoundOfTheDistanceAndATightOne) {
     EXPECT_GT(resolved, 1000);
 }
 
+// A grid past its cap (a plate 100 m across under 0.3 mm shot went to 4e10 cells) threw "grid too
+// large" (exit 1). Now its cells coarsen until it fits, and the gate is still a lower bound: here
+// a 1 m plate 1 mm thick against a cap of 1e6 cells.
+TEST(DistanceGate, AGridPastItsCapCoarsensAndStaysALowerBound) {
+    BoxSpec spec;
+    spec.size_m = Vec3(1.0, 1.0, 1e-3);
+    const TriangleMesh mesh = box(spec);
+    const double cell = 0.075e-3, reach = 0.3e-3, cap = 1e6;  // m, m, cells
+    const DistanceGate gate(mesh, cell, reach, cap);
+    EXPECT_LE(static_cast<double>(gate.cell_count()), cap);
+    EXPECT_GT(gate.cell_size(), 10.0 * cell);  // much coarser than asked
+    Random rng(5);
+    for (int k = 0; k < 2000; ++k) {
+        const Vec3 p = random_point(rng, Vec3(-0.6, -0.6, -0.05), Vec3(0.6, 0.6, 0.05));
+        ASSERT_LE(gate.lower_bound(p), exact_distance(mesh, p) + 1e-12) << "not a lower bound at (" << p.transpose() << ")";
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Enclosure
 

@@ -72,6 +72,9 @@ const BadScene catalogue[] = {
     {"shot_sizes_not_summing.yaml", 6, "shot.sizes", "expected the fractions to sum to 1 (within 0.005), got 0.9"},
     {"shot_diameter_and_sizes.yaml", 7, "shot.sizes", "give either shot.diameter (one size) or shot.sizes (a mix), not both"},
     {"shot_sizes_duplicate.yaml", 8, "shot.sizes[1].diameter", "this diameter is already in the mix; give each size once"},
+    {"initial_speed_too_fast.yaml", 3, "shot.initial_speed", "expected a speed in [0, 1000] m/s, got '1e6 m/s'"},
+    {"initial_velocity_too_fast.yaml", 3, "shot.initial_velocity", "expected a velocity of at most 1000 m/s, got 1e+06 m/s"},
+    {"nested_too_deep.yaml", 2, "", "invalid YAML: nested too deep (the reader stops at nesting level"},
 };
 
 // Scenes that read but cannot be compiled into a model (compile_model: a law without what it

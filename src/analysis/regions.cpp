@@ -61,7 +61,7 @@ int group_index(const TriangleMesh& mesh, const RegionDesc& r) {
     std::string known;
     for (const std::string& g : mesh.group_names)
         if (!g.empty()) known += (known.empty() ? "'" : ", '") + g + "'";
-    throw InputError(r.where, "regions." + r.name + ".group",
+    throw InputError(r.where, "regions[" + r.name + "].group",
                      "the mesh has no group '" + *r.group + "'; its groups: " + (known.empty() ? "none named" : known));
 }
 

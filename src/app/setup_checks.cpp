@@ -2,7 +2,9 @@
 
 #include <ostream>
 
+#include "app/region_checks.h"
 #include "model/plausibility.h"
+#include "model/source_checks.h"
 
 namespace peensim {
 
@@ -25,6 +27,8 @@ std::size_t report_setup_issues(const std::vector<AssemblyIssue>& issues, bool s
 SetupCheck check_setup(const Model& model, bool strict, std::ostream& err) {
     SetupCheck s{Random(model.seed), nullptr, {}, 0};
     s.warnings = report_setup_issues(plausibility_issues(model), strict, err);
+    s.warnings += report_setup_issues(region_issues(model), strict, err);
+    s.warnings += report_setup_issues(source_issues(model), strict, err);
     if (model.sonotrode >= 0) s.cavity = std::make_unique<ShotCavity>(model, s.rng);
     s.assembly = check_assembly(model, s.cavity.get());
     s.warnings += report_setup_issues(s.assembly.issues, strict, err);

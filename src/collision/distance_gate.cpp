@@ -12,7 +12,7 @@ namespace {
 constexpr int kMaxLevel = 250;  // levels fit a byte; beyond, the bound is (kMaxLevel - 1) cells
 }
 
-DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double reach_m) {
+DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double reach_m, double max_cells) {
     if (mesh.triangles.empty()) throw std::invalid_argument("DistanceGate: empty mesh");
     if (!(cell_size_m > 0.0)) throw std::invalid_argument("DistanceGate: cell size must be positive");
     mesh_lo_ = mesh.vertices.front();
@@ -22,18 +22,27 @@ DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double 
         mesh_hi_ = mesh_hi_.cwiseMax(v);
     }
     // Levels needed to resolve `reach`, plus a border of that many cells around the mesh so that
-    // points a little outside the bounds still get a sharp answer.
-    const int levels = std::clamp(static_cast<int>(std::ceil(reach_m / cell_size_m)) + 2, 2, kMaxLevel);
-    cell_ = cell_size_m;
-    inv_cell_ = 1.0 / cell_size_m;
-    const double border = levels * cell_size_m;
-    origin_ = mesh_lo_ - Vec3::Constant(border);
-    const Vec3 extent = (mesh_hi_ - mesh_lo_) + Vec3::Constant(2.0 * border);
-    nx_ = static_cast<int>(std::ceil(extent.x() * inv_cell_)) + 1;
-    ny_ = static_cast<int>(std::ceil(extent.y() * inv_cell_)) + 1;
-    nz_ = static_cast<int>(std::ceil(extent.z() * inv_cell_)) + 1;
+    // points a little outside the bounds still get a sharp answer. A grid past max_cells (a plate
+    // 100 m across under 0.3 mm shot: the border cells for_shot's estimate leaves out took it to
+    // 4e10) is coarsened instead of refused ("grid too large", exit 1). Counts in double: a vertex
+    // at 3e38 overflowed the int counts before the check.
+    int levels = 2;
+    for (double cell = cell_size_m;; cell *= 1.25) {
+        levels = std::clamp(static_cast<int>(std::min(std::ceil(reach_m / cell) + 2.0, double(kMaxLevel))), 2, kMaxLevel);
+        const double border = levels * cell;
+        const Vec3 extent = (mesh_hi_ - mesh_lo_) + Vec3::Constant(2.0 * border);
+        const Vec3 counts = ((extent / cell).array().ceil() + 1.0).matrix();
+        if (!std::isfinite(counts.prod())) throw std::invalid_argument("DistanceGate: mesh bounds are not finite");
+        if (counts.prod() > max_cells) continue;
+        cell_ = cell;
+        inv_cell_ = 1.0 / cell;
+        origin_ = mesh_lo_ - Vec3::Constant(border);
+        nx_ = static_cast<int>(counts.x());
+        ny_ = static_cast<int>(counts.y());
+        nz_ = static_cast<int>(counts.z());
+        break;
+    }
     const std::size_t nx = static_cast<std::size_t>(nx_), ny = static_cast<std::size_t>(ny_), nz = static_cast<std::size_t>(nz_);
-    if (nx * ny * nz > 400'000'000ull) throw std::invalid_argument("DistanceGate: grid too large; raise the cell size");
     cells_.assign(nx * ny * nz, static_cast<std::uint8_t>(levels));
     auto index = [&](std::size_t i, std::size_t j, std::size_t k) { return (k * ny + j) * nx + i; };
 

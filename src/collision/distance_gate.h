@@ -21,8 +21,10 @@ namespace peensim {
 
 class DistanceGate {
 public:
-    // cell_size_m: grid spacing (m); reach_m: distances beyond this need not be resolved (m).
-    DistanceGate(const TriangleMesh& mesh, double cell_size_m, double reach_m);
+    // cell_size_m: grid spacing (m); reach_m: distances beyond this need not be resolved (m);
+    // max_cells: a grid that would have more is coarsened by 25 % steps until it fits (a lower
+    // bound still, less sharp). The default, 400 MB of levels, guards memory.
+    DistanceGate(const TriangleMesh& mesh, double cell_size_m, double reach_m, double max_cells = 4e8);
 
     // The gate time stepping uses for a component's mesh: cells of half a shot radius (coarser
     // for large meshes, at most ~8 M cells), resolving distances up to a diameter plus `swing`

@@ -27,6 +27,9 @@ public:
     const SourceLocation& where() const { return where_; }
     const std::string& field() const { return field_; }
     const std::string& problem() const { return problem_; }
+    // The problem with the place it was found ("gear.ply:7: ..."), for an error re-thrown at the
+    // field of another file that named this one (a scene's mesh).
+    std::string problem_at_its_place() const { return format(where_, "", problem_); }
 
     // "scene.yaml:12:5: shot.diameter: expected a positive length, got '-2 mm'"
     static std::string format(const SourceLocation& where, const std::string& field, const std::string& problem) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "contact/rebound_scatter.h"
@@ -78,6 +79,30 @@ void component_bounds(Component& c) {
     }
     c.world_lo = lo;
     c.world_hi = hi;
+}
+
+// Coordinates (m, world) beyond this belong to no peening assembly: a vertex at 3e38 (a damaged
+// export) or a translation in the wrong unit. The collision grids sized from the bounds failed on
+// them with "grid too large" and exit 1; this says where the far point comes from.
+constexpr double kLargestCoordinate_m = 100.0;
+
+void check_extent(const Component& c, const ComponentDesc& desc, std::size_t i) {
+    const double farthest_m = std::max(c.world_lo.cwiseAbs().maxCoeff(), c.world_hi.cwiseAbs().maxCoeff());
+    if (farthest_m <= kLargestCoordinate_m) return;  // (NaN cannot come from a loaded mesh)
+    std::size_t far_vertex = 0;
+    for (std::size_t v = 0; v < c.mesh->vertices.size(); ++v)
+        if (c.mesh->vertices[v].cwiseAbs().maxCoeff() > c.mesh->vertices[far_vertex].cwiseAbs().maxCoeff()) far_vertex = v;
+    const Vec3& far = c.mesh->vertices[far_vertex];  // m, component frame
+    const bool in_mesh = far.cwiseAbs().maxCoeff() > kLargestCoordinate_m;
+    std::ostringstream s;
+    s.precision(4);
+    s << "'" << c.name << "' reaches " << farthest_m << " m from the origin";
+    if (in_mesh)
+        s << " (vertex " << far_vertex + 1 << " of " << desc.mesh_path << " at (" << far.x() / desc.mesh_unit_m << ", "
+          << far.y() / desc.mesh_unit_m << ", " << far.z() / desc.mesh_unit_m << ") file units, mesh_unit " << desc.mesh_unit_m << " m)";
+    s << ": expected an assembly within " << kLargestCoordinate_m << " m of the origin; check "
+      << (in_mesh ? "the file's vertices and mesh_unit" : "translation and the units it is given in");
+    throw InputError(desc.where, component_field(i, in_mesh ? "mesh" : "translation"), s.str());
 }
 
 const ContactPairDesc& contact_for(const SceneDescription& scene, const std::string& key) {
@@ -203,7 +228,7 @@ void add_flow(Model& model, const SceneDescription& scene) {
             try {
                 mesh = load_mesh(s.mesh_path, s.mesh_unit_m);
             } catch (const InputError& e) {
-                throw InputError(s.where, "sinks[" + std::to_string(k) + "].mesh", e.problem());
+                throw InputError(s.where, "sinks[" + std::to_string(k) + "].mesh", e.problem_at_its_place());
             }
             for (Vec3& v : mesh.vertices) v += s.translation_m;
             try {
@@ -311,7 +336,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         try {
             c.mesh = std::make_shared<const TriangleMesh>(load_mesh(desc.mesh_path, desc.mesh_unit_m));
         } catch (const InputError& e) {
-            throw InputError(desc.where, component_field(i, "mesh"), e.problem());
+            throw InputError(desc.where, component_field(i, "mesh"), e.problem_at_its_place());
         }
         c.collider = std::make_shared<const MeshCollider>(*c.mesh);
         c.kinematics = build_kinematics(desc, *c.mesh, up);
@@ -321,6 +346,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         c.coefficients_source = pair.key;
         c.logged = logged.empty() ? logged_by_default(desc.role) : std::find(logged.begin(), logged.end(), desc.name) != logged.end();
         component_bounds(c);
+        check_extent(c, desc, i);
         if (desc.role == ComponentRole::part || desc.role == ComponentRole::fixture || desc.role == ComponentRole::almen) {
             const EdgeReport edges = edge_report(*c.mesh);
             c.solid = edges.boundary_edges == 0 && edges.non_manifold_edges == 0 && edges.misoriented_edges == 0 &&

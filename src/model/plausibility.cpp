@@ -41,6 +41,37 @@ void sonotrode_issues(const Model& m, std::size_t sono, Warn&& warn) {
     }
 }
 
+// A rotating part's rim speed (its farthest point from the axis): peening fixtures turn parts at a
+// few m/s at most, and no part survives a rim at 1000 m/s (the fastest shot a nozzle throws, the
+// schema's limit on sources[].speed); 1e9 rpm made a run crawl without a word.
+template <class Issue>
+void rotation_issues(const Model& m, std::size_t i, Issue&& issue) {
+    const Component& c = m.components[i];
+    const Kinematics& k = c.kinematics;
+    if (k.kind != Kinematics::Kind::rotating || k.omega_rad_per_s == 0.0) return;
+    const double radius_m = c.max_axis_distance_m;
+    const double rim_m_per_s = std::abs(k.omega_rad_per_s) * radius_m;
+    if (!(rim_m_per_s > kPlausibleRimSpeed_m_per_s)) return;
+    const double rpm = std::abs(k.omega_rad_per_s) * 60.0 / (2.0 * M_PI);
+    issue(rim_m_per_s > kLargestRimSpeed_m_per_s, m.description.components[i].where, component_field(i) + ".motion.speed",
+          num(rpm) + " rpm puts the rim of '" + c.name + "' (" + num(radius_m * 1e3) + " mm from the axis) at " + num(rim_m_per_s) +
+              " m/s: " +
+              (rim_m_per_s > kLargestRimSpeed_m_per_s ? "expected at most " + num(kLargestRimSpeed_m_per_s) + " m/s (no part survives it)"
+                                                      : "peening turns parts at a few m/s") +
+              "; a plain number is rad/s (e.g. speed: \"30 rpm\")");
+}
+
+// The shot's start speed: ultrasonic shot fly at 1-20 m/s.
+template <class Warn>
+void start_speed_issues(const Model& m, Warn&& warn) {
+    const ShotDesc& shot = m.description.shot;
+    const bool vector = shot.initial == InitialVelocityKind::vector;
+    const double v = vector ? shot.initial_velocity_m_per_s.norm() : shot.initial_speed_m_per_s;
+    if (shot.initial == InitialVelocityKind::rest || !(v > kPlausibleStartSpeed_m_per_s)) return;
+    warn(shot.where, vector ? "shot.initial_velocity" : "shot.initial_speed",
+         "shot start at " + num(v) + " m/s: far above ultrasonic peening's 1-20 m/s (the sonotrode sets their speed within a few impacts)");
+}
+
 }  // namespace
 
 std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
@@ -51,8 +82,14 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     };
     for (const SceneDescription::Warning& w : scene.warnings) warn(w.where, w.field, w.message);
 
-    for (std::size_t k = 0; k < m.components.size(); ++k)
+    auto issue = [&](bool error, const SourceLocation& where, std::string field, std::string message) {
+        out.push_back({error, where, std::move(field), std::move(message)});
+    };
+    for (std::size_t k = 0; k < m.components.size(); ++k) {
         if (m.components[k].role == ComponentRole::sonotrode) sonotrode_issues(m, k, warn);
+        rotation_issues(m, k, issue);
+    }
+    start_speed_issues(m, warn);
     // The chamber: the union of the chamber components' bounds.
     Vec3 lo = Vec3::Constant(1e300), hi = -lo;
     for (const Component& c : m.components)

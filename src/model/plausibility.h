@@ -8,7 +8,10 @@
 // - a mesh whose size is implausible in its mesh_unit (a part or chamber under 1 mm or over 2 m
 //   across; a part under a twentieth of the chamber, which inches would make plausible), naming
 //   the unit it probably is;
-// - a plain number for a length in a scene that gives units elsewhere (the parser notes them).
+// - a plain number for a length in a scene that gives units elsewhere (the parser notes them);
+// - a rotating part whose rim runs faster than kPlausibleRimSpeed_m_per_s (an error above
+//   kLargestRimSpeed_m_per_s: no part survives it, and the run would crawl);
+// - shot starting faster than kPlausibleStartSpeed_m_per_s.
 #pragma once
 
 #include <vector>
@@ -17,6 +20,10 @@
 #include "model/model.h"
 
 namespace peensim {
+
+inline constexpr double kPlausibleRimSpeed_m_per_s = 100.0;    // m/s
+inline constexpr double kLargestRimSpeed_m_per_s = 1000.0;     // m/s: sources[].speed's limit too
+inline constexpr double kPlausibleStartSpeed_m_per_s = 100.0;  // m/s
 
 std::vector<AssemblyIssue> plausibility_issues(const Model& model);
 

@@ -18,16 +18,6 @@
 namespace peensim {
 namespace {
 
-YAML::Node load_yaml(const std::string& text, const std::string& file) {
-    try {
-        return YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-        const int line = e.mark.line >= 0 ? e.mark.line + 1 : 0;
-        const int column = e.mark.column >= 0 ? e.mark.column + 1 : 0;
-        throw InputError(SourceLocation{file, line, column}, "", "invalid YAML: " + e.msg);
-    }
-}
-
 // Shot start on a sonotrode (shot.count of them) or come from sources: an ultrasonic chamber needs
 // its sonotrode and chamber, a scene fed by nozzles may have neither.
 void check_shot_origin(const Cursor& root, const SceneDescription& d) {
@@ -136,7 +126,7 @@ SceneDescription parse_scene_text(const std::string& yaml_text, const std::strin
                                   const std::vector<std::string>& overrides) {
     SceneContext context;
     context.file = virtual_path;
-    YAML::Node root = load_yaml(yaml_text, virtual_path);
+    YAML::Node root = parse_yaml(yaml_text, virtual_path);
     try {
         apply_overrides(root, overrides, context);
         const Cursor top = root_cursor(context, root);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include "common/units.h"
+
 namespace peensim {
 
 ProcessDesc read_process(const Cursor& c) {
@@ -96,6 +98,9 @@ ShotDesc read_shot(const Cursor& c, const std::vector<MaterialDesc>& materials) 
     if (velocity.present()) {
         d.initial = InitialVelocityKind::vector;
         d.initial_velocity_m_per_s = read_vector(velocity);
+        // The fastest shot anything throws (sources[].speed's limit, shot.initial_speed's).
+        if (!(d.initial_velocity_m_per_s.norm() <= 1000.0))
+            fail(velocity, "expected a velocity of at most 1000 m/s, got " + format_si(d.initial_velocity_m_per_s.norm()) + " m/s");
     } else if (speed.present()) {
         d.initial = InitialVelocityKind::random_upward;
         d.initial_speed_m_per_s = read_quantity(speed);

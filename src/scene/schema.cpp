@@ -84,8 +84,8 @@ const std::array schema_table{
     SchemaEntry{"shot.material", K::text, D::dimensionless, false, "", "none", {}, "", "", "",
                 "A key of `materials` that defines `density`; instead of `density`."},
     SchemaEntry{"shot.initial_velocity", K::vector3, D::speed, false, "", "at rest", {}, "", "", "",
-                "Initial velocity of every shot (world frame); not with `initial_speed`."},
-    SchemaEntry{"shot.initial_speed", K::quantity, D::speed, false, "", "at rest", at_least(0), "", "", "",
+                "Initial velocity of every shot (world frame), at most 1000 m/s; not with `initial_speed`."},
+    SchemaEntry{"shot.initial_speed", K::quantity, D::speed, false, "", "at rest", closed(0, 1000), "", "", "",
                 "Initial speed in random directions on the upper hemisphere around the sonotrode axis; "
                 "not with `initial_velocity`."},
 

@@ -3,7 +3,23 @@
 #include <charconv>
 #include <cmath>
 
+#include <yaml-cpp/depthguard.h>
+
 namespace peensim {
+
+YAML::Node parse_yaml(const std::string& text, const std::string& file) {
+    try {
+        return YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+        const int line = e.mark.line >= 0 ? e.mark.line + 1 : 0;
+        const int column = e.mark.column >= 0 ? e.mark.column + 1 : 0;
+        const auto* deep = dynamic_cast<const YAML::DeepRecursion*>(&e);
+        throw InputError(SourceLocation{file, line, column}, "",
+                         deep != nullptr ? "invalid YAML: nested too deep (the reader stops at nesting level " + std::to_string(deep->depth()) +
+                                               "); expected a file a few levels deep"
+                                         : "invalid YAML: " + e.msg);
+    }
+}
 namespace {
 
 int one_based(int zero_based) { return zero_based >= 0 ? zero_based + 1 : 0; }

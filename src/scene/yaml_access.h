@@ -68,6 +68,11 @@ struct Cursor {
 
 Cursor root_cursor(const SceneContext& context, const YAML::Node& root);
 
+// YAML text read from `file`, parsed. A syntax error is an InputError at its line and column; so is
+// nesting deeper than the reader allows (yaml-cpp stops at its depth guard with the message "bad
+// file", which told users nothing).
+YAML::Node parse_yaml(const std::string& text, const std::string& file);
+
 // "scene.yaml", line, column of the cursor (1-based), or "<--set>" for overridden fields.
 SourceLocation location_of(const Cursor& at);
 
