@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
                                          "stiffness) against a converged soft reference");
     trade_cmd->add_option("scene", trade.scene_path, "scene file (YAML) whose contacts are hertz-mindlin")->required();
     trade_cmd->add_option("--duration", trade.duration, "simulated time of every run (default: the scene's process.duration)");
-    trade_cmd->add_option("--settle", trade.settle_s, "s left out of rates and speeds at the start (default: a tenth of the run)");
+    trade_cmd->add_option("--settle", trade.settle, "time left out of rates and speeds at the start, >= 0 (s, or \"20 ms\"; default: a tenth of the run)");
     trade_cmd->add_option("--reference-steps", trade.reference_steps, "soft steps per contact of the reference (default 80)")
         ->check(CLI::Range(20.0, 10000.0));
     trade_cmd->add_option("--seeds", trade.seeds, "runs per knob from consecutive seeds, figures averaged (default 1)")
