@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "analysis/impact_log_reader.h"
+#include "common/input_error.h"
 #include "output/impact_csv_writer.h"
 #include "support/temp_dir.h"
 
@@ -77,6 +78,38 @@ TEST(ImpactLogReader, ALogCutMidLineGivesTheCompleteRowsAndSaysSo) {
     while (reader.next(row)) ++n;
     EXPECT_EQ(n, 99u);
     EXPECT_TRUE(reader.truncated());
+    EXPECT_EQ(reader.truncated_line(), 101u);  // the header, 99 rows, then the cut one
+}
+
+// NaN and infinity parse as numbers, but the writer logs only finite values: such a row is damage,
+// refused at its line and column with the column's name (it was dropped in silence: the analysis'
+// window test `time >= from` is false for NaN).
+TEST(ImpactLogReader, NonFiniteAndGarbageFieldsNameTheirLineAndColumn) {
+    TempDir dir;
+    const std::string path = write_log(dir.path, 10);
+    std::string text;
+    {
+        std::ifstream in(path);
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const auto refused = [&](const std::string& row, const std::string& phrase) {
+        const auto second = text.find('\n', text.find('\n') + 1);  // end of line 2 (row 1)
+        std::ofstream(path, std::ios::trunc) << text.substr(0, second + 1) + row + "\n" + text.substr(second + 1);
+        ImpactLogReader reader(path);
+        ImpactRow r;
+        try {
+            while (reader.next(r)) {}
+            ADD_FAILURE() << "accepted: " << row;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+        }
+    };
+    refused("nan,1,gear,0,0,0,0,0,0,0,0,0,0,0,0,0", path + ":3:1: time_s: malformed impact row 2: expected a finite number, got 'nan'");
+    refused("0.5,1,gear,0,0,0,0,0,0,0,inf,0,0,0,0,0", path + ":3:26: vn_in_mps: malformed impact row 2: expected a finite number, got 'inf'");
+    refused("0.5,1,gear,x,0,0,0,0,0,0,1,0,0,0,0,0", ":3:12: triangle: malformed impact row 2: expected an integer, got 'x'");
+    refused("0.5,1,gear,0,0", ":3:15: y_m: malformed impact row 2: expected more fields");
+    refused("0.5,1,gear,0,0,0,0,0,0,0,1,0,0,0,0,0,7", ":3:38: malformed impact row 2: expected 16 fields, got more");
+    refused(std::string("0.5,1,ge\x00" "ar", 11), ":3: malformed impact row 2: expected a text row, got binary data '0.5,1,ge\\x00ar'");
 }
 
 TEST(ImpactLogReader, EmptyForeignAndDamagedLogsAreClearErrors) {

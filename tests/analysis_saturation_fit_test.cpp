@@ -170,6 +170,67 @@ TEST(SaturationFit, DataThatDoNotPinACurveDownAreNotFitted) {
     EXPECT_FALSE(choose_saturation_fit(f, h).any);
 }
 
+// Replicates are merged into one point per exposure (their mean, weighted by their count): the
+// residual sum of squares reported is still every row's, and the fit that of the rows.
+TEST(SaturationFit, ReplicatesMergedGiveEveryRowsResidual) {
+    std::mt19937_64 rng(7);
+    std::normal_distribution<double> noise(0.0, 3e-6);  // m
+    const SaturationCurve truth{0.3e-3, 0.25, 1.0};
+    std::vector<SaturationDatum> d;
+    for (double t : {1.0, 2.0, 4.0, 8.0, 16.0})
+        for (int k = 0; k < 3; ++k) d.push_back({t, truth.arc_height(t) + noise(rng)});
+    for (const SaturationForm form : {SaturationForm::two_parameter, SaturationForm::three_parameter}) {
+        const SaturationFit f = fit_saturation_curve(d, form);
+        ASSERT_TRUE(f.fitted) << f.problem;
+        double ssr = 0.0;
+        for (const SaturationDatum& p : d) ssr += std::pow(f.curve.arc_height(p.exposure) - p.arc_height, 2);
+        EXPECT_NEAR(f.residual_sum_of_squares, ssr, 1e-12 * ssr + 1e-30) << saturation_form_name(form);
+        EXPECT_EQ(f.points, 15);
+        // A minimum: nudging a parameter raises every row's residual.
+        for (const double scale : {0.999, 1.001}) {
+            SaturationCurve a = f.curve, b = f.curve;
+            a.a *= scale;
+            b.b *= scale;
+            for (const SaturationCurve& c : {a, b}) {
+                double nudged = 0.0;
+                for (const SaturationDatum& p : d) nudged += std::pow(c.arc_height(p.exposure) - p.arc_height, 2);
+                EXPECT_GT(nudged, ssr);
+            }
+        }
+    }
+}
+
+// 10^4 distinct exposures (the start grid then profiles them merged into 256): the exact curve
+// back to rounding, as with a handful of strips.
+TEST(SaturationFit, ManyDistinctExposuresRecoverAnExactCurve) {
+    const SaturationCurve truth{0.25e-3, 0.12, 1.4};
+    std::vector<double> exposures;
+    for (int i = 0; i < 10000; ++i) exposures.push_back(0.5 + 40.0 * i / 10000.0);
+    const SaturationFit f = fit_saturation_curve(exact_curve(truth, exposures), SaturationForm::three_parameter);
+    ASSERT_TRUE(f.fitted) << f.problem;
+    EXPECT_LT(relative(f.curve.a, truth.a), 1e-9);
+    EXPECT_LT(relative(f.curve.b, truth.b), 1e-9);
+    EXPECT_LT(relative(f.curve.c, truth.c), 1e-9);
+}
+
+// Arc heights that fall with exposure are said to fall, not to be "at the plateau".
+TEST(SaturationFit, FallingArcHeightsAreNotAPlateau) {
+    const std::vector<SaturationDatum> falling{{1, 3e-4}, {2, 2.5e-4}, {4, 2e-4}, {8, 1.5e-4}};
+    const ArcHeightFall fall = arc_height_fall(falling);
+    EXPECT_TRUE(fall.falls);
+    EXPECT_EQ(fall.shortest_exposure, 1.0);
+    EXPECT_EQ(fall.longest_exposure, 8.0);
+    EXPECT_EQ(fall.longest_height, 1.5e-4);
+    for (const SaturationForm form : {SaturationForm::two_parameter, SaturationForm::three_parameter}) {
+        const SaturationFit f = fit_saturation_curve(falling, form);
+        EXPECT_FALSE(f.fitted);
+        EXPECT_NE(f.problem.find("the arc heights fall with exposure"), std::string::npos) << f.problem;
+    }
+    // Gauge noise at the plateau (1 %) is no fall; J2597's set 1 neither.
+    EXPECT_FALSE(arc_height_fall(std::vector<SaturationDatum>{{10, 3.03e-4}, {20, 3e-4}, {40, 2.97e-4}}).falls);
+    EXPECT_FALSE(arc_height_fall(std::vector<SaturationDatum>{{4, 0.0060}, {6, 0.0069}, {8, 0.0070}, {12, 0.0070}}).falls);
+}
+
 TEST(SaturationFit, SaeJ2597ValidationDataSetOne) {
     // SAE J2597 (computer-generated saturation curves), data set 1 as summarised by tnlab.org:
     // 4, 6, 8, 12 min; 0.0060, 0.0069, 0.0070, 0.0070 in; target intensity 0.0064 in, an

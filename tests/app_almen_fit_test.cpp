@@ -160,6 +160,20 @@ nlohmann::json strip_figures(const fs::path& run) {
     return nlohmann::json::parse(read_file(run / "analysis" / "figures.json"))["components"][0];
 }
 
+// A column name in Latin-1 (not UTF-8) made --json fail with exit 1 (found by the fuzz suite): its
+// bytes are replaced in the JSON, the figures written.
+TEST(AlmenFitJob, AColumnNameThatIsNotUtf8StillGivesItsJson) {
+    TempDir dir;
+    AlmenFitOptions o;
+    o.curve_path = write(dir.path / "latin1.csv", "time_min,arc \xB5 height_in\n4,0.0060\n6,0.0069\n8,0.0070\n12,0.0070\n");
+    o.json_path = (dir.path / "fit.json").string();
+    std::ostringstream out, err;
+    ASSERT_EQ(almen_fit_job(o, out, err), kExitOk) << err.str();
+    const nlohmann::json j = nlohmann::json::parse(read_file(o.json_path));
+    EXPECT_EQ(j["height_column"], "arc \xEF\xBF\xBD height_in");  // U+FFFD for the byte
+    EXPECT_EQ(j["used"], "2P");
+}
+
 TEST(AlmenFitJob, CalibrationRoundTripThroughRuns) {
     TempDir dir;
     const fs::path cal_run = dir.path / "cal";

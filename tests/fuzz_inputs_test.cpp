@@ -1,8 +1,10 @@
-// A mutation fuzz loop over what users hand peensim: scene files and mesh files. Each mutant (bytes
-// flipped, inserted, deleted, lines duplicated or dropped, numbers replaced by extreme ones) must
-// be read or refused with an input error (exit 2), never anything else: no other exception, no
-// crash (the test binary would die), no hang (CTest's timeout). Fixed seeds, so a failure repeats;
-// bounded by a count and a few seconds of wall time per input.
+// A mutation fuzz loop over what users hand peensim: scene files and mesh files, and (issue 29)
+// almen-fit's CSV files, export-fem's arguments, analyze's window (--from, --to), render sizes and
+// trade's arguments. Each mutant (bytes flipped, inserted, deleted, lines duplicated or dropped,
+// numbers replaced by extreme ones) must be read or refused with an input error (exit 2), never
+// anything else: no other exception, no crash (the test binary would die), no hang (CTest's
+// timeout). Fixed seeds, so a failure repeats; bounded by a count and a few seconds of wall time
+// per input.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,11 +16,23 @@
 #include <string>
 #include <vector>
 
+#include <sstream>
+#include <sys/wait.h>
+
+#include "app/almen_fit_job.h"
+#include "app/analyze_job.h"
+#include "app/export_fem_job.h"
+#include "app/run_job.h"
+#include "app/trade_job.h"
 #include "common/input_error.h"
+#include "common/units.h"
 #include "geometry/mesh_loader.h"
 #include "scene/scene_parser.h"
 #include "support/files.h"
+#include "support/run_in_process.h"
+#include "support/shell_command.h"
 #include "support/temp_dir.h"
+#include "support/test_scene.h"
 
 namespace peensim::testing {
 namespace {
@@ -76,9 +90,10 @@ std::string mutate(const std::string& text, std::mt19937_64& rng) {
     return s;
 }
 
-// Runs `read` on mutants of `original`: it may succeed or throw InputError, nothing else.
+// Runs `read` on mutants of `original`: it may succeed or throw InputError, nothing else. Inputs
+// whose every read does real work (an export, an analysis) try fewer: `min_mutants` at least.
 template <class Read>
-void fuzz(const std::string& name, const std::string& original, std::uint64_t seed, Read&& read) {
+void fuzz(const std::string& name, const std::string& original, std::uint64_t seed, Read&& read, int min_mutants = kMinMutants) {
     std::mt19937_64 rng(seed + seed_offset());
     const auto start = std::chrono::steady_clock::now();
     const int mutants = mutants_per_input();
@@ -87,7 +102,7 @@ void fuzz(const std::string& name, const std::string& original, std::uint64_t se
     for (; tried < mutants; ++tried) {
         // The time bound only shortens a campaign past its first kMinMutants: a slow build (the
         // sanitizers: assimp's OBJ reader takes ~90 ms a mutant there) still tries that many.
-        if (tried >= kMinMutants && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds) break;
+        if (tried >= min_mutants && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds) break;
         const std::string mutant = mutate(original, rng);
         if (std::getenv("PEENSIM_FUZZ_DUMP")) std::ofstream(std::getenv("PEENSIM_FUZZ_DUMP"), std::ios::binary | std::ios::trunc) << mutant;
         try {
@@ -99,7 +114,7 @@ void fuzz(const std::string& name, const std::string& original, std::uint64_t se
         }
     }
     std::cout << "[ fuzz     ] " << name << ": " << tried << " mutants, " << refused << " refused with an input error\n";
-    EXPECT_GE(tried, std::min(kMinMutants, mutants));
+    EXPECT_GE(tried, std::min(min_mutants, mutants));
 }
 
 TEST(FuzzInputs, SceneFilesAreReadOrRefusedWithAnInputError) {
@@ -132,6 +147,178 @@ TEST(FuzzInputs, MeshFilesAreReadOrRefusedWithAnInputError) {
             load_mesh(path.string(), 1e-3);
         });
     }
+}
+
+// ---- Commands' inputs (issue 29): each mutant goes through the command's job, whose exit code
+// must be 0 or 2 (2 is counted as a refusal); 1 (a runtime error) or anything thrown fails.
+
+// A job's exit code as the fuzz loop wants it: 0 passes, 2 is an InputError, anything else fails
+// (`err`: what the job printed; read after the job ran).
+void expect_read_or_refused(int code, const std::string& err) {
+    if (code == kExitInputError) throw InputError({}, "", err);
+    if (code != kExitOk) throw std::runtime_error("exit " + std::to_string(code) + ": " + err);
+}
+
+// The lines "key<TAB>value" of a mutated option list (lines without a tab are dropped, as the
+// command line would not have them).
+std::vector<std::pair<std::string, std::string>> options_of(const std::string& text) {
+    std::vector<std::pair<std::string, std::string>> o;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        const auto tab = line.find('\t');
+        if (tab != std::string::npos) o.emplace_back(line.substr(0, tab), line.substr(tab + 1));
+    }
+    return o;
+}
+
+// A number option as CLI11 reads it (text that is not one is refused, exit 2).
+template <class T>
+T cli_number(const std::string& option, const std::string& text) {
+    std::istringstream in(text);
+    T v{};
+    in >> v;
+    if (in.fail() || !in.eof()) throw InputError({option}, "", "not a number: '" + text + "'");
+    return v;
+}
+
+TEST(FuzzInputs, AlmenFitCurvesAreFittedOrRefusedWithAnInputError) {
+    TempDir dir;
+    const std::vector<std::pair<std::string, std::string>> inputs{
+        {"usp-example.csv", read_file(std::string(PEENSIM_SOURCE_DIR) + "/scenes/almen-curves/usp-example.csv")},
+        {"j2597-set1.csv", read_file(std::string(PEENSIM_SOURCE_DIR) + "/scenes/almen-curves/j2597-set1.csv")},
+    };
+    std::uint64_t seed = 200;
+    for (const auto& [name, content] : inputs) {
+        const fs::path path = dir.path / name;
+        fuzz(name, content, seed++, [&](const std::string& bytes) {
+            std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+            AlmenFitOptions o;
+            o.curve_path = path.string();
+            o.json_path = (dir.path / "fit.json").string();
+            std::ostringstream out, err;
+            const int code = almen_fit_job(o, out, err);
+            expect_read_or_refused(code, err.str());
+        });
+    }
+}
+
+TEST(FuzzInputs, ExportFemArgumentsAreExportedOrRefusedWithAnInputError) {
+    TempDir dir;
+    const std::string original =
+        "single\t0,0,0,0,0,-50 m/s\nshot-diameter\t0.58 mm\ncenter\t0,0,0\nradius\t1 mm\ngroup-window\t1 ms\nelement-size\t0.05 mm\n"
+        "name\tpatch\nimpacts\t1\nyield-stress\t500 MPa\nhardening\t0 MPa\nelements-per-dent\t6\ncontact-times\t2.5\n"
+        "shot-divisions\t4\nquarter\t1\n";
+    fuzz(
+        "export-fem arguments", original, 300,
+        [&](const std::string& text) {
+            ExportFemOptions o;
+            o.output_dir = (dir.path / "deck").string();
+            for (const auto& [key, value] : options_of(text)) {
+                if (key == "single") o.single = value;
+                if (key == "shot-diameter") o.shot_diameter = value;
+                if (key == "center") o.center = value;
+                if (key == "radius") o.radius = value;
+                if (key == "group-window") o.group_window = value;
+                if (key == "element-size") o.element_size = value;
+                if (key == "name") o.name = value;
+                if (key == "impacts") o.max_impacts = cli_number<int>("--impacts", value);
+                if (key == "yield-stress") o.yield_stress = value;
+                if (key == "hardening") o.hardening = value;
+                if (key == "elements-per-dent") o.elements_per_dent = cli_number<double>("--elements-per-dent", value);
+                if (key == "contact-times") o.contact_times = cli_number<double>("--contact-times", value);
+                if (key == "shot-divisions") o.shot_divisions = cli_number<int>("--shot-divisions", value);
+                if (key == "quarter") o.quarter = value == "1";
+            }
+            std::ostringstream out, err;
+            const int code = export_fem_job(o, out, err);
+            expect_read_or_refused(code, err.str());
+            // Whatever the name, nothing is written outside the output directory.
+            for (const auto& e : fs::directory_iterator(dir.path))
+                if (e.path().filename() != "deck") ADD_FAILURE() << "written outside -o: " << e.path();
+        },
+        20);
+}
+
+TEST(FuzzInputs, AnalyzeWindowsAreAnalysedOrRefusedWithAnInputError) {
+    TempDir dir;
+    InProcessRun r;
+    r.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
+    r.output_dir = (dir.path / "run").string();
+    r.overrides = {"process.duration=0.05"};
+    ASSERT_EQ(run_in_process(r).code, kExitOk);
+    const auto quantity = [](const char* option, const std::string& text, Dimension dim) {
+        try {
+            return parse_quantity(text, dim);
+        } catch (const QuantityError& e) {
+            throw InputError({option}, "", e.what());  // as the command line does
+        }
+    };
+    fuzz(
+        "analyze --from --to", "from\t0.01 s\nto\t40 ms\nmin-speed\t0.1 m/s\ntarget\t98 %\n", 400,
+        [&](const std::string& text) {
+            AnalyzeOptions o;
+            for (const auto& [key, value] : options_of(text)) {
+                if (key == "from") o.from_s = quantity("--from", value, Dimension::time);
+                if (key == "to") o.to_s = quantity("--to", value, Dimension::time);
+                if (key == "min-speed") o.min_speed_m_per_s = quantity("--min-speed", value, Dimension::speed);
+                if (key == "target") o.target_coverage = quantity("--target", value, Dimension::dimensionless);
+            }
+            std::ostringstream out, err;
+            const int code = analyze_job(r.output_dir, out, err, o);
+            expect_read_or_refused(code, err.str());
+        },
+        12);
+}
+
+// Through the binary: the sizes are CLI11's to check (a range), and a valid size is drawn.
+TEST(FuzzInputs, RenderSizesAreDrawnOrRefusedWithExitTwo) {
+    TempDir dir;
+    const std::string scene = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
+    fuzz(
+        "render-regions --width --height", "64\n64\n", 500,
+        [&](const std::string& text) {
+            std::string clean = text;
+            clean.erase(std::remove(clean.begin(), clean.end(), '\0'), clean.end());  // argv cannot hold one
+            const auto nl = clean.find('\n');
+            const std::string width = clean.substr(0, nl), height = nl == std::string::npos ? "" : clean.substr(nl + 1, clean.find('\n', nl + 1) - nl - 1);
+            const auto word = [](const std::string& s) {
+                std::string q = "'";
+                for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+                return q + "'";
+            };
+            const ShellResult res = run_shell(std::string(PEENSIM_BINARY) + " render-regions " + word(scene) + " -o " +
+                                              word((dir.path / "maps").string()) + " --width " + word(width) + " --height " + word(height));
+            const int code = WIFEXITED(res.status) ? WEXITSTATUS(res.status) : -1;
+            expect_read_or_refused(code, res.output);
+        },
+        12);
+}
+
+TEST(FuzzInputs, TradeArgumentsAreRunOrRefusedWithAnInputError) {
+    TempDir dir;
+    TestSceneSpec spec = small_rod_scene("soft", 0.002);
+    spec.soft = SoftSpec{};
+    spec.shot_count = 4;
+    spec.log = {"part"};
+    const TestScene scene(spec);
+    fuzz(
+        "trade arguments",
+        "settle\t0.2 ms\nreference-steps\t20\ncsv\t" + (dir.path / "t.csv").string() + "\nplot\t" + (dir.path / "t.png").string() + "\n",
+        600,
+        [&](const std::string& text) {
+            TradeOptions o;
+            o.scene_path = scene.scene_path();
+            for (const auto& [key, value] : options_of(text)) {
+                if (key == "settle") o.settle = value;
+                if (key == "reference-steps") o.reference_steps = cli_number<double>("--reference-steps", value);
+                if (key == "csv") o.csv_path = value;
+                if (key == "plot") o.plot_path = value;
+            }
+            std::ostringstream out, err;
+            const int code = trade_job(o, out, err);
+            expect_read_or_refused(code, err.str());
+        },
+        12);
 }
 
 }  // namespace

@@ -2,10 +2,14 @@
 
 #include <algorithm>
 
+#include "common/text_excerpt.h"
+
 namespace peensim {
 
-ImpactStream::ImpactStream(const std::string& path, std::vector<std::string> component_names, ReaderSideWork work)
-    : reader_(path), names_(std::move(component_names)), work_(std::move(work)), blocks_(kBlocks) {
+ImpactStream::ImpactStream(const std::string& path, std::vector<std::string> component_names, ReaderSideWork work,
+                           bool every_component_named)
+    : reader_(path), names_(std::move(component_names)), work_(std::move(work)), every_component_named_(every_component_named),
+      blocks_(kBlocks) {
     for (Block& b : blocks_) b.rows.resize(kRowsPerBlock);
     thread_ = std::thread([this] { read_all(); });
 }
@@ -37,6 +41,7 @@ void ImpactStream::read_all() {
                 IndexedImpact& r = block->rows[block->size];
                 const auto name = std::find(names_.begin(), names_.end(), r.row.component);
                 r.component = name == names_.end() ? -1 : static_cast<int>(name - names_.begin());
+                if (r.component < 0 && every_component_named_) refuse_component(r.row.component);
                 r.row.component = {};
                 if (work_ && r.component >= 0) work_(r.row, r.component);
                 ++block->size;
@@ -60,6 +65,12 @@ void ImpactStream::read_all() {
         }
         changed_.notify_all();
     }
+}
+
+void ImpactStream::refuse_component(std::string_view name) const {
+    std::string names;
+    for (const std::string& n : names_) names += (names.empty() ? "'" : ", '") + n + "'";
+    reader_.refuse_row("component", "expected a component the run logs (" + names + "), got " + text_excerpt(name));
 }
 
 std::span<const IndexedImpact> ImpactStream::next_block() {

@@ -30,9 +30,11 @@ public:
     // Called on the reader thread for every row of a named component, in log order.
     using ReaderSideWork = std::function<void(const ImpactRow&, int component)>;
 
-    // Opens the log (throws std::runtime_error like ImpactLogReader, on the calling thread) and
-    // starts reading.
-    ImpactStream(const std::string& path, std::vector<std::string> component_names, ReaderSideWork work = {});
+    // Opens the log (throws like ImpactLogReader, on the calling thread) and starts reading.
+    // `every_component_named`: the names are every component the run logged, so a row of another
+    // is damage (an InputError at its line, from next_block()), not a row to skip.
+    ImpactStream(const std::string& path, std::vector<std::string> component_names, ReaderSideWork work = {},
+                 bool every_component_named = false);
     ~ImpactStream();  // stops the reader thread (also when the consumer gave up early)
     ImpactStream(const ImpactStream&) = delete;
     ImpactStream& operator=(const ImpactStream&) = delete;
@@ -42,6 +44,7 @@ public:
     std::span<const IndexedImpact> next_block();
 
     bool truncated() const { return reader_.truncated(); }  // meaningful once next_block() is empty
+    std::uint64_t truncated_line() const { return reader_.truncated_line(); }
     std::uint64_t rows() const { return reader_.rows(); }
 
 private:
@@ -54,10 +57,12 @@ private:
     };
 
     void read_all();
+    [[noreturn]] void refuse_component(std::string_view name) const;
 
     ImpactLogReader reader_;
     std::vector<std::string> names_;
     ReaderSideWork work_;
+    bool every_component_named_ = false;
 
     // Ring of blocks: the reader fills blocks_[filled_ % kBlocks], the consumer reads
     // blocks_[taken_ % kBlocks]; the consumer holds block taken_ - 1 until its next call.

@@ -4,11 +4,13 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <set>
 
 #include "common/input_error.h"
+#include "common/text_excerpt.h"
 
 namespace peensim {
 
@@ -59,7 +61,7 @@ std::vector<Field> split_fields(const std::string& line) {
 }
 
 template <class Unit>
-Unit unit_of_column(const std::string& path, const Field& header, const std::string& option, const char* option_name,
+Unit unit_of_column(const std::string& path, int line, const Field& header, const std::string& option, const char* option_name,
                     std::optional<Unit> (*named)(const std::string&), const char* expected) {
     std::optional<Unit> from_header;
     for (const std::string& w : words_of(header.text))
@@ -68,15 +70,15 @@ Unit unit_of_column(const std::string& path, const Field& header, const std::str
     if (!option.empty()) {
         from_option = named(lower(option));
         if (!from_option)
-            throw InputError({"<command line>", 0, 0}, option_name, "expected one of " + std::string(expected) + ", got '" + option + "'");
+            throw InputError({"<command line>", 0, 0}, option_name, "expected one of " + std::string(expected) + ", got " + text_excerpt(option));
     }
     if (from_header && from_option && from_header->name != from_option->name)
-        throw InputError({path, 1, header.column}, header.text,
+        throw InputError({path, line, header.column}, header.text,
                          "the column name says " + from_header->name + " but " + option_name + " says " + from_option->name +
                              " (give one, or make them agree)");
     if (from_option) return *from_option;
     if (from_header) return *from_header;
-    throw InputError({path, 1, header.column}, header.text,
+    throw InputError({path, line, header.column}, header.text,
                      "expected a unit in the column name (" + std::string(expected) + ", e.g. " +
                          (std::strcmp(option_name, "--time-unit") == 0 ? "time_min" : "arc_height_in") + ") or the option " + option_name);
 }
@@ -89,8 +91,37 @@ double number_in(const std::string& path, int line, const Field& f, const std::s
     if (!f.text.empty() && *first == '+') ++first;
     const auto [end, ec] = std::from_chars(first, last, v);
     if (f.text.empty() || ec != std::errc() || end != last || !std::isfinite(v))
-        throw InputError({path, line, f.column}, column, "expected a number (" + what + "), got '" + f.text + "'");
+        throw InputError({path, line, f.column}, column, "expected a number (" + what + "), got " + text_excerpt(f.text));
     return v;
+}
+
+// The next line (without its '\n') into `line`; false at the end of the file. A line longer than
+// kMaxCurveLineBytes is refused (a binary file or a runaway line is never read whole).
+bool read_line(std::istream& in, std::string& line, const std::string& path, int number) {
+    line.clear();
+    std::streambuf& buffer = *in.rdbuf();
+    for (int c = buffer.sbumpc(); c != std::char_traits<char>::eof(); c = buffer.sbumpc()) {
+        if (c == '\n') return true;
+        if (line.size() == kMaxCurveLineBytes)
+            throw InputError({path, number, 0}, "",
+                             "a line longer than " + std::to_string(kMaxCurveLineBytes) + " bytes (it begins " + text_excerpt(line) +
+                                 "); expected a CSV line of exposure, arc height");
+        line += static_cast<char>(c);
+    }
+    return !line.empty();
+}
+
+// A byte no text has: the file is not a CSV (a binary file, the wrong file). Its bytes are not
+// printed, only an escaped excerpt.
+void refuse_binary(const std::string& path, int number, const std::string& line) {
+    if (!has_binary_byte(line)) return;
+    std::size_t at = 0;
+    while (!has_binary_byte(std::string_view(line).substr(at, 1))) ++at;
+    char byte[8];
+    std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(line[at]));
+    throw InputError({path, number, static_cast<int>(at) + 1}, "",
+                     std::string("expected a text CSV file (a header, then exposure, arc height per line), got the byte ") + byte +
+                         " (binary data?) in " + text_excerpt(line));
 }
 
 }  // namespace
@@ -135,10 +166,11 @@ MeasuredCurve read_measured_curve(const std::string& path, const std::string& ti
     std::string line;
     int number = 0;
     bool header = false;
-    while (std::getline(in, line)) {
+    while (read_line(in, line, path, number + 1)) {
         ++number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (number == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
+        refuse_binary(path, number, line);
         std::size_t first = 0;
         while (first < line.size() && std::isspace(static_cast<unsigned char>(line[first]))) ++first;
         if (first == line.size() || line[first] == '#') continue;
@@ -154,14 +186,14 @@ MeasuredCurve read_measured_curve(const std::string& path, const std::string& ti
                 if (!f.text.empty() && ec == std::errc() && end == f.text.data() + f.text.size())
                     throw InputError(
                         {path, number, f.column}, "header",
-                        "expected a header line of column names (e.g. time_min,arc_height_in), got the number '" + f.text + "'");
+                        "expected a header line of column names (e.g. time_min,arc_height_in), got the number " + text_excerpt(f.text));
             }
             curve.exposure_column = fields[0].text;
             curve.height_column = fields[1].text;
             curve.exposure_unit =
-                unit_of_column<ExposureUnit>(path, fields[0], time_unit, "--time-unit", exposure_unit_named, "s, min, h, passes or cycles");
+                unit_of_column<ExposureUnit>(path, number, fields[0], time_unit, "--time-unit", exposure_unit_named, "s, min, h, passes or cycles");
             curve.height_unit =
-                unit_of_column<HeightUnit>(path, fields[1], height_unit, "--height-unit", height_unit_named, "mm, um, in or thou");
+                unit_of_column<HeightUnit>(path, number, fields[1], height_unit, "--height-unit", height_unit_named, "mm, um, in or thou");
             header = true;
             continue;
         }
@@ -173,10 +205,14 @@ MeasuredCurve read_measured_curve(const std::string& path, const std::string& ti
         const double h = number_in(path, number, fields[1], curve.height_column, "the arc height in " + curve.height_unit.name);
         if (t < 0.0)
             throw InputError({path, number, fields[0].column}, curve.exposure_column,
-                             "expected an exposure >= 0, got '" + fields[0].text + "'");
+                             "expected an exposure >= 0, got " + text_excerpt(fields[0].text));
         if (h < 0.0)
             throw InputError({path, number, fields[1].column}, curve.height_column,
-                             "expected an arc height >= 0, got '" + fields[1].text + "'");
+                             "expected an arc height >= 0, got " + text_excerpt(fields[1].text));
+        if (curve.points.size() == kMaxCurveRows)
+            throw InputError({path, number, 0}, "",
+                             "more than " + std::to_string(kMaxCurveRows) +
+                                 " rows of strips; expected a saturation curve (one row per strip: SAE J443 asks for 4 or more)");
         curve.points.push_back({t, h * curve.height_unit.metres});
         curve.lines.push_back(number);
     }

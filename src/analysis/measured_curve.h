@@ -6,9 +6,13 @@
 //             passes or cycles (pass, passes, cycle, cycles: no time unit)
 //   arc height: mm, um, in (inch, inches), thou (mil, mils): 1 in = 25.4 mm, 1 thou = 0.001 in
 // Blank lines and lines starting with `#` are skipped (a file may say where its data come from).
-// Bad input is an InputError naming the file, line, column, field and what was expected.
+// Bad input is an InputError naming the file, line, column, field and what was expected; what the
+// file holds is quoted as a short escaped excerpt (common/text_excerpt.h), never its raw bytes.
+// Limits, checked as the file is read (before any fit): at most kMaxCurveRows rows of strips, lines
+// of at most kMaxCurveLineBytes, text only (a control byte other than tab and CR: not a CSV).
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +20,11 @@
 #include "analysis/saturation_fit.h"
 
 namespace peensim {
+
+// A saturation curve has a row per strip (J443: 4 or more; a lab's replicates, tens): 10^5 rows
+// are fitted in about a second, more are refused as the file is read.
+inline constexpr std::size_t kMaxCurveRows = 100000;
+inline constexpr std::size_t kMaxCurveLineBytes = 4096;  // bytes of one line, comments included
 
 struct ExposureUnit {
     std::string name;      // as printed: "s", "min", "h", "passes", "cycles"

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -34,9 +35,14 @@ constexpr double kShapeMin = 0.05, kShapeMax = 20.0;
 constexpr double kExactFit = 1e-9;
 
 // The data scaled to order one (exposure / longest, height / highest): the fit's numbers then do
-// not depend on the units (s or min, mm or thou).
+// not depend on the units (s or min, mm or thou). Replicates are merged: one point per distinct
+// exposure, its height the replicates' mean and its weight their count. The least squares are the
+// same (each replicate's squared residual is its group's plus its distance to the group mean,
+// which no curve changes: `within`), at a cost that grows with the distinct exposures, not the
+// rows.
 struct Scaled {
-    std::vector<double> t, log_t, h;  // t' in [0, 1], ln t' (unused where t' = 0), h' in [0, 1]
+    std::vector<double> t, log_t, h, w;  // t' in [0, 1], ln t' (unused where t' = 0), mean h' in [0, 1], replicates
+    double within = 0.0;                 // sum of the replicates' squared distances to their group mean (h' units^2)
     double t_scale = 1.0, h_scale = 1.0;
 };
 
@@ -46,29 +52,60 @@ using Params = Eigen::Vector3d;
 // exp(beta) t'^c, the exponent at one point (0 at t' = 0).
 double exponent_at(const Scaled& s, std::size_t i, double beta, double c) { return s.t[i] > 0.0 ? std::exp(beta + c * s.log_t[i]) : 0.0; }
 
+// The weighted sum over the groups (the replicates' `within` not included).
 double sum_of_squares(const Scaled& s, const Params& q) {
     double ssr = 0.0;
     for (std::size_t i = 0; i < s.t.size(); ++i) {
         const double r = q[0] * -std::expm1(-exponent_at(s, i, q[1], q[2])) - s.h[i];
-        ssr += r * r;
+        ssr += s.w[i] * r * r;
     }
     return ssr;
 }
 
-// For given beta and c, the best A (linear least squares) and the residual sum of squares.
+// For given beta and c, the best A (linear least squares) and the residual sum of squares (up to
+// the constant `within`).
 std::pair<double, double> profile(const Scaled& s, double beta, double c) {
     double ff = 0.0, fh = 0.0, hh = 0.0;
     for (std::size_t i = 0; i < s.t.size(); ++i) {
         const double f = -std::expm1(-exponent_at(s, i, beta, c));
-        ff += f * f;
-        fh += f * s.h[i];
-        hh += s.h[i] * s.h[i];
+        ff += s.w[i] * f * f;
+        fh += s.w[i] * f * s.h[i];
+        hh += s.w[i] * s.h[i] * s.h[i];
     }
     if (!(ff > 0.0)) return {0.0, hh};
     return {fh / ff, hh - fh * fh / ff};
 }
 
-// Residuals and Jacobian (columns A, beta, c; the first `p` used).
+// At most this many points are profiled on the start grid (48 x 461 curves): more distinct
+// exposures are merged, neighbours in exposure, into this many for the start only (the fit itself
+// runs on them all). A start needs the curve's shape, not every strip: with 10^4 distinct exposures
+// the grid alone took 4 s, growing with the rows.
+constexpr std::size_t kStartPoints = 256;
+
+Scaled start_points(const Scaled& s) {
+    if (s.t.size() <= kStartPoints) return s;
+    Scaled c;
+    c.t_scale = s.t_scale;
+    c.h_scale = s.h_scale;
+    const std::size_t n = s.t.size();
+    for (std::size_t b = 0; b < kStartPoints; ++b) {
+        const std::size_t from = b * n / kStartPoints, to = (b + 1) * n / kStartPoints;
+        double w = 0.0, t = 0.0, h = 0.0;
+        for (std::size_t i = from; i < to; ++i) {
+            w += s.w[i];
+            t += s.w[i] * s.t[i];
+            h += s.w[i] * s.h[i];
+        }
+        c.t.push_back(t / w);
+        c.log_t.push_back(t > 0.0 ? std::log(t / w) : 0.0);
+        c.h.push_back(h / w);
+        c.w.push_back(w);
+    }
+    return c;
+}
+
+// Residuals and Jacobian (columns A, beta, c; the first `p` used), each group's row weighted by
+// the square root of its replicates (so that J^T J and J^T r are those of every row).
 void residuals(const Scaled& s, const Params& q, int p, Eigen::VectorXd& r, Eigen::MatrixXd& J) {
     const auto n = static_cast<Eigen::Index>(s.t.size());
     r.resize(n);
@@ -77,10 +114,11 @@ void residuals(const Scaled& s, const Params& q, int p, Eigen::VectorXd& r, Eige
         const auto k = static_cast<std::size_t>(i);
         const double u = exponent_at(s, k, q[1], q[2]);
         const double e = std::exp(-u);
-        r[i] = q[0] * -std::expm1(-u) - s.h[k];
-        J(i, 0) = -std::expm1(-u);
-        J(i, 1) = q[0] * e * u;
-        if (p == 3) J(i, 2) = s.t[k] > 0.0 ? q[0] * e * u * s.log_t[k] : 0.0;
+        const double root_w = std::sqrt(s.w[k]);
+        r[i] = root_w * (q[0] * -std::expm1(-u) - s.h[k]);
+        J(i, 0) = root_w * -std::expm1(-u);
+        J(i, 1) = root_w * q[0] * e * u;
+        if (p == 3) J(i, 2) = s.t[k] > 0.0 ? root_w * q[0] * e * u * s.log_t[k] : 0.0;
     }
 }
 
@@ -171,6 +209,29 @@ SaturationPoint saturation_point(const SaturationCurve& curve) {
     return p;
 }
 
+ArcHeightFall arc_height_fall(std::span<const SaturationDatum> data) {
+    ArcHeightFall f;
+    double shortest = 0.0, longest = 0.0, highest = 0.0;
+    for (const SaturationDatum& d : data) {
+        if (d.exposure > 0.0 && (shortest == 0.0 || d.exposure < shortest)) shortest = d.exposure;
+        longest = std::max(longest, d.exposure);
+        highest = std::max(highest, std::fabs(d.arc_height));
+    }
+    if (!(shortest > 0.0) || !(longest > shortest)) return f;
+    double at_shortest = 0.0, at_longest = 0.0;
+    int n_shortest = 0, n_longest = 0;
+    for (const SaturationDatum& d : data) {
+        if (d.exposure == shortest) at_shortest += d.arc_height, ++n_shortest;
+        if (d.exposure == longest) at_longest += d.arc_height, ++n_longest;
+    }
+    f.shortest_exposure = shortest;
+    f.longest_exposure = longest;
+    f.shortest_height = at_shortest / n_shortest;
+    f.longest_height = at_longest / n_longest;
+    f.falls = f.shortest_height - f.longest_height > kFallingShare * highest;
+    return f;
+}
+
 SaturationFit fit_saturation_curve(std::span<const SaturationDatum> data, SaturationForm form) {
     SaturationFit fit;
     fit.form = form;
@@ -196,21 +257,41 @@ SaturationFit fit_saturation_curve(std::span<const SaturationDatum> data, Satura
         fit.problem = "every arc height is zero";
         return fit;
     }
+    if (const ArcHeightFall fall = arc_height_fall(data); fall.falls) {
+        fit.problem = "the arc heights fall with exposure (" + text(fall.shortest_height) + " at the shortest exposure, " +
+                      text(fall.longest_height) + " at the longest): a saturation curve rises, then levels off";
+        return fit;
+    }
+    // One point per distinct exposure (std::map: in increasing exposure), then the replicates'
+    // spread about their means.
+    std::map<double, std::pair<double, double>> groups;  // exposure -> (replicates, sum of h')
     for (const SaturationDatum& d : data) {
-        s.t.push_back(d.exposure / s.t_scale);
-        s.log_t.push_back(d.exposure > 0.0 ? std::log(d.exposure / s.t_scale) : 0.0);
-        s.h.push_back(d.arc_height / s.h_scale);
+        auto& g = groups[d.exposure];
+        g.first += 1.0;
+        g.second += d.arc_height / s.h_scale;
+    }
+    for (const auto& [exposure, g] : groups) {
+        s.t.push_back(exposure / s.t_scale);
+        s.log_t.push_back(exposure > 0.0 ? std::log(exposure / s.t_scale) : 0.0);
+        s.h.push_back(g.second / g.first);
+        s.w.push_back(g.first);
+    }
+    for (const SaturationDatum& d : data) {
+        const auto& g = groups[d.exposure];
+        const double r = d.arc_height / s.h_scale - g.second / g.first;
+        s.within += r * r;
     }
 
     // Start: the best point of the profile grid.
     Params q(0.0, 0.0, 1.0);
     double best = std::numeric_limits<double>::infinity();
     const int shapes = form == SaturationForm::two_parameter ? 1 : kShapeSteps;
+    const Scaled start = start_points(s);
     for (int ic = 0; ic < shapes; ++ic) {
         const double c = shapes == 1 ? 1.0 : kShapeLow * std::pow(kShapeHigh / kShapeLow, ic / (shapes - 1.0));
         for (int ib = 0; ib <= kLogBSteps; ++ib) {
             const double beta = kLogBLow + (kLogBHigh - kLogBLow) * ib / kLogBSteps;
-            const auto [A, ssr] = profile(s, beta, c);
+            const auto [A, ssr] = profile(start, beta, c);
             if (A > 0.0 && ssr < best) {
                 best = ssr;
                 q = Params(A, beta, c);
@@ -224,7 +305,7 @@ SaturationFit fit_saturation_curve(std::span<const SaturationDatum> data, Satura
     q = levenberg_marquardt(s, q, fit.parameters);
 
     fit.curve = physical(s, q);
-    fit.residual_sum_of_squares = sum_of_squares(s, q) * s.h_scale * s.h_scale;
+    fit.residual_sum_of_squares = (sum_of_squares(s, q) + s.within) * s.h_scale * s.h_scale;
     fit.rms_residual = std::sqrt(fit.residual_sum_of_squares / fit.points);
     const int dof = fit.points - fit.parameters;
     if (dof > 0) fit.residual_sd = std::sqrt(fit.residual_sum_of_squares / dof);
@@ -259,7 +340,7 @@ SaturationFit fit_saturation_curve(std::span<const SaturationDatum> data, Satura
     const Eigen::MatrixXd H = J.transpose() * J;
     Eigen::FullPivLU<Eigen::MatrixXd> lu(H);
     if (!lu.isInvertible()) return fit;
-    const Eigen::MatrixXd covariance = lu.inverse() * (r.squaredNorm() / dof);
+    const Eigen::MatrixXd covariance = lu.inverse() * ((r.squaredNorm() + s.within) / dof);
     Eigen::VectorXd grad_t(fit.parameters), grad_i(fit.parameters);
     for (int j = 0; j < fit.parameters; ++j) {
         const double h = 1e-6 * std::max(1.0, std::fabs(q[j]));

@@ -70,8 +70,22 @@ struct SaturationFit {
 };
 
 // Fits the 2P or 3P form to the points (any order, replicates allowed). 2P needs at least 2
-// distinct exposures > 0, 3P at least 3; otherwise `fitted` is false with the reason.
+// distinct exposures > 0, 3P at least 3; otherwise `fitted` is false with the reason (also for
+// arc heights that fall with exposure). The cost grows with the distinct exposures (replicates are
+// merged exactly): 10^5 distinct ones take ~0.5 s.
 SaturationFit fit_saturation_curve(std::span<const SaturationDatum> data, SaturationForm form);
+
+// Arc heights that fall with exposure are no saturation curve (it rises, then levels off): the
+// mean of the strips at the longest exposure lies below the mean of those at the shortest exposure
+// > 0 by more than kFallingShare of the highest arc height. Gauge noise on strips at the plateau
+// is ~1 % of it, so a fall of 10 % is not noise but swapped columns or mislabelled rows.
+inline constexpr double kFallingShare = 0.1;
+struct ArcHeightFall {
+    bool falls = false;
+    double shortest_exposure = 0.0, longest_exposure = 0.0;  // the curve's exposure unit
+    double shortest_height = 0.0, longest_height = 0.0;      // height unit: the strips' mean there
+};
+ArcHeightFall arc_height_fall(std::span<const SaturationDatum> data);
 
 // Which fit to use: the 2P unless the 3P's extra parameter lowers the residual significantly:
 // an F-test of the nested models at 95 % (F = (SSR2 - SSR3) / (SSR3 / (n - 3)), one numerator

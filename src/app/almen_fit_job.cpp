@@ -18,6 +18,7 @@
 #include "app/report_errors.h"
 #include "common/input_error.h"
 #include "output/atomic_file.h"
+#include "output/output_names.h"
 
 namespace fs = std::filesystem;
 
@@ -189,8 +190,12 @@ PlotFiles plot_files(const std::string& png) {
     return f;
 }
 
-// No output may be the curve being read: refused (exit 2) before anything is written.
-void refuse_writing_over_input(const AlmenFitOptions& o) {
+// The outputs go into directories that exist (peensim creates none: the other commands' --plot,
+// --csv, --json do not either), and none may be the curve being read: refused (exit 2) before
+// anything is read or written.
+void check_output_paths(const AlmenFitOptions& o) {
+    if (!o.json_path.empty()) check_output_file_directory("--json", o.json_path);
+    if (!o.plot_path.empty()) check_output_file_directory("--plot", o.plot_path);
     std::error_code ec;
     const auto same = [&](const fs::path& a) { return fs::exists(a, ec) && fs::equivalent(a, o.curve_path, ec); };
     if (!o.json_path.empty() && same(o.json_path))
@@ -202,10 +207,39 @@ void refuse_writing_over_input(const AlmenFitOptions& o) {
                                  "'" + o.plot_path + "' would write " + p.string() + ", the curve being read; give the plot another name");
 }
 
+// The lines (file, 1-based) of the rows at `exposure`, as "lines 4, 7" (at most five named).
+std::string lines_at(const MeasuredCurve& m, double exposure) {
+    std::vector<int> lines;
+    for (std::size_t i = 0; i < m.points.size(); ++i)
+        if (m.points[i].exposure == exposure) lines.push_back(m.lines[i]);
+    std::string s = lines.size() == 1 ? "line " : "lines ";
+    for (std::size_t k = 0; k < lines.size() && k < 5; ++k) s += (k ? ", " : "") + std::to_string(lines[k]);
+    if (lines.size() > 5) s += " and " + std::to_string(lines.size() - 5) + " more";
+    return s;
+}
+
+// Arc heights falling with exposure are refused before any fit, naming the rows: the fits would
+// only say "every strip at the plateau", which sends the user to peen shorter.
+void refuse_falling_arc_heights(const MeasuredCurve& m) {
+    const ArcHeightFall f = arc_height_fall(m.points);
+    if (!f.falls) return;
+    const double scale = 1.0 / m.height_unit.metres;
+    const std::string u = m.exposure_unit.name, hu = m.height_unit.name;
+    std::size_t last = 0;
+    for (std::size_t i = 0; i < m.points.size(); ++i)
+        if (m.points[i].exposure == f.longest_exposure) last = i;
+    throw InputError({m.path, m.lines[last], 0}, m.height_column,
+                     "arc heights must not fall with exposure: " + fmt(f.shortest_height * scale) + " " + hu + " at the shortest exposure, " +
+                         fmt(f.shortest_exposure) + " " + u + " (" + lines_at(m, f.shortest_exposure) + "), but " +
+                         fmt(f.longest_height * scale) + " " + hu + " at the longest, " + fmt(f.longest_exposure) + " " + u + " (" +
+                         lines_at(m, f.longest_exposure) +
+                         "); expected a saturation curve, rising with exposure, then levelling off (SAE J443): check those rows, and "
+                         "that the exposure is the first column and the arc height the second");
+}
+
 std::string plot_fits(const std::string& png, const MeasuredCurve& m, const SaturationFit& two, const SaturationFit& three,
                       const SaturationFit& used, const std::string& strip) {
-    const auto [dir, stem] = plot_files(png);
-    fs::create_directories(dir);
+    const auto [dir, stem] = plot_files(png);  // its directory exists (check_output_paths)
     const double scale = 1.0 / m.height_unit.metres;  // m -> the curve's unit
     std::ostringstream data;
     data << "# " << m.exposure_column << "," << m.height_column << "\n";
@@ -253,8 +287,9 @@ int run(const AlmenFitOptions& o, std::ostream& out, std::ostream& err) {
         throw InputError(kCommandLine, "--strip", "expected A, N or C (the SAE J442 strip type), got '" + o.strip + "'");
     if (!o.form.empty() && o.form != "2P" && o.form != "3P")
         throw InputError(kCommandLine, "--form", "expected 2P or 3P, got '" + o.form + "'");
-    refuse_writing_over_input(o);
+    check_output_paths(o);
     const MeasuredCurve m = read_measured_curve(o.curve_path, o.time_unit, o.height_unit);
+    refuse_falling_arc_heights(m);
     const SaturationFit two = fit_saturation_curve(m.points, SaturationForm::two_parameter);
     const SaturationFit three = fit_saturation_curve(m.points, SaturationForm::three_parameter);
     SaturationChoice choice = choose_saturation_fit(two, three);
@@ -352,7 +387,8 @@ int run(const AlmenFitOptions& o, std::ostream& out, std::ostream& err) {
                             {"dent_size_m", cal.run.dent_size_m},
                             {"covering_rate_per_s", cal.run.covering_rate_per_s}};
     }
-    if (!o.json_path.empty()) write_file_atomically(o.json_path, j.dump(2) + "\n");
+    // A column name need not be UTF-8 (a Latin-1 "µm"): its bytes are replaced, not a reason to fail.
+    if (!o.json_path.empty()) write_file_atomically(o.json_path, j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!o.plot_path.empty()) {
         const std::string note = plot_fits(o.plot_path, m, two, three, used, o.strip);
         if (!note.empty()) err << "note: no plot: " << note << "\n";

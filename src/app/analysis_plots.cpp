@@ -86,6 +86,24 @@ std::set<std::string> quantities_with_counts(const fs::path& csv) {
     return found;
 }
 
+// Whether a CSV (header, then rows) has a number in its second column on some row: a coverage
+// curve of a part with no peened area (every facet excluded or out of reach) has none, and gnuplot
+// given no data fails with a message that does not belong in a report.
+bool second_column_has_number(const fs::path& csv) {
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);  // header
+    while (std::getline(in, line)) {
+        const auto comma = line.find(',');
+        if (comma == std::string::npos) continue;
+        const char* field = line.c_str() + comma + 1;
+        char* end = nullptr;
+        std::strtod(field, &end);
+        if (end != field) return true;
+    }
+    return false;
+}
+
 // Lines common to every script: the output file name can be overridden with `gnuplot -e "out='x.png'"`.
 std::string script_header(const std::string& stem) {
     std::ostringstream s;
@@ -246,7 +264,15 @@ std::vector<std::string> write_analysis_plots(const std::string& analysis_dir, c
             note += (note.empty() ? "" : "; ") + problem;
     };
     for (const std::string& c : components) {
-        if (fs::exists(dir / (c + "_coverage.csv"))) plot(c + "_coverage", coverage_script(c, target_coverage * 100.0));
+        const fs::path coverage = dir / (c + "_coverage.csv");
+        if (fs::exists(coverage) && second_column_has_number(coverage)) {
+            plot(c + "_coverage", coverage_script(c, target_coverage * 100.0));
+        } else if (fs::exists(coverage)) {
+            std::error_code ec;
+            fs::remove(dir / (c + "_coverage.png"), ec);  // a previous analysis's: not this one's
+            note += (note.empty() ? "" : "; ") + c + "_coverage.png not drawn: " + c +
+                    " has no peened area (every facet excluded or out of the shot's reach), so no coverage to plot";
+        }
         const fs::path histograms = dir / (c + "_histograms.csv");
         if (fs::exists(histograms)) plot(c + "_histograms", histograms_script(c, quantities_with_counts(histograms)));
         if (fs::exists(dir / (c + "_regions.csv"))) plot(c + "_regions", regions_script(c));

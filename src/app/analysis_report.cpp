@@ -122,6 +122,15 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
         const PeenedAreas areas = peened_areas(c);
         const AreaForecast& w = c.forecast.whole;
         r << "\n## " << c.name << ": how long to peen to " << goal << "\n\n";
+        if (!(areas.peened_m2 > 0.0)) {
+            // Nothing to measure coverage on: said in words (the figures would be empty, the plot absent).
+            r << "- **No peened area: coverage is not measured.** All " << fmt(areas.total_m2 * 1e6) << " mm2 of " << c.name
+              << " are left out: " << fmt(areas.excluded_m2 * 1e6) << " mm2 in regions marked `exclude`, "
+              << fmt(areas.unreachable_m2 * 1e6) << " mm2 out of the shot's reach. Its impacts are still counted (below); to "
+              << "measure coverage, remove `exclude` from a region of it.\n";
+            r << unreachable_section(c, x);
+            continue;
+        }
         r << "- **Coverage now: " << percent(w.coverage_now) << "** of the peened area (" << fmt(areas.peened_m2 * 1e6) << " of "
           << fmt(areas.total_m2 * 1e6) << " mm2";
         if (areas.unreachable_m2 > 0.0)

@@ -1,12 +1,14 @@
 #include "app/analyze_job.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <ostream>
 
@@ -17,6 +19,7 @@
 #include "app/analysis_plots.h"
 #include "app/analysis_report.h"
 #include "app/analysis_tables.h"
+#include "app/checkpoint.h"
 #include "app/component_analysis.h"
 #include "app/coverage_setup.h"
 #include "app/coverage_verdict.h"
@@ -52,17 +55,69 @@ const MaterialDesc* material_named(const SceneDescription& scene, const std::str
     return nullptr;
 }
 
-// Simulated time the log covers: from summary.json, or the scene's duration.
-double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& finished) {
+// The time of the log's last complete row (s), read from its tail; nullopt when it has no row.
+// Rows come in time order (the writer logs each step's impacts after the step), so the last is
+// the latest (within a step's impacts, whose times differ by less than a step).
+std::optional<double> last_impact_time(const fs::path& log) {
+    std::ifstream in(log, std::ios::binary | std::ios::ate);
+    if (!in) return std::nullopt;
+    constexpr std::streamoff kTail = 64 * 1024;  // bytes: many rows (one is ~250)
+    const std::streamoff size = in.tellg();
+    const std::streamoff from = std::max<std::streamoff>(0, size - kTail);
+    in.seekg(from);
+    std::string tail(static_cast<std::size_t>(size - from), '\0');
+    in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+    // The complete lines: after the first newline of the tail (unless it is the file's start) and
+    // up to the last newline.
+    const std::size_t end = tail.rfind('\n');
+    if (end == std::string::npos) return std::nullopt;
+    const std::size_t begin_of_last = tail.rfind('\n', end == 0 ? std::string::npos : end - 1);
+    if (begin_of_last == std::string::npos && from > 0) return std::nullopt;  // one row longer than the tail: not a log of ours
+    const std::string line = tail.substr(begin_of_last == std::string::npos ? 0 : begin_of_last + 1,
+                                         end - (begin_of_last == std::string::npos ? 0 : begin_of_last + 1));
+    double t = 0.0;
+    const auto [ptr, ec] = std::from_chars(line.data(), line.data() + line.size(), t);
+    if (ec != std::errc() || ptr == line.data() || (ptr < line.data() + line.size() && *ptr != ',') || !std::isfinite(t))
+        return std::nullopt;  // the header (no row yet), or damage the reader will name
+    return t;
+}
+
+// Simulated time the log covers (s). A finished run: its summary.json's (a run stopped at its
+// coverage target ends before the scene's duration), else the scene's. A run that did not finish:
+// the latest of what it left, its summary (interrupted: written at the stop), its checkpoint and
+// its last logged impact -- a killed run has no summary, and the scene's duration would divide its
+// counts by time it never simulated. Says on `err` which was used.
+double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& finished, std::ostream& err) {
     finished = fs::exists(dir / kImpactCsvFileName);
-    std::ifstream in(dir / "summary.json");
-    if (in) {
+    std::optional<double> summary_s;
+    if (std::ifstream in(dir / "summary.json"); in) {
         try {
             const auto j = nlohmann::json::parse(in);
-            if (j.contains("simulated_time_s")) return j["simulated_time_s"].get<double>();
+            if (j.contains("simulated_time_s") && j["simulated_time_s"].is_number()) summary_s = j["simulated_time_s"].get<double>();
         } catch (const std::exception&) {}
     }
-    return scene.process.duration_s;
+    if (finished) return summary_s.value_or(scene.process.duration_s);
+    std::optional<double> checkpoint_s;
+    if (fs::exists(dir / kCheckpointFileName)) {
+        try {
+            checkpoint_s = load_checkpoint((dir / kCheckpointFileName).string()).state.time.seconds();
+        } catch (const std::exception& e) {
+            err << "note: " << (dir / kCheckpointFileName).string() << " not used for the simulated time: " << e.what() << "\n";
+        }
+    }
+    const std::optional<double> impact_s = last_impact_time(dir / kImpactCsvPartialFileName);
+    double t = 0.0;
+    std::string source = "nothing (no summary.json, checkpoint or logged impact)";
+    const auto take = [&](const std::optional<double>& v, const std::string& what) {
+        if (v && *v > t) t = *v, source = what;
+    };
+    take(summary_s, "its summary.json (written when it was interrupted)");
+    take(checkpoint_s, "its checkpoint");
+    take(impact_s, "its last logged impact");
+    err << "note: " << dir.string() << ": the run did not finish; analysing the " << fmt(t) << " s it simulated (from " << source
+        << (summary_s ? "" : "; no summary.json: the run was killed") << "), not the scene's " << fmt(scene.process.duration_s) << " s\n";
+    if (!(t > 0.0)) throw InputError({(dir / kImpactCsvPartialFileName).string()}, "", "the run simulated no time that can be analysed: it has no impact yet");
+    return t;
 }
 
 // The analysis of component ci (c its description) as the log starts streaming.
@@ -307,12 +362,11 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     const fs::path scene_path = dir / "scene.resolved.yaml";
     if (!fs::exists(scene_path)) throw std::runtime_error(output_dir + ": not a peensim run directory (no scene.resolved.yaml)");
     const SceneDescription scene = parse_scene_file(scene_path.string());
-    bool finished = false;
-    const double duration = simulated_time(dir, scene, finished);
-    AnalysisWindow window = window_of(options, duration, scene);
+    bool finished = fs::exists(dir / kImpactCsvFileName);
     const fs::path log = finished ? dir / kImpactCsvFileName : dir / kImpactCsvPartialFileName;
     if (!fs::exists(log)) throw std::runtime_error(output_dir + ": no impact log (impacts.csv or impacts.csv.partial)");
-    if (!finished) err << "note: " << output_dir << ": the run did not finish; analysing its partial impact log\n";
+    const double duration = simulated_time(dir, scene, finished, err);
+    AnalysisWindow window = window_of(options, duration, scene);
 
     // The model: the logged components' meshes, and which of their facets the shot can reach.
     const std::shared_ptr<const Model> model = compile_model(scene);
@@ -365,11 +419,15 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
         if (a.almen) sample_almen(*a.almen, 0.0);
     }
     // The reader thread parses the log and writes the ParaView points; this one does the rest.
-    ImpactStream stream(log.string(), names, [&parts, &taken](const ImpactRow& row, int component) {
-        if (!taken(row)) return;
-        const double values[5] = {row.v_in_m_per_s.x(), row.v_in_m_per_s.y(), row.v_in_m_per_s.z(), row.vn_in_m_per_s, row.time_s};
-        parts[static_cast<std::size_t>(component)].points->add(row.point_m, values);
-    });
+    // Every logged component is named: a row of another is damage, refused with its line.
+    ImpactStream stream(
+        log.string(), names,
+        [&parts, &taken](const ImpactRow& row, int component) {
+            if (!taken(row)) return;
+            const double values[5] = {row.v_in_m_per_s.x(), row.v_in_m_per_s.y(), row.v_in_m_per_s.z(), row.vn_in_m_per_s, row.time_s};
+            parts[static_cast<std::size_t>(component)].points->add(row.point_m, values);
+        },
+        true);
     for (auto block = stream.next_block(); !block.empty(); block = stream.next_block()) {
         for (const IndexedImpact& impact : block) {
             if (!taken(impact.row)) continue;
@@ -380,6 +438,12 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     }
     sample_until(window.to_s);
     coverage_series.finish();
+    if (stream.truncated())
+        err << "warning: " << log.string() << ":" << stream.truncated_line() << ": the impact log ends inside row " << stream.rows() + 1
+            << " (line " << stream.truncated_line() << "): the log was cut"
+            << (finished ? " after the run finished (a finished run's log ends with a whole row: copied in part?)"
+                         : " (a run killed while writing it)")
+            << "; that row is left out, the " << stream.rows() << " rows before it are analysed\n";
 
     for (ComponentAnalysis& a : parts) {
         a.points->finish();

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "app/report_errors.h"
+#include "output/output_names.h"
 #include "app/run_job.h"
 #include "common/input_error.h"
 #include "engine/run_loop.h"
@@ -461,6 +462,7 @@ std::string own_executable() {
 }
 
 int bench(const BenchOptions& options, std::ostream& out) {
+    if (!options.csv_path.empty()) check_output_file_directory("--csv", options.csv_path);  // before minutes of runs
     const std::vector<SchemeSpec> schemes = parse_schemes(options.schemes);
     const std::vector<std::string> scenes =
         options.scene_paths.empty() ? shipped_scenes(options.executable_path.empty() ? own_executable() : options.executable_path)

@@ -15,6 +15,7 @@
 #include "model/assembly_checks.h"
 #include "model/model.h"
 #include "model/shot_placement.h"
+#include "output/output_names.h"
 #include "scene/scene_parser.h"
 
 namespace peensim {
@@ -88,6 +89,7 @@ void print_report(const Model& model, const AssemblyReport& assembly, std::size_
 std::size_t check_scene(const std::string& scene_path, const std::optional<std::string>& scene_text,
                         const std::vector<std::string>& overrides, bool strict, std::ostream& out, std::ostream& err,
                         const std::string& picture_png) {
+    if (!picture_png.empty()) check_output_file_directory("--render", picture_png);
     const SceneDescription scene = parse_scene(scene_path, scene_text, overrides);
     const auto model = compile_model(scene);
     // The picture is drawn whatever the checks find: a misplaced part is what it is for.

@@ -12,12 +12,14 @@
 #include "app/report_errors.h"
 #include "common/units.h"
 #include "contact/dent.h"
+#include "fem/block_mesher.h"
 #include "fem/impact_steps.h"
 #include "fem/inp_writer.h"
 #include "fem/patch_frame.h"
 #include "geometry/mesh_loader.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
+#include "output/output_names.h"
 #include "scene/scene_parser.h"
 
 namespace fs = std::filesystem;
@@ -72,13 +74,15 @@ double quantity(const std::string& option, const std::string& text, Dimension di
     try {
         return parse_quantity(text, dim);
     } catch (const QuantityError& e) {
-        throw InputError({option}, "", std::string(e.what()) + ", got '" + text + "'");
+        throw InputError({option}, "", e.what());  // it quotes the text
     }
 }
 
-double positive(const std::string& option, const std::string& text, Dimension dim) {
+// A quantity > 0 (`what` names it in the message: "a duration"; default the dimension's noun).
+double positive(const std::string& option, const std::string& text, Dimension dim, std::string what = "") {
     const double v = quantity(option, text, dim);
-    if (!(v > 0.0)) throw InputError({option}, "", "expected a positive " + std::string(dimension_noun(dim)) + ", got '" + text + "'");
+    if (what.empty()) what = dimension_noun(dim);
+    if (!(v > 0.0)) throw InputError({option}, "", "expected " + what + " > 0, got '" + text + "'");
     return v;
 }
 
@@ -97,6 +101,29 @@ std::string mm(double m) {
 }
 
 std::string mm3(const Vec3& p) { return "(" + mm(p.x()) + ", " + mm(p.y()) + ", " + mm(p.z()) + ") mm"; }
+
+// The centre of a --region's patch: the point of the region's surface nearest its area centroid.
+// Not the centroid itself: a region that is not flat (a gear tooth: both flanks, the tip and the
+// side faces) has its centroid inside the part, millimetres off the surface. Not the most impacted
+// point either: a FEM user asking for "the region" expects its middle, the same patch whatever
+// the run's seed (two runs' decks then compare like for like); --center picks any other point.
+// The nearest point is looked for on the triangles wholly inside the region (a triangle split by
+// the region's boundary may have its nearest point outside it), on all of its triangles only if
+// none is whole.
+Vec3 region_centre(const TriangleMesh& mesh, const RegionSet& regions, std::size_t r) {
+    Vec3 sum = Vec3::Zero();
+    double area = 0.0;  // m2
+    std::vector<int> whole;
+    for (const RegionShare& share : regions.shares(r)) {
+        const auto t = static_cast<std::size_t>(share.triangle);
+        const double a = share.fraction * regions.triangle_area_m2(t);
+        sum += a * (mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) / 3.0;
+        area += a;
+        if (share.fraction >= 1.0) whole.push_back(share.triangle);
+    }
+    const Vec3 centroid = sum / area;
+    return closest_surface_point(mesh, centroid, whole.empty() ? regions.triangles(r) : whole).point_m;
+}
 
 // A run's impacts on the component near the centre (component frame, m).
 struct LoggedImpact {
@@ -120,7 +147,10 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             throw InputError({"--elements-per-dent"}, "", "expected a number from 1 to 100");
         if (!(o.contact_times >= 1.0 && o.contact_times <= 100.0))
             throw InputError({"--contact-times"}, "", "expected a number from 1 to 100");
-        if (o.max_impacts < 0) throw InputError({"--impacts"}, "", "expected a positive count");
+        if (o.max_impacts && *o.max_impacts < 1)
+            throw InputError({"--impacts"}, "", "expected a count >= 1 (leave it out for every impact), got " + std::to_string(*o.max_impacts));
+        check_output_name("--name", o.name);  // the deck's file name: inside -o, and ccx's job name
+        const double window = positive("--group-window", o.group_window, Dimension::time, "a duration");
 
         // The run: its scene, the shot, the part and its material.
         std::optional<SceneDescription> scene;
@@ -174,7 +204,6 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         if (!o.yield_stress.empty()) target.yield_stress_pa = positive("--yield-stress", o.yield_stress, Dimension::stress);
         if (!o.hardening.empty()) target.hardening_modulus_pa = quantity("--hardening", o.hardening, Dimension::stress);
         if (target.hardening_modulus_pa < 0.0) throw InputError({"--hardening"}, "", "expected a stress >= 0");
-        const double window = quantity("--group-window", o.group_window, Dimension::time);
         const double R = 0.5 * shot_diameter;
         auto dent = [&](double vn) { return dent_diameter(shot_diameter, shot_density, vn, *target.yield_stress_pa); };
 
@@ -196,6 +225,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         }
         Vec3 centre;
         bool have_centre = false;
+        bool centre_on_region = false;  // the centre is a point of the --region's surface (not a user's point)
         if (!o.center.empty()) {
             centre = point_option("--center", o.center);
             have_centre = true;
@@ -215,17 +245,9 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
                 throw InputError({"--region"}, "", "component '" + component->name + "' has no region '" + o.region + "'" +
                                                        (names.empty() ? std::string(" (it has no regions)") : "; expected one of " + names));
             if (!have_centre) {
-                // The region's centroid: each triangle's centroid weighted by its area inside.
-                Vec3 sum = Vec3::Zero();
-                double area = 0.0;
-                for (const RegionShare& share : regions->shares(region_index)) {
-                    const auto ti = static_cast<std::size_t>(share.triangle);
-                    const double a = share.fraction * regions->triangle_area_m2(ti);
-                    sum += a * (mesh->corner(ti, 0) + mesh->corner(ti, 1) + mesh->corner(ti, 2)) / 3.0;
-                    area += a;
-                }
-                centre = sum / area;
+                centre = region_centre(*mesh, *regions, region_index);
                 have_centre = true;
+                centre_on_region = true;
             }
         }
         std::vector<PatchImpact> synthetic;
@@ -248,7 +270,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
 
         if (mesh) {
             const SurfacePoint s = closest_surface_point(*mesh, centre, region_triangles);
-            if (s.distance_m > R)
+            if (s.distance_m > R && !centre_on_region)
                 throw InputError({"--center"}, "", mm3(centre) + " is " + mm(s.distance_m) + " mm from the surface of component '" + component->name +
                                                        "'; expected a point on it (within a shot radius, " + mm(R) + " mm)");
             centre = s.point_m;
@@ -321,7 +343,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         }
         std::vector<PatchImpact> impacts;
         for (const PatchImpact& p : all)
-            if (p.point_m.norm() <= radius && (o.max_impacts == 0 || static_cast<int>(impacts.size()) < o.max_impacts)) impacts.push_back(p);
+            if (p.point_m.norm() <= radius && (!o.max_impacts || static_cast<int>(impacts.size()) < *o.max_impacts)) impacts.push_back(p);
         if (impacts.empty())
             throw InputError({o.run_dir.empty() ? "--single" : o.run_dir}, "",
                              "no impact of component '" + (component ? component->name : std::string("-")) + "' within " + mm(radius) +
@@ -350,10 +372,21 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         spec.fine_depth_m = std::max(kFineDepthDents * largest_dent, h);
         spec.element_size_m = h;
         spec.quarter = o.quarter;
+        // The limit on the whole block, checked before meshing: the fine zone first (it bounds the
+        // grid lines counted next), then every element, the coarse ones around and below it too
+        // (the default deck of the shipped gear had 4.45 M elements while the fine zone was checked alone).
         const double cells = std::pow((o.quarter ? 1.0 : 2.0) * spec.fine_half_width_m / h, 2.0) * spec.fine_depth_m / h;
         if (cells > kMaxElements)
             throw InputError({"--element-size"}, "", "the fine zone alone would need ~" + std::to_string(static_cast<long long>(cells)) +
-                                                         " elements (h = " + mm(h) + " mm); give a larger --element-size or fewer --impacts");
+                                                         " elements (h = " + mm(h) + " mm), more than the " +
+                                                         std::to_string(static_cast<long long>(kMaxElements)) +
+                                                         " written at most; give a larger --element-size or fewer --impacts");
+        const double elements = block_element_count(spec);
+        if (elements > kMaxElements)
+            throw InputError({"--element-size"}, "", "the block would have " + std::to_string(static_cast<long long>(elements)) +
+                                                         " elements (h = " + mm(h) + " mm, patch radius " + mm(radius) + " mm), more than the " +
+                                                         std::to_string(static_cast<long long>(kMaxElements)) +
+                                                         " written at most; give a larger --element-size, a smaller --radius or fewer --impacts");
 
         FemDeck deck;
         deck.quarter = o.quarter;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 namespace peensim {
@@ -15,12 +16,12 @@ namespace peensim {
 struct ExportFemOptions {
     std::string run_dir;           // the run's output directory ("" only with --single)
     std::string output_dir;        // -o: where the deck goes
-    std::string name = "patch";    // --name: the deck's file name without .inp (ccx's job name)
+    std::string name = "patch";    // --name: the deck's file name without .inp (ccx's job name; output/output_names.h)
     std::string component;         // --component: the logged part ("" = the only one)
     std::string center;            // --center x,y,z: the patch centre, component frame (lengths with units)
     std::string radius;            // --radius: the patch radius ("" = max(3 R, 2 dent diameters))
     std::string region;            // --region: a region of the component (centre and impacts from it)
-    int max_impacts = 0;           // --impacts N: the first N impacts of the patch (0 = all)
+    std::optional<int> max_impacts;  // --impacts N (>= 1): the first N impacts of the patch (none: all)
     std::string single;            // --single x,y,z,vx,vy,vz: one synthetic impact instead of the run's
     std::string shot_diameter;     // --shot-diameter: the shot without a run directory; a mix run: whose impacts
     std::string yield_stress;      // --yield-stress: the target's (default: its material's, else steel's)

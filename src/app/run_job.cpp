@@ -4,9 +4,11 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "app/analyze_job.h"
@@ -68,6 +70,7 @@ public:
         dir_ = run_output_directory(options_, scene);
         fs::create_directories(dir_);
         lock_ = std::make_unique<RunDirectoryLock>(dir_);
+        if (options_.resume && !fs::exists(checkpoint_path())) return already_finished();
         if (!options_.resume) {
             const std::vector<std::string> removed = clear_previous_outputs(dir_);
             if (!removed.empty()) {
@@ -124,6 +127,28 @@ private:
         return "\ninterrupted again: run abandoned; " + resume_command() + " continues from the last checkpoint (if one was written)\n";
     }
 
+    // --resume without a checkpoint: a finished run (its summary says so, of this scene) has
+    // nothing to resume, which is said with where its results are (exit 0: the run is done, and
+    // a script resuming until done stops); anything else cannot be resumed.
+    int already_finished() {
+        const fs::path summary = fs::path(dir_) / "summary.json";
+        nlohmann::json j;
+        if (std::ifstream in(summary); in) {
+            try {
+                j = nlohmann::json::parse(in);
+            } catch (const std::exception&) {}  // damaged: not a finished run's
+        }
+        const bool finished = j.is_object() && j.value("finished", false) && fs::exists(fs::path(dir_) / kImpactCsvFileName);
+        if (!finished) throw std::runtime_error(checkpoint_path() + ": no checkpoint to resume from (the run in " + dir_ + " did not write one)");
+        if (j.value("scene_hash", std::string()) != scene_hash_text(*model_))
+            throw InputError({summary.string(), 0, 0}, "scene_hash",
+                             "the run in " + dir_ + " finished with another scene (or other --set values) than this one; nothing to resume: "
+                             "run without --resume to run this scene (that replaces its outputs)");
+        err_ << "nothing to resume: the run in " << dir_ << " already finished (" << j.value("simulated_time_s", 0.0)
+             << " s simulated); its results are in " << dir_ << "/{impacts.csv, summary.json, analysis/}\n";
+        return kExitOk;
+    }
+
     void start(SetupCheck& setup) {
         // The cavity (up to ~8 M cells) is only for placing the shot: freed once they are placed.
         const std::unique_ptr<ShotCavity> cavity = std::move(setup.cavity);
@@ -136,6 +161,10 @@ private:
                 ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows, model_->has_size_mix()));
             speeds_ = std::move(c.normal_speeds);
             wall_before_ = c.wall_time_s;
+            // The summary of the session that was interrupted describes a time this run goes past:
+            // removed, so that nothing (analyze) reads it as this run's if this session is killed.
+            // A finished or interrupted session writes its own.
+            fs::remove(fs::path(dir_) / "summary.json");
         } else {
             fs::remove(checkpoint_path());
             fs::remove(fs::path(dir_) / kImpactCsvFileName);

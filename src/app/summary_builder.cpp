@@ -6,15 +6,19 @@
 
 namespace peensim {
 
+std::string scene_hash_text(const Model& model) {
+    char hash[17];
+    std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(model.scene_hash));
+    return hash;
+}
+
 RunSummary build_summary(const Simulation& sim, const std::string& scene_file, const std::vector<SpeedHistogram>& normal_speeds,
                          double wall_time_s, bool finished) {
     const Model& model = sim.model();
     const SimulationState& state = sim.state();
     RunSummary s;
     s.scene_file = scene_file;
-    char hash[17];
-    std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(model.scene_hash));
-    s.scene_hash = hash;
+    s.scene_hash = scene_hash_text(model);
     s.scheme = std::string(sim.scheme().name());
     s.flight = std::string(model.flight->name());
     s.finished = finished;

@@ -16,11 +16,13 @@
 #include "app/analysis_plots.h"
 #include "app/report_errors.h"
 #include "common/input_error.h"
+#include "common/units.h"
 #include "contact/dent.h"
 #include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "model/model.h"
 #include "output/atomic_file.h"
+#include "output/output_names.h"
 #include "scene/scene_parser.h"
 #include "scene/shot_mix.h"
 
@@ -31,6 +33,7 @@ namespace peensim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+const SourceLocation kCommandLine{"<command line>", 0, 0};
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kBatches = 10;        // time batches of the measured window (batch-means standard errors)
 constexpr double kSpeedBin = 1e-3;  // m/s, bin of the normal-speed histograms (percentiles)
@@ -330,10 +333,33 @@ std::string plot(const std::string& png_path, const std::vector<KnobResult>& res
     return plot_with_gnuplot(dir, stem, s.str());
 }
 
+// The options that need no scene, checked before it is read: a bad one is refused at once.
+void check_options(const TradeOptions& o) {
+    if (!(o.reference_steps >= 20.0 && o.reference_steps <= 10000.0))  // CLI11's range lets nan through
+        throw InputError(kCommandLine, "--reference-steps", "expected a number from 20 to 10000, got " + number(o.reference_steps));
+    if (!(o.seeds >= 1 && o.seeds <= 1000)) throw InputError(kCommandLine, "--seeds", "expected a count from 1 to 1000, got " + std::to_string(o.seeds));
+    if (!o.csv_path.empty()) check_output_file_directory("--csv", o.csv_path);
+    if (!o.plot_path.empty()) check_output_file_directory("--plot", o.plot_path);
+}
+
+// --settle in s: a time >= 0 (nan and inf are not times), or a tenth of the run when not given.
+double settle_time(const TradeOptions& o, double duration_s) {
+    if (o.settle.empty()) return 0.1 * duration_s;
+    double s = 0.0;
+    try {
+        s = parse_quantity(o.settle, Dimension::time);
+    } catch (const QuantityError& e) {
+        throw InputError(kCommandLine, "--settle", e.what());  // it quotes the text
+    }
+    if (!(s >= 0.0)) throw InputError(kCommandLine, "--settle", "expected a time >= 0, got '" + o.settle + "'");
+    return s;
+}
+
 }  // namespace
 
 int trade_job(const TradeOptions& o, std::ostream& out, std::ostream& err) {
     return report_errors(err, [&] {
+        check_options(o);
         std::vector<std::string> overrides = o.overrides;
         if (!o.duration.empty()) overrides.push_back("process.duration=" + o.duration);
         // Every knob's scene is read (and the soft one compiled) before the first run: a scene the
@@ -345,9 +371,9 @@ int trade_job(const TradeOptions& o, std::ostream& out, std::ostream& err) {
             (void)compile_model(parse_scene_file(o.scene_path, soft));
         }
         const double duration = base.process.duration_s;
-        const double settle = o.settle_s >= 0.0 ? o.settle_s : 0.1 * duration;
+        const double settle = settle_time(o, duration);
         if (!(settle < duration))
-            throw InputError({"command line", 0, 0}, "--settle",
+            throw InputError(kCommandLine, "--settle",
                              "expected less than the run's duration (" + number(duration) + " s), got " + number(settle) + " s");
         const std::vector<Knob> knobs = knobs_of(base, o.reference_steps);
         out << "== " << o.scene_path << ": " << number(duration) << " s simulated"

@@ -18,7 +18,7 @@ struct TradeOptions {
     std::string scene_path;
     std::vector<std::string> overrides;  // --set path=value, for every knob
     std::string duration;                // --duration: process.duration ("" = the scene's)
-    double settle_s = -1.0;              // --settle: s left out of rates and speeds (< 0: a tenth of the run)
+    std::string settle;                  // --settle: time left out of rates and speeds, >= 0 ("" = a tenth of the run)
     double reference_steps = 80.0;       // --reference-steps: the reference's soft steps per contact
     int seeds = 1;                       // --seeds: runs per knob (seeds process.seed, +1, ...), their figures averaged
     std::string csv_path;                // --csv: every figure; "" = none

@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
                                          "stiffness) against a converged soft reference");
     trade_cmd->add_option("scene", trade.scene_path, "scene file (YAML) whose contacts are hertz-mindlin")->required();
     trade_cmd->add_option("--duration", trade.duration, "simulated time of every run (default: the scene's process.duration)");
-    trade_cmd->add_option("--settle", trade.settle_s, "s left out of rates and speeds at the start (default: a tenth of the run)");
+    trade_cmd->add_option("--settle", trade.settle, "time left out of rates and speeds at the start, >= 0 (s, or \"20 ms\"; default: a tenth of the run)");
     trade_cmd->add_option("--reference-steps", trade.reference_steps, "soft steps per contact of the reference (default 80)")
         ->check(CLI::Range(20.0, 10000.0));
     trade_cmd->add_option("--seeds", trade.seeds, "runs per knob from consecutive seeds, figures averaged (default 1)")
@@ -169,7 +169,8 @@ int main(int argc, char** argv) {
     fem_cmd->add_option("--center", fem.center, "patch centre x,y,z in the component's frame, e.g. \"12 mm, 0, 3.5 mm\"");
     fem_cmd->add_option("--radius", fem.radius, "patch radius (default max(3 shot radii, 2 dent diameters))");
     fem_cmd->add_option("--region", fem.region, "a region of the component: the patch is centred on it and takes only its impacts");
-    fem_cmd->add_option("--impacts", fem.max_impacts, "only the first N impacts of the patch (default all)");
+    int fem_impacts = 0;
+    auto* fem_impacts_option = fem_cmd->add_option("--impacts", fem_impacts, "only the first N (>= 1) impacts of the patch (default all)");
     fem_cmd->add_option("--single", fem.single, "one synthetic impact x,y,z,vx,vy,vz instead of the run's, e.g. \"0,0,0,0,0,-50 m/s\"");
     fem_cmd->add_option("--shot-diameter", fem.shot_diameter,
                         "shot diameter (needed without a run directory; a run of a shot mix: the size whose impacts to export)");
@@ -262,7 +263,10 @@ int main(int argc, char** argv) {
     if (*sweep_cmd) return sweep_job(sweep, std::cout, std::cerr);
     if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
     if (*trade_cmd) return trade_job(trade, std::cout, std::cerr);
-    if (*fem_cmd) return export_fem_job(fem, std::cout, std::cerr);
+    if (*fem_cmd) {
+        if (fem_impacts_option->count() > 0) fem.max_impacts = fem_impacts;
+        return export_fem_job(fem, std::cout, std::cerr);
+    }
     if (*almen_fit_cmd) return almen_fit_job(almen_fit, std::cout, std::cerr);
     if (*generate_cmd) return run_generate_command(generate_cmd->remaining(), std::cout, std::cerr);
     if (app.got_subcommand("schema")) {

@@ -38,4 +38,8 @@ std::vector<double> graded_axis(double length, double fine, double h, double gro
 // Throws std::invalid_argument for an impossible spec (non-positive sizes, growth < 1).
 BlockMesh mesh_block(const BlockMeshSpec& spec);
 
+// The elements mesh_block(spec) would make, from its grid lines alone (nothing meshed): for a
+// limit checked before the work. Throws as mesh_block does.
+double block_element_count(const BlockMeshSpec& spec);
+
 }  // namespace peensim
