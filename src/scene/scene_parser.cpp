@@ -14,13 +14,14 @@
 #include "scene/shot_mix.h"
 #include "scene/schema_validation.h"
 #include "scene/yaml_access.h"
+#include "scene/yaml_load.h"
 
 namespace peensim {
 namespace {
 
-YAML::Node load_yaml(const std::string& text, const std::string& file) {
+YAML::Node load_scene_yaml(const std::string& text, const std::string& file) {
     try {
-        return YAML::Load(text);
+        return load_yaml(text);
     } catch (const YAML::ParserException& e) {
         const int line = e.mark.line >= 0 ? e.mark.line + 1 : 0;
         const int column = e.mark.column >= 0 ? e.mark.column + 1 : 0;
@@ -136,7 +137,7 @@ SceneDescription parse_scene_text(const std::string& yaml_text, const std::strin
                                   const std::vector<std::string>& overrides) {
     SceneContext context;
     context.file = virtual_path;
-    YAML::Node root = load_yaml(yaml_text, virtual_path);
+    YAML::Node root = load_scene_yaml(yaml_text, virtual_path);
     try {
         apply_overrides(root, overrides, context);
         const Cursor top = root_cursor(context, root);
