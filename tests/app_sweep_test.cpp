@@ -17,9 +17,11 @@
 #include <vector>
 
 #include "app/run_job.h"
+#include "app/sweep_checks.h"
 #include "app/sweep_compare.h"
 #include "app/sweep_job.h"
 #include "app/sweep_plan.h"
+#include "common/input_error.h"
 #include "support/child_process.h"
 #include "support/files.h"
 #include "support/temp_dir.h"
@@ -38,7 +40,7 @@ TEST(SweepPlan, AxesSplitAtTopLevelCommasOnly) {
     const SweepAxis gravity = parse_sweep_axis("process.gravity=[0, 0, -9.81],[0, -9.81, 0]");
     EXPECT_EQ(gravity.values, (std::vector<std::string>{"[0, 0, -9.81]", "[0, -9.81, 0]"}));
     for (const char* bad : {"speed", "=1,2", "shot.diameter=1 mm,,2 mm", "process.gravity=[0, 0, -9.81"}) {
-        EXPECT_THROW(parse_sweep_axis(bad), std::invalid_argument) << bad;
+        EXPECT_THROW(parse_sweep_axis(bad), InputError) << bad;
     }
 }
 
@@ -57,14 +59,93 @@ TEST(SweepPlan, EveryCombinationFirstAxisSlowestTimesTheSeeds) {
     EXPECT_EQ(r.dir, "out/speed-30rpm_diameter-2mm/s1");
     EXPECT_EQ(r.overrides, (std::vector<std::string>{"process.duration=1 s", "components[gear].motion.speed=30 rpm", "shot.diameter=2 mm",
                                                      "process.seed=8"}));
-    // Names that would collide are numbered; no axis: one variant, the scene itself.
-    const SweepPlan close = plan_sweep({parse_sweep_axis("shot.diameter=1 mm,1mm")}, 1, 1, {}, "o");
-    EXPECT_EQ(close.variants[1].name, "diameter-1mm.2");
+    // Names that would collide are numbered ("a b" and "ab" are two texts; "1 mm" and "1mm" one
+    // length, refused); no axis: one variant, the scene itself.
+    const SweepPlan close = plan_sweep({parse_sweep_axis("name=a b,ab")}, 1, 1, {}, "o");
+    EXPECT_EQ(close.variants[1].name, "name-ab.2");
+    EXPECT_THROW(plan_sweep({parse_sweep_axis("shot.diameter=1 mm,1mm")}, 1, 1, {}, "o"), InputError);
     EXPECT_EQ(plan_sweep({}, 3, 1, {}, "o").runs.size(), 3u);
     EXPECT_EQ(plan_sweep({}, 1, 1, {}, "o").variants[0].name, "base");
-    EXPECT_THROW(plan_sweep({parse_sweep_axis("shot.diameter=1 mm"), parse_sweep_axis("shot.diameter=2 mm")}, 1, 1, {}, "o"),
-                 std::invalid_argument);
-    EXPECT_THROW(plan_sweep({}, 0, 1, {}, "o"), std::invalid_argument);
+    EXPECT_THROW(plan_sweep({parse_sweep_axis("shot.diameter=1 mm"), parse_sweep_axis("shot.diameter=2 mm")}, 1, 1, {}, "o"), InputError);
+    EXPECT_THROW(plan_sweep({}, 0, 1, {}, "o"), InputError);
+}
+
+// The bounds are checked from the counts, before a variant is built (3.2 M runs refused at once);
+// a value given twice, or the same value written two ways, is refused naming it.
+TEST(SweepPlan, BoundsAndDuplicatesAreRefusedBeforeTheGridIsBuilt) {
+    const auto values = [](int n, const std::string& unit) {
+        std::string s;
+        for (int k = 1; k <= n; ++k) s += (k > 1 ? "," : "") + std::to_string(k) + unit;
+        return s;
+    };
+    const auto problem = [](const auto& plan) {
+        try {
+            plan();
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    std::vector<SweepAxis> grid;
+    for (const char* path : {"process.seed", "shot.count", "process.duration", "shot.diameter", "accuracy.impact_speed"})
+        grid.push_back(parse_sweep_axis(std::string(path) + "=" + values(20, "")));
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_NE(problem([&] { plan_sweep(grid, 1, 1, {}, "o"); }).find("a grid of 20 x 20 x 20 x 20 x 20 values x 1 seed make 3200000 runs"),
+              std::string::npos);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
+    EXPECT_NE(problem([&] { parse_sweep_axis("process.seed=" + values(1001, "")); }).find("1001 values; expected at most 1000 values per --vary"),
+              std::string::npos);
+    EXPECT_NO_THROW(plan_sweep({parse_sweep_axis("process.seed=" + values(1000, ""))}, 10, 1, {}, "o"));  // 10 000 runs: the bound
+    EXPECT_NE(problem([&] { plan_sweep({parse_sweep_axis("process.seed=" + values(1000, ""))}, 11, 1, {}, "o"); }).find("make 11000 runs"),
+              std::string::npos);
+    EXPECT_NE(problem([&] { plan_sweep({}, 1001, 1, {}, "o"); }).find("--seeds: expected 1 to 1000 replicates per variant, got '1001'"),
+              std::string::npos);
+    // Twice, and written two ways: lengths, whole numbers, vectors, maps in another key order.
+    EXPECT_NE(problem([&] { plan_sweep({parse_sweep_axis("process.seed=1,2,1")}, 1, 1, {}, "o"); })
+                  .find("--vary: process.seed: the value '1' is given twice; expected each value once"),
+              std::string::npos);
+    for (const char* same : {"shot.diameter=1 mm,1mm", "shot.diameter=2 mm,0.002 m", "shot.count=64,6.4e1", "shot.count=64,+64",
+                             "process.gravity=[0, 0, -9.81],[0,0,-9.81 m/s2]", "components[rod].motion={type: rotating, speed: 10 rpm},"
+                                                                                "{speed: 10 rpm, type: rotating}"})
+        EXPECT_NE(problem([&] { plan_sweep({parse_sweep_axis(same)}, 1, 1, {}, "o"); }).find("is the value"), std::string::npos) << same;
+    EXPECT_NO_THROW(plan_sweep({parse_sweep_axis("process.seed=9007199254740993,9007199254740992")}, 1, 1, {}, "o"));  // beyond 2^53: as text
+    // Listed variants: a bad name, or two setting the same, blamed on the variant's own line.
+    const auto variant = [](const std::string& name, const std::string& count, int line) {
+        SweepVariant v;
+        v.name = name;
+        v.set = {{"shot.count", count}};
+        v.origin = SourceLocation{"study.yaml", line, 5};
+        v.field = "variants[" + std::to_string(line - 4) + "]";
+        return v;
+    };
+    const SweepVariant a = variant("a", "64", 4);
+    SweepVariant b = variant("b", "6.4e1", 5);
+    EXPECT_NE(problem([&] { plan_sweep_variants({a, b}, 1, 1, {}, "o"); })
+                  .find("study.yaml:5:5: variants[1].set: variant 'b' sets the same values as variant 'a'"),
+              std::string::npos);
+    b.set = {{"shot.count", "128"}};
+    b.name = "../b";
+    EXPECT_NE(problem([&] { plan_sweep_variants({a, b}, 1, 1, {}, "o"); }).find("study.yaml:5:5: variants[1].name: variant name '../b'"),
+              std::string::npos);
+}
+
+// A variant that sets process.seed has its replicates start there (before, every variant ran the
+// scene's seed: the variant's value was overridden by the replicate's). Read as the runs read it.
+TEST(SweepPlan, AVariantThatSetsTheSeedHasItsReplicatesStartThere) {
+    SweepPlan plan = plan_sweep({parse_sweep_axis("process.seed=3,7")}, 2, 1, {"process.duration=10 ms"}, "o");
+    std::ostringstream progress;
+    check_sweep_variants(kRod, plan, progress);
+    ASSERT_EQ(plan.runs.size(), 4u);
+    EXPECT_EQ(plan.runs[0].seed, 3u);
+    EXPECT_EQ(plan.runs[1].seed, 4u);
+    EXPECT_EQ(plan.runs[3].seed, 8u);
+    EXPECT_EQ(plan.runs[3].overrides.back(), "process.seed=8");
+    EXPECT_EQ(plan.runs[3].dir, "o/seed-7/s1");
+    // A variant leaving the seed alone keeps the scene's (rod.yaml: 1).
+    SweepPlan other = plan_sweep({parse_sweep_axis("shot.count=64,128")}, 2, 1, {"process.duration=10 ms"}, "o");
+    check_sweep_variants(kRod, other, progress);
+    EXPECT_EQ(other.runs[3].seed, 2u);
+    EXPECT_EQ(progress.str(), "");  // a few variants: no progress lines
 }
 
 TEST(SweepStatistics, StudentsIntervalAndTheVerdict) {

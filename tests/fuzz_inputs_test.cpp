@@ -1,8 +1,9 @@
-// A mutation fuzz loop over what users hand peensim: scene files and mesh files, and (issue 29)
-// almen-fit's CSV files, export-fem's arguments, analyze's window (--from, --to), render sizes and
-// trade's arguments. Each mutant (bytes flipped, inserted, deleted, lines duplicated or dropped,
-// numbers replaced by extreme ones) must be read or refused with an input error (exit 2), never
-// anything else: no other exception, no crash (the test binary would die), no hang (CTest's
+// A mutation fuzz loop over what users hand peensim: scene files, mesh files, sweep files and
+// --vary strings (read, planned and every variant checked, as a sweep does before its runs), and
+// (issue 29) almen-fit's CSV files, export-fem's arguments, analyze's window (--from, --to), render
+// sizes and trade's arguments. Each mutant (bytes flipped, inserted, deleted, lines duplicated or
+// dropped, numbers replaced by extreme ones) must be read or refused with an input error (exit 2),
+// never anything else: no other exception, no crash (the test binary would die), no hang (CTest's
 // timeout). Fixed seeds, so a failure repeats; bounded by a count and a few seconds of wall time
 // per input.
 #include <gtest/gtest.h>
@@ -13,16 +14,19 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
-#include <sstream>
 #include <sys/wait.h>
 
 #include "app/almen_fit_job.h"
 #include "app/analyze_job.h"
 #include "app/export_fem_job.h"
 #include "app/run_job.h"
+#include "app/sweep_checks.h"
+#include "app/sweep_file.h"
+#include "app/sweep_plan.h"
 #include "app/trade_job.h"
 #include "common/input_error.h"
 #include "common/units.h"
@@ -123,6 +127,57 @@ TEST(FuzzInputs, SceneFilesAreReadOrRefusedWithAnInputError) {
     for (const char* name : {"rod.yaml", "rotating-gear.yaml", "almen.yaml"}) {
         const std::string path = scenes + name;
         fuzz(name, read_file(path), seed++, [&](const std::string& text) { parse_scene_text(text, path); });
+    }
+}
+
+// What `peensim sweep` does before its first run: the scene with the sweep's own overrides, the plan
+// (its bounds, its duplicates), every variant read as its runs will read it.
+void check_sweep(const std::string& scene_path, const SweepOverrides& overrides, const std::vector<SweepAxis>& axes,
+                 const std::vector<SweepVariant>& listed, int seeds) {
+    const SceneDescription scene = read_sweep_scene(scene_path, overrides);
+    std::vector<std::string> all = overrides.from_file;
+    all.insert(all.end(), overrides.from_command_line.begin(), overrides.from_command_line.end());
+    SweepPlan plan = listed.empty() ? plan_sweep(axes, seeds, scene.process.seed, all, "out")
+                                    : plan_sweep_variants(listed, seeds, scene.process.seed, all, "out");
+    std::ostringstream progress;
+    check_sweep_variants(scene_path, plan, progress);
+}
+
+TEST(FuzzInputs, SweepFilesAreReadOrRefusedWithAnInputError) {
+    TempDir dir;
+    const std::string rod = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
+    const std::vector<std::pair<std::string, std::string>> inputs{
+        {"grid.yaml", "scene: " + rod +
+                          "\nseeds: 2\nset: [\"process.duration=10 ms\"]\nvary:\n  shot.count: [64, 128]\n"
+                          "  process.gravity: [[0, 0, -9.81], [0, -9.81, 0]]\nbaseline: count-64_gravity-00-9.81\n"},
+        {"variants.yaml", "scene: " + rod +
+                              "\nseeds: 1\nvariants:\n  - {name: few, set: {shot.count: 64, process.seed: 3}}\n"
+                              "  - {name: many, set: {shot.count: 128, shot.diameter: 1.5 mm}}\nbaseline: many\n"},
+    };
+    std::uint64_t seed = 200;
+    for (const auto& [name, content] : inputs) {
+        const fs::path path = dir.path / name;
+        fuzz(name, content, seed++, [&](const std::string& text) {
+            std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+            if (!is_sweep_file(path.string())) {  // read as a scene then, as `peensim sweep` does
+                (void)parse_scene_file(path.string());
+                return;
+            }
+            const SweepFile f = read_sweep_file(path.string());
+            check_sweep(f.scene_path, SweepOverrides{f.overrides, f.set_origin, {}}, f.axes, f.variants, f.seeds > 0 ? f.seeds : 1);
+        });
+    }
+}
+
+TEST(FuzzInputs, VaryStringsAreReadOrRefusedWithAnInputError) {
+    const std::string rod = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
+    std::uint64_t seed = 300;
+    for (const char* spec : {"shot.count=64,128,256", "process.gravity=[0, 0, -9.81],[0, -9.81, 0]", "shot.diameter=1 mm,1.5 mm,0.002 m",
+                             "components[rod].material=copper,steel", "process.seed=1,2,3"}) {
+        fuzz(std::string("--vary ") + spec, spec, seed++, [&](const std::string& mutant) {
+            check_sweep(rod, SweepOverrides{{}, {}, {"process.duration=10 ms"}},
+                        {parse_sweep_axis(mutant), parse_sweep_axis("accuracy.travel_fraction=0.25,0.2")}, {}, 1);
+        });
     }
 }
 

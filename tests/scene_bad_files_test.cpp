@@ -74,7 +74,7 @@ const BadScene catalogue[] = {
     {"shot_sizes_duplicate.yaml", 8, "shot.sizes[1].diameter", "this diameter is already in the mix; give each size once"},
     {"initial_speed_too_fast.yaml", 3, "shot.initial_speed", "expected a speed in [0, 1000] m/s, got '1e6 m/s'"},
     {"initial_velocity_too_fast.yaml", 3, "shot.initial_velocity", "expected a velocity of at most 1000 m/s, got 1e+06 m/s"},
-    {"nested_too_deep.yaml", 2, "", "invalid YAML: nested too deep (the reader stops at nesting level"},
+    {"nested_too_deep.yaml", 2, "", "invalid YAML: maps and lists nested deeper than 64 levels"},
 };
 
 // Scenes that read but cannot be compiled into a model (compile_model: a law without what it

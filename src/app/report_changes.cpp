@@ -40,6 +40,18 @@ const ComponentDesc* described(const SceneDescription& scene, const std::string&
     return nullptr;
 }
 
+// "path=a,b,c" with each value once: a sweep refuses a value given twice (two that round alike).
+std::string vary_spec(const std::string& path, const std::vector<std::string>& values) {
+    std::string spec = path + "=";
+    std::vector<std::string> given;
+    for (const std::string& v : values)
+        if (std::find(given.begin(), given.end(), v) == given.end()) {
+            spec += (given.empty() ? "" : ",") + v;
+            given.push_back(v);
+        }
+    return spec;
+}
+
 // A sweep of this run's scene, as long as this window, two seeds.
 std::string sweep_command(const ReportContext& x, const std::string& suffix, const std::string& vary) {
     return "peensim sweep " + (x.run_dir / "scene.resolved.yaml").string() + " -o " + x.run_dir.string() + "-" + suffix + " --vary \"" + vary +
@@ -138,8 +150,8 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
                 const double rpm = std::abs(desc->rotation_motion->speed_rad_per_s) * 60.0 / (2.0 * std::numbers::pi);
                 r << "It turns at " << fmt(rpm, 4) << " rpm; how the speed changes that, with 2 seeds:\n\n      "
                   << sweep_command(x, "speed",
-                                   "components[" + c.name + "].motion.speed=" + fmt(rpm / 2.0, 4) + " rpm," + fmt(rpm, 4) + " rpm," +
-                                       fmt(2.0 * rpm, 4) + " rpm")
+                                   vary_spec("components[" + c.name + "].motion.speed",
+                                             {fmt(rpm / 2.0, 4) + " rpm", fmt(rpm, 4) + " rpm", fmt(2.0 * rpm, 4) + " rpm"}))
                   << "\n\n";
             } else if (c.role == ComponentRole::part) {
                 const TurningAxis axis = turning_axis(*c.mesh, *desc);
@@ -163,8 +175,8 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
                   << "); a smaller shot dents less (dent size goes with the diameter), so check the time and the Almen intensity it "
                      "gives:\n\n      "
                   << sweep_command(x, "shot",
-                                   "shot.diameter=" + fmt(u.shot_diameter_m * 1e3, 4) + " mm," + fmt(half * 1e3, 3) + " mm," + fmt(most * 1e3, 3) +
-                                       " mm")
+                                   vary_spec("shot.diameter", {fmt(u.shot_diameter_m * 1e3, 4) + " mm", fmt(half * 1e3, 3) + " mm",
+                                                               fmt(most * 1e3, 3) + " mm"}))
                   << "\n\n";
             } else if (u.whole.most_reached_by_m > 0.0) {
                 r << "A shot of " << mm(u.whole.most_reached_by_m, 2) << " or smaller reaches 90 % of it by this run's reach test "

@@ -1,9 +1,12 @@
 #include "app/sweep_book.h"
 
 #include <fcntl.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
 
 #include <algorithm>
 #include <cmath>
@@ -102,22 +105,53 @@ pid_t start_sweep_run(const std::string& executable, const std::string& scene, c
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    // A process group of its own: a Ctrl-C at the terminal reaches the sweep alone, which passes one
-    // SIGINT on (a run that got two would be abandoned at once instead of checkpointing).
-    posix_spawnattr_t attributes;
-    posix_spawnattr_init(&attributes);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-    posix_spawnattr_setpgroup(&attributes, 0);
-    pid_t pid = 0;
-    const int rc = ::posix_spawn(&pid, executable.c_str(), &actions, &attributes, argv.data(), environ);
-    posix_spawnattr_destroy(&attributes);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) throw std::runtime_error("cannot start " + executable + ": " + std::strerror(rc));
+    // Everything the child needs is made before fork: between fork and exec only async-signal-safe calls.
+    const int input = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+    const int output = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    int exec_failed[2] = {-1, -1};  // the child's errno if execve fails; closed by a successful one
+    if (input < 0 || output < 0 || ::pipe2(exec_failed, O_CLOEXEC) != 0) {
+        const int error = errno;
+        for (int fd : {input, output, exec_failed[0], exec_failed[1]})
+            if (fd >= 0) ::close(fd);
+        throw std::runtime_error("cannot start a run (" + log + "): " + std::strerror(error));
+    }
+    const pid_t parent = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        // A process group of its own: a Ctrl-C at the terminal reaches the sweep alone, which passes
+        // one SIGINT on (a run that got two would be abandoned at once instead of checkpointing).
+        ::setpgid(0, 0);
+        // Dies with the sweep: a sweep (or an MPI rank) killed outright (SIGKILL, a crash) cannot
+        // pass anything on, and a run left going would hold its directory's lock against the
+        // rerun ("in use"). SIGKILL: the rerun resumes at once from the run's last checkpoint.
+        // The sweep may have died before prctl: then this process was already handed to another
+        // parent, and never runs.
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent) ::_exit(kExitInterrupted);
+        ::dup2(input, STDIN_FILENO);
+        ::dup2(output, STDOUT_FILENO);
+        ::dup2(output, STDERR_FILENO);
+        ::execve(executable.c_str(), argv.data(), environ);
+        const int error = errno;
+        [[maybe_unused]] const ssize_t said = ::write(exec_failed[1], &error, sizeof error);
+        ::_exit(127);
+    }
+    const int fork_error = errno;
+    for (int fd : {input, output, exec_failed[1]}) ::close(fd);
+    if (pid < 0) {
+        ::close(exec_failed[0]);
+        throw std::runtime_error("cannot start " + executable + ": " + std::strerror(fork_error));
+    }
+    int exec_error = 0;
+    ssize_t n = 0;
+    do n = ::read(exec_failed[0], &exec_error, sizeof exec_error);
+    while (n < 0 && errno == EINTR);
+    ::close(exec_failed[0]);
+    if (n == static_cast<ssize_t>(sizeof exec_error)) {
+        int status = 0;
+        ::waitpid(pid, &status, 0);
+        throw std::runtime_error("cannot start " + executable + ": " + std::strerror(exec_error));
+    }
     return pid;
 }
 

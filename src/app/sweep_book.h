@@ -1,7 +1,7 @@
 // The bookkeeping of a sweep's runs, whoever runs them (child processes of this process, or MPI
 // ranks): which are still to run, each one's attempts (a failed run goes back into the queue
 // once), what finished and what failed, and the progress lines. And how one run is started: the
-// `peensim run` process itself, in a process group of its own.
+// `peensim run` process itself, in a process group of its own, dying with its parent.
 #pragma once
 
 #include <sys/types.h>
@@ -50,7 +50,9 @@ private:
 };
 
 // Starts `executable run scene -o <run dir> --quiet [--resume] --set ...` (resuming from the run's
-// checkpoint if it has one), stdin from /dev/null, stdout and stderr appended to `log`.
+// checkpoint if it has one), stdin from /dev/null, stdout and stderr appended to `log`, in a
+// process group of its own. It dies with the thread that started it (SIGKILL, PR_SET_PDEATHSIG):
+// a sweep or MPI rank killed outright leaves no run behind holding its directory.
 pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log);
 
 // Where run `run`'s messages go: logs_dir/<variant>.s<k>.log.

@@ -1,16 +1,25 @@
 #include "app/sweep_file.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <string_view>
 
 #include <yaml-cpp/yaml.h>
 
 #include "common/input_error.h"
+#include "scene/schema.h"
+#include "scene/yaml_load.h"
 
 namespace fs = std::filesystem;
 
 namespace peensim {
 
 namespace {
+
+constexpr std::string_view kSweepKeys[] = {"scene", "seeds", "set", "vary", "variants", "baseline"};
+constexpr std::string_view kSweepKeysText = "scene, seeds, set, vary, variants, baseline";
+
+bool is_sweep_key(const std::string& key) { return std::find(std::begin(kSweepKeys), std::end(kSweepKeys), key) != std::end(kSweepKeys); }
 
 SourceLocation at(const std::string& path, const YAML::Node& n) { return {path, n.Mark().line + 1, n.Mark().column + 1}; }
 
@@ -25,18 +34,30 @@ std::string text_of(const YAML::Node& n) {
 }  // namespace
 
 bool is_sweep_file(const std::string& path) {
+    YAML::Node root;
     try {
-        const YAML::Node root = YAML::LoadFile(path);
-        return root.IsMap() && root["scene"];
+        root = load_yaml_file(path);
     } catch (const std::exception&) {
         return false;  // not readable YAML: read as a scene, which says what is wrong
     }
+    if (!root.IsMap()) return false;
+    if (root["scene"]) return true;
+    bool sweep_keys = false;
+    for (const auto& kv : root) {
+        if (!kv.first.IsScalar()) continue;
+        const std::string key = kv.first.Scalar();
+        if (find_schema_entry(key) != nullptr) return false;  // a scene's key: a scene (with a stray key, if any)
+        sweep_keys = sweep_keys || is_sweep_key(key);
+    }
+    return sweep_keys;
 }
 
 SweepFile read_sweep_file(const std::string& path) {
     YAML::Node root;
     try {
-        root = YAML::LoadFile(path);
+        root = load_yaml_file(path);
+    } catch (const YAML::BadFile&) {
+        throw InputError({path}, "", "cannot read the sweep file");
     } catch (const YAML::Exception& e) {
         throw InputError({path, e.mark.line + 1, e.mark.column + 1}, "", std::string("invalid YAML: ") + e.msg);
     }
@@ -44,11 +65,14 @@ SweepFile read_sweep_file(const std::string& path) {
     const auto fail = [&](const YAML::Node& n, const std::string& field, const std::string& problem) {
         throw InputError(at(path, n), field, problem);
     };
+    if (!root.IsMap()) throw InputError({path, 1, 1}, "", "expected a sweep file: a map with scene, and vary or variants");
     for (const auto& kv : root) {
-        const std::string key = kv.first.Scalar();
-        if (key != "scene" && key != "seeds" && key != "set" && key != "vary" && key != "variants" && key != "baseline")
-            fail(kv.first, key, "unknown key in a sweep file; expected scene, seeds, set, vary, variants, baseline");
+        const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : text_of(kv.first);
+        if (!is_sweep_key(key)) fail(kv.first, key, "unknown key in a sweep file; expected " + std::string(kSweepKeysText));
     }
+    if (!root["scene"])
+        throw InputError({path, 1, 1}, "scene",
+                         "missing the scene file: expected `scene:` with its path (relative to this sweep file) in a sweep file");
     const YAML::Node scene = root["scene"];
     if (!scene.IsScalar()) fail(scene, "scene", "expected the scene file's path");
     f.scene_path = (fs::path(path).parent_path() / scene.Scalar()).lexically_normal().string();
@@ -56,12 +80,13 @@ SweepFile read_sweep_file(const std::string& path) {
         try {
             f.seeds = seeds.as<int>();
         } catch (const YAML::Exception&) {
-            fail(seeds, "seeds", "expected a whole number of replicates, got '" + text_of(seeds) + "'");
+            fail(seeds, "seeds", sweep_seeds_problem(text_of(seeds)));
         }
-        if (f.seeds < 1 || f.seeds > 1000) fail(seeds, "seeds", "expected 1 to 1000 replicates, got " + std::to_string(f.seeds));
+        if (f.seeds < 1 || f.seeds > kMaxSweepSeeds) fail(seeds, "seeds", sweep_seeds_problem(text_of(seeds)));
     }
     if (const YAML::Node set = root["set"]) {
         if (!set.IsSequence()) fail(set, "set", "expected a list of path=value");
+        f.set_origin = at(path, set);
         for (const auto& s : set) f.overrides.push_back(text_of(s));
     }
     const YAML::Node vary = root["vary"], variants = root["variants"];
@@ -69,8 +94,9 @@ SweepFile read_sweep_file(const std::string& path) {
     if (vary) {
         if (!vary.IsMap()) fail(vary, "vary", "expected a map of path: [values]");
         for (const auto& kv : vary) {
-            SweepAxis axis{kv.first.Scalar(), {}};
-            if (!kv.second.IsSequence() || kv.second.size() == 0) fail(kv.second, "vary." + axis.path, "expected a list of one or more values");
+            SweepAxis axis{kv.first.Scalar(), {}, at(path, kv.first), "vary." + kv.first.Scalar()};
+            if (!kv.second.IsSequence() || kv.second.size() == 0)
+                fail(kv.second, "vary." + axis.path, "expected a list of one or more values");
             for (const auto& v : kv.second) axis.values.push_back(text_of(v));
             f.axes.push_back(std::move(axis));
         }
@@ -81,7 +107,7 @@ SweepFile read_sweep_file(const std::string& path) {
             const YAML::Node v = variants[k];
             const std::string field = "variants[" + std::to_string(k) + "]";
             if (!v.IsMap() || !v["name"] || !v["name"].IsScalar()) fail(v, field + ".name", "expected each variant's name");
-            SweepVariant variant{v["name"].Scalar(), {}};
+            SweepVariant variant{v["name"].Scalar(), {}, at(path, v), field};
             if (const YAML::Node set = v["set"]) {
                 if (!set.IsMap()) fail(set, field + ".set", "expected a map of path: value");
                 for (const auto& kv : set) variant.set.emplace_back(kv.first.Scalar(), text_of(kv.second));
@@ -89,7 +115,10 @@ SweepFile read_sweep_file(const std::string& path) {
             f.variants.push_back(std::move(variant));
         }
     }
-    if (const YAML::Node b = root["baseline"]) f.baseline = text_of(b);
+    if (const YAML::Node b = root["baseline"]) {
+        f.baseline = text_of(b);
+        f.baseline_origin = at(path, b);
+    }
     return f;
 }
 

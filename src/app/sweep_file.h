@@ -23,12 +23,16 @@ struct SweepFile {
     std::string scene_path;              // resolved against the sweep file's directory
     int seeds = 0;                       // 0: not given
     std::vector<std::string> overrides;  // `set`
-    std::vector<SweepAxis> axes;         // `vary`
-    std::vector<SweepVariant> variants;  // `variants`
+    SourceLocation set_origin;           // the `set` key's line
+    std::vector<SweepAxis> axes;         // `vary` (each with its line)
+    std::vector<SweepVariant> variants;  // `variants` (each with its line)
     std::string baseline;
+    SourceLocation baseline_origin;
 };
 
-// A YAML file whose top level is a map with a `scene` key (a scene file has none).
+// A YAML file whose top level is a map with a `scene` key, or with the keys of a sweep (vary,
+// variants, seeds, set, baseline) and none of a scene's: a sweep file that forgot its scene is
+// read as one, and told so, not read as a scene and told that `vary` is an unknown key.
 bool is_sweep_file(const std::string& path);
 
 // Throws InputError (file, line, field, what was expected) for a file that is not a sweep.

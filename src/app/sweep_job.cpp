@@ -14,6 +14,7 @@
 #include "app/report_errors.h"
 #include "app/run_job.h"
 #include "app/sweep_book.h"
+#include "app/sweep_checks.h"
 #include "app/sweep_compare.h"
 #include "app/sweep_file.h"
 #include "app/sweep_mpi.h"
@@ -57,41 +58,39 @@ int sweep_job(const SweepOptions& options, std::ostream& out, std::ostream& err)
 int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err) {
     SweepOptions o = options;
     if (o.output_dir.empty()) throw InputError({"-o"}, "", "expected the sweep's output directory (-o DIR)");
+    // --seeds, then each --vary on its own (its values, their number), before any file is read.
+    if (o.seeds && (*o.seeds < 1 || *o.seeds > kMaxSweepSeeds))
+        throw InputError({"--seeds"}, "", sweep_seeds_problem(std::to_string(*o.seeds)));
     std::vector<SweepAxis> axes;
-    try {
-        for (const std::string& spec : o.vary) axes.push_back(parse_sweep_axis(spec));
-    } catch (const std::invalid_argument& e) {
-        throw InputError({"--vary"}, "", e.what());
-    }
+    for (const std::string& spec : o.vary) axes.push_back(parse_sweep_axis(spec));
     // A sweep file: its scene, set, variants, seeds and baseline (the command line's --set after its own).
     std::vector<SweepVariant> listed;
+    SweepOverrides overrides{{}, {}, o.overrides};
+    SourceLocation baseline_origin{"--baseline"};
     if (is_sweep_file(o.scene_path)) {
         if (!o.vary.empty()) throw InputError({"--vary"}, "", "the sweep file gives the variants; expected no --vary with a sweep file");
         SweepFile f = read_sweep_file(o.scene_path);
         o.scene_path = f.scene_path;
-        f.overrides.insert(f.overrides.end(), o.overrides.begin(), o.overrides.end());
-        o.overrides = f.overrides;
-        if (o.seeds == 0) o.seeds = f.seeds;
-        if (o.baseline.empty()) o.baseline = f.baseline;
+        overrides.from_file = f.overrides;
+        overrides.file_origin = f.set_origin;
+        if (!o.seeds && f.seeds > 0) o.seeds = f.seeds;
+        if (o.baseline.empty() && !f.baseline.empty()) o.baseline = f.baseline, baseline_origin = f.baseline_origin;
         axes = f.axes;
         listed = f.variants;
     }
-    if (o.seeds == 0) o.seeds = 1;
-    // The scene as every run reads it: its errors (and each variant's) before anything runs.
-    const SceneDescription scene = parse_scene_file(o.scene_path, o.overrides);
-    SweepPlan plan;
-    try {
-        plan = listed.empty() ? plan_sweep(axes, o.seeds, scene.process.seed, o.overrides, o.output_dir)
-                              : plan_sweep_variants(listed, o.seeds, scene.process.seed, o.overrides, o.output_dir);
-    } catch (const std::invalid_argument& e) {
-        throw InputError({"--vary"}, "", e.what());
-    }
-    for (const SweepRun& run : plan.runs)
-        if (run.replicate == 0) (void)parse_scene_file(o.scene_path, run.overrides);
+    const int seeds = static_cast<int>(o.seeds.value_or(1));
+    // The scene as every run reads it; the plan (its size checked from the counts alone, before the
+    // grid is built); then each variant as its runs will read it: every error before anything runs.
+    const SceneDescription scene = read_sweep_scene(o.scene_path, overrides);
+    std::vector<std::string> all = overrides.from_file;
+    all.insert(all.end(), overrides.from_command_line.begin(), overrides.from_command_line.end());
+    SweepPlan plan = listed.empty() ? plan_sweep(axes, seeds, scene.process.seed, all, o.output_dir)
+                                    : plan_sweep_variants(listed, seeds, scene.process.seed, all, o.output_dir);
+    check_sweep_variants(o.scene_path, plan, out);
     if (!o.baseline.empty() &&
         std::none_of(plan.variants.begin(), plan.variants.end(), [&](const SweepVariant& v) { return v.name == o.baseline; }))
         throw InputError(
-            {"--baseline"}, "",
+            baseline_origin, baseline_origin.line > 0 ? "baseline" : "",
             "no variant is named '" + o.baseline + "'; expected one of the sweep's (e.g. '" + plan.variants.front().name + "')");
     const std::string executable = o.executable.empty() ? this_executable() : o.executable;
     const std::string sweep_dir = o.output_dir + "/sweep";

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -17,7 +18,7 @@ struct SweepOptions {
     std::string output_dir;              // -o: the sweep's directory
     std::vector<std::string> vary;       // --vary path=v1,v2,...
     std::vector<std::string> overrides;  // --set, every run
-    int seeds = 0;                       // --seeds: replicates per variant (process.seed, seed + 1, ...); 0: the sweep file's, else 1
+    std::optional<long long> seeds;      // --seeds: replicates per variant (process.seed, seed + 1, ...); none: the sweep file's, else 1
     int jobs = 0;                        // --jobs: runs at once (0: every core)
     std::string baseline;                // --baseline: the variant the others are compared with ("" = the first)
     std::string executable;              // the peensim binary the runs are ("" = this process's own)

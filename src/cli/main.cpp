@@ -12,6 +12,7 @@
 #include "app/render_module.h"
 #include "app/run_job.h"
 #include "app/sweep_job.h"
+#include "app/sweep_plan.h"
 #include "app/trade_job.h"
 #include "cli/generate_command.h"
 #include "common/input_error.h"
@@ -119,8 +120,10 @@ int main(int argc, char** argv) {
         ->required();
     sweep_cmd->add_option("--vary", sweep.vary, "a scene field and its values: path=v1,v2,... (repeatable: every combination)")
         ->allow_extra_args(false);
-    sweep_cmd->add_option("--seeds", sweep.seeds, "replicates per variant from process.seed, +1, ... (default: the sweep file's, else 1)")
-        ->check(CLI::Range(1, 1000));
+    // Checked by the sweep itself (1 to kMaxSweepSeeds), with the message Python's sweep(seeds=) gets.
+    long long sweep_seeds = 0;
+    auto* sweep_seeds_option = sweep_cmd->add_option(
+        "--seeds", sweep_seeds, "replicates per variant from process.seed, +1, ... (1 to " + std::to_string(kMaxSweepSeeds) + "; default: the sweep file's, else 1)");
     sweep_cmd->add_option("--set", sweep.overrides, "override a scene field for every run")->allow_extra_args(false);
     sweep_cmd->add_option("--jobs", sweep.jobs, "runs at once (default: every core)")->check(CLI::Range(1, 4096));
     sweep_cmd->add_option("--baseline", sweep.baseline, "the variant the others are compared with (default: the first)");
@@ -260,7 +263,10 @@ int main(int argc, char** argv) {
             return kExitRuntimeError;
         }
     }
-    if (*sweep_cmd) return sweep_job(sweep, std::cout, std::cerr);
+    if (*sweep_cmd) {
+        if (sweep_seeds_option->count() > 0) sweep.seeds = sweep_seeds;
+        return sweep_job(sweep, std::cout, std::cerr);
+    }
     if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
     if (*trade_cmd) return trade_job(trade, std::cout, std::cerr);
     if (*fem_cmd) {

@@ -39,10 +39,13 @@ PYBIND11_MODULE(_native, m) {
     });
 
     m.def(
-        "to_yaml", [](const py::handle& v) { return to_yaml(v); }, py::arg("value"), "A dict (a scene) as YAML text.");
+        "to_yaml", [](const py::handle& v, const std::string& name) { return to_yaml(v, name); }, py::arg("value"), py::arg("name"),
+        "A dict (a scene, named `name` in messages) as YAML text.");
     m.def("from_yaml", &from_yaml, py::arg("text"), py::arg("name"), "YAML text as a dict (str, int, float, bool, None, lists).");
     m.def(
-        "override_value", [](const py::handle& v) { return override_value(v); }, py::arg("value"), "A value as --set reads it.");
+        "override_value",
+        [](const py::handle& v, const std::string& field, const std::string& file) { return override_value(v, field, file); },
+        py::arg("value"), py::arg("field"), py::arg("file") = "<--set>", "A value as --set reads it (errors name `file` and `field`).");
 
     m.def("read_csv", &read_csv_columns, py::arg("path"), "A CSV of the analysis as a dict of NumPy arrays, one per column.");
     m.def(

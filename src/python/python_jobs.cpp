@@ -14,6 +14,8 @@
 #include "app/check_job.h"
 #include "app/run_job.h"
 #include "app/sweep_job.h"
+#include "app/sweep_plan.h"
+#include "common/input_error.h"
 #include "model/model.h"
 #include "python/python_stream.h"
 #include "scene/scene_parser.h"
@@ -141,16 +143,29 @@ void analyze(const std::string& dir, bool verbose, double from_s, std::optional<
     analyze_run(dir, out, err, AnalyzeOptions{from_s, to_s, min_speed, target, smoothing_radius});
 }
 
+// sweep(seeds=...) as --seeds: None not given, a whole number checked by the sweep (0 is refused
+// there, as on the command line); anything else, or a number beyond 64 bits, refused here with
+// the same message.
+std::optional<long long> sweep_seeds(const py::object& seeds) {
+    if (seeds.is_none()) return std::nullopt;
+    if (py::isinstance<py::int_>(seeds) && !py::isinstance<py::bool_>(seeds)) {
+        int overflow = 0;
+        const long long n = PyLong_AsLongLongAndOverflow(seeds.ptr(), &overflow);
+        if (overflow == 0) return n;
+    }
+    throw InputError({"--seeds"}, "", sweep_seeds_problem(py::str(py::repr(seeds))));
+}
+
 int sweep(const std::string& scene_path, const std::string& output_dir, const std::vector<std::string>& vary,
-          const std::vector<std::string>& overrides, int seeds, int jobs, const std::string& baseline, const std::string& executable,
-          bool verbose) {
+          const std::vector<std::string>& overrides, const py::object& seeds, int jobs, const std::string& baseline,
+          const std::string& executable, bool verbose) {
     PythonStop stop;
     SweepOptions o;
     o.scene_path = scene_path;
     o.output_dir = output_dir;
     o.vary = vary;
     o.overrides = overrides;
-    o.seeds = seeds;
+    o.seeds = sweep_seeds(seeds);
     o.jobs = jobs;
     o.baseline = baseline;
     o.executable = executable;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "scene/yaml_load.h"
+
 namespace peensim {
 namespace {
 
@@ -137,6 +139,29 @@ void set_at(YAML::Node node, std::size_t i, const std::string& schema_path, cons
 
 }  // namespace
 
+const SchemaEntry* override_schema_entry(const std::string& path) {
+    OverrideWalk w;
+    w.text = w.path = trim(path);
+    try {
+        w.steps = split_path(w);
+    } catch (const InputError&) {
+        return nullptr;
+    }
+    std::string schema_path;
+    for (const PathStep& step : w.steps) {
+        const SchemaEntry* entry = find_schema_entry(schema_path);
+        if (step.is_selector) {
+            if (entry == nullptr || entry->kind != ValueKind::list) return nullptr;
+            schema_path += "[]";
+        } else if (entry != nullptr && entry->kind == ValueKind::named_map) {
+            schema_path = schema_child_path(schema_path, "*");
+        } else {
+            schema_path = schema_child_path(schema_path, step.text);
+        }
+    }
+    return find_schema_entry(schema_path);
+}
+
 void apply_overrides(YAML::Node root, const std::vector<std::string>& overrides, SceneContext& context) {
     for (const std::string& text : overrides) {
         OverrideWalk w;
@@ -148,7 +173,7 @@ void apply_overrides(YAML::Node root, const std::vector<std::string>& overrides,
         const std::string value_text = trim(text.substr(eq + 1));
         if (value_text.empty()) w.fail("missing value after '='");
         try {
-            w.value = YAML::Load(value_text);
+            w.value = load_yaml(value_text);
         } catch (const YAML::Exception& e) {
             w.fail("the value is not valid YAML: " + e.msg);
         }

@@ -18,4 +18,9 @@ namespace peensim {
 // malformed override, a path the schema does not know or a list item that does not exist.
 void apply_overrides(YAML::Node root, const std::vector<std::string>& overrides, SceneContext& context);
 
+// The schema entry an override path sets ("components[gear].motion.speed" ->
+// "components[].motion.speed", "materials.steel.density" -> "materials.*.density"); nullptr for a
+// malformed path or one the schema does not know (apply_overrides says why).
+const SchemaEntry* override_schema_entry(const std::string& path);
+
 }  // namespace peensim

@@ -14,6 +14,7 @@
 #include "scene/shot_mix.h"
 #include "scene/schema_validation.h"
 #include "scene/yaml_access.h"
+#include "scene/yaml_load.h"
 
 namespace peensim {
 namespace {

@@ -2,24 +2,22 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 
-#include <yaml-cpp/depthguard.h>
+#include "scene/yaml_load.h"
 
 namespace peensim {
 
 YAML::Node parse_yaml(const std::string& text, const std::string& file) {
     try {
-        return YAML::Load(text);
+        return load_yaml(text);
     } catch (const YAML::ParserException& e) {
         const int line = e.mark.line >= 0 ? e.mark.line + 1 : 0;
         const int column = e.mark.column >= 0 ? e.mark.column + 1 : 0;
-        const auto* deep = dynamic_cast<const YAML::DeepRecursion*>(&e);
-        throw InputError(SourceLocation{file, line, column}, "",
-                         deep != nullptr ? "invalid YAML: nested too deep (the reader stops at nesting level " + std::to_string(deep->depth()) +
-                                               "); expected a file a few levels deep"
-                                         : "invalid YAML: " + e.msg);
+        throw InputError(SourceLocation{file, line, column}, "", "invalid YAML: " + e.msg);
     }
 }
+
 namespace {
 
 int one_based(int zero_based) { return zero_based >= 0 ? zero_based + 1 : 0; }
@@ -163,15 +161,16 @@ const SchemaEntry& Cursor::entry() const {
 }
 
 Cursor Cursor::child(std::string_view key) const {
-    Cursor c{context, YAML::Node(YAML::NodeType::Undefined), schema_child_path(schema_path, key), schema_child_path(field_path, key), mark};
-    if (!is_map()) return c;
-    for (const auto& kv : node) {
-        if (!kv.first.IsScalar() || kv.first.Scalar() != key) continue;
-        c.node = kv.second;
-        c.mark = (kv.second.IsScalar() && !kv.second.IsNull()) ? kv.second.Mark() : kv.first.Mark();
-        return c;
-    }
-    return c;
+    // The child is constructed around the found node, never assigned to a placeholder: a yaml-cpp
+    // assignment merges the whole document's node set into the placeholder's (n log n a look-up,
+    // so a scene's parse grew as its size squared: 5-10 ms for the gear, for every sweep variant).
+    if (is_map())
+        for (const auto& kv : node)
+            if (kv.first.IsScalar() && kv.first.Scalar() == key)
+                return Cursor{context, kv.second, schema_child_path(schema_path, key), schema_child_path(field_path, key),
+                              (kv.second.IsScalar() && !kv.second.IsNull()) ? kv.second.Mark() : kv.first.Mark()};
+    return Cursor{context, YAML::Node(YAML::NodeType::Undefined), schema_child_path(schema_path, key), schema_child_path(field_path, key),
+                  mark};
 }
 
 Cursor Cursor::named_child(const YAML::Node& key, const YAML::Node& value) const {
@@ -244,16 +243,25 @@ long long read_integer(const Cursor& c) {
     if (!value) fail(c, "missing required key '" + last_key(c.field_path) + "' (a whole number)");
     const SchemaEntry& e = c.entry();
     const std::string text = value->Scalar();
+    const std::string beyond_64_bits =
+        "(beyond 64 bits: at most " + std::to_string(std::numeric_limits<long long>::max()) + " either side of 0)";
     long long v = 0;
     const char* first = text.data() + (!text.empty() && text.front() == '+' ? 1 : 0);
     const auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
+    // Digits beyond 64 bits: refused here, before the exponent form below could read them as a
+    // double in range (1e23 is >= 0) and convert it out of range (the seed became 2^63).
+    if (ec == std::errc::result_out_of_range && ptr == text.data() + text.size())
+        fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "' " + beyond_64_bits);
     if (ec != std::errc() || ptr != text.data() + text.size()) {
         // Also a whole number written with an exponent (count: 1e5), checked against the range
-        // before it is converted, so nothing out of range wraps.
+        // and the 64-bit bounds before it is converted, so nothing out of range wraps.
+        constexpr double kBeyond = 9223372036854775808.0;  // 2^63: the first double a long long cannot hold
         double d = 0.0;
         const auto [dptr, dec] = std::from_chars(first, text.data() + text.size(), d);
         if (dec != std::errc() || dptr != text.data() + text.size() || !std::isfinite(d) || d != std::floor(d) || !e.range.contains(d))
             fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "'");
+        if (d >= kBeyond || d < -kBeyond)
+            fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "' " + beyond_64_bits);
         return static_cast<long long>(d);
     }
     if (!e.range.contains(static_cast<double>(v))) fail(c, "expected a whole number " + range_phrase(e.range) + ", got '" + text + "'");

@@ -68,9 +68,8 @@ struct Cursor {
 
 Cursor root_cursor(const SceneContext& context, const YAML::Node& root);
 
-// YAML text read from `file`, parsed. A syntax error is an InputError at its line and column; so is
-// nesting deeper than the reader allows (yaml-cpp stops at its depth guard with the message "bad
-// file", which told users nothing).
+// YAML text read from `file`, parsed under the one nesting limit (yaml_load.h). A syntax error, or
+// nesting past the limit, is an InputError at its line and column.
 YAML::Node parse_yaml(const std::string& text, const std::string& file);
 
 // "scene.yaml", line, column of the cursor (1-based), or "<--set>" for overridden fields.

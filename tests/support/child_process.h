@@ -18,6 +18,7 @@ public:
     ChildProcess(const ChildProcess&) = delete;
     ChildProcess& operator=(const ChildProcess&) = delete;
 
+    pid_t pid() const { return pid_; }
     void signal(int signal_number) const;
     // Waits until the child has taken `signal_number` off its pending set (its handler ran or
     // runs), at most `limit_s` seconds of wall time; false if it did not (or it is gone).

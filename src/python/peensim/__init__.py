@@ -77,7 +77,8 @@ class Scene:
         """A scene from a dict. Values keep their units as text ("2 mm", "30 rpm"); plain numbers are SI.
         Messages name it `<base_dir>/<name>` with lines of `scene.yaml_text`; a run without an output
         directory writes to out/<name>."""
-        return cls.from_yaml(_native.to_yaml(scene), base_dir=base_dir, name=name)
+        text = _native.to_yaml(scene, os.path.join(os.path.abspath(os.fspath(base_dir)), name))
+        return cls.from_yaml(text, base_dir=base_dir, name=name)
 
     @classmethod
     def from_yaml(cls, text, base_dir=".", name="scene"):
@@ -123,7 +124,7 @@ class Scene:
                 raise ValueError(f"set({path!r}): expected set(path, value) or set('path=value')")
             self._overrides.append(path)
         else:
-            self._overrides.append(f"{path}={_native.override_value(value)}")
+            self._overrides.append(f"{path}={_native.override_value(value, path)}")
         return self
 
     def copy(self):
@@ -379,7 +380,7 @@ class Sweep:
 def _vary_spec(path, values):
     if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
         raise ValueError(f"vary[{path!r}]: expected a list of values, got {values!r}")
-    return f"{path}=" + ",".join(_native.override_value(v) for v in values)
+    return f"{path}=" + ",".join(_native.override_value(v, path, "--vary") for v in values)
 
 
 def sweep(scene, output_dir, vary=None, *, seeds=None, jobs=0, set=None, baseline=None, verbose=True):
@@ -395,7 +396,7 @@ def sweep(scene, output_dir, vary=None, *, seeds=None, jobs=0, set=None, baselin
     """
     overrides = []
     if isinstance(set, dict):
-        overrides = [f"{k}={_native.override_value(v)}" for k, v in set.items()]
+        overrides = [f"{k}={_native.override_value(v, k)}" for k, v in set.items()]
     elif set:
         overrides = list(set)
     output_dir = os.fspath(output_dir)
@@ -415,8 +416,7 @@ def sweep(scene, output_dir, vary=None, *, seeds=None, jobs=0, set=None, baselin
         overrides = scene.overrides + overrides
     specs = [_vary_spec(p, v) for p, v in (vary or {}).items()]
     executable = os.environ.get("PEENSIM_EXECUTABLE", _native.executable)
-    code = _native.sweep(scene_path, output_dir, specs, overrides, 0 if seeds is None else seeds, jobs, baseline or "",
-                         executable, verbose)
+    code = _native.sweep(scene_path, output_dir, specs, overrides, seeds, jobs, baseline or "", executable, verbose)
     if code == _STOPPED:
         raise KeyboardInterrupt(f"{output_dir}: the sweep stopped; its runs checkpointed: the same call goes on")
     if code != 0:
