@@ -124,7 +124,9 @@ void fuzz(const std::string& name, const std::string& original, std::uint64_t se
 TEST(FuzzInputs, SceneFilesAreReadOrRefusedWithAnInputError) {
     const std::string scenes = std::string(PEENSIM_SOURCE_DIR) + "/scenes/";
     std::uint64_t seed = 1;
-    for (const char* name : {"rod.yaml", "rotating-gear.yaml", "almen.yaml"}) {
+    // The shipped scenes that hold every section: nozzles, sinks and a shot mix (nozzle-mix), soft
+    // settings (gear-soft), regions and rotation (rotating-gear), an Almen strip (almen).
+    for (const char* name : {"rod.yaml", "rotating-gear.yaml", "almen.yaml", "nozzle-mix.yaml", "gear-soft.yaml"}) {
         const std::string path = scenes + name;
         fuzz(name, read_file(path), seed++, [&](const std::string& text) { parse_scene_text(text, path); });
     }
