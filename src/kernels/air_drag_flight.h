@@ -1,8 +1,9 @@
 // Flight through air: gravity plus the drag of a smooth sphere, a = g - k(Re) |w| w with w = v - u(p)
 // the shot's velocity relative to the air (u: still, or the nozzles' free jets, free_jet.h),
 // k = 3 rho_air C_d / (8 rho_shot R) (drag force C_d rho_air |w| w pi R^2 / 2 over the shot's mass)
-// and Re = rho_air |w| D / mu. C_d is Schiller-Naumann's 24/Re (1 + 0.15 Re^0.687) up to Re = 1000
-// and Newton's 0.44 above (continuous there to 0.4 %), or a constant the scene gives.
+// and Re = rho_air |w| D / mu. C_d is the standard drag curve of a smooth sphere (Clift, Grace &
+// Weber 1978, Table 5.2: piecewise fits in log10 Re, held at its Re = 3.38e5 value beyond, where
+// the drag crisis begins), or a constant the scene gives.
 //
 // Drag matters for the fast jet of conventional peening and for small slow shot (reference sec. 5);
 // for USP it is off by default. A flight is advanced by classical Runge-Kutta (4th order): at time
@@ -21,7 +22,7 @@ namespace peensim {
 struct AirDrag {
     double air_density_kg_per_m3 = 1.205;    // kg/m3, air at 20 C
     double air_viscosity_pa_s = 1.822e-5;    // Pa s
-    std::optional<double> drag_coefficient;  // -, constant C_d; empty: Schiller-Naumann C_d(Re)
+    std::optional<double> drag_coefficient;  // -, constant C_d; empty: the standard drag curve C_d(Re)
     double shot_radius_m = 0.0;              // m
     double shot_density_kg_per_m3 = 0.0;     // kg/m3
     std::shared_ptr<const AirVelocityField> wind;  // the air's motion; empty: still air

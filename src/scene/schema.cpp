@@ -93,14 +93,14 @@ const std::array schema_table{
                 "The still air the shot fly through. Without drag (the default, right for ultrasonic peening) every "
                 "flight is an exact parabola under gravity."},
     SchemaEntry{"air.drag", K::choice, D::dimensionless, false, "none", "", {}, "none|sphere", "", "",
-                "Drag on the shot: `none`, or `sphere`, a smooth sphere's drag C_d(Re) rho |v| v pi R^2 / 2 (Schiller-"
-                "Naumann up to Re = 1000, 0.44 above). A scene with drag runs with time stepping (`accuracy.scheme: "
+                "Drag on the shot: `none`, or `sphere`, a smooth sphere's drag C_d(Re) rho |v| v pi R^2 / 2 (the standard "
+                "drag curve: Clift, Grace & Weber 1978). A scene with drag runs with time stepping (`accuracy.scheme: "
                 "event` is refused): the event scheme's kernels solve exact parabolas."},
     SchemaEntry{"air.density", K::quantity, D::density, false, "1.205 kg/m3", "", closed(1e-3, 100), "", "", "",
                 "Air density (20 C, 1 atm by default)."},
     SchemaEntry{"air.viscosity", K::quantity, D::viscosity, false, "1.822e-5 Pa s", "", closed(1e-7, 1e-2), "", "", "",
                 "Dynamic viscosity of the air, for the Reynolds number Re = rho |v| D / mu."},
-    SchemaEntry{"air.drag_coefficient", K::quantity, D::dimensionless, false, "", "Schiller-Naumann C_d(Re)", open_closed(0, 100), "", "", "",
+    SchemaEntry{"air.drag_coefficient", K::quantity, D::dimensionless, false, "", "the standard drag curve C_d(Re)", open_closed(0, 100), "", "", "",
                 "A constant drag coefficient instead of C_d(Re) (to compare with a code or a closed-form flight)."},
     SchemaEntry{"air.rebound_scatter", K::map, D::dimensionless, false, "", "off", {}, "", "", "",
                 "Random rebounds (reference section 5: above Re* ~ 1600 and ~40 m/s the single-shot study saw the rebound "
