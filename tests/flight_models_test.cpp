@@ -138,7 +138,7 @@ TEST(AirDragFlight, FallFromRestReachesTheTerminalSpeed) {
 
 // With C_d(Re) there is no closed form: the steps time stepping takes agree with steps 64 times
 // shorter (the converged flight) far below a nanometre.
-TEST(AirDragFlight, SchillerNaumannFlightConvergesAtTimeSteppingsSteps) {
+TEST(AirDragFlight, StandardCurveFlightConvergesAtTimeSteppingsSteps) {
     const AirDragFlight flight(Vec3(0.0, 0.0, -9.81), steel_shot_in_air());
     const Vec3 v0(20.0, 0.0, 5.0);
     const double dt = 0.25 * kR / v0.norm();

@@ -1,6 +1,5 @@
 #include "kernels/free_jet.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace peensim {
@@ -9,10 +8,17 @@ Vec3 FreeJet::velocity_at(const Vec3& p) const {
     const Vec3 offset = p - exit_m;
     const double s = offset.dot(axis);
     if (!(s > 0.0)) return Vec3::Zero();
-    const double r2 = (offset - s * axis).squaredNorm();
-    const double centre = exit_speed_m_per_s * std::min(1.0, kDecayConstant * exit_diameter_m / s);
-    const double half_width = std::max(0.5 * exit_diameter_m, kSpreadingRate * s);
-    return centre * std::exp(-std::log(2.0) * r2 / (half_width * half_width)) * axis;
+    const double r = (offset - s * axis).norm();
+    const double core_length = kDecayConstant * exit_diameter_m;  // m, s_c
+    const double width = kSpreadingRate * s;                      // m, b (mixing layer) or r_h
+    if (s < core_length) {
+        const double core_radius = 0.5 * exit_diameter_m * (1.0 - s / core_length);
+        if (r <= core_radius) return exit_speed_m_per_s * axis;
+        const double x = (r - core_radius) / width;
+        return exit_speed_m_per_s * std::exp(-std::log(2.0) * x * x) * axis;
+    }
+    const double x = r / width;
+    return exit_speed_m_per_s * (core_length / s) * std::exp(-std::log(2.0) * x * x) * axis;
 }
 
 AirVelocityField::AirVelocityField(std::vector<FreeJet> jets) : jets_(std::move(jets)) {
