@@ -28,6 +28,7 @@ struct SurfaceContactInput {
     int component = -1;               // index of the component touched
     int triangle = -1;                // index of the mesh triangle touched (indexes the per-triangle state)
     Vec3 point_local = Vec3::Zero();  // m, contact point in the component's own frame
+    Vec3 point_world = Vec3::Zero();  // m, the same point in the world (where the air's velocity is known)
     double overlap_m = 0.0;           // m, how far the shot is into the surface (0 at an exact touch)
     double shot_radius_m = 0.0;       // m
     double shot_mass_kg = 0.0;        // kg

@@ -22,8 +22,9 @@ public:
 
     SurfaceContactResponse impact(const SurfaceContactInput& in, std::span<double> state) const override {
         SurfaceContactResponse r = law_->impact(in, state);
-        const Vec3 approach = in.v_shot - in.v_surface;
-        if (!in.impact || !r.approaching || !scatters(scatter_, approach.norm(), 2.0 * in.shot_radius_m)) return r;
+        if (!in.impact || !r.approaching) return r;
+        const Vec3 air = scatter_.air_velocity ? scatter_.air_velocity(in.point_world) : Vec3(Vec3::Zero());
+        if (!scatters(scatter_, (in.v_shot - in.v_surface).norm(), (air - r.v_shot).norm(), 2.0 * in.shot_radius_m)) return r;
         // The contact's own generator: seed, shot, triangle and the time's bits mixed (SplitMix64
         // seeding spreads neighbouring values).
         Random rng(scatter_.seed * 0x9e3779b97f4a7c15ull ^ (static_cast<std::uint64_t>(in.shot + 1) << 32) ^
@@ -46,9 +47,9 @@ private:
 
 }  // namespace
 
-bool scatters(const ReboundScatter& s, double speed_m_per_s, double diameter_m) {
-    const double reynolds = s.air_density_kg_per_m3 * speed_m_per_s * diameter_m / s.air_viscosity_pa_s;
-    return speed_m_per_s >= s.min_speed_m_per_s && reynolds >= s.min_reynolds;
+bool scatters(const ReboundScatter& s, double impact_speed_m_per_s, double rebound_against_air_m_per_s, double diameter_m) {
+    const double reynolds = s.air_density_kg_per_m3 * rebound_against_air_m_per_s * diameter_m / s.air_viscosity_pa_s;
+    return impact_speed_m_per_s >= s.min_speed_m_per_s && reynolds >= s.min_reynolds;
 }
 
 Vec3 deflected(const Vec3& u, const Vec3& n, const Vec3& t, double angle_rad) {

@@ -39,6 +39,7 @@ inline contact::SurfaceContactInput surface_input(const Model& model, const Shot
     in.component = site.component;
     in.triangle = site.mesh_triangle;
     in.point_local = site.pose != nullptr ? site.pose->to_component(site.point_world) : site.point_world;
+    in.point_world = site.point_world;
     in.overlap_m = site.overlap_m;
     const ShotSize& size = shot_size(model, shots, static_cast<std::size_t>(site.shot));
     in.shot_radius_m = size.radius_m;

@@ -186,6 +186,22 @@ std::shared_ptr<const contact::SurfaceLaw> surface_law_of(const ContactPairDesc&
     }
 }
 
+// The air's motion: the nozzles' jets (sources[].air_speed), or none (still air).
+std::shared_ptr<const AirVelocityField> air_field_of(const SceneDescription& scene) {
+    std::vector<FreeJet> jets;
+    for (const SourceDesc& s : scene.sources) {
+        if (!s.air_speed_m_per_s) continue;
+        FreeJet jet;
+        jet.exit_m = s.position_m;
+        jet.axis = s.direction;
+        jet.exit_diameter_m = 2.0 * s.exit_radius_m;
+        jet.exit_speed_m_per_s = *s.air_speed_m_per_s;
+        jets.push_back(jet);
+    }
+    if (jets.empty()) return nullptr;
+    return std::make_shared<const AirVelocityField>(std::move(jets));
+}
+
 contact::ReboundScatter rebound_scatter_of(const SceneDescription& scene) {
     const AirDesc::Scatter& s = *scene.air.rebound_scatter;
     if (scene.accuracy.scheme == SteppingScheme::soft)
@@ -199,6 +215,8 @@ contact::ReboundScatter rebound_scatter_of(const SceneDescription& scene) {
     r.air_density_kg_per_m3 = scene.air.density_kg_per_m3;
     r.air_viscosity_pa_s = scene.air.viscosity_pa_s;
     r.seed = scene.process.seed;
+    if (std::shared_ptr<const AirVelocityField> field = air_field_of(scene))
+        r.air_velocity = [field](const Vec3& p) { return field->at(p); };
     return r;
 }
 
@@ -245,13 +263,15 @@ void add_flow(Model& model, const SceneDescription& scene) {
 
 std::shared_ptr<const FlightModel> flight_model_of(const SceneDescription& scene, double shot_radius_m) {
     const Vec3 g = scene.process.gravity_m_per_s2;
-    // An air jet moves the air; drag is what makes the shot feel it, and the jet needs its exit.
+    // An air jet moves the air; drag is what makes the shot feel it in flight (rebound scatter
+    // reads it at an impact too), and the jet needs its exit.
     for (std::size_t k = 0; k < scene.sources.size(); ++k) {
         const SourceDesc& s = scene.sources[k];
         if (!s.air_speed_m_per_s) continue;
         const std::string field = "sources[" + std::to_string(k) + "].air_speed";
-        if (!scene.air.drag)
-            throw InputError(s.where, field, "an air jet acts on the shot through drag, which is off; expected air.drag: sphere with air_speed");
+        if (!scene.air.drag && !scene.air.rebound_scatter)
+            throw InputError(s.where, field,
+                             "an air jet acts on the shot through drag (or rebound scatter), both off; expected air.drag: sphere with air_speed");
         if (!(s.exit_radius_m > 0.0))
             throw InputError(s.where, field, "an air jet needs the nozzle's exit; expected `diameter` or `exit_radius` > 0 with air_speed");
     }
@@ -262,17 +282,7 @@ std::shared_ptr<const FlightModel> flight_model_of(const SceneDescription& scene
     air.drag_coefficient = scene.air.drag_coefficient;
     air.shot_radius_m = shot_radius_m;
     air.shot_density_kg_per_m3 = scene.shot.density_kg_per_m3;
-    std::vector<FreeJet> jets;
-    for (const SourceDesc& s : scene.sources) {
-        if (!s.air_speed_m_per_s) continue;
-        FreeJet jet;
-        jet.exit_m = s.position_m;
-        jet.axis = s.direction;
-        jet.exit_diameter_m = 2.0 * s.exit_radius_m;
-        jet.exit_speed_m_per_s = *s.air_speed_m_per_s;
-        jets.push_back(jet);
-    }
-    if (!jets.empty()) air.wind = std::make_shared<const AirVelocityField>(std::move(jets));
+    air.wind = air_field_of(scene);
     return std::make_shared<const AirDragFlight>(g, air);
 }
 

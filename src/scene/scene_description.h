@@ -267,7 +267,7 @@ struct AirDesc {
     // Rebound scatter (contact/rebound_scatter.h); empty: off.
     struct Scatter {
         double spread_rad = 0.0;          // rad
-        double min_reynolds = 1600.0;     // -
+        double min_reynolds = 1500.0;     // -
         double min_speed_m_per_s = 40.0;  // m/s
         SourceLocation where;
     };

@@ -104,14 +104,15 @@ const std::array schema_table{
                 "A constant drag coefficient instead of C_d(Re) (to compare with a code or a closed-form flight)."},
     SchemaEntry{"air.rebound_scatter", K::map, D::dimensionless, false, "", "off", {}, "", "", "",
                 "Random rebounds (reference section 5: above Re* ~ 1600 and ~40 m/s the single-shot study saw the rebound "
-                "leave in a random direction): an impact faster than `min_speed` whose Re* = rho |v| D / mu (still air, "
-                "`air.density`, `air.viscosity`) is at least `min_reynolds` rebounds turned by an angle uniform in [0, "
+                "leave in a random direction): an impact faster than `min_speed` whose Re* = rho |u - v'| D / mu (the study's: "
+                "the air's velocity u at the contact, still or a nozzle's jet, against the rebound v'; `air.density`, "
+                "`air.viscosity`) is at least `min_reynolds` rebounds turned by an angle uniform in [0, "
                 "`spread`] towards a random direction of the surface's plane, its speed kept. Reproducible from the seed; "
                 "the rigid schemes only (the soft scheme's contacts are forces)."},
     SchemaEntry{"air.rebound_scatter.spread", K::quantity, D::angle, true, "", "", closed(0, 1.5707963267948966), "", "", "",
                 "Largest deflection of the rebound's direction (0 to 90 deg)."},
-    SchemaEntry{"air.rebound_scatter.min_reynolds", K::quantity, D::dimensionless, false, "1600", "", closed(0, 1e7), "", "", "",
-                "Relative Reynolds number from which rebounds scatter."},
+    SchemaEntry{"air.rebound_scatter.min_reynolds", K::quantity, D::dimensionless, false, "1500", "", closed(0, 1e7), "", "", "",
+                "Relative Reynolds number Re* from which rebounds scatter (the study's cases at \"Re* ~ 1600\" have 1550-1700)."},
     SchemaEntry{"air.rebound_scatter.min_speed", K::quantity, D::speed, false, "40 m/s", "", closed(0, 1e4), "", "", "",
                 "Impact speed (relative to the surface) from which rebounds scatter."},
 
@@ -330,9 +331,10 @@ const std::array schema_table{
     SchemaEntry{"sources[].speed_spread", K::quantity, D::dimensionless, false, "0.05", "", closed(0, 0.9), "", "", "",
                 "Spread of the exit speed: uniform in v0 (1 +- speed_spread)."},
     SchemaEntry{"sources[].air_speed", K::quantity, D::speed, false, "", "still air", open_closed(0, 1000), "", "", "",
-                "The air's exit speed U_0: the nozzle blows a round free jet (B = 5.8, S = 0.094: U_0 on the axis for 5.8 "
-                "exit diameters, then U_0 5.8 D_n / s; half-width max(D_n / 2, 0.094 s); see README \"Air drag\") that "
-                "the shot's drag is taken against. Needs `air.drag: sphere` and an exit diameter."},
+                "The air's exit speed U_0: the nozzle blows a round free jet (B = 5.8, S = 0.094: a potential core at U_0 "
+                "closing at 5.8 exit diameters, then U_0 5.8 D_n / s on the axis, half-width 0.094 s; see README \"Air "
+                "drag\") that the shot's drag (and rebound scatter's Re*) is taken against. Needs `air.drag: sphere` or "
+                "`air.rebound_scatter`, and an exit diameter."},
     SchemaEntry{"sources[].rate", K::quantity, D::frequency, false, "", "from `mass_flow`", open_closed(0, 1e8), "", "", "",
                 "Shot emitted per second, evenly spaced in time; give `rate` or `mass_flow`."},
     SchemaEntry{"sources[].mass_flow", K::quantity, D::mass_flow, false, "", "none", open_closed(0, 1e4), "", "", "",
