@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include <yaml-cpp/yaml.h>
 
 #include "common/input_error.h"
 #include "scene/schema.h"
+#include "scene/yaml_access.h"
 #include "scene/yaml_load.h"
 
 namespace fs = std::filesystem;
@@ -53,14 +56,11 @@ bool is_sweep_file(const std::string& path) {
 }
 
 SweepFile read_sweep_file(const std::string& path) {
-    YAML::Node root;
-    try {
-        root = load_yaml_file(path);
-    } catch (const YAML::BadFile&) {
-        throw InputError({path}, "", "cannot read the sweep file");
-    } catch (const YAML::Exception& e) {
-        throw InputError({path, e.mark.line + 1, e.mark.column + 1}, "", std::string("invalid YAML: ") + e.msg);
-    }
+    std::ifstream in(path);
+    if (!in) throw InputError({path}, "", "cannot read the sweep file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    const YAML::Node root = parse_yaml(text.str(), path);
     SweepFile f;
     const auto fail = [&](const YAML::Node& n, const std::string& field, const std::string& problem) {
         throw InputError(at(path, n), field, problem);

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "app/sweep_values.h"
+#include "output/output_names.h"
 
 namespace peensim {
 
@@ -135,12 +136,8 @@ void add_runs(SweepPlan& plan, int seeds, std::uint64_t base_seed, const std::ve
         for (SweepRun& run : runs_of(plan, v, base_seed)) plan.runs.push_back(std::move(run));
 }
 
-bool valid_name(const std::string& name) {
-    if (name.empty() || name == "sweep") return false;
-    for (char c : name)
-        if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' || c == '-' || c == '_')) return false;
-    return name != "." && name != "..";
-}
+// A variant's name is its runs' directory, beside the sweep's own "sweep".
+bool valid_name(const std::string& name) { return name != "sweep" && is_output_name(name); }
 
 // An axis' values, each once: the same value written twice (or two ways) would be run twice.
 void check_distinct(const SweepAxis& a) {

@@ -18,6 +18,13 @@ bool name_character(char c) {
 
 }  // namespace
 
+bool is_output_name(const std::string& name) {
+    if (name.empty() || name.size() > kMaxOutputNameBytes || name == "." || name == "..") return false;
+    for (const char c : name)
+        if (!name_character(c)) return false;
+    return true;
+}
+
 void check_output_name(const std::string& option, const std::string& name) {
     const std::string expected = "expected a file name of letters, digits, '.', '-' and '_' (it stays inside the output directory)";
     if (name.empty()) throw InputError({option}, "", expected + ", got an empty name");

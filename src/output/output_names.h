@@ -14,6 +14,11 @@ namespace peensim {
 // within the 255 bytes a file name may have on Linux file systems.
 inline constexpr std::size_t kMaxOutputNameBytes = 200;
 
+// Whether `name` can be one file name inside an output directory: non-empty, at most
+// kMaxOutputNameBytes, of letters, digits, '.', '-' and '_' only, neither "." nor "..". A sweep's
+// variant names (its runs' directories) follow the same rule.
+bool is_output_name(const std::string& name);
+
 // `name` is used as one file name (or its stem) inside an output directory: it must be non-empty,
 // at most kMaxOutputNameBytes, of letters, digits, '.', '-' and '_' only (so no path separator,
 // no absolute path, nothing the shell or the FEM solver's job name would split), and neither "."
