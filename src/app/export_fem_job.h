@@ -26,7 +26,7 @@ struct ExportFemOptions {
     std::string shot_diameter;     // --shot-diameter: the shot without a run directory; a mix run: whose impacts
     std::string yield_stress;      // --yield-stress: the target's (default: its material's, else steel's)
     std::string hardening;         // --hardening: slope of yield stress against plastic strain (default 0)
-    std::string element_size;      // --element-size: fine elements' edge ("" = the smallest dent / elements_per_dent)
+    std::string element_size;      // --element-size: fine elements' edge ("" = the patch's 10th-percentile dent, at least half its median, / elements_per_dent)
     double elements_per_dent = 6.0;    // --elements-per-dent
     int shot_divisions = 8;            // --shot-divisions: cells along the shot mesh's cube edge (even)
     bool quarter = false;              // --quarter: quarter model (one normal impact at the centre)

@@ -180,8 +180,8 @@ int main(int argc, char** argv) {
     fem_cmd->add_option("--yield-stress", fem.yield_stress, "target yield stress (default: its material's, else 500 MPa)");
     fem_cmd->add_option("--hardening", fem.hardening, "slope of the yield stress against plastic strain (default 0: perfectly plastic)");
     fem_cmd->add_option("--element-size", fem.element_size,
-                        "edge of the fine elements (default: smallest dent diameter / --elements-per-dent)");
-    fem_cmd->add_option("--elements-per-dent", fem.elements_per_dent, "fine elements across the smallest dent (default 6)");
+                        "edge of the fine elements (default: the patch's 10th-percentile dent diameter, at least half its median, / --elements-per-dent)");
+    fem_cmd->add_option("--elements-per-dent", fem.elements_per_dent, "fine elements across that dent (default 6)");
     fem_cmd->add_option("--shot-divisions", fem.shot_divisions, "cells along the shot mesh's cube edge, even (default 8)");
     fem_cmd->add_flag("--quarter", fem.quarter, "quarter model with symmetry planes (one normal impact at the centre only)");
     fem_cmd->add_option("--group-window", fem.group_window, "a step groups impacts within this much run time (default 1 ms)");
