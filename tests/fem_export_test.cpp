@@ -26,6 +26,7 @@
 #include "fem/inp_writer.h"
 #include "fem/sphere_mesher.h"
 #include "support/files.h"
+#include "support/run_in_process.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -338,14 +339,12 @@ TEST(ExportFemJob, RodRunPatchOnTheCurvedPartAndItsRefusals) {
 // own impacts.csv (its dent_diameter_m column) on 40 impacts of a gear run.
 TEST(ExportFemJob, TheDefaultElementFollowsTheDentsThatMatter) {
     TempDir dir;
-    RunOptions r;
+    peensim::testing::InProcessRun r;
     r.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml";
     r.output_dir = (dir.path / "run").string();
     r.overrides = {"process.duration=2"};
-    r.progress = false;
-    r.analyze = false;
-    std::ostringstream rout, rerr;
-    ASSERT_EQ(run_job(r, rout, rerr), kExitOk) << rerr.str();
+    const peensim::testing::InProcessResult run = peensim::testing::run_in_process(r);
+    ASSERT_EQ(run.code, kExitOk) << run.err;
     ExportFemOptions o;
     o.run_dir = (dir.path / "run").string();
     o.output_dir = (dir.path / "deck").string();

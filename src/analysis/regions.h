@@ -48,6 +48,8 @@ public:
     bool empty() const { return regions_.empty(); }
     const std::string& name(std::size_t r) const { return regions_[r].name; }
     bool excluded(std::size_t r) const { return regions_[r].entry->exclude; }
+    // The scene's entry region r comes from (a `sectors` entry makes several).
+    const RegionDesc& entry(std::size_t r) const { return *regions_[r].entry; }
     // The triangles with area in region r, increasing, and their shares.
     const std::vector<RegionShare>& shares(std::size_t r) const { return regions_[r].shares; }
     double area_m2(std::size_t r) const { return regions_[r].area_m2; }  // m2

@@ -19,14 +19,7 @@ std::vector<AssemblyIssue> region_issues(const Model& model) {
         }
         for (std::size_t r = 0; r < regions.size(); ++r) {
             if (regions.area_m2(r) > 0.0) continue;
-            // The entry that made region r, for its line in the file.
-            const RegionDesc* entry = &desc.regions.front();
-            for (std::size_t e = 0, first = 0; e < desc.regions.size(); ++e) {
-                const std::size_t count = desc.regions[e].sectors ? static_cast<std::size_t>(desc.regions[e].sectors->count) : 1;
-                if (r >= first && r < first + count) entry = &desc.regions[e];
-                first += count;
-            }
-            out.push_back({false, entry->where, component_field(i) + ".regions[" + regions.name(r) + "]",
+            out.push_back({false, regions.entry(r).where, component_field(i) + ".regions[" + regions.name(r) + "]",
                            "region '" + regions.name(r) + "' selects none of the surface of '" + desc.name +
                                "'; its conditions are in the component's frame (the mesh's, after mesh_unit): "
                                "see them drawn with `peensim render-regions`"});
