@@ -1,6 +1,7 @@
 // Impact-history restitution (reference section 4, the DEM-FEM study): the part's surface
 // remembers how often each spot was hit. Every impact marks the triangles within one dent
-// diameter (eq. 10) of its contact point; the normal restitution of the next impact on a triangle
+// diameter (eq. 10) of its contact point (or within `influence_distance`: the study's region of
+// influence was one shot diameter); the normal restitution of the next impact on a triangle
 // is looked up from a table by how many times that triangle was marked before (work hardening
 // raises it: the study used 0.4 on a fresh surface and averaged 0.57 over successive hits). The
 // tangential restitution and sustained-contact friction are the impulse law's (eq. 5, Coulomb).
@@ -26,8 +27,10 @@ struct ImpactHistoryGeometry {
 class ImpactHistoryLaw final : public SurfaceLaw {
 public:
     // restitution_by_hits: C for a triangle hit 0, 1, 2, ... times before (-, the last value for
-    // every count beyond); mu: tangential restitution (-); f: Coulomb friction (-).
-    ImpactHistoryLaw(std::vector<double> restitution_by_hits, double mu, double f, const ImpactHistoryGeometry& geometry);
+    // every count beyond); mu: tangential restitution (-); f: Coulomb friction (-);
+    // influence_distance: m, how far an impact marks (0: its dent diameter, eq. 10).
+    ImpactHistoryLaw(std::vector<double> restitution_by_hits, double mu, double f, double influence_distance_m,
+                     const ImpactHistoryGeometry& geometry);
 
     std::string_view name() const override { return "impact-history"; }
     int state_per_triangle() const override { return 1; }  // marks: how often the triangle was hit
@@ -42,6 +45,7 @@ public:
 private:
     std::vector<double> restitution_by_hits_;
     double mu_, f_;
+    double influence_distance_m_;  // m; 0: each impact's dent diameter
     double shot_density_kg_per_m3_, yield_stress_pa_;
     FacetIndex facets_;
 };

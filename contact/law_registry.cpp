@@ -20,17 +20,18 @@ std::shared_ptr<const ShotShotLaw> make_impulse_shot_shot(const ParameterValues&
 }
 
 std::shared_ptr<const SurfaceLaw> make_impact_history(const ParameterValues& v, const SurfacePair& pair) {
-    if (!pair.yield_stress_pa)
+    const double influence_distance_m = v.scalar(3);
+    if (influence_distance_m == 0.0 && !pair.yield_stress_pa)
         throw std::invalid_argument(
             "law 'impact-history' sizes its marks by the dent diameter (eq. 10), which needs the yield "
             "stress of material '" +
-            pair.material + "': add materials." + pair.material + ".yield_stress");
+            pair.material + "': add materials." + pair.material + ".yield_stress, or give the pair an influence_distance");
     ImpactHistoryGeometry g;
     g.corners_m = pair.triangle_corners_m();
     g.shot_diameter_m = pair.shot_diameter_m;
     g.shot_density_kg_per_m3 = pair.shot_density_kg_per_m3;
-    g.yield_stress_pa = *pair.yield_stress_pa;
-    return std::make_shared<ImpactHistoryLaw>(v.list(0), v.scalar(1), v.scalar(2), g);
+    g.yield_stress_pa = pair.yield_stress_pa.value_or(0.0);
+    return std::make_shared<ImpactHistoryLaw>(v.list(0), v.scalar(1), v.scalar(2), influence_distance_m, g);
 }
 
 const std::array kCatalogue{
@@ -40,8 +41,10 @@ const std::array kCatalogue{
              impulse_parameters(), impulse_parameters().first(2), make_impulse_surface, make_impulse_shot_shot},
     LawEntry{"impact-history",
              "Impact-history restitution (reference section 4): each impact marks the triangles within one dent "
-             "diameter (eq. 10) of its point; the next impact there rebounds with restitution_by_hits[marks]. For "
-             "`shot-<material>` pairs whose material has a yield stress.",
+             "diameter (eq. 10) of its point, or within influence_distance; the next impact there rebounds with "
+             "restitution_by_hits[marks], its tangential part as the impulse law's (mu, 0.71 by default: the 5/7 "
+             "a gripping sphere keeps, as hertz-mindlin's rigid limit). For `shot-<material>` pairs whose material "
+             "has a yield stress (or with influence_distance).",
              impact_history_parameters(),
              {},
              make_impact_history,

@@ -125,7 +125,7 @@ TEST(ContactLawCatalogue, EveryLawIsRegisteredOnceWithItsParameters) {
     contact::SurfacePair pair;
     pair.material = "aluminium";
     pair.triangle_corners_m = [] { return flat_grid(2, 1e-3); };
-    const contact::ParameterValues values{{{0.4, 0.57}, {0.8}, {0.1}}};
+    const contact::ParameterValues values{{{0.4, 0.57}, {0.8}, {0.1}, {0.0}}};
     try {
         (void)history->make_surface(values, pair);
         FAIL() << "no yield stress must be refused";
@@ -165,7 +165,7 @@ TEST(ImpactHistoryLaw, RestitutionByHitCountAndMarksWithinOneDentDiameter) {
     // 1 mm steel shot, 345 MPa part: at 5 m/s the dent (eq. 10) is
     // 1 mm (8 7800 25 / (9 345e6))^(1/4) = 0.1497 mm: a 40 x 40 grid of 25 um cells resolves it.
     contact::ImpactHistoryGeometry g{flat_grid(40, 25e-6), 1e-3, 7800, 345e6};
-    const contact::ImpactHistoryLaw law({0.4, 0.5, 0.57}, 0.8, 0.1, g);
+    const contact::ImpactHistoryLaw law({0.4, 0.5, 0.57}, 0.8, 0.1, 0.0, g);
     std::vector<double> marks(g.corners_m.size() / 3, 0.0);
     const Vec3 point(0.5e-3 + 3e-6, 0.5e-3 + 7e-6, 0.0);
     const std::size_t hit = [&] {
@@ -216,7 +216,7 @@ TEST(ImpactHistoryLaw, EachImpactMarksItsOwnShotsDent) {
     // A mix: the law is built once (sized by the largest shot), and each impact's dent (eq. 10)
     // scales with its own shot's diameter. A 0.5 mm shot at 5 m/s dents 0.0749 mm, a 1 mm shot twice that.
     contact::ImpactHistoryGeometry g{flat_grid(40, 25e-6), 1e-3, 7800, 345e6};
-    const contact::ImpactHistoryLaw law({0.4, 0.5}, 0.8, 0.1, g);
+    const contact::ImpactHistoryLaw law({0.4, 0.5}, 0.8, 0.1, 0.0, g);
     const Vec3 point(0.5e-3 + 3e-6, 0.5e-3 + 7e-6, 0.0);
     contact::SurfaceContactInput in{Vec3(0, 0, -5), Vec3::Zero(), Vec3::UnitZ()};
     in.point_local = point;
@@ -231,6 +231,35 @@ TEST(ImpactHistoryLaw, EachImpactMarksItsOwnShotsDent) {
     }
     EXPECT_LT(brute_force_within(g.corners_m, point, dent_diameter(0.5e-3, 7800, 5.0, 345e6)).size(),
               brute_force_within(g.corners_m, point, dent_diameter(1e-3, 7800, 5.0, 345e6)).size() / 2);
+}
+
+TEST(ImpactHistoryLaw, AFixedInfluenceDistanceMarksAsFarWhateverTheDent) {
+    // The DEM-FEM study's region of influence: one shot diameter (0.58 mm) around every impact,
+    // whatever its speed or the part's yield stress (none needed then).
+    contact::ImpactHistoryGeometry g{flat_grid(40, 50e-6), 0.58e-3, 7800, 0.0};
+    const contact::ImpactHistoryLaw law({0.4, 0.6}, 0.71, 0.3, 0.58e-3, g);
+    const Vec3 point(1e-3 + 3e-6, 1e-3 + 7e-6, 0.0);
+    contact::SurfaceContactInput in{Vec3(0, 0, -50), Vec3::Zero(), Vec3::UnitZ()};
+    in.point_local = point;
+    in.impact = true;
+    in.shot_radius_m = 0.29e-3;
+    for (std::size_t t : brute_force_within(g.corners_m, point, 0.0)) in.triangle = static_cast<int>(t);
+    const std::set<std::size_t> patch = brute_force_within(g.corners_m, point, 0.58e-3);
+    for (const double speed : {50.0, 2.0}) {
+        std::vector<double> marks(g.corners_m.size() / 3, 0.0);
+        in.v_shot = Vec3(0, 0, -speed);
+        EXPECT_DOUBLE_EQ(law.impact(in, marks).vn_out, 0.4 * speed);
+        for (std::size_t t = 0; t < marks.size(); ++t) EXPECT_EQ(marks[t], patch.count(t) ? 1.0 : 0.0) << "speed " << speed << " triangle " << t;
+        EXPECT_DOUBLE_EQ(law.impact(in, marks).vn_out, 0.6 * speed);
+    }
+    // Built from a scene's values without the material's yield stress.
+    contact::SurfacePair pair;
+    pair.material = "steel";
+    pair.triangle_corners_m = [] { return flat_grid(2, 1e-3); };
+    pair.shot_diameter_m = 0.58e-3;
+    pair.shot_density_kg_per_m3 = 7800;
+    const contact::ParameterValues values{{{0.4, 0.6}, {0.71}, {0.3}, {0.58e-3}}};
+    EXPECT_EQ(contact::find_law("impact-history")->make_surface(values, pair)->state_per_triangle(), 1);
 }
 
 const std::string kGear = std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml";

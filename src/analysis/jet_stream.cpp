@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace peensim {
@@ -48,14 +49,30 @@ double JetStreamStats::steady_fast_share() const {
 }
 
 std::optional<std::uint64_t> JetStreamStats::steady_after() const {
-    if (complete_.size() < 4) return std::nullopt;
-    const double p = steady_fast_share(), n = static_cast<double>(window_);
-    // A share of 0 or 1 has no binomial spread: one impact of the window is the resolution.
-    const double band = std::max(3.0 * std::sqrt(p * (1.0 - p) / n), 1.0 / n);
-    std::size_t first = complete_.size();
-    while (first > 0 && std::abs(complete_[first - 1].fast_share() - p) <= band) --first;
-    if (first == complete_.size()) return std::nullopt;  // not even the last window is steady
-    return complete_[first].first_impact;
+    // MSER (White 1997, the warm-up rule of simulation output analysis): drop the first d windows
+    // where that makes the standard error of the remaining windows' mean smallest,
+    //   MSER(d) = sum_{i >= d} (x_i - mean_d)^2 / (n - d)^2.
+    // A test of each window against a binomial band (used before) took impacts as independent; they
+    // are not (a shot bounces several times, the jet crowds in bursts), so the windows of a steady
+    // stream spread wider than binomial and a late window outside the band moved "steady" to the end
+    // of the run. A minimum past the run's middle means the stream is still drifting: none.
+    const std::size_t n = complete_.size();
+    if (n < 4) return std::nullopt;
+    std::size_t best = 0;
+    double best_mser = std::numeric_limits<double>::infinity();
+    for (std::size_t d = 0; d + 1 < n; ++d) {
+        double sum = 0.0, sum_sq = 0.0;
+        for (std::size_t i = d; i < n; ++i) {
+            const double x = complete_[i].fast_share();
+            sum += x;
+            sum_sq += x * x;
+        }
+        const double m = static_cast<double>(n - d);
+        const double mser = std::max(0.0, sum_sq - sum * sum / m) / (m * m);
+        if (mser < best_mser - 1e-15) best_mser = mser, best = d;
+    }
+    if (best > n / 2) return std::nullopt;
+    return complete_[best].first_impact;
 }
 
 }  // namespace peensim

@@ -42,9 +42,9 @@ public:
 
     // The share of fast impacts over the steady part of the run (its second half of impacts).
     double steady_fast_share() const;
-    // The first impact from which every complete window's fast share stays within 3 standard
-    // errors (binomial, of a window, at the steady share; at least one impact's worth) of the
-    // steady share; none when the run has fewer than 4 complete windows.
+    // The first impact of the steady stream: the truncation of the complete windows that makes the
+    // standard error of the remaining windows' mean fast share smallest (MSER); none when the run
+    // has fewer than 4 complete windows or the best truncation lies past its middle (still drifting).
     std::optional<std::uint64_t> steady_after() const;
 
 private:

@@ -201,8 +201,8 @@ std::string jet_sections(const std::vector<ComponentAnalysis>& parts, const Repo
     if (!first)
         r << "\nv0 = " << fmt(parts.front().jet->v0_m_per_s()) << " m/s (the nozzles' exit speed, rate-weighted). A shot arriving with "
           << "at least 90 % of v0 met nothing on its way; the share falls as the jet crowds (rebounding shot in its path). "
-          << "Steady: from that impact on, every window of " << parts.front().jet->window()
-          << " impacts holds its share within 3 standard errors of the "
+          << "Steady: from that impact on (windows of " << parts.front().jet->window()
+          << " impacts; the warm-up that, cut off, leaves the most precise mean share: MSER); steady share: the "
           << "second half's. Per window: `<component>_jet.csv`; impact angles: `<component>_histograms.csv`.\n";
     return r.str();
 }
