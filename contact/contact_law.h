@@ -58,11 +58,11 @@ struct ShotShotInput {
     // The partner is held (a pile's substeps move one shot at a time, its neighbours held like
     // walls): only i's velocity changes, as against an infinite mass.
     bool j_held = false;
-    int shot_i = -1, shot_j = -1;  // indices of the two shot
-    double overlap_m = 0.0;        // m, R_i + R_j - distance between the centres (0 at an exact touch)
+    int shot_i = -1, shot_j = -1;               // indices of the two shot
+    double overlap_m = 0.0;                     // m, R_i + R_j - distance between the centres (0 at an exact touch)
     double radius_i_m = 0.0, radius_j_m = 0.0;  // m
     double mass_i_kg = 0.0, mass_j_kg = 0.0;    // kg (0 for both: equal masses)
-    double time_s = 0.0;           // s
+    double time_s = 0.0;                        // s
 };
 
 // How a shot-shot impulse changes the two velocities: shot i's by share i of the change of their

@@ -18,7 +18,9 @@ public:
     int state_per_contact() const override { return law_->state_per_contact(); }
     std::string describe_state(std::span<const double> state) const override { return law_->describe_state(state); }
     const SoftLaw* soft() const override { return law_->soft(); }
-    SurfaceContactResponse sustain(const SurfaceContactInput& in, std::span<double> state) const override { return law_->sustain(in, state); }
+    SurfaceContactResponse sustain(const SurfaceContactInput& in, std::span<double> state) const override {
+        return law_->sustain(in, state);
+    }
 
     SurfaceContactResponse impact(const SurfaceContactInput& in, std::span<double> state) const override {
         SurfaceContactResponse r = law_->impact(in, state);

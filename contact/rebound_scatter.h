@@ -28,9 +28,9 @@
 namespace peensim::contact {
 
 struct ReboundScatter {
-    double spread_rad = 0.0;          // rad, largest deflection
-    double min_reynolds = 1500.0;     // -, Re* = rho_air |u_air - v_rebound| D / mu_air
-    double min_speed_m_per_s = 40.0;  // m/s, impact speed relative to the surface
+    double spread_rad = 0.0;                        // rad, largest deflection
+    double min_reynolds = 1500.0;                   // -, Re* = rho_air |u_air - v_rebound| D / mu_air
+    double min_speed_m_per_s = 40.0;                // m/s, impact speed relative to the surface
     std::function<Vec3(const Vec3&)> air_velocity;  // m/s, world, at a world point (m); empty: still air
     double air_density_kg_per_m3 = 1.205;
     double air_viscosity_pa_s = 1.822e-5;

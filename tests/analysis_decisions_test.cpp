@@ -242,7 +242,8 @@ TEST(AnalysisReport, TheDecisionsAgreeWithTheRegionsAndTheFigures) {
     EXPECT_EQ(report.find("\n## ", changes + 1), std::string::npos) << "the last section";
     EXPECT_NE(report.find("- **Even out gear's peening.**", changes), std::string::npos) << report.substr(changes);
     EXPECT_NE(report.find("--vary \"components[gear].motion={type: rotating, axis_point: [", changes), std::string::npos);
-    EXPECT_NE(report.find("axis_direction: [0, 1, 0], speed: 15 rpm}", changes), std::string::npos) << report.substr(changes);  // the axle's
+    EXPECT_NE(report.find("axis_direction: [0, 1, 0], speed: 15 rpm}", changes), std::string::npos)
+        << report.substr(changes);  // the axle's
     EXPECT_NE(report.find("--vary \"shot.diameter=2 mm,", changes), std::string::npos) << report.substr(changes);
     // The HTML page carries the pictures inside it.
     const std::string html = read_file(dir.path / "analysis" / "report.html");

@@ -105,11 +105,15 @@ TEST(ImpactLogReader, NonFiniteAndGarbageFieldsNameTheirLineAndColumn) {
         }
     };
     refused("nan,1,gear,0,0,0,0,0,0,0,0,0,0,0,0,0", path + ":3:1: time_s: malformed impact row 2: expected a finite number, got 'nan'");
-    refused("0.5,1,gear,0,0,0,0,0,0,0,inf,0,0,0,0,0", path + ":3:26: vn_in_mps: malformed impact row 2: expected a finite number, got 'inf'");
+    refused("0.5,1,gear,0,0,0,0,0,0,0,inf,0,0,0,0,0",
+            path + ":3:26: vn_in_mps: malformed impact row 2: expected a finite number, got 'inf'");
     refused("0.5,1,gear,x,0,0,0,0,0,0,1,0,0,0,0,0", ":3:12: triangle: malformed impact row 2: expected an integer, got 'x'");
     refused("0.5,1,gear,0,0", ":3:15: y_m: malformed impact row 2: expected more fields");
     refused("0.5,1,gear,0,0,0,0,0,0,0,1,0,0,0,0,0,7", ":3:38: malformed impact row 2: expected 16 fields, got more");
-    refused(std::string("0.5,1,ge\x00" "ar", 11), ":3: malformed impact row 2: expected a text row, got binary data '0.5,1,ge\\x00ar'");
+    refused(std::string("0.5,1,ge\x00"
+                        "ar",
+                        11),
+            ":3: malformed impact row 2: expected a text row, got binary data '0.5,1,ge\\x00ar'");
 }
 
 TEST(ImpactLogReader, EmptyForeignAndDamagedLogsAreClearErrors) {

@@ -112,7 +112,6 @@ TEST(JetStream, AnalyzeReportsTheJetOfANozzleScene) {
     EXPECT_NE(text.find("Shot-shot collisions: "), std::string::npos);
 }
 
-
 // The DEM-FEM study's impact-history comparison at its reference case (9.25 kg/min, 75 m/s, 67.5
 // deg): the same law, only the normal restitution differs (constant 0.4 against 0.4 rising to 0.63
 // by hits within one shot diameter). The study's trends: fewer shot-shot collisions and a higher
@@ -128,9 +127,10 @@ TEST(JetStream, ImpactHistoryRestitutionMovesTheStudysTrendsItsWay) {
         RunOptions o;
         o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/nozzle-study.yaml";
         o.output_dir = dir.path.string();
-        o.overrides = {"process.duration=25 ms", "sources[nozzle].mass_flow=9.25 kg/min", "sources[nozzle].speed=75 m/s",
-                       "sources[nozzle].angle_of_attack=67.5 deg",
-                       "contacts.shot-steel={law: impact-history, restitution_by_hits: " + table + ", influence_distance: 0.58 mm, f: 0.3}"};
+        o.overrides = {
+            "process.duration=25 ms", "sources[nozzle].mass_flow=9.25 kg/min", "sources[nozzle].speed=75 m/s",
+            "sources[nozzle].angle_of_attack=67.5 deg",
+            "contacts.shot-steel={law: impact-history, restitution_by_hits: " + table + ", influence_distance: 0.58 mm, f: 0.3}"};
         o.progress = false;
         o.analyze = false;
         std::ostringstream out, err;

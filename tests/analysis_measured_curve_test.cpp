@@ -138,19 +138,23 @@ TEST(MeasuredCurve, BadFilesAreRefusedWithTheirLine) {
     TempDir dir;
     EXPECT_THROW(read_measured_curve((dir.path / "missing.csv").string()), InputError);
     // The header's line is its own, not line 1, when comments come first.
-    EXPECT_EQ(error_of("# strips of 2026-11-20\nexposure,arc_height_in\n1,0.006\n2,0.009\n"),
-              "c.csv:2:1: exposure: expected a unit in the column name (s, min, h, passes or cycles, e.g. time_min) or the option --time-unit");
+    EXPECT_EQ(
+        error_of("# strips of 2026-11-20\nexposure,arc_height_in\n1,0.006\n2,0.009\n"),
+        "c.csv:2:1: exposure: expected a unit in the column name (s, min, h, passes or cycles, e.g. time_min) or the option --time-unit");
 }
 
 // A binary file, or a line without end, is refused at its line without printing its bytes.
 TEST(MeasuredCurve, BinaryBytesAndRunawayLinesAreRefusedWithAnExcerpt) {
-    EXPECT_EQ(error_of(std::string("time_min,arc_height_in\n1,0.006\nab\x00\x01" "cd\n", 38)),
+    EXPECT_EQ(error_of(std::string("time_min,arc_height_in\n1,0.006\nab\x00\x01"
+                                   "cd\n",
+                                   38)),
               "c.csv:3:3: expected a text CSV file (a header, then exposure, arc height per line), got the byte 0x00 (binary data?) in "
               "'ab\\x00\\x01cd'");
     EXPECT_EQ(error_of("time_min,arc_height_in\n1," + std::string(5000, '7') + "\n"),
               "c.csv:2: a line longer than 4096 bytes (it begins '1," + std::string(38, '7') +
                   "'... (4096 bytes)); expected a CSV line of exposure, arc height");
-    EXPECT_EQ(error_of("time_min,arc_height_in\n1,0.006\n2,0.0\xff" "9\n"),
+    EXPECT_EQ(error_of("time_min,arc_height_in\n1,0.006\n2,0.0\xff"
+                       "9\n"),
               "c.csv:3:3: arc_height_in: expected a number (the arc height in in), got '0.0\\xFF9'");
 }
 

@@ -10,8 +10,8 @@
 
 #include "analysis/coverage_progress.h"
 #include "analysis/region_stats.h"
-#include "analysis/sample_classes.h"
 #include "analysis/regions.h"
+#include "analysis/sample_classes.h"
 #include "common/input_error.h"
 #include "geometry/box_mesh.h"
 #include "geometry/cylinder_mesh.h"

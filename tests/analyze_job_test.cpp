@@ -33,7 +33,6 @@ RunOptions rod_run(const fs::path& dir, double duration) {
     return o;
 }
 
-
 }  // namespace
 
 TEST(AnalyzeJob, CountsAddUpAndCoverageOnlyGrows) {

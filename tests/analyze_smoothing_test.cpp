@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <cstdlib>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -38,7 +38,6 @@ RunOptions rod_run(const fs::path& dir, std::vector<std::string> extra = {}) {
     o.analyze = false;
     return o;
 }
-
 
 std::string read_text(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -104,10 +103,12 @@ TEST(AnalyzeSmoothing, TheRadiusComesFromTheOptionThenTheScene) {
     std::ostringstream out, err;
     ASSERT_EQ(run_job(rod_run(dir.path, {"output.smoothing_radius=2 mm"}), out, err), kExitOk) << err.str();
     ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
-    EXPECT_DOUBLE_EQ(peensim::testing::read_csv_columns(dir.path / "analysis" / "rod_triangles.csv").at("smoothing_radius_mm").front(), 2.0);
+    EXPECT_DOUBLE_EQ(peensim::testing::read_csv_columns(dir.path / "analysis" / "rod_triangles.csv").at("smoothing_radius_mm").front(),
+                     2.0);
     std::ostringstream aout;
     ASSERT_EQ(analyze_job(dir.path.string(), aout, err, {.smoothing_radius = "1.5 mm"}), kExitOk) << err.str();
-    EXPECT_DOUBLE_EQ(peensim::testing::read_csv_columns(dir.path / "analysis" / "rod_triangles.csv").at("smoothing_radius_mm").front(), 1.5);
+    EXPECT_DOUBLE_EQ(peensim::testing::read_csv_columns(dir.path / "analysis" / "rod_triangles.csv").at("smoothing_radius_mm").front(),
+                     1.5);
     EXPECT_NE(aout.str().find("set by --smoothing-radius"), std::string::npos) << aout.str();
     for (const char* bad : {"-1 mm", "2 kg", "5 m", "wide"}) {
         std::ostringstream e;

@@ -144,8 +144,18 @@ class RunInterruptHard : public ::testing::TestWithParam<HardRun> {};
 TEST_P(RunInterruptHard, SigtermStopsWithinASecondWithACheckpoint) {
     const HardRun& p = GetParam();
     TempDir dir;
-    std::vector<std::string> args = {PEENSIM_BINARY, "run", std::string(PEENSIM_SOURCE_DIR) + "/scenes/" + p.scene, "-o", (dir.path / "out").string(),
-                                     "--quiet", "--no-analyze", "--scheme", p.scheme, "--set", "process.duration=100", "--set",
+    std::vector<std::string> args = {PEENSIM_BINARY,
+                                     "run",
+                                     std::string(PEENSIM_SOURCE_DIR) + "/scenes/" + p.scene,
+                                     "-o",
+                                     (dir.path / "out").string(),
+                                     "--quiet",
+                                     "--no-analyze",
+                                     "--scheme",
+                                     p.scheme,
+                                     "--set",
+                                     "process.duration=100",
+                                     "--set",
                                      "output.checkpoint_interval=0.2"};
     for (const std::string& set : p.sets) args.insert(args.end(), {"--set", set});
     ChildProcess run(args, (dir.path / "stdout").string(), (dir.path / "stderr").string());
@@ -164,11 +174,12 @@ TEST_P(RunInterruptHard, SigtermStopsWithinASecondWithACheckpoint) {
     EXPECT_GT(c.state.time.seconds(), 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, RunInterruptHard,
-                         ::testing::Values(HardRun{"gear_3000rpm_event", "rotating-gear.yaml", "event", {"components[gear].motion.speed=3000 rpm"}},
-                                           HardRun{"gear_3000rpm_step", "rotating-gear.yaml", "step", {"components[gear].motion.speed=3000 rpm"}},
-                                           HardRun{"gear_soft", "gear-soft.yaml", "soft", {}}),
-                         [](const ::testing::TestParamInfo<HardRun>& info) { return info.param.name; });
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, RunInterruptHard,
+    ::testing::Values(HardRun{"gear_3000rpm_event", "rotating-gear.yaml", "event", {"components[gear].motion.speed=3000 rpm"}},
+                      HardRun{"gear_3000rpm_step", "rotating-gear.yaml", "step", {"components[gear].motion.speed=3000 rpm"}},
+                      HardRun{"gear_soft", "gear-soft.yaml", "soft", {}}),
+    [](const ::testing::TestParamInfo<HardRun>& info) { return info.param.name; });
 
 TEST(RunInterruptTwice, SecondSignalAbandonsAtOnceAndTheLastCheckpointResumes) {
     // The event-driven scheme (its stop waits for a restart point, so the second SIGINT finds the

@@ -45,8 +45,9 @@ TEST(SweepPlan, AxesSplitAtTopLevelCommasOnly) {
 }
 
 TEST(SweepPlan, EveryCombinationFirstAxisSlowestTimesTheSeeds) {
-    const SweepPlan plan = plan_sweep({parse_sweep_axis("components[gear].motion.speed=30 rpm,60 rpm"), parse_sweep_axis("shot.diameter=1 mm,2 mm,3 mm")},
-                                      2, 7, {"process.duration=1 s"}, "out");
+    const SweepPlan plan =
+        plan_sweep({parse_sweep_axis("components[gear].motion.speed=30 rpm,60 rpm"), parse_sweep_axis("shot.diameter=1 mm,2 mm,3 mm")}, 2,
+                   7, {"process.duration=1 s"}, "out");
     ASSERT_EQ(plan.variants.size(), 6u);
     EXPECT_EQ(plan.variants[0].name, "speed-30rpm_diameter-1mm");
     EXPECT_EQ(plan.variants[1].name, "speed-30rpm_diameter-2mm");
@@ -93,22 +94,26 @@ TEST(SweepPlan, BoundsAndDuplicatesAreRefusedBeforeTheGridIsBuilt) {
     EXPECT_NE(problem([&] { plan_sweep(grid, 1, 1, {}, "o"); }).find("a grid of 20 x 20 x 20 x 20 x 20 values x 1 seed make 3200000 runs"),
               std::string::npos);
     EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
-    EXPECT_NE(problem([&] { parse_sweep_axis("process.seed=" + values(1001, "")); }).find("1001 values; expected at most 1000 values per --vary"),
-              std::string::npos);
+    EXPECT_NE(
+        problem([&] { parse_sweep_axis("process.seed=" + values(1001, "")); }).find("1001 values; expected at most 1000 values per --vary"),
+        std::string::npos);
     EXPECT_NO_THROW(plan_sweep({parse_sweep_axis("process.seed=" + values(1000, ""))}, 10, 1, {}, "o"));  // 10 000 runs: the bound
     EXPECT_NE(problem([&] { plan_sweep({parse_sweep_axis("process.seed=" + values(1000, ""))}, 11, 1, {}, "o"); }).find("make 11000 runs"),
               std::string::npos);
     EXPECT_NE(problem([&] { plan_sweep({}, 1001, 1, {}, "o"); }).find("--seeds: expected 1 to 1000 replicates per variant, got '1001'"),
               std::string::npos);
     // Twice, and written two ways: lengths, whole numbers, vectors, maps in another key order.
-    EXPECT_NE(problem([&] { plan_sweep({parse_sweep_axis("process.seed=1,2,1")}, 1, 1, {}, "o"); })
-                  .find("--vary: process.seed: the value '1' is given twice; expected each value once"),
+    EXPECT_NE(problem([&] {
+                  plan_sweep({parse_sweep_axis("process.seed=1,2,1")}, 1, 1, {}, "o");
+              }).find("--vary: process.seed: the value '1' is given twice; expected each value once"),
               std::string::npos);
     for (const char* same : {"shot.diameter=1 mm,1mm", "shot.diameter=2 mm,0.002 m", "shot.count=64,6.4e1", "shot.count=64,+64",
-                             "process.gravity=[0, 0, -9.81],[0,0,-9.81 m/s2]", "components[rod].motion={type: rotating, speed: 10 rpm},"
-                                                                                "{speed: 10 rpm, type: rotating}"})
+                             "process.gravity=[0, 0, -9.81],[0,0,-9.81 m/s2]",
+                             "components[rod].motion={type: rotating, speed: 10 rpm},"
+                             "{speed: 10 rpm, type: rotating}"})
         EXPECT_NE(problem([&] { plan_sweep({parse_sweep_axis(same)}, 1, 1, {}, "o"); }).find("is the value"), std::string::npos) << same;
-    EXPECT_NO_THROW(plan_sweep({parse_sweep_axis("process.seed=9007199254740993,9007199254740992")}, 1, 1, {}, "o"));  // beyond 2^53: as text
+    EXPECT_NO_THROW(
+        plan_sweep({parse_sweep_axis("process.seed=9007199254740993,9007199254740992")}, 1, 1, {}, "o"));  // beyond 2^53: as text
     // Listed variants: a bad name, or two setting the same, blamed on the variant's own line.
     const auto variant = [](const std::string& name, const std::string& count, int line) {
         SweepVariant v;
@@ -120,12 +125,15 @@ TEST(SweepPlan, BoundsAndDuplicatesAreRefusedBeforeTheGridIsBuilt) {
     };
     const SweepVariant a = variant("a", "64", 4);
     SweepVariant b = variant("b", "6.4e1", 5);
-    EXPECT_NE(problem([&] { plan_sweep_variants({a, b}, 1, 1, {}, "o"); })
-                  .find("study.yaml:5:5: variants[1].set: variant 'b' sets the same values as variant 'a'"),
+    EXPECT_NE(problem([&] {
+                  plan_sweep_variants({a, b}, 1, 1, {}, "o");
+              }).find("study.yaml:5:5: variants[1].set: variant 'b' sets the same values as variant 'a'"),
               std::string::npos);
     b.set = {{"shot.count", "128"}};
     b.name = "../b";
-    EXPECT_NE(problem([&] { plan_sweep_variants({a, b}, 1, 1, {}, "o"); }).find("study.yaml:5:5: variants[1].name: variant name '../b'"),
+    EXPECT_NE(problem([&] {
+                  plan_sweep_variants({a, b}, 1, 1, {}, "o");
+              }).find("study.yaml:5:5: variants[1].name: variant name '../b'"),
               std::string::npos);
 }
 
@@ -183,17 +191,19 @@ void write_fake_run(const fs::path& dir, double whole_s, double slow_tooth_s, do
     std::ofstream(dir / "analysis" / "figures.json")
         << R"({"target_coverage": 0.9, "components": [{"component": "gear", "impact_rate_per_s": 1000, "mean_vn_mps": 2.0, "coverage": 0.1,)"
         << R"("share_below_target": )" << share_below << R"(, "time_to_target": )" << forecast(whole_s)
-        << R"(, "time_to_target_everywhere": )" << forecast(everywhere_s) << R"(, "uniformity": {"value": )" << uniformity
-        << R"(, "low": )" << uniformity - 0.02 << R"(, "high": )" << uniformity + 0.02 << R"(}, "regions": [)"
-        << R"({"region": "tooth-0", "excluded": false, "impact_rate_per_s": 50, "coverage": 0.1, "time_to_target": )" << forecast(slow_tooth_s) << "},"
-        << R"({"region": "tooth-1", "excluded": false, "impact_rate_per_s": 60, "coverage": 0.2, "time_to_target": )" << forecast(0.5 * slow_tooth_s)
-        << "},"
+        << R"(, "time_to_target_everywhere": )" << forecast(everywhere_s) << R"(, "uniformity": {"value": )" << uniformity << R"(, "low": )"
+        << uniformity - 0.02 << R"(, "high": )" << uniformity + 0.02 << R"(}, "regions": [)"
+        << R"({"region": "tooth-0", "excluded": false, "impact_rate_per_s": 50, "coverage": 0.1, "time_to_target": )"
+        << forecast(slow_tooth_s) << "},"
+        << R"({"region": "tooth-1", "excluded": false, "impact_rate_per_s": 60, "coverage": 0.2, "time_to_target": )"
+        << forecast(0.5 * slow_tooth_s) << "},"
         << R"({"region": "bore", "excluded": true, "impact_rate_per_s": 0, "coverage": null, "time_to_target": {"status": "none"}}]}]})";
 }
 
 TEST(SweepCompare, TheSlowestRegionEverywhereUniformityAndShareBelowEachWithAVerdict) {
     TempDir dir;
-    SweepPlan plan = plan_sweep({parse_sweep_axis("components[gear].motion.speed=0 rpm,30 rpm,60 rpm")}, 2, 1, {}, (dir.path / "s").string());
+    SweepPlan plan =
+        plan_sweep({parse_sweep_axis("components[gear].motion.speed=0 rpm,30 rpm,60 rpm")}, 2, 1, {}, (dir.path / "s").string());
     for (const SweepRun& run : plan.runs) {
         const double jitter = run.replicate == 0 ? 1.0 : 1.02;
         if (run.variant == 0) write_fake_run(run.dir, 450.0 * jitter, 1400.0 * jitter, 1500.0 * jitter, 0.35, 0.2 * jitter);
@@ -203,10 +213,11 @@ TEST(SweepCompare, TheSlowestRegionEverywhereUniformityAndShareBelowEachWithAVer
     write_sweep_comparison(plan, (dir.path / "s" / "sweep").string(), "", "gear");
     const std::string csv = read_file(dir.path / "s" / "sweep" / "comparison.csv");
     const std::string header = csv.substr(0, csv.find('\n'));
-    for (const char* column : {"slowest_region_time_to_target_s", "slowest_region_time_to_target_s_ci95", "time_to_target_everywhere_s",
-                               "uniformity_ci95", "share_below_target_ci95", "verdict_slowest_region_time_to_target_s",
-                               "verdict_time_to_target_everywhere_s", "verdict_uniformity", "verdict_share_below_target", "verdict_time_to_target_s",
-                               "region_tooth-0_time_to_target_s", "region_tooth-0_time_to_target_ci95_s", "slowest_region"})
+    for (const char* column :
+         {"slowest_region_time_to_target_s", "slowest_region_time_to_target_s_ci95", "time_to_target_everywhere_s", "uniformity_ci95",
+          "share_below_target_ci95", "verdict_slowest_region_time_to_target_s", "verdict_time_to_target_everywhere_s", "verdict_uniformity",
+          "verdict_share_below_target", "verdict_time_to_target_s", "region_tooth-0_time_to_target_s",
+          "region_tooth-0_time_to_target_ci95_s", "slowest_region"})
         EXPECT_NE(header.find(std::string(",") + column), std::string::npos) << column << " in " << header;
     const std::string report = read_file(dir.path / "s" / "sweep" / "report.md");
     EXPECT_NE(report.find("## What decides: time to 90 %"), std::string::npos) << report;
@@ -218,7 +229,7 @@ TEST(SweepCompare, TheSlowestRegionEverywhereUniformityAndShareBelowEachWithAVer
     const std::string rotating = row_of(report, "speed-30rpm");
     EXPECT_NE(rotating.find("| tooth-0 | 707 +- "), std::string::npos) << rotating;
     EXPECT_NE(rotating.find("(differs) | 727.2 +- "), std::string::npos) << rotating;
-    EXPECT_NE(rotating.find("(within noise) |"), std::string::npos) << rotating;  // the whole part: 459.5 vs 454.5
+    EXPECT_NE(rotating.find("(within noise) |"), std::string::npos) << rotating;           // the whole part: 459.5 vs 454.5
     EXPECT_EQ(rotating.find("within noise"), rotating.rfind("within noise")) << rotating;  // only there
     // A variant whose runs are too short says so and how long to run, instead of a number.
     EXPECT_NE(row_of(report, "speed-60rpm").find("too short: run 900 s"), std::string::npos) << report;
@@ -259,10 +270,12 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
     EXPECT_GT(log.size(), 1000u);
     EXPECT_EQ(read_file(dir.path / "one" / "count-128" / "s0" / "impacts.csv"), log);
     EXPECT_EQ(read_file(dir.path / "two" / "count-128" / "s0" / "impacts.csv"), log);
-    EXPECT_EQ(read_file(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), read_file(dir.path / "two" / "count-64" / "s0" / "impacts.csv"));
+    EXPECT_EQ(read_file(dir.path / "one" / "count-64" / "s0" / "impacts.csv"),
+              read_file(dir.path / "two" / "count-64" / "s0" / "impacts.csv"));
     // The comparison: one row per variant, the run's own figures.
     const std::string csv = read_file(dir.path / "one" / "sweep" / "comparison.csv");
-    EXPECT_EQ(csv.rfind("variant,shot.count,runs_finished,target_coverage,impact_rate_per_s,impact_rate_per_s_ci95,mean_vn_mps,", 0), 0u) << csv;
+    EXPECT_EQ(csv.rfind("variant,shot.count,runs_finished,target_coverage,impact_rate_per_s,impact_rate_per_s_ci95,mean_vn_mps,", 0), 0u)
+        << csv;
     EXPECT_NE(csv.find("\ncount-64,\"64\",1,"), std::string::npos) << csv;
     EXPECT_NE(csv.find("\ncount-128,\"128\",1,"), std::string::npos) << csv;
     const std::string report = read_file(dir.path / "one" / "sweep" / "report.md");
@@ -305,8 +318,19 @@ TEST(SweepJob, AFailingRunIsRetriedOnceThenReportedAndBadInputsExitTwo) {
 TEST(SweepJob, AnInterruptedSweepGoesOnWhereItStopped) {
     TempDir dir;
     const auto args = [&](const fs::path& out) {
-        return std::vector<std::string>{PEENSIM_BINARY, "sweep", kRod, "-o", out.string(), "--vary", "shot.count=256,512",
-                                        "--set", "process.duration=6 s", "--set", "output.checkpoint_interval=0.2 s", "--jobs", "2"};
+        return std::vector<std::string>{PEENSIM_BINARY,
+                                        "sweep",
+                                        kRod,
+                                        "-o",
+                                        out.string(),
+                                        "--vary",
+                                        "shot.count=256,512",
+                                        "--set",
+                                        "process.duration=6 s",
+                                        "--set",
+                                        "output.checkpoint_interval=0.2 s",
+                                        "--jobs",
+                                        "2"};
     };
     ChildProcess whole(args(dir.path / "whole"), (dir.path / "whole.out").string(), (dir.path / "whole.err").string());
     ASSERT_EQ(whole.wait_exit(300.0), std::optional<int>(kExitOk)) << read_file(dir.path / "whole.err");
@@ -375,7 +399,8 @@ TEST(SweepJob, ASweepFileListsNamedVariants) {
     std::ostringstream out, err;
     ASSERT_EQ(sweep_job(o, out, err), kExitOk) << err.str();
     EXPECT_NE(out.str().find("2 variants x 2 seeds = 4 runs"), std::string::npos) << out.str();
-    for (const char* run : {"few/s0", "few/s1", "many/s0", "many/s1"}) EXPECT_TRUE(fs::exists(dir.path / "out" / run / "impacts.csv")) << run;
+    for (const char* run : {"few/s0", "few/s1", "many/s0", "many/s1"})
+        EXPECT_TRUE(fs::exists(dir.path / "out" / run / "impacts.csv")) << run;
     // The seeds differ (process.seed 1 and 2): two runs of one variant are not the same run.
     EXPECT_NE(read_file(dir.path / "out" / "few" / "s0" / "impacts.csv"), read_file(dir.path / "out" / "few" / "s1" / "impacts.csv"));
     const std::string report = read_file(dir.path / "out" / "sweep" / "report.md");

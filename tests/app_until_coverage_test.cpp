@@ -32,8 +32,20 @@ const std::string kRod = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
 nlohmann::json json_of(const fs::path& path) { return nlohmann::json::parse(read_file(path)); }
 
 std::vector<std::string> until_args(const fs::path& out) {
-    return {PEENSIM_BINARY, "run", kRod, "-o", out.string(), "--until-coverage", "20 %", "--set", "process.duration=10 s",
-            "--set", "output.checkpoint_interval=0.1 s", "--no-render", "--no-analyze", "--quiet"};
+    return {PEENSIM_BINARY,
+            "run",
+            kRod,
+            "-o",
+            out.string(),
+            "--until-coverage",
+            "20 %",
+            "--set",
+            "process.duration=10 s",
+            "--set",
+            "output.checkpoint_interval=0.1 s",
+            "--no-render",
+            "--no-analyze",
+            "--quiet"};
 }
 
 TEST(UntilCoverage, StopsWhenTheAnalysisSaysTheTargetIsReachedAndResumesToTheSameEnd) {
@@ -49,8 +61,8 @@ TEST(UntilCoverage, StopsWhenTheAnalysisSaysTheTargetIsReachedAndResumesToTheSam
     const double reached = goal["areas"][0]["reached_at_s"].get<double>();
     const double stopped = summary["simulated_time_s"].get<double>();
     EXPECT_LE(reached, stopped);
-    EXPECT_LT(stopped, 10.0);                    // not the cap
-    EXPECT_LE(stopped - reached, 0.1 + 1e-9);    // the first restart point after it
+    EXPECT_LT(stopped, 10.0);                  // not the cap
+    EXPECT_LE(stopped - reached, 0.1 + 1e-9);  // the first restart point after it
     EXPECT_TRUE(summary["finished"].get<bool>());
     // The analysis of the log counts coverage the same way: reached at the same time, exactly.
     std::ostringstream out, err;

@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "analysis/impact_log_reader.h"
-#include "analysis/regions.h"
 #include "analysis/measured_curve.h"
+#include "analysis/regions.h"
 #include "fem/patch_frame.h"
 #include "geometry/mesh_loader.h"
 #include "scene/scene_parser.h"
@@ -160,8 +160,8 @@ TEST(HostileInputs3, ExportFemNamesStayInsideTheOutputDirectory) {
 TEST(HostileInputs3, ExportFemNumbersOutsideTheirRangeAreRefused) {
     Runs& r = runs();
     TempDir out;
-    const std::vector<std::string> base{"export-fem", r.rod.string(), "-o", (out.path / "fem").string(), "--center",
-                                        point_text(r.rod_impact)};
+    const std::vector<std::string> base{"export-fem", r.rod.string(),          "-o", (out.path / "fem").string(),
+                                        "--center",   point_text(r.rod_impact)};
     const auto with = [&](const std::vector<std::string>& extra) {
         std::vector<std::string> a = base;
         a.insert(a.end(), extra.begin(), extra.end());
@@ -276,7 +276,8 @@ TEST(HostileInputs3, AlmenFitOnABinaryFileNamesItWithoutPrintingItsBytes) {
         bytes += static_cast<char>(x >> 24);
     }
     std::ofstream(dir.path / "random.csv", std::ios::binary) << bytes;
-    std::ofstream(dir.path / "late.csv", std::ios::binary) << "time_min,arc_height_mm\n1,0.1\n2,0.\x01\x02\xff" << "\n";
+    std::ofstream(dir.path / "late.csv", std::ios::binary) << "time_min,arc_height_mm\n1,0.1\n2,0.\x01\x02\xff"
+                                                           << "\n";
     std::ofstream(dir.path / "long.csv", std::ios::binary) << "time_min,arc_height_mm\n1," << std::string(10000, '9') << "\n";
     for (const auto& [file, phrases] : std::vector<std::pair<std::string, std::vector<std::string>>>{
              {"random.csv", {"random.csv:1:"}},
@@ -320,15 +321,17 @@ TEST(HostileInputs3, AnalyzeSaysWhereItsLogWasCutAndRefusesDamage) {
     const fs::path cut = copy_run(r.rod, dir.path / "cut");
     std::ofstream(cut / "impacts.csv", std::ios::binary | std::ios::trunc) << joined(lines, 101) << lines[101].substr(0, 40);
     const Cli c = peensim({"analyze", cut.string()});
-    expect_cli(c, 0, {"warning:", "impacts.csv:102: the impact log ends inside row 101 (line 102): the log was cut", "after the run finished",
-                      "the 100 rows before it are analysed"});
+    expect_cli(c, 0,
+               {"warning:", "impacts.csv:102: the impact log ends inside row 101 (line 102): the log was cut", "after the run finished",
+                "the 100 rows before it are analysed"});
     EXPECT_NE(read_file(cut / "analysis" / "report.md").find("The impact log ended inside a row"), std::string::npos);
     // The same cut in a killed run's partial log: the warning says so.
     const fs::path killed = copy_run(r.rod, dir.path / "killed");
     fs::remove(killed / "impacts.csv");
     fs::remove(killed / "summary.json");
     std::ofstream(killed / "impacts.csv.partial", std::ios::binary) << joined(lines, 101) << lines[101].substr(0, 40);
-    expect_cli(peensim({"analyze", killed.string()}), 0, {"impacts.csv.partial:102: the impact log ends inside row 101", "a run killed while writing it"});
+    expect_cli(peensim({"analyze", killed.string()}), 0,
+               {"impacts.csv.partial:102: the impact log ends inside row 101", "a run killed while writing it"});
     // A NaN in the middle: the line, the column and its name.
     const fs::path nan = copy_run(r.rod, dir.path / "nan");
     std::vector<std::string> damaged = lines;
@@ -353,7 +356,8 @@ TEST(HostileInputs3, AnalyzeSaysWhereItsLogWasCutAndRefusesDamage) {
         std::ofstream(d / "impacts.csv", std::ios::binary | std::ios::trunc) << joined(l, l.size());
         expect_cli(peensim({"analyze", d.string()}), 2, phrases);
     };
-    refused("garbage", "0.01,3,rod,12,x,0,0,0,0,0,0,0,0,0,0,0", {"impacts.csv:7:", "x_m: malformed impact row 6: expected a number, got 'x'"});
+    refused("garbage", "0.01,3,rod,12,x,0,0,0,0,0,0,0,0,0,0,0",
+            {"impacts.csv:7:", "x_m: malformed impact row 6: expected a number, got 'x'"});
     refused("binary", std::string("0.01,3,rod\x01\x02,12"), {"impacts.csv:7:", "binary data"});
     std::string other = lines[6];
     other.replace(other.find(",rod,"), 5, ",gear,");
@@ -376,7 +380,8 @@ TEST(HostileInputs3, AnalyzeTakesTheTimeAKilledRunSimulated) {
     fs::remove(killed / "summary.json");
     const Cli c = peensim({"analyze", killed.string()});
     expect_cli(c, 0, {"the run did not finish; analysing the", "no summary.json: the run was killed", "not the scene's 0.2 s"});
-    EXPECT_TRUE(c.output.find("from its checkpoint") != std::string::npos || c.output.find("from its last logged impact") != std::string::npos)
+    EXPECT_TRUE(c.output.find("from its checkpoint") != std::string::npos ||
+                c.output.find("from its last logged impact") != std::string::npos)
         << c.output;
     // Not the scene's 0.2 s: the time it stopped at (its checkpoint's), as its summary had said.
     const std::string report = read_file(killed / "analysis" / "report.md");
@@ -391,8 +396,9 @@ TEST(HostileInputs3, AResumedRunNeverLeavesTheSummaryOfTheSessionBefore) {
     const fs::path run = dir.path / "run";
     const std::string scene = kScenes + "rod.yaml";
     // A long run, interrupted: its summary says where it stopped.
-    expect_cli(peensim({"run", scene, "-o", run.string(), "--set", "process.duration=100", "-q", "--no-render", "--stop-after-steps", "2000"}),
-               130, {});
+    expect_cli(
+        peensim({"run", scene, "-o", run.string(), "--set", "process.duration=100", "-q", "--no-render", "--stop-after-steps", "2000"}),
+        130, {});
     ASSERT_TRUE(fs::exists(run / "summary.json"));
     // Resumed, and killed once the resumed session has started: no summary of the earlier
     // session may stand (analyze would read its time as the run's).

@@ -249,7 +249,8 @@ TEST(ImpactHistoryLaw, AFixedInfluenceDistanceMarksAsFarWhateverTheDent) {
         std::vector<double> marks(g.corners_m.size() / 3, 0.0);
         in.v_shot = Vec3(0, 0, -speed);
         EXPECT_DOUBLE_EQ(law.impact(in, marks).vn_out, 0.4 * speed);
-        for (std::size_t t = 0; t < marks.size(); ++t) EXPECT_EQ(marks[t], patch.count(t) ? 1.0 : 0.0) << "speed " << speed << " triangle " << t;
+        for (std::size_t t = 0; t < marks.size(); ++t)
+            EXPECT_EQ(marks[t], patch.count(t) ? 1.0 : 0.0) << "speed " << speed << " triangle " << t;
         EXPECT_DOUBLE_EQ(law.impact(in, marks).vn_out, 0.6 * speed);
     }
     // Built from a scene's values without the material's yield stress.

@@ -238,7 +238,7 @@ TEST_P(EngineEventRegimes, DenseLoadOnTheVibratingSonotrode) {
     if (!audit.report().first_mesh.empty())
         std::cout << "[ dense    ] mesh overlaps: first " << audit.report().first_mesh << "; deepest " << audit.report().worst_mesh << "\n";
     EXPECT_GT(top, 4.0 * model->max_shot_radius_m);  // several layers
-    EXPECT_GT(st.shot_shot_impacts, 2000u);      // a dense load: time stepping measured ~6000
+    EXPECT_GT(st.shot_shot_impacts, 2000u);          // a dense load: time stepping measured ~6000
     if (exact()) {
         EXPECT_EQ(audit.report().pair_overlaps, 0u) << audit.report().first_pair;
         EXPECT_EQ(audit.report().mesh_overlaps, 0u) << audit.report().first_mesh;

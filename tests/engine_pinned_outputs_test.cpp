@@ -20,40 +20,46 @@ namespace {
 struct Pinned {
     const char* scene;
     const char* scheme;
-    std::uint64_t rows;         // impacts logged in the first 0.5 s
-    const char* impacts_fnv1a;  // of impacts.csv, hex
+    std::uint64_t rows;              // impacts logged in the first 0.5 s
+    const char* impacts_fnv1a;       // of impacts.csv, hex
     const char* duration = "0.5 s";  // simulated (a nozzle scene's 100 m/s jet: 30 ms)
 };
 
 // nozzle-study and nozzle-gear pinned when they were added (30 and 50 ms of their jets), nozzle-mix
-// too (shot size mixes; its log has the shot_diameter_m column; the others did not move). nozzle-almen pinned when it was added (shot sources and sinks), moved when nozzles got their
-// exit-speed spread (default +-5 %: one more draw per emission) and were drawn again where they
-// would overlap a shot (10290 -> 10301 rows event, 10298 -> 10305 step); rod-soft and gear-soft when
-// they were (the soft scheme, and the rigid event scheme on the hertz-mindlin law's limit). The soft
-// ones last moved when the soft pool's normal kicks became each contact's impulse along its path
-// (elastic contacts keep their energy: SoftContact.ABouncingLoadKeepsItsEnergyAtEOne; issue 28) and a
-// shot touching a member while the pool steps to another touch began to join at its touch:
-// rod-soft soft 2430 -> 2293 rows, gear-soft soft 779 -> 801 in the first 0.5 s (the bed's chaos
-// spreads any change; the rigid ones did not move). Before that, when the pool's clock became each
-// step's end time instead of a sum of steps (rod-soft 2372 -> 2430 rows, gear-soft 727 -> 779).
-// Last moved by: a moving mesh's search takes a gap that stays within 1e-6 R as a touch (a shot
-// skimming the sonotrode's moving sides or the turning gear: conservative advancement crawled
-// there, and stalled a rotating gear's run for good; issue 28): rotating-gear event 878 -> 883
-// rows, gear-soft event 794 -> 799, nozzle-gear event 10925 -> 10813 (50 ms of a 100 m/s jet, the
-// difference spread by the load's chaos). Before that: time stepping follows slow touches on the pressing plate as rebounds down to the
-// ride speed, as the event scheme does (rotating-gear step: 794 -> 784 rows); before that, the
-// launch from a ride started from the free flight since the release (e64ce17).
+// too (shot size mixes; its log has the shot_diameter_m column; the others did not move). nozzle-almen pinned when it was added (shot
+// sources and sinks), moved when nozzles got their exit-speed spread (default +-5 %: one more draw per emission) and were drawn again where
+// they would overlap a shot (10290 -> 10301 rows event, 10298 -> 10305 step); rod-soft and gear-soft when they were (the soft scheme, and
+// the rigid event scheme on the hertz-mindlin law's limit). The soft ones last moved when the soft pool's normal kicks became each
+// contact's impulse along its path (elastic contacts keep their energy: SoftContact.ABouncingLoadKeepsItsEnergyAtEOne; issue 28) and a shot
+// touching a member while the pool steps to another touch began to join at its touch: rod-soft soft 2430 -> 2293 rows, gear-soft soft 779
+// -> 801 in the first 0.5 s (the bed's chaos spreads any change; the rigid ones did not move). Before that, when the pool's clock became
+// each step's end time instead of a sum of steps (rod-soft 2372 -> 2430 rows, gear-soft 727 -> 779). Last moved by: a moving mesh's search
+// takes a gap that stays within 1e-6 R as a touch (a shot skimming the sonotrode's moving sides or the turning gear: conservative
+// advancement crawled there, and stalled a rotating gear's run for good; issue 28): rotating-gear event 878 -> 883 rows, gear-soft event
+// 794 -> 799, nozzle-gear event 10925 -> 10813 (50 ms of a 100 m/s jet, the difference spread by the load's chaos). Before that: time
+// stepping follows slow touches on the pressing plate as rebounds down to the ride speed, as the event scheme does (rotating-gear step: 794
+// -> 784 rows); before that, the launch from a ride started from the free flight since the release (e64ce17).
 const Pinned kPinned[] = {
-    {"gear", "event", 871, "f59bc50898df1087"},           {"gear", "step", 822, "96deb7baad68fdb5"},
-    {"rod", "event", 1585, "9b406f77de933fb2"},           {"rod", "step", 1550, "49c0d4fb4815fbee"},
-    {"rotating-gear", "event", 883, "1397b5fde58f0127"},  {"rotating-gear", "step", 784, "75faf08347826696"},
-    {"almen", "event", 946, "14acb11530796b00"},          {"almen", "step", 835, "4553c21722f5a983"},
-    {"nozzle-almen", "event", 10301, "bb678520f6b17aae"}, {"nozzle-almen", "step", 10305, "442b3f8829756d0b"},
-    {"rod-soft", "soft", 2293, "827ab5474fe553cf"},       {"rod-soft", "event", 2451, "fb40376583a3a876"},
-    {"gear-soft", "soft", 801, "0828643a98bf1afe"},       {"gear-soft", "event", 799, "1691f3d176d906ba"},
-    {"nozzle-study", "event", 4356, "0e5490f59b3f306e", "30 ms"}, {"nozzle-study", "step", 4350, "5532dd3e16620419", "30 ms"},
-    {"nozzle-gear", "event", 10813, "23ca88bf3bc9b778", "50 ms"},  {"nozzle-gear", "step", 11020, "150022a6e60e6991", "50 ms"},
-    {"nozzle-mix", "event", 5055, "974f1bd363d56f50", "30 ms"},   {"nozzle-mix", "step", 5091, "4ef5efafadc78182", "30 ms"},
+    {"gear", "event", 871, "f59bc50898df1087"},
+    {"gear", "step", 822, "96deb7baad68fdb5"},
+    {"rod", "event", 1585, "9b406f77de933fb2"},
+    {"rod", "step", 1550, "49c0d4fb4815fbee"},
+    {"rotating-gear", "event", 883, "1397b5fde58f0127"},
+    {"rotating-gear", "step", 784, "75faf08347826696"},
+    {"almen", "event", 946, "14acb11530796b00"},
+    {"almen", "step", 835, "4553c21722f5a983"},
+    {"nozzle-almen", "event", 10301, "bb678520f6b17aae"},
+    {"nozzle-almen", "step", 10305, "442b3f8829756d0b"},
+    {"rod-soft", "soft", 2293, "827ab5474fe553cf"},
+    {"rod-soft", "event", 2451, "fb40376583a3a876"},
+    {"gear-soft", "soft", 801, "0828643a98bf1afe"},
+    {"gear-soft", "event", 799, "1691f3d176d906ba"},
+    {"nozzle-study", "event", 4356, "0e5490f59b3f306e", "30 ms"},
+    {"nozzle-study", "step", 4350, "5532dd3e16620419", "30 ms"},
+    {"nozzle-gear", "event", 10813, "23ca88bf3bc9b778", "50 ms"},
+    {"nozzle-gear", "step", 11020, "150022a6e60e6991", "50 ms"},
+    {"nozzle-mix", "event", 5055, "974f1bd363d56f50", "30 ms"},
+    {"nozzle-mix", "step", 5091, "4ef5efafadc78182", "30 ms"},
 };
 
 void PrintTo(const Pinned& p, std::ostream* os) { *os << p.scene << " " << p.scheme; }

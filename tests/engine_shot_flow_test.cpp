@@ -219,9 +219,9 @@ private:
 };
 
 TEST_P(ShotFlow, ACrowdedNozzleStartsEveryShotClearOfTheOthers) {
-    const auto model = compile_model(parse_scene_file(
-        kNozzleScene, {"accuracy.scheme=" + GetParam(), "process.duration=3 ms", "sources[nozzle].exit_radius=0.5 mm",
-                       "sources[nozzle].rate=50000 1/s", "sources[nozzle].speed=20 m/s", "sources[nozzle].spread=0 deg"}));
+    const auto model = compile_model(
+        parse_scene_file(kNozzleScene, {"accuracy.scheme=" + GetParam(), "process.duration=3 ms", "sources[nozzle].exit_radius=0.5 mm",
+                                        "sources[nozzle].rate=50000 1/s", "sources[nozzle].speed=20 m/s", "sources[nozzle].spread=0 deg"}));
     Simulation sim(model);
     RunLoop loop(sim);
     NoOverlapAtEmission check(model->max_shot_radius_m);
@@ -274,8 +274,8 @@ TEST_P(ShotFlow, ReboundScatterTurnsFastRebounds) {
     const auto plain = run(false), scattered = run(true), again = run(true);
     ASSERT_GT(plain.size(), 200u);
     const double tilt_plain = mean_tilt(plain), tilt_scattered = mean_tilt(scattered);
-    std::cout << "[ scatter  ] " << GetParam() << ": mean rebound tilt of impacts faster than 90 m/s " << tilt_plain << " deg, with a 20 deg scatter "
-              << tilt_scattered << " deg\n";
+    std::cout << "[ scatter  ] " << GetParam() << ": mean rebound tilt of impacts faster than 90 m/s " << tilt_plain
+              << " deg, with a 20 deg scatter " << tilt_scattered << " deg\n";
     // Uniform in [0, 20] deg on top of the jet's own few degrees: about 10 deg more.
     EXPECT_GT(tilt_scattered, tilt_plain + 6.0);
     EXPECT_LT(tilt_scattered, tilt_plain + 14.0);

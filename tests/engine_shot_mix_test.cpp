@@ -93,7 +93,8 @@ TEST(ShotMix, TheSceneReadsAMixAndItsMassFlow) {
     EXPECT_DOUBLE_EQ(model->min_shot_radius_m, 0.2125e-3);
     EXPECT_DOUBLE_EQ(model->shot_sizes[1].mass_kg, sphere_mass_kg(0.6e-3, 7800.0));
     // Sieve data are rounded: fractions summing to 0.998 are scaled to 1.
-    const SceneDescription rounded = parse_scene_file(kMixScene, {"shot.sizes=[{diameter: 0.6 mm, fraction: 0.499}, {diameter: 0.5 mm, fraction: 0.499}]"});
+    const SceneDescription rounded =
+        parse_scene_file(kMixScene, {"shot.sizes=[{diameter: 0.6 mm, fraction: 0.499}, {diameter: 0.5 mm, fraction: 0.499}]"});
     EXPECT_DOUBLE_EQ(rounded.shot.sizes[0].fraction, 0.5);
     // The resolved scene reads back to the same mix.
     TempDir dir;
@@ -114,9 +115,11 @@ TEST(ShotMix, BadMixesAreRefusedWithTheFieldAndTheExpectation) {
         std::string field, expected;
     } cases[] = {
         {{"shot.diameter=0.6 mm"}, "shot.sizes", "give either shot.diameter (one size) or shot.sizes (a mix), not both"},
-        {{"shot.sizes=[{diameter: 0.6 mm, fraction: 0.5}, {diameter: 0.5 mm, fraction: 0.4}]"}, "shot.sizes",
+        {{"shot.sizes=[{diameter: 0.6 mm, fraction: 0.5}, {diameter: 0.5 mm, fraction: 0.4}]"},
+         "shot.sizes",
          "expected the fractions to sum to 1 (within 0.005), got 0.9"},
-        {{"shot.sizes=[{diameter: 0.6 mm, fraction: 0.5}, {diameter: 0.6 mm, fraction: 0.5}]"}, "shot.sizes[1].diameter",
+        {{"shot.sizes=[{diameter: 0.6 mm, fraction: 0.5}, {diameter: 0.6 mm, fraction: 0.5}]"},
+         "shot.sizes[1].diameter",
          "this diameter is already in the mix"},
         {{"shot.sizes=[]"}, "shot.sizes", "expected at least one size"},
         {{"shot.sizes=[{diameter: 0.6 mm}]"}, "shot.sizes[0].fraction", "missing required key"},
@@ -159,7 +162,8 @@ TEST(ShotMix, EachSizeFliesItsOwnDrag) {
         bound = std::max(bound, z.flight->speed_gain_bound());
     }
     // The smallest shot slows most; the step sizes by the largest speed gain of any size.
-    EXPECT_GT(model->shot_sizes[3].flight->acceleration(Vec3::Zero(), v).z(), model->shot_sizes[0].flight->acceleration(Vec3::Zero(), v).z());
+    EXPECT_GT(model->shot_sizes[3].flight->acceleration(Vec3::Zero(), v).z(),
+              model->shot_sizes[0].flight->acceleration(Vec3::Zero(), v).z());
     EXPECT_EQ(model->flight_speed_gain_bound_m_per_s2, bound);
 }
 
@@ -272,9 +276,10 @@ TEST_P(ShotMixRun, AMixInAUspChamberStaysApartAndHealthy) {
     }
     const SimulationState& s = sim.state();
     EXPECT_EQ(s.health.serious(), 0u) << audit.summary();
-    EXPECT_EQ(s.shots_per_size, (std::vector<std::uint64_t>{static_cast<std::uint64_t>(std::count(s.shots.size_class.begin(), s.shots.size_class.end(), 0)),
-                                                            static_cast<std::uint64_t>(std::count(s.shots.size_class.begin(), s.shots.size_class.end(), 1)),
-                                                            static_cast<std::uint64_t>(std::count(s.shots.size_class.begin(), s.shots.size_class.end(), 2))}));
+    EXPECT_EQ(s.shots_per_size, (std::vector<std::uint64_t>{
+                                    static_cast<std::uint64_t>(std::count(s.shots.size_class.begin(), s.shots.size_class.end(), 0)),
+                                    static_cast<std::uint64_t>(std::count(s.shots.size_class.begin(), s.shots.size_class.end(), 1)),
+                                    static_cast<std::uint64_t>(std::count(s.shots.size_class.begin(), s.shots.size_class.end(), 2))}));
     // Each shot against its own radius: the event scheme keeps every pair and surface apart; time
     // stepping's overlaps stay within a step's relative travel (a quarter of the smallest radius).
     const OverlapReport& r = audit.report();
@@ -322,7 +327,8 @@ TEST_P(ShotMixRun, AResumedMixRunIsTheUninterruptedOne) {
     TempDir dir;
     // Past the event-driven scheme's first restart point (0.1 s), where the stopped run checkpoints;
     // time stepping checkpoints where it stops, so 30 ms of it do (150 ms took 9 s).
-    const std::vector<std::string> set{"accuracy.scheme=" + GetParam(), GetParam() == "event" ? "process.duration=150 ms" : "process.duration=30 ms"};
+    const std::vector<std::string> set{"accuracy.scheme=" + GetParam(),
+                                       GetParam() == "event" ? "process.duration=150 ms" : "process.duration=30 ms"};
     const std::string whole = (dir.path / "whole").string(), parts = (dir.path / "parts").string();
     ASSERT_EQ(run_in_process({kMixScene, whole, false, false, {}, set}).code, kExitOk);
     const InProcessResult stopped = run_in_process({kMixScene, parts, false, false, 7, set});
@@ -379,7 +385,8 @@ TEST(ShotMix, TheAnalysisWeighsEachImpactByItsOwnShot) {
         const auto n = std::find_if(count.begin(), count.end(), [&](const auto& c) { return std::abs(c.first - D) < 1e-12; });
         ASSERT_NE(n, count.end()) << label;
         EXPECT_NE(report.find("| target | " + std::string(label) + " | " + std::to_string(n->second) + " |"), std::string::npos)
-            << label << " mm: " << n->second << " impacts\n" << report;
+            << label << " mm: " << n->second << " impacts\n"
+            << report;
     }
 }
 

@@ -42,9 +42,9 @@
 #include <tuple>
 #include <vector>
 
+#include "analysis/student_t.h"
 #include "engine/run_loop.h"
 #include "engine/simulation.h"
-#include "analysis/student_t.h"
 #include "support/test_scene.h"
 #include "support/tube_scene.h"
 #include "support/vibrating_floor_reference.h"

@@ -206,9 +206,9 @@ TEST(FemDeck, KnownPatchNodesElementsSetsAndSteps) {
 TEST(FemGrouping, FarApartAndCloseInTimeShareAStepOtherwiseTimeOrder) {
     const double dent = 0.1e-3;
     std::vector<PatchImpact> impacts = {
-        impact_at(0.000, 0.0, 0.0, dent),      // step 1
-        impact_at(0.001e-3, 1e-3, 0.0, dent),  // far: step 1
-        impact_at(0.002e-3, 0.0, 1e-3, dent),  // far from both: step 1
+        impact_at(0.000, 0.0, 0.0, dent),         // step 1
+        impact_at(0.001e-3, 1e-3, 0.0, dent),     // far: step 1
+        impact_at(0.002e-3, 0.0, 1e-3, dent),     // far from both: step 1
         impact_at(0.003e-3, 0.15e-3, 0.0, dent),  // 1.5 dents from the first: step 2
         impact_at(0.004e-3, -1e-3, 0.0, dent),    // far from the 4th: step 2
         impact_at(5e-3, 2e-3, 2e-3, dent),        // far but 5 ms later: step 3
@@ -400,7 +400,8 @@ TEST(ExportFemJob, AMixRunExportsTheImpactsOfTheChosenSize) {
     o.max_impacts = 4;
     std::ostringstream out, err;
     EXPECT_EQ(export_fem_job(o, out, err), kExitInputError);
-    EXPECT_NE(err.str().find("the run peened with a shot mix (0.71 mm, 0.6 mm, 0.5 mm, 0.425 mm); expected --shot-diameter"), std::string::npos)
+    EXPECT_NE(err.str().find("the run peened with a shot mix (0.71 mm, 0.6 mm, 0.5 mm, 0.425 mm); expected --shot-diameter"),
+              std::string::npos)
         << err.str();
     o.shot_diameter = "0.55 mm";
     std::ostringstream out2, err2;
@@ -468,8 +469,8 @@ TEST(ExportFemCalculix, SingleImpactRunsAndLeavesTheDentOfEq10) {
     const double rebound = v.begin()->second.z();
     std::cout << "ccx wall time " << wall << " s; dent: depth " << dent.depth_m * 1e6 << " um, diameter at zero "
               << dent.zero_diameter_m * 1e3 << " mm, pile-up crest diameter " << dent.crest_diameter_m * 1e3 << " mm (height "
-              << dent.crest_height_m * 1e6 << " um); eq. 10: " << eq10 * 1e3 << " mm ("
-              << 100.0 * (dent.zero_diameter_m / eq10 - 1.0) << " %); rebound " << rebound << " m/s (CoR " << rebound / 50.0 << ")\n";
+              << dent.crest_height_m * 1e6 << " um); eq. 10: " << eq10 * 1e3 << " mm (" << 100.0 * (dent.zero_diameter_m / eq10 - 1.0)
+              << " %); rebound " << rebound << " m/s (CoR " << rebound / 50.0 << ")\n";
     // A dent, not noise: deeper than a micrometre, its rim within a third of eq. 10, and the shot
     // bounced back slower than it came.
     EXPECT_GT(dent.depth_m, 1e-6);

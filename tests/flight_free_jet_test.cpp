@@ -1,7 +1,7 @@
 // The nozzle's air jet (kernels/free_jet.h) and flights through it (kernels/air_drag_flight.h): the
-// field against its formulas (the potential core, then the self-similar jet); a shot let go on the axis of the jet's core, accelerated by quadratic
-// drag towards the air's speed, against the closed form; the speed-gain bound; and the jet in a
-// run of the nozzle study: the shot arrive faster than they left when the air is faster.
+// field against its formulas (the potential core, then the self-similar jet); a shot let go on the axis of the jet's core, accelerated by
+// quadratic drag towards the air's speed, against the closed form; the speed-gain bound; and the jet in a run of the nozzle study: the shot
+// arrive faster than they left when the air is faster.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,15 +39,14 @@ TEST(FreeJet, FieldKeepsItsPotentialCoreThenTurnsSelfSimilar) {
     EXPECT_EQ(at(1e-6, 2.99e-3), 150.0 * down);
     EXPECT_NEAR(at(1e-6, 3.01e-3).z(), 0.0, 1e-12);
     EXPECT_EQ(at(1e-3, 0.0), 150.0 * down);
-    EXPECT_EQ(at(1e-3, 1.9e-3), 150.0 * down);  // by the nozzle wall: was 0.76 U_0 (a Gaussian from the exit)
+    EXPECT_EQ(at(1e-3, 1.9e-3), 150.0 * down);      // by the nozzle wall: was 0.76 U_0 (a Gaussian from the exit)
     const double rc10 = 3e-3 * (1.0 - 10e-3 / sc);  // m, the core's radius at s = 10 mm
     EXPECT_EQ(at(10e-3, rc10 * 0.999), 150.0 * down);
     // Its mixing layer: half of U_0 one half-width b = 0.094 s beyond the core.
     EXPECT_NEAR(at(10e-3, rc10 + 0.094 * 10e-3).z(), -75.0, 1e-12);
     EXPECT_NEAR(at(10e-3, rc10 + 0.5e-3).z(), -150.0 * std::exp(-ln2 * std::pow(0.5e-3 / 0.94e-3, 2)), 1e-12);
     // Where the core closes the two forms are one: continuous across s_c, on and off the axis.
-    for (double r : {0.0, 1e-3, 3e-3, 6e-3})
-        EXPECT_NEAR(at(sc * (1.0 - 1e-12), r).z(), at(sc * (1.0 + 1e-12), r).z(), 1e-8) << "r " << r;
+    for (double r : {0.0, 1e-3, 3e-3, 6e-3}) EXPECT_NEAR(at(sc * (1.0 - 1e-12), r).z(), at(sc * (1.0 + 1e-12), r).z(), 1e-8) << "r " << r;
     // Beyond: U_0 5.8 D_n / s on the axis (twice the core's length: half), half-width 0.094 s.
     EXPECT_NEAR(at(69.6e-3, 0.0).z(), -75.0, 1e-12);
     EXPECT_NEAR(at(69.6e-3, 0.094 * 69.6e-3).z(), -37.5, 1e-12);

@@ -337,7 +337,8 @@ TEST(FuzzInputs, RenderSizesAreDrawnOrRefusedWithExitTwo) {
             std::string clean = text;
             clean.erase(std::remove(clean.begin(), clean.end(), '\0'), clean.end());  // argv cannot hold one
             const auto nl = clean.find('\n');
-            const std::string width = clean.substr(0, nl), height = nl == std::string::npos ? "" : clean.substr(nl + 1, clean.find('\n', nl + 1) - nl - 1);
+            const std::string width = clean.substr(0, nl),
+                              height = nl == std::string::npos ? "" : clean.substr(nl + 1, clean.find('\n', nl + 1) - nl - 1);
             const auto word = [](const std::string& s) {
                 std::string q = "'";
                 for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);

@@ -324,7 +324,8 @@ TEST(GeometryGenerators, BladeIsAClosedTwistedLensWithSharpEdges) {
     spec.center_m = Vec3(0.001, 0.002, 0.003);
     const TriangleMesh m = blade(spec);
     expect_closed_and_outward(m);
-    EXPECT_EQ(m.triangle_count(), static_cast<std::size_t>(2 * 2 * spec.chord_points * (spec.span_stations - 1) + 2 * (2 * spec.chord_points - 2)));
+    EXPECT_EQ(m.triangle_count(),
+              static_cast<std::size_t>(2 * 2 * spec.chord_points * (spec.span_stations - 1) + 2 * (2 * spec.chord_points - 2)));
     EXPECT_NEAR(enclosed_volume(m), 2.0 / 3.0 * spec.thickness_m * spec.chord_m * spec.span_m, 0.005 * enclosed_volume(m));
     // The end caps face along the span axis.
     EXPECT_NEAR(group_normal(m, "end-high").dot(Vec3::UnitX()), 1.0, 1e-12);
@@ -350,11 +351,15 @@ TEST(GeometryGenerators, BladeIsAClosedTwistedLensWithSharpEdges) {
     double sharpest = 0.0;
     for (std::size_t t = 0; t < m2.triangle_count(); ++t)
         for (std::size_t u = t + 1; u < m2.triangle_count(); ++u) {
-            if (m2.group_names[static_cast<std::size_t>(m2.group_of_triangle[t])] != "surface" || m2.group_of_triangle[u] != m2.group_of_triangle[t]) continue;
+            if (m2.group_names[static_cast<std::size_t>(m2.group_of_triangle[t])] != "surface" ||
+                m2.group_of_triangle[u] != m2.group_of_triangle[t])
+                continue;
             int shared = 0;
             for (int a = 0; a < 3; ++a)
-                for (int b = 0; b < 3; ++b) shared += m2.triangles[t][static_cast<std::size_t>(a)] == m2.triangles[u][static_cast<std::size_t>(b)];
-            if (shared == 2) sharpest = std::max(sharpest, std::acos(std::clamp(triangle_normal(m2, t).dot(triangle_normal(m2, u)), -1.0, 1.0)));
+                for (int b = 0; b < 3; ++b)
+                    shared += m2.triangles[t][static_cast<std::size_t>(a)] == m2.triangles[u][static_cast<std::size_t>(b)];
+            if (shared == 2)
+                sharpest = std::max(sharpest, std::acos(std::clamp(triangle_normal(m2, t).dot(triangle_normal(m2, u)), -1.0, 1.0)));
             if (u > t + 8 * static_cast<std::size_t>(spec.chord_points)) break;  // neighbours lie within a few rows
         }
     EXPECT_NEAR(kPi - sharpest, wedge, 0.02 * wedge);

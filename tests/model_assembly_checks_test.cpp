@@ -177,9 +177,10 @@ TEST(AssemblyChecks, AShotWiderThanTheGapUnderThePartSaysSo) {
     const TestScene scene(small_rod_scene("event", 0.01));
     const std::string err = refusal_of(std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml", {"shot.diameter=19.9 mm", "shot.count=1"},
                                        scene.make_subdirectory("out"));
-    EXPECT_NE(err.find("part 'rod': only 12 % of its surface can be reached by the shot: the shot (19.9 mm) is wider than the gap between it and "
-                       "the sonotrode (15 mm)"),
-              std::string::npos)
+    EXPECT_NE(
+        err.find("part 'rod': only 12 % of its surface can be reached by the shot: the shot (19.9 mm) is wider than the gap between it and "
+                 "the sonotrode (15 mm)"),
+        std::string::npos)
         << err;
     EXPECT_EQ(err.find("check its translation"), std::string::npos) << err;
 }
@@ -190,8 +191,10 @@ TEST(AssemblyChecks, AShotThatFitsNowhereOnTheSonotrodeSaysSo) {
     spec.shot_diameter_m = 3e-3;
     const TestScene scene(spec);
     const std::string err = refusal_of(scene.scene_path(), {}, scene.make_subdirectory("out"));
-    EXPECT_NE(err.find("shot.diameter: the shot (3 mm) does not fit anywhere over the sonotrode's upper face: the widest room there fits a shot of "),
-              std::string::npos)
+    EXPECT_NE(
+        err.find(
+            "shot.diameter: the shot (3 mm) does not fit anywhere over the sonotrode's upper face: the widest room there fits a shot of "),
+        std::string::npos)
         << err;
     EXPECT_EQ(err.find("found nothing above"), std::string::npos) << err;
 }
@@ -204,7 +207,9 @@ std::string setup_warnings_of(const std::string& scene_path, const std::vector<s
     return err.str();
 }
 
-std::string setup_warnings(const TestScene& scene, const std::vector<std::string>& overrides) { return setup_warnings_of(scene.scene_path(), overrides); }
+std::string setup_warnings(const TestScene& scene, const std::vector<std::string>& overrides) {
+    return setup_warnings_of(scene.scene_path(), overrides);
+}
 
 TEST(SetupPlausibility, AnAmplitudeWithoutItsUnitIsNamed) {
     const TestScene scene(small_rod_scene("event", 0.1));
@@ -229,8 +234,9 @@ TEST(SetupPlausibility, AnSiFileIsNotBlamedForAUnitInAnOverride) {
     std::ofstream(resolved) << text.substr(text.find("# Resolved scene"));
     EXPECT_EQ(setup_warnings_of(resolved.string(), {"process.duration=1164 s", "components[gear].motion=static"}), "");
     // A plain number in an override, in a scene written with units, still is.
-    EXPECT_NE(setup_warnings_of(std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml", {"shot.diameter=0.002"}).find("the plain number 0.002"),
-              std::string::npos);
+    EXPECT_NE(
+        setup_warnings_of(std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml", {"shot.diameter=0.002"}).find("the plain number 0.002"),
+        std::string::npos);
 }
 
 TEST(SetupPlausibility, FrequencyGravityShotSizeAndMeshUnitOutsideTheWindow) {

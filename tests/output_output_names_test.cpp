@@ -29,7 +29,8 @@ std::string refusal(F&& f) {
 }
 
 TEST(OutputNames, ANameStaysInsideItsDirectory) {
-    for (const char* good : {"patch", "patch.v2", "gear_tooth-0", "a", "..a", "x.."}) EXPECT_EQ(refusal([&] { check_output_name("--name", good); }), "") << good;
+    for (const char* good : {"patch", "patch.v2", "gear_tooth-0", "a", "..a", "x.."})
+        EXPECT_EQ(refusal([&] { check_output_name("--name", good); }), "") << good;
     const auto refused = [](const std::string& name, const std::string& phrase) {
         const std::string m = refusal([&] { check_output_name("--name", name); });
         EXPECT_NE(m.find("--name: expected a file name of letters, digits, '.', '-' and '_'"), std::string::npos) << name << ": " << m;

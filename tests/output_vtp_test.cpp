@@ -21,8 +21,8 @@
 #include "output/peak_memory.h"
 #include "output/vtk_collection.h"
 #include "output/vtp_writer.h"
-#include "support/vtk_python.h"
 #include "support/shell_command.h"
+#include "support/vtk_python.h"
 
 namespace peensim {
 namespace {
@@ -92,11 +92,12 @@ bool vtk_python_available(std::string& why) {
     return status == 0;
 }
 
-#define ASSERT_VTK_PYTHON()                                                                                                          \
-    do {                                                                                                                             \
-        std::string why;                                                                                                             \
-        ASSERT_TRUE(vtk_python_available(why)) << "VTK's Python (python3-paraview) is missing (needed to check .vtp files with a real VTK reader): "    \
-                                               << "install it with `apt-get install python3-paraview` (.ci/install-deps does). " << why; \
+#define ASSERT_VTK_PYTHON()                                                                                       \
+    do {                                                                                                          \
+        std::string why;                                                                                          \
+        ASSERT_TRUE(vtk_python_available(why))                                                                    \
+            << "VTK's Python (python3-paraview) is missing (needed to check .vtp files with a real VTK reader): " \
+            << "install it with `apt-get install python3-paraview` (.ci/install-deps does). " << why;             \
     } while (0)
 
 // `indices`: "all" or a comma list of the point/cell/tuple indices to print.

@@ -26,10 +26,10 @@
 #include "scene/scene_parser.h"
 #include "support/files.h"
 #include "support/run_in_process.h"
+#include "support/shell_command.h"
 #include "support/temp_dir.h"
 #include "support/test_scene.h"
 #include "support/vtk_python.h"
-#include "support/shell_command.h"
 
 namespace peensim {
 namespace {
@@ -327,8 +327,8 @@ TEST(ParaviewAnalysis, CoverageSeriesFollowsTheCoverageCurve) {
     EXPECT_EQ(fields.cell_data.at("coverage").values, previous);
     EXPECT_EQ(fields.cell_array_names,
               (std::vector<std::string>{"impacts", "impacts_per_mm2_s", "mean_vn_mps", "max_vn_mps", "energy_J_per_m2", "coverage",
-                                        "impacts_per_mm2_s_smoothed", "mean_vn_mps_smoothed", "energy_J_per_m2_smoothed", "coverage_smoothed",
-                                        "smoothing_radius_mm", "reachable", "peened", "excluded", "region"}));
+                                        "impacts_per_mm2_s_smoothed", "mean_vn_mps_smoothed", "energy_J_per_m2_smoothed",
+                                        "coverage_smoothed", "smoothing_radius_mm", "reachable", "peened", "excluded", "region"}));
 
     const testing::VtkReadPolyData impacts = testing::read_vtp_with_vtk((analysis / "gear_impacts.vtp").string());
     EXPECT_EQ(impacts.point_array_names, (std::vector<std::string>{"v_in_mps", "vn_in_mps", "time_s"}));

@@ -13,8 +13,8 @@
 #include <regex>
 #include <set>
 
-#include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
+#include <nlohmann/json.hpp>
 
 #include "app/check_job.h"
 #include "app/run_job.h"

@@ -20,8 +20,8 @@
 #include "render/render_view.h"
 #include "render/video_encoder.h"
 #include "scene/scene_parser.h"
-#include "support/temp_dir.h"
 #include "support/shell_command.h"
+#include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 using peensim::testing::TempDir;

@@ -12,8 +12,8 @@
 #include <string>
 
 #include "render/video_encoder.h"
-#include "support/temp_dir.h"
 #include "support/shell_command.h"
+#include "support/temp_dir.h"
 
 namespace peensim::render {
 namespace {

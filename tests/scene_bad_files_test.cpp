@@ -82,8 +82,10 @@ const BadScene catalogue[] = {
 const BadScene compile_catalogue[] = {
     {"soft_with_impulse_law.yaml", 9, "contacts.default.law", "expected law 'hertz-mindlin' for shot-shot"},
     {"sink_mesh_open.yaml", 11, "sinks[0].mesh", "a mesh sink must be a closed mesh"},
-    {"air_jet_without_drag.yaml", 9, "sources[0].air_speed", "an air jet acts on the shot through drag (or rebound scatter), both off; expected air.drag: sphere"},
-    {"soft_with_rebound_scatter.yaml", 5, "air.rebound_scatter", "the soft scheme integrates contact forces, which rebound scatter cannot turn"},
+    {"air_jet_without_drag.yaml", 9, "sources[0].air_speed",
+     "an air jet acts on the shot through drag (or rebound scatter), both off; expected air.drag: sphere"},
+    {"soft_with_rebound_scatter.yaml", 5, "air.rebound_scatter",
+     "the soft scheme integrates contact forces, which rebound scatter cannot turn"},
     {"soft_without_youngs_modulus.yaml", 9, "contacts.default.law", "add materials.titanium.youngs_modulus and .poisson_ratio"},
     {"soft_with_shot_mix.yaml", 4, "shot.sizes", "the soft scheme's Hertz-Mindlin pairs are built for one shot size"},
 };

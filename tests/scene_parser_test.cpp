@@ -529,7 +529,8 @@ TEST(SceneParser, RegionsReadBackTheSame) {
     const SceneDescription first = parse_scene_text(regions_scene, virtual_path);
     const std::string resolved = resolved_scene_yaml(first);
     EXPECT_NE(resolved.find("    regions:\n      - {name: tooth-0, sector: {"), std::string::npos) << resolved;
-    EXPECT_NE(resolved.find("distance_to_point: {point: [0, 0.005, 0], min: 0, max: 0.002}, exclude: true}"), std::string::npos) << resolved;
+    EXPECT_NE(resolved.find("distance_to_point: {point: [0, 0.005, 0], min: 0, max: 0.002}, exclude: true}"), std::string::npos)
+        << resolved;
     const SceneDescription second = parse_scene_text(resolved, "/nonexistent/dir/resolved.yaml");
     EXPECT_EQ(resolved_scene_yaml(second), resolved);
     ASSERT_EQ(second.components[2].regions.size(), 8u);
@@ -596,12 +597,14 @@ TEST(SceneParser, BadRegionsNameLineAndField) {
         {"{name: a, sectors: {axis_direction: [0, 1, 0], count: 2, width: 361 deg, reference: [1, 0, 0]}}",
          "components[2].regions[0].sectors.width", "at most 360 deg"},
         {"{name: a}", "components[2].regions[0]", "expected at least one of sector, sectors, box, half_space, distance_to_axis"},
-        {"{name: a, sector: {axis_direction: [0, 1, 0], from: 0, to: 1, reference: [1, 0, 0]}, sectors: {axis_direction: [0, 1, 0], count: 2, "
+        {"{name: a, sector: {axis_direction: [0, 1, 0], from: 0, to: 1, reference: [1, 0, 0]}, sectors: {axis_direction: [0, 1, 0], count: "
+         "2, "
          "width: 1 deg, reference: [1, 0, 0]}}",
          "components[2].regions[0].sectors", "expected `sector` or `sectors`, not both"},
         {"{name: a, facing: {direction: [0, 0, 0], within: 10 deg}}", "components[2].regions[0].facing.direction",
          "expected a direction, got the zero vector"},
-        {"{name: a, facing: {direction: [0, 0, 1], within: 181 deg}}", "components[2].regions[0].facing.within", "expected at most 180 deg"},
+        {"{name: a, facing: {direction: [0, 0, 1], within: 181 deg}}", "components[2].regions[0].facing.within",
+         "expected at most 180 deg"},
         {"{name: a, facing: {direction: [0, 0, 1], within: 0 deg}}", "components[2].regions[0].facing.within", "expected an angle > 0"},
         {"{name: a, distance_to_axis: {axis_direction: [0, 0, 1], min: 2 mm, max: 1 mm}}", "components[2].regions[0].distance_to_axis.max",
          "expected a distance greater than `min`"},

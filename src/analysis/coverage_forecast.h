@@ -31,8 +31,8 @@
 // h came out 28 % early, outside the interval; a run 4x longer, whose h is half, held them). The
 // forecast is made at h and at 2 h; their difference estimates the bias at h (linear in h: the
 // rate jumps at edges and between faces) and corrects the forecast; the interval runs from the
-// uncorrected lower end to the corrected upper end, and when the wider kernel forecasts later (the field is not smooth at h's scale: the part has features about h
-// across) the upper end reaches that forecast too.
+// uncorrected lower end to the corrected upper end, and when the wider kernel forecasts later (the field is not smooth at h's scale: the
+// part has features about h across) the upper end reaches that forecast too.
 //
 // The selection of the uncovered. A sample still uncovered has no impact within its dent radius
 // (that is why it is uncovered), so the impacts around it are fewer than the kernel expects by the
@@ -92,13 +92,13 @@
 
 namespace peensim {
 
-inline constexpr double kForecastKappaBound = 0.5;     // q: s kappa_i stays below it for 99 % of impacts
-inline constexpr double kForecastDentQuantile = 0.99;  // the dent area a_q that sets h
-inline constexpr double kStartupSigmas = 4.0;          // a first batch this far off the others is a start-up
-inline constexpr double kTooShortFactor = 2.0;         // upper end / estimate beyond which no number is given
-inline constexpr double kForecastCellsPerRadius = 4.0; // cells of side h / 4 carry the kernel sums
-inline constexpr int kEdgeBands = 8;                   // bands of distance to an edge line per largest dent radius
-inline constexpr double kHoleMargin = 2.0;             // h is at least this many dent radii of a_q
+inline constexpr double kForecastKappaBound = 0.5;      // q: s kappa_i stays below it for 99 % of impacts
+inline constexpr double kForecastDentQuantile = 0.99;   // the dent area a_q that sets h
+inline constexpr double kStartupSigmas = 4.0;           // a first batch this far off the others is a start-up
+inline constexpr double kTooShortFactor = 2.0;          // upper end / estimate beyond which no number is given
+inline constexpr double kForecastCellsPerRadius = 4.0;  // cells of side h / 4 carry the kernel sums
+inline constexpr int kEdgeBands = 8;                    // bands of distance to an edge line per largest dent radius
+inline constexpr double kHoleMargin = 2.0;              // h is at least this many dent radii of a_q
 
 // An impact of the part in the analysed window.
 struct ForecastImpact {
@@ -132,15 +132,15 @@ struct AreaForecast {
 const char* status_name(AreaForecast::Status s);
 
 struct ForecastSummary {
-    double radius_m = 0.0;            // h
-    double window_s = 0.0;            // the analysed window's length
-    double rate_window_s = 0.0;       // the part of it the rates come from (without a start-up batch)
-    bool startup_left_out = false;    // the first batch was a start-up transient
-    int batches = 0;                  // batches the rates come from
-    std::uint64_t face_impacts = 0;   // impacts on faces (the areal rates)
-    std::uint64_t edge_impacts = 0;   // impacts on edges (the rates along edge lines, see above)
-    std::size_t edge_lines = 0;       // edge lines with impacts
-    std::size_t cells = 0;            // kernel cells with uncovered area
+    double radius_m = 0.0;           // h
+    double window_s = 0.0;           // the analysed window's length
+    double rate_window_s = 0.0;      // the part of it the rates come from (without a start-up batch)
+    bool startup_left_out = false;   // the first batch was a start-up transient
+    int batches = 0;                 // batches the rates come from
+    std::uint64_t face_impacts = 0;  // impacts on faces (the areal rates)
+    std::uint64_t edge_impacts = 0;  // impacts on edges (the rates along edge lines, see above)
+    std::size_t edge_lines = 0;      // edge lines with impacts
+    std::size_t cells = 0;           // kernel cells with uncovered area
 };
 
 struct CoverageForecast {
@@ -153,7 +153,7 @@ struct CoverageForecast {
     // replicates). coverage_now: the lowest area's.
     AreaForecast everywhere;
     static constexpr int kRestOfPart = -2;  // slowest_region: the peened area in no counted region
-    int slowest_region = -1;  // the region that reaches the target last (kRestOfPart; -1: none)
+    int slowest_region = -1;                // the region that reaches the target last (kRestOfPart; -1: none)
 };
 
 // progress: the coverage at the window's end, its dents timed from the window's opening (its target

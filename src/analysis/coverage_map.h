@@ -148,7 +148,8 @@ public:
                 const double v = (static_cast<double>(j) + offset) / static_cast<double>(n);
                 for (std::int64_t i = 0; i <= last_row - j; ++i) {
                     const double u = (static_cast<double>(i) + offset) / static_cast<double>(n);
-                    f(row + i, p.origin + (static_cast<double>(i) + offset) * p.step_u + (static_cast<double>(j) + offset) * p.step_v, u, v);
+                    f(row + i, p.origin + (static_cast<double>(i) + offset) * p.step_u + (static_cast<double>(j) + offset) * p.step_v, u,
+                      v);
                 }
             }
         }
@@ -255,8 +256,8 @@ private:
     double total_area_ = 0.0;  // m^2
     std::vector<Patch> patches_;
     std::int64_t sample_count_ = 0;
-    std::vector<std::uint64_t> covered_;       // one bit per sample: 1 = inside a dent
-    std::vector<std::int64_t> covered_count_;  // per triangle: covered samples
+    std::vector<std::uint64_t> covered_;        // one bit per sample: 1 = inside a dent
+    std::vector<std::int64_t> covered_count_;   // per triangle: covered samples
     mutable std::vector<std::uint32_t> stamp_;  // per triangle: last dent that visited it
     mutable std::uint32_t dent_stamp_ = 0;
 

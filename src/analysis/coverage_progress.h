@@ -68,9 +68,9 @@ private:
     double target_ = 0.98;
     // Areas: 0 the peened area, 1 + r region r, the last the rest.
     std::vector<std::vector<std::uint32_t>> areas_of_class_;
-    std::vector<double> area_m2_;     // m2
-    std::vector<double> covered_m2_;  // m2
-    std::vector<double> reached_at_;  // s (NaN: not yet)
+    std::vector<double> area_m2_;               // m2
+    std::vector<double> covered_m2_;            // m2
+    std::vector<double> reached_at_;            // s (NaN: not yet)
     std::vector<std::int64_t> covered_peened_;  // per triangle: covered peened samples
 };
 

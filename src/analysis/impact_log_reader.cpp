@@ -105,8 +105,8 @@ ImpactLogReader::ImpactLogReader(const std::string& path) : path_(path), buffer_
     header = std::string_view(buffer_.data() + begin_, static_cast<std::size_t>(nl - (buffer_.data() + begin_)));
     shot_diameter_ = header == impact_csv_header(true);
     if (header != kImpactCsvHeader && !shot_diameter_)
-        fail("not a peensim impact log: expected the header '" + std::string(kImpactCsvHeader) + "' (with ',shot_diameter_m' for a shot mix), got " +
-             text_excerpt(header));
+        fail("not a peensim impact log: expected the header '" + std::string(kImpactCsvHeader) +
+             "' (with ',shot_diameter_m' for a shot mix), got " + text_excerpt(header));
     begin_ += header.size() + 1;
     columns_ = column_names(shot_diameter_);
 }
@@ -129,9 +129,7 @@ bool ImpactLogReader::fill() {
     return got > 0;
 }
 
-void ImpactLogReader::fail(const std::string& what) const {
-    throw InputError({path_, static_cast<int>(line_), 0}, "", what);
-}
+void ImpactLogReader::fail(const std::string& what) const { throw InputError({path_, static_cast<int>(line_), 0}, "", what); }
 
 void ImpactLogReader::refuse_row(const std::string& column, const std::string& problem) const {
     throw InputError({path_, static_cast<int>(line_), 0}, column, "malformed impact row " + std::to_string(rows_) + ": " + problem);

@@ -23,15 +23,15 @@ namespace peensim {
 struct ImpactRow {
     double time_s = 0.0;  // s
     std::int32_t shot = 0;
-    std::string_view component;   // valid until the next call to next()
-    std::int32_t triangle = 0;    // facet index in the component's mesh file
-    Vec3 point_m;                 // m, component frame
-    Vec3 v_in_m_per_s;            // m/s, relative to the surface, component frame
-    double vn_in_m_per_s = 0.0;   // m/s
-    double vt_in_m_per_s = 0.0;   // m/s
-    Vec3 v_out_m_per_s;           // m/s
-    double vn_out_m_per_s = 0.0;  // m/s
-    double shot_diameter_m = 0.0; // m, the impacting shot's diameter (a mix's log); 0 when the log has one size
+    std::string_view component;    // valid until the next call to next()
+    std::int32_t triangle = 0;     // facet index in the component's mesh file
+    Vec3 point_m;                  // m, component frame
+    Vec3 v_in_m_per_s;             // m/s, relative to the surface, component frame
+    double vn_in_m_per_s = 0.0;    // m/s
+    double vt_in_m_per_s = 0.0;    // m/s
+    Vec3 v_out_m_per_s;            // m/s
+    double vn_out_m_per_s = 0.0;   // m/s
+    double shot_diameter_m = 0.0;  // m, the impacting shot's diameter (a mix's log); 0 when the log has one size
 };
 
 class ImpactLogReader {
@@ -49,7 +49,7 @@ public:
     // makes: e.g. a component the run does not log, which no run of the scene wrote.
     [[noreturn]] void refuse_row(const std::string& column, const std::string& problem) const;
 
-    bool truncated() const { return truncated_; }  // the file ended inside a line
+    bool truncated() const { return truncated_; }                     // the file ended inside a line
     std::uint64_t truncated_line() const { return truncated_line_; }  // that line (1-based; the header is line 1), 0 if none
     // The log has the shot_diameter_m column (a run of a shot mix): each row's shot_diameter_m is set.
     bool has_shot_diameter() const { return shot_diameter_; }
@@ -70,7 +70,7 @@ private:
     std::uint64_t rows_ = 0;
     std::uint64_t truncated_line_ = 0;
     std::vector<std::string> columns_;  // the header's column names
-    std::uint64_t line_ = 1;  // 1-based line number of the header
+    std::uint64_t line_ = 1;            // 1-based line number of the header
 };
 
 }  // namespace peensim

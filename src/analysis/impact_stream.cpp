@@ -8,7 +8,10 @@ namespace peensim {
 
 ImpactStream::ImpactStream(const std::string& path, std::vector<std::string> component_names, ReaderSideWork work,
                            bool every_component_named)
-    : reader_(path), names_(std::move(component_names)), work_(std::move(work)), every_component_named_(every_component_named),
+    : reader_(path),
+      names_(std::move(component_names)),
+      work_(std::move(work)),
+      every_component_named_(every_component_named),
       blocks_(kBlocks) {
     for (Block& b : blocks_) b.rows.resize(kRowsPerBlock);
     thread_ = std::thread([this] { read_all(); });

@@ -19,7 +19,8 @@ void count(JetWindow& w, double time_s, bool fast, bool normal_kept) {
 }  // namespace
 
 JetStreamStats::JetStreamStats(double v0_m_per_s, std::uint64_t window) : v0_(v0_m_per_s), window_(window) {
-    if (!(v0_m_per_s > 0.0) || window == 0) throw std::invalid_argument("JetStreamStats: expected v0 > 0 and a window of at least one impact");
+    if (!(v0_m_per_s > 0.0) || window == 0)
+        throw std::invalid_argument("JetStreamStats: expected v0 > 0 and a window of at least one impact");
 }
 
 void JetStreamStats::add(double time_s, double speed_m_per_s, double vn_m_per_s, double jet_normal_speed_m_per_s) {

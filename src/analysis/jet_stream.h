@@ -15,9 +15,9 @@ namespace peensim {
 struct JetWindow {
     std::uint64_t first_impact = 0;  // 0-based index of its first impact on the component
     std::uint64_t impacts = 0;
-    double end_time_s = 0.0;         // s, its last impact's time
-    std::uint64_t fast = 0;          // |v_in| >= 0.9 v0
-    std::uint64_t normal_kept = 0;   // v_n >= 0.9 of the jet's normal speed
+    double end_time_s = 0.0;        // s, its last impact's time
+    std::uint64_t fast = 0;         // |v_in| >= 0.9 v0
+    std::uint64_t normal_kept = 0;  // v_n >= 0.9 of the jet's normal speed
     double fast_share() const { return impacts ? static_cast<double>(fast) / static_cast<double>(impacts) : 0.0; }
     double normal_kept_share() const { return impacts ? static_cast<double>(normal_kept) / static_cast<double>(impacts) : 0.0; }
 };

@@ -70,7 +70,8 @@ Unit unit_of_column(const std::string& path, int line, const Field& header, cons
     if (!option.empty()) {
         from_option = named(lower(option));
         if (!from_option)
-            throw InputError({"<command line>", 0, 0}, option_name, "expected one of " + std::string(expected) + ", got " + text_excerpt(option));
+            throw InputError({"<command line>", 0, 0}, option_name,
+                             "expected one of " + std::string(expected) + ", got " + text_excerpt(option));
     }
     if (from_header && from_option && from_header->name != from_option->name)
         throw InputError({path, line, header.column}, header.text,
@@ -190,8 +191,8 @@ MeasuredCurve read_measured_curve(const std::string& path, const std::string& ti
             }
             curve.exposure_column = fields[0].text;
             curve.height_column = fields[1].text;
-            curve.exposure_unit =
-                unit_of_column<ExposureUnit>(path, number, fields[0], time_unit, "--time-unit", exposure_unit_named, "s, min, h, passes or cycles");
+            curve.exposure_unit = unit_of_column<ExposureUnit>(path, number, fields[0], time_unit, "--time-unit", exposure_unit_named,
+                                                               "s, min, h, passes or cycles");
             curve.height_unit =
                 unit_of_column<HeightUnit>(path, number, fields[1], height_unit, "--height-unit", height_unit_named, "mm, um, in or thou");
             header = true;

@@ -17,9 +17,9 @@ inline constexpr int kFigureBatches = 10;
 // What a region's impacts brought, summed while the log streams.
 struct RegionTally {
     std::uint64_t impacts = 0;
-    double speed_sum = 0.0;                                   // m/s, normal speeds summed
-    double max_speed = 0.0;                                   // m/s
-    double energy_J = 0.0;                                    // J, 1/2 m v_n^2 summed
+    double speed_sum = 0.0;  // m/s, normal speeds summed
+    double max_speed = 0.0;  // m/s
+    double energy_J = 0.0;   // J, 1/2 m v_n^2 summed
 
     void add(double vn_m_per_s, double energy_J_of_impact) {
         ++impacts;
@@ -30,9 +30,9 @@ struct RegionTally {
 };
 
 struct RegionStats {
-    std::size_t triangles = 0;    // with some of their area in the region
-    double area_m2 = 0.0;         // m2
-    double peened_area_m2 = 0.0;  // m2, the part of it coverage counts (reachable, not excluded; NaN without coverage)
+    std::size_t triangles = 0;         // with some of their area in the region
+    double area_m2 = 0.0;              // m2
+    double peened_area_m2 = 0.0;       // m2, the part of it coverage counts (reachable, not excluded; NaN without coverage)
     double unreachable_area_m2 = 0.0;  // m2, the part of it no shot can reach (NaN without coverage)
     std::uint64_t impacts = 0;
     double impacts_per_mm2_s = 0.0;  // 1/(mm2 s), impacts / area / duration (NaN for zero area)

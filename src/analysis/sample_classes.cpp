@@ -120,7 +120,8 @@ SampleClasses::SampleClasses(const CoverageMap& map, const TriangleMesh& mesh, c
             }
             // Consecutive samples mostly share a class: try the last one first.
             std::uint16_t k = last;
-            if (k == kMixed || classes_[k].reachable != (r == 1) || classes_[k].regions != *rs) k = class_for(r == 1, *rs, excluded_of(*rs));
+            if (k == kMixed || classes_[k].reachable != (r == 1) || classes_[k].regions != *rs)
+                k = class_for(r == 1, *rs, excluded_of(*rs));
             last = k;
             sample_class_[static_cast<std::size_t>(mixed_start_[t] + (index - first_sample_[t]))] = k;
             classes_[k].area_m2 += sample_area;

@@ -59,17 +59,15 @@ public:
     // The class of all samples of triangle t, or kMixed.
     std::uint16_t triangle_class(std::size_t t) const { return triangle_class_[t]; }
 
-    double peened_area_m2() const { return peened_area_m2_; }           // m2
-    double reachable_area_m2() const { return reachable_area_m2_; }     // m2
-    double region_peened_area_m2(std::size_t r) const { return region_peened_m2_[r]; }            // m2
+    double peened_area_m2() const { return peened_area_m2_; }                           // m2
+    double reachable_area_m2() const { return reachable_area_m2_; }                     // m2
+    double region_peened_area_m2(std::size_t r) const { return region_peened_m2_[r]; }  // m2
     // m2, out of reach in region r: outside excluded regions (all of it for an excluded region)
     double region_unreachable_area_m2(std::size_t r) const { return region_unreachable_m2_[r]; }
     // The area coverage counts in region r (m2): its peened area, or for an excluded region (for
     // information) its reachable area; counts(k, r): whether class k's samples count there.
     double region_counted_area_m2(std::size_t r) const { return region_counted_m2_[r]; }
-    bool counts(std::uint16_t k, std::size_t r) const {
-        return classes_[k].reachable && (region_excluded_[r] || !classes_[k].excluded);
-    }
+    bool counts(std::uint16_t k, std::size_t r) const { return classes_[k].reachable && (region_excluded_[r] || !classes_[k].excluded); }
     bool region_excluded(std::size_t r) const { return region_excluded_[r]; }
     // The classes whose samples lie in region r.
     const std::vector<std::uint16_t>& classes_of_region(std::size_t r) const { return region_classes_[r]; }

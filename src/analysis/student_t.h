@@ -1,7 +1,7 @@
-// Student's t distribution (the statistical tests, the sweep's confidence intervals), for comparisons of means whose standard errors are themselves
-// estimated from few samples (16 columns, 10 batches): their ratio |difference| / SE follows t
-// with (Welch-Satterthwaite) degrees of freedom, not the normal law, and its tails are much
-// heavier (a 4.24 SE excess has a chance 2.2e-5 under the normal law, 2.3e-4 under t with 30).
+// Student's t distribution (the statistical tests, the sweep's confidence intervals), for comparisons of means whose standard errors are
+// themselves estimated from few samples (16 columns, 10 batches): their ratio |difference| / SE follows t with (Welch-Satterthwaite)
+// degrees of freedom, not the normal law, and its tails are much heavier (a 4.24 SE excess has a chance 2.2e-5 under the normal law, 2.3e-4
+// under t with 30).
 #pragma once
 
 #include <cmath>

@@ -9,7 +9,7 @@ namespace peensim {
 namespace {
 
 constexpr double kSmallestRadiusShare = 1.0 / 64.0;  // of R: below it a point is called closed off
-constexpr int kBisections = 12;                       // on log(radius): 6 factors of 2 to 1.4e-3 relative
+constexpr int kBisections = 12;                      // on log(radius): 6 factors of 2 to 1.4e-3 relative
 
 // The largest radius (m) of a shot that touches `point` of triangle t: reach is assumed monotone in
 // the radius (a smaller shot fits wherever a larger one does, as the test's clearances shrink).
@@ -39,8 +39,8 @@ double diameter_reaching(std::vector<std::pair<double, double>> points, double s
 
 }  // namespace
 
-UnreachableFindings find_unreachable_area(const CoverageMap& map, const SampleClasses& classes, const RegionSet& regions, const ReachTest& reach,
-                                          double shot_radius_m, std::size_t max_points) {
+UnreachableFindings find_unreachable_area(const CoverageMap& map, const SampleClasses& classes, const RegionSet& regions,
+                                          const ReachTest& reach, double shot_radius_m, std::size_t max_points) {
     UnreachableFindings f;
     f.shot_diameter_m = 2.0 * shot_radius_m;
     f.regions.assign(regions.size(), {});

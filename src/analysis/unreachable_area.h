@@ -27,15 +27,15 @@ struct UnreachableArea {
 };
 
 struct UnreachableFindings {
-    double shot_diameter_m = 0.0;         // m, the shot the run used (a mix's smallest)
-    UnreachableArea whole;                // the part
+    double shot_diameter_m = 0.0;          // m, the shot the run used (a mix's smallest)
+    UnreachableArea whole;                 // the part
     std::vector<UnreachableArea> regions;  // per region (RegionSet order)
     std::vector<double> triangle_share;    // per triangle: the share of its area out of reach (0..1)
 };
 
 // Per triangle of the map the largest diameter that reaches each tested point is found with at most
 // about max_points points over the whole part (their area shares the untested samples').
-UnreachableFindings find_unreachable_area(const CoverageMap& map, const SampleClasses& classes, const RegionSet& regions, const ReachTest& reach,
-                                          double shot_radius_m, std::size_t max_points = 600);
+UnreachableFindings find_unreachable_area(const CoverageMap& map, const SampleClasses& classes, const RegionSet& regions,
+                                          const ReachTest& reach, double shot_radius_m, std::size_t max_points = 600);
 
 }  // namespace peensim

@@ -27,8 +27,8 @@ void add_almen_impact(AlmenAnalysis& a, int triangle, double vn_m_per_s, double 
 // The dose and dents so far, as a point of the curve at `time_s`.
 void sample_almen(AlmenAnalysis& a, double time_s);
 
-// `<strip>_almen.csv` (times of the log: the window's start plus the curve's): time_s, dose_J_per_m2, arc_height_mm (the dose model, when calibrated),
-// dent_area_ratio (with a yield stress), predicted_arc_height_mm (the predictive model, when calibrated).
+// `<strip>_almen.csv` (times of the log: the window's start plus the curve's): time_s, dose_J_per_m2, arc_height_mm (the dose model, when
+// calibrated), dent_area_ratio (with a yield stress), predicted_arc_height_mm (the predictive model, when calibrated).
 void write_almen_csv(const std::filesystem::path& path, const AlmenAnalysis& a, double window_start_s);
 
 // report.md's sections of every strip among `parts`.

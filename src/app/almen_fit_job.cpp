@@ -229,17 +229,17 @@ void refuse_falling_arc_heights(const MeasuredCurve& m) {
     for (std::size_t i = 0; i < m.points.size(); ++i)
         if (m.points[i].exposure == f.longest_exposure) last = i;
     throw InputError({m.path, m.lines[last], 0}, m.height_column,
-                     "arc heights must not fall with exposure: " + fmt(f.shortest_height * scale) + " " + hu + " at the shortest exposure, " +
-                         fmt(f.shortest_exposure) + " " + u + " (" + lines_at(m, f.shortest_exposure) + "), but " +
-                         fmt(f.longest_height * scale) + " " + hu + " at the longest, " + fmt(f.longest_exposure) + " " + u + " (" +
-                         lines_at(m, f.longest_exposure) +
+                     "arc heights must not fall with exposure: " + fmt(f.shortest_height * scale) + " " + hu +
+                         " at the shortest exposure, " + fmt(f.shortest_exposure) + " " + u + " (" + lines_at(m, f.shortest_exposure) +
+                         "), but " + fmt(f.longest_height * scale) + " " + hu + " at the longest, " + fmt(f.longest_exposure) + " " + u +
+                         " (" + lines_at(m, f.longest_exposure) +
                          "); expected a saturation curve, rising with exposure, then levelling off (SAE J443): check those rows, and "
                          "that the exposure is the first column and the arc height the second");
 }
 
 std::string plot_fits(const std::string& png, const MeasuredCurve& m, const SaturationFit& two, const SaturationFit& three,
                       const SaturationFit& used, const std::string& strip) {
-    const auto [dir, stem] = plot_files(png);  // its directory exists (check_output_paths)
+    const auto [dir, stem] = plot_files(png);         // its directory exists (check_output_paths)
     const double scale = 1.0 / m.height_unit.metres;  // m -> the curve's unit
     std::ostringstream data;
     data << "# " << m.exposure_column << "," << m.height_column << "\n";
@@ -258,7 +258,8 @@ std::string plot_fits(const std::string& png, const MeasuredCurve& m, const Satu
       << "set xlabel " << gnuplot_string(gnuplot_text("exposure (" + m.exposure_unit.name + ")")) << "\n"
       << "set ylabel " << gnuplot_string(gnuplot_text("arc height (" + m.height_unit.name + ")")) << "\n"
       << "set xrange [0:" << exact(right) << "]\nset yrange [0:*]\nset key bottom right\nset samples 400\n";
-    std::string plot = "plot " + gnuplot_string(stem + "_points.csv") + " using 1:2 with points pt 7 ps 1.4 lc rgb '#202020' title 'measured'";
+    std::string plot =
+        "plot " + gnuplot_string(stem + "_points.csv") + " using 1:2 with points pt 7 ps 1.4 lc rgb '#202020' title 'measured'";
     const auto curve = [&](const SaturationFit& f, const char* style) {
         if (!f.fitted) return;
         const std::string name = saturation_form_name(f.form);

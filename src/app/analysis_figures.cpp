@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/region_stats.h"
-#include "app/coverage_verdict.h"
 #include "app/almen_analysis.h"
+#include "app/coverage_verdict.h"
 
 namespace peensim {
 
@@ -44,7 +44,7 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, c
                    {"to_s", window.to_s},
                    {"min_speed_mps", window.min_speed_m_per_s},
                    {"turn_s", number(window.turn_s > 0.0 ? window.turn_s : NAN)},  // the rotating part's turn (null: none)
-                   {"asked_to_s", window.asked_to_s}};  // before the window was cut to whole turns
+                   {"asked_to_s", window.asked_to_s}};                             // before the window was cut to whole turns
     j["target_coverage"] = window.target_coverage;
     j["batches"] = kFigureBatches;
     auto components = nlohmann::ordered_json::array();

@@ -129,8 +129,8 @@ std::string coverage_script(const std::string& component, double target_percent)
       << "set yrange [0:top]\n"
       << "set key bottom right\n"
       << "plot " << gnuplot_quoted(csv) << " using 1:(100*$2) every ::1 with linespoints lw 2 pt 7 ps 0.6 title 'coverage', \\\n"
-      << "     " << target_percent << " with lines dt 2 lc rgb 'gray40' title (top > " << target_percent << " ? 'target ("
-      << target_percent << " %)' : '')\n";
+      << "     " << target_percent << " with lines dt 2 lc rgb 'gray40' title (top > " << target_percent << " ? 'target (" << target_percent
+      << " %)' : '')\n";
     return s.str();
 }
 

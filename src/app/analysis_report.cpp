@@ -42,7 +42,8 @@ std::string forecast_cell(const AreaForecast& f) {
         case AreaForecast::Status::reached: return "reached at " + fmt(f.time_s) + " s";
         case AreaForecast::Status::forecast: return fmt(f.time_s) + " s [" + interval_text(f.low_s, f.high_s) + "]";
         case AreaForecast::Status::too_short:
-            return "too short to say (run " + (std::isfinite(f.run_for_s) ? fmt(std::ceil(f.run_for_s), 6) + " s" : std::string("far longer")) + ")";
+            return "too short to say (run " +
+                   (std::isfinite(f.run_for_s) ? fmt(std::ceil(f.run_for_s), 6) + " s" : std::string("far longer")) + ")";
         case AreaForecast::Status::never: return "never at this rate";
         case AreaForecast::Status::none: return "";
     }
@@ -86,8 +87,10 @@ std::string region_tables(const std::vector<ComponentAnalysis>& parts, const Ana
     const double duration = window.length_s();
     for (const ComponentAnalysis& c : parts) {
         if (c.regions.empty()) continue;
-        r << "\n### Regions of " << c.name << "\n\n| region | area (mm2) | peened (mm2) | out of reach (mm2) | impacts | per mm2 per s | mean v_n (m/s) "
-             "| energy (J/m2) | coverage | time to " << target_text(window.target_coverage) << " [95 %] |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        r << "\n### Regions of " << c.name
+          << "\n\n| region | area (mm2) | peened (mm2) | out of reach (mm2) | impacts | per mm2 per s | mean v_n (m/s) "
+             "| energy (J/m2) | coverage | time to "
+          << target_text(window.target_coverage) << " [95 %] |\n|---|---|---|---|---|---|---|---|---|---|\n";
         for (std::size_t k = 0; k < c.regions.size(); ++k) {
             const RegionStats s = region_stats(c.regions, k, c.region_tallies[k], c.coverage.get(), duration);
             r << "| " << c.regions.name(k) << (c.regions.excluded(k) ? " (excluded)" : "") << " | " << fmt(s.area_m2 * 1e6) << " | "
@@ -241,7 +244,8 @@ std::string analysis_summary_table(const std::vector<ComponentAnalysis>& parts, 
     const double duration = window.length_s();
     const std::string goal = target_text(window.target_coverage);
     std::ostringstream r;
-    r << "| component | impacts | per s | mean v_n (m/s) | mean dent (um) | coverage | time to " << goal << " [95 %] | everywhere [95 %] |\n";
+    r << "| component | impacts | per s | mean v_n (m/s) | mean dent (um) | coverage | time to " << goal
+      << " [95 %] | everywhere [95 %] |\n";
     r << "|---|---|---|---|---|---|---|---|\n";
     for (const ComponentAnalysis& c : parts) {
         const double n = static_cast<double>(c.impacts);
@@ -270,7 +274,8 @@ std::string turn_sentences(const AnalysisWindow& w) {
     if (w.shorter_than_a_turn()) {
         r << "\n**The window is " << fmt(w.turns(), 2) << " of a turn of the rotating part (a turn takes " << turn
           << ")**: the sides that have not faced the sonotrode yet are not peened like the others, so no region, no uniformity and no "
-             "time to the target here is the part's. Run at least " << fmt(w.from_s + w.turn_s, 4)
+             "time to the target here is the part's. Run at least "
+          << fmt(w.from_s + w.turn_s, 4)
           << " s (a whole turn): `--set \"process.duration=" << fmt(std::ceil((w.from_s + w.turn_s) * 1000.0) / 1000.0, 8) << " s\"`.\n";
     } else if (w.to_s < w.asked_to_s - 1e-9 * w.turn_s) {
         const double whole = std::round(w.turns());
@@ -324,7 +329,8 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
          "uncovered sample stays uncovered with probability exp(-mu tau), mu its local rate of dents (their area per area around "
          "it, from the impacts on faces, smoothed over the radius the extrapolation allows, counting noise removed), and the "
          "area's time is when the expected uncovered share falls to 1 - target; its 95 % interval from a jackknife over 10 time "
-         "batches, widened by the smoothing's bias (the forecast at twice the radius). See the README's \"How long to peen\".\n\nFiles (per "
+         "batches, widened by the smoothing's bias (the forecast at twice the radius). See the README's \"How long to peen\".\n\nFiles "
+         "(per "
          "component): `<component>_triangles.csv` (per-triangle fields, the same smoothed over a radius of the surface, the share a "
          "shot can reach, the excluded share and the region), `<component>_coverage.csv` (coverage vs time), "
          "`<component>_histograms.csv` (normal speed, impact angle, dent diameter; whole component and per region), "

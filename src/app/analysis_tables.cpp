@@ -34,7 +34,8 @@ void write_triangle_csv(const fs::path& path, const ComponentAnalysis& c, double
           << ',' << (c.coverage ? fmt(c.coverage->shown_triangle_coverage(t)) : "") << ',' << fmt(m.impacts_per_m2() / 1e6 / duration, 6)
           << ',' << fmt(m.relative_error(), 4) << ',' << fmt(m.mean_normal_speed()) << ',' << fmt(m.energy_J_per_m2(), 6) << ','
           << (c.coverage ? fmt(m.coverage()) : "") << ',' << radius_mm << ',' << (c.reach.empty() ? "" : fmt(c.reach[t], 3)) << ','
-          << (c.coverage ? fmt(c.coverage->peened_share(t), 3) : "") << ',' << fmt(c.regions.excluded_fraction(t), 3) << ',' << dominant_region_name(c, t) << '\n';
+          << (c.coverage ? fmt(c.coverage->peened_share(t), 3) : "") << ',' << fmt(c.regions.excluded_fraction(t), 3) << ','
+          << dominant_region_name(c, t) << '\n';
     }
     write_file_atomically(path.string(), s.str());
 }

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
-#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "analysis/impact_stream.h"
@@ -116,7 +116,9 @@ double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& 
     take(impact_s, "its last logged impact");
     err << "note: " << dir.string() << ": the run did not finish; analysing the " << fmt(t) << " s it simulated (from " << source
         << (summary_s ? "" : "; no summary.json: the run was killed") << "), not the scene's " << fmt(scene.process.duration_s) << " s\n";
-    if (!(t > 0.0)) throw InputError({(dir / kImpactCsvPartialFileName).string()}, "", "the run simulated no time that can be analysed: it has no impact yet");
+    if (!(t > 0.0))
+        throw InputError({(dir / kImpactCsvPartialFileName).string()}, "",
+                         "the run simulated no time that can be analysed: it has no impact yet");
     return t;
 }
 
@@ -143,7 +145,8 @@ ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* ca
             const std::int64_t n = map.samples_of_triangle(t);
             a.reach[t] = n > 0 ? static_cast<double>(a.coverage->classes().reachable_samples(t)) / static_cast<double>(n) : 0.0;
         }
-        a.unreachable = find_unreachable_area(map, a.coverage->classes(), a.regions, reach_test(model, ci, cavity), model.min_shot_radius_m);
+        a.unreachable =
+            find_unreachable_area(map, a.coverage->classes(), a.regions, reach_test(model, ci, cavity), model.min_shot_radius_m);
     }
     const MaterialDesc* m = material_named(scene, c.material);
     if (c.almen)

@@ -12,9 +12,9 @@ namespace peensim {
 
 // What of the log to analyse, and the target the report measures coverage against.
 struct AnalyzeOptions {
-    double from_s = 0.0;                // s: impacts before are left out (drop a start-up transient)
-    std::optional<double> to_s{};       // s: and after (default: the end of the log)
-    double min_speed_m_per_s = 0.0;     // m/s: slower impacts are left out (too slow to dent)
+    double from_s = 0.0;             // s: impacts before are left out (drop a start-up transient)
+    std::optional<double> to_s{};    // s: and after (default: the end of the log)
+    double min_speed_m_per_s = 0.0;  // m/s: slower impacts are left out (too slow to dent)
     // The coverage the report measures against (0..1]: empty for the run's own (its scene's
     // process.until_coverage), else 98 % (SAE J2277's "full" coverage).
     std::optional<double> target_coverage = std::nullopt;

@@ -13,13 +13,13 @@
 #include <sstream>
 
 #include "app/report_errors.h"
-#include "output/output_names.h"
 #include "app/run_job.h"
 #include "common/input_error.h"
 #include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "model/model.h"
 #include "output/atomic_file.h"
+#include "output/output_names.h"
 #include "scene/scene_parser.h"
 
 namespace fs = std::filesystem;

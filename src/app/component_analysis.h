@@ -38,9 +38,9 @@ struct AnalysisWindow {
     double length_s() const { return to_s - from_s; }  // s, the analysed time: rates are per it
     // A rotating part is analysed over whole turns: a part of a turn favours the side that faced
     // the sonotrode in it.
-    double turn_s = 0.0;        // s, the logged part's turn (0: nothing logged rotates)
-    double asked_to_s = 0.0;    // s, the end asked for (the log's end by default) before whole turns
-    bool to_given = false;      // --to was given: kept as asked, warned about if not whole turns
+    double turn_s = 0.0;      // s, the logged part's turn (0: nothing logged rotates)
+    double asked_to_s = 0.0;  // s, the end asked for (the log's end by default) before whole turns
+    bool to_given = false;    // --to was given: kept as asked, warned about if not whole turns
     double turns() const { return turn_s > 0.0 ? length_s() / turn_s : 0.0; }
     bool shorter_than_a_turn() const { return turn_s > 0.0 && turns() < 1.0 - 1e-9; }
 };
@@ -63,12 +63,12 @@ struct ComponentAnalysis {
     std::unique_ptr<TriangleFields> fields;
     // Coverage of the peened area as the dents land (empty if the material has no yield stress).
     std::unique_ptr<CoverageProgress> coverage;
-    double yield_stress_pa = 0.0;           // Pa (0: none)
+    double yield_stress_pa = 0.0;  // Pa (0: none)
     ImpactHistograms histograms;
     std::uint64_t impacts = 0;
-    double speed_sum = 0.0;                                 // m/s, summed over impacts
-    double dent_sum = 0.0;                                  // m, summed over impacts
-    std::vector<CoveragePoint> curve;                       // coverage of the peened area vs time since the window opened
+    double speed_sum = 0.0;            // m/s, summed over impacts
+    double dent_sum = 0.0;             // m, summed over impacts
+    std::vector<CoveragePoint> curve;  // coverage of the peened area vs time since the window opened
     // The per-area fields smoothed over a radius of the surface (app/map_smoothing.h): the
     // binning while the log streams, why its radius, and the sums at each triangle at the end.
     std::unique_ptr<SurfaceSmoothing> smoothing;

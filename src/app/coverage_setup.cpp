@@ -18,8 +18,8 @@ std::unique_ptr<CoverageProgress> part_coverage(const Model& model, std::size_t 
     const double yield = part_yield_stress(scene, ci);
     if (!(yield > 0.0)) return nullptr;
     const TriangleMesh& mesh = *model.components[ci].mesh;
-    std::unique_ptr<CoverageMap> map = part_coverage_map(mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot),
-                                                         scene.shot.density_kg_per_m3, yield);
+    std::unique_ptr<CoverageMap> map =
+        part_coverage_map(mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot), scene.shot.density_kg_per_m3, yield);
     const double R = model.min_shot_radius_m;  // the smallest shot of a mix reaches furthest
     SampleClasses classes(*map, mesh, regions, reach_test(model, ci, cavity), R, R / kReachProbesPerRadius);
     return std::make_unique<CoverageProgress>(std::move(map), std::move(classes), target);

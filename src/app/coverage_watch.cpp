@@ -27,7 +27,9 @@ struct CoverageWatch::Part {
     // Watched areas: -1 the whole peened area, r region r.
     std::vector<int> watched;
 
-    double reached_at(int area) const { return area < 0 ? coverage->reached_at_s() : coverage->region_reached_at_s(static_cast<std::size_t>(area)); }
+    double reached_at(int area) const {
+        return area < 0 ? coverage->reached_at_s() : coverage->region_reached_at_s(static_cast<std::size_t>(area));
+    }
 };
 
 CoverageWatch::CoverageWatch(const Model& model, const std::string& resume_log) : model_(model) {

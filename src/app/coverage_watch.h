@@ -19,9 +19,9 @@ namespace peensim {
 
 // One watched area and when it reached the target.
 struct WatchedArea {
-    std::string name;            // "part" or "part/region"
-    double reached_at_s = 0.0;   // s of simulated time (NaN: not yet)
-    double coverage = 0.0;       // 0..1, now
+    std::string name;           // "part" or "part/region"
+    double reached_at_s = 0.0;  // s of simulated time (NaN: not yet)
+    double coverage = 0.0;      // 0..1, now
 };
 
 class CoverageWatch final : public RunListener {

@@ -44,9 +44,9 @@ constexpr double kMaxElements = 2e6;             // the largest block written
 // diameters, floored at half their median. The smallest dent (an almost resting shot's) set it
 // before and made decks of millions of elements (a 10-impact USP patch: 1.38 M; the shipped gear's
 // default patch: 4.45 M) for dents that carry almost no plastic work (their volume goes with d^4).
-constexpr double kSizingPercentile = 0.10;       // -
-constexpr double kSizingFloorOfMedian = 0.5;     // -
-constexpr double kCentreTolerance = 1e-9;        // -, in shot radii: the quarter model's impact at the centre
+constexpr double kSizingPercentile = 0.10;    // -
+constexpr double kSizingFloorOfMedian = 0.5;  // -
+constexpr double kCentreTolerance = 1e-9;     // -, in shot radii: the quarter model's impact at the centre
 
 const ComponentDesc& logged_component(const SceneDescription& scene, const std::string& wanted, const std::string& scene_file) {
     std::vector<const ComponentDesc*> logged;
@@ -56,8 +56,10 @@ const ComponentDesc& logged_component(const SceneDescription& scene, const std::
     for (const ComponentDesc* c : logged) names += (names.empty() ? "'" : ", '") + c->name + "'";
     for (const ComponentDesc* c : logged)
         if (c->name == wanted) return *c;
-    if (!wanted.empty()) throw InputError({"--component"}, "", "'" + wanted + "' is not a logged component of " + scene_file + "; expected one of " + names);
-    if (logged.size() != 1) throw InputError({"--component"}, "", "the run logged " + std::to_string(logged.size()) + " components (" + names + "); name one");
+    if (!wanted.empty())
+        throw InputError({"--component"}, "", "'" + wanted + "' is not a logged component of " + scene_file + "; expected one of " + names);
+    if (logged.size() != 1)
+        throw InputError({"--component"}, "", "the run logged " + std::to_string(logged.size()) + " components (" + names + "); name one");
     return *logged.front();
 }
 
@@ -154,7 +156,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         if (!(o.contact_times >= 1.0 && o.contact_times <= 100.0))
             throw InputError({"--contact-times"}, "", "expected a number from 1 to 100");
         if (o.max_impacts && *o.max_impacts < 1)
-            throw InputError({"--impacts"}, "", "expected a count >= 1 (leave it out for every impact), got " + std::to_string(*o.max_impacts));
+            throw InputError({"--impacts"}, "",
+                             "expected a count >= 1 (leave it out for every impact), got " + std::to_string(*o.max_impacts));
         check_output_name("--name", o.name);  // the deck's file name: inside -o, and ccx's job name
         const double window = positive("--group-window", o.group_window, Dimension::time, "a duration");
 
@@ -182,12 +185,16 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             }
             component = &logged_component(*scene, o.component, scene_file);
             if (const MaterialDesc* m = material_named(*scene, component->material)) {
-                if (m->youngs_modulus_pa) target.youngs_modulus_pa = *m->youngs_modulus_pa;
-                else notes.push_back("material '" + m->name + "' has no youngs_modulus: steel's used");
+                if (m->youngs_modulus_pa)
+                    target.youngs_modulus_pa = *m->youngs_modulus_pa;
+                else
+                    notes.push_back("material '" + m->name + "' has no youngs_modulus: steel's used");
                 if (m->poisson_ratio) target.poisson_ratio = *m->poisson_ratio;
                 if (m->density_kg_per_m3) target.density_kg_per_m3 = *m->density_kg_per_m3;
-                if (m->yield_stress_pa) target.yield_stress_pa = *m->yield_stress_pa;
-                else notes.push_back("material '" + m->name + "' has no yield_stress: steel's 500 MPa used");
+                if (m->yield_stress_pa)
+                    target.yield_stress_pa = *m->yield_stress_pa;
+                else
+                    notes.push_back("material '" + m->name + "' has no yield_stress: steel's 500 MPa used");
             }
         }
         if (!o.shot_diameter.empty()) shot_diameter = positive("--shot-diameter", o.shot_diameter, Dimension::length);
@@ -201,11 +208,15 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
                 known |= std::abs(size.diameter_m - shot_diameter) <= 1e-9 * size.diameter_m;
             }
             if (o.shot_diameter.empty())
-                throw InputError({"--shot-diameter"}, "", "the run peened with a shot mix (" + sizes +
-                                                              "); expected --shot-diameter to choose whose impacts to export (the deck has one ball size)");
-            if (!known) throw InputError({"--shot-diameter"}, "", "expected one of the run's sizes (" + sizes + "), got " + mm(shot_diameter) + " mm");
+                throw InputError({"--shot-diameter"}, "",
+                                 "the run peened with a shot mix (" + sizes +
+                                     "); expected --shot-diameter to choose whose impacts to export (the deck has one ball size)");
+            if (!known)
+                throw InputError({"--shot-diameter"}, "",
+                                 "expected one of the run's sizes (" + sizes + "), got " + mm(shot_diameter) + " mm");
         }
-        if (!(shot_diameter > 0.0)) throw InputError({"--shot-diameter"}, "", "expected the shot diameter (there is no run directory to take it from)");
+        if (!(shot_diameter > 0.0))
+            throw InputError({"--shot-diameter"}, "", "expected the shot diameter (there is no run directory to take it from)");
         shot_mat.density_kg_per_m3 = shot_density;
         if (!o.yield_stress.empty()) target.yield_stress_pa = positive("--yield-stress", o.yield_stress, Dimension::stress);
         if (!o.hardening.empty()) target.hardening_modulus_pa = quantity("--hardening", o.hardening, Dimension::stress);
@@ -248,8 +259,9 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
                 }
             }
             if (region_triangles.empty())
-                throw InputError({"--region"}, "", "component '" + component->name + "' has no region '" + o.region + "'" +
-                                                       (names.empty() ? std::string(" (it has no regions)") : "; expected one of " + names));
+                throw InputError({"--region"}, "",
+                                 "component '" + component->name + "' has no region '" + o.region + "'" +
+                                     (names.empty() ? std::string(" (it has no regions)") : "; expected one of " + names));
             if (!have_centre) {
                 centre = region_centre(*mesh, *regions, region_index);
                 have_centre = true;
@@ -259,7 +271,9 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         std::vector<PatchImpact> synthetic;
         if (!o.single.empty()) {
             const auto parts = split_commas(o.single);
-            if (parts.size() != 6) throw InputError({"--single"}, "", "expected x,y,z,vx,vy,vz (lengths and speeds, e.g. \"0,0,0,0,0,-50 m/s\"), got '" + o.single + "'");
+            if (parts.size() != 6)
+                throw InputError({"--single"}, "",
+                                 "expected x,y,z,vx,vy,vz (lengths and speeds, e.g. \"0,0,0,0,0,-50 m/s\"), got '" + o.single + "'");
             Vec3 p, v;
             for (int k = 0; k < 3; ++k) {
                 p[k] = quantity("--single", parts[static_cast<std::size_t>(k)], Dimension::length);
@@ -272,13 +286,15 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             LoggedImpact li{0, 0.0, p, v, 0.0, -1};
             candidates.push_back(li);
         }
-        if (!have_centre) throw InputError({"--center"}, "", "expected the patch centre (--center x,y,z in the component's frame) or --region");
+        if (!have_centre)
+            throw InputError({"--center"}, "", "expected the patch centre (--center x,y,z in the component's frame) or --region");
 
         if (mesh) {
             const SurfacePoint s = closest_surface_point(*mesh, centre, region_triangles);
             if (s.distance_m > R && !centre_on_region)
-                throw InputError({"--center"}, "", mm3(centre) + " is " + mm(s.distance_m) + " mm from the surface of component '" + component->name +
-                                                       "'; expected a point on it (within a shot radius, " + mm(R) + " mm)");
+                throw InputError({"--center"}, "",
+                                 mm3(centre) + " is " + mm(s.distance_m) + " mm from the surface of component '" + component->name +
+                                     "'; expected a point on it (within a shot radius, " + mm(R) + " mm)");
             centre = s.point_m;
             const double r_frame = o.radius.empty() ? kPatchRadii * R : positive("--radius", o.radius, Dimension::length);
             frame = tangent_frame(*mesh, centre, s.triangle, r_frame);
@@ -333,7 +349,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         for (const LoggedImpact& li : candidates) all.push_back(to_patch(li));
         for (const PatchImpact& p : all)
             if (!(-p.velocity_m_per_s.z() > 0.0))
-                throw InputError({"--single"}, "", "the impact's velocity must point into the surface (its z component, along the patch normal, negative)");
+                throw InputError({"--single"}, "",
+                                 "the impact's velocity must point into the surface (its z component, along the patch normal, negative)");
         std::stable_sort(all.begin(), all.end(), [](const PatchImpact& a, const PatchImpact& b) { return a.time_s < b.time_s; });
 
         // The patch radius: given, or max(3 R, 2 dent diameters of the impacts inside it).
@@ -353,13 +370,15 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         if (impacts.empty())
             throw InputError({o.run_dir.empty() ? "--single" : o.run_dir}, "",
                              "no impact of component '" + (component ? component->name : std::string("-")) + "' within " + mm(radius) +
-                                 " mm of " + mm3(frame.centre_m) + " (" + std::to_string(log_rows) + " rows read); expected a centre where the part was hit");
+                                 " mm of " + mm3(frame.centre_m) + " (" + std::to_string(log_rows) +
+                                 " rows read); expected a centre where the part was hit");
         if (o.quarter) {
             const PatchImpact& p = impacts.front();
             const double vt = std::hypot(p.velocity_m_per_s.x(), p.velocity_m_per_s.y());
             if (impacts.size() != 1 || p.point_m.norm() > kCentreTolerance * R + 1e-15 || vt > 1e-9 * p.velocity_m_per_s.norm())
-                throw InputError({"--quarter"}, "", "the quarter model needs exactly one normal impact at the patch centre (the patch has " +
-                                                        std::to_string(impacts.size()) + "); use the full model");
+                throw InputError({"--quarter"}, "",
+                                 "the quarter model needs exactly one normal impact at the patch centre (the patch has " +
+                                     std::to_string(impacts.size()) + "); use the full model");
         }
 
         // Meshes.
@@ -374,7 +393,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         std::sort(dents.begin(), dents.end());
         const auto dent_at = [&dents](double q) { return dents[static_cast<std::size_t>(q * static_cast<double>(dents.size() - 1))]; };
         const double sizing_dent = std::max(dent_at(kSizingPercentile), kSizingFloorOfMedian * dent_at(0.5));  // m
-        const double h = o.element_size.empty() ? sizing_dent / o.elements_per_dent : positive("--element-size", o.element_size, Dimension::length);
+        const double h =
+            o.element_size.empty() ? sizing_dent / o.elements_per_dent : positive("--element-size", o.element_size, Dimension::length);
         BlockMeshSpec spec;
         spec.half_width_m = radius;
         spec.depth_m = std::max(kDepthDents * largest_dent, 4.0 * h);
@@ -387,16 +407,17 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         // (the default deck of the shipped gear had 4.45 M elements while the fine zone was checked alone).
         const double cells = std::pow((o.quarter ? 1.0 : 2.0) * spec.fine_half_width_m / h, 2.0) * spec.fine_depth_m / h;
         if (cells > kMaxElements)
-            throw InputError({"--element-size"}, "", "the fine zone alone would need ~" + std::to_string(static_cast<long long>(cells)) +
-                                                         " elements (h = " + mm(h) + " mm), more than the " +
-                                                         std::to_string(static_cast<long long>(kMaxElements)) +
-                                                         " written at most; give a larger --element-size or fewer --impacts");
+            throw InputError({"--element-size"}, "",
+                             "the fine zone alone would need ~" + std::to_string(static_cast<long long>(cells)) +
+                                 " elements (h = " + mm(h) + " mm), more than the " + std::to_string(static_cast<long long>(kMaxElements)) +
+                                 " written at most; give a larger --element-size or fewer --impacts");
         const double elements = block_element_count(spec);
         if (elements > kMaxElements)
-            throw InputError({"--element-size"}, "", "the block would have " + std::to_string(static_cast<long long>(elements)) +
-                                                         " elements (h = " + mm(h) + " mm, patch radius " + mm(radius) + " mm), more than the " +
-                                                         std::to_string(static_cast<long long>(kMaxElements)) +
-                                                         " written at most; give a larger --element-size, a smaller --radius or fewer --impacts");
+            throw InputError({"--element-size"}, "",
+                             "the block would have " + std::to_string(static_cast<long long>(elements)) + " elements (h = " + mm(h) +
+                                 " mm, patch radius " + mm(radius) + " mm), more than the " +
+                                 std::to_string(static_cast<long long>(kMaxElements)) +
+                                 " written at most; give a larger --element-size, a smaller --radius or fewer --impacts");
 
         FemDeck deck;
         deck.quarter = o.quarter;
@@ -424,8 +445,9 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         if (mesh)
             line("The part is replaced by its tangent plane at the centre; the impacts were at most " + format_si(max_offset) +
                  " m off it (projected onto it, normal speed kept).");
-        line("Patch radius " + format_si(radius) + " m; block " + format_si(2 * radius) + " m square (" + (o.quarter ? "quarter model, symmetry planes x = 0, y = 0" : "full") +
-             "), " + format_si(spec.depth_m) + " m deep; fine elements " + format_si(h) + " m.");
+        line("Patch radius " + format_si(radius) + " m; block " + format_si(2 * radius) + " m square (" +
+             (o.quarter ? "quarter model, symmetry planes x = 0, y = 0" : "full") + "), " + format_si(spec.depth_m) +
+             " m deep; fine elements " + format_si(h) + " m.");
         line("Target: E " + format_si(target.youngs_modulus_pa) + " Pa, nu " + format_si(target.poisson_ratio) + ", density " +
              format_si(target.density_kg_per_m3) + " kg/m3, yield " + format_si(*target.yield_stress_pa) + " Pa, hardening " +
              format_si(target.hardening_modulus_pa) + " Pa (isotropic).");
@@ -449,32 +471,34 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             const PatchImpact& p = impacts[static_cast<std::size_t>(shot.impact)];
             csv << shot.step + 1 << "," << s + 1 << "," << p.row << "," << format_si(p.time_s) << "," << format_si(p.point_m.x()) << ","
                 << format_si(p.point_m.y()) << "," << format_si(p.plane_offset_m) << "," << format_si(p.velocity_m_per_s.x()) << ","
-                << format_si(p.velocity_m_per_s.y()) << "," << format_si(p.velocity_m_per_s.z()) << "," << format_si(-p.velocity_m_per_s.z())
-                << "," << format_si(p.dent_diameter_m) << "\n";
+                << format_si(p.velocity_m_per_s.y()) << "," << format_si(p.velocity_m_per_s.z()) << ","
+                << format_si(-p.velocity_m_per_s.z()) << "," << format_si(p.dent_diameter_m) << "\n";
         }
         write_file_atomically((fs::path(o.output_dir) / "impacts.csv").string(), csv.str());
 
         std::ostringstream readme;
         readme << "# FEM deck `" << o.name << ".inp` (peensim export-fem)\n\n";
         for (const std::string& l : deck.header) readme << l << "\n";
-        readme << "\nRun it with CalculiX: `ccx -i " << o.name << "` (in this directory; results in " << o.name << ".dat and "
-               << o.name << ".frd).\n\n";
+        readme << "\nRun it with CalculiX: `ccx -i " << o.name << "` (in this directory; results in " << o.name << ".dat and " << o.name
+               << ".frd).\n\n";
         readme << "Block: " << deck.block.mesh.nodes.size() << " nodes, " << deck.block.mesh.elements.size() << " C3D8 elements; each shot "
                << deck.shot_mesh.mesh.nodes.size() << " nodes, " << deck.shot_mesh.mesh.elements.size() << " elements.\n\n";
         readme << "| step | duration s | shots (impacts.csv rows of the run) |\n|---|---|---|\n";
         for (std::size_t k = 0; k < deck.steps.size(); ++k) {
             readme << "| " << k + 1 << " | " << format_si(deck.steps[k].duration_s) << " |";
             for (int s : deck.steps[k].shots)
-                readme << " " << s + 1 << " (row " << impacts[static_cast<std::size_t>(deck.shots[static_cast<std::size_t>(s)].impact)].row << ")";
+                readme << " " << s + 1 << " (row " << impacts[static_cast<std::size_t>(deck.shots[static_cast<std::size_t>(s)].impact)].row
+                       << ")";
             readme << " |\n";
         }
         readme << "\n`impacts.csv` lists every shot: its step, the run's row (0: synthetic), time, point and velocity in the deck's frame, "
                   "normal speed and the dent diameter of eq. 10.\n";
         write_file_atomically((fs::path(o.output_dir) / "README.md").string(), readme.str());
 
-        out << "export-fem: " << impacts.size() << " impacts in " << deck.steps.size() << " steps; block " << deck.block.mesh.elements.size()
-            << " elements (fine " << mm(h) << " mm), " << deck.shots.size() << " shots x " << deck.shot_mesh.mesh.elements.size()
-            << " elements\n  deck: " << deck_path.string() << "  (run: cd " << o.output_dir << " && ccx -i " << o.name << ")\n";
+        out << "export-fem: " << impacts.size() << " impacts in " << deck.steps.size() << " steps; block "
+            << deck.block.mesh.elements.size() << " elements (fine " << mm(h) << " mm), " << deck.shots.size() << " shots x "
+            << deck.shot_mesh.mesh.elements.size() << " elements\n  deck: " << deck_path.string() << "  (run: cd " << o.output_dir
+            << " && ccx -i " << o.name << ")\n";
         for (const std::string& n : notes) err << "note: " << n << "\n";
         return 0;
     });

@@ -14,24 +14,25 @@
 namespace peensim {
 
 struct ExportFemOptions {
-    std::string run_dir;           // the run's output directory ("" only with --single)
-    std::string output_dir;        // -o: where the deck goes
-    std::string name = "patch";    // --name: the deck's file name without .inp (ccx's job name; output/output_names.h)
-    std::string component;         // --component: the logged part ("" = the only one)
-    std::string center;            // --center x,y,z: the patch centre, component frame (lengths with units)
-    std::string radius;            // --radius: the patch radius ("" = max(3 R, 2 dent diameters))
-    std::string region;            // --region: a region of the component (centre and impacts from it)
+    std::string run_dir;             // the run's output directory ("" only with --single)
+    std::string output_dir;          // -o: where the deck goes
+    std::string name = "patch";      // --name: the deck's file name without .inp (ccx's job name; output/output_names.h)
+    std::string component;           // --component: the logged part ("" = the only one)
+    std::string center;              // --center x,y,z: the patch centre, component frame (lengths with units)
+    std::string radius;              // --radius: the patch radius ("" = max(3 R, 2 dent diameters))
+    std::string region;              // --region: a region of the component (centre and impacts from it)
     std::optional<int> max_impacts;  // --impacts N (>= 1): the first N impacts of the patch (none: all)
-    std::string single;            // --single x,y,z,vx,vy,vz: one synthetic impact instead of the run's
-    std::string shot_diameter;     // --shot-diameter: the shot without a run directory; a mix run: whose impacts
-    std::string yield_stress;      // --yield-stress: the target's (default: its material's, else steel's)
-    std::string hardening;         // --hardening: slope of yield stress against plastic strain (default 0)
-    std::string element_size;      // --element-size: fine elements' edge ("" = the patch's 10th-percentile dent, at least half its median, / elements_per_dent)
-    double elements_per_dent = 6.0;    // --elements-per-dent
-    int shot_divisions = 8;            // --shot-divisions: cells along the shot mesh's cube edge (even)
-    bool quarter = false;              // --quarter: quarter model (one normal impact at the centre)
-    std::string group_window = "1 ms"; // --group-window: a step spans at most this much of the run's time
-    double contact_times = 2.5;        // --contact-times: a step lasts this many Hertz contact times
+    std::string single;              // --single x,y,z,vx,vy,vz: one synthetic impact instead of the run's
+    std::string shot_diameter;       // --shot-diameter: the shot without a run directory; a mix run: whose impacts
+    std::string yield_stress;        // --yield-stress: the target's (default: its material's, else steel's)
+    std::string hardening;           // --hardening: slope of yield stress against plastic strain (default 0)
+    std::string element_size;  // --element-size: fine elements' edge ("" = the patch's 10th-percentile dent, at least half its median, /
+                               // elements_per_dent)
+    double elements_per_dent = 6.0;     // --elements-per-dent
+    int shot_divisions = 8;             // --shot-divisions: cells along the shot mesh's cube edge (even)
+    bool quarter = false;               // --quarter: quarter model (one normal impact at the centre)
+    std::string group_window = "1 ms";  // --group-window: a step spans at most this much of the run's time
+    double contact_times = 2.5;         // --contact-times: a step lasts this many Hertz contact times
 };
 
 // Returns kExitOk, kExitInputError (bad option, run directory, centre, no impact in the patch) or

@@ -106,7 +106,8 @@ void start_smoothing(ComponentAnalysis& a, const SceneDescription& scene, const 
                      const std::filesystem::path& run_dir, const std::string& option_text, double window_share) {
     double area = 0.0;  // m2
     for (std::size_t t = 0; t < a.fields->triangle_count(); ++t) area += a.fields->area_m2(t);
-    const SmoothingChoice choice = choose_smoothing_radius(scene, component, run_dir, area, smoothing_radius_option(option_text), window_share);
+    const SmoothingChoice choice =
+        choose_smoothing_radius(scene, component, run_dir, area, smoothing_radius_option(option_text), window_share);
     a.smoothing = std::make_unique<SurfaceSmoothing>(*a.mesh, choice.radius_m);
     a.smoothing_basis = choice.basis;
 }

@@ -54,8 +54,8 @@ std::string vary_spec(const std::string& path, const std::vector<std::string>& v
 
 // A sweep of this run's scene, as long as this window, two seeds.
 std::string sweep_command(const ReportContext& x, const std::string& suffix, const std::string& vary) {
-    return "peensim sweep " + (x.run_dir / "scene.resolved.yaml").string() + " -o " + x.run_dir.string() + "-" + suffix + " --vary \"" + vary +
-           "\" --seeds 2 --set \"process.duration=" + fmt(x.window.to_s, 6) + " s\"";
+    return "peensim sweep " + (x.run_dir / "scene.resolved.yaml").string() + " -o " + x.run_dir.string() + "-" + suffix + " --vary \"" +
+           vary + "\" --seeds 2 --set \"process.duration=" + fmt(x.window.to_s, 6) + " s\"";
 }
 
 }  // namespace
@@ -101,9 +101,12 @@ std::string unreachable_section(const ComponentAnalysis& c, const ReportContext&
     std::ostringstream r;
     r << "\n### " << c.name << ": out of the shot's reach\n\n";
     r << "**" << fmt(u.whole.area_m2 * 1e6, 4) << " mm2 (" << fmt(100.0 * u.whole.area_m2 / areas.total_m2, 3) << " %) of " << c.name
-      << " no " << mm(u.shot_diameter_m) << " shot can touch** in the assembly as placed: there is no room for a shot centre a radius "
+      << " no " << mm(u.shot_diameter_m)
+      << " shot can touch** in the assembly as placed: there is no room for a shot centre a radius "
          "away along the surface's normal. It is left out of coverage (the rest can reach 100 %) and no peening time changes it. ";
-    const auto reached_by = [&](double d) { return d > 0.0 ? "a shot of " + mm(d) + " or smaller" : std::string("no shot at all (closed off)"); };
+    const auto reached_by = [&](double d) {
+        return d > 0.0 ? "a shot of " + mm(d) + " or smaller" : std::string("no shot at all (closed off)");
+    };
     r << "Half of it would be reached by " << reached_by(u.whole.half_reached_by_m) << ", 90 % by " << reached_by(u.whole.most_reached_by_m)
       << " (the same reach test with a smaller shot, " << u.whole.points << " points of it).\n\n";
     // Its regions, largest first.
@@ -119,8 +122,9 @@ std::string unreachable_section(const ComponentAnalysis& c, const ReportContext&
             const UnreachableArea& g = u.regions[k];
             const double area = c.coverage->classes().region_peened_area_m2(k) + g.area_m2;
             const auto d = [](double m) { return m > 0.0 ? "<= " + fmt(m * 1e3, 3) + " mm" : std::string("none"); };
-            r << "| " << c.regions.name(k) << " | " << fmt(g.area_m2 * 1e6, 4) << " | " << (area > 0.0 ? fmt(100.0 * g.area_m2 / area, 3) + " %" : "")
-              << " | " << d(g.half_reached_by_m) << " | " << d(g.most_reached_by_m) << " |\n";
+            r << "| " << c.regions.name(k) << " | " << fmt(g.area_m2 * 1e6, 4) << " | "
+              << (area > 0.0 ? fmt(100.0 * g.area_m2 / area, 3) + " %" : "") << " | " << d(g.half_reached_by_m) << " | "
+              << d(g.most_reached_by_m) << " |\n";
         }
         if (shown < order.size()) r << "\n(" << order.size() - shown << " more regions in `" << c.name << "_regions.csv`.)\n";
     }
@@ -158,9 +162,11 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
                 const std::string turning = "{type: rotating, axis_point: " + vector_mm(axis.point_m) +
                                             ", axis_direction: " + vector_unit(axis.direction) + ", speed: ";
                 r << "It stands still, so one side faces the sonotrode throughout; turning it about its axis (through its centroid along "
-                  << vector_unit(axis.direction) << ") evens the sides out. Test it, with 2 seeds (check the axis first: `peensim check` "
+                  << vector_unit(axis.direction)
+                  << ") evens the sides out. Test it, with 2 seeds (check the axis first: `peensim check` "
                      "refuses a part that would hit the chamber):\n\n      "
-                  << sweep_command(x, "turning", "components[" + c.name + "].motion=" + turning + "15 rpm}," + turning + "30 rpm}") << "\n\n";
+                  << sweep_command(x, "turning", "components[" + c.name + "].motion=" + turning + "15 rpm}," + turning + "30 rpm}")
+                  << "\n\n";
             }
         }
         // The area out of reach: the shot that would reach it.
@@ -179,7 +185,8 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
                                                                fmt(most * 1e3, 3) + " mm"}))
                   << "\n\n";
             } else if (u.whole.most_reached_by_m > 0.0) {
-                r << "A shot of " << mm(u.whole.most_reached_by_m, 2) << " or smaller reaches 90 % of it by this run's reach test "
+                r << "A shot of " << mm(u.whole.most_reached_by_m, 2)
+                  << " or smaller reaches 90 % of it by this run's reach test "
                      "(the mix's sizes are the scene's `shot.sizes`).\n";
             } else {
                 r << "Most of it no shot reaches at all (it is closed off, e.g. a bore an axle fills): mark it as a region with "
@@ -190,12 +197,14 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
         if (e.time.status == AreaForecast::Status::too_short && std::isfinite(e.time.run_for_s)) {
             ++changes;
             r << "- **Run longer to know " << c.name << "'s time everywhere**: this window (" << fmt(x.window.length_s(), 4)
-              << " s) leaves the slowest areas with too few impacts; about " << fmt(std::ceil(e.time.run_for_s), 6) << " s gives a number.\n";
+              << " s) leaves the slowest areas with too few impacts; about " << fmt(std::ceil(e.time.run_for_s), 6)
+              << " s gives a number.\n";
         }
     }
     if (changes == 0) return "";
     return "\n## What to change\n\nEach change is backed by a figure this run measured; each command tests it (a sweep compares "
-           "its variants' times to " + goal + " everywhere with their intervals: `sweep/report.md`).\n\n" + r.str();
+           "its variants' times to " +
+           goal + " everywhere with their intervals: `sweep/report.md`).\n\n" + r.str();
 }
 
 }  // namespace peensim

@@ -139,11 +139,13 @@ private:
             } catch (const std::exception&) {}  // damaged: not a finished run's
         }
         const bool finished = j.is_object() && j.value("finished", false) && fs::exists(fs::path(dir_) / kImpactCsvFileName);
-        if (!finished) throw std::runtime_error(checkpoint_path() + ": no checkpoint to resume from (the run in " + dir_ + " did not write one)");
+        if (!finished)
+            throw std::runtime_error(checkpoint_path() + ": no checkpoint to resume from (the run in " + dir_ + " did not write one)");
         if (j.value("scene_hash", std::string()) != scene_hash_text(*model_))
             throw InputError({summary.string(), 0, 0}, "scene_hash",
-                             "the run in " + dir_ + " finished with another scene (or other --set values) than this one; nothing to resume: "
-                             "run without --resume to run this scene (that replaces its outputs)");
+                             "the run in " + dir_ +
+                                 " finished with another scene (or other --set values) than this one; nothing to resume: "
+                                 "run without --resume to run this scene (that replaces its outputs)");
         err_ << "nothing to resume: the run in " << dir_ << " already finished (" << j.value("simulated_time_s", 0.0)
              << " s simulated); its results are in " << dir_ << "/{impacts.csv, summary.json, analysis/}\n";
         return kExitOk;

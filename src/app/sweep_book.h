@@ -24,15 +24,15 @@ public:
     SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err);
 
     bool has_queued() const { return !queue_.empty(); }
-    std::size_t take();                     // the next run to start: one more attempt of it
+    std::size_t take();                            // the next run to start: one more attempt of it
     void outcome(std::size_t run, int exit_code);  // a run ended with this exit code
-    void stop();                            // interrupted: nothing more is handed out
+    void stop();                                   // interrupted: nothing more is handed out
     bool stopped() const { return stopped_; }
 
     std::size_t done() const { return done_; }
     std::size_t total() const { return plan_.runs.size(); }
     const std::vector<std::size_t>& failed() const { return failed_; }
-    std::string log_of(std::size_t run) const;  // the run's messages: logs_dir/<variant>.s<k>.log
+    std::string log_of(std::size_t run) const;    // the run's messages: logs_dir/<variant>.s<k>.log
     std::string label_of(std::size_t run) const;  // "<variant>/s<k>"
 
 private:

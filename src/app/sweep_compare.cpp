@@ -146,8 +146,10 @@ SweepFigure forecast_figure(const std::vector<RunFigures>& runs, RunForecast Run
     const RunForecast* missing = nullptr;
     for (const RunFigures& r : runs) {
         const RunForecast& f = r.*member;
-        if (f.missing.empty()) times.push_back(f.time_s);
-        else if (missing == nullptr || f.run_for_s > missing->run_for_s) missing = &f;
+        if (f.missing.empty())
+            times.push_back(f.time_s);
+        else if (missing == nullptr || f.run_for_s > missing->run_for_s)
+            missing = &f;
     }
     if (missing != nullptr) return {std::nullopt, std::nullopt, missing->missing};
     if (times.empty()) return {};
@@ -264,7 +266,8 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
         row.almen = figure(rs, &RunFigures::almen);
         row.share_below = figure(rs, &RunFigures::share_below);
         const double u_half = rs[0].uniformity_half_width;
-        row.uniformity = figure(rs, &RunFigures::uniformity, {std::nullopt, std::isfinite(u_half) ? std::optional<double>(u_half) : std::nullopt, ""});
+        row.uniformity =
+            figure(rs, &RunFigures::uniformity, {std::nullopt, std::isfinite(u_half) ? std::optional<double>(u_half) : std::nullopt, ""});
         row.whole = forecast_figure(rs, &RunFigures::whole);
         row.slowest = forecast_figure(rs, &RunFigures::slowest);
         row.everywhere = forecast_figure(rs, &RunFigures::everywhere);
@@ -317,8 +320,8 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
         if (c.compared) csv << ",delta_" << c.name << ",verdict_" << c.name;
     for (const std::string& name : region_names) {
         const std::string p = ",region_" + name;
-        csv << p << "_impact_rate_per_s" << p << "_impact_rate_ci95_per_s" << p << "_coverage" << p << "_coverage_ci95" << p << "_time_to_target_s" << p
-            << "_time_to_target_ci95_s";
+        csv << p << "_impact_rate_per_s" << p << "_impact_rate_ci95_per_s" << p << "_coverage" << p << "_coverage_ci95" << p
+            << "_time_to_target_s" << p << "_time_to_target_ci95_s";
     }
     csv << "\n";
     for (std::size_t v = 0; v < plan.variants.size(); ++v) {
@@ -347,9 +350,9 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
     // the target), then the run's raw figures.
     std::ostringstream md;
     md << "# peensim sweep: " << title << "\n\n";
-    md << plan.variants.size() << " variants x " << plan.seeds << (plan.seeds == 1 ? " seed" : " seeds") << "; the logged part compared: "
-       << (result.component.empty() ? std::string("(none finished)") : "`" + result.component + "`") << "; baseline `"
-       << plan.variants[base].name << "`.\n\n";
+    md << plan.variants.size() << " variants x " << plan.seeds << (plan.seeds == 1 ? " seed" : " seeds")
+       << "; the logged part compared: " << (result.component.empty() ? std::string("(none finished)") : "`" + result.component + "`")
+       << "; baseline `" << plan.variants[base].name << "`.\n\n";
     const auto verdict = [&](std::size_t v, SweepFigure Row::*f, double scale) {
         if (v == base) return std::string("baseline");
         const SweepDifference d = compare_figures(rows[v].*f, rows[base].*f);
@@ -357,24 +360,25 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
     };
     const auto timed = [](const SweepFigure& f) { return f.mean ? shown(f) : f.missing.empty() ? std::string("-") : f.missing; };
     md << "## What decides: " << to_target << "\n\n"
-       << "| variant | runs | slowest region | its " << to_target << " (s) | vs baseline | " << to_target << " everywhere (s) | vs baseline | "
+       << "| variant | runs | slowest region | its " << to_target << " (s) | vs baseline | " << to_target
+       << " everywhere (s) | vs baseline | "
        << "uniformity | vs baseline | share below target (%) | vs baseline | " << to_target << ", whole part (s) | vs baseline |\n"
        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t v = 0; v < plan.variants.size(); ++v) {
         const Row& r = rows[v];
-        md << "| " << plan.variants[v].name << " | " << r.runs << "/" << plan.seeds << " | " << (r.slowest_region.empty() ? "-" : r.slowest_region)
-           << " | " << timed(r.slowest) << " | " << verdict(v, &Row::slowest, 1.0) << " | " << timed(r.everywhere) << " | "
-           << verdict(v, &Row::everywhere, 1.0) << " | " << shown(r.uniformity, 1.0, 3) << " | " << verdict(v, &Row::uniformity, 1.0) << " | "
-           << shown(r.share_below, 100.0, 3) << " | " << verdict(v, &Row::share_below, 100.0) << " | " << timed(r.whole) << " | "
-           << verdict(v, &Row::whole, 1.0) << " |\n";
+        md << "| " << plan.variants[v].name << " | " << r.runs << "/" << plan.seeds << " | "
+           << (r.slowest_region.empty() ? "-" : r.slowest_region) << " | " << timed(r.slowest) << " | " << verdict(v, &Row::slowest, 1.0)
+           << " | " << timed(r.everywhere) << " | " << verdict(v, &Row::everywhere, 1.0) << " | " << shown(r.uniformity, 1.0, 3) << " | "
+           << verdict(v, &Row::uniformity, 1.0) << " | " << shown(r.share_below, 100.0, 3) << " | " << verdict(v, &Row::share_below, 100.0)
+           << " | " << timed(r.whole) << " | " << verdict(v, &Row::whole, 1.0) << " |\n";
     }
     md << "\n## The runs' figures\n\n"
        << "| variant | impacts per s | vs baseline | mean v_n (m/s) | p90 v_n (m/s) | coverage (%) | vs baseline |\n"
        << "|---|---|---|---|---|---|---|\n";
     for (std::size_t v = 0; v < plan.variants.size(); ++v) {
         const Row& r = rows[v];
-        md << "| " << plan.variants[v].name << " | " << shown(r.rate) << " | " << verdict(v, &Row::rate, 1.0) << " | " << shown(r.mean_vn) << " | "
-           << shown(r.p90_vn) << " | " << shown(r.coverage, 100.0) << " | " << verdict(v, &Row::coverage, 100.0) << " |\n";
+        md << "| " << plan.variants[v].name << " | " << shown(r.rate) << " | " << verdict(v, &Row::rate, 1.0) << " | " << shown(r.mean_vn)
+           << " | " << shown(r.p90_vn) << " | " << shown(r.coverage, 100.0) << " | " << verdict(v, &Row::coverage, 100.0) << " |\n";
     }
     md << "\nIntervals are 95 %: "
        << (plan.seeds > 1 ? std::string("Student's t over the seed replicates (process.seed, +1, ...).")
@@ -406,9 +410,11 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
         std::ostringstream gp;
         gp << "set terminal pngcairo size " << kPlotWidthPx << "," << kPlotHeightPx << "\nset output out\n"
            << "set title " << gnuplot_string(gnuplot_text(title + ": " + to_target + " everywhere")) << "\n"
-           << "set xlabel " << gnuplot_string(gnuplot_text(plan.axes[a].path + unit_of(plan.axes[a].values.front())))
-           << "\nset ylabel " << gnuplot_string(gnuplot_text(to_target + " everywhere (s)")) << "\nset grid\nset key off\nset offsets graph 0.05, 0.05, 0.05, 0.05\n"
-           << "$d << EOD\n" << data.str() << "EOD\n"
+           << "set xlabel " << gnuplot_string(gnuplot_text(plan.axes[a].path + unit_of(plan.axes[a].values.front()))) << "\nset ylabel "
+           << gnuplot_string(gnuplot_text(to_target + " everywhere (s)"))
+           << "\nset grid\nset key off\nset offsets graph 0.05, 0.05, 0.05, 0.05\n"
+           << "$d << EOD\n"
+           << data.str() << "EOD\n"
            << "plot $d using 1:2:3 with yerrorbars pt 7 lc rgb '#1f77b4'\n";
         const std::string note = plot_with_gnuplot(sweep_dir, stem, gp.str());
         if (note.empty()) {

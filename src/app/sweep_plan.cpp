@@ -101,7 +101,8 @@ void check_size(std::optional<std::uint64_t> variants, int seeds, const SourceLo
     throw InputError(where, field,
                      what + " x " + std::to_string(seeds) + (seeds == 1 ? " seed" : " seeds") + " make " +
                          (fits ? std::to_string(runs) : "more than " + std::to_string(std::numeric_limits<std::uint64_t>::max())) +
-                         " runs; expected at most " + std::to_string(kMaxSweepRuns) + " runs in a sweep (fewer values or seeds, or split the study)");
+                         " runs; expected at most " + std::to_string(kMaxSweepRuns) +
+                         " runs in a sweep (fewer values or seeds, or split the study)");
 }
 
 // The runs of variant v: `seeds` replicates from `base_seed`, the seed's override last.
@@ -109,9 +110,9 @@ std::vector<SweepRun> runs_of(const SweepPlan& plan, std::size_t v, std::uint64_
     const SweepVariant& variant = plan.variants[v];
     if (base_seed > kLargestSeed - static_cast<std::uint64_t>(plan.seeds - 1))
         throw InputError({"--seeds"}, "",
-                         (variant.set.empty() ? std::string() : "variant '" + variant.name + "': ") + "process.seed " + std::to_string(base_seed) +
-                             " and " + std::to_string(plan.seeds) + " replicates go past the largest seed, " + std::to_string(kLargestSeed) +
-                             "; expected a smaller seed or fewer --seeds");
+                         (variant.set.empty() ? std::string() : "variant '" + variant.name + "': ") + "process.seed " +
+                             std::to_string(base_seed) + " and " + std::to_string(plan.seeds) + " replicates go past the largest seed, " +
+                             std::to_string(kLargestSeed) + "; expected a smaller seed or fewer --seeds");
     std::vector<SweepRun> runs;
     for (int r = 0; r < plan.seeds; ++r) {
         SweepRun run;
@@ -127,7 +128,8 @@ std::vector<SweepRun> runs_of(const SweepPlan& plan, std::size_t v, std::uint64_
     return runs;
 }
 
-void add_runs(SweepPlan& plan, int seeds, std::uint64_t base_seed, const std::vector<std::string>& overrides, const std::string& output_dir) {
+void add_runs(SweepPlan& plan, int seeds, std::uint64_t base_seed, const std::vector<std::string>& overrides,
+              const std::string& output_dir) {
     plan.seeds = seeds;
     plan.overrides = overrides;
     plan.output_dir = output_dir;
@@ -145,8 +147,7 @@ void check_distinct(const SweepAxis& a) {
     for (const std::string& v : a.values) {
         const auto [at, fresh] = seen.emplace(sweep_value_key(a.path, v), v);
         if (fresh) continue;
-        if (at->second == v)
-            throw InputError(a.origin, field_of(a), "the value '" + v + "' is given twice; expected each value once");
+        if (at->second == v) throw InputError(a.origin, field_of(a), "the value '" + v + "' is given twice; expected each value once");
         throw InputError(a.origin, field_of(a),
                          "'" + v + "' is the value '" + at->second + "' again (" + at->first + "); expected each value once");
     }
@@ -217,7 +218,8 @@ SweepPlan plan_sweep(const std::vector<SweepAxis>& axes, int seeds, std::uint64_
                axes.empty() ? std::string("1 variant") : (axes.size() == 1 ? grid + " values" : "a grid of " + grid + " values"));
     std::set<std::string> paths;
     for (const SweepAxis& a : axes) {
-        if (!paths.insert(a.path).second) throw InputError(a.origin, field_of(a), "'" + a.path + "' is varied twice; give its values in one --vary");
+        if (!paths.insert(a.path).second)
+            throw InputError(a.origin, field_of(a), "'" + a.path + "' is varied twice; give its values in one --vary");
         check_distinct(a);
     }
     SweepPlan plan;

@@ -34,17 +34,17 @@ struct SweepAxis {
 };
 
 struct SweepVariant {
-    std::string name;                                       // directory name: [A-Za-z0-9._-]
+    std::string name;                                      // directory name: [A-Za-z0-9._-]
     std::vector<std::pair<std::string, std::string>> set;  // (path, value) per axis
-    SourceLocation origin{"--vary", 0, 0};                  // a sweep file's variant: its line
-    std::string field;                                      // "variants[2]" for a sweep file's variant
+    SourceLocation origin{"--vary", 0, 0};                 // a sweep file's variant: its line
+    std::string field;                                     // "variants[2]" for a sweep file's variant
 };
 
 struct SweepRun {
-    std::size_t variant = 0;           // index into SweepPlan::variants
-    int replicate = 0;                 // 0 .. seeds - 1
-    std::uint64_t seed = 0;            // process.seed of this run
-    std::string dir;                   // its run directory (output_dir/<variant>/s<replicate>)
+    std::size_t variant = 0;             // index into SweepPlan::variants
+    int replicate = 0;                   // 0 .. seeds - 1
+    std::uint64_t seed = 0;              // process.seed of this run
+    std::string dir;                     // its run directory (output_dir/<variant>/s<replicate>)
     std::vector<std::string> overrides;  // every --set of the run: the sweep's, the variant's, the seed
 };
 

@@ -337,7 +337,8 @@ std::string plot(const std::string& png_path, const std::vector<KnobResult>& res
 void check_options(const TradeOptions& o) {
     if (!(o.reference_steps >= 20.0 && o.reference_steps <= 10000.0))  // CLI11's range lets nan through
         throw InputError(kCommandLine, "--reference-steps", "expected a number from 20 to 10000, got " + number(o.reference_steps));
-    if (!(o.seeds >= 1 && o.seeds <= 1000)) throw InputError(kCommandLine, "--seeds", "expected a count from 1 to 1000, got " + std::to_string(o.seeds));
+    if (!(o.seeds >= 1 && o.seeds <= 1000))
+        throw InputError(kCommandLine, "--seeds", "expected a count from 1 to 1000, got " + std::to_string(o.seeds));
     if (!o.csv_path.empty()) check_output_file_directory("--csv", o.csv_path);
     if (!o.plot_path.empty()) check_output_file_directory("--plot", o.plot_path);
 }

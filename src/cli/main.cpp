@@ -84,7 +84,9 @@ int main(int argc, char** argv) {
     analyze_cmd->add_option("--from", analyze_from, "leave out the impacts before this time, e.g. a start-up transient (s, or \"500 ms\")");
     analyze_cmd->add_option("--to", analyze_to, "leave out the impacts after this time (default: the end of the run)");
     analyze_cmd->add_option("--min-speed", analyze_min_speed, "leave out impacts with a slower normal speed (m/s, or \"20 cm/s\")");
-    analyze_cmd->add_option("--target", analyze_target, "the coverage the report measures against: \"0.98\" or \"98 %\" (default: the scene's process.until_coverage, else 98 %)");
+    analyze_cmd->add_option(
+        "--target", analyze_target,
+        "the coverage the report measures against: \"0.98\" or \"98 %\" (default: the scene's process.until_coverage, else 98 %)");
     analyze_cmd->add_option("--smoothing-radius", analyze.smoothing_radius,
                             "radius of the surface the maps' fields are smoothed over, e.g. \"1.5 mm\" (default: the scene's "
                             "output.smoothing_radius, else from the dent size and the impact density)");
@@ -108,8 +110,9 @@ int main(int argc, char** argv) {
     render_impacts_cmd->add_option("--width", render_impacts.width_px, "image width, pixels (2 x 2 views)")->check(CLI::Range(64, 7680));
     render_impacts_cmd->add_option("--height", render_impacts.height_px, "image height, pixels")->check(CLI::Range(64, 4320));
     std::string render_target;
-    render_impacts_cmd->add_option("--target", render_target,
-                                   "coverage target marked on the coverage map's colour bar: \"0.98\" or \"98 %\" (default: the analysis's)");
+    render_impacts_cmd->add_option(
+        "--target", render_target,
+        "coverage target marked on the coverage map's colour bar: \"0.98\" or \"98 %\" (default: the analysis's)");
 
     SweepOptions sweep;
     auto* sweep_cmd = app.add_subcommand(
@@ -122,8 +125,9 @@ int main(int argc, char** argv) {
         ->allow_extra_args(false);
     // Checked by the sweep itself (1 to kMaxSweepSeeds), with the message Python's sweep(seeds=) gets.
     long long sweep_seeds = 0;
-    auto* sweep_seeds_option = sweep_cmd->add_option(
-        "--seeds", sweep_seeds, "replicates per variant from process.seed, +1, ... (1 to " + std::to_string(kMaxSweepSeeds) + "; default: the sweep file's, else 1)");
+    auto* sweep_seeds_option = sweep_cmd->add_option("--seeds", sweep_seeds,
+                                                     "replicates per variant from process.seed, +1, ... (1 to " +
+                                                         std::to_string(kMaxSweepSeeds) + "; default: the sweep file's, else 1)");
     sweep_cmd->add_option("--set", sweep.overrides, "override a scene field for every run")->allow_extra_args(false);
     sweep_cmd->add_option("--jobs", sweep.jobs, "runs at once (default: every core)")->check(CLI::Range(1, 4096));
     sweep_cmd->add_option("--baseline", sweep.baseline, "the variant the others are compared with (default: the first)");
@@ -154,7 +158,8 @@ int main(int argc, char** argv) {
                                          "stiffness) against a converged soft reference");
     trade_cmd->add_option("scene", trade.scene_path, "scene file (YAML) whose contacts are hertz-mindlin")->required();
     trade_cmd->add_option("--duration", trade.duration, "simulated time of every run (default: the scene's process.duration)");
-    trade_cmd->add_option("--settle", trade.settle, "time left out of rates and speeds at the start, >= 0 (s, or \"20 ms\"; default: a tenth of the run)");
+    trade_cmd->add_option("--settle", trade.settle,
+                          "time left out of rates and speeds at the start, >= 0 (s, or \"20 ms\"; default: a tenth of the run)");
     trade_cmd->add_option("--reference-steps", trade.reference_steps, "soft steps per contact of the reference (default 80)")
         ->check(CLI::Range(20.0, 10000.0));
     trade_cmd->add_option("--seeds", trade.seeds, "runs per knob from consecutive seeds, figures averaged (default 1)")
@@ -179,8 +184,9 @@ int main(int argc, char** argv) {
                         "shot diameter (needed without a run directory; a run of a shot mix: the size whose impacts to export)");
     fem_cmd->add_option("--yield-stress", fem.yield_stress, "target yield stress (default: its material's, else 500 MPa)");
     fem_cmd->add_option("--hardening", fem.hardening, "slope of the yield stress against plastic strain (default 0: perfectly plastic)");
-    fem_cmd->add_option("--element-size", fem.element_size,
-                        "edge of the fine elements (default: the patch's 10th-percentile dent diameter, at least half its median, / --elements-per-dent)");
+    fem_cmd->add_option(
+        "--element-size", fem.element_size,
+        "edge of the fine elements (default: the patch's 10th-percentile dent diameter, at least half its median, / --elements-per-dent)");
     fem_cmd->add_option("--elements-per-dent", fem.elements_per_dent, "fine elements across that dent (default 6)");
     fem_cmd->add_option("--shot-divisions", fem.shot_divisions, "cells along the shot mesh's cube edge, even (default 8)");
     fem_cmd->add_flag("--quarter", fem.quarter, "quarter model with symmetry planes (one normal impact at the centre only)");

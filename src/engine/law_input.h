@@ -24,15 +24,17 @@ struct ContactSite {
 };
 
 // A shot's size (its radius, mass and flight), and its radius (m).
-inline const ShotSize& shot_size(const Model& model, const ShotArrays& shots, std::size_t i) { return model.shot_sizes[shots.size_class[i]]; }
+inline const ShotSize& shot_size(const Model& model, const ShotArrays& shots, std::size_t i) {
+    return model.shot_sizes[shots.size_class[i]];
+}
 inline double shot_radius(const Model& model, const ShotArrays& shots, std::size_t i) { return shot_size(model, shots, i).radius_m; }
 
 // v_shot, v_surface: m/s, world; n: unit normal towards the shot; impact: the contact policy's
 // verdict; pressing_accel (m/s2) and dt (s): for friction in sustained contact; contact_state: the
 // contact's own state (sustained_contact_state or instant_contact_state below).
-inline contact::SurfaceContactInput surface_input(const Model& model, const ShotArrays& shots, const ContactSite& site, const Vec3& v_shot, const Vec3& v_surface,
-                                                  const Vec3& n, bool impact, double pressing_accel = 0.0, double dt = 0.0,
-                                                  std::span<double> contact_state = {}) {
+inline contact::SurfaceContactInput surface_input(const Model& model, const ShotArrays& shots, const ContactSite& site, const Vec3& v_shot,
+                                                  const Vec3& v_surface, const Vec3& n, bool impact, double pressing_accel = 0.0,
+                                                  double dt = 0.0, std::span<double> contact_state = {}) {
     contact::SurfaceContactInput in{v_shot, v_surface, n, pressing_accel, dt};
     in.contact_state = contact_state;
     in.shot = site.shot;

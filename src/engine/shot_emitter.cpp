@@ -69,7 +69,8 @@ void ShotEmitter::emit_due(SimulationState& state, std::vector<int>& added) {
         shots.set_velocity(slot, v);
         shots.active[slot] = 1;
         shots.size_class[slot] = static_cast<unsigned char>(d.emission.size);
-        if (static_cast<std::size_t>(d.emission.size) < state.shots_per_size.size()) ++state.shots_per_size[static_cast<std::size_t>(d.emission.size)];
+        if (static_cast<std::size_t>(d.emission.size) < state.shots_per_size.size())
+            ++state.shots_per_size[static_cast<std::size_t>(d.emission.size)];
         shots.in_flight[slot] = 1;
         state.fastest_shot_m_per_s = std::max(state.fastest_shot_m_per_s, v.norm());
         added.push_back(static_cast<int>(slot));

@@ -14,10 +14,10 @@
 namespace peensim {
 
 struct ShotArrays {
-    std::vector<double> x, y, z;        // m, centre, world
-    std::vector<double> vx, vy, vz;     // m/s, world
-    std::vector<double> wx, wy, wz;     // rad/s, angular velocity, world (changed only by soft-sphere contacts)
-    std::vector<unsigned char> active;  // 0 once a shot is lost (left the chamber, non-finite state)
+    std::vector<double> x, y, z;            // m, centre, world
+    std::vector<double> vx, vy, vz;         // m/s, world
+    std::vector<double> wx, wy, wz;         // rad/s, angular velocity, world (changed only by soft-sphere contacts)
+    std::vector<unsigned char> active;      // 0 once a shot is lost (left the chamber, non-finite state)
     std::vector<unsigned char> size_class;  // index into Model::shot_sizes (0 for a scene of one size)
     // 1 while a shot is in free flight: since an impact sent it off, or since a step (time
     // stepping) in which it touched nothing. 0 once it is in sustained contact, and at the start
@@ -97,7 +97,7 @@ struct LostShot {
 
 // The first search fallback of a run (HealthCounters::search_fallbacks): where and why.
 struct SearchFallback {
-    double time_s = -1.0;            // s; negative: none yet
+    double time_s = -1.0;  // s; negative: none yet
     int shot = -1;
     int component = -1;              // the moving component whose search ran out
     Vec3 position_m = Vec3::Zero();  // m, world, the shot's centre then

@@ -71,8 +71,8 @@ TimeStepping::TimeStepping(std::shared_ptr<const Model> model)
         const double travel = model_->travel_fraction * model_->min_shot_radius_m;
         max_query_radius_.push_back(model_->max_shot_radius_m +
                                     (c.kinematics.amplitude_m > 0.0 ? 2.0 * c.kinematics.amplitude_m + travel : 0.0));
-        gates_.push_back(
-            std::make_unique<const DistanceGate>(DistanceGate::for_shot(*c.mesh, model_->max_shot_radius_m, 2.0 * c.kinematics.amplitude_m)));
+        gates_.push_back(std::make_unique<const DistanceGate>(
+            DistanceGate::for_shot(*c.mesh, model_->max_shot_radius_m, 2.0 * c.kinematics.amplitude_m)));
         sharp_.emplace_back(*gates_.back(), *c.collider, max_query_radius_.back());
     }
     last_touch_.assign(static_cast<std::size_t>(model_->shot_count), 0.0);
@@ -313,8 +313,8 @@ void TimeStepping::resolve_mesh_contacts(SimulationState& state, double dt, std:
     stats_[Stage::mesh_queries] += total - (stats_[Stage::contact_laws] - laws_before);
 }
 
-bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, double R, const Vec3& p_world, const Vec3& v_world, double query_radius,
-                                   Contact& out) {
+bool TimeStepping::closest_contact(std::size_t component, std::size_t shot, double R, const Vec3& p_world, const Vec3& v_world,
+                                   double query_radius, Contact& out) {
     const Component& comp = model_->components[component];
     const Pose& pose = pose_end_[component];
     const Vec3 p = pose.to_component(p_world);
@@ -514,9 +514,9 @@ bool TimeStepping::handle_component(SimulationState& state, std::size_t i, std::
         const Pose pose_touch = kin.pose(t0_, u);
         const ContactSite site{
             static_cast<int>(i), static_cast<int>(c), contact.mesh_triangle, &pose_touch, x_touch, t0_.hi + (t0_.lo + u), 0.0};
-        contact::SurfaceContactResponse r = law.impact(
-            surface_input(*model_, state.shots, site, v_touch, v_surface, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
-            law_state(state, c));
+        contact::SurfaceContactResponse r = law.impact(surface_input(*model_, state.shots, site, v_touch, v_surface, n, impact, 0.0, 0.0,
+                                                                     instant_contact_state(contact_scratch_, *model_, c)),
+                                                       law_state(state, c));
         bool rides = false;
         double closing_accel = 0.0;  // m/s2
         if (vibrating) {
@@ -602,11 +602,16 @@ bool TimeStepping::launch_within_step(SimulationState& state, std::size_t i, std
     const double impulse = std::max(0.0, (plate_v1 - plate_v0).dot(n) - g.dot(n) * ride);
     // Friction over the ride through the pair's law: its sustained contact with the plate pressing
     // the shot by impulse / ride on average over the ride.
-    const ContactSite site{
-        static_cast<int>(i), static_cast<int>(c), -1, &pose_touch, centre - shot_radius(*model_, state.shots, i) * n, t0_.hi + (t0_.lo + u), 0.0};
+    const ContactSite site{static_cast<int>(i),
+                           static_cast<int>(c),
+                           -1,
+                           &pose_touch,
+                           centre - shot_radius(*model_, state.shots, i) * n,
+                           t0_.hi + (t0_.lo + u),
+                           0.0};
     const contact::SurfaceContactResponse r =
-        comp.law->sustain(surface_input(*model_, state.shots, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0, ride,
-                                        instant_contact_state(contact_scratch_, *model_, c)),
+        comp.law->sustain(surface_input(*model_, state.shots, site, plate_v0 + slip, plate_v0, n, false, ride > 0.0 ? impulse / ride : 0.0,
+                                        ride, instant_contact_state(contact_scratch_, *model_, c)),
                           law_state(state, c));
     const Vec3 kept = r.v_shot - plate_v0 - (r.v_shot - plate_v0).dot(n) * n;
     const Vec3 c_release = centre + kin.axis * (kin.displacement(t0_, u_release) - kin.displacement(t0_, u)) + slip * ride;

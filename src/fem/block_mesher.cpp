@@ -45,7 +45,8 @@ std::vector<double> graded_axis(double length, double fine, double h, double gro
 double block_element_count(const BlockMeshSpec& spec) {
     if (!(spec.half_width_m > 0.0) || !(spec.depth_m > 0.0) || !(spec.element_size_m > 0.0))
         throw std::invalid_argument("mesh_block: block sizes and element size must be positive");
-    const double half = static_cast<double>(graded_axis(spec.half_width_m, spec.fine_half_width_m, spec.element_size_m, spec.growth).size() - 1);
+    const double half =
+        static_cast<double>(graded_axis(spec.half_width_m, spec.fine_half_width_m, spec.element_size_m, spec.growth).size() - 1);
     const double depth = static_cast<double>(graded_axis(spec.depth_m, spec.fine_depth_m, spec.element_size_m, spec.growth).size() - 1);
     const double across = spec.quarter ? half : 2.0 * half;  // mesh_block mirrors the half axis
     return across * across * depth;
@@ -55,8 +56,7 @@ BlockMesh mesh_block(const BlockMeshSpec& spec) {
     if (!(spec.half_width_m > 0.0) || !(spec.depth_m > 0.0) || !(spec.element_size_m > 0.0))
         throw std::invalid_argument("mesh_block: block sizes and element size must be positive");
     BlockMesh b;
-    const std::vector<double> half =
-        graded_axis(spec.half_width_m, spec.fine_half_width_m, spec.element_size_m, spec.growth);
+    const std::vector<double> half = graded_axis(spec.half_width_m, spec.fine_half_width_m, spec.element_size_m, spec.growth);
     if (spec.quarter) {
         b.xs = half;
     } else {

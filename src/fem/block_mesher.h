@@ -23,11 +23,11 @@ struct BlockMeshSpec {
 
 struct BlockMesh {
     HexMesh mesh;
-    std::vector<double> xs, ys, zs;  // m, grid coordinates, increasing (zs from -depth to 0)
-    std::vector<int> top, bottom;    // node indices on z = 0 and z = -depth
+    std::vector<double> xs, ys, zs;               // m, grid coordinates, increasing (zs from -depth to 0)
+    std::vector<int> top, bottom;                 // node indices on z = 0 and z = -depth
     std::vector<int> x_min, x_max, y_min, y_max;  // node indices on the four sides
-    std::vector<int> top_elements;   // elements of the top layer: their face S2 is the surface
-    std::vector<int> profile;        // top nodes on y = 0, x >= 0, by increasing x (the dent profile)
+    std::vector<int> top_elements;                // elements of the top layer: their face S2 is the surface
+    std::vector<int> profile;                     // top nodes on y = 0, x >= 0, by increasing x (the dent profile)
 };
 
 // Grid coordinates from 0 to `length`: uniform edges of about `h` up to `fine` (the count rounded

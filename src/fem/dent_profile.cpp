@@ -32,8 +32,8 @@ std::map<int, Vec3> read_inp_nodes(const std::string& inp_path) {
     for (std::string line; std::getline(in, line);) {
         if (line.rfind("**", 0) == 0) continue;
         if (!line.empty() && line[0] == '*') {
-            in_nodes = upper(line).rfind("*NODE", 0) == 0 && upper(line).rfind("*NODE PRINT", 0) != 0 &&
-                       upper(line).rfind("*NODE FILE", 0) != 0;
+            in_nodes =
+                upper(line).rfind("*NODE", 0) == 0 && upper(line).rfind("*NODE PRINT", 0) != 0 && upper(line).rfind("*NODE FILE", 0) != 0;
             continue;
         }
         if (!in_nodes || trimmed(line).empty()) continue;

@@ -23,10 +23,10 @@ std::map<int, Vec3> read_inp_nodes(const std::string& inp_path);
 std::map<int, Vec3> read_dat_last_table(const std::string& dat_path, const std::string& quantity, const std::string& set);
 
 struct DentProfile {
-    double depth_m = 0.0;                // m, minus the vertical displacement at the centre
-    double zero_diameter_m = 0.0;        // m, 2 x the deformed radius where the vertical displacement first comes back to 0
-    double crest_diameter_m = 0.0;       // m, 2 x the deformed radius of the highest pile-up
-    double crest_height_m = 0.0;         // m, the pile-up's height
+    double depth_m = 0.0;           // m, minus the vertical displacement at the centre
+    double zero_diameter_m = 0.0;   // m, 2 x the deformed radius where the vertical displacement first comes back to 0
+    double crest_diameter_m = 0.0;  // m, 2 x the deformed radius of the highest pile-up
+    double crest_height_m = 0.0;    // m, the pile-up's height
 };
 
 // From the nodes on the line y = 0, x >= 0 (coordinates and displacements, any order). Throws

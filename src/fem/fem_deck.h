@@ -14,20 +14,20 @@
 namespace peensim {
 
 struct FemMaterial {
-    std::string name;                      // deck name (upper case, no spaces)
-    double youngs_modulus_pa = 0.0;        // Pa, E
-    double poisson_ratio = 0.0;            // -, nu
-    double density_kg_per_m3 = 0.0;        // kg/m3
-    std::optional<double> yield_stress_pa; // Pa; empty = elastic only
-    double hardening_modulus_pa = 0.0;     // Pa, slope of the yield stress against plastic strain (0 = perfectly plastic)
+    std::string name;                       // deck name (upper case, no spaces)
+    double youngs_modulus_pa = 0.0;         // Pa, E
+    double poisson_ratio = 0.0;             // -, nu
+    double density_kg_per_m3 = 0.0;         // kg/m3
+    std::optional<double> yield_stress_pa;  // Pa; empty = elastic only
+    double hardening_modulus_pa = 0.0;      // Pa, slope of the yield stress against plastic strain (0 = perfectly plastic)
 };
 
 // One shot: a copy of the shot mesh moved to `start_centre_m` with `velocity_m_per_s` at t = 0.
 struct FemShot {
-    Vec3 start_centre_m = Vec3::Zero();       // m, patch frame, at t = 0
-    Vec3 velocity_m_per_s = Vec3::Zero();     // m/s, patch frame
-    int step = 0;                             // 0-based step it lands in
-    int impact = 0;                           // index into the export's impact list
+    Vec3 start_centre_m = Vec3::Zero();    // m, patch frame, at t = 0
+    Vec3 velocity_m_per_s = Vec3::Zero();  // m/s, patch frame
+    int step = 0;                          // 0-based step it lands in
+    int impact = 0;                        // index into the export's impact list
 };
 
 struct FemStep {

@@ -29,9 +29,8 @@ struct HexMesh {
 // run along a right-handed frame.
 template <class NodeIndex>
 HexElement grid_cell(int i, int j, int k, NodeIndex node_index) {
-    return {node_index(i, j, k),         node_index(i + 1, j, k),         node_index(i + 1, j + 1, k),
-            node_index(i, j + 1, k),     node_index(i, j, k + 1),         node_index(i + 1, j, k + 1),
-            node_index(i + 1, j + 1, k + 1), node_index(i, j + 1, k + 1)};
+    return {node_index(i, j, k),     node_index(i + 1, j, k),     node_index(i + 1, j + 1, k),     node_index(i, j + 1, k),
+            node_index(i, j, k + 1), node_index(i + 1, j, k + 1), node_index(i + 1, j + 1, k + 1), node_index(i, j + 1, k + 1)};
 }
 
 // Signed volume of a brick (m^3), by its decomposition into 6 tetrahedra along the 1-7 diagonal.

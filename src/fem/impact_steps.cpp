@@ -22,8 +22,10 @@ std::vector<std::vector<int>> group_impacts(const std::vector<PatchImpact>& impa
                     break;
                 }
             }
-        if (fits) groups.back().push_back(static_cast<int>(i));
-        else groups.push_back({static_cast<int>(i)});
+        if (fits)
+            groups.back().push_back(static_cast<int>(i));
+        else
+            groups.push_back({static_cast<int>(i)});
     }
     return groups;
 }
@@ -32,8 +34,8 @@ double hertz_contact_time(double radius_m, double mass_kg, double effective_modu
     return 2.87 * std::pow(mass_kg * mass_kg / (radius_m * effective_modulus_pa * effective_modulus_pa * normal_speed_m_per_s), 0.2);
 }
 
-void plan_steps(FemDeck& deck, const std::vector<PatchImpact>& impacts, const std::vector<std::vector<int>>& groups,
-                double shot_radius_m, const StepTiming& timing) {
+void plan_steps(FemDeck& deck, const std::vector<PatchImpact>& impacts, const std::vector<std::vector<int>>& groups, double shot_radius_m,
+                const StepTiming& timing) {
     const double mass = deck.shot.density_kg_per_m3 * 4.0 / 3.0 * M_PI * std::pow(shot_radius_m, 3);
     const double e_star = 1.0 / ((1.0 - deck.target.poisson_ratio * deck.target.poisson_ratio) / deck.target.youngs_modulus_pa +
                                  (1.0 - deck.shot.poisson_ratio * deck.shot.poisson_ratio) / deck.shot.youngs_modulus_pa);

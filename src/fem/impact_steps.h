@@ -17,12 +17,12 @@
 namespace peensim {
 
 struct PatchImpact {
-    std::uint64_t row = 0;           // row of impacts.csv (1 = first after the header); 0 = synthetic
-    double time_s = 0.0;             // s, in the run
-    Vec3 point_m = Vec3::Zero();     // m, patch frame, on the tangent plane (z = 0)
-    double plane_offset_m = 0.0;     // m, how far above (+) or below the tangent plane the logged point was
+    std::uint64_t row = 0;                 // row of impacts.csv (1 = first after the header); 0 = synthetic
+    double time_s = 0.0;                   // s, in the run
+    Vec3 point_m = Vec3::Zero();           // m, patch frame, on the tangent plane (z = 0)
+    double plane_offset_m = 0.0;           // m, how far above (+) or below the tangent plane the logged point was
     Vec3 velocity_m_per_s = Vec3::Zero();  // m/s, patch frame, incoming (z < 0)
-    double dent_diameter_m = 0.0;    // m, eq. 10 with the normal speed
+    double dent_diameter_m = 0.0;          // m, eq. 10 with the normal speed
 };
 
 struct GroupingRule {
@@ -38,15 +38,15 @@ std::vector<std::vector<int>> group_impacts(const std::vector<PatchImpact>& impa
 double hertz_contact_time(double radius_m, double mass_kg, double effective_modulus_pa, double normal_speed_m_per_s);
 
 struct StepTiming {
-    double gap_radii = 0.02;          // -, normal clearance of a shot at its step's start, in shot radii
-    double contact_times = 3.0;       // -, a step lasts this many Hertz contact times after the gap's flight
+    double gap_radii = 0.02;               // -, normal clearance of a shot at its step's start, in shot radii
+    double contact_times = 3.0;            // -, a step lasts this many Hertz contact times after the gap's flight
     double increments_per_contact = 15.0;  // -, the largest increment is the contact time over this
 };
 
 // Fills deck.shots and deck.steps (the meshes and materials must be set: the shot radius is
 // taken from the shot mesh's extent, materials for the contact time). Throws std::invalid_argument
 // for an impact that does not approach the surface.
-void plan_steps(FemDeck& deck, const std::vector<PatchImpact>& impacts, const std::vector<std::vector<int>>& groups,
-                double shot_radius_m, const StepTiming& timing);
+void plan_steps(FemDeck& deck, const std::vector<PatchImpact>& impacts, const std::vector<std::vector<int>>& groups, double shot_radius_m,
+                const StepTiming& timing);
 
 }  // namespace peensim

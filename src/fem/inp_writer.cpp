@@ -4,7 +4,6 @@
 #include <ostream>
 #include <string>
 
-
 namespace peensim {
 
 namespace {
@@ -105,7 +104,8 @@ void write_inp(std::ostream& out, const FemDeck& d) {
     if (!d.shots.empty()) {
         ids.clear();
         for (std::size_t s = 0; s < d.shots.size(); ++s)
-            for (std::size_t e = 0; e < ball.elements.size(); ++e) ids.push_back(shot_element_id(d, static_cast<int>(s), static_cast<int>(e)));
+            for (std::size_t e = 0; e < ball.elements.size(); ++e)
+                ids.push_back(shot_element_id(d, static_cast<int>(s), static_cast<int>(e)));
         write_set(out, "ELSET", "ESHOTS", ids);
         for (int face = 1; face <= 6; ++face) {
             ids.clear();
@@ -152,8 +152,7 @@ void write_inp(std::ostream& out, const FemDeck& d) {
     if (!d.shots.empty()) {
         out << "*INITIAL CONDITIONS, TYPE=VELOCITY\n";
         for (std::size_t s = 0; s < d.shots.size(); ++s)
-            for (int k = 0; k < 3; ++k)
-                out << "NSHOT" << s + 1 << ", " << k + 1 << ", " << num(d.shots[s].velocity_m_per_s[k]) << "\n";
+            for (int k = 0; k < 3; ++k) out << "NSHOT" << s + 1 << ", " << k + 1 << ", " << num(d.shots[s].velocity_m_per_s[k]) << "\n";
     }
 
     for (std::size_t k = 0; k < d.steps.size(); ++k) {

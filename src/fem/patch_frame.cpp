@@ -16,8 +16,10 @@ PatchFrame frame_from_normal(const Vec3& centre_m, const Vec3& normal) {
     f.centre_m = centre_m;
     f.normal = normal.normalized();
     Vec3 axis = Vec3::UnitX();
-    if (std::abs(f.normal.y()) < std::abs(f.normal[0]) && std::abs(f.normal.y()) <= std::abs(f.normal.z())) axis = Vec3::UnitY();
-    else if (std::abs(f.normal.z()) < std::abs(f.normal[0]) && std::abs(f.normal.z()) < std::abs(f.normal.y())) axis = Vec3::UnitZ();
+    if (std::abs(f.normal.y()) < std::abs(f.normal[0]) && std::abs(f.normal.y()) <= std::abs(f.normal.z()))
+        axis = Vec3::UnitY();
+    else if (std::abs(f.normal.z()) < std::abs(f.normal[0]) && std::abs(f.normal.z()) < std::abs(f.normal.y()))
+        axis = Vec3::UnitZ();
     f.e1 = (axis - axis.dot(f.normal) * f.normal).normalized();
     f.e2 = f.normal.cross(f.e1);
     return f;

@@ -13,9 +13,9 @@ namespace peensim {
 
 struct SphereMesh {
     HexMesh mesh;
-    std::vector<HexFace> surface;   // the faces on the ball's surface
-    int centre_node = 0;            // the node at the centre (its velocity is the shot's)
-    std::vector<int> x0, y0;        // nodes on x = 0 and y = 0 (the quarter ball's symmetry planes)
+    std::vector<HexFace> surface;  // the faces on the ball's surface
+    int centre_node = 0;           // the node at the centre (its velocity is the shot's)
+    std::vector<int> x0, y0;       // nodes on x = 0 and y = 0 (the quarter ball's symmetry planes)
 };
 
 // `divisions`: cells along a cube edge, even and >= 2. Throws std::invalid_argument otherwise or

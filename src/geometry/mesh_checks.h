@@ -18,7 +18,7 @@ double triangle_area(const TriangleMesh& mesh, std::size_t t);  // m2
 // convex edge or corner of the mesh touches it.
 int triangle_edge_at(const TriangleMesh& mesh, std::size_t t, const Vec3& p);
 inline bool on_triangle_edge(const TriangleMesh& mesh, std::size_t t, const Vec3& p) { return triangle_edge_at(mesh, t, p) >= 0; }
-double surface_area(const TriangleMesh& mesh);                  // m2, sum over all triangles
+double surface_area(const TriangleMesh& mesh);  // m2, sum over all triangles
 
 // m3, signed volume by the divergence theorem. For a closed mesh whose normals point out of
 // the solid it is the solid's volume (positive); inward-facing normals give minus the volume.

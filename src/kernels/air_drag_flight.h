@@ -20,11 +20,11 @@
 namespace peensim {
 
 struct AirDrag {
-    double air_density_kg_per_m3 = 1.205;    // kg/m3, air at 20 C
-    double air_viscosity_pa_s = 1.822e-5;    // Pa s
-    std::optional<double> drag_coefficient;  // -, constant C_d; empty: the standard drag curve C_d(Re)
-    double shot_radius_m = 0.0;              // m
-    double shot_density_kg_per_m3 = 0.0;     // kg/m3
+    double air_density_kg_per_m3 = 1.205;          // kg/m3, air at 20 C
+    double air_viscosity_pa_s = 1.822e-5;          // Pa s
+    std::optional<double> drag_coefficient;        // -, constant C_d; empty: the standard drag curve C_d(Re)
+    double shot_radius_m = 0.0;                    // m
+    double shot_density_kg_per_m3 = 0.0;           // kg/m3
     std::shared_ptr<const AirVelocityField> wind;  // the air's motion; empty: still air
 };
 

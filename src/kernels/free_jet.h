@@ -24,12 +24,12 @@
 namespace peensim {
 
 struct FreeJet {
-    static constexpr double kDecayConstant = 5.8;   // B: the core's length in exit diameters
+    static constexpr double kDecayConstant = 5.8;    // B: the core's length in exit diameters
     static constexpr double kSpreadingRate = 0.094;  // S: half-width growth per length
-    Vec3 exit_m = Vec3::Zero();  // m, the exit's centre, world
-    Vec3 axis = -Vec3::UnitZ();  // unit, world
-    double exit_diameter_m = 0.0;   // m, D_n
-    double exit_speed_m_per_s = 0.0;  // m/s, U_0 (the air's, not the shot's)
+    Vec3 exit_m = Vec3::Zero();                      // m, the exit's centre, world
+    Vec3 axis = -Vec3::UnitZ();                      // unit, world
+    double exit_diameter_m = 0.0;                    // m, D_n
+    double exit_speed_m_per_s = 0.0;                 // m/s, U_0 (the air's, not the shot's)
 
     Vec3 velocity_at(const Vec3& p) const;
 };

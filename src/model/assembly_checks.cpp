@@ -328,11 +328,14 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
             // The shot wider than the gaps around the part is the likelier cause than a misplaced
             // part: name it with the gaps.
             const double diameter = 2.0 * m.max_shot_radius_m;  // m
-            const bool sono_gap = diameter > facts.clearance_to_sonotrode_m, chamber_gap = facts.clearance_to_chamber_m > 0.0 && diameter > facts.clearance_to_chamber_m;  // 0: held by the chamber
+            const bool sono_gap = diameter > facts.clearance_to_sonotrode_m,
+                       chamber_gap =
+                           facts.clearance_to_chamber_m > 0.0 && diameter > facts.clearance_to_chamber_m;  // 0: held by the chamber
             if (sono_gap || chamber_gap) {
                 s << ": the shot (" << 1e3 * diameter << " mm) is wider than the gap between it and the "
                   << (sono_gap ? "sonotrode (" + mm_text(facts.clearance_to_sonotrode_m) + ")" : "")
-                  << (sono_gap && chamber_gap ? " and the " : "") << (chamber_gap ? "chamber (" + mm_text(facts.clearance_to_chamber_m) + ")" : "")
+                  << (sono_gap && chamber_gap ? " and the " : "")
+                  << (chamber_gap ? "chamber (" + mm_text(facts.clearance_to_chamber_m) + ")" : "")
                   << "; expected shot that pass between them: a smaller shot.diameter, or the part further from them";
             } else {
                 s << " (the rest lies outside the chamber's cavity, in the sonotrode or in another component); " << where.str()

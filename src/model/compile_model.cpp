@@ -270,8 +270,9 @@ std::shared_ptr<const FlightModel> flight_model_of(const SceneDescription& scene
         if (!s.air_speed_m_per_s) continue;
         const std::string field = "sources[" + std::to_string(k) + "].air_speed";
         if (!scene.air.drag && !scene.air.rebound_scatter)
-            throw InputError(s.where, field,
-                             "an air jet acts on the shot through drag (or rebound scatter), both off; expected air.drag: sphere with air_speed");
+            throw InputError(
+                s.where, field,
+                "an air jet acts on the shot through drag (or rebound scatter), both off; expected air.drag: sphere with air_speed");
         if (!(s.exit_radius_m > 0.0))
             throw InputError(s.where, field, "an air jet needs the nozzle's exit; expected `diameter` or `exit_radius` > 0 with air_speed");
     }

@@ -57,14 +57,14 @@ struct Model {
     std::vector<Component> components;
     int sonotrode = -1;  // index into components; -1: none (a scene fed by sources only)
 
-    int shot_count = 0;                                         // placed on the sonotrode at the start; sources may add more during the run
+    int shot_count = 0;  // placed on the sonotrode at the start; sources may add more during the run
     // The shot's sizes, in the scene's order; one for a scene of one size. Geometry is per shot
     // (its size's radius); the smallest radius scales the schemes' tolerances and step lengths,
     // the largest their search reaches.
     std::vector<ShotSize> shot_sizes;
-    std::vector<double> size_count_fraction;  // -, shot_sizes' count_fraction in one array (size_for_draw)
-    double min_shot_radius_m = 0.0;           // m
-    double max_shot_radius_m = 0.0;           // m
+    std::vector<double> size_count_fraction;                    // -, shot_sizes' count_fraction in one array (size_for_draw)
+    double min_shot_radius_m = 0.0;                             // m
+    double max_shot_radius_m = 0.0;                             // m
     std::shared_ptr<const contact::ShotShotLaw> shot_shot_law;  // the `shot-shot` pair's law, bound
 
     Vec3 gravity_m_per_s2 = Vec3::Zero();  // m/s2

@@ -95,7 +95,7 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     for (const Component& c : m.components)
         if (c.role == ComponentRole::chamber) lo = lo.cwiseMin(c.world_lo), hi = hi.cwiseMax(c.world_hi);
     const Vec3 chamber = hi - lo;
-    const double D = 2.0 * m.max_shot_radius_m;  // the largest of a mix
+    const double D = 2.0 * m.max_shot_radius_m;            // the largest of a mix
     if (lo.x() <= hi.x() && D > 0.1 * chamber.minCoeff())  // (a scene fed by sources may have no chamber)
         warn(scene.shot.where, scene.shot.sizes_given ? "shot.sizes" : "shot.diameter",
              "shot of " + num(D * 1e3) + " mm in a chamber " + num(chamber.minCoeff() * 1e3) +

@@ -17,7 +17,8 @@ NozzleSource::NozzleSource(const NozzleSpec& spec) : spec_(spec) {
 }
 
 std::uint64_t NozzleSource::emission_stream(std::uint64_t k, unsigned attempt) const {
-    return spec_.seed * 0x9e3779b97f4a7c15ull ^ (static_cast<std::uint64_t>(spec_.index + 1) << 48) ^ (static_cast<std::uint64_t>(attempt) << 40) ^ k;
+    return spec_.seed * 0x9e3779b97f4a7c15ull ^ (static_cast<std::uint64_t>(spec_.index + 1) << 48) ^
+           (static_cast<std::uint64_t>(attempt) << 40) ^ k;
 }
 
 std::optional<Emission> NozzleSource::emission(std::uint64_t k, unsigned attempt) const {

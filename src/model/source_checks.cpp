@@ -42,10 +42,11 @@ std::vector<AssemblyIssue> source_issues(const Model& m) {
             if (c.role == ComponentRole::chamber || !is_closed(*c.mesh)) continue;
             const Inside inside = inside_component(c, src.position_m);
             if (inside == Inside::no) continue;
-            out.push_back({true, src.where, "sources[" + std::to_string(s) + "]",
-                           "the exit of nozzle '" + src.name + "' at " + mm_point(src.position_m) + " lies inside '" + c.name + "'" +
-                               (inside == Inside::as_it_turns ? " as it turns" : "") +
-                               ": every shot would start inside it; expected an exit in the open (check position, or target and distance)"});
+            out.push_back(
+                {true, src.where, "sources[" + std::to_string(s) + "]",
+                 "the exit of nozzle '" + src.name + "' at " + mm_point(src.position_m) + " lies inside '" + c.name + "'" +
+                     (inside == Inside::as_it_turns ? " as it turns" : "") +
+                     ": every shot would start inside it; expected an exit in the open (check position, or target and distance)"});
         }
     }
     return out;

@@ -115,8 +115,8 @@ ImpactCsvWriter::ImpactCsvWriter(std::string dir, std::vector<std::string> compo
     bytes_written_ = used_;
 }
 
-ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string> component_names, std::uint64_t bytes,
-                                        std::uint64_t rows, bool shot_diameter) {
+ImpactCsvWriter ImpactCsvWriter::resume(std::string dir, std::vector<std::string> component_names, std::uint64_t bytes, std::uint64_t rows,
+                                        bool shot_diameter) {
     const std::string partial = join_path(dir, kImpactCsvPartialFileName);
     // A run that failed after finish() (a full disk while writing its summary) has its rows in
     // impacts.csv already and a checkpoint still: they go back to the .partial to be continued.

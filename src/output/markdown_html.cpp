@@ -90,8 +90,8 @@ std::string markdown_to_html(const std::string& markdown, const std::string& tit
     std::istringstream in(markdown);
     for (std::string l; std::getline(in, l);) lines.push_back(l);
     std::ostringstream h;
-    h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << xml_text(title) << "</title>\n<style>" << kStyle
-      << "</style>\n</head>\n<body>\n";
+    h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << xml_text(title) << "</title>\n<style>"
+      << kStyle << "</style>\n</head>\n<body>\n";
     std::string paragraph;  // text lines of the paragraph being read
     const auto end_paragraph = [&] {
         if (!paragraph.empty()) h << "<p>" << inline_html(paragraph) << "</p>\n";

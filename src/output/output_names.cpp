@@ -29,8 +29,9 @@ void check_output_name(const std::string& option, const std::string& name) {
     const std::string expected = "expected a file name of letters, digits, '.', '-' and '_' (it stays inside the output directory)";
     if (name.empty()) throw InputError({option}, "", expected + ", got an empty name");
     if (name.size() > kMaxOutputNameBytes)
-        throw InputError({option}, "", expected + " of at most " + std::to_string(kMaxOutputNameBytes) + " bytes, got " +
-                                           std::to_string(name.size()) + " bytes");
+        throw InputError(
+            {option}, "",
+            expected + " of at most " + std::to_string(kMaxOutputNameBytes) + " bytes, got " + std::to_string(name.size()) + " bytes");
     if (name == "." || name == "..") throw InputError({option}, "", expected + ", got " + text_excerpt(name) + " (a directory)");
     for (const char c : name) {
         if (name_character(c)) continue;
@@ -45,9 +46,11 @@ void check_output_file_directory(const std::string& option, const std::string& p
     const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
     std::error_code ec;
     if (!fs::exists(dir, ec))
-        throw InputError({option}, "", "the directory " + text_excerpt(dir.string()) + " of " + text_excerpt(path) +
-                                           " does not exist; expected a file in an existing directory (peensim creates none for it)");
-    if (!fs::is_directory(dir, ec)) throw InputError({option}, "", text_excerpt(dir.string()) + " is not a directory; expected a file in a directory");
+        throw InputError({option}, "",
+                         "the directory " + text_excerpt(dir.string()) + " of " + text_excerpt(path) +
+                             " does not exist; expected a file in an existing directory (peensim creates none for it)");
+    if (!fs::is_directory(dir, ec))
+        throw InputError({option}, "", text_excerpt(dir.string()) + " is not a directory; expected a file in a directory");
     if (!p.has_filename() || fs::is_directory(p, ec))
         throw InputError({option}, "", text_excerpt(path) + " is a directory; expected a file name");
 }

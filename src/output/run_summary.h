@@ -37,12 +37,12 @@ struct StageTime {
 };
 
 struct RunSummary {
-    std::string scene_file;  // path as the user gave it
+    std::string scene_file;              // path as the user gave it
     std::vector<std::string> overrides;  // the --set options, as given ("path=value"), in order
-    std::string scene_hash;  // hex digest of the scene and everything it references
-    std::string scheme;      // time-integration scheme name
-    std::string flight;      // flight model between contacts ("parabola", "air drag")
-    bool finished = false;   // false when the run was interrupted (Ctrl-C, --max-wall-time)
+    std::string scene_hash;              // hex digest of the scene and everything it references
+    std::string scheme;                  // time-integration scheme name
+    std::string flight;                  // flight model between contacts ("parabola", "air drag")
+    bool finished = false;               // false when the run was interrupted (Ctrl-C, --max-wall-time)
 
     double simulated_time_s = 0.0;  // s, simulated time reached
     double duration_s = 0.0;        // s, simulated time the scene asked for

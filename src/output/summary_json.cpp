@@ -32,7 +32,8 @@ std::string summary_to_json(const RunSummary& s) {
         for (const auto& a : s.until_coverage->areas)
             areas.push_back({{"area", a.name},
                              {"coverage", a.coverage},
-                             {"reached_at_s", std::isfinite(a.reached_at_s) ? nlohmann::ordered_json(a.reached_at_s) : nlohmann::ordered_json(nullptr)}});
+                             {"reached_at_s",
+                              std::isfinite(a.reached_at_s) ? nlohmann::ordered_json(a.reached_at_s) : nlohmann::ordered_json(nullptr)}});
         j["until_coverage"] = {{"target", s.until_coverage->target}, {"reached", s.until_coverage->reached}, {"areas", std::move(areas)}};
     }
 
@@ -57,7 +58,8 @@ std::string summary_to_json(const RunSummary& s) {
     j["flow_rate_eps"] = std::move(eps);
     auto sizes = nlohmann::ordered_json::array();
     for (const RunSummary::ShotSizeCount& z : s.shot_sizes)
-        sizes.push_back({{"diameter_m", z.diameter_m}, {"count_fraction", z.count_fraction}, {"mass_fraction", z.mass_fraction}, {"shots", z.shots}});
+        sizes.push_back(
+            {{"diameter_m", z.diameter_m}, {"count_fraction", z.count_fraction}, {"mass_fraction", z.mass_fraction}, {"shots", z.shots}});
     j["shot_sizes"] = std::move(sizes);
     j["impact_speed_mps"] = s.impact_speed_m_per_s;
 
@@ -77,7 +79,9 @@ std::string summary_to_json(const RunSummary& s) {
     for (const auto& h : s.health_counters) health[h.name] = h.count;
     j["health_counters"] = std::move(health);
     if (const auto& f = s.first_search_fallback; f.shot >= 0)
-        j["first_search_fallback"] = {{"time_s", f.time_s}, {"shot", f.shot}, {"component", f.component},
+        j["first_search_fallback"] = {{"time_s", f.time_s},
+                                      {"shot", f.shot},
+                                      {"component", f.component},
                                       {"position_m", {f.position_m[0], f.position_m[1], f.position_m[2]}}};
 
     auto stages = nlohmann::ordered_json::object();

@@ -86,11 +86,12 @@ std::string summary_to_text(const RunSummary& s) {
             }
         }
         const double target = 100.0 * s.until_coverage->target;
-        rows.emplace_back("until coverage",
-                          s.until_coverage->reached
-                              ? printf_string("%.4g %% reached everywhere watched (%d areas) at %.6g s, last %s", target, reached, last, slowest.c_str())
-                              : printf_string("%.4g %% reached in %d of %zu areas; not yet: %s%s", target, reached,
-                                              s.until_coverage->areas.size(), missing.c_str(), reached + 1 < static_cast<int>(s.until_coverage->areas.size()) ? ", ..." : ""));
+        rows.emplace_back(
+            "until coverage",
+            s.until_coverage->reached
+                ? printf_string("%.4g %% reached everywhere watched (%d areas) at %.6g s, last %s", target, reached, last, slowest.c_str())
+                : printf_string("%.4g %% reached in %d of %zu areas; not yet: %s%s", target, reached, s.until_coverage->areas.size(),
+                                missing.c_str(), reached + 1 < static_cast<int>(s.until_coverage->areas.size()) ? ", ..." : ""));
     }
     // Flights other than the exact parabola (air drag) run with time stepping only: say why.
     if (!s.flight.empty() && s.flight != "parabola")
@@ -112,10 +113,10 @@ std::string summary_to_text(const RunSummary& s) {
         for (const auto& z : s.shot_sizes) total += z.shots;
         std::string value;
         for (const auto& z : s.shot_sizes)
-            value += (value.empty() ? "" : ", ") + printf_string("%.4g mm %llu (%.1f %% of the count, asked %.1f %%)", z.diameter_m * 1e3,
-                                                                 static_cast<unsigned long long>(z.shots),
-                                                                 total > 0 ? 100.0 * static_cast<double>(z.shots) / static_cast<double>(total) : 0.0,
-                                                                 100.0 * z.count_fraction);
+            value += (value.empty() ? "" : ", ") +
+                     printf_string(
+                         "%.4g mm %llu (%.1f %% of the count, asked %.1f %%)", z.diameter_m * 1e3, static_cast<unsigned long long>(z.shots),
+                         total > 0 ? 100.0 * static_cast<double>(z.shots) / static_cast<double>(total) : 0.0, 100.0 * z.count_fraction);
         rows.emplace_back("shot sizes", value);
     }
     for (const auto& c : s.impacts_per_component) {
@@ -129,10 +130,11 @@ std::string summary_to_text(const RunSummary& s) {
     for (const auto& [component, text] : s.law_states) rows.emplace_back("law " + component, text);
     rows.emplace_back("health", health_text(s.health_counters));
     if (const auto& f = s.first_search_fallback; f.shot >= 0)
-        rows.emplace_back("search fallback",
-                          printf_string("first at t = %.6g s: shot %d near '%s' at (%.3f, %.3f, %.3f) mm, its exact contact search gaining no "
-                                        "time; it went on in sustained-contact substeps",
-                                        f.time_s, f.shot, f.component.c_str(), 1e3 * f.position_m[0], 1e3 * f.position_m[1], 1e3 * f.position_m[2]));
+        rows.emplace_back(
+            "search fallback",
+            printf_string("first at t = %.6g s: shot %d near '%s' at (%.3f, %.3f, %.3f) mm, its exact contact search gaining no "
+                          "time; it went on in sustained-contact substeps",
+                          f.time_s, f.shot, f.component.c_str(), 1e3 * f.position_m[0], 1e3 * f.position_m[1], 1e3 * f.position_m[2]));
     rows.emplace_back("peak memory", printf_string("%.1f MiB", static_cast<double>(s.peak_memory_bytes) / (1024.0 * 1024.0)));
 
     std::size_t width = 0;

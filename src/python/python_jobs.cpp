@@ -135,8 +135,8 @@ int run(const std::string& path, const std::optional<std::string>& text, const s
     return code;
 }
 
-void analyze(const std::string& dir, bool verbose, double from_s, std::optional<double> to_s, double min_speed, std::optional<double> target,
-             const std::string& smoothing_radius) {
+void analyze(const std::string& dir, bool verbose, double from_s, std::optional<double> to_s, double min_speed,
+             std::optional<double> target, const std::string& smoothing_radius) {
     PythonStream out(verbose ? sys_stream("stdout") : py::none());
     PythonStream err(sys_stream("stderr"));
     py::gil_scoped_release release;
@@ -216,9 +216,8 @@ void bind_jobs(py::module_& m) {
     m.def("run", &run, py::arg("path"), py::arg("text"), py::arg("overrides"), py::arg("output_dir"), py::arg("resume"), py::arg("strict"),
           py::arg("analyze"), py::arg("render"), py::arg("verbose"), py::arg("progress"),
           "Runs a scene as `peensim run` does; returns its exit code (0, 3 strict failure, 130 stopped).");
-    m.def("analyze", &analyze, py::arg("dir"), py::arg("verbose"), py::arg("from_s"), py::arg("to_s"), py::arg("min_speed"), py::arg("target"),
-          py::arg("smoothing_radius"),
-          "Analyses a run directory as `peensim analyze` does.");
+    m.def("analyze", &analyze, py::arg("dir"), py::arg("verbose"), py::arg("from_s"), py::arg("to_s"), py::arg("min_speed"),
+          py::arg("target"), py::arg("smoothing_radius"), "Analyses a run directory as `peensim analyze` does.");
     m.def("sweep", &sweep, py::arg("scene_path"), py::arg("output_dir"), py::arg("vary"), py::arg("overrides"), py::arg("seeds"),
           py::arg("jobs"), py::arg("baseline"), py::arg("executable"), py::arg("verbose"),
           "Runs a sweep as `peensim sweep` does; returns its exit code (0, 1 a run failed, 130 stopped).");

@@ -13,7 +13,7 @@ std::unique_ptr<peensim::FrameSink> make_recorder(const peensim::Model& model, c
     return std::make_unique<peensim::FrameRecorder>(model, desc, dir, now);
 }
 
-const peensim::RenderModule kModule{&make_recorder,         &peensim::render_impacts_job, &peensim::draw_assembly_picture,
+const peensim::RenderModule kModule{&make_recorder, &peensim::render_impacts_job, &peensim::draw_assembly_picture,
                                     &peensim::render_regions_job, &peensim::draw_region_highlight};
 
 }  // namespace

@@ -78,7 +78,8 @@ double robust_top(const TriangleMesh& mesh, const std::vector<double>& values) {
     std::vector<std::pair<double, double>> by_value;  // (value, area m2)
     for (std::size_t t = 0; t < values.size(); ++t)
         if (std::isfinite(values[t]))
-            by_value.emplace_back(values[t], 0.5 * (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).norm());
+            by_value.emplace_back(values[t],
+                                  0.5 * (mesh.corner(t, 1) - mesh.corner(t, 0)).cross(mesh.corner(t, 2) - mesh.corner(t, 0)).norm());
     return area_percentile(std::move(by_value), 0.98);
 }
 

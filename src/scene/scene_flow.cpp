@@ -57,8 +57,8 @@ void read_placement(const Cursor& c, const Vec3& up, SourceDesc& d) {
 
 }  // namespace
 
-void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up, const std::filesystem::path& scene_dir,
-               std::vector<SourceDesc>& out_sources, std::vector<SinkDesc>& out_sinks) {
+void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up,
+               const std::filesystem::path& scene_dir, std::vector<SourceDesc>& out_sources, std::vector<SinkDesc>& out_sinks) {
     std::set<std::string> names;
     for (std::size_t i = 0; i < sources.size(); ++i) {
         const Cursor c = sources.item(i);
@@ -94,7 +94,8 @@ void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, do
         const std::string region = read_choice(c.child("region"));
         d.region = region == "outside" ? SinkRegion::outside : region == "mesh" ? SinkRegion::mesh : SinkRegion::box;
         for (const char* key : {"mesh", "mesh_unit", "translation"})
-            if (d.region != SinkRegion::mesh && c.child(key).present()) fail(c.child(key), std::string("'") + key + "' is only for region mesh");
+            if (d.region != SinkRegion::mesh && c.child(key).present())
+                fail(c.child(key), std::string("'") + key + "' is only for region mesh");
         if (d.region == SinkRegion::mesh) {
             if (!c.child("mesh").present()) fail(c, "missing required key 'mesh' (a mesh sink needs its closed mesh)");
             d.mesh_path = resolve_mesh(c.child("mesh"), scene_dir);

@@ -11,8 +11,8 @@
 #include "common/units.h"
 #include "scene/overrides.h"
 #include "scene/scene_sections.h"
-#include "scene/shot_mix.h"
 #include "scene/schema_validation.h"
+#include "scene/shot_mix.h"
 #include "scene/yaml_access.h"
 #include "scene/yaml_load.h"
 
@@ -43,8 +43,8 @@ void check_shot_origin(const Cursor& root, const SceneDescription& d) {
 void check_until_coverage(const Cursor& process, const SceneDescription& d) {
     if (!d.process.until_coverage) return;
     const auto covered = [&d](const ComponentDesc& c) {
-        const bool logged = std::find(d.output.logged_components.begin(), d.output.logged_components.end(), c.name) !=
-                            d.output.logged_components.end();
+        const bool logged =
+            std::find(d.output.logged_components.begin(), d.output.logged_components.end(), c.name) != d.output.logged_components.end();
         const auto m = std::find_if(d.materials.begin(), d.materials.end(), [&c](const MaterialDesc& x) { return x.name == c.material; });
         return logged && m != d.materials.end() && m->yield_stress_pa.has_value();
     };
@@ -60,7 +60,8 @@ void check_until_coverage(const Cursor& process, const SceneDescription& d) {
         const auto c = std::find_if(d.components.begin(), d.components.end(), [&part](const ComponentDesc& x) { return x.name == part; });
         if (c == d.components.end() || !covered(*c))
             fail(process.child("until_coverage_of"),
-                 "unknown part '" + part + "' in '" + name + "'; expected `part` or `part/region` of a logged part with a yield stress: " + parts);
+                 "unknown part '" + part + "' in '" + name +
+                     "'; expected `part` or `part/region` of a logged part with a yield stress: " + parts);
         if (slash == std::string::npos) continue;
         const std::string region = name.substr(slash + 1);
         std::string names;
@@ -72,7 +73,7 @@ void check_until_coverage(const Cursor& process, const SceneDescription& d) {
             }
         if (!found)
             fail(process.child("until_coverage_of"), "part '" + part + "' has no region '" + region + "'; expected one of: " +
-                                                          (names.empty() ? std::string("(none: it has no regions)") : names));
+                                                         (names.empty() ? std::string("(none: it has no regions)") : names));
     }
 }
 
@@ -139,7 +140,8 @@ SceneDescription parse_scene_text(const std::string& yaml_text, const std::strin
         // SI, such as a resolved scene, stays quiet whatever unit an override writes); one in an
         // override, when the file or another override does.
         for (const PlainQuantity& q : context.plain_quantities)
-            if (q.where.file == override_file_name ? context.units_given : context.units_in_file) d.warnings.push_back(plain_number_warning(q));
+            if (q.where.file == override_file_name ? context.units_given : context.units_in_file)
+                d.warnings.push_back(plain_number_warning(q));
         return d;
     } catch (const YAML::Exception& e) {
         // The checks above should leave yaml-cpp nothing to throw; never let it escape as a crash.

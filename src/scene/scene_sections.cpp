@@ -52,7 +52,8 @@ void read_sizes(const Cursor& c, ShotDesc& d) {
     d.sizes_given = true;
     d.fractions_by_mass = read_choice(c.child("fractions_by")) == "mass";
     if (sizes.size() == 0) fail(sizes, "expected at least one size (diameter and fraction)");
-    if (sizes.size() > kMaxShotSizes) fail(sizes, "expected at most " + std::to_string(kMaxShotSizes) + " sizes, got " + std::to_string(sizes.size()));
+    if (sizes.size() > kMaxShotSizes)
+        fail(sizes, "expected at most " + std::to_string(kMaxShotSizes) + " sizes, got " + std::to_string(sizes.size()));
     double sum = 0.0;
     for (std::size_t i = 0; i < sizes.size(); ++i) {
         const Cursor item = sizes.item(i);
@@ -63,8 +64,7 @@ void read_sizes(const Cursor& c, ShotDesc& d) {
         d.sizes.push_back(s);
     }
     // Sieve data are rounded: the shares must sum to 1 within 0.5 % and are then scaled to it.
-    if (!(std::abs(sum - 1.0) <= 5e-3))
-        fail(sizes, "expected the fractions to sum to 1 (within 0.005), got " + std::to_string(sum));
+    if (!(std::abs(sum - 1.0) <= 5e-3)) fail(sizes, "expected the fractions to sum to 1 (within 0.005), got " + std::to_string(sum));
     for (ShotSizeDesc& s : d.sizes) s.fraction /= sum;
 }
 

@@ -29,8 +29,8 @@ std::vector<RegionDesc> read_regions(const Cursor& regions);
 // A mesh file named by `mesh`, resolved against the scene's directory; refused if it does not exist.
 std::string resolve_mesh(const Cursor& mesh, const std::filesystem::path& scene_dir);
 
-void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up, const std::filesystem::path& scene_dir, std::vector<SourceDesc>& out_sources,
-               std::vector<SinkDesc>& out_sinks);
+void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up,
+               const std::filesystem::path& scene_dir, std::vector<SourceDesc>& out_sources, std::vector<SinkDesc>& out_sinks);
 // The `air` block (defaults: still air at 20 C, no drag).
 AirDesc read_air(const Cursor& air);
 // Needs the components (the logged names must be components; the default logs every part) and

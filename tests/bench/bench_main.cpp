@@ -76,8 +76,8 @@ int main(int argc, char** argv) {
         std::size_t triangles = 0;
         for (const Component& c : model->components) triangles += c.mesh->triangle_count();
         std::printf("== %s\n", label.c_str());
-        std::printf("  shot %d of %.3g mm, %zu triangles, %.3g s simulated, setup %.2f s\n", model->shot_count, 2e3 * model->max_shot_radius_m,
-                    triangles, st.time.seconds(), load_s);
+        std::printf("  shot %d of %.3g mm, %zu triangles, %.3g s simulated, setup %.2f s\n", model->shot_count,
+                    2e3 * model->max_shot_radius_m, triangles, st.time.seconds(), load_s);
         std::printf("  wall %.3f s   sim s per wall s %.4f   shot-steps/s %.3e (%.0f ns per shot-step)   steps %llu\n", wall,
                     st.time.seconds() / wall, static_cast<double>(st.shot_steps) / wall, 1e9 * wall / static_cast<double>(st.shot_steps),
                     static_cast<unsigned long long>(st.steps));

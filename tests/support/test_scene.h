@@ -69,7 +69,7 @@ struct TestSceneSpec {
     Eigen::Vector3i plate_divisions = Eigen::Vector3i::Ones();  // quads per edge on every plate face
 
     int shot_count = 1;
-    double shot_diameter_m = 2e-3;                 // m
+    double shot_diameter_m = 2e-3;  // m
     // A mix instead (shot.sizes, fractions by count): (diameter m, count fraction) per size.
     std::vector<std::pair<double, double>> shot_sizes;
     double shot_density_kg_per_m3 = 7800.0;        // kg/m3

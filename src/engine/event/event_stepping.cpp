@@ -554,9 +554,9 @@ void EventStepping::collide_wall(int i, double t, SimulationState& state, std::v
         const bool impact = contact::is_impact(approach, impact_speed_);
         const Pose pose = comp.kinematics.pose(epoch_, t);
         const ContactSite site{i, w.component, w.mesh_triangle, &pose, w.point, absolute_seconds(t), 0.0};
-        const contact::SurfaceContactResponse r =
-            comp.law->impact(surface_input(*model_, state.shots, site, v, vs, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
-                             law_state(state, c));
+        const contact::SurfaceContactResponse r = comp.law->impact(
+            surface_input(*model_, state.shots, site, v, vs, n, impact, 0.0, 0.0, instant_contact_state(contact_scratch_, *model_, c)),
+            law_state(state, c));
         if (impact) {
             record_impact(*model_, state, impacts, absolute_seconds(t), i, w.component, w.triangle, pose, w.point, v, w.surface_velocity,
                           r);
@@ -675,12 +675,12 @@ void EventStepping::launch(int i, double t, SimulationState& state) {
     const auto c = static_cast<std::size_t>(s.ride_component);
     const Component& comp = model_->components[c];
     const Pose pose = comp.kinematics.pose(epoch_, s.ride_start);
-    const ContactSite site{i,  s.ride_component, -1, &pose, position(i, s.ride_start) - s.radius_m * s.ride_normal, absolute_seconds(s.ride_start),
-                           0.0};
+    const ContactSite site{
+        i, s.ride_component, -1, &pose, position(i, s.ride_start) - s.radius_m * s.ride_normal, absolute_seconds(s.ride_start), 0.0};
     const Vec3 v0 = plane.velocity(s.ride_start);
     const contact::SurfaceContactResponse r =
-        comp.law->sustain(surface_input(*model_, state.shots, site, v0 + s.ride_tangential, v0, s.ride_normal, false, ride > 0.0 ? impulse / ride : 0.0,
-                                        ride, instant_contact_state(contact_scratch_, *model_, c)),
+        comp.law->sustain(surface_input(*model_, state.shots, site, v0 + s.ride_tangential, v0, s.ride_normal, false,
+                                        ride > 0.0 ? impulse / ride : 0.0, ride, instant_contact_state(contact_scratch_, *model_, c)),
                           law_state(state, c));
     const Vec3 tangential = r.v_shot - v0 - (r.v_shot - v0).dot(s.ride_normal) * s.ride_normal;
     const FlightState flight = after_release({position(i, t_release), v_plate + tangential}, g_, delay);
@@ -739,8 +739,8 @@ void EventStepping::collide_pair(int i, int j, double t, SimulationState& state,
             const contact::ShotShotMode mode = contact::shot_shot_mode(approach, resting_speed_, right_after);
             slow = mode == contact::ShotShotMode::sustained;
             if (mode == contact::ShotShotMode::collapse_guard) ++stats_.collapse_guards;
-            const contact::ShotShotResponse resp =
-                model_->shot_shot_law->respond(shot_shot_input(*model_, state.shots, i, j, vi, vj, n, mode, (pj - pi).norm(), absolute_seconds(t)));
+            const contact::ShotShotResponse resp = model_->shot_shot_law->respond(
+                shot_shot_input(*model_, state.shots, i, j, vi, vj, n, mode, (pj - pi).norm(), absolute_seconds(t)));
             vi = resp.v_i;
             vj = resp.v_j;
             if (impact) ++state.shot_shot_impacts;

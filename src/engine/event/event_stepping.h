@@ -199,14 +199,14 @@ private:
     std::vector<SoftExit> exits_;          // scratch: members that left the pool
     std::vector<double> contact_scratch_;  // an instantaneous contact's state (zeros)
 
-    double R_ = 0.0;                // m, the smallest shot radius (scales the scheme's tolerances and windows)
-    double R_max_ = 0.0;            // m, the largest (how far a neighbour's centre can be)
-    Vec3 g_ = Vec3::Zero();         // m/s2
-    double resting_speed_ = 0.0;    // m/s, what gravity adds in two substeps: slower is still (sleep), a slower rebound is none
-    double impact_speed_ = 0.0;     // m/s, Model::impact_speed_m_per_s: slower contacts are no impacts (sustained contact)
-    double substep_ = 0.0;          // s, sustained-contact substep
-    double box_travel_ = 0.0;       // m, how far a flight box reaches along the path
-    std::uint64_t unresolved_ = 0;  // searches that ran out of iterations, added to the health at sync
+    double R_ = 0.0;                      // m, the smallest shot radius (scales the scheme's tolerances and windows)
+    double R_max_ = 0.0;                  // m, the largest (how far a neighbour's centre can be)
+    Vec3 g_ = Vec3::Zero();               // m/s2
+    double resting_speed_ = 0.0;          // m/s, what gravity adds in two substeps: slower is still (sleep), a slower rebound is none
+    double impact_speed_ = 0.0;           // m/s, Model::impact_speed_m_per_s: slower contacts are no impacts (sustained contact)
+    double substep_ = 0.0;                // s, sustained-contact substep
+    double box_travel_ = 0.0;             // m, how far a flight box reaches along the path
+    std::uint64_t unresolved_ = 0;        // searches that ran out of iterations, added to the health at sync
     std::uint64_t search_fallbacks_ = 0;  // flights moved to substeps by the search fallback, added at sync
     SearchFallback first_fallback_;       // the first of them since the last sync (time_s < 0: none)
     std::uint64_t events_since_sync_ = 0;

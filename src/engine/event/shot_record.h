@@ -17,7 +17,7 @@ namespace peensim {
 enum class EventMotion : unsigned char { flying, riding, sustained, sleeping, soft };
 
 struct EventShot {
-    Trajectory path;  // world; for a sleeping or riding shot: g = 0 (see ride_*)
+    Trajectory path;        // world; for a sleeping or riding shot: g = 0 (see ride_*)
     double radius_m = 0.0;  // m, the shot's radius (its size's: the size of a slot's shot never changes while it is active)
     EventMotion motion = EventMotion::flying;
     std::uint32_t version = 0;  // bumped whenever `path` changes

@@ -36,7 +36,7 @@ SustainedContact::Next SustainedContact::end_of_substep(int i, double t, Vec3 p,
     // The contacts a law remembers: those not found again at this substep's end have ended.
     const std::uint64_t stamp = contact_state_ ? state.contacts.begin_resolution() : 0;
     const double now_s = epoch.hi + (epoch.lo + t);  // absolute
-    const double R = s.radius_m;  // m, this shot's
+    const double R = s.radius_m;                     // m, this shot's
     const double slack = kContactSlack * R;
     bool touching = false, moving_support = false;
     Vec3 support = Vec3::Zero();  // the contact normal gravity presses on most
@@ -71,7 +71,8 @@ SustainedContact::Next SustainedContact::end_of_substep(int i, double t, Vec3 p,
             if (touch - dist > contact::kOverlapWorthCounting * R) ++state.health.shot_overlap_corrections;
         }
         // A neighbour still moving (not asleep, not as still as this shot must be) keeps it awake.
-        if (o.motion == EventMotion::flying || o.motion == EventMotion::riding || o.motion == EventMotion::soft || vj.norm() >= resting_speed_)
+        if (o.motion == EventMotion::flying || o.motion == EventMotion::riding || o.motion == EventMotion::soft ||
+            vj.norm() >= resting_speed_)
             moving_support = true;
     }
     for (std::size_t c = 0; c < m.components.size(); ++c) {
@@ -99,8 +100,9 @@ SustainedContact::Next SustainedContact::end_of_substep(int i, double t, Vec3 p,
             const bool impact = contact::is_impact(approach, m.impact_speed_m_per_s);
             if (!impact && s.in_flight) ++state.slow_contacts_per_component[c];
             s.in_flight = impact;
-            const contact::SurfaceContactResponse r = comp.law->impact(
-                surface_input(m, state.shots, site, v, vs, n, impact, 0.0, 0.0, instant_contact_state(scratch_, m, c)), law_state(state, c));
+            const contact::SurfaceContactResponse r =
+                comp.law->impact(surface_input(m, state.shots, site, v, vs, n, impact, 0.0, 0.0, instant_contact_state(scratch_, m, c)),
+                                 law_state(state, c));
             if (impact)
                 record_impact(m, state, impacts, now_s, i, static_cast<int>(c), walls.source_facet(c, closest.triangle), pose, point, v, vs,
                               r);
@@ -108,9 +110,9 @@ SustainedContact::Next SustainedContact::end_of_substep(int i, double t, Vec3 p,
         } else {
             const double pressing = std::max(0.0, -g_.dot(n) + comp.kinematics.point_acceleration(point, epoch, t).dot(n));
             v = comp.law
-                    ->sustain(
-                        surface_input(m, state.shots, site, v, vs, n, false, pressing, s.substep_s, sustained_contact_state(state, m, i, c, stamp)),
-                        law_state(state, c))
+                    ->sustain(surface_input(m, state.shots, site, v, vs, n, false, pressing, s.substep_s,
+                                            sustained_contact_state(state, m, i, c, stamp)),
+                              law_state(state, c))
                     .v_shot;
         }
         if (gap < 0.0) {

@@ -53,7 +53,8 @@ Vec3 WallPredictor::face_direction(const Model& m, std::size_t c) {
     return axis.dot(up) >= 0.0 ? axis : Vec3(-axis);
 }
 
-WallEvent WallPredictor::first_event(const Trajectory& path, double R, double t, double t_search, double window_end, StepStats& stats) const {
+WallEvent WallPredictor::first_event(const Trajectory& path, double R, double t, double t_search, double window_end,
+                                     StepStats& stats) const {
     WallEvent w;
     const double t_leave = leave_time(path, t);
     w.time = std::min(t_leave, window_end);
@@ -161,7 +162,8 @@ bool WallPredictor::put_out_of_solid(std::size_t c, double R, double t, WallEven
     return true;
 }
 
-bool WallPredictor::static_contact(int c, const Trajectory& path, double R, double t, double t_end, WallEvent& out, StepStats& stats) const {
+bool WallPredictor::static_contact(int c, const Trajectory& path, double R, double t, double t_end, WallEvent& out,
+                                   StepStats& stats) const {
     const Component& comp = model_->components[static_cast<std::size_t>(c)];
     const Pose& rest = comp.kinematics.rest;
     const Mat3 to_local = rest.rotation.transpose();
