@@ -165,7 +165,7 @@ TEST(FemDeck, KnownPatchNodesElementsSetsAndSteps) {
     EXPECT_EQ(count_of(text, "*ELEMENT, TYPE=C3D8, ELSET=ESHOT"), 3);
     // Two impact steps and the relaxation: static, the contact removed, every shot held.
     EXPECT_EQ(count_of(text, "*STEP"), 3);
-    EXPECT_EQ(count_of(text, "*DYNAMIC"), 2);
+    EXPECT_EQ(count_of(text, "*DYNAMIC, EXPLICIT\n"), 2);  // the default dynamics
     EXPECT_EQ(count_of(text, "*STATIC\n"), 1);
     const std::string relaxation = text.substr(text.rfind("*STEP"));
     EXPECT_NE(relaxation.find("*MODEL CHANGE, TYPE=CONTACT PAIR, REMOVE\nSTOP, SSHOTS\n"), std::string::npos) << relaxation;
@@ -186,6 +186,11 @@ TEST(FemDeck, KnownPatchNodesElementsSetsAndSteps) {
     std::ostringstream reduced;
     write_inp(reduced, d);
     EXPECT_EQ(count_of(reduced.str(), "*ELEMENT, TYPE=C3D8R, ELSET=EBLOCK\n"), 1);
+    d.explicit_dynamics = false;
+    std::ostringstream implicit;
+    write_inp(implicit, d);
+    EXPECT_EQ(count_of(implicit.str(), "*DYNAMIC, ALPHA=-0.3\n"), 2);
+    EXPECT_EQ(count_of(implicit.str(), "EXPLICIT"), 0);
     EXPECT_EQ(set_ids(text, "*NSET, NSET=NTOP").size(), d.block.top.size());
     EXPECT_EQ(set_ids(text, "*NSET, NSET=NBOTTOM").size(), d.block.bottom.size());
     EXPECT_EQ(set_ids(text, "*ELSET, ELSET=ETOP").size(), d.block.top_elements.size());
@@ -287,6 +292,9 @@ TEST(ExportFemJob, BadInputsExitTwoWithWhatWasExpected) {
     s.shot_divisions = 8;
     s.element = "C3D20";
     run(s, "--element: expected C3D8I, C3D8R or C3D8, got 'C3D20'");
+    s.element = "C3D8I";
+    s.dynamics = "static";
+    run(s, "--dynamics: expected explicit or implicit, got 'static'");
     ExportFemOptions none;
     run(none, "RUNDIR: expected a run directory");
 }
@@ -527,14 +535,23 @@ TEST(ExportFemCalculix, SingleImpactRunsAndLeavesTheDentOfEq10) {
 }
 
 // The cost model counts what the deck holds: its nodes (block and every shot) and the increments
-// its dynamic steps plan (duration over the largest increment, rounded up); more nodes cost more
-// time and memory, and the brick's factor is its own.
+// its dynamic steps plan (explicit: duration over the stable increment; implicit: over the largest
+// increment; rounded up); more nodes cost more time and memory.
 TEST(FemCost, EstimateCountsTheDecksNodesAndPlannedIncrements) {
     FemDeck d;
     d.block = mesh_block(BlockMeshSpec{0.6e-3, 0.5e-3, 0.2e-3, 0.1e-3, 0.05e-3, 1.5, false});
     d.shot_mesh = mesh_sphere(0.29e-3, 4, false);
     d.shots.resize(3);
+    d.target = {"TARGET", 210e9, 0.3, 7850, 500e6, 0.0};
+    d.shot = {"SHOT", 210e9, 0.3, 7850, std::nullopt, 0.0};
     d.steps = {FemStep{1.0e-6, 1e-8, 1e-7, {0}}, FemStep{2.05e-6, 1e-8, 1e-7, {1, 2}}};
+    // Explicit (the default): each step over the stable increment, the shortest edge (here the
+    // block's 0.05 mm, shorter than the 4-division ball's) over the dilatational wave speed.
+    const double c_d = std::sqrt(210e9 * 0.7 / (7850 * 1.3 * 0.4));  // m/s
+    EXPECT_NEAR(stable_increment(d), 0.05e-3 / c_d, 1e-9 * 0.05e-3 / c_d);
+    EXPECT_EQ(estimate_ccx_cost(d).planned_increments, std::ceil(1.0e-6 / stable_increment(d)) + std::ceil(2.05e-6 / stable_increment(d)));
+    // Implicit: each step over its largest increment.
+    d.explicit_dynamics = false;
     const CcxCostEstimate c = estimate_ccx_cost(d);
     EXPECT_EQ(c.nodes, static_cast<double>(d.block.mesh.nodes.size() + 3 * d.shot_mesh.mesh.nodes.size()));
     EXPECT_EQ(c.planned_increments, 10.0 + 21.0);

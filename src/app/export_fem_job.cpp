@@ -177,6 +177,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
                                    : o.element == "C3D8R" ? FemElement::C3D8R
                                    : o.element == "C3D8"  ? FemElement::C3D8
                                                           : throw InputError({"--element"}, "", "expected C3D8I, C3D8R or C3D8, got '" + o.element + "'");
+        if (o.dynamics != "explicit" && o.dynamics != "implicit")
+            throw InputError({"--dynamics"}, "", "expected explicit or implicit, got '" + o.dynamics + "'");
         check_output_name("--name", o.name);  // the deck's file name: inside -o, and ccx's job name
         const double window = positive("--group-window", o.group_window, Dimension::time, "a duration");
 
@@ -423,6 +425,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         FemDeck deck;
         deck.quarter = o.quarter;
         deck.block_element = element;
+        deck.explicit_dynamics = o.dynamics == "explicit";
         deck.block = mesh_block(spec);
         deck.shot_mesh = mesh_sphere(R, o.shot_divisions, o.quarter);
         deck.target = target;
@@ -455,7 +458,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         line("Shot: elastic balls of diameter " + format_si(shot_diameter) + " m, E " + format_si(shot_mat.youngs_modulus_pa) + " Pa, nu " +
              format_si(shot_mat.poisson_ratio) + ", density " + format_si(shot_density) + " kg/m3.");
         for (const std::string& n : notes) line("Note: " + n + ".");
-        line("Block elements " + std::string(fem_element_name(element)) + "; after the impacts' dynamic steps a static relaxation step (contact removed,");
+        line("Block elements " + std::string(fem_element_name(element)) + "; impacts in " + o.dynamics +
+             " dynamic steps, then a static relaxation step (contact removed,");
         line("  shot held) brings the block to equilibrium: its printed U (NPROFILE) and S (EAXIS) are the residual state.");
         line("Sets: NTOP, NBOTTOM, NXMIN, NXMAX, NYMIN, NYMAX, NPROFILE (top nodes on y = 0, x >= 0), ETOP, EBLOCK,");
         line("  EAXIS (the element column under the centre, x and y in [0, h]),");

@@ -32,6 +32,7 @@ struct ExportFemOptions {
     double elements_per_dent = 6.0;    // --elements-per-dent
     int shot_divisions = 8;            // --shot-divisions: cells along the shot mesh's cube edge (even)
     std::string element = "C3D8I";     // --element: the block's brick, C3D8I | C3D8R | C3D8 (fem/fem_deck.h)
+    std::string dynamics = "explicit"; // --dynamics: the impacts' steps, explicit | implicit (fem/fem_deck.h)
     bool quarter = false;              // --quarter: quarter model (one normal impact at the centre)
     std::string group_window = "1 ms"; // --group-window: a step spans at most this much of the run's time
     double contact_times = 2.5;        // --contact-times: a step lasts this many Hertz contact times

@@ -63,7 +63,11 @@ struct FemDeck {
     std::vector<FemShot> shots;
     std::vector<FemStep> steps;
     double contact_stiffness_pa_per_m = 0.0;  // Pa/m, penalty: contact pressure per overclosure
-    double alpha = -0.3;                      // -, Hilber-Hughes-Taylor alpha of *DYNAMIC (numerical damping)
+    double alpha = -0.3;                      // -, Hilber-Hughes-Taylor alpha of the implicit *DYNAMIC (numerical damping)
+    // The impacts' steps: *DYNAMIC, EXPLICIT (central differences at ccx's stable increment, no
+    // equation solve per increment) or the implicit *DYNAMIC (Hilber-Hughes-Taylor; ccx's contact
+    // rules cut its increments to ~1e-9 s around each contact, each a Newton solve).
+    bool explicit_dynamics = true;
 };
 
 // Node and element numbers the writer gives (1-based, as in the deck): the block first, then the

@@ -164,9 +164,12 @@ void write_inp(std::ostream& out, const FemDeck& d) {
         const FemStep& st = d.steps[k];
         out << "** Step " << k + 1 << ": shots";
         for (int s : st.shots) out << " " << s + 1;
-        out << "\n*STEP, NLGEOM, INC=1000000\n*DYNAMIC, ALPHA=" << num(d.alpha) << "\n"
-            << num(st.initial_increment_s) << ", " << num(st.duration_s) << ", " << num(st.initial_increment_s * 1e-4) << ", "
-            << num(st.max_increment_s) << "\n";
+        out << "\n*STEP, NLGEOM, INC=10000000\n";
+        if (d.explicit_dynamics)  // ccx takes the stable (Courant) increment itself
+            out << "*DYNAMIC, EXPLICIT\n" << num(st.initial_increment_s) << ", " << num(st.duration_s) << "\n";
+        else
+            out << "*DYNAMIC, ALPHA=" << num(d.alpha) << "\n" << num(st.initial_increment_s) << ", " << num(st.duration_s) << ", "
+                << num(st.initial_increment_s * 1e-4) << ", " << num(st.max_increment_s) << "\n";
         out << "*NODE PRINT, NSET=NPROFILE, FREQUENCY=1000000\nU\n";
         out << "*NODE PRINT, NSET=NSHOTCENTRES, FREQUENCY=1000000\nV\n";
         out << "*NODE FILE, FREQUENCY=1000000\nU\n*EL FILE, FREQUENCY=1000000\nS, PEEQ\n*END STEP\n";

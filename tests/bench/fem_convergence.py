@@ -9,8 +9,9 @@ depth, where it turns tensile), as the README's table. Cases already run in OUT 
 time.txt there) are read, not rerun.
 
   tests/bench/fem_convergence.py [--peensim build/peensim] [--out out/fem-convergence]
-                                 [--cases C3D8I:4,C3D8I:6,...] [--single ...] [--shot-diameter ...]
-                                 [--yield-stress ...] [--cap 900] [--profile]
+                                 [--cases C3D8I:4,C3D8I:6,...] [--dynamics explicit|implicit]
+                                 [--single ...] [--shot-diameter ...] [--yield-stress ...]
+                                 [--shot-divisions 8] [--cap 900] [--profile]
 """
 import argparse
 import os
@@ -28,7 +29,8 @@ def run_case(args, element, per_dent, directory):
     done = os.path.exists(os.path.join(directory, "patch.dat")) and os.path.exists(os.path.join(directory, "time.txt"))
     if not done:
         cmd = [args.peensim, "export-fem", "-o", directory, "--single", args.single, "--shot-diameter", args.shot_diameter,
-               "--quarter", "--element", element, "--elements-per-dent", str(per_dent)]
+               "--quarter", "--element", element, "--elements-per-dent", str(per_dent), "--dynamics", args.dynamics,
+               "--shot-divisions", str(args.shot_divisions)]
         if args.yield_stress:
             cmd += ["--yield-stress", args.yield_stress]
         subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
@@ -78,6 +80,9 @@ def why_unfinished(directory):
                 reached = line.split("=")[1].strip()
             if line.startswith(" increment ") and "attempt 1" in line:
                 increments += 1
+    with open(os.path.join(directory, "time.txt")) as f:
+        if any(line.strip() == "Exit status: 124" for line in f):
+            error = "stopped at the time cap (timeout)"
     return "%s, at step time %s s after %d increments" % (error, reached, increments)
 
 
@@ -97,6 +102,8 @@ def main():
     p.add_argument("--single", default="0,0,0,0,0,-50 m/s")
     p.add_argument("--shot-diameter", default="0.58 mm")
     p.add_argument("--yield-stress", default="")
+    p.add_argument("--dynamics", default="explicit", help="export-fem --dynamics")
+    p.add_argument("--shot-divisions", type=int, default=8, help="export-fem --shot-divisions")
     p.add_argument("--speed", type=float, default=50.0, help="impact speed (m/s), for the CoR")
     p.add_argument("--yield-pa", type=float, default=500e6, help="yield stress (Pa), to state stresses in yields")
     p.add_argument("--cap", type=int, default=900, help="seconds a ccx run may take")
