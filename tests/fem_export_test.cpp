@@ -2,7 +2,8 @@
 // known patch, the grouping of impacts into steps, the job on a real rod run (a curved part: the
 // tangent plane) and its refusals (exit 2, with the option or file and what was expected); and
 // CalculiX run on a single-impact deck (0.58 mm steel shot at 50 m/s onto steel): it must finish,
-// and the dent it leaves is compared with eq. 10. Without `ccx` on PATH that test fails, it does
+// the dent it leaves is compared with eq. 10 and the residual stresses its relaxation step prints
+// must be those of a single impact; the cost model's counts and export-fem's estimate and warning. Without `ccx` on PATH that test fails, it does
 // not skip: CI installs calculix-ccx.
 #include <gtest/gtest.h>
 
@@ -465,7 +466,9 @@ TEST(ExportFemJob, AMixRunExportsTheImpactsOfTheChosenSize) {
 }
 
 // The hand-off end to end: one 0.58 mm steel shot at 50 m/s onto a steel block (500 MPa, perfectly
-// plastic), quarter model; ccx must finish, and the dent is measured from the surface profile.
+// plastic), quarter model, the default deck (C3D8I, explicit impact step, static relaxation); ccx
+// must finish, the dent is measured from the relaxed surface profile and the residual stresses
+// from the EAXIS column.
 TEST(ExportFemCalculix, SingleImpactRunsAndLeavesTheDentOfEq10) {
     ASSERT_EQ(std::system("command -v ccx > /dev/null 2>&1"), 0)
         << "ccx (CalculiX, Debian package calculix-ccx) is not on PATH: install it (.ci/install-deps does)";
