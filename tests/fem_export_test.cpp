@@ -586,6 +586,9 @@ TEST(ExportFemJob, PrintsTheCalculixEstimateAndWarnsWhenImpractical) {
     EXPECT_NE(out.str().find(" planned increments; one core, the cost model of the README)"), std::string::npos) << out.str();
     EXPECT_LT(out.str().find("CalculiX estimate"), out.str().find("deck: "));
     EXPECT_EQ(err.str().find("warning"), std::string::npos) << err.str();
+    const std::string readme = read_file((dir.path / "small" / "README.md").string());
+    EXPECT_NE(readme.find("Expect about "), std::string::npos) << readme;
+    EXPECT_NE(readme.find(" GB on one core (1746 nodes, "), std::string::npos) << readme;
 
     ExportFemOptions big = o;
     big.output_dir = (dir.path / "big").string();

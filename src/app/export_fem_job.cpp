@@ -502,7 +502,9 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         readme << "# FEM deck `" << o.name << ".inp` (peensim export-fem)\n\n";
         for (const std::string& l : deck.header) readme << l << "\n";
         readme << "\nRun it with CalculiX: `ccx -i " << o.name << "` (in this directory; results in " << o.name << ".dat and "
-               << o.name << ".frd).\n\n";
+               << o.name << ".frd). Expect about " << duration_text(cost.seconds) << " and " << gigabytes(cost.bytes)
+               << " GB on one core (" << static_cast<long long>(cost.nodes) << " nodes, " << static_cast<long long>(cost.planned_increments)
+               << " planned increments; the cost model of peensim's README, fitted to measured ccx 2.20 runs).\n\n";
         readme << "Block: " << deck.block.mesh.nodes.size() << " nodes, " << deck.block.mesh.elements.size() << " " << fem_element_name(element)
                << " elements; each shot "
                << deck.shot_mesh.mesh.nodes.size() << " nodes, " << deck.shot_mesh.mesh.elements.size() << " elements.\n\n";
