@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <iomanip>
 #include <fstream>
+#include <iomanip>
 #include <ostream>
 #include <sstream>
 
@@ -111,13 +111,13 @@ std::string mm(double m) {
 // "40 s", "12 min", "3.5 h": a duration as a person reads it.
 std::string duration_text(double seconds) {
     std::ostringstream s;
-    s.precision(2);
     if (seconds < 90.0) s << std::fixed << std::setprecision(0) << seconds << " s";
     else if (seconds < 5400.0) s << std::fixed << std::setprecision(0) << seconds / 60.0 << " min";
     else s << std::fixed << std::setprecision(1) << seconds / 3600.0 << " h";
     return s.str();
 }
 
+// Bytes in GB, two decimals below 10 GB.
 std::string gigabytes(double bytes) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(bytes < 1e10 ? 2 : 0) << bytes / 1e9;
