@@ -264,7 +264,7 @@ TEST(FuzzInputs, ExportFemArgumentsAreExportedOrRefusedWithAnInputError) {
     const std::string original =
         "single\t0,0,0,0,0,-50 m/s\nshot-diameter\t0.58 mm\ncenter\t0,0,0\nradius\t1 mm\ngroup-window\t1 ms\nelement-size\t0.05 mm\n"
         "name\tpatch\nimpacts\t1\nyield-stress\t500 MPa\nhardening\t0 MPa\nelements-per-dent\t6\ncontact-times\t2.5\n"
-        "shot-divisions\t4\nquarter\t1\n";
+        "shot-divisions\t4\nquarter\t1\nelement\tC3D8I\ndynamics\texplicit\n";
     fuzz(
         "export-fem arguments", original, 300,
         [&](const std::string& text) {
@@ -285,6 +285,8 @@ TEST(FuzzInputs, ExportFemArgumentsAreExportedOrRefusedWithAnInputError) {
                 if (key == "contact-times") o.contact_times = cli_number<double>("--contact-times", value);
                 if (key == "shot-divisions") o.shot_divisions = cli_number<int>("--shot-divisions", value);
                 if (key == "quarter") o.quarter = value == "1";
+                if (key == "element") o.element = value;
+                if (key == "dynamics") o.dynamics = value;
             }
             std::ostringstream out, err;
             const int code = export_fem_job(o, out, err);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <ostream>
 #include <sstream>
 
@@ -13,6 +14,7 @@
 #include "common/units.h"
 #include "contact/dent.h"
 #include "fem/block_mesher.h"
+#include "fem/ccx_cost.h"
 #include "fem/impact_steps.h"
 #include "fem/inp_writer.h"
 #include "fem/patch_frame.h"
@@ -108,6 +110,25 @@ std::string mm(double m) {
     return s.str();
 }
 
+// "40 s", "12 min", "3.5 h": a duration as a person reads it.
+std::string duration_text(double seconds) {
+    std::ostringstream s;
+    if (seconds < 90.0)
+        s << std::fixed << std::setprecision(0) << seconds << " s";
+    else if (seconds < 5400.0)
+        s << std::fixed << std::setprecision(0) << seconds / 60.0 << " min";
+    else
+        s << std::fixed << std::setprecision(1) << seconds / 3600.0 << " h";
+    return s.str();
+}
+
+// Bytes in GB, two decimals below 10 GB.
+std::string gigabytes(double bytes) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(bytes < 1e10 ? 2 : 0) << bytes / 1e9;
+    return s.str();
+}
+
 std::string mm3(const Vec3& p) { return "(" + mm(p.x()) + ", " + mm(p.y()) + ", " + mm(p.z()) + ") mm"; }
 
 // The centre of a --region's patch: the point of the region's surface nearest its area centroid.
@@ -158,6 +179,13 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         if (o.max_impacts && *o.max_impacts < 1)
             throw InputError({"--impacts"}, "",
                              "expected a count >= 1 (leave it out for every impact), got " + std::to_string(*o.max_impacts));
+        const FemElement element = o.element == "C3D8I"   ? FemElement::C3D8I
+                                   : o.element == "C3D8R" ? FemElement::C3D8R
+                                   : o.element == "C3D8"
+                                       ? FemElement::C3D8
+                                       : throw InputError({"--element"}, "", "expected C3D8I, C3D8R or C3D8, got '" + o.element + "'");
+        if (o.dynamics != "explicit" && o.dynamics != "implicit")
+            throw InputError({"--dynamics"}, "", "expected explicit or implicit, got '" + o.dynamics + "'");
         check_output_name("--name", o.name);  // the deck's file name: inside -o, and ccx's job name
         const double window = positive("--group-window", o.group_window, Dimension::time, "a duration");
 
@@ -421,6 +449,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
 
         FemDeck deck;
         deck.quarter = o.quarter;
+        deck.block_element = element;
+        deck.explicit_dynamics = o.dynamics == "explicit";
         deck.block = mesh_block(spec);
         deck.shot_mesh = mesh_sphere(R, o.shot_divisions, o.quarter);
         deck.target = target;
@@ -454,8 +484,28 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         line("Shot: elastic balls of diameter " + format_si(shot_diameter) + " m, E " + format_si(shot_mat.youngs_modulus_pa) + " Pa, nu " +
              format_si(shot_mat.poisson_ratio) + ", density " + format_si(shot_density) + " kg/m3.");
         for (const std::string& n : notes) line("Note: " + n + ".");
+        line("Block elements " + std::string(fem_element_name(element)) + "; impacts in " + o.dynamics +
+             " dynamic steps, then a static relaxation step (contact removed,");
+        line("  shot held) brings the block to equilibrium: its printed U (NPROFILE) and S (EAXIS) are the residual state.");
         line("Sets: NTOP, NBOTTOM, NXMIN, NXMAX, NYMIN, NYMAX, NPROFILE (top nodes on y = 0, x >= 0), ETOP, EBLOCK,");
+        line("  EAXIS (the element column under the centre, x and y in [0, h]),");
         line("  NSHOT<k>/ESHOT<k> (shot k), NSHOTCENTRES, ESHOTS; surfaces STOP (slave) and SSHOTS (master).");
+
+        // What CalculiX will make of it, said before the files are written (a deck of hours is
+        // better refused by its user now than found out after a night of ccx).
+        const CcxCostEstimate cost = estimate_ccx_cost(deck);
+        out << "export-fem: " << impacts.size() << " impacts in " << deck.steps.size() << " steps; block "
+            << deck.block.mesh.elements.size() << " " << fem_element_name(element) << " elements (fine " << mm(h) << " mm), "
+            << deck.shots.size() << " shots x " << deck.shot_mesh.mesh.elements.size()
+            << " elements\n  CalculiX estimate: " << duration_text(cost.seconds) << ", " << gigabytes(cost.bytes) << " GB ("
+            << static_cast<long long>(cost.nodes) << " nodes, " << static_cast<long long>(cost.planned_increments)
+            << " planned increments; one core, the cost model of the README)\n";
+        if (cost.seconds > kCcxPracticalSeconds || cost.bytes > kCcxPracticalBytes)
+            err << "warning: this deck is impractical for CalculiX on one core: about " << duration_text(cost.seconds) << " and "
+                << gigabytes(cost.bytes) << " GB estimated (more than " << duration_text(kCcxPracticalSeconds) << " or "
+                << gigabytes(kCcxPracticalBytes)
+                << " GB); fewer --impacts, a larger --element-size (fewer --elements-per-dent), "
+                   "a smaller --radius or --shot-divisions 4 make it smaller; it is written all the same\n";
 
         // Files.
         fs::create_directories(o.output_dir);
@@ -480,9 +530,12 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         readme << "# FEM deck `" << o.name << ".inp` (peensim export-fem)\n\n";
         for (const std::string& l : deck.header) readme << l << "\n";
         readme << "\nRun it with CalculiX: `ccx -i " << o.name << "` (in this directory; results in " << o.name << ".dat and " << o.name
-               << ".frd).\n\n";
-        readme << "Block: " << deck.block.mesh.nodes.size() << " nodes, " << deck.block.mesh.elements.size() << " C3D8 elements; each shot "
-               << deck.shot_mesh.mesh.nodes.size() << " nodes, " << deck.shot_mesh.mesh.elements.size() << " elements.\n\n";
+               << ".frd). Expect about " << duration_text(cost.seconds) << " and " << gigabytes(cost.bytes) << " GB on one core ("
+               << static_cast<long long>(cost.nodes) << " nodes, " << static_cast<long long>(cost.planned_increments)
+               << " planned increments; the cost model of peensim's README, fitted to measured ccx 2.20 runs).\n\n";
+        readme << "Block: " << deck.block.mesh.nodes.size() << " nodes, " << deck.block.mesh.elements.size() << " "
+               << fem_element_name(element) << " elements; each shot " << deck.shot_mesh.mesh.nodes.size() << " nodes, "
+               << deck.shot_mesh.mesh.elements.size() << " elements.\n\n";
         readme << "| step | duration s | shots (impacts.csv rows of the run) |\n|---|---|---|\n";
         for (std::size_t k = 0; k < deck.steps.size(); ++k) {
             readme << "| " << k + 1 << " | " << format_si(deck.steps[k].duration_s) << " |";
@@ -495,10 +548,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
                   "normal speed and the dent diameter of eq. 10.\n";
         write_file_atomically((fs::path(o.output_dir) / "README.md").string(), readme.str());
 
-        out << "export-fem: " << impacts.size() << " impacts in " << deck.steps.size() << " steps; block "
-            << deck.block.mesh.elements.size() << " elements (fine " << mm(h) << " mm), " << deck.shots.size() << " shots x "
-            << deck.shot_mesh.mesh.elements.size() << " elements\n  deck: " << deck_path.string() << "  (run: cd " << o.output_dir
-            << " && ccx -i " << o.name << ")\n";
+        out << "  deck: " << deck_path.string() << "  (run: cd " << o.output_dir << " && ccx -i " << o.name << ")\n";
         for (const std::string& n : notes) err << "note: " << n << "\n";
         return 0;
     });

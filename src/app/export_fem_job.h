@@ -1,10 +1,12 @@
 // `peensim export-fem RUNDIR -o OUTDIR`: hands the impacts of a patch of a logged part to a
 // finite-element model. Writes OUTDIR/<name>.inp, an Abaqus-format input deck (CalculiX reads it:
-// `ccx -i <name>`), in SI units: the block of the part's material under a circular patch (C3D8
-// bricks, fine near the impacts, elastic-plastic), one elastic steel ball per impact placed just
-// above its point with its logged velocity, penalty contact, and one implicit dynamic step per
-// group of impacts far enough apart (src/fem/impact_steps.h); OUTDIR/impacts.csv (which impact
-// went into which step) and OUTDIR/README.md (what the deck holds and how to run it).
+// `ccx -i <name>`), in SI units: the block of the part's material under a circular patch (C3D8I
+// bricks by default, fine near the impacts, elastic-plastic), one elastic steel ball per impact
+// placed just above its point with its logged velocity, penalty contact, one implicit dynamic step
+// per group of impacts far enough apart (src/fem/impact_steps.h) and a static relaxation step (the
+// residual state); OUTDIR/impacts.csv (which impact went into which step) and OUTDIR/README.md
+// (what the deck holds and how to run it). Before writing, it prints the element count and the
+// CalculiX time and memory the cost model (fem/ccx_cost.h) expects, with a warning when impractical.
 #pragma once
 
 #include <iosfwd>
@@ -30,6 +32,8 @@ struct ExportFemOptions {
                                // elements_per_dent)
     double elements_per_dent = 6.0;     // --elements-per-dent
     int shot_divisions = 8;             // --shot-divisions: cells along the shot mesh's cube edge (even)
+    std::string element = "C3D8I";      // --element: the block's brick, C3D8I | C3D8R | C3D8 (fem/fem_deck.h)
+    std::string dynamics = "explicit";  // --dynamics: the impacts' steps, explicit | implicit (fem/fem_deck.h)
     bool quarter = false;               // --quarter: quarter model (one normal impact at the centre)
     std::string group_window = "1 ms";  // --group-window: a step spans at most this much of the run's time
     double contact_times = 2.5;         // --contact-times: a step lasts this many Hertz contact times

@@ -189,6 +189,10 @@ int main(int argc, char** argv) {
         "edge of the fine elements (default: the patch's 10th-percentile dent diameter, at least half its median, / --elements-per-dent)");
     fem_cmd->add_option("--elements-per-dent", fem.elements_per_dent, "fine elements across that dent (default 6)");
     fem_cmd->add_option("--shot-divisions", fem.shot_divisions, "cells along the shot mesh's cube edge, even (default 8)");
+    fem_cmd->add_option("--element", fem.element,
+                        "the block's brick: C3D8I (default, incompatible modes), C3D8R (reduced integration) or C3D8 (full; locks)");
+    fem_cmd->add_option("--dynamics", fem.dynamics,
+                        "the impacts' steps: explicit (default, *DYNAMIC, EXPLICIT) or implicit (Hilber-Hughes-Taylor)");
     fem_cmd->add_flag("--quarter", fem.quarter, "quarter model with symmetry planes (one normal impact at the centre only)");
     fem_cmd->add_option("--group-window", fem.group_window, "a step groups impacts within this much run time (default 1 ms)");
     fem_cmd->add_option("--contact-times", fem.contact_times, "a step lasts this many Hertz contact times (default 2.5)");

@@ -91,6 +91,10 @@ BlockMesh mesh_block(const BlockMeshSpec& spec) {
     const int j0 = spec.quarter ? 0 : ny / 2;  // the full grid is symmetric: its middle line is y = 0
     for (int i = 0; i < nx; ++i)
         if (b.xs[static_cast<std::size_t>(i)] >= 0.0) b.profile.push_back(node(i, j0, nz - 1));
+    // The column whose corner is the centre (i0, j0) on the x and y >= 0 side; elements are numbered
+    // i fastest, then j, then k from the bottom.
+    const int i0 = spec.quarter ? 0 : nx / 2;
+    for (int k = nz - 2; k >= 0; --k) b.axis_elements.push_back(i0 + (nx - 1) * (j0 + (ny - 1) * k));
     return b;
 }
 

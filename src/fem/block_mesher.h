@@ -28,6 +28,7 @@ struct BlockMesh {
     std::vector<int> x_min, x_max, y_min, y_max;  // node indices on the four sides
     std::vector<int> top_elements;                // elements of the top layer: their face S2 is the surface
     std::vector<int> profile;                     // top nodes on y = 0, x >= 0, by increasing x (the dent profile)
+    std::vector<int> axis_elements;  // the column of elements under the centre (x, y in [0, h]), top first: the residual stress vs depth
 };
 
 // Grid coordinates from 0 to `length`: uniform edges of about `h` up to `fine` (the count rounded

@@ -1,9 +1,12 @@
 // Writes a FemDeck as an Abaqus-format input deck (.inp), the dialect CalculiX (ccx 2.20) reads:
-// C3D8 bricks, node and element sets, element-face surfaces, an elastic-plastic target, elastic
-// shot, a penalty surface-to-surface contact pair (slave: the block's top, master: every shot's
-// surface), the boundary conditions, the shot's initial velocities and one implicit *DYNAMIC
-// step per group of impacts, each printing the surface profile's displacements (U) and the shot
-// centres' velocities (V) to the .dat file at its end. Set names are listed in the README.
+// the block's bricks (deck.block_element) and the shot's C3D8, node and element sets, element-face
+// surfaces, an elastic-plastic target, elastic shot, a penalty node-to-surface contact pair (slave:
+// the block's top, master: every shot's surface), the boundary conditions, the shot's initial
+// velocities, one implicit *DYNAMIC step per group of impacts, each printing the surface profile's
+// displacements (U) and the shot centres' velocities (V) to the .dat file at its end, and a final
+// static relaxation step (contact removed, shot held) printing the residual dent (NPROFILE U) and
+// the residual stresses of the column under the centre (EAXIS S, PEEQ). Set names are listed in
+// the README.
 #pragma once
 
 #include <iosfwd>
