@@ -67,6 +67,10 @@ void ShotEmitter::emit_due(SimulationState& state, std::vector<int>& added) {
         place_clear_of_others(state, d, p, v);
         shots.set_position(slot, p);
         shots.set_velocity(slot, v);
+        // A new shot does not spin: a slot freed by a collected shot kept that shot's spin, and
+        // the soft scheme's next contact began with it (oblique rebounds kept 0.9-0.97 of their
+        // tangential speed instead of a gripping sphere's 5/7).
+        shots.set_spin(slot, Vec3::Zero());
         shots.active[slot] = 1;
         shots.size_class[slot] = static_cast<unsigned char>(d.emission.size);
         if (static_cast<std::size_t>(d.emission.size) < state.shots_per_size.size())
