@@ -11,8 +11,8 @@
 #include <iostream>
 #include <string>
 
-#include "app/checkpoint.h"
 #include "analysis/impact_log_reader.h"
+#include "app/checkpoint.h"
 #include "app/run_job.h"
 #include "collision/mesh_collider.h"
 #include "engine/simulation.h"
@@ -213,7 +213,11 @@ TEST(SoftScheme, AnEmittedShotStartsWithoutSpinInAReusedSlot) {
     // back part of the slip (0.68-0.70 here).
     const std::string dir = (fs::temp_directory_path() / "peensim_soft_emitted_spin").string();
     fs::remove_all(dir);
-    const InProcessResult r = run_in_process({std::string(PEENSIM_SOURCE_DIR) + "/scenes/nozzle-study.yaml", dir, false, false, {},
+    const InProcessResult r = run_in_process({std::string(PEENSIM_SOURCE_DIR) + "/scenes/nozzle-study.yaml",
+                                              dir,
+                                              false,
+                                              false,
+                                              {},
                                               {"accuracy.scheme=soft", "sources[nozzle].angle_of_attack=35 deg",
                                                "sources[nozzle].mass_flow=0.01 kg/min", "process.duration=40 ms"}});
     ASSERT_EQ(r.code, kExitOk) << r.err;
