@@ -1,6 +1,7 @@
 #include "fem/dent_profile.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <fstream>
 #include <numeric>
@@ -45,6 +46,31 @@ std::map<int, Vec3> read_inp_nodes(const std::string& inp_path) {
         nodes[id] = Vec3(x, y, z);
     }
     return nodes;
+}
+
+// Element id -> its 8 corner node ids, from every *ELEMENT block of an .inp file.
+std::map<int, std::array<int, 8>> read_inp_elements(const std::string& inp_path) {
+    std::ifstream in(inp_path);
+    if (!in) throw std::runtime_error(inp_path + ": cannot open");
+    std::map<int, std::array<int, 8>> elements;
+    bool reading = false;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("**", 0) == 0) continue;
+        if (!line.empty() && line[0] == '*') {
+            reading = upper(line).rfind("*ELEMENT", 0) == 0;
+            continue;
+        }
+        if (!reading) continue;
+        std::replace(line.begin(), line.end(), ',', ' ');
+        std::istringstream f(line);
+        int id = 0;
+        std::array<int, 8> corners{};
+        if (!(f >> id)) continue;
+        for (int& c : corners)
+            if (!(f >> c)) throw std::runtime_error(inp_path + ": an element with fewer than 8 nodes: " + line);
+        elements[id] = corners;
+    }
+    return elements;
 }
 
 std::map<int, Vec3> read_dat_last_table(const std::string& dat_path, const std::string& quantity, const std::string& set) {

@@ -6,6 +6,7 @@
 // not what ccx writes.
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -16,6 +17,8 @@ namespace peensim {
 
 // Node id -> coordinates (m) of every *NODE block of an .inp file.
 std::map<int, Vec3> read_inp_nodes(const std::string& inp_path);
+// Element id -> its 8 corner node ids, from every *ELEMENT block of an .inp file.
+std::map<int, std::array<int, 8>> read_inp_elements(const std::string& inp_path);
 
 // Node id -> the values of the last "<quantity> (vx,vy,vz) for set <SET> and time ..." table of a
 // ccx .dat file (quantity e.g. "displacements", "velocities"); set names are compared

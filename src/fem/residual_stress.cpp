@@ -12,40 +12,6 @@
 
 namespace peensim {
 
-namespace {
-
-std::string upper(std::string s) {
-    for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    return s;
-}
-
-// Element id -> its 8 corner node ids, from every *ELEMENT block of an .inp file.
-std::map<int, std::array<int, 8>> read_inp_elements(const std::string& inp_path) {
-    std::ifstream in(inp_path);
-    if (!in) throw std::runtime_error(inp_path + ": cannot open");
-    std::map<int, std::array<int, 8>> elements;
-    bool reading = false;
-    for (std::string line; std::getline(in, line);) {
-        if (line.rfind("**", 0) == 0) continue;
-        if (!line.empty() && line[0] == '*') {
-            reading = upper(line).rfind("*ELEMENT", 0) == 0;
-            continue;
-        }
-        if (!reading) continue;
-        std::replace(line.begin(), line.end(), ',', ' ');
-        std::istringstream f(line);
-        int id = 0;
-        std::array<int, 8> corners{};
-        if (!(f >> id)) continue;
-        for (int& c : corners)
-            if (!(f >> c)) throw std::runtime_error(inp_path + ": an element with fewer than 8 nodes: " + line);
-        elements[id] = corners;
-    }
-    return elements;
-}
-
-}  // namespace
-
 std::vector<ResidualStressPoint> read_axis_residual_stress(const std::string& inp_path, const std::string& dat_path) {
     std::ifstream in(dat_path);
     if (!in) throw std::runtime_error(dat_path + ": cannot open");
@@ -53,7 +19,7 @@ std::vector<ResidualStressPoint> read_axis_residual_stress(const std::string& in
     std::map<int, std::array<double, 4>> sums, current;
     bool reading = false;
     for (std::string line; std::getline(in, line);) {
-        if (upper(line).find("STRESSES (ELEM, INTEG.PNT.,SXX,SYY,SZZ,SXY,SXZ,SYZ) FOR SET EAXIS") != std::string::npos) {
+        if (line.find("stresses (elem, integ.pnt.,sxx,syy,szz,sxy,sxz,syz) for set EAXIS") != std::string::npos) {
             reading = true;
             current.clear();
             continue;
