@@ -1,9 +1,11 @@
 // The one run loop (engine/run_loop.h): listeners see every logged impact once, in order, with the
 // state at each step's end; restart points; a stop lands on a restart point; a pause request is
-// honoured by the event-driven scheme.
+// honoured by the event-driven scheme; the start, finish and interrupt hooks come once each, first
+// and last.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "engine/run_loop.h"
@@ -16,6 +18,7 @@ TestSceneSpec small(const std::string& scheme) {
     TestSceneSpec spec = thrown_shot_scene(16, 0.05);
     spec.scheme = scheme;
     spec.log = {"sonotrode", "chamber"};
+    if (scheme == "soft") spec.soft = SoftSpec{};  // the soft scheme needs soft-sphere laws
     return spec;
 }
 
@@ -31,6 +34,29 @@ struct Recorder final : RunListener {
         if (sim.state().time.seconds() == pause_s) paused_exactly = true;
     }
     void at_restart_point(const Simulation& sim) override { restart_times_s.push_back(sim.state().time.seconds()); }
+    // The hooks, in the order heard ("step" for every after_step), with the time each saw.
+    std::vector<std::string> calls;
+    std::vector<double> call_times_s;
+    void heard(const char* what, const Simulation& sim) {
+        if (!calls.empty() && calls.back() == "step" && std::string(what) == "step") return;  // a run of steps: one entry
+        calls.push_back(what);
+        call_times_s.push_back(sim.state().time.seconds());
+    }
+    void at_start(const Simulation& sim) override { heard("start", sim); }
+    void at_finish(const Simulation& sim) override { heard("finish", sim); }
+    void at_interrupt(const Simulation& sim) override { heard("interrupt", sim); }
+};
+
+// after_step also records "step" (kept apart from the impact tally above).
+struct HookRecorder final : RunListener {
+    Recorder r;
+    void after_step(const Simulation& sim, const std::vector<ImpactRecord>& step) override {
+        r.after_step(sim, step);
+        r.heard("step", sim);
+    }
+    void at_start(const Simulation& sim) override { r.at_start(sim); }
+    void at_finish(const Simulation& sim) override { r.at_finish(sim); }
+    void at_interrupt(const Simulation& sim) override { r.at_interrupt(sim); }
 };
 
 class RunLoopSchemes : public ::testing::TestWithParam<std::string> {};
@@ -102,7 +128,47 @@ TEST_P(RunLoopSchemes, APauseIsHonouredOnceAndThenNoLongerHolds) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Schemes, RunLoopSchemes, ::testing::Values(std::string("step"), std::string("event")),
+TEST_P(RunLoopSchemes, StartComesFirstAndFinishLastOnceEach) {
+    const TestScene scene(small(GetParam()));
+    Simulation sim(scene.compile());
+    const double t0_s = sim.state().time.seconds();
+    HookRecorder h;
+    RunLoop loop(sim);
+    loop.add(h);
+    ASSERT_TRUE(loop.run());
+    const std::vector<std::string> expected{"start", "step", "finish"};
+    EXPECT_EQ(h.r.calls, expected);
+    ASSERT_EQ(h.r.call_times_s.size(), 3u);
+    EXPECT_EQ(h.r.call_times_s.front(), t0_s);                       // before any step
+    EXPECT_EQ(h.r.call_times_s.back(), sim.state().time.seconds());  // the run's end
+    EXPECT_TRUE(sim.finished());
+}
+
+TEST_P(RunLoopSchemes, AStoppedRunEndsWithInterruptNotFinish) {
+    // Stopped after the first step: the run ends at the next restart point, which is then the state
+    // the interrupt hook sees (time stepping: that step; the event-driven schemes: a restart point
+    // once their work budget or restart interval is reached, here the scene's end first).
+    const TestScene scene(small(GetParam()));
+    Simulation sim(scene.compile());
+    HookRecorder h;
+    RunLoop loop(sim);
+    loop.add(h);
+    const bool finished = loop.run([](std::uint64_t) { return true; });
+    ASSERT_EQ(h.r.calls.size(), 3u);
+    EXPECT_EQ(h.r.calls[0], "start");
+    EXPECT_EQ(h.r.calls[1], "step");
+    EXPECT_EQ(h.r.calls[2], finished ? "finish" : "interrupt");
+    if (GetParam() == "step") {
+        EXPECT_FALSE(finished);
+        EXPECT_EQ(h.r.step_ends_s.size(), 1u);
+    }
+    if (!finished) {
+        EXPECT_TRUE(sim.at_restart_point());
+        EXPECT_EQ(h.r.call_times_s.back(), sim.state().time.seconds());
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Schemes, RunLoopSchemes, ::testing::Values(std::string("step"), std::string("event"), std::string("soft")),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace

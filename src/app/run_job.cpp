@@ -228,6 +228,13 @@ private:
             void at_restart_point(const Simulation&) override {
                 if (cadence.due()) job.checkpoint();
             }
+            // The bar's last line, and the caller's last progress, whichever way the run ends.
+            void at_finish(const Simulation&) override { end(); }
+            void at_interrupt(const Simulation&) override { end(); }
+            void end() {
+                progress.finish();
+                if (job.options_.on_progress) call_back(Clock::now());
+            }
         } listener(*this, options_.progress && isatty(STDERR_FILENO));
         started_ = Clock::now();
         RunLoop run(*sim_);
@@ -236,11 +243,8 @@ private:
         if (shot_series_) run.add(*shot_series_);
         // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
         // step, the event-driven scheme at its restart interval.
-        const bool finished = run.run(
+        return run.run(
             [&](std::uint64_t steps) { return stop.requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps); });
-        listener.progress.finish();
-        if (options_.on_progress) listener.call_back(Clock::now());
-        return finished;
     }
 
     double wall_time() const { return wall_before_ + std::chrono::duration<double>(Clock::now() - started_).count(); }

@@ -19,6 +19,8 @@ namespace peensim {
 class RunListener {
 public:
     virtual ~RunListener() = default;
+    // Once, before the first step (the state is the run's start, or the resumed checkpoint's).
+    virtual void at_start(const Simulation& /*sim*/) {}
     // The latest time (s) the next step may end at (the event-driven scheme stops exactly there:
     // a video frame's time); +infinity: wherever the scheme likes.
     virtual double pause_at_s() const { return std::numeric_limits<double>::infinity(); }
@@ -31,6 +33,11 @@ public:
     // Whether the run has what it came for (run until coverage): asked at each restart point, after
     // at_restart_point; yes ends the run there as finished, before the scene's duration.
     virtual bool done() const { return false; }
+    // The run ends: interrupted (a stop was asked: the state is a restart point, a clean place to
+    // checkpoint and resume from) or finished (the scene's end, or a listener is done). Exactly one
+    // of the two is called, once, after the last step (and its restart point's calls).
+    virtual void at_interrupt(const Simulation& /*sim*/) {}
+    virtual void at_finish(const Simulation& /*sim*/) {}
 };
 
 class RunLoop {
@@ -43,7 +50,16 @@ public:
     // Runs to the scene's end, or to a restart point where a listener is done: true. `stop`, asked
     // after every step with the number of steps taken, ends the run at the next restart point once
     // it has said yes: false (the state there is a clean place to checkpoint and resume from).
+    // Listeners hear at_start first, and at_finish or at_interrupt last.
     bool run(const std::function<bool(std::uint64_t steps)>& stop = {}) {
+        for (RunListener* l : listeners_) l->at_start(sim_);
+        const bool finished = steps_until_end(stop);
+        for (RunListener* l : listeners_) finished ? l->at_finish(sim_) : l->at_interrupt(sim_);
+        return finished;
+    }
+
+private:
+    bool steps_until_end(const std::function<bool(std::uint64_t steps)>& stop) {
         std::uint64_t steps = 0;
         bool stopping = false;
         while (!sim_.finished()) {
@@ -63,7 +79,6 @@ public:
         return true;
     }
 
-private:
     Simulation& sim_;
     std::vector<RunListener*> listeners_;
     std::vector<ImpactRecord> impacts_;  // one step's, consumed by the listeners, never kept

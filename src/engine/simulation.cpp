@@ -1,21 +1,10 @@
 #include "engine/simulation.h"
 
-#include "engine/event/event_stepping.h"
 #include "engine/law_input.h"
-#include "engine/time_stepping.h"
 
 namespace peensim {
 
 namespace {
-
-std::unique_ptr<Stepper> make_scheme(const std::shared_ptr<const Model>& model) {
-    switch (model->scheme) {
-        case SteppingScheme::step: return std::make_unique<TimeStepping>(model);
-        case SteppingScheme::event:
-        case SteppingScheme::soft: return std::make_unique<EventStepping>(model);  // with its soft pool
-    }
-    return std::make_unique<TimeStepping>(model);
-}
 
 SimulationState initial_state(const Model& model, const InitialShots& shots) {
     SimulationState state;
@@ -39,13 +28,13 @@ SimulationState initial_state(const Model& model, const InitialShots& shots) {
 }  // namespace
 
 Simulation::Simulation(std::shared_ptr<const Model> model)
-    : model_(std::move(model)), state_(initial_state(*model_, place_shots(*model_))), scheme_(make_scheme(model_)), emitter_(*model_) {}
+    : model_(std::move(model)), state_(initial_state(*model_, place_shots(*model_))), scheme_(make_stepper(model_)), emitter_(*model_) {}
 
 Simulation::Simulation(std::shared_ptr<const Model> model, const InitialShots& shots)
-    : model_(std::move(model)), state_(initial_state(*model_, shots)), scheme_(make_scheme(model_)), emitter_(*model_) {}
+    : model_(std::move(model)), state_(initial_state(*model_, shots)), scheme_(make_stepper(model_)), emitter_(*model_) {}
 
 Simulation::Simulation(std::shared_ptr<const Model> model, SimulationState state)
-    : model_(std::move(model)), state_(std::move(state)), scheme_(make_scheme(model_)), emitter_(*model_) {
+    : model_(std::move(model)), state_(std::move(state)), scheme_(make_stepper(model_)), emitter_(*model_) {
     // A state made by hand (a test) may leave the sources' and sinks' counts out.
     state_.emitted_per_source.resize(model_->sources.size(), 0);
     state_.collected_per_sink.resize(model_->sinks.size(), 0);

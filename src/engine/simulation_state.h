@@ -9,7 +9,7 @@
 #include "common/sim_time.h"
 #include "common/vec.h"
 #include "engine/contact_states.h"
-#include "engine/soft/soft_contact.h"
+#include "engine/soft_contact.h"
 
 namespace peensim {
 

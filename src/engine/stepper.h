@@ -3,6 +3,7 @@
 // the same model, state, contact laws and impact buffer.
 #pragma once
 
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "engine/step_stats.h"
 
 namespace peensim {
+
+struct Model;
 
 class Stepper {
 public:
@@ -35,5 +38,11 @@ public:
     // flights from now on, without disturbing the others.
     virtual void shots_added(SimulationState& state, const std::vector<int>& shots) = 0;
 };
+
+// The model's scheme (Model::scheme): time stepping, the event scheme or the soft scheme. Defined
+// in engine/schemes/make_stepper.cpp, the one file that knows every scheme: the rest of engine/
+// sees this interface only, so the schemes' folders (engine/event/, engine/soft/) sit above it and
+// no folder of the engine includes one above it.
+std::unique_ptr<Stepper> make_stepper(const std::shared_ptr<const Model>& model);
 
 }  // namespace peensim

@@ -7,17 +7,13 @@ every source file; prints each offending include with its file and line, and exi
     tests/architecture/check_layers.py [REPO]
 
 A subfolder (engine/event/) belongs to its top folder's row; cycles are checked between subfolders
-too. The one cycle that remains (engine, engine/event, engine/soft: the soft scheme lives inside
-the event scheme) is listed in KNOWN_CYCLES until issue 33 item 1 takes the soft scheme out; the
-check fails when a cycle appears that is not listed, and when a listed one is gone (so the list
-is emptied with the fix). Standard library only.
+too, and none is allowed (the last one, engine <-> engine/event <-> engine/soft, went when the soft
+scheme left the event scheme). Standard library only.
 """
 import os
 import re
 import sys
 
-# Each entry: the folders of one cycle, sorted. See the module's docstring.
-KNOWN_CYCLES = [("engine", "engine/event", "engine/soft")]
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 
@@ -120,17 +116,12 @@ def main():
         elif top_there not in table[top_here]:
             problems.append(f"{rel}:{number}: '{top_here}' includes '{there}', which its row in README.md's table does not list "
                             f"(it lists: {', '.join(sorted(table[top_here])) or 'nothing'})")
-    found = cycles(edges)
-    for c in found:
-        if c not in KNOWN_CYCLES:
-            problems.append("a cycle of folders including each other: " + " <-> ".join(c))
-    for c in KNOWN_CYCLES:
-        if c not in found:
-            problems.append("the known cycle " + " <-> ".join(c) + " is gone: remove it from KNOWN_CYCLES in " + os.path.relpath(__file__, repo))
+    for c in cycles(edges):
+        problems.append("a cycle of folders including each other: " + " <-> ".join(c))
     for p in problems:
         print(p)
     print(f"{sum(len(v) for v in edges.values())} folder edges checked against {len(table)} table rows; "
-          f"{len(problems)} problem(s); known cycles: {len(KNOWN_CYCLES)}")
+          f"{len(problems)} problem(s)")
     return 1 if problems else 0
 
 

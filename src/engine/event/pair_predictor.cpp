@@ -37,13 +37,13 @@ bool PairPredictor::predict(int i, double t, std::span<EventShot> shots, const s
     // around each was a visible cost.
     StageTimer timer(stats, Stage::shot_contacts);
     boxes_->overlapping(s.box_lo, s.box_hi, neighbours_);
-    soft_neighbours_.clear();
+    pooled_neighbours_.clear();
     // Ties between partners go to the lowest index, whatever order the tree returns them in.
     for (const int j : neighbours_) {
         if (j == i || !active[static_cast<std::size_t>(j)]) continue;
         const EventShot& o = shots[static_cast<std::size_t>(j)];
-        if (o.motion == EventMotion::soft) {
-            soft_neighbours_.push_back(j);
+        if (o.motion == EventMotion::pooled) {
+            pooled_neighbours_.push_back(j);
             continue;
         }
         // The partner's flight is known up to its own next event; after that it re-predicts.

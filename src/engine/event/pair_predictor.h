@@ -31,19 +31,19 @@ public:
     // Sets shots[i]'s earliest pair event from t on (pair_time, partner, partner_version; +inf and
     // -1 for none). Returns true if shot i is pressed into a pile (touching a resting shot without
     // bouncing off it): it should join the pile's sustained contact. Ties go to the lowest index.
-    // Members of the soft scheme's pool are not predicted against (the pool finds their contacts):
-    // the members whose boxes overlap shot i's are listed in soft_neighbours() instead.
+    // Members of a pool (hand_off_pool.h: the soft scheme's) are not predicted against (the pool finds their contacts):
+    // the members whose boxes overlap shot i's are listed in pooled_neighbours() instead.
     bool predict(int i, double t, std::span<EventShot> shots, const std::vector<unsigned char>& active, const EventQueue& queue,
                  StepStats& stats);
     // The pool members met by the last predict() (valid until the next).
-    const std::vector<int>& soft_neighbours() const { return soft_neighbours_; }
+    const std::vector<int>& pooled_neighbours() const { return pooled_neighbours_; }
 
 private:
     int shot_count_;
     double resting_speed_;  // m/s
     std::unique_ptr<ShotBoxTree> boxes_;
     std::vector<int> neighbours_;  // scratch
-    std::vector<int> soft_neighbours_;
+    std::vector<int> pooled_neighbours_;
 };
 
 }  // namespace peensim

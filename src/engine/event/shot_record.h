@@ -12,9 +12,9 @@
 
 namespace peensim {
 
-// soft: a member of the soft scheme's pool (engine/soft/soft_pool.h), which moves it; `path` is the
-// pool's latest state of it.
-enum class EventMotion : unsigned char { flying, riding, sustained, sleeping, soft };
+// pooled: a member of the pool of the scheme on top of the event core (hand_off_pool.h: the soft
+// scheme's soft contacts), which moves it; `path` is the pool's latest state of it.
+enum class EventMotion : unsigned char { flying, riding, sustained, sleeping, pooled };
 
 struct EventShot {
     Trajectory path;        // world; for a sleeping or riding shot: g = 0 (see ride_*)

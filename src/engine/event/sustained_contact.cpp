@@ -71,7 +71,7 @@ SustainedContact::Next SustainedContact::end_of_substep(int i, double t, Vec3 p,
             if (touch - dist > contact::kOverlapWorthCounting * R) ++state.health.shot_overlap_corrections;
         }
         // A neighbour still moving (not asleep, not as still as this shot must be) keeps it awake.
-        if (o.motion == EventMotion::flying || o.motion == EventMotion::riding || o.motion == EventMotion::soft ||
+        if (o.motion == EventMotion::flying || o.motion == EventMotion::riding || o.motion == EventMotion::pooled ||
             vj.norm() >= resting_speed_)
             moving_support = true;
     }
