@@ -13,6 +13,7 @@
 
 #include "common/vec.h"
 #include "contact/hertz_mindlin.h"
+#include "contact/soft_pair.h"
 
 namespace peensim::contact {
 
@@ -90,13 +91,14 @@ struct ShotShotResponse {
 
 // The impact line (contact::is_impact) and the other rules both schemes follow: contact_policy.h.
 
-// What the soft-sphere scheme asks of a pair's law (a law that offers it: `hertz-mindlin`): the
-// Hertz-Mindlin constants of a contact that starts approaching at approach_speed (m/s, >= 0). A
-// velocity-dependent restitution fixes the contact's damping from its approach speed.
+// What the soft-sphere scheme asks of a pair's law (a law that offers it: `hertz-mindlin`,
+// `linear-spring-dashpot`): the constants of a contact that starts approaching at approach_speed
+// (m/s, >= 0), its family saying which forces follow from them (soft_pair.h). A velocity-dependent
+// restitution fixes the contact's damping from its approach speed.
 class SoftLaw {
 public:
     virtual ~SoftLaw() = default;
-    virtual HertzPair contact(double approach_speed_m_per_s) const = 0;
+    virtual SoftPair contact(double approach_speed_m_per_s) const = 0;
 };
 
 // A law for shot-surface contacts (static or moving mesh), built for one pair (its parameters

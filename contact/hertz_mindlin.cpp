@@ -18,9 +18,10 @@ double hertz_beta(double restitution) {
     return l / std::sqrt(l * l + M_PI * M_PI);
 }
 
-HertzPair hertz_pair(const ElasticMaterial& a, const ElasticMaterial& b, double radius_a_m, double radius_b_m, double mass_a_kg,
-                     double mass_b_kg, double restitution, double friction) {
-    HertzPair p;
+SoftPair hertz_pair(const ElasticMaterial& a, const ElasticMaterial& b, double radius_a_m, double radius_b_m, double mass_a_kg,
+                    double mass_b_kg, double restitution, double friction) {
+    SoftPair p;
+    p.family = SoftFamily::hertz_mindlin;
     const auto e_part = [](const ElasticMaterial& m) { return (1.0 - m.poisson_ratio * m.poisson_ratio) / m.youngs_modulus_pa; };
     const auto g_part = [](const ElasticMaterial& m) {
         return 2.0 * (2.0 - m.poisson_ratio) * (1.0 + m.poisson_ratio) / m.youngs_modulus_pa;
@@ -34,39 +35,35 @@ HertzPair hertz_pair(const ElasticMaterial& a, const ElasticMaterial& b, double 
     return p;
 }
 
-double hertz_normal_force(const HertzPair& p, double delta_m, double delta_rate_m_per_s) {
+double hertz_normal_force(const SoftPair& p, double delta_m, double delta_rate_m_per_s) {
     const double d = std::max(0.0, delta_m);
     const double root = std::sqrt(p.R_star_m * d);
     const double s_n = 2.0 * p.E_star_pa * root;  // N/m, normal stiffness
     return 4.0 / 3.0 * p.E_star_pa * root * d - kDampingFactor * p.beta * std::sqrt(s_n * p.m_star_kg) * delta_rate_m_per_s;
 }
 
-HertzCoefficients hertz_coefficients(const HertzPair& p) {
+HertzCoefficients hertz_coefficients(const SoftPair& p) {
     const double root_r = std::sqrt(p.R_star_m);
     return {4.0 / 3.0 * p.E_star_pa * root_r, -kDampingFactor * p.beta * std::sqrt(2.0 * p.E_star_pa * root_r * p.m_star_kg)};
 }
 
-Vec3 mindlin_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, double dt_s, Vec3& spring_m) {
+Vec3 mindlin_tangential_force(const SoftPair& p, double delta_m, double normal_force_n, const Vec3& v_t, double dt_s, Vec3& spring_m) {
     return mindlin_tangential_force(p, delta_m, normal_force_n, v_t, Vec3(v_t * dt_s), spring_m);
 }
 
-Vec3 mindlin_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, const Vec3& slip_m,
+Vec3 mindlin_tangential_force(const SoftPair& p, double delta_m, double normal_force_n, const Vec3& v_t, const Vec3& slip_m,
                               Vec3& spring_m) {
     const double s_t = 8.0 * p.G_star_pa * std::sqrt(p.R_star_m * std::max(0.0, delta_m));  // N/m
-    spring_m += slip_m;
-    const Vec3 damping = -kDampingFactor * p.beta * std::sqrt(s_t * p.m_star_kg) * v_t;  // beta <= 0: opposes v_t
-    Vec3 force = -s_t * spring_m - damping;
-    const double cap = p.friction * std::max(0.0, normal_force_n);
-    const double f = force.norm();
-    if (f > cap && f > 0.0) {
-        // Sliding: the force at Coulomb's cap, the spring shortened to what that force holds.
-        force *= cap / f;
-        spring_m = s_t > 0.0 ? Vec3(-(force + damping) / s_t) : Vec3(Vec3::Zero());
-    }
-    return force;
+    const double c_t = -kDampingFactor * p.beta * std::sqrt(s_t * p.m_star_kg);             // N s/m, beta <= 0: opposes v_t
+    return capped_spring_dashpot(s_t, c_t, p.friction, normal_force_n, v_t, slip_m, spring_m);
 }
 
-double hertz_contact_duration(const HertzPair& p, double v_m_per_s) {
+double hertz_elastic_energy(const SoftPair& p, double delta_m) {
+    const double d = std::max(0.0, delta_m);
+    return 8.0 / 15.0 * p.E_star_pa * std::sqrt(p.R_star_m) * d * d * std::sqrt(d);
+}
+
+double hertz_contact_duration(const SoftPair& p, double v_m_per_s) {
     return 2.87 * std::pow(p.m_star_kg * p.m_star_kg / (p.R_star_m * p.E_star_pa * p.E_star_pa * v_m_per_s), 0.2);
 }
 

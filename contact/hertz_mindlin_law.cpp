@@ -25,22 +25,30 @@ constexpr double kGripKeep = 5.0 / 7.0;  // -, tangential speed a solid sphere k
 
 HertzMindlinCoefficients coefficients(const ParameterValues& v) { return {v.scalar(0), v.scalar(1), v.scalar(2)}; }
 
+}  // namespace
+
 double sphere_mass(double diameter_m, double density_kg_per_m3) {
     const double r = 0.5 * diameter_m;
     return density_kg_per_m3 * 4.0 / 3.0 * M_PI * r * r * r;
 }
 
-const ElasticMaterial& require_shot_elastic(const std::optional<ElasticMaterial>& shot, const std::string& shot_material) {
+const ElasticMaterial& shot_elastic_for(std::string_view law, const std::optional<ElasticMaterial>& shot,
+                                        const std::string& shot_material) {
     if (shot) return *shot;
-    throw std::invalid_argument(
-        shot_material.empty()
-            ? "law 'hertz-mindlin' needs the shot's elastic constants: give shot.material, a material with youngs_modulus and "
-              "poisson_ratio"
-            : "law 'hertz-mindlin' needs the elastic constants of the shot's material '" + shot_material + "': add materials." +
-                  shot_material + ".youngs_modulus and .poisson_ratio");
+    const std::string name(law);
+    throw std::invalid_argument(shot_material.empty()
+                                    ? "law '" + name +
+                                          "' needs the shot's elastic constants: give shot.material, a material with "
+                                          "youngs_modulus and poisson_ratio"
+                                    : "law '" + name + "' needs the elastic constants of the shot's material '" + shot_material +
+                                          "': add materials." + shot_material + ".youngs_modulus and .poisson_ratio");
 }
 
-}  // namespace
+const ElasticMaterial& surface_elastic_for(std::string_view law, const SurfacePair& pair) {
+    if (pair.surface_elastic) return *pair.surface_elastic;
+    throw std::invalid_argument("law '" + std::string(law) + "' needs the elastic constants of material '" + pair.material +
+                                "': add materials." + pair.material + ".youngs_modulus and .poisson_ratio");
+}
 
 double HertzMindlinCoefficients::restitution(double v_m_per_s) const {
     return V0_m_per_s > 0.0 ? normal_restitution(v_m_per_s, e, V0_m_per_s) : e;
@@ -51,17 +59,7 @@ double rigid_tangential_keep(double vt_m_per_s, double vn_m_per_s, double e, dou
     return std::max(kGripKeep, 1.0 - f * (1.0 + e) * vn_m_per_s / vt_m_per_s);
 }
 
-HertzMindlinSurfaceLaw::HertzMindlinSurfaceLaw(const HertzMindlinCoefficients& k, const ElasticMaterial& shot,
-                                               const ElasticMaterial& surface, double shot_radius_m, double shot_mass_kg)
-    : k_(k), elastic_(hertz_pair(shot, surface, shot_radius_m, kInfinite, shot_mass_kg, kInfinite, 1.0, k.f)) {}
-
-HertzPair HertzMindlinSurfaceLaw::contact(double approach_speed_m_per_s) const {
-    HertzPair p = elastic_;
-    p.beta = hertz_beta(k_.restitution(approach_speed_m_per_s));
-    return p;
-}
-
-SurfaceContactResponse HertzMindlinSurfaceLaw::impact(const SurfaceContactInput& in, std::span<double>) const {
+SurfaceContactResponse rigid_limit_impact(const SurfaceContactInput& in, const HertzMindlinCoefficients& k) {
     const Vec3 dV = in.v_shot - in.v_surface;
     const double vn = dV.dot(in.normal);
     const Vec3 vt = dV - vn * in.normal;
@@ -70,35 +68,25 @@ SurfaceContactResponse HertzMindlinSurfaceLaw::impact(const SurfaceContactInput&
     out.vn_in = std::max(0.0, -vn);
     out.vt_in = vt.norm();
     if (!(vn < 0.0)) return out;
-    const double e = k_.restitution(-vn);
-    out.v_shot = in.v_surface + rigid_tangential_keep(out.vt_in, -vn, e, k_.f) * vt - e * vn * in.normal;
+    const double e = k.restitution(-vn);
+    out.v_shot = in.v_surface + rigid_tangential_keep(out.vt_in, -vn, e, k.f) * vt - e * vn * in.normal;
     out.vn_out = -e * vn;
     out.approaching = true;
     return out;
 }
 
-SurfaceContactResponse HertzMindlinSurfaceLaw::sustain(const SurfaceContactInput& in, std::span<double>) const {
-    return impulse_surface_sustain(in, k_.f);
+SurfaceContactResponse rigid_limit_sustain(const SurfaceContactInput& in, const HertzMindlinCoefficients& k) {
+    return impulse_surface_sustain(in, k.f);
 }
 
-HertzMindlinShotShotLaw::HertzMindlinShotShotLaw(const HertzMindlinCoefficients& k, const ElasticMaterial& shot, double shot_radius_m,
-                                                 double shot_mass_kg)
-    : k_(k), elastic_(hertz_pair(shot, shot, shot_radius_m, shot_radius_m, shot_mass_kg, shot_mass_kg, 1.0, k.f)) {}
-
-HertzPair HertzMindlinShotShotLaw::contact(double approach_speed_m_per_s) const {
-    HertzPair p = elastic_;
-    p.beta = hertz_beta(k_.restitution(approach_speed_m_per_s));
-    return p;
-}
-
-ShotShotResponse HertzMindlinShotShotLaw::respond(const ShotShotInput& in) const {
+ShotShotResponse rigid_limit_respond(const ShotShotInput& in, const HertzMindlinCoefficients& k) {
     ShotShotResponse out{in.v_i, in.v_j, 0.0, false};
     const Vec3 rel = in.v_j - in.v_i;
     const double dV = rel.dot(in.normal);  // < 0 while approaching
     if (!(dV < 0.0)) return out;
     double e = 0.0;
     switch (in.mode) {
-        case ShotShotMode::law: e = k_.restitution(-dV); break;
+        case ShotShotMode::law: e = k.restitution(-dV); break;
         case ShotShotMode::sustained: e = 0.0; break;
         case ShotShotMode::collapse_guard: e = 1.0; break;
     }
@@ -108,7 +96,7 @@ ShotShotResponse HertzMindlinShotShotLaw::respond(const ShotShotInput& in) const
     // sustained contact in a pile changes only the normal part (its friction is the substeps').
     const ImpulseShares share = impulse_shares(in);
     const Vec3 vt = rel - dV * in.normal;
-    const double lost = in.mode == ShotShotMode::sustained ? 0.0 : 1.0 - rigid_tangential_keep(vt.norm(), -dV, e, k_.f);
+    const double lost = in.mode == ShotShotMode::sustained ? 0.0 : 1.0 - rigid_tangential_keep(vt.norm(), -dV, e, k.f);
     const Vec3 exchange = (1.0 + e) * dV * in.normal + lost * vt;
     out.v_i = in.v_i + share.i * exchange;
     if (!in.j_held) out.v_j = in.v_j - share.j * exchange;
@@ -117,19 +105,47 @@ ShotShotResponse HertzMindlinShotShotLaw::respond(const ShotShotInput& in) const
     return out;
 }
 
+HertzMindlinSurfaceLaw::HertzMindlinSurfaceLaw(const HertzMindlinCoefficients& k, const ElasticMaterial& shot,
+                                               const ElasticMaterial& surface, double shot_radius_m, double shot_mass_kg)
+    : k_(k), elastic_(hertz_pair(shot, surface, shot_radius_m, kInfinite, shot_mass_kg, kInfinite, 1.0, k.f)) {}
+
+SoftPair HertzMindlinSurfaceLaw::contact(double approach_speed_m_per_s) const {
+    SoftPair p = elastic_;
+    p.beta = hertz_beta(k_.restitution(approach_speed_m_per_s));
+    return p;
+}
+
+SurfaceContactResponse HertzMindlinSurfaceLaw::impact(const SurfaceContactInput& in, std::span<double>) const {
+    return rigid_limit_impact(in, k_);
+}
+
+SurfaceContactResponse HertzMindlinSurfaceLaw::sustain(const SurfaceContactInput& in, std::span<double>) const {
+    return rigid_limit_sustain(in, k_);
+}
+
+HertzMindlinShotShotLaw::HertzMindlinShotShotLaw(const HertzMindlinCoefficients& k, const ElasticMaterial& shot, double shot_radius_m,
+                                                 double shot_mass_kg)
+    : k_(k), elastic_(hertz_pair(shot, shot, shot_radius_m, shot_radius_m, shot_mass_kg, shot_mass_kg, 1.0, k.f)) {}
+
+SoftPair HertzMindlinShotShotLaw::contact(double approach_speed_m_per_s) const {
+    SoftPair p = elastic_;
+    p.beta = hertz_beta(k_.restitution(approach_speed_m_per_s));
+    return p;
+}
+
+ShotShotResponse HertzMindlinShotShotLaw::respond(const ShotShotInput& in) const { return rigid_limit_respond(in, k_); }
+
 std::span<const LawParameter> hertz_mindlin_parameters() { return kParameters; }
 
 std::shared_ptr<const SurfaceLaw> make_hertz_mindlin_surface(const ParameterValues& v, const SurfacePair& pair) {
-    const ElasticMaterial& shot = require_shot_elastic(pair.shot_elastic, pair.shot_material);
-    if (!pair.surface_elastic)
-        throw std::invalid_argument("law 'hertz-mindlin' needs the elastic constants of material '" + pair.material + "': add materials." +
-                                    pair.material + ".youngs_modulus and .poisson_ratio");
-    return std::make_shared<HertzMindlinSurfaceLaw>(coefficients(v), shot, *pair.surface_elastic, 0.5 * pair.shot_diameter_m,
+    const ElasticMaterial& shot = shot_elastic_for("hertz-mindlin", pair.shot_elastic, pair.shot_material);
+    const ElasticMaterial& surface = surface_elastic_for("hertz-mindlin", pair);
+    return std::make_shared<HertzMindlinSurfaceLaw>(coefficients(v), shot, surface, 0.5 * pair.shot_diameter_m,
                                                     sphere_mass(pair.shot_diameter_m, pair.shot_density_kg_per_m3));
 }
 
 std::shared_ptr<const ShotShotLaw> make_hertz_mindlin_shot_shot(const ParameterValues& v, const ShotShotPair& pair) {
-    const ElasticMaterial& shot = require_shot_elastic(pair.shot_elastic, pair.shot_material);
+    const ElasticMaterial& shot = shot_elastic_for("hertz-mindlin", pair.shot_elastic, pair.shot_material);
     return std::make_shared<HertzMindlinShotShotLaw>(coefficients(v), shot, 0.5 * pair.shot_diameter_m,
                                                      sphere_mass(pair.shot_diameter_m, pair.shot_density_kg_per_m3));
 }

@@ -10,7 +10,10 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 
 #include "contact/contact_law.h"
 #include "contact/hertz_mindlin.h"
@@ -31,6 +34,12 @@ struct HertzMindlinCoefficients {
 // vn (m/s) with restitution e: 5/7 (gripped), or 1 - f (1 + e) vn / vt (sliding), whichever is larger.
 double rigid_tangential_keep(double vt_m_per_s, double vn_m_per_s, double e, double f);
 
+// The rigid limit of a soft law with restitution k.restitution(V) and friction k.f (see above):
+// a surface impact, sustained contact, and a shot-shot contact. Every soft law's rigid form.
+SurfaceContactResponse rigid_limit_impact(const SurfaceContactInput& in, const HertzMindlinCoefficients& k);
+SurfaceContactResponse rigid_limit_sustain(const SurfaceContactInput& in, const HertzMindlinCoefficients& k);
+ShotShotResponse rigid_limit_respond(const ShotShotInput& in, const HertzMindlinCoefficients& k);
+
 class HertzMindlinSurfaceLaw final : public SurfaceLaw, public SoftLaw {
 public:
     // shot: the shot's material and its radius (m) and mass (kg); surface: the component's (a wall:
@@ -41,11 +50,11 @@ public:
     SurfaceContactResponse impact(const SurfaceContactInput& in, std::span<double>) const override;
     SurfaceContactResponse sustain(const SurfaceContactInput& in, std::span<double>) const override;
     const SoftLaw* soft() const override { return this; }
-    HertzPair contact(double approach_speed_m_per_s) const override;
+    SoftPair contact(double approach_speed_m_per_s) const override;
 
 private:
     HertzMindlinCoefficients k_;
-    HertzPair elastic_;  // beta 0: set per contact
+    SoftPair elastic_;  // beta 0: set per contact
 };
 
 class HertzMindlinShotShotLaw final : public ShotShotLaw, public SoftLaw {
@@ -54,12 +63,19 @@ public:
     std::string_view name() const override { return "hertz-mindlin"; }
     ShotShotResponse respond(const ShotShotInput& in) const override;
     const SoftLaw* soft() const override { return this; }
-    HertzPair contact(double approach_speed_m_per_s) const override;
+    SoftPair contact(double approach_speed_m_per_s) const override;
 
 private:
     HertzMindlinCoefficients k_;
-    HertzPair elastic_;
+    SoftPair elastic_;
 };
+
+// kg, a sphere's mass from its diameter (m) and density (kg/m3).
+double sphere_mass(double diameter_m, double density_kg_per_m3);
+// The elastic constants a soft law (named `law`) needs, or std::invalid_argument saying where to
+// give them: the shot's material's, the surface's.
+const ElasticMaterial& shot_elastic_for(std::string_view law, const std::optional<ElasticMaterial>& shot, const std::string& shot_material);
+const ElasticMaterial& surface_elastic_for(std::string_view law, const SurfacePair& pair);
 
 std::span<const LawParameter> hertz_mindlin_parameters();
 // Factories for the law registry; throw std::invalid_argument naming the elastic constants a pair lacks.

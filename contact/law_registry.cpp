@@ -6,6 +6,7 @@
 #include "contact/hertz_mindlin_law.h"
 #include "contact/impact_history_law.h"
 #include "contact/impulse_laws.h"
+#include "contact/linear_spring_dashpot_law.h"
 
 namespace peensim::contact {
 
@@ -55,7 +56,16 @@ const std::array kCatalogue{
              "above V0 = plastic_speed when it is > 0). Needs `youngs_modulus` and `poisson_ratio` of the shot's and the surface's "
              "materials. The soft scheme integrates it; the rigid schemes take its instantaneous limit (normal "
              "restitution e, the tangential impulse of a sphere that grips: 5/7 of the slip, or Coulomb-limited).",
-             hertz_mindlin_parameters(), hertz_mindlin_parameters(), make_hertz_mindlin_surface, make_hertz_mindlin_shot_shot},
+             hertz_mindlin_parameters(), hertz_mindlin_parameters(), make_hertz_mindlin_surface, make_hertz_mindlin_shot_shot, true},
+    LawEntry{"linear-spring-dashpot",
+             "Soft-sphere contact with constant stiffnesses (LIGGGHTS's `model hooke` with `tangential history`, EDEM's "
+             "linear spring): normal spring k_n from the materials' E and nu at characteristic_speed (the spring whose "
+             "greatest overlap at that speed is Hertz's), tangential spring tangential_ratio k_n with Coulomb's cap f, "
+             "dampers from the restitution e (the same e at every speed). Needs `youngs_modulus` and `poisson_ratio` of the "
+             "shot's and the surface's materials. The soft scheme integrates it; the rigid schemes take its instantaneous "
+             "limit (as hertz-mindlin's).",
+             linear_spring_dashpot_parameters(), linear_spring_dashpot_parameters(), make_linear_spring_dashpot_surface,
+             make_linear_spring_dashpot_shot_shot, true},
 };
 
 }  // namespace
@@ -66,6 +76,13 @@ const LawEntry* find_law(std::string_view name) {
     for (const LawEntry& e : kCatalogue)
         if (e.name == name) return &e;
     return nullptr;
+}
+
+std::string soft_law_names_text() {
+    std::string out;
+    for (const LawEntry& e : kCatalogue)
+        if (e.soft_sphere) out += (out.empty() ? "'" : ", '") + std::string(e.name) + "'";
+    return out;
 }
 
 std::string law_names_text() {

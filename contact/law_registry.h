@@ -49,6 +49,7 @@ struct LawEntry {
     // Throw std::invalid_argument saying what the pair lacks (the caller adds the scene location).
     std::shared_ptr<const SurfaceLaw> (*make_surface)(const ParameterValues&, const SurfacePair&);
     std::shared_ptr<const ShotShotLaw> (*make_shot_shot)(const ParameterValues&, const ShotShotPair&);  // nullptr when not a shot-shot law
+    bool soft_sphere = false;  // its laws offer soft() for every pair: the soft scheme can run it
 };
 
 // Every law, the default ("impulse") first.
@@ -57,7 +58,9 @@ std::span<const LawEntry> law_catalogue();
 // The entry of a law name, or nullptr.
 const LawEntry* find_law(std::string_view name);
 
-// "impulse, impact-history, hertz-mindlin".
+// "impulse, impact-history, hertz-mindlin, linear-spring-dashpot".
 std::string law_names_text();
+// "'hertz-mindlin', 'linear-spring-dashpot'": the laws the soft scheme can run.
+std::string soft_law_names_text();
 
 }  // namespace peensim::contact

@@ -76,7 +76,7 @@ TEST(TradeJob, AScenesContactsMustBeHertzMindlin) {
     o.scene_path = scene.scene_path();
     std::ostringstream out, err;
     EXPECT_EQ(trade_job(o, out, err), kExitInputError);
-    EXPECT_NE(err.str().find("expected law 'hertz-mindlin'"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("expected a soft-sphere law ('hertz-mindlin', 'linear-spring-dashpot')"), std::string::npos) << err.str();
     EXPECT_NE(err.str().find("scene.yaml"), std::string::npos) << err.str();
 }
 

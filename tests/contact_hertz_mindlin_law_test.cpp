@@ -84,7 +84,7 @@ TEST(HertzMindlinLaw, RigidLimitBetweenShotOfTwoSizesWeighsByMass) {
 TEST(HertzMindlinLaw, SoftConstantsAreThePairsWithTheDampingOfTheApproach) {
     const HertzMindlinSurfaceLaw law({0.9, 0.1, 0.5}, kSteel, kAluminium, kR, kMass);
     ASSERT_EQ(law.soft(), &law);
-    const HertzPair slow = law.contact(0.4), fast = law.contact(8.0);
+    const SoftPair slow = law.contact(0.4), fast = law.contact(8.0);
     EXPECT_DOUBLE_EQ(slow.E_star_pa, hertz_pair(kSteel, kAluminium, kR, kInfinite, kMass, kInfinite, 1.0, 0.1).E_star_pa);
     EXPECT_EQ(slow.R_star_m, kR);
     EXPECT_EQ(slow.m_star_kg, kMass);

@@ -18,21 +18,21 @@ constexpr double kR = 1e-3;  // m, a 2 mm shot
 const double kMass = 7800.0 * 4.0 / 3.0 * M_PI * kR * kR * kR;
 
 TEST(HertzMindlin, PairConstantsAreTheReferencesFormulas) {
-    const HertzPair wall = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.9, 0.1);
+    const SoftPair wall = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.9, 0.1);
     EXPECT_DOUBLE_EQ(wall.E_star_pa, 200e9 / (2.0 * 0.91));
     EXPECT_DOUBLE_EQ(wall.G_star_pa, 200e9 / (4.0 * 1.7 * 1.3));
     EXPECT_EQ(wall.R_star_m, kR);
     EXPECT_EQ(wall.m_star_kg, kMass);
     EXPECT_DOUBLE_EQ(wall.beta, std::log(0.9) / std::sqrt(std::log(0.9) * std::log(0.9) + M_PI * M_PI));
     EXPECT_EQ(wall.friction, 0.1);
-    const HertzPair shots = hertz_pair(kSteel, kSteel, kR, kR, kMass, kMass, 1.0, 0.1);
+    const SoftPair shots = hertz_pair(kSteel, kSteel, kR, kR, kMass, kMass, 1.0, 0.1);
     EXPECT_DOUBLE_EQ(shots.R_star_m, 0.5 * kR);
     EXPECT_DOUBLE_EQ(shots.m_star_kg, 0.5 * kMass);
     EXPECT_EQ(shots.beta, 0.0);  // e = 1: no damping
 }
 
 TEST(HertzMindlin, NormalForceIsHertzPlusDamping) {
-    const HertzPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.9, 0.1);
+    const SoftPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.9, 0.1);
     const double d = 1e-6, rate = 2.0;  // m, m/s
     const double elastic = 4.0 / 3.0 * p.E_star_pa * std::sqrt(kR) * std::pow(d, 1.5);
     const double damping = -2.0 * std::sqrt(5.0 / 6.0) * p.beta * std::sqrt(2.0 * p.E_star_pa * std::sqrt(kR * d) * kMass) * rate;
@@ -57,7 +57,7 @@ struct Rebound {
 
 // A normal impact on a wall at v (m/s): the overlap's equation m* d'' = -F(d, d') by classical
 // Runge-Kutta at `per_contact` steps per Hertz time, until the overlap is zero again.
-Rebound normal_impact(const HertzPair& p, double v, int per_contact) {
+Rebound normal_impact(const SoftPair& p, double v, int per_contact) {
     const double dt = hertz_contact_duration(p, v) / per_contact;
     const auto acc = [&](double d, double r) { return -hertz_normal_force(p, d, r) / p.m_star_kg; };
     double d = 0.0, r = v, t = 0.0;
@@ -79,12 +79,12 @@ Rebound normal_impact(const HertzPair& p, double v, int per_contact) {
 TEST(HertzMindlin, ANormalImpactReboundsAtEAtEverySpeedAndLastsTheHertzTime) {
     for (double e : {0.9, 0.7, 0.5})
         for (double v : {0.5, 2.0, 10.0}) {
-            const HertzPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, e, 0.1);
+            const SoftPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, e, 0.1);
             // Measured at 200 steps per Hertz time: within 5e-4 of e (0.90004, 0.70018, 0.50026 at
             // every speed); converged (2000 steps) 0.90000, 0.50002.
             EXPECT_NEAR(normal_impact(p, v, 200).restitution, e, 0.005 * e) << "e " << e << ", v " << v;
         }
-    const HertzPair elastic = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 1.0, 0.1);
+    const SoftPair elastic = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 1.0, 0.1);
     for (double v : {0.5, 2.0, 10.0}) {
         const Rebound r = normal_impact(elastic, v, 200);
         EXPECT_NEAR(r.restitution, 1.0, 1e-5);  // measured: 1.14e-6 short (the last step's linear crossing)
@@ -96,7 +96,7 @@ TEST(HertzMindlin, ANormalImpactReboundsAtEAtEverySpeedAndLastsTheHertzTime) {
 }
 
 TEST(HertzMindlin, TheTangentialSpringSticksBelowCoulombsCapAndSlidesAtIt) {
-    const HertzPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 1.0, 0.1);  // no damping: the spring alone
+    const SoftPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 1.0, 0.1);  // no damping: the spring alone
     const double d = 1e-6, fn = hertz_normal_force(p, d, 0.0);
     const double s_t = 8.0 * p.G_star_pa * std::sqrt(kR * d);
     Vec3 spring = Vec3::Zero();
@@ -117,7 +117,7 @@ TEST(HertzMindlin, TheTangentialSpringSticksBelowCoulombsCapAndSlidesAtIt) {
 // damping, but its Coulomb cap compares the spring's force alone with f |F_n| (the magnitude of the
 // damped normal force, which pulls at the end of a damped contact) and drops the damping while
 // sliding; mindlin_tangential_force caps the spring and its damping together at f max(0, F_n).
-Vec3 liggghts_tangential_force(const HertzPair& p, double delta_m, double normal_force_n, const Vec3& v_t, double dt_s, Vec3& shear_m) {
+Vec3 liggghts_tangential_force(const SoftPair& p, double delta_m, double normal_force_n, const Vec3& v_t, double dt_s, Vec3& shear_m) {
     const double s_t = 8.0 * p.G_star_pa * std::sqrt(p.R_star_m * std::max(0.0, delta_m));
     shear_m += v_t * dt_s;
     Vec3 force = -s_t * shear_m;
@@ -131,7 +131,7 @@ Vec3 liggghts_tangential_force(const HertzPair& p, double delta_m, double normal
 }
 
 TEST(HertzMindlin, CoulombsCapTakesTheSpringWithItsDampingAndNoPullUnlikeLiggghts) {
-    const HertzPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.8, 0.3);
+    const SoftPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.8, 0.3);
     const double d = 1e-6, s_t = 8.0 * p.G_star_pa * std::sqrt(kR * d);
     const double gamma_t = -2.0 * std::sqrt(5.0 / 6.0) * p.beta * std::sqrt(s_t * kMass);  // N s/m, > 0
     const double fn = hertz_normal_force(p, d, 0.0), cap = p.friction * fn;
@@ -158,7 +158,7 @@ TEST(HertzMindlin, CoulombsCapTakesTheSpringWithItsDampingAndNoPullUnlikeLiggght
 // LIGGGHTS's nve/sphere does (half kick, drift, forces, half kick) at 1.5e-9 s (4000 steps per
 // contact), with either cap. Returns the tangential speed lost over Coulomb's f (1 + e) v_n.
 template <class Tangential>
-double sliding_loss_over_coulomb(const HertzPair& p, Tangential tangential) {
+double sliding_loss_over_coulomb(const SoftPair& p, Tangential tangential) {
     const double vn0 = 2.0, vt0 = 8.0, dt = 1.5e-9, inertia = 0.4 * kMass * kR * kR;
     double z = kR, vz = -vn0, vx = vt0, w = 0.0, fn = 0.0, ft = 0.0;  // the centre's height, m; spin about y, rad/s
     Vec3 spring = Vec3::Zero();
@@ -175,7 +175,7 @@ double sliding_loss_over_coulomb(const HertzPair& p, Tangential tangential) {
 }
 
 TEST(HertzMindlin, ASlidingImpactLosesCoulombsImpulseWhereLiggghtsLosesTwoPercentMore) {
-    const HertzPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.8, 0.3);
+    const SoftPair p = hertz_pair(kSteel, kSteel, kR, kInfinite, kMass, kInfinite, 0.8, 0.3);
     const double ours = sliding_loss_over_coulomb(
         p, [&](double d, double fn, const Vec3& v, double dt, Vec3& s) { return mindlin_tangential_force(p, d, fn, v, dt, s); });
     const double theirs = sliding_loss_over_coulomb(

@@ -108,7 +108,8 @@ TEST(ContactShotShotModes, AHeldPartnerTakesNothingAndTheShotTakesTheWholeImpuls
 }
 
 TEST(ContactLawCatalogue, EveryLawIsRegisteredOnceWithItsParameters) {
-    EXPECT_EQ(contact::law_names_text(), "impulse, impact-history, hertz-mindlin");
+    EXPECT_EQ(contact::law_names_text(), "impulse, impact-history, hertz-mindlin, linear-spring-dashpot");
+    EXPECT_EQ(contact::soft_law_names_text(), "'hertz-mindlin', 'linear-spring-dashpot'");
     const contact::LawEntry* impulse = contact::find_law("impulse");
     ASSERT_NE(impulse, nullptr);
     ASSERT_EQ(impulse->shot_shot_parameters.size(), 2u);

@@ -7,16 +7,29 @@
 #include <random>
 #include <vector>
 
+#include "contact/hertz_mindlin.h"
+#include "contact/linear_spring_dashpot_law.h"
 #include "engine/soft/contact_impulse.h"
 
 namespace peensim::testing {
 namespace {
 
-contact::HertzPair steel_on_steel(double e) {
+contact::SoftPair steel_on_steel(double e) {
     const double m = 7800.0 * 4.0 / 3.0 * M_PI * 1e-9;  // kg, a 2 mm steel shot
     const contact::ElasticMaterial steel{200e9, 0.3};
     return contact::hertz_pair(steel, steel, 1e-3, contact::kInfinite, m, contact::kInfinite, e, 0.0);
 }
+
+// The same pair with the linear spring-dashpot law (stiffness at a characteristic speed of 2 m/s):
+// a force of other powers (1 and 0: the damper's force jumps where the contact begins).
+contact::SoftPair linear_steel_on_steel(double e) {
+    const double m = 7800.0 * 4.0 / 3.0 * M_PI * 1e-9;  // kg
+    const contact::ElasticMaterial steel{200e9, 0.3};
+    return contact::linear_spring_dashpot_pair(steel, steel, 1e-3, contact::kInfinite, m, contact::kInfinite, e, 0.0, 2.0, 1.0);
+}
+
+// Either law's pair.
+contact::SoftPair pair_of(bool linear, double e) { return linear ? linear_steel_on_steel(e) : steel_on_steel(e); }
 
 // Gauss-Legendre on [a, b] with 16 points (nodes by Newton's iteration on the Legendre polynomial).
 double gauss16(const std::function<double(double)>& f, double a, double b) {
@@ -56,7 +69,7 @@ double graded(const std::function<double(double)>& f, double a, double b) {
 
 // The x component of the impulse, brute force: the overlap's sign changes found on a fine grid and
 // by bisection, each positive piece integrated on intervals halving towards its ends.
-double brute_force(const contact::HertzPair& pair, const ContactPath& path, double h) {
+double brute_force(const contact::SoftPair& pair, const ContactPath& path, double h) {
     const double H = std::abs(h), sign = h < 0.0 ? -1.0 : 1.0;
     const auto overlap = [&](double tau) {
         double d, r;
@@ -69,7 +82,7 @@ double brute_force(const contact::HertzPair& pair, const ContactPath& path, doub
         contact_path_at(pair, path, h, tau, delta, rate);
         if (!(delta > 0.0)) return 0.0;
         const Vec3 n = (path.normal + tau * path.turn_per_s).normalized();
-        return (1.0 - s / H) * contact::hertz_normal_force(pair, delta, rate) * n.x();
+        return (1.0 - s / H) * contact::soft_normal_force(pair, delta, rate) * n.x();
     };
     std::vector<double> cuts{0.0};
     const int grid = 4000;
@@ -98,13 +111,16 @@ double brute_force(const contact::HertzPair& pair, const ContactPath& path, doub
 // towards every root of the same path, each with 16 Gauss points, the impulse is right to 1e-8 of
 // the impulse of a 10 um overlap over the half step (measured 3e-9: 4 Gauss points deep in a
 // contact whose path bends hard; accelerations up to 1e6 m/s2 here).
-TEST(SoftContactImpulse, MatchesABruteForceIntegrationWhereverTheContactBeginsOrEnds) {
+// Both laws' forces (Hertz's powers 3/2 and 1/4; the linear law's 1 and 0).
+class SoftContactImpulseLaws : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SoftContactImpulseLaws, MatchesABruteForceIntegrationWhereverTheContactBeginsOrEnds) {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     double worst = 0.0;
     int touching = 0;
     for (int trial = 0; trial < 400; ++trial) {
-        const contact::HertzPair pair = steel_on_steel(trial % 2 ? 1.0 : 0.8);
+        const contact::SoftPair pair = pair_of(GetParam(), trial % 2 ? 1.0 : 0.8);
         // A contact of ~2 m/s: overlaps up to ~10 um, steps of 0.05-1 us, accelerations up to 1e6 m/s2.
         const double h = (0.05 + u(rng)) * 1e-6 * (u(rng) < 0.5 ? -1.0 : 1.0);
         ContactPath p;
@@ -117,25 +133,26 @@ TEST(SoftContactImpulse, MatchesABruteForceIntegrationWhereverTheContactBeginsOr
         const double expected = brute_force(pair, p, h);
         const double got = half_step_impulse(pair, p, h).near.x();
         // The scale: the force of a 10 um overlap over the half step.
-        const double scale = contact::hertz_normal_force(pair, 1e-5, 0.0) * std::abs(h);
+        const double scale = contact::soft_normal_force(pair, 1e-5, 0.0) * std::abs(h);
         if (expected != 0.0) ++touching;
         worst = std::max(worst, std::abs(got - expected) / scale);
         EXPECT_NEAR(got, expected, 1e-8 * scale)
             << trial << ": e " << (trial % 2 ? 1.0 : 0.8) << ", h " << h << " s, overlap " << p.overlap_m << " m, rate " << p.rate_m_per_s
             << " m/s, accel " << p.outer_accel_m_per_s2 << " m/s2";
     }
-    std::cout << "[ impulse  ] " << touching << " of 400 paths touching; worst error " << worst << " of the scale\n";
+    std::cout << "[ impulse  ] " << (GetParam() ? "linear" : "hertz") << ": " << touching << " of 400 paths touching; worst error " << worst
+              << " of the scale\n";
     EXPECT_GT(touching, 200);
 }
 
-TEST(SoftContactImpulse, AConstantForceGivesHalfItsImpulse) {
+TEST_P(SoftContactImpulseLaws, AConstantForceGivesHalfItsImpulse) {
     // Deep in a contact at rest the force is constant: each half hat weighs it by h / 2.
-    const contact::HertzPair pair = steel_on_steel(1.0);
+    const contact::SoftPair pair = pair_of(GetParam(), 1.0);
     ContactPath p;
     p.overlap_m = 5e-6;
-    p.outer_accel_m_per_s2 = contact::hertz_normal_force(pair, 5e-6, 0.0) / pair.m_star_kg;  // held there
+    p.outer_accel_m_per_s2 = contact::soft_normal_force(pair, 5e-6, 0.0) / pair.m_star_kg;  // held there
     const Vec3 j = half_step_impulse(pair, p, 1e-7).near;
-    EXPECT_NEAR(j.z(), contact::hertz_normal_force(pair, 5e-6, 0.0) * 0.5e-7, 1e-9 * j.z());
+    EXPECT_NEAR(j.z(), contact::soft_normal_force(pair, 5e-6, 0.0) * 0.5e-7, 1e-9 * j.z());
     EXPECT_NEAR(half_step_impulse(pair, p, -1e-7).near.z(), j.z(), 1e-12 * j.z());
     p.overlap_m = -1e-9;  // a gap that stays open
     p.outer_accel_m_per_s2 = 0.0;
@@ -155,11 +172,11 @@ namespace {
 // (measured 2.2e-6 elastic, 4.9e-6 at e 0.8; its terms of the fifth order in the time, odd: the
 // two half steps' errors around a node cancel to the next order), where the overlap's quadratic
 // Taylor polynomial from the node was off by 4.6e-5.
-TEST(SoftContactImpulse, ThePathFollowsAnIsolatedContact) {
+TEST_P(SoftContactImpulseLaws, ThePathFollowsAnIsolatedContact) {
     for (const double e : {1.0, 0.8}) {
-        const contact::HertzPair pair = steel_on_steel(e);
-        const double v = 2.0, H = contact::hertz_contact_duration(pair, v) / 20.0, g = 9.81;
-        const auto accel = [&](double d, double r) { return g - contact::hertz_normal_force(pair, d, r) / pair.m_star_kg; };
+        const contact::SoftPair pair = pair_of(GetParam(), e);
+        const double v = 2.0, H = contact::soft_contact_duration(pair, v) / 20.0, g = 9.81;
+        const auto accel = [&](double d, double r) { return g - contact::soft_normal_force(pair, d, r) / pair.m_star_kg; };
         // The contact itself, by RK4 in fine steps from its touch, sampled as nodes every H.
         std::vector<std::pair<double, double>> nodes;  // (delta, rate)
         double d = -0.3 * v * H, r = v, top = 0.0;
@@ -191,6 +208,9 @@ TEST(SoftContactImpulse, ThePathFollowsAnIsolatedContact) {
         EXPECT_LT(worst, 1e-5);
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Laws, SoftContactImpulseLaws, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) { return info.param ? "linear" : "hertz"; });
 
 }  // namespace
 }  // namespace peensim::testing

@@ -56,7 +56,7 @@ TEST(SoftContact, NormalImpactReboundsAtEAndLastsTheHertzTime) {
             const ImpactRecord& r = t.impacts.front();
             const double m = 7800.0 * 4.0 / 3.0 * M_PI * 1e-9;
             const contact::ElasticMaterial steel{200e9, 0.3};
-            const contact::HertzPair p = contact::hertz_pair(steel, steel, 1e-3, contact::kInfinite, m, contact::kInfinite, 1.0, 0.1);
+            const contact::SoftPair p = contact::hertz_pair(steel, steel, 1e-3, contact::kInfinite, m, contact::kInfinite, 1.0, 0.1);
             std::cout << "e " << e << " v " << v << ": vn_in " << r.vn_in_m_per_s << " rebound " << r.vn_out_m_per_s / r.vn_in_m_per_s
                       << " duration " << r.duration_s << " hertz " << contact::hertz_contact_duration(p, v) << "\n";
             EXPECT_NEAR(r.vn_in_m_per_s, v, 1e-9 * v);  // the exact touch's approach
@@ -159,7 +159,7 @@ namespace {
 TEST(SoftContact, ErrorFallsWithTheStepsPerContact) {
     const double m = 7800.0 * 4.0 / 3.0 * M_PI * 1e-9;
     const contact::ElasticMaterial steel{200e9, 0.3};
-    const contact::HertzPair p = contact::hertz_pair(steel, steel, 1e-3, contact::kInfinite, m, contact::kInfinite, 1.0, 0.1);
+    const contact::SoftPair p = contact::hertz_pair(steel, steel, 1e-3, contact::kInfinite, m, contact::kInfinite, 1.0, 0.1);
     for (const double e : {1.0, 0.9, 0.6}) {
         double last = 1.0;
         for (const double n : {10.0, 20.0, 40.0, 80.0, 160.0}) {

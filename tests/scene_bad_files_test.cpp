@@ -80,7 +80,8 @@ const BadScene catalogue[] = {
 // Scenes that read but cannot be compiled into a model (compile_model: a law without what it
 // needs, a scheme without the laws it integrates).
 const BadScene compile_catalogue[] = {
-    {"soft_with_impulse_law.yaml", 9, "contacts.default.law", "expected law 'hertz-mindlin' for shot-shot"},
+    {"soft_with_impulse_law.yaml", 9, "contacts.default.law",
+     "expected a soft-sphere law ('hertz-mindlin', 'linear-spring-dashpot') for shot-shot"},
     {"sink_mesh_open.yaml", 11, "sinks[0].mesh", "a mesh sink must be a closed mesh"},
     {"air_jet_without_drag.yaml", 9, "sources[0].air_speed",
      "an air jet acts on the shot through drag (or rebound scatter), both off; expected air.drag: sphere"},

@@ -44,7 +44,8 @@ TEST(SceneSchema, ChildKeysComeFromTheTable) {
     EXPECT_EQ(join_names(schema_child_keys("process")), "duration, gravity, seed, until_coverage, until_coverage_of");
     EXPECT_EQ(join_names(schema_child_keys("")),
               "name, process, accuracy, shot, air, materials, contacts, components, sources, sinks, output, render");
-    EXPECT_EQ(join_names(schema_child_keys("contacts.*")), "law, C0, V0, mu, f, restitution_by_hits, influence_distance, e, plastic_speed");
+    EXPECT_EQ(join_names(schema_child_keys("contacts.*")),
+              "law, C0, V0, mu, f, restitution_by_hits, influence_distance, e, plastic_speed, characteristic_speed, tangential_ratio");
     EXPECT_EQ(join_names(schema_child_keys("components[].motion")), "type, axis_point, axis_direction, speed");
 }
 

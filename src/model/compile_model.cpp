@@ -151,8 +151,9 @@ void require_soft_laws(const Model& model, const SceneDescription& scene) {
     const auto refuse = [&](const std::string& key) {
         const ContactPairDesc& pair = contact_for(scene, key);
         throw InputError(pair.where, "contacts." + pair.key + ".law",
-                         "the soft scheme (accuracy.scheme: soft) integrates soft-sphere contacts; expected law 'hertz-mindlin' for " +
-                             key + " (write it in the `default` pair to set it for every pair), found '" + pair.law + "'");
+                         "the soft scheme (accuracy.scheme: soft) integrates soft-sphere contacts; expected a soft-sphere law (" +
+                             contact::soft_law_names_text() + ") for " + key +
+                             " (write it in the `default` pair to set it for every pair), found '" + pair.law + "'");
     };
     if (model.shot_shot_law->soft() == nullptr) refuse("shot-shot");
     for (const Component& c : model.components)

@@ -56,8 +56,8 @@ const std::array schema_table{
                 "closed form or by root finding; `travel_fraction` unused), or `step`, time stepping (every shot "
                 "advances by the step of eq. 7; contacts found at step ends and taken back to their exact touch time); "
                 "both with instantaneous rigid impacts. `soft`: event-driven flights, and every impact a soft-sphere "
-                "Hertz-Mindlin contact integrated while it lasts (every pair's law `hertz-mindlin`; materials with "
-                "`youngs_modulus` and `poisson_ratio`). See the README's \"Choosing the stepping scheme\"."},
+                "contact integrated while it lasts (every pair's law a soft-sphere one, `hertz-mindlin` or "
+                "`linear-spring-dashpot`; materials with `youngs_modulus` and `poisson_ratio`). See the README's \"Choosing the stepping scheme\"."},
     SchemaEntry{"accuracy.soft_steps_per_contact", K::quantity, D::dimensionless, false, "20", "", closed(4, 10000), "", "", "",
                 "Soft scheme only: integration steps per Hertz contact time (the duration of an elastic contact at "
                 "the contact's approach speed); the soft contacts' accuracy knob (see \"Soft-sphere contacts\")."},
@@ -124,9 +124,9 @@ const std::array schema_table{
     SchemaEntry{"materials.*.yield_stress", K::quantity, D::stress, false, "", "none", above(0), "", "", "",
                 "Yield stress, for dent diameters (eq. 10)."},
     SchemaEntry{"materials.*.youngs_modulus", K::quantity, D::stress, false, "", "none", closed(1e3, 1e13), "", "", "",
-                "Young's modulus E, for soft-sphere contacts (law `hertz-mindlin`)."},
+                "Young's modulus E, for soft-sphere contacts (laws `hertz-mindlin`, `linear-spring-dashpot`)."},
     SchemaEntry{"materials.*.poisson_ratio", K::quantity, D::dimensionless, false, "", "none", closed(-0.99, 0.5), "", "", "",
-                "Poisson's ratio nu, for soft-sphere contacts (law `hertz-mindlin`)."},
+                "Poisson's ratio nu, for soft-sphere contacts (laws `hertz-mindlin`, `linear-spring-dashpot`)."},
 
     SchemaEntry{"contacts", K::named_map, D::dimensionless, false, "", "built-in `default`", {}, "", "", "",
                 "Contact coefficients by pair: `shot-shot`, `shot-<material>` or `default` (every pair not "

@@ -130,6 +130,9 @@ std::string scene_yaml(const TestSceneSpec& s) {
         const SoftSpec& k = *s.soft;
         const std::string elastic = ", youngs_modulus: " + num(k.youngs_modulus_pa) + " Pa, poisson_ratio: " + num(k.poisson_ratio) + "}";
         const auto hm = [&](double e, double f) {
+            if (k.linear)
+                return "{law: linear-spring-dashpot, e: " + num(e) + ", f: " + num(f) +
+                       ", characteristic_speed: " + num(k.characteristic_speed_m_per_s) + " m/s}";
             return "{law: hertz-mindlin, e: " + num(e) + ", f: " + num(f) + ", plastic_speed: " + num(k.V0_m_per_s) + " m/s}";
         };
         y << "materials:\n"

@@ -42,6 +42,10 @@ struct SoftSpec {
     double f_shot_shot = 0.1, f_sonotrode = 0.1, f_chamber = 0.1, f_part = 0.1;  // -
     double V0_m_per_s = 0.0;                                                     // m/s, every pair (0: e at every speed)
     double steps_per_contact = 20.0;                                             // -, accuracy.soft_steps_per_contact
+    // The law of every pair: hertz-mindlin (V0 above), or linear-spring-dashpot with its stiffness
+    // at this characteristic speed (m/s).
+    bool linear = false;
+    double characteristic_speed_m_per_s = 2.0;
 };
 
 enum class PartShape { box, cylinder, plate };

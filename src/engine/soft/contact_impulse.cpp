@@ -82,16 +82,22 @@ bool may_touch(const ContactPath& path, double h_s) {
 
 }  // namespace
 
-NodePath::NodePath(const contact::HertzPair& pair, const ContactPath& path, double h_max_s)
+NodePath::NodePath(const contact::SoftPair& pair, const ContactPath& path, double h_max_s)
     : normal_(path.normal),
       turn_(path.turn_per_s),
-      c_(contact::hertz_coefficients(pair)),
+      c_(contact::soft_force_shape(pair)),
+      hertz_(c_.elastic_power == 1.5 && c_.damping_power == 0.25),
       m_(pair.m_star_kg),
       d0_(path.overlap_m),
       r_(path.rate_m_per_s),
       A_(path.outer_accel_m_per_s2) {
     const double inv_m = 1.0 / m_;
-    if (d0_ > 0.0) {
+    if (!hertz_) {
+        // Other powers: also at an exact touch closing (d0 = 0, r > 0), where a force whose damping
+        // has the power 0 (the linear law's) is already c r, and its feedback on the path counts
+        // from the first instant (Hertz's is 0 there, its derivatives singular).
+        if (d0_ > 0.0 || (d0_ == 0.0 && r_ > 0.0)) general_node(h_max_s);
+    } else if (d0_ > 0.0) {
         const double root = std::sqrt(d0_), q = std::sqrt(root), inv_d0 = 1.0 / d0_;
         const double e = c_.elastic * d0_ * root, d = c_.damping * r_ * q;  // N: the force's two terms
         f0_ = e + d;
@@ -125,10 +131,51 @@ void NodePath::phis(double x, double& phi1, double& phi2) const {
         phi1 = phi2 = 0.0;
         return;
     }
+    if (!hertz_) {
+        general_phis(x, phi1, phi2);
+        return;
+    }
     const double root = std::sqrt(x), q = std::sqrt(root);
     const double e = c_.elastic * x * x * root, d = c_.damping * r_ * x * q;
     phi1 = e * (1.0 / 2.5) + d * (1.0 / 1.25);
     phi2 = x * (e * (1.0 / 8.75) + d * (1.0 / 2.8125));
+}
+
+// The node's terms for any powers a (elastic) and b (damping): F = k x^a + c r x^b along the
+// straight path, its x-derivatives, and the twice-integrated force at d0 (the Hertz branch above
+// is the same with a = 3/2, b = 1/4, written with square roots).
+void NodePath::general_node(double h_max_s) {
+    const double a = c_.elastic_power, b = c_.damping_power, inv_m = 1.0 / m_;
+    // coef x^p, 0 for a zero coefficient (x^p may be infinite at x = 0 where it does not matter).
+    const auto term = [&](double coef, double p) { return coef == 0.0 ? 0.0 : coef * std::pow(d0_, p); };
+    const double k = c_.elastic, cr = c_.damping * r_;
+    const double e = term(k, a), d = term(cr, b);  // N: the force's two terms
+    f0_ = e + d;
+    const double f1_elastic = term(a * k, a - 1.0);
+    f1_ = f1_elastic + term(b * cr, b - 1.0);
+    f2_ = term(a * (a - 1.0) * k, a - 2.0) + term(b * (b - 1.0) * cr, b - 2.0);
+    const double d2 = A_ - f0_ * inv_m;
+    const double f_v = term(c_.damping, b), f_dv = term(b * c_.damping, b - 1.0);  // dF/d rate, d2F/d delta d rate
+    const double d3 = -(f1_ * r_ + f_v * d2) * inv_m;
+    c3_ = -f_v * d2 * inv_m;
+    // As Hertz's: where the straight path may leave the contact within the half step, only the
+    // elastic share (the series means nothing across the root).
+    c4_ = (d0_ > std::abs(r_) * h_max_s ? -(2.0 * f_dv * r_ * d2 + f1_ * d2 + f_v * d3) : -f1_elastic * d2) * inv_m;
+    phi1_0_ = e * d0_ / (a + 1.0) + d * d0_ / (b + 1.0);
+    phi2_0_ = d0_ * d0_ * (e / ((a + 1.0) * (a + 2.0)) + d / ((b + 1.0) * (b + 2.0)));
+    if (!std::isfinite(f0_ + f1_ + f2_ + c3_ + c4_)) f0_ = f1_ = f2_ = c3_ = c4_ = 0.0;  // singular at the root: as Hertz's
+}
+
+void NodePath::general_phis(double x, double& phi1, double& phi2) const {
+    const double a = c_.elastic_power, b = c_.damping_power;
+    const double e = c_.elastic * std::pow(x, a + 1.0), d = c_.damping * r_ * std::pow(x, b + 1.0);
+    phi1 = e / (a + 1.0) + d / (b + 1.0);
+    phi2 = x * (e / ((a + 1.0) * (a + 2.0)) + d / ((b + 1.0) * (b + 2.0)));
+}
+
+double NodePath::general_force(double delta, double rate) const {
+    if (!(delta > 0.0)) return 0.0;  // apart (a damping power of 0 would otherwise pull at a gap)
+    return c_.elastic * std::pow(delta, c_.elastic_power) + c_.damping * std::pow(delta, c_.damping_power) * rate;
 }
 
 void NodePath::at(const double* tau, int n, double* delta, double* rate) const {
@@ -137,8 +184,13 @@ void NodePath::at(const double* tau, int n, double* delta, double* rate) const {
     for (int i = 0; i < n; ++i) root[i] = std::sqrt(x[i]);
     for (int i = 0; i < n; ++i) q[i] = std::sqrt(root[i]);
     for (int i = 0; i < n; ++i) {
-        const double e = c_.elastic * x[i] * x[i] * root[i], d = c_.damping * r_ * x[i] * q[i];
-        const double p1 = e * (1.0 / 2.5) + d * (1.0 / 1.25), p2 = x[i] * (e * (1.0 / 8.75) + d * (1.0 / 2.8125));
+        double p1 = 0.0, p2 = 0.0;
+        if (hertz_) {
+            const double e = c_.elastic * x[i] * x[i] * root[i], d = c_.damping * r_ * x[i] * q[i];
+            p1 = e * (1.0 / 2.5) + d * (1.0 / 1.25), p2 = x[i] * (e * (1.0 / 8.75) + d * (1.0 / 2.8125));
+        } else if (x[i] > 0.0) {
+            general_phis(x[i], p1, p2);
+        }
         const double t = tau[i], t2 = t * t;
         const double G = (p2 - phi2_0_ - phi1_0_ * r_ * t) * g_scale_, dG = (p1 - phi1_0_) * dg_scale_;
         delta[i] = d0_ + t * (r_ + 0.5 * A_ * t) - G + t2 * t * (c3_ * (1.0 / 6.0) + c4_ * t * (1.0 / 24.0));
@@ -285,8 +337,10 @@ HalfStepImpulse NodePath::half_step(double h_s) const {
     double tau[kMaxPoints], delta[kMaxPoints], rate[kMaxPoints], f[kMaxPoints];
     for (int i = 0; i < points; ++i) tau[i] = sign * qs[i];
     at(tau, points, delta, rate);
-    const contact::HertzCoefficients& c = c_;
-    if (c.damping == 0.0) {
+    const contact::SoftForceShape& c = c_;
+    if (!hertz_) {
+        for (int i = 0; i < points; ++i) f[i] = qw[i] * general_force(delta[i], rate[i]);
+    } else if (c.damping == 0.0) {
         for (int i = 0; i < points; ++i) {
             const double d = std::max(0.0, delta[i]);
             f[i] = qw[i] * c.elastic * d * std::sqrt(d);
@@ -315,17 +369,17 @@ HalfStepImpulse NodePath::half_step(double h_s) const {
     return out;
 }
 
-HalfStepImpulse half_step_impulse(const contact::HertzPair& pair, const ContactPath& path, double h_s) {
+HalfStepImpulse half_step_impulse(const contact::SoftPair& pair, const ContactPath& path, double h_s) {
     if (!may_touch(path, h_s)) return {};
     return NodePath(pair, path, std::abs(h_s)).half_step(h_s);
 }
 
-NodePath node_path(const contact::HertzPair& pair, const ContactPath& path, double h_before_s, double h_after_s) {
+NodePath node_path(const contact::SoftPair& pair, const ContactPath& path, double h_before_s, double h_after_s) {
     if (!may_touch(path, -h_before_s) && !may_touch(path, h_after_s)) return NodePath();
     return NodePath(pair, path, std::max(h_before_s, h_after_s));
 }
 
-void contact_path_at(const contact::HertzPair& pair, const ContactPath& path, double h_s, double tau_s, double& overlap_m,
+void contact_path_at(const contact::SoftPair& pair, const ContactPath& path, double h_s, double tau_s, double& overlap_m,
                      double& rate_m_per_s) {
     NodePath(pair, path, std::abs(h_s)).at(tau_s, overlap_m, rate_m_per_s);
 }

@@ -23,7 +23,7 @@
 #pragma once
 
 #include "common/vec.h"
-#include "contact/hertz_mindlin.h"
+#include "contact/soft_pair.h"
 
 namespace peensim {
 
@@ -46,7 +46,7 @@ struct HalfStepImpulse {
 
 // One contact's path from its node, built once and integrated over either half step around it:
 // delta(tau) = d0 + r tau + A tau^2 / 2 - G(tau) / m* + c3 tau^3 / 6 + c4 tau^4 / 24, G the
-// contact's own force (the pair's hertz_normal_force, at the node's rate r) along the straight
+// contact's own force (the pair's soft_normal_force, at the node's rate r) along the straight
 // path x = d0 + r tau integrated twice from the node, c3 and c4 what the true motion's third and
 // fourth derivatives at the node have beyond that (the force's own change of speed acting back on
 // it).
@@ -54,7 +54,7 @@ class NodePath {
 public:
     NodePath() = default;
     // h_max_s (s): how far from the node it is followed (the longer half step around it).
-    NodePath(const contact::HertzPair& pair, const ContactPath& path, double h_max_s);
+    NodePath(const contact::SoftPair& pair, const ContactPath& path, double h_max_s);
 
     // The impulses of the normal force on the shot over the half step from the node to tau = h
     // (s, |h| <= h_max; h < 0: the half step before the node). `near` weighs it by 1 - tau / h: the
@@ -76,10 +76,17 @@ private:
     // (N m2) in x, at x (m).
     void phis(double x, double& phi1, double& phi2) const;
 
-    double reach_s_ = 0.0;                         // s, h_max (0: an empty path, for a gap that stays open on both sides)
-    Vec3 normal_ = Vec3::UnitZ();                  // unit
-    Vec3 turn_ = Vec3::Zero();                     // 1/s
-    contact::HertzCoefficients c_;                 // the pair's force
+    double reach_s_ = 0.0;         // s, h_max (0: an empty path, for a gap that stays open on both sides)
+    Vec3 normal_ = Vec3::UnitZ();  // unit
+    Vec3 turn_ = Vec3::Zero();     // 1/s
+    // The node's terms, the force integrated once and twice, and the force itself, for powers
+    // other than Hertz's (whose terms the code above writes with square roots, the common case).
+    void general_node(double h_max_s);
+    void general_phis(double x, double& phi1, double& phi2) const;
+    double general_force(double delta_m, double rate_m_per_s) const;  // N
+
+    contact::SoftForceShape c_;                    // the pair's force
+    bool hertz_ = true;                            // its powers are Hertz's (3/2, 1/4)
     double m_ = 1.0;                               // kg, m*
     double d0_ = 0.0, r_ = 0.0, A_ = 0.0;          // m, m/s, m/s2: the path's overlap, rate and outer acceleration at the node
     double f0_ = 0.0, f1_ = 0.0, f2_ = 0.0;        // N, N/m, N/m2: the force along the straight path and its x-derivatives at d0
@@ -90,14 +97,14 @@ private:
 };
 
 // NodePath(pair, path, |h|).half_step(h).
-HalfStepImpulse half_step_impulse(const contact::HertzPair& pair, const ContactPath& path, double h_s);
+HalfStepImpulse half_step_impulse(const contact::SoftPair& pair, const ContactPath& path, double h_s);
 // NodePath(pair, path, max(h_before, h_after)), or an empty one (no impulse either way) for a gap
 // that stays open over both half steps (s).
-NodePath node_path(const contact::HertzPair& pair, const ContactPath& path, double h_before_s, double h_after_s);
+NodePath node_path(const contact::SoftPair& pair, const ContactPath& path, double h_before_s, double h_after_s);
 
 // m and m/s: the overlap and its rate at tau (s) along the path half_step_impulse(pair, path, h)
 // integrates, |tau| <= |h| (NodePath(pair, path, |h|).at(tau, ...)).
-void contact_path_at(const contact::HertzPair& pair, const ContactPath& path, double h_s, double tau_s, double& overlap_m,
+void contact_path_at(const contact::SoftPair& pair, const ContactPath& path, double h_s, double tau_s, double& overlap_m,
                      double& rate_m_per_s);
 
 }  // namespace peensim

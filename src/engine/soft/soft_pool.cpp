@@ -17,12 +17,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMinStep = 1e-12;  // s, a step is never shorter (time always moves on)
 
-// J, the elastic energy of a Hertz contact at overlap delta (m): 8/15 E* sqrt(R*) delta^5/2.
-double elastic_energy(const contact::HertzPair& p, double delta_m) {
-    const double d = std::max(0.0, delta_m);
-    return 8.0 / 15.0 * p.E_star_pa * std::sqrt(p.R_star_m) * d * d * std::sqrt(d);
-}
-
 // The spring carried onto the tangent plane of normal n, its length kept (LIGGGHTS's rotation of
 // the shear history): a contact that rolls or turns keeps its elastic slip.
 Vec3 onto_plane(const Vec3& spring, const Vec3& n) {
@@ -37,9 +31,9 @@ Vec3 onto_plane(const Vec3& spring, const Vec3& n) {
 // rate_m_per_s (m/s): the approach at the step's start (approach_before, m/s) when it touched
 // already then (a touch found exactly: the shot joined there), else the speed that carries the
 // contact's energy now, its elastic energy included (LIGGGHTS's first contact frame, corrected).
-double onset_speed(const contact::HertzPair& elastic, double gap_before_m, double approach_before, double rate_m_per_s, double delta_m) {
+double onset_speed(const contact::SoftPair& elastic, double gap_before_m, double approach_before, double rate_m_per_s, double delta_m) {
     if (gap_before_m <= 1e-9 * elastic.R_star_m) return std::max(0.0, approach_before);
-    return std::sqrt(rate_m_per_s * rate_m_per_s + 2.0 * elastic_energy(elastic, delta_m) / elastic.m_star_kg);
+    return std::sqrt(rate_m_per_s * rate_m_per_s + 2.0 * contact::soft_elastic_energy(elastic, delta_m) / elastic.m_star_kg);
 }
 
 }  // namespace
@@ -92,9 +86,9 @@ Vec3 SoftPool::surface_velocity(std::size_t c, const Vec3& q) const {
     return sliding_[c];  // vibrating (the same everywhere), or still (zero)
 }
 
-double SoftPool::hertz_step(const contact::HertzPair& p, double energy_j) const {
+double SoftPool::step_for_contact(const contact::SoftPair& p, double energy_j) const {
     const double v = std::max(line_speed_, std::sqrt(2.0 * std::max(0.0, energy_j) / p.m_star_kg));
-    return std::max(kMinStep, contact::hertz_contact_duration(p, v) / steps_per_contact_);
+    return std::max(kMinStep, contact::soft_contact_duration(p, v) / steps_per_contact_);
 }
 
 int SoftPool::add_member(int shot, const Vec3& p, const Vec3& v, const Vec3& w) {
@@ -196,12 +190,12 @@ void SoftPool::join(int shot, double t, const Vec3& p, const Vec3& v, const Vec3
     ++stats.soft_joins;
     if (law != nullptr) {
         // The touch's own contact asks for its step before it is first seen.
-        const contact::HertzPair pair = law->contact(approach_m_per_s);
-        const double wanted = hertz_step(pair, 0.5 * pair.m_star_kg * approach_m_per_s * approach_m_per_s);
+        const contact::SoftPair pair = law->contact(approach_m_per_s);
+        const double wanted = step_for_contact(pair, 0.5 * pair.m_star_kg * approach_m_per_s * approach_m_per_s);
         pending_step_ = pending_step_ > 0.0 ? std::min(pending_step_, wanted) : wanted;
     }
     if (pending_step_ > 0.0) dt_ = members_.size() == 1 || !(dt_ > 0.0) ? pending_step_ : std::min(dt_, pending_step_);
-    if (!(dt_ > 0.0)) dt_ = hertz_step(model_->shot_shot_law->soft()->contact(line_speed_), 0.0);
+    if (!(dt_ > 0.0)) dt_ = step_for_contact(model_->shot_shot_law->soft()->contact(line_speed_), 0.0);
     look_around(slot);
     renew_box(slot, around);
 }
@@ -421,7 +415,7 @@ void SoftPool::evaluate(double t, double dt, SimulationState& state, std::vector
     const double ahead = 2.0 * std::min(step, dt_ > 0.0 ? dt_ : step);
     for (const Path& k : paths_) {
         if (k.live >= 0 || !(k.path.rate_m_per_s > 0.0) || !(k.path.overlap_m + k.path.rate_m_per_s * ahead > 0.0)) continue;
-        step = std::min(step, hertz_step(k.pair, 0.5 * k.pair.m_star_kg * k.path.rate_m_per_s * k.path.rate_m_per_s));
+        step = std::min(step, step_for_contact(k.pair, 0.5 * k.pair.m_star_kg * k.path.rate_m_per_s * k.path.rate_m_per_s));
     }
     if (dt > 0.0) pending_step_ = 0.0;
     if (pending_step_ > 0.0) step = std::min(step, pending_step_);
@@ -445,7 +439,7 @@ void SoftPool::shape(Path& k, bool rate_only) const {
     const Vec3 rel_v = A.v_rate - other_v;
     if (rate_only) {
         k.path.rate_m_per_s = -n.dot(rel_v);
-        k.force_n = k.path.overlap_m > 0.0 ? contact::hertz_normal_force(k.pair, k.path.overlap_m, k.path.rate_m_per_s) : 0.0;
+        k.force_n = k.path.overlap_m > 0.0 ? contact::soft_normal_force(k.pair, k.path.overlap_m, k.path.rate_m_per_s) : 0.0;
         return;
     }
     const Vec3 other_a = k.b >= 0 ? members_[static_cast<std::size_t>(k.b)].a : surface_acceleration(c, k.point_m);
@@ -565,14 +559,14 @@ void SoftPool::look_around(int m) {
 }
 
 void SoftPool::settle_step(Live& l, double rate, double t) const {
-    l.energy_j = 0.5 * l.pair.m_star_kg * rate * rate + elastic_energy(l.pair, l.delta_m);
+    l.energy_j = 0.5 * l.pair.m_star_kg * rate * rate + contact::soft_elastic_energy(l.pair, l.delta_m);
     if (!(l.start_step_s > 0.0)) {
         l.start_energy_j = std::max(l.energy_j, 0.5 * l.pair.m_star_kg * l.c.approach_m_per_s * l.c.approach_m_per_s);
-        l.start_step_s = hertz_step(l.pair, l.start_energy_j);
+        l.start_step_s = step_for_contact(l.pair, l.start_energy_j);
     }
     // A contact left to itself only loses energy, and keeps the step of its start; one that a
     // surface loads beyond it (the plate pressing a shot) asks for the shorter step of its energy.
-    l.step_s = l.energy_j > l.start_energy_j ? hertz_step(l.pair, l.energy_j) : l.start_step_s;
+    l.step_s = l.energy_j > l.start_energy_j ? step_for_contact(l.pair, l.energy_j) : l.start_step_s;
     const double age = t - (l.c.start_time_s - epoch_.hi - epoch_.lo);
     l.lively = l.energy_j >= 0.5 * l.pair.m_star_kg * line_speed_ * line_speed_ || age < kSlowAge;
 }
@@ -675,9 +669,9 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
             l.a = m;
             l.b = -1;
             // Its normal force here caps the tangential one (the normal kicks take it along its path).
-            const double fn = contact::hertz_normal_force(l.pair, delta, rate);
+            const double fn = contact::soft_normal_force(l.pair, delta, rate);
             Vec3 spring = onto_plane(l.c.spring_m, n);
-            const Vec3 ft = contact::mindlin_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), spring);
+            const Vec3 ft = contact::soft_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), spring);
             l.c.spring_m = spring;
             l.c.normal = n;
             l.delta_m = delta;
@@ -771,9 +765,9 @@ void SoftPool::shot_contacts(double t, double spring_dt) {
             l.a = ma;
             l.b = mb;
             // Its normal force here caps the tangential one (the normal kicks take it along its path).
-            const double fn = contact::hertz_normal_force(l.pair, delta, rate);
+            const double fn = contact::soft_normal_force(l.pair, delta, rate);
             Vec3 spring = onto_plane(l.c.spring_m, n);
-            const Vec3 ft = contact::mindlin_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), spring);  // on A
+            const Vec3 ft = contact::soft_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), spring);  // on A
             l.c.spring_m = spring;
             l.c.normal = -n;  // from the partner towards the shot
             l.delta_m = delta;

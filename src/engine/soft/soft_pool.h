@@ -156,7 +156,7 @@ private:
     struct Live {
         SoftContact c;
         int a = -1, b = -1;  // member slots of c.shot and c.partner (b: -1 for a component)
-        contact::HertzPair pair;
+        contact::SoftPair pair;
         double delta_m = 0.0;         // m, overlap at the last evaluation
         double step_s = 0.0;          // s, the step this contact asks for now
         double energy_j = 0.0;        // J, its normal kinetic plus elastic energy now
@@ -173,7 +173,7 @@ private:
         int shot = -1, partner = -1;  // shot (partner: -1 for a component)
         int component = -1;           // -1 between two shot
         int live = -1;                // its contact in live_ while they overlap at the node, else -1
-        contact::HertzPair pair;
+        contact::SoftPair pair;
         ContactPath path;
         Vec3 point_m = Vec3::Zero();  // m, world: the surface point nearest the centre (a component's)
         double distance_m = 0.0;      // m, centre to centre (two shot) or to that point
@@ -245,7 +245,7 @@ private:
     void renew_box(int m, SoftSurroundings& around);
     // The earliest touch within [t_, t_end] of a shot outside with a member: its time, or +inf.
     double first_join(double t_end, SoftSurroundings& around, int& shot, StepStats& stats);
-    double hertz_step(const contact::HertzPair& p, double energy_j) const;  // s
+    double step_for_contact(const contact::SoftPair& p, double energy_j) const;  // s
     // m/s, the velocity of component c's material point at q (m, world) at the evaluation's time.
     Vec3 surface_velocity(std::size_t c, const Vec3& q) const;
     // A contact's energy, wanted step and liveliness now, from its overlap and closing rate (m/s).
