@@ -256,7 +256,7 @@ std::string field_path_of(std::string_view schema_path) {
     };
     if (path.rfind("components[].", 0) == 0) {
         const std::string rest = path.substr(13);
-        const std::string block = rest.substr(0, rest.find('.'));
+        const std::string block = rest.substr(0, rest.find_first_of(".["));
         const std::string owner = block == "vibration"                                  ? "horn"
                                   : block == "almen" && rest.find("calibration") != std::string::npos ? "strip"
                                   : block == "almen"                                                   ? "strip2"
