@@ -23,7 +23,9 @@ constexpr std::array kParameters{
 
 constexpr double kGripKeep = 5.0 / 7.0;  // -, tangential speed a solid sphere keeps once its contact point grips
 
-HertzMindlinCoefficients coefficients(const ParameterValues& v) { return {v.scalar(0), v.scalar(1), v.scalar(2)}; }
+HertzMindlinCoefficients coefficients(const ParameterValues& v) {
+    return {v.scalar("e"), v.scalar("f"), v.scalar("plastic_speed")};
+}
 
 }  // namespace
 

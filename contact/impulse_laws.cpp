@@ -35,10 +35,10 @@ std::span<const LawParameter> impulse_parameters() { return kImpulseParameters; 
 PairCoefficients impulse_coefficients(const ParameterValues& values) {
     // Shot-shot pairs give only C0 and V0; mu and f keep their defaults there (unused).
     PairCoefficients k;
-    k.C0 = values.scalar(0);
-    k.V0_m_per_s = values.scalar(1);
-    if (values.values.size() > 2) k.mu = values.scalar(2);
-    if (values.values.size() > 3) k.f = values.scalar(3);
+    k.C0 = values.scalar("C0");
+    k.V0_m_per_s = values.scalar("V0");
+    if (values.has("mu")) k.mu = values.scalar("mu");
+    if (values.has("f")) k.f = values.scalar("f");
     return k;
 }
 

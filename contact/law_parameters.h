@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -21,12 +23,30 @@ struct LawParameter {
     std::string_view doc;
 };
 
-// The values of a law's parameters for one pair, SI, in the order the law declares them.
+// The values of a law's parameters for one pair, SI, each under the name the law declares it with.
+// A law reads them by name, not by position: reordering or inserting a declaration cannot hand a
+// law another parameter's value.
 struct ParameterValues {
-    std::vector<std::vector<double>> values;
+    struct Named {
+        std::string_view name;       // LawParameter::name (the declaration outlives the values)
+        std::vector<double> values;  // SI; one value, or a table
+    };
+    std::vector<Named> parameters;
 
-    double scalar(std::size_t i) const { return values.at(i).at(0); }
-    const std::vector<double>& list(std::size_t i) const { return values.at(i); }
+    bool has(std::string_view name) const { return find(name) != nullptr; }
+    // Throws std::out_of_range naming the parameter when the pair has no value for it.
+    const std::vector<double>& list(std::string_view name) const {
+        if (const Named* p = find(name); p != nullptr && !p->values.empty()) return p->values;
+        throw std::out_of_range("contact law parameter '" + std::string(name) + "' has no value");
+    }
+    double scalar(std::string_view name) const { return list(name).front(); }
+
+private:
+    const Named* find(std::string_view name) const {
+        for (const Named& p : parameters)
+            if (p.name == name) return &p;
+        return nullptr;
+    }
 };
 
 }  // namespace peensim::contact

@@ -21,7 +21,7 @@ std::shared_ptr<const ShotShotLaw> make_impulse_shot_shot(const ParameterValues&
 }
 
 std::shared_ptr<const SurfaceLaw> make_impact_history(const ParameterValues& v, const SurfacePair& pair) {
-    const double influence_distance_m = v.scalar(3);
+    const double influence_distance_m = v.scalar("influence_distance");
     if (influence_distance_m == 0.0 && !pair.yield_stress_pa)
         throw std::invalid_argument(
             "law 'impact-history' sizes its marks by the dent diameter (eq. 10), which needs the yield "
@@ -32,7 +32,7 @@ std::shared_ptr<const SurfaceLaw> make_impact_history(const ParameterValues& v, 
     g.shot_diameter_m = pair.shot_diameter_m;
     g.shot_density_kg_per_m3 = pair.shot_density_kg_per_m3;
     g.yield_stress_pa = pair.yield_stress_pa.value_or(0.0);
-    return std::make_shared<ImpactHistoryLaw>(v.list(0), v.scalar(1), v.scalar(2), influence_distance_m, g);
+    return std::make_shared<ImpactHistoryLaw>(v.list("restitution_by_hits"), v.scalar("mu"), v.scalar("f"), influence_distance_m, g);
 }
 
 const std::array kCatalogue{

@@ -102,7 +102,7 @@ TEST(HertzMindlinLaw, NeedsTheElasticConstantsOfBothMaterials) {
     ASSERT_NE(hm, nullptr);
     ASSERT_NE(hm->make_shot_shot, nullptr);
     ParameterValues v;
-    v.values = {{0.9}, {0.1}, {0.0}};
+    v.parameters = {{"e", {0.9}}, {"f", {0.1}}, {"plastic_speed", {0.0}}};
     SurfacePair pair;
     pair.shot_diameter_m = 2e-3;
     pair.shot_density_kg_per_m3 = 7800.0;
@@ -127,7 +127,8 @@ TEST(HertzMindlinLaw, NeedsTheElasticConstantsOfBothMaterials) {
         EXPECT_NE(std::string(e.what()).find("shot.material"), std::string::npos) << e.what();
     }
     // The rigid laws have no soft form (the soft scheme refuses them).
-    EXPECT_EQ(find_law("impulse")->make_shot_shot(v, shots)->soft(), nullptr);
+    const ParameterValues impulse{{{"C0", {0.9}}, {"V0", {0.1}}}};
+    EXPECT_EQ(find_law("impulse")->make_shot_shot(impulse, shots)->soft(), nullptr);
 }
 
 // One schema entry serves a key every law that declares it: it must mean the same to each (same

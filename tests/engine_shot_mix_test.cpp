@@ -41,6 +41,7 @@ const std::string kStudyScene = std::string(PEENSIM_SOURCE_DIR) + "/scenes/nozzl
 ShotDesc mix_by_mass() {
     ShotDesc d;
     d.density_kg_per_m3 = 7800.0;
+    d.fractions_by_mass = true;
     d.sizes = {{1e-3, 0.5}, {0.5e-3, 0.5}};  // half the mass in 1 mm shot, half in 0.5 mm
     return d;
 }

@@ -35,6 +35,7 @@
 #include "output/summary_json.h"
 #include "output/summary_text.h"
 #include "scene/scene_parser.h"
+#include "scene/schema_defaults.h"
 
 namespace fs = std::filesystem;
 
@@ -182,7 +183,7 @@ private:
         const std::optional<RenderDesc>& scene_render = model_->description.render;
         const bool wanted = options_.render.value_or(scene_render.has_value());
         if (!wanted) return;
-        recorder_ = render_module().make_recorder(*model_, scene_render.value_or(RenderDesc{}), dir_, sim_->state());
+        recorder_ = render_module().make_recorder(*model_, scene_render.value_or(default_render()), dir_, sim_->state());
         recorder_->after_step(sim_->state(), {}, logged_impacts_);
     }
 

@@ -115,10 +115,10 @@ const ContactPairDesc& contact_for(const SceneDescription& scene, const std::str
     return *fallback;
 }
 
-// The values of the parameters a law declares, in its order, from the scene's resolved pair.
+// The values of the parameters a law declares, by name, from the scene's resolved pair.
 contact::ParameterValues parameter_values(const ContactPairDesc& pair, std::span<const contact::LawParameter> declared) {
     contact::ParameterValues v;
-    for (const contact::LawParameter& p : declared) v.values.push_back(pair.values(p.name));
+    for (const contact::LawParameter& p : declared) v.parameters.push_back({p.name, pair.values(p.name)});
     return v;
 }
 

@@ -74,15 +74,17 @@ struct Model {
     std::shared_ptr<const FlightModel> flight;
     // m/s2, the largest speed_gain_bound() of the sizes' flights.
     double flight_speed_gain_bound_m_per_s2 = 0.0;
+    // The run's settings, copied from the description by compile_model (their defaults are the
+    // schema's, filled in by the parser; none is re-defaulted here).
     double duration_s = 0.0;  // s
-    std::uint64_t seed = 1;
-    SteppingScheme scheme = SteppingScheme::event;  // the scheme that runs it (accuracy.scheme)
-    double travel_fraction = 0.25;                  // -, eq. 7 travel per step / R
-    double soft_steps_per_contact = 20.0;           // -, soft scheme: integration steps per Hertz contact time
+    std::uint64_t seed = 0;
+    SteppingScheme scheme{};               // the scheme that runs it (accuracy.scheme)
+    double travel_fraction = 0.0;          // -, eq. 7 travel per step / R
+    double soft_steps_per_contact = 0.0;   // -, soft scheme: integration steps per Hertz contact time
     // m/s, the one line between impacts and sustained contact, for both schemes: a normal approach
     // (relative to the surface's material, or between two shot) at least this fast is an impact;
     // slower is sustained contact (approach removed, friction, no rebound, not logged).
-    double impact_speed_m_per_s = 0.05;
+    double impact_speed_m_per_s = 0.0;
     double peak_surface_speed_m_per_s = 0.0;  // m/s, fastest moving surface (sonotrode or part rim)
 
     Vec3 world_lo, world_hi;  // m, a shot outside this box has left the chamber

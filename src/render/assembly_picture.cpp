@@ -7,6 +7,7 @@
 #include "render/png_io.h"
 #include "render/render_view.h"
 #include "render/renderer.h"
+#include "scene/schema_defaults.h"
 
 namespace peensim {
 
@@ -15,7 +16,7 @@ void draw_assembly_picture(const Model& model, const SimulationState& start, con
     render::Renderer renderer(context);
     const ModelView view = add_model(renderer, model);
     pose_model(renderer, view, model, start.time);
-    const RenderDesc desc = model.description.render.value_or(RenderDesc{});
+    const RenderDesc desc = model.description.render.value_or(default_render());
     const render::Camera camera = scene_camera(desc, view, static_cast<double>(width_px) / height_px);
     const ShotArrays& s = start.shots;
     std::vector<double> radii;  // m, per shot (a mix)

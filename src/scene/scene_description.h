@@ -1,6 +1,11 @@
 // A scene file parsed into plain values: every quantity in SI, every default filled in,
 // every field remembering where it came from (for error messages at compile time).
 // This is the *description*; model/compile turns it into the immutable model the engine runs.
+//
+// Defaults and ranges have one source, the schema (scene/schema.cpp): the parser fills every key a
+// scene leaves out from it. The initialisers below are therefore zero or empty; the few that are not
+// are no scene default (a required key's placeholder, or a value a test builds in code), as their
+// comments say. tests/scene_defaults_agree_test.cpp checks the parsed defaults against the schema.
 #pragma once
 
 #include <cmath>
@@ -138,14 +143,14 @@ inline std::vector<std::string> region_names(const RegionDesc& r) {
 struct AlmenCalibrationDesc {
     double saturation_arc_height_m = 0.0;  // m, a
     double time_constant_s = 0.0;          // s, tau
-    double shape = 1.0;                    // -, c
+    double shape = 0.0;                    // -, c
     double dent_size_m = 0.0;              // m, the calibration run's dent-area-weighted mean dent diameter
     double covering_rate_per_s = 0.0;      // 1/s, the calibration run's dent area ratio per second
     std::string strip;                     // "A", "N", "C" or "" (not given)
 };
 
 struct AlmenDesc {
-    Vec3 face_normal = Vec3::UnitZ();                 // unit vector, component frame: out of the peened face
+    Vec3 face_normal = Vec3::Zero();                  // unit vector, component frame: out of the peened face
     std::optional<double> saturation_arc_height_m;    // m, a
     std::optional<double> dose_constant_J_per_m2;     // J/m2, E_c
     std::optional<AlmenCalibrationDesc> calibration;  // the predictive model's; not with the two above
@@ -156,7 +161,7 @@ struct ComponentDesc {
     std::string name;
     ComponentRole role = ComponentRole::fixture;
     std::string mesh_path;                        // absolute or relative to the working directory (resolved by the parser)
-    double mesh_unit_m = 1.0;                     // m per mesh-file length unit (mm -> 1e-3)
+    double mesh_unit_m = 0.0;                     // m per mesh-file length unit (mm -> 1e-3)
     Vec3 translation_m = Vec3::Zero();            // m, placement of the component frame in the world
     Mat3 rotation = Mat3::Identity();             // component frame -> world (applied before translation)
     std::string material;                         // key into SceneDescription::materials
@@ -187,7 +192,7 @@ struct LawParameterValue {
 // and every parameter that law declares, in the law's order.
 struct ContactPairDesc {
     std::string key;  // "shot-shot", "shot-<material>" or "default"
-    std::string law = "impulse";
+    std::string law;  // a name of contact/law_registry.h
     std::vector<LawParameterValue> parameters;
     SourceLocation where;
 
@@ -212,7 +217,7 @@ struct ShotDesc {
     int count = 0;
     // The sizes: one (`shot.diameter`) or a mix (`shot.sizes`), in the file's order.
     std::vector<ShotSizeDesc> sizes;
-    bool fractions_by_mass = true;   // the mix's fractions are shares of the mass (else of the count)
+    bool fractions_by_mass = false;  // the mix's fractions are shares of the mass (else of the count)
     bool sizes_given = false;        // the file wrote a mix (`shot.sizes`), not one `diameter`
     double density_kg_per_m3 = 0.0;  // kg/m3 (from `density`, or from `material`)
     std::string material;            // optional material name ("" if density given directly)
@@ -224,8 +229,8 @@ struct ShotDesc {
 
 struct ProcessDesc {
     double duration_s = 0.0;                    // s (with until_coverage: the longest the run may go on)
-    Vec3 gravity_m_per_s2 = Vec3(0, 0, -9.81);  // m/s2
-    std::uint64_t seed = 1;
+    Vec3 gravity_m_per_s2 = Vec3::Zero();       // m/s2
+    std::uint64_t seed = 0;
     // Run until coverage (as the analysis counts it) reaches this share (0..1] on every area named
     // in until_coverage_of ("part" or "part/region"; empty: every counted region of every logged
     // part with a yield stress, or a part's peened area where it has no regions). Empty: run for
@@ -248,27 +253,27 @@ inline const char* scheme_name(SteppingScheme s) {
 }
 
 struct AccuracyDesc {
-    double travel_fraction = 0.25;       // -, max travel per step / shot radius (eq. 7 uses 0.25)
-    double impact_speed_m_per_s = 0.05;  // m/s, slower normal approaches are sustained contact, not impacts
-    SteppingScheme scheme = SteppingScheme::event;
+    double travel_fraction = 0.0;       // -, max travel per step / shot radius (eq. 7 uses 0.25)
+    double impact_speed_m_per_s = 0.0;  // m/s, slower normal approaches are sustained contact, not impacts
+    SteppingScheme scheme{};
     bool scheme_given = false;  // the file (or --set) chose the scheme; else the default for its flights
     // -, soft scheme: integration steps per Hertz contact time (the contact's duration at its
     // approach speed); the soft contacts' accuracy knob.
-    double soft_steps_per_contact = 20.0;
+    double soft_steps_per_contact = 0.0;
     SourceLocation where;
 };
 
 // The still air the shot fly through. Without drag (the default, USP) flights are exact parabolas.
 struct AirDesc {
     bool drag = false;
-    double density_kg_per_m3 = 1.205;        // kg/m3
-    double viscosity_pa_s = 1.822e-5;        // Pa s
+    double density_kg_per_m3 = 0.0;          // kg/m3
+    double viscosity_pa_s = 0.0;             // Pa s
     std::optional<double> drag_coefficient;  // -, constant C_d; empty: Schiller-Naumann C_d(Re)
     // Rebound scatter (contact/rebound_scatter.h); empty: off.
     struct Scatter {
         double spread_rad = 0.0;          // rad
-        double min_reynolds = 1500.0;     // -
-        double min_speed_m_per_s = 40.0;  // m/s
+        double min_reynolds = 0.0;       // -
+        double min_speed_m_per_s = 0.0;  // m/s
         SourceLocation where;
     };
     std::optional<Scatter> rebound_scatter;
@@ -291,7 +296,7 @@ struct SourceDesc {
     Vec3 direction = -Vec3::UnitZ();           // unit, world (given, or from `aim`)
     std::optional<NozzleAim> aim;              // the scene placed it by its target
     double speed_m_per_s = 0.0;                // m/s, mean exit speed v0
-    double speed_spread = 0.05;                // -, exit speeds uniform in v0 (1 +- speed_spread)
+    double speed_spread = 0.0;                 // -, exit speeds uniform in v0 (1 +- speed_spread)
     std::optional<double> air_speed_m_per_s;   // m/s, the air jet's exit speed (kernels/free_jet.h); empty: none
     double rate_per_s = 0.0;                   // shot per second (given, or from mass_flow)
     std::optional<double> mass_flow_kg_per_s;  // kg/s, when the scene gives the flow as a mass
@@ -310,7 +315,7 @@ struct SinkDesc {
     SinkRegion region = SinkRegion::box;
     Vec3 min_m = Vec3::Zero(), max_m = Vec3::Zero();  // m, world (box)
     std::string mesh_path;                            // mesh: a closed mesh, its file
-    double mesh_unit_m = 1.0;                         // mesh: metres per mesh unit
+    double mesh_unit_m = 0.0;                         // mesh: metres per mesh unit
     Vec3 translation_m = Vec3::Zero();                // mesh: where its frame sits in the world
     SourceLocation where;
 };
@@ -318,28 +323,29 @@ struct SinkDesc {
 struct OutputDesc {
     std::vector<std::string> logged_components;  // names; default: every component with role part
     std::string directory;                       // "" = given on the command line
-    double checkpoint_interval_s = 60.0;         // s of wall time between checkpoints (resume)
+    double checkpoint_interval_s = 0.0;          // s of wall time between checkpoints (resume)
     std::optional<double> shot_positions_s;      // s of simulated time between steps of the shot series; empty: none
-    int coverage_steps = 10;                     // steps of the analysis' coverage series after t = 0 (0: none)
+    int coverage_steps = 0;                      // steps of the analysis' coverage series after t = 0 (0: none)
     std::optional<double> smoothing_radius_m;    // m, the analysis' maps; empty: chosen by the analysis
     SourceLocation where;
 };
 
 // The off-screen animation recorded while simulating (scene `render:` block, or `run --render`).
-// Frames are taken every slow_motion / fps simulated seconds from start for duration.
+// Frames are taken every slow_motion / fps simulated seconds from start for duration. A run
+// without the block (`run --render`) takes default_render() (scene/schema_defaults.h), not RenderDesc{}.
 struct RenderDesc {
-    int width_px = 1280;
-    int height_px = 720;
-    int fps = 30;                           // video frames per second
-    double slow_motion_s = 0.02;            // s, simulated seconds per video second
+    int width_px = 0;
+    int height_px = 0;
+    int fps = 0;                            // video frames per second
+    double slow_motion_s = 0.0;             // s, simulated seconds per video second
     double start_s = 0.0;                   // s, simulated time of the first frame
-    double duration_s = 0.2;                // s, simulated time recorded (cut at the run's end)
+    double duration_s = 0.0;                // s, simulated time recorded (cut at the run's end)
     std::optional<Vec3> camera_position_m;  // m, world; empty = automatic framing of the chamber
     std::optional<Vec3> camera_look_at_m;   // m, world; empty = the centre of the chamber
-    Vec3 camera_up = Vec3::UnitZ();         // world direction shown upward
-    double fov_rad = 40.0 * M_PI / 180.0;   // rad, vertical field of view
-    double speed_scale_m_per_s = 5.0;       // m/s, top of the impact flashes' colour bar
-    bool video = true;                      // assemble an MP4 from the frames (needs ffmpeg)
+    Vec3 camera_up = Vec3::Zero();          // world direction shown upward
+    double fov_rad = 0.0;                   // rad, vertical field of view
+    double speed_scale_m_per_s = 0.0;       // m/s, top of the impact flashes' colour bar
+    bool video = false;                     // assemble an MP4 from the frames (needs ffmpeg)
     SourceLocation where;
 };
 

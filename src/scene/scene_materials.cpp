@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "contact/law_registry.h"
+#include "scene/schema_defaults.h"
 
 namespace peensim {
 namespace {
@@ -120,7 +121,9 @@ std::vector<ContactPairDesc> read_contacts(const Cursor& c, const std::vector<Ma
                       schema_child_path(c.field_path, default_pair_key), c.mark};
     }();
     const bool default_given = default_cursor.present();
-    const contact::LawEntry& default_law = pair_law(default_cursor, fallback.key, "impulse");
+    // A pair's law when neither it nor the `default` pair names one: the schema's `contacts.*.law`.
+    const std::string built_in_law = schema_default_word("contacts.*.law");
+    const contact::LawEntry& default_law = pair_law(default_cursor, fallback.key, built_in_law);
     check_pair_keys(default_cursor, fallback.key, default_law);
     fallback.law = std::string(default_law.name);
     for (const contact::LawParameter& p : default_law.surface_parameters) {
@@ -135,7 +138,7 @@ std::vector<ContactPairDesc> read_contacts(const Cursor& c, const std::vector<Ma
         d.key = key;
         const bool shot_shot = key == shot_shot_key;
         const bool inherits_law = default_law.make_shot_shot != nullptr || !shot_shot;
-        const contact::LawEntry& law = pair_law(pair, key, inherits_law ? fallback.law : "impulse");
+        const contact::LawEntry& law = pair_law(pair, key, inherits_law ? fallback.law : built_in_law);
         check_pair_keys(pair, key, law);
         d.law = std::string(law.name);
         for (const contact::LawParameter& p : parameters_for(law, shot_shot)) {

@@ -46,11 +46,14 @@ void read_sizes(const Cursor& c, ShotDesc& d) {
     if (!sizes.present()) {
         if (!diameter.present()) fail(c, "missing required key 'diameter' or 'sizes' (the shot's size)");
         if (c.child("fractions_by").present()) fail(c.child("fractions_by"), "'fractions_by' is only for a mix (shot.sizes)");
+    }
+    // One size: the schema's default (either reading of one size's share is the same).
+    d.fractions_by_mass = read_choice(c.child("fractions_by")) == "mass";
+    if (!sizes.present()) {
         d.sizes = {ShotSizeDesc{read_quantity(diameter), 1.0}};
         return;
     }
     d.sizes_given = true;
-    d.fractions_by_mass = read_choice(c.child("fractions_by")) == "mass";
     if (sizes.size() == 0) fail(sizes, "expected at least one size (diameter and fraction)");
     if (sizes.size() > kMaxShotSizes)
         fail(sizes, "expected at most " + std::to_string(kMaxShotSizes) + " sizes, got " + std::to_string(sizes.size()));

@@ -463,13 +463,15 @@ std::vector<SchemaEntry> law_entries() {
         for (const contact::LawEntry& law : contact::law_catalogue()) c += (c.empty() ? "" : "|") + std::string(law.name);
         return c;
     }();
+    // The registry lists its default law first.
+    static const std::string_view default_law = contact::law_catalogue().front().name;
     static const std::string law_doc = [] {
-        std::string d = "The contact law of this pair (a `default` left out: `impulse`):";
+        std::string d = "The contact law of this pair (a `default` left out: `" + std::string(default_law) + "`):";
         for (const contact::LawEntry& law : contact::law_catalogue()) d += " `" + std::string(law.name) + "`: " + std::string(law.doc);
         return d;
     }();
     std::vector<SchemaEntry> out{
-        SchemaEntry{"contacts.*.law", K::choice, D::dimensionless, false, "impulse", "", {}, choices, "", "", law_doc}};
+        SchemaEntry{"contacts.*.law", K::choice, D::dimensionless, false, default_law, "", {}, choices, "", "", law_doc}};
     static std::deque<std::string> paths;  // storage for the generated paths (entries hold views; a deque never moves them)
     static std::deque<std::string> docs;   // likewise for a key several laws declare: each law's doc
     for (const contact::LawEntry& law : contact::law_catalogue()) {

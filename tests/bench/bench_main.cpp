@@ -17,6 +17,7 @@
 #include "model/model.h"
 #include "output/peak_memory.h"
 #include "scene/scene_parser.h"
+#include "scene/schema_defaults.h"
 
 int main(int argc, char** argv) {
     using namespace peensim;
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
         const double load_s = std::chrono::duration<double>(Clock::now() - t_load).count();
         std::unique_ptr<FrameSink> recorder;
         if (!render_dir.empty())
-            recorder = render_module().make_recorder(*model, model->description.render.value_or(RenderDesc{}), render_dir, sim.state());
+            recorder = render_module().make_recorder(*model, model->description.render.value_or(default_render()), render_dir, sim.state());
         // The logged impacts' count and mean speed, and the recorder's frames, step by step.
         struct Tally final : RunListener {
             FrameSink* recorder = nullptr;
@@ -88,8 +89,8 @@ int main(int argc, char** argv) {
         if (recorder)
             std::printf(
                 "  render: %d frames of %dx%d, drawing %.1f ms per frame (PNG written by a second thread), %.1f %% of the wall time\n",
-                recorder->frames_drawn(), model->description.render.value_or(RenderDesc{}).width_px,
-                model->description.render.value_or(RenderDesc{}).height_px, 1e3 * recorder->draw_seconds() / recorder->frames_drawn(),
+                recorder->frames_drawn(), model->description.render.value_or(default_render()).width_px,
+                model->description.render.value_or(default_render()).height_px, 1e3 * recorder->draw_seconds() / recorder->frames_drawn(),
                 100.0 * recorder->draw_seconds() / wall);
         std::printf("  stages:");
         for (std::size_t k = 0; k < kStageNames.size(); ++k)
