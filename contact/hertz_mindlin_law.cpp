@@ -23,9 +23,7 @@ constexpr std::array kParameters{
 
 constexpr double kGripKeep = 5.0 / 7.0;  // -, tangential speed a solid sphere keeps once its contact point grips
 
-HertzMindlinCoefficients coefficients(const ParameterValues& v) {
-    return {v.scalar("e"), v.scalar("f"), v.scalar("plastic_speed")};
-}
+HertzMindlinCoefficients coefficients(const ParameterValues& v) { return {v.scalar("e"), v.scalar("f"), v.scalar("plastic_speed")}; }
 
 }  // namespace
 

@@ -21,7 +21,7 @@ constexpr std::array kParameters{
                  "k_t / k_n: 1 as LIGGGHTS's `model hooke`, 2/7 its ktToKn option."},
 };
 
-HertzMindlinCoefficients rigid_coefficients(const ParameterValues& v) { return {v.scalar(0), v.scalar(1), 0.0}; }
+HertzMindlinCoefficients rigid_coefficients(const ParameterValues& v) { return {v.scalar("e"), v.scalar("f"), 0.0}; }
 
 }  // namespace
 
@@ -77,7 +77,7 @@ std::shared_ptr<const SurfaceLaw> make_linear_spring_dashpot_surface(const Param
     const HertzMindlinCoefficients k = rigid_coefficients(v);
     const SoftPair p = linear_spring_dashpot_pair(shot, surface, 0.5 * pair.shot_diameter_m, kInfinite,
                                                   sphere_mass(pair.shot_diameter_m, pair.shot_density_kg_per_m3), kInfinite, k.e, k.f,
-                                                  v.scalar(2), v.scalar(3));
+                                                  v.scalar("characteristic_speed"), v.scalar("tangential_ratio"));
     return std::make_shared<LinearSpringDashpotSurfaceLaw>(p, k);
 }
 
@@ -85,7 +85,8 @@ std::shared_ptr<const ShotShotLaw> make_linear_spring_dashpot_shot_shot(const Pa
     const ElasticMaterial& shot = shot_elastic_for("linear-spring-dashpot", pair.shot_elastic, pair.shot_material);
     const HertzMindlinCoefficients k = rigid_coefficients(v);
     const double r = 0.5 * pair.shot_diameter_m, m = sphere_mass(pair.shot_diameter_m, pair.shot_density_kg_per_m3);
-    const SoftPair p = linear_spring_dashpot_pair(shot, shot, r, r, m, m, k.e, k.f, v.scalar(2), v.scalar(3));
+    const SoftPair p =
+        linear_spring_dashpot_pair(shot, shot, r, r, m, m, k.e, k.f, v.scalar("characteristic_speed"), v.scalar("tangential_ratio"));
     return std::make_shared<LinearSpringDashpotShotShotLaw>(p, k);
 }
 

@@ -126,7 +126,8 @@ TEST(ContactLawCatalogue, EveryLawIsRegisteredOnceWithItsParameters) {
     contact::SurfacePair pair;
     pair.material = "aluminium";
     pair.triangle_corners_m = [] { return flat_grid(2, 1e-3); };
-    const contact::ParameterValues values{{{"restitution_by_hits", {0.4, 0.57}}, {"mu", {0.8}}, {"f", {0.1}}, {"influence_distance", {0.0}}}};
+    const contact::ParameterValues values{
+        {{"restitution_by_hits", {0.4, 0.57}}, {"mu", {0.8}}, {"f", {0.1}}, {"influence_distance", {0.0}}}};
     try {
         (void)history->make_surface(values, pair);
         FAIL() << "no yield stress must be refused";
@@ -260,7 +261,8 @@ TEST(ImpactHistoryLaw, AFixedInfluenceDistanceMarksAsFarWhateverTheDent) {
     pair.triangle_corners_m = [] { return flat_grid(2, 1e-3); };
     pair.shot_diameter_m = 0.58e-3;
     pair.shot_density_kg_per_m3 = 7800;
-    const contact::ParameterValues values{{{"restitution_by_hits", {0.4, 0.6}}, {"mu", {0.71}}, {"f", {0.3}}, {"influence_distance", {0.58e-3}}}};
+    const contact::ParameterValues values{
+        {{"restitution_by_hits", {0.4, 0.6}}, {"mu", {0.71}}, {"f", {0.3}}, {"influence_distance", {0.58e-3}}}};
     EXPECT_EQ(contact::find_law("impact-history")->make_surface(values, pair)->state_per_triangle(), 1);
 }
 

@@ -36,15 +36,17 @@ air:
   rebound_scatter: {spread: 0.1}
 materials:
   steel: {density: 7800, yield_stress: 1e9}
+  glass: {density: 2500}
 contacts:
   shot-steel: {law: impact-history, restitution_by_hits: [0.5]}
+  shot-glass: {law: linear-spring-dashpot}
   shot-shot: {law: hertz-mindlin}
 components:
   - name: horn
     role: sonotrode
     mesh: m.stl
     vibration: {amplitude: 2e-5, frequency: 2e4}
-  - {name: box, role: chamber, mesh: m.stl}
+  - {name: box, role: chamber, mesh: m.stl, material: glass}
   - name: gear
     role: part
     mesh: m.stl
@@ -108,7 +110,8 @@ const ContactPairDesc& pair(const SceneDescription& s, const std::string& key) {
 
 // The pair of the bare scene that uses each law (its parameters' defaults are read there).
 const std::map<std::string, std::string>& pair_of_law() {
-    static const std::map<std::string, std::string> m{{"impulse", "default"}, {"impact-history", "shot-steel"}, {"hertz-mindlin", "shot-shot"}};
+    static const std::map<std::string, std::string> m{
+        {"impulse", "default"}, {"impact-history", "shot-steel"}, {"hertz-mindlin", "shot-shot"}, {"linear-spring-dashpot", "shot-glass"}};
     return m;
 }
 
@@ -257,11 +260,11 @@ std::string field_path_of(std::string_view schema_path) {
     if (path.rfind("components[].", 0) == 0) {
         const std::string rest = path.substr(13);
         const std::string block = rest.substr(0, rest.find_first_of(".["));
-        const std::string owner = block == "vibration"                                  ? "horn"
+        const std::string owner = block == "vibration"                                                ? "horn"
                                   : block == "almen" && rest.find("calibration") != std::string::npos ? "strip"
-                                  : block == "almen"                                                   ? "strip2"
-                                  : block == "regions" || block == "motion"                            ? "gear"
-                                                                                                       : "horn";
+                                  : block == "almen"                                                  ? "strip2"
+                                  : block == "regions" || block == "motion"                           ? "gear"
+                                                                                                      : "horn";
         replace("components[]", "components[" + owner + "]");
     }
     if (const std::size_t at = path.find("regions[]."); at != std::string::npos) {
@@ -276,7 +279,8 @@ std::string field_path_of(std::string_view schema_path) {
         std::string law_pair;
         for (const contact::LawEntry& law : contact::law_catalogue())
             for (const contact::LawParameter& p : law.surface_parameters)
-                if (law_pair.empty() && "contacts.*." + std::string(p.name) == schema_path) law_pair = pair_of_law().at(std::string(law.name));
+                if (law_pair.empty() && "contacts.*." + std::string(p.name) == schema_path)
+                    law_pair = pair_of_law().at(std::string(law.name));
         replace("contacts.*", "contacts." + law_pair);
     }
     return path;

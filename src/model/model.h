@@ -78,9 +78,9 @@ struct Model {
     // schema's, filled in by the parser; none is re-defaulted here).
     double duration_s = 0.0;  // s
     std::uint64_t seed = 0;
-    SteppingScheme scheme{};               // the scheme that runs it (accuracy.scheme)
-    double travel_fraction = 0.0;          // -, eq. 7 travel per step / R
-    double soft_steps_per_contact = 0.0;   // -, soft scheme: integration steps per Hertz contact time
+    SteppingScheme scheme{};              // the scheme that runs it (accuracy.scheme)
+    double travel_fraction = 0.0;         // -, eq. 7 travel per step / R
+    double soft_steps_per_contact = 0.0;  // -, soft scheme: integration steps per Hertz contact time
     // m/s, the one line between impacts and sustained contact, for both schemes: a normal approach
     // (relative to the surface's material, or between two shot) at least this fast is an impact;
     // slower is sustained contact (approach removed, friction, no rebound, not logged).

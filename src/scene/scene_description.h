@@ -228,8 +228,8 @@ struct ShotDesc {
 };
 
 struct ProcessDesc {
-    double duration_s = 0.0;                    // s (with until_coverage: the longest the run may go on)
-    Vec3 gravity_m_per_s2 = Vec3::Zero();       // m/s2
+    double duration_s = 0.0;               // s (with until_coverage: the longest the run may go on)
+    Vec3 gravity_m_per_s2 = Vec3::Zero();  // m/s2
     std::uint64_t seed = 0;
     // Run until coverage (as the analysis counts it) reaches this share (0..1] on every area named
     // in until_coverage_of ("part" or "part/region"; empty: every counted region of every logged
@@ -271,7 +271,7 @@ struct AirDesc {
     std::optional<double> drag_coefficient;  // -, constant C_d; empty: Schiller-Naumann C_d(Re)
     // Rebound scatter (contact/rebound_scatter.h); empty: off.
     struct Scatter {
-        double spread_rad = 0.0;          // rad
+        double spread_rad = 0.0;         // rad
         double min_reynolds = 0.0;       // -
         double min_speed_m_per_s = 0.0;  // m/s
         SourceLocation where;
