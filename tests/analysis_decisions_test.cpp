@@ -14,8 +14,8 @@
 
 #include "analysis/impact_log_reader.h"
 #include "analysis/student_t.h"
-#include "app/analyze_job.h"
-#include "app/run_job.h"
+#include "app/analysis/analyze_job.h"
+#include "app/run/run_job.h"
 #include "common/random.h"
 #include "geometry/mesh_checks.h"
 #include "model/facet_reach.h"

@@ -12,8 +12,8 @@
 
 #include "analysis/impact_log_reader.h"
 #include "analysis/jet_stream.h"
-#include "app/analyze_job.h"
-#include "app/run_job.h"
+#include "app/analysis/analyze_job.h"
+#include "app/run/run_job.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/analysis_plots.h"
+#include "app/analysis/analysis_plots.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;

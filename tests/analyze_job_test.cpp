@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/impact_log_reader.h"
-#include "app/analyze_job.h"
-#include "app/run_job.h"
+#include "app/analysis/analyze_job.h"
+#include "app/run/run_job.h"
 #include "support/csv_columns.h"
 #include "support/temp_dir.h"
 

@@ -1,4 +1,4 @@
-// The smoothed columns of `peensim analyze` (app/map_smoothing.h) on a short rod run: written to
+// The smoothed columns of `peensim analyze` (app/analysis/map_smoothing.h) on a short rod run: written to
 // the triangle table and the ParaView file with their radius, the radius chosen as documented (3
 // dents at the run's mean normal speed; the scene's output.smoothing_radius; --smoothing-radius),
 // and a bad radius refused with the option's name.
@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/analyze_job.h"
-#include "app/run_job.h"
+#include "app/analysis/analyze_job.h"
+#include "app/run/run_job.h"
 #include "contact/dent.h"
 #include "geometry/mesh_loader.h"
 #include "support/csv_columns.h"

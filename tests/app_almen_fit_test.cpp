@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "app/almen_fit_job.h"
-#include "app/run_job.h"
+#include "app/almen/almen_fit_job.h"
+#include "app/run/run_job.h"
 #include "support/files.h"
 #include "support/temp_dir.h"
 

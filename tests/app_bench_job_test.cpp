@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "app/bench_job.h"
-#include "app/run_job.h"
+#include "app/bench/bench_job.h"
+#include "app/run/run_job.h"
 #include "common/input_error.h"
 #include "support/temp_dir.h"
 #include "support/test_scene.h"

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "app/checkpoint_cadence.h"
+#include "app/checkpoint/checkpoint_cadence.h"
 
 namespace peensim {
 namespace {

@@ -12,8 +12,8 @@
 #include <limits>
 #include <sstream>
 
-#include "app/checkpoint.h"
-#include "app/run_job.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/run/run_job.h"
 #include "common/input_error.h"
 #include "engine/simulation.h"
 #include "support/files.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "app/checkpoint.h"
+#include "app/checkpoint/checkpoint.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;

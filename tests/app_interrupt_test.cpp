@@ -18,9 +18,9 @@
 #include <thread>
 #include <vector>
 
-#include "app/checkpoint.h"
+#include "app/checkpoint/checkpoint.h"
 #include "app/interrupt.h"
-#include "app/run_job.h"
+#include "app/run/run_job.h"
 #include "output/impact_csv_writer.h"
 #include "support/child_process.h"
 #include "support/files.h"

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "app/checkpoint.h"
-#include "app/run_job.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/run/run_job.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {

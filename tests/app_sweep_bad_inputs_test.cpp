@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/run_job.h"
+#include "app/run/run_job.h"
 #include "support/child_process.h"
 #include "support/files.h"
 #include "support/temp_dir.h"

@@ -1,5 +1,5 @@
 // A sweep killed outright (SIGKILL: it cannot pass anything on to its runs), or one rank of an MPI
-// sweep killed: its `peensim run` children die with it (PR_SET_PDEATHSIG, app/sweep_book.h) instead
+// sweep killed: its `peensim run` children die with it (PR_SET_PDEATHSIG, app/sweep/sweep_book.h) instead
 // of running on, holding their directories' locks; the same command run again at once resumes
 // every run without "in use" and without a retry.
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/run_job.h"
+#include "app/run/run_job.h"
 #include "support/child_process.h"
 #include "support/files.h"
 #include "support/temp_dir.h"

@@ -1,4 +1,4 @@
-// `peensim sweep` (app/sweep_plan.h, sweep_job.h, sweep_compare.h): the plan (axes, grid order,
+// `peensim sweep` (app/sweep/sweep_plan.h, sweep_job.h, sweep_compare.h): the plan (axes, grid order,
 // names, seeds, refusals), the statistics (Student's t interval, the verdict), and sweeps of the rod
 // scene run by the real binary: each run byte-identical to running it alone, whatever the number of
 // jobs; a finished run never rerun; a failing run retried once and reported; the comparison's
@@ -16,11 +16,11 @@
 #include <thread>
 #include <vector>
 
-#include "app/run_job.h"
-#include "app/sweep_checks.h"
-#include "app/sweep_compare.h"
-#include "app/sweep_job.h"
-#include "app/sweep_plan.h"
+#include "app/run/run_job.h"
+#include "app/sweep/sweep_checks.h"
+#include "app/sweep/sweep_compare.h"
+#include "app/sweep/sweep_job.h"
+#include "app/sweep/sweep_plan.h"
 #include "common/input_error.h"
 #include "support/child_process.h"
 #include "support/files.h"

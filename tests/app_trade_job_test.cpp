@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "app/run_job.h"
-#include "app/trade_job.h"
+#include "app/bench/trade_job.h"
+#include "app/run/run_job.h"
 #include "support/files.h"
 #include "support/temp_dir.h"
 #include "support/test_scene.h"

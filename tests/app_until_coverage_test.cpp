@@ -1,4 +1,4 @@
-// `peensim run --until-coverage` (app/coverage_watch.h) and the analysis of rotating parts over
+// `peensim run --until-coverage` (app/run/coverage_watch.h) and the analysis of rotating parts over
 // whole turns: the run stops at the first restart point after the target, at the time the
 // analysis of its own log says the target was reached; a resumed run stops where the whole run
 // did, with the same log; bad targets and areas exit 2 naming them. A rotating part's window ends
@@ -16,8 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/analyze_job.h"
-#include "app/run_job.h"
+#include "app/analysis/analyze_job.h"
+#include "app/run/run_job.h"
 #include "support/child_process.h"
 #include "support/files.h"
 #include "support/temp_dir.h"

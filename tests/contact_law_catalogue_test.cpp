@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/checkpoint.h"
-#include "app/run_job.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/run/run_job.h"
 #include "common/input_error.h"
 #include "contact/contact_policy.h"
 #include "contact/dent.h"

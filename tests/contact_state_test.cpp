@@ -10,7 +10,7 @@
 #include <memory>
 #include <vector>
 
-#include "app/checkpoint.h"
+#include "app/checkpoint/checkpoint.h"
 #include "engine/simulation.h"
 #include "support/temp_dir.h"
 #include "support/test_scene.h"

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/run_job.h"
+#include "app/run/run_job.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {

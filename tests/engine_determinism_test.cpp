@@ -14,8 +14,8 @@
 #include <string>
 #include <utility>
 
-#include "app/checkpoint.h"
-#include "app/run_job.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/run/run_job.h"
 #include "output/impact_csv_writer.h"
 #include "support/files.h"
 #include "support/run_in_process.h"

@@ -16,8 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/check_job.h"
-#include "app/run_job.h"
+#include "app/check/check_job.h"
+#include "app/run/run_job.h"
 #include "engine/simulation.h"
 #include "engine/time_stepping.h"
 #include "support/test_scene.h"

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "app/loss_report.h"
+#include "app/run/loss_report.h"
 #include "engine/loss_diagnosis.h"
 #include "engine/simulation.h"
 #include "support/test_scene.h"

@@ -12,8 +12,8 @@
 #include <string>
 
 #include "analysis/impact_log_reader.h"
-#include "app/checkpoint.h"
-#include "app/run_job.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/run/run_job.h"
 #include "collision/mesh_collider.h"
 #include "engine/simulation.h"
 #include "output/impact_csv_writer.h"

@@ -18,8 +18,8 @@
 #include <sstream>
 
 #include "analysis/impact_log_reader.h"
-#include "app/export_fem_job.h"
-#include "app/run_job.h"
+#include "app/fem/export_fem_job.h"
+#include "app/run/run_job.h"
 #include "contact/dent.h"
 #include "fem/block_mesher.h"
 #include "fem/ccx_cost.h"

@@ -20,14 +20,14 @@
 
 #include <sys/wait.h>
 
-#include "app/almen_fit_job.h"
-#include "app/analyze_job.h"
-#include "app/export_fem_job.h"
-#include "app/run_job.h"
-#include "app/sweep_checks.h"
-#include "app/sweep_file.h"
-#include "app/sweep_plan.h"
-#include "app/trade_job.h"
+#include "app/almen/almen_fit_job.h"
+#include "app/analysis/analyze_job.h"
+#include "app/bench/trade_job.h"
+#include "app/fem/export_fem_job.h"
+#include "app/run/run_job.h"
+#include "app/sweep/sweep_checks.h"
+#include "app/sweep/sweep_file.h"
+#include "app/sweep/sweep_plan.h"
 #include "common/input_error.h"
 #include "common/units.h"
 #include "geometry/mesh_loader.h"

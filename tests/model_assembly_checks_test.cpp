@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/check_job.h"
-#include "app/run_job.h"
+#include "app/check/check_job.h"
+#include "app/run/run_job.h"
 #include "geometry/box_mesh.h"
 #include "geometry/stl_writer.h"
 #include "model/assembly_checks.h"

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/checkpoint.h"
-#include "app/run_job.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/run/run_job.h"
 #include "common/input_error.h"
 #include "output/impact_csv_writer.h"
 #include "output/run_directory.h"

@@ -19,9 +19,9 @@
 #include <thread>
 #include <vector>
 
-#include "app/analyze_job.h"
-#include "app/paraview_assembly.h"
-#include "app/run_job.h"
+#include "app/analysis/analyze_job.h"
+#include "app/paraview/paraview_assembly.h"
+#include "app/run/run_job.h"
 #include "model/model.h"
 #include "scene/scene_parser.h"
 #include "support/files.h"

@@ -16,10 +16,10 @@
 #include <yaml-cpp/yaml.h>
 #include <nlohmann/json.hpp>
 
-#include "app/check_job.h"
-#include "app/run_job.h"
-#include "app/sweep_file.h"
-#include "app/sweep_plan.h"
+#include "app/check/check_job.h"
+#include "app/run/run_job.h"
+#include "app/sweep/sweep_file.h"
+#include "app/sweep/sweep_plan.h"
 #include "scene/schema.h"
 #include "support/temp_dir.h"
 

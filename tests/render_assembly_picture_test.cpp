@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <sstream>
 
-#include "app/check_job.h"
-#include "app/run_job.h"
+#include "app/check/check_job.h"
+#include "app/run/run_job.h"
 #include "render/png_io.h"
 #include "support/temp_dir.h"
 

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/run_job.h"
+#include "app/run/run_job.h"
 #include "engine/simulation.h"
 #include "model/model.h"
 #include "render/png_io.h"

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "app/check_job.h"
-#include "app/run_job.h"
+#include "app/check/check_job.h"
+#include "app/run/run_job.h"
 
 namespace peensim {
 namespace {

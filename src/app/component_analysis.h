@@ -69,7 +69,7 @@ struct ComponentAnalysis {
     double speed_sum = 0.0;            // m/s, summed over impacts
     double dent_sum = 0.0;             // m, summed over impacts
     std::vector<CoveragePoint> curve;  // coverage of the peened area vs time since the window opened
-    // The per-area fields smoothed over a radius of the surface (app/map_smoothing.h): the
+    // The per-area fields smoothed over a radius of the surface (app/analysis/map_smoothing.h): the
     // binning while the log streams, why its radius, and the sums at each triangle at the end.
     std::unique_ptr<SurfaceSmoothing> smoothing;
     std::string smoothing_basis;

@@ -5,7 +5,7 @@
 #include <csignal>
 #include <utility>
 
-#include "app/run_job.h"
+#include "app/exit_codes.h"
 
 namespace peensim {
 

@@ -5,7 +5,7 @@
 #include <exception>
 #include <ostream>
 
-#include "app/run_job.h"
+#include "app/exit_codes.h"
 #include "common/input_error.h"
 
 namespace peensim {

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "app/analyze_job.h"
-#include "app/check_job.h"
-#include "app/run_job.h"
-#include "app/sweep_job.h"
-#include "app/sweep_plan.h"
+#include "app/analysis/analyze_job.h"
+#include "app/check/check_job.h"
+#include "app/run/run_job.h"
+#include "app/sweep/sweep_job.h"
+#include "app/sweep/sweep_plan.h"
 #include "common/input_error.h"
 #include "model/model.h"
 #include "python/python_stream.h"

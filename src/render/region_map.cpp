@@ -8,7 +8,7 @@
 #include <ostream>
 
 #include "analysis/regions.h"
-#include "app/analysis_format.h"
+#include "app/analysis/analysis_format.h"
 #include "app/report_errors.h"
 #include "geometry/mesh_checks.h"
 #include "model/facet_reach.h"

@@ -15,7 +15,7 @@
 
 #include "analysis/area_percentile.h"
 #include "app/report_errors.h"
-#include "app/run_job.h"
+#include "app/run/run_job.h"
 #include "model/model.h"
 #include "render/map_mesh.h"
 #include "render/png_io.h"
@@ -28,7 +28,7 @@ namespace peensim {
 
 namespace {
 
-// The smoothed columns (app/map_smoothing.h): the raw per-triangle ones show the tessellation.
+// The smoothed columns (app/analysis/map_smoothing.h): the raw per-triangle ones show the tessellation.
 const std::array<MapField, 3> kFields{{
     {"impacts", "impacts_per_mm2_s_smoothed", "impacts per mm2 per s"},
     {"speed", "mean_vn_mps_smoothed", "mean normal speed (m/s)"},

@@ -9,7 +9,7 @@
   extremes.py header
       prints the header of the text rows.
 
-Impact statistics on the logged part follow `peensim bench` (src/app/bench_job.cpp): standard
+Impact statistics on the logged part follow `peensim bench` (src/app/bench/bench_job.cpp): standard
 errors by batch means over 10 equal time batches, the mean normal speed's by the ratio estimator,
 and a difference within noise when it is at most k combined standard errors (k sqrt(SE_step^2 +
 SE_event^2)). The standard errors are estimated from 10 batches each, so the difference in SE

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "app/run_job.h"
+#include "app/run/run_job.h"
 
 namespace peensim::testing {
 

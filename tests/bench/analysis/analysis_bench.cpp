@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "app/analyze_job.h"
-#include "app/run_job.h"
+#include "app/analysis/analyze_job.h"
+#include "app/run/run_job.h"
 #include "geometry/mesh_loader.h"
 #include "output/impact_csv_writer.h"
 #include "output/peak_memory.h"

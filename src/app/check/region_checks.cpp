@@ -1,0 +1,31 @@
+#include "app/check/region_checks.h"
+
+#include "analysis/regions.h"
+#include "common/input_error.h"
+#include "model/shot_cavity.h"
+
+namespace peensim {
+
+std::vector<AssemblyIssue> region_issues(const Model& model) {
+    std::vector<AssemblyIssue> out;
+    for (std::size_t i = 0; i < model.components.size(); ++i) {
+        const ComponentDesc& desc = model.description.components[i];
+        if (desc.regions.empty()) continue;
+        RegionSet regions;
+        try {
+            regions = RegionSet(*model.components[i].mesh, desc.regions);
+        } catch (const InputError& e) {  // a group the mesh does not have: said with the component's path
+            throw InputError(e.where(), component_field(i) + "." + e.field(), e.problem());
+        }
+        for (std::size_t r = 0; r < regions.size(); ++r) {
+            if (regions.area_m2(r) > 0.0) continue;
+            out.push_back({false, regions.entry(r).where, component_field(i) + ".regions[" + regions.name(r) + "]",
+                           "region '" + regions.name(r) + "' selects none of the surface of '" + desc.name +
+                               "'; its conditions are in the component's frame (the mesh's, after mesh_unit): "
+                               "see them drawn with `peensim render-regions`"});
+        }
+    }
+    return out;
+}
+
+}  // namespace peensim

@@ -1,0 +1,38 @@
+#include "app/check/setup_checks.h"
+
+#include <ostream>
+
+#include "app/check/region_checks.h"
+#include "model/plausibility.h"
+#include "model/source_checks.h"
+
+namespace peensim {
+
+std::size_t report_setup_issues(const std::vector<AssemblyIssue>& issues, bool strict, std::ostream& err) {
+    const AssemblyIssue* fatal = nullptr;
+    for (const AssemblyIssue& i : issues)
+        if (i.error && fatal == nullptr) fatal = &i;
+    if (fatal == nullptr && strict)
+        for (const AssemblyIssue& i : issues)
+            if (fatal == nullptr) fatal = &i;
+    std::size_t warnings = 0;
+    for (const AssemblyIssue& i : issues) {
+        warnings += !i.error;
+        if (&i != fatal) err << (i.error ? "error: " : "warning: ") << InputError::format(i.where, i.field, i.message) << "\n";
+    }
+    if (fatal != nullptr) throw InputError(fatal->where, fatal->field, fatal->message + (fatal->error ? "" : " (an error with --strict)"));
+    return warnings;
+}
+
+SetupCheck check_setup(const Model& model, bool strict, std::ostream& err) {
+    SetupCheck s{Random(model.seed), nullptr, {}, 0};
+    s.warnings = report_setup_issues(plausibility_issues(model), strict, err);
+    s.warnings += report_setup_issues(region_issues(model), strict, err);
+    s.warnings += report_setup_issues(source_issues(model), strict, err);
+    if (model.sonotrode >= 0) s.cavity = std::make_unique<ShotCavity>(model, s.rng);
+    s.assembly = check_assembly(model, s.cavity.get());
+    s.warnings += report_setup_issues(s.assembly.issues, strict, err);
+    return s;
+}
+
+}  // namespace peensim

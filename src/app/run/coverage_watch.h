@@ -1,0 +1,52 @@
+// `peensim run --until-coverage` (scene `process.until_coverage`): a listener of the run loop that
+// keeps the coverage of the logged parts as the analysis counts it (app/analysis/coverage_setup.h), dent by
+// dent as the impacts come, and ends the run at the first restart point after every watched area
+// reached the target. Brute force instead of a forecast: the reference every forecast is checked
+// against, and the answer for whoever can afford the simulation. A resumed run rebuilds the
+// coverage from its impact log up to the checkpoint.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/coverage_progress.h"
+#include "analysis/regions.h"
+#include "engine/run_loop.h"
+#include "model/model.h"
+
+namespace peensim {
+
+// One watched area and when it reached the target.
+struct WatchedArea {
+    std::string name;           // "part" or "part/region"
+    double reached_at_s = 0.0;  // s of simulated time (NaN: not yet)
+    double coverage = 0.0;      // 0..1, now
+};
+
+class CoverageWatch final : public RunListener {
+public:
+    // model: the run's (its description's process.until_coverage set); resume_log: the partial
+    // impact log of a resumed run ("" for a fresh one), read up to its end.
+    CoverageWatch(const Model& model, const std::string& resume_log);
+    ~CoverageWatch() override;
+
+    void after_step(const Simulation& sim, const std::vector<ImpactRecord>& impacts) override;
+    bool done() const override;
+
+    double target() const { return target_; }
+    std::vector<WatchedArea> areas() const;
+    double setup_seconds() const { return setup_s_; }  // s of wall time to build the coverage maps
+
+private:
+    struct Part;
+    void add(std::size_t component, const Vec3& point_m, double vn_m_per_s, double shot_diameter_m, double time_s);
+
+    const Model& model_;
+    double target_ = 0.98;
+    std::vector<std::unique_ptr<Part>> parts_;
+    std::vector<int> part_of_component_;  // per component: index into parts_ (-1: not watched)
+    double setup_s_ = 0.0;
+};
+
+}  // namespace peensim

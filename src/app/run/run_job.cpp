@@ -1,0 +1,359 @@
+#include "app/run/run_job.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "app/analysis/analyze_job.h"
+#include "app/check/setup_checks.h"
+#include "app/checkpoint/checkpoint.h"
+#include "app/checkpoint/checkpoint_cadence.h"
+#include "app/interrupt.h"
+#include "app/paraview/paraview_assembly.h"
+#include "app/paraview/paraview_shot_series.h"
+#include "app/render_module.h"
+#include "app/report_errors.h"
+#include "app/run/coverage_watch.h"
+#include "app/run/loss_report.h"
+#include "app/run/summary_builder.h"
+#include "common/input_error.h"
+#include "engine/run_loop.h"
+#include "engine/simulation.h"
+#include "model/assembly_checks.h"
+#include "model/model.h"
+#include "output/atomic_file.h"
+#include "output/impact_csv_writer.h"
+#include "output/progress_reporter.h"
+#include "output/run_directory.h"
+#include "output/summary_json.h"
+#include "output/summary_text.h"
+#include "scene/scene_parser.h"
+#include "scene/schema_defaults.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Slot of each component in the per-logged-component statistics (-1 if not logged).
+std::vector<int> logged_slots(const Model& model) {
+    std::vector<int> slots;
+    int next = 0;
+    for (const Component& c : model.components) slots.push_back(c.logged ? next++ : -1);
+    return slots;
+}
+
+std::vector<std::string> component_names(const Model& model) {
+    std::vector<std::string> names;
+    for (const Component& c : model.components) names.push_back(c.name);
+    return names;
+}
+
+class Job {
+public:
+    Job(const RunOptions& options, std::ostream& out, std::ostream& err) : options_(options), out_(out), err_(err) {}
+
+    int run() {
+        const SceneDescription scene = parse_scene(options_.scene_path, options_.scene_text, options_.overrides);
+        model_ = compile_model(scene);
+        // Before anything is written; a fresh run places its shot in the cavity the check built.
+        SetupCheck setup = check_setup(*model_, options_.strict, err_);
+        dir_ = run_output_directory(options_, scene);
+        fs::create_directories(dir_);
+        lock_ = std::make_unique<RunDirectoryLock>(dir_);
+        if (options_.resume && !fs::exists(checkpoint_path())) return already_finished();
+        if (!options_.resume) {
+            const std::vector<std::string> removed = clear_previous_outputs(dir_);
+            if (!removed.empty()) {
+                err_ << "note: replaced a previous run's outputs in " << dir_ << " (";
+                for (std::size_t k = 0; k < removed.size(); ++k) err_ << (k ? ", " : "") << removed[k];
+                err_ << ")\n";
+            }
+        }
+        write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
+        slots_ = logged_slots(*model_);
+        start(setup);
+        if (const std::optional<double> every = model_->description.output.shot_positions_s)
+            shot_series_ = std::make_unique<ShotSeriesRecorder>(*model_, dir_, *every, sim_->state());
+        if (model_->description.process.until_coverage) {
+            // Coverage from the dents logged so far (a resumed run's), then as they come.
+            coverage_watch_ = std::make_unique<CoverageWatch>(
+                *model_, options_.resume ? (fs::path(dir_) / kImpactCsvPartialFileName).string() : std::string());
+            if (coverage_watch_->done()) {
+                err_ << "note: the coverage target was reached before this resumed run's checkpoint\n";
+            }
+        }
+        try {
+            {
+                // Signals are caught from before the start's checkpoint (so a checkpoint on disk means
+                // Ctrl-C is handled) until the final checkpoint of an interrupted run is written; a
+                // finished run's outputs and analysis are left to Ctrl-C's default (the run is complete).
+                StopRequest stop(options_.stop_requested, abandon_message());
+                // A checkpoint from the start: whatever fails later (a full disk while streaming
+                // impacts, before the first periodic checkpoint), --resume has a state to continue from.
+                if (!options_.resume) checkpoint();
+                start_rendering();
+                if (!loop(stop)) return interrupted();
+            }
+            return complete();
+        } catch (const std::exception&) {
+            if (fs::exists(checkpoint_path()))
+                err_ << "the run stopped on the error below; once it is fixed, " << resume_command()
+                     << " continues from its last checkpoint\n";
+            throw;
+        }
+    }
+
+private:
+    std::string checkpoint_path() const { return (fs::path(dir_) / kCheckpointFileName).string(); }
+
+    std::string resume_command() const {
+        if (options_.scene_text) return "the same run with resume into " + dir_;  // a scene in memory (Python): no command to give
+        return "peensim run " + options_.scene_path + " -o " + dir_ + " --resume" +
+               (options_.overrides.empty() ? "" : " (and the same --set options)");
+    }
+
+    // What a second Ctrl-C prints as it ends the process without waiting for a checkpoint.
+    std::string abandon_message() const {
+        return "\ninterrupted again: run abandoned; " + resume_command() + " continues from the last checkpoint (if one was written)\n";
+    }
+
+    // --resume without a checkpoint: a finished run (its summary says so, of this scene) has
+    // nothing to resume, which is said with where its results are (exit 0: the run is done, and
+    // a script resuming until done stops); anything else cannot be resumed.
+    int already_finished() {
+        const fs::path summary = fs::path(dir_) / "summary.json";
+        nlohmann::json j;
+        if (std::ifstream in(summary); in) {
+            try {
+                j = nlohmann::json::parse(in);
+            } catch (const std::exception&) {}  // damaged: not a finished run's
+        }
+        const bool finished = j.is_object() && j.value("finished", false) && fs::exists(fs::path(dir_) / kImpactCsvFileName);
+        if (!finished)
+            throw std::runtime_error(checkpoint_path() + ": no checkpoint to resume from (the run in " + dir_ + " did not write one)");
+        if (j.value("scene_hash", std::string()) != scene_hash_text(*model_))
+            throw InputError({summary.string(), 0, 0}, "scene_hash",
+                             "the run in " + dir_ +
+                                 " finished with another scene (or other --set values) than this one; nothing to resume: "
+                                 "run without --resume to run this scene (that replaces its outputs)");
+        err_ << "nothing to resume: the run in " << dir_ << " already finished (" << j.value("simulated_time_s", 0.0)
+             << " s simulated); its results are in " << dir_ << "/{impacts.csv, summary.json, analysis/}\n";
+        return kExitOk;
+    }
+
+    void start(SetupCheck& setup) {
+        // The cavity (up to ~8 M cells) is only for placing the shot: freed once they are placed.
+        const std::unique_ptr<ShotCavity> cavity = std::move(setup.cavity);
+        const std::size_t logged = static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), [](int s) { return s >= 0; }));
+        if (options_.resume) {
+            Checkpoint c = load_checkpoint(checkpoint_path());
+            check_resumable(checkpoint_path(), c, *model_, logged);
+            sim_ = std::make_unique<Simulation>(model_, std::move(c.state));
+            writer_ = std::make_unique<ImpactCsvWriter>(
+                ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows, model_->has_size_mix()));
+            speeds_ = std::move(c.normal_speeds);
+            wall_before_ = c.wall_time_s;
+            // The summary of the session that was interrupted describes a time this run goes past:
+            // removed, so that nothing (analyze) reads it as this run's if this session is killed.
+            // A finished or interrupted session writes its own.
+            fs::remove(fs::path(dir_) / "summary.json");
+        } else {
+            fs::remove(checkpoint_path());
+            fs::remove(fs::path(dir_) / kImpactCsvFileName);
+            sim_ = std::make_unique<Simulation>(model_, cavity ? place_shots(*model_, *cavity, setup.rng) : InitialShots{});
+            writer_ = std::make_unique<ImpactCsvWriter>(dir_, component_names(*model_), model_->has_size_mix());
+            speeds_.assign(logged, SpeedHistogram());
+        }
+        logged_impacts_ = writer_->rows_written();
+    }
+
+    // The animation, when the scene asks for one (or --render) and --no-render does not forbid it.
+    void start_rendering() {
+        const std::optional<RenderDesc>& scene_render = model_->description.render;
+        const bool wanted = options_.render.value_or(scene_render.has_value());
+        if (!wanted) return;
+        recorder_ = render_module().make_recorder(*model_, scene_render.value_or(default_render()), dir_, sim_->state());
+        recorder_->after_step(sim_->state(), {}, logged_impacts_);
+    }
+
+    // Returns true when the scene's duration was reached, false when interrupted.
+    bool loop(const StopRequest& stop) {
+        // What the run does with each step, in this order: the impacts to impacts.csv and the speed
+        // histograms, the recorder's frames, the progress bar; at restart points, checkpoints.
+        struct Listener final : RunListener {
+            Job& job;
+            ProgressReporter progress;
+            CheckpointCadence cadence;
+            Clock::time_point next_callback = Clock::now();
+            Listener(Job& j, bool show_progress)
+                : job(j),
+                  progress(j.err_, show_progress),
+                  cadence(j.model_->description.output.checkpoint_interval_s, j.options_.checkpoint_clock) {}
+            void call_back(Clock::time_point now) {
+                next_callback =
+                    now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kProgressCallbackInterval_s));
+                job.options_.on_progress(
+                    RunProgress{job.sim_->state().time.seconds(), job.model_->duration_s, job.logged_impacts_, job.wall_time()});
+            }
+            double pause_at_s() const override {
+                return job.recorder_ ? job.recorder_->next_frame_s() : std::numeric_limits<double>::infinity();
+            }
+            void after_step(const Simulation& sim, const std::vector<ImpactRecord>& impacts) override {
+                if (!impacts.empty()) {
+                    const auto t = Clock::now();
+                    job.writer_->write(impacts);
+                    for (const ImpactRecord& r : impacts)
+                        job.speeds_[static_cast<std::size_t>(job.slots_[static_cast<std::size_t>(r.component)])].add(r.vn_in_m_per_s);
+                    job.logged_impacts_ += impacts.size();
+                    job.output_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
+                }
+                if (job.recorder_) job.recorder_->after_step(sim.state(), impacts, job.logged_impacts_);
+                progress.update(sim.state().time.seconds(), job.model_->duration_s, job.logged_impacts_);
+                if (job.options_.on_progress) {
+                    const auto now = Clock::now();
+                    if (now >= next_callback) call_back(now);
+                }
+            }
+            // The clock is read only here: reading it at every unit of work would decide the same.
+            void at_restart_point(const Simulation&) override {
+                if (cadence.due()) job.checkpoint();
+            }
+            // The bar's last line, and the caller's last progress, whichever way the run ends.
+            void at_finish(const Simulation&) override { end(); }
+            void at_interrupt(const Simulation&) override { end(); }
+            void end() {
+                progress.finish();
+                if (job.options_.on_progress) call_back(Clock::now());
+            }
+        } listener(*this, options_.progress && isatty(STDERR_FILENO));
+        started_ = Clock::now();
+        RunLoop run(*sim_);
+        if (coverage_watch_) run.add(*coverage_watch_);  // first: the others see a step after its dents count
+        run.add(listener);
+        if (shot_series_) run.add(*shot_series_);
+        // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
+        // step, the event-driven scheme at its restart interval.
+        return run.run(
+            [&](std::uint64_t steps) { return stop.requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps); });
+    }
+
+    double wall_time() const { return wall_before_ + std::chrono::duration<double>(Clock::now() - started_).count(); }
+
+    void checkpoint() {
+        writer_->flush_durable();
+        Checkpoint c;
+        c.scene_hash = model_->scene_hash;
+        c.state = sim_->state();
+        c.csv_bytes = writer_->bytes_written();
+        c.csv_rows = writer_->rows_written();
+        c.normal_speeds = speeds_;
+        c.wall_time_s = wall_time();
+        save_checkpoint(checkpoint_path(), c);
+    }
+
+    RunSummary summary(bool finished) const {
+        RunSummary s = build_summary(*sim_, options_.scene_path, speeds_, wall_time(), finished);
+        s.overrides = options_.overrides;
+        if (coverage_watch_) {
+            RunSummary::CoverageGoal g;
+            g.target = coverage_watch_->target();
+            for (const WatchedArea& a : coverage_watch_->areas()) g.areas.push_back({a.name, a.reached_at_s, a.coverage});
+            g.reached = coverage_watch_->done();
+            s.until_coverage = std::move(g);
+        }
+        for (StageTime& st : s.stage_times)
+            if (st.stage == "record_impacts") st.seconds += output_seconds_;
+        return s;
+    }
+
+    int interrupted() {
+        if (recorder_) recorder_->flush();  // the frames drawn so far are complete files
+        if (shot_series_) shot_series_->flush();
+        checkpoint();
+        write_summary((fs::path(dir_) / "summary.json").string(), summary(false));
+        write_paraview_assembly(*model_, dir_);
+        err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s << " s; outputs in " << dir_
+             << " are consistent up to that time.\n"
+             << "resume with: " << resume_command() << "\n";
+        return kExitInterrupted;
+    }
+
+    int complete() {
+        writer_->finish();
+        // The ParaView files before the checkpoint goes: a full disk here still leaves a run to resume.
+        const std::string series = shot_series_ ? shot_series_->finish(sim_->state()) : "";
+        write_paraview_assembly(*model_, dir_);
+        const RunSummary s = summary(true);
+        write_summary((fs::path(dir_) / "summary.json").string(), s);
+        fs::remove(checkpoint_path());
+        out_ << summary_to_text(s);
+        out_ << "outputs: " << dir_ << "/{impacts.csv, summary.json, scene.resolved.yaml, paraview/assembly.vtm}\n";
+        if (shot_series_) out_ << "shot positions: " << series << "\n";
+        if (recorder_) {
+            const int n = recorder_->frames_drawn();
+            const std::string video = recorder_->finish_video();
+            out_ << "render: " << video << "; drawing took " << recorder_->draw_seconds() << " s"
+                 << (n > 0 ? " (" + std::to_string(recorder_->draw_seconds() / n * 1e3) + " ms per frame)" : std::string()) << "\n";
+        }
+        for (const LostShot& l : sim_->state().lost) err_ << describe_loss(*model_, l) << "\n";
+        if (options_.analyze) {
+            const int code = analyze_job(dir_, out_, err_);
+            if (code != kExitOk) {
+                err_ << "error: the run finished (its outputs are complete) but its analysis failed; fix the cause above and run "
+                        "'peensim analyze "
+                     << dir_ << "'\n";
+                return code;
+            }
+        }
+        if (options_.strict && sim_->state().health.serious() > 0) {
+            err_ << "error: --strict: the run had numerical trouble (see health counters in summary.json)\n";
+            return kExitHealthFailure;
+        }
+        return kExitOk;
+    }
+
+    const RunOptions& options_;
+    std::ostream& out_;
+    std::ostream& err_;
+    std::shared_ptr<const Model> model_;
+    std::string dir_;
+    std::unique_ptr<RunDirectoryLock> lock_;  // held for the whole run
+    std::vector<int> slots_;
+    std::unique_ptr<Simulation> sim_;
+    std::unique_ptr<ImpactCsvWriter> writer_;
+    std::unique_ptr<FrameSink> recorder_;              // only when rendering (the module is loaded then)
+    std::unique_ptr<ShotSeriesRecorder> shot_series_;  // only when the scene asks (output.shot_positions)
+    std::unique_ptr<CoverageWatch> coverage_watch_;    // only when running until coverage
+    std::vector<SpeedHistogram> speeds_;
+    std::uint64_t logged_impacts_ = 0;
+    double wall_before_ = 0.0;     // s, wall time of earlier sessions of a resumed run
+    double output_seconds_ = 0.0;  // s, spent writing impacts
+    Clock::time_point started_;
+};
+
+}  // namespace
+
+std::string run_output_directory(const RunOptions& options, const SceneDescription& scene) {
+    if (!options.output_dir.empty()) return options.output_dir;
+    if (!scene.output.directory.empty()) return scene.output.directory;
+    return "out/" + fs::path(options.scene_path).stem().string();
+}
+
+int run_job(const RunOptions& options, std::ostream& out, std::ostream& err) {
+    return report_errors(err, [&] { return run_scene(options, out, err); });
+}
+
+int run_scene(const RunOptions& options, std::ostream& out, std::ostream& err) { return Job(options, out, err).run(); }
+
+}  // namespace peensim

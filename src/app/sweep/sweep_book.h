@@ -1,0 +1,64 @@
+// The bookkeeping of a sweep's runs, whoever runs them (child processes of this process, or MPI
+// ranks): which are still to run, each one's attempts (a failed run goes back into the queue
+// once), what finished and what failed, and the progress lines. And how one run is started: the
+// `peensim run` process itself, in a process group of its own, dying with its parent.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <deque>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "app/sweep/sweep_plan.h"
+
+namespace peensim {
+
+class SweepBook {
+public:
+    // Queues every run of `plan` that has not finished yet (summary and analysis written); `slots`:
+    // how many run at once (for the time still to go).
+    SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err);
+
+    bool has_queued() const { return !queue_.empty(); }
+    std::size_t take();                            // the next run to start: one more attempt of it
+    void outcome(std::size_t run, int exit_code);  // a run ended with this exit code
+    void stop();                                   // interrupted: nothing more is handed out
+    bool stopped() const { return stopped_; }
+
+    std::size_t done() const { return done_; }
+    std::size_t total() const { return plan_.runs.size(); }
+    const std::vector<std::size_t>& failed() const { return failed_; }
+    std::string log_of(std::size_t run) const;    // the run's messages: logs_dir/<variant>.s<k>.log
+    std::string label_of(std::size_t run) const;  // "<variant>/s<k>"
+
+private:
+    const SweepPlan& plan_;
+    std::string logs_;
+    int slots_;
+    std::ostream& out_;
+    std::ostream& err_;
+    std::deque<std::size_t> queue_;
+    std::map<std::size_t, int> attempts_;
+    std::vector<std::size_t> failed_;
+    std::size_t done_ = 0, done_here_ = 0;
+    bool stopped_ = false;
+    std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+};
+
+// Starts `executable run scene -o <run dir> --quiet [--resume] --set ...` (resuming from the run's
+// checkpoint if it has one), stdin from /dev/null, stdout and stderr appended to `log`, in a
+// process group of its own. It dies with the thread that started it (SIGKILL, PR_SET_PDEATHSIG):
+// a sweep or MPI rank killed outright leaves no run behind holding its directory.
+pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log);
+
+// Where run `run`'s messages go: logs_dir/<variant>.s<k>.log.
+std::string sweep_run_log(const SweepPlan& plan, const std::string& logs_dir, std::size_t run);
+
+// The exit code of a waited-for process (128 + the signal that ended it).
+int exit_code_of(int wait_status);
+
+}  // namespace peensim

@@ -1,0 +1,32 @@
+// A sweep's variants read as their runs will read them, before any run starts: every bad value is
+// an input error (exit 2) blamed on where it was given (the sweep file's line, or --vary), not on
+// the `--set` the runs are given; a variant that sets process.seed has its replicates start there.
+// The checks print their progress when there are many.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "app/sweep/sweep_plan.h"
+#include "scene/scene_description.h"
+
+namespace peensim {
+
+// Where a sweep's own overrides (every run's) were given: a sweep file's `set` (its line), then the
+// command line's --set (left as the scene parser reports them).
+struct SweepOverrides {
+    std::vector<std::string> from_file;
+    SourceLocation file_origin;
+    std::vector<std::string> from_command_line;
+};
+
+// The scene as every run of the sweep reads it (without the variants' values). Throws InputError.
+SceneDescription read_sweep_scene(const std::string& scene_path, const SweepOverrides& overrides);
+
+// Reads the scene with each value of each axis (a grid of several axes: first each value alone,
+// so a bad value is named as such), then with each variant (a listed one: blamed on its line); re-plans the replicates of a variant
+// that sets process.seed. Progress lines on `out` after the first second, about one a second.
+void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, std::ostream& out);
+
+}  // namespace peensim
