@@ -16,7 +16,7 @@
 //   - one dent of diameter d: relative error of its area <= 2 h pi d / (pi d^2 / 4) = 8 h / d;
 //   - N separate dents on area S: |coverage error| <= 2 h N pi d / S.
 // This is a worst-case bound; the actual error (errors of opposite sign cancel along the rim) is
-// typically 10-100x smaller (tests/analysis_coverage_test.cpp measures it). For dents placed at
+// typically 10-100x smaller (tests/analysis/coverage_test.cpp measures it). For dents placed at
 // random the estimate is unbiased: every sample point is covered with the same probability as any
 // point of the surface, so only the statistical scatter of the dents remains.
 //

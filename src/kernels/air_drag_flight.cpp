@@ -33,7 +33,7 @@ AirDragFlight::AirDragFlight(const Vec3& gravity_m_per_s2, const AirDrag& air) :
     speed_gain_bound_ = g_.norm();
     if (air_.wind && air_.wind->max_speed() > 0.0) {
         // C_d(Re) |w|^2 grows with |w| (the standard curve's does, up to the held crisis value:
-        // tests/flight_models_test.cpp checks it).
+        // tests/kernels/flight_models_test.cpp checks it).
         const double w = 2.0 * air_.wind->max_speed();
         speed_gain_bound_ += k_per_cd_ * drag_coefficient(reynolds(w)) * w * w;
     }

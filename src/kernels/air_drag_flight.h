@@ -8,7 +8,7 @@
 // Drag matters for the fast jet of conventional peening and for small slow shot (reference sec. 5);
 // for USP it is off by default. A flight is advanced by classical Runge-Kutta (4th order): at time
 // stepping's steps (a quarter radius of travel) its error is far below a nanometre per step
-// (tests/flight_models_test.cpp measures it against closed-form flights).
+// (tests/kernels/flight_models_test.cpp measures it against closed-form flights).
 #pragma once
 
 #include <memory>

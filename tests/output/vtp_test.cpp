@@ -415,7 +415,7 @@ TEST_F(VtpWriterTest, MillionImpactsStreamWithBoundedMemory) {
 }
 
 // Int32, Int64 and Float64 arrays on points and cells, and field data (numbers, a text), as the
-// ParaView outputs use them (tests/paraview_outputs_test.cpp): read back exactly.
+// ParaView outputs use them (tests/app/paraview/paraview_outputs_test.cpp): read back exactly.
 TEST_F(VtpWriterTest, TypedArraysAndFieldDataReadBackExactlyInVtk) {
     const fs::path vtp = dir_ / "typed.vtp";
     PolyDataLayout layout{3,

@@ -66,7 +66,7 @@ TEST(AnalyzeJob, CountsAddUpAndCoverageOnlyGrows) {
     std::ifstream report(a / "report.md");
     const std::string text((std::istreambuf_iterator<char>(report)), {});
     EXPECT_NE(text.find("| rod | " + std::to_string(rows) + " |"), std::string::npos) << text;
-    // The ParaView files (their format is checked against VTK's reader in output_vtp_test).
+    // The ParaView files (their format is checked against VTK's reader in output/vtp_test.cpp).
     EXPECT_GT(fs::file_size(a / "rod.vtp"), 6720u * 6 * 8);  // six cell fields of doubles at least
     EXPECT_GT(fs::file_size(a / "rod_impacts.vtp"), rows * 8 * 8);
 }
