@@ -5,7 +5,7 @@
 // Defaults and ranges have one source, the schema (scene/schema.cpp): the parser fills every key a
 // scene leaves out from it. The initialisers below are therefore zero or empty; the few that are not
 // are no scene default (a required key's placeholder, or a value a test builds in code), as their
-// comments say. tests/scene_defaults_agree_test.cpp checks the parsed defaults against the schema.
+// comments say. tests/scene/defaults_agree_test.cpp checks the parsed defaults against the schema.
 #pragma once
 
 #include <cmath>
