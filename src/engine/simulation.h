@@ -1,5 +1,5 @@
 // A model, its mutable state and the stepping scheme that advances it. No I/O: impacts go to a
-// buffer the caller drains after each step (app/run_job writes them).
+// buffer the caller drains after each step (app/run/run_job writes them).
 #pragma once
 
 #include <limits>

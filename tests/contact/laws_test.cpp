@@ -1,6 +1,6 @@
 // The contact laws of contact/ against hand-computed values (reference eq. 2-5): restitution in
 // both regimes, shot-shot impulses, static and moving surface impacts, sustained-contact friction,
-// (the law catalogue and the stateful laws: contact_law_catalogue_test.cpp).
+// (the law catalogue and the stateful laws: tests/contact/law_catalogue_test.cpp).
 //
 // Tolerances: the hand values below are chosen so that the laws' arithmetic is exact or a few
 // roundings away from it; 1e-15 m/s (a few ulp of speeds of order 1 m/s) is the bound used
