@@ -71,6 +71,7 @@ public:
         return s;
     }
     bool at_end() const { return at_ == bytes_.size(); }
+    std::size_t remaining() const { return bytes_.size() - at_; }
 
     [[noreturn]] void fail(const std::string& problem) const { throw std::runtime_error(what_ + ": " + problem); }
 

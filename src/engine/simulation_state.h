@@ -61,19 +61,30 @@ struct HealthCounters {
     // the net under "time always advances" (SimulationState::first_search_fallback says where).
     std::uint64_t search_fallbacks = 0;
 
+    // Every counter, by name: the one list the summary, the benchmark and the checkpoint follow.
     template <class Visit>
     void for_each(Visit&& visit) const {
-        visit("shot_lost", shot_lost);
-        visit("non_finite", non_finite);
-        visit("mesh_overlap_corrections", mesh_overlap_corrections);
-        visit("shot_overlap_corrections", shot_overlap_corrections);
-        visit("deep_penetrations", deep_penetrations);
-        visit("unresolved_contacts", unresolved_contacts);
-        visit("engine_errors", engine_errors);
-        visit("search_fallbacks", search_fallbacks);
+        each(*this, visit);
+    }
+    template <class Visit>
+    void for_each(Visit&& visit) {
+        each(*this, visit);
     }
     // Counters that mean a wrong result (the others are routine corrections).
     std::uint64_t serious() const { return shot_lost + non_finite + deep_penetrations + unresolved_contacts + engine_errors; }
+
+private:
+    template <class Self, class Visit>
+    static void each(Self& self, Visit& visit) {
+        visit("shot_lost", self.shot_lost);
+        visit("non_finite", self.non_finite);
+        visit("mesh_overlap_corrections", self.mesh_overlap_corrections);
+        visit("shot_overlap_corrections", self.shot_overlap_corrections);
+        visit("deep_penetrations", self.deep_penetrations);
+        visit("unresolved_contacts", self.unresolved_contacts);
+        visit("engine_errors", self.engine_errors);
+        visit("search_fallbacks", self.search_fallbacks);
+    }
 };
 
 // Why a shot was lost (engine/loss_diagnosis.h): through an opening of the assembly (a setup

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cstdint>
 #include <string_view>
-#include <utility>
 
 namespace peensim {
 
@@ -56,41 +55,66 @@ struct StepStats {
     std::uint64_t soft_contact_evaluations = 0;  // contact forces evaluated, summed over the steps
     std::uint64_t soft_joins = 0;                // shot taken into the pool
     std::uint64_t soft_rests = 0;                // members left to rigid sustained contact (slow contacts)
+    // Every counter, by name: the one list that adding another scheme's figures follows.
+    template <class Visit>
+    void for_each_counter(Visit&& visit) const {
+        each_counter(*this, visit);
+    }
+    template <class Visit>
+    void for_each_counter(Visit&& visit) {
+        each_counter(*this, visit);
+    }
     // Adds another scheme's figures (the event scheme's hand-over to time stepping): every stage
-    // time and every counter (a counter added to StepStats must be added here too).
+    // time and every counter.
     StepStats& operator+=(const StepStats& o) {
         for (std::size_t k = 0; k < seconds.size(); ++k) seconds[k] += o.seconds[k];
-        for (auto [mine, theirs] : {std::pair{&gate_checks, &o.gate_checks},
-                                    {&gate_skips, &o.gate_skips},
-                                    {&memo_skips, &o.memo_skips},
-                                    {&bvh_queries, &o.bvh_queries},
-                                    {&bvh_hits, &o.bvh_hits},
-                                    {&triangles_returned, &o.triangles_returned},
-                                    {&triangle_tests, &o.triangle_tests},
-                                    {&touch_searches, &o.touch_searches},
-                                    {&events, &o.events},
-                                    {&stale_events, &o.stale_events},
-                                    {&box_renewals, &o.box_renewals},
-                                    {&pair_tests, &o.pair_tests},
-                                    {&mesh_predictions, &o.mesh_predictions},
-                                    {&rides, &o.rides},
-                                    {&search_resumes, &o.search_resumes},
-                                    {&grazes, &o.grazes},
-                                    {&substeps, &o.substeps},
-                                    {&sleeps, &o.sleeps},
-                                    {&collapse_guards, &o.collapse_guards},
-                                    {&hand_overs, &o.hand_overs},
-                                    {&soft_steps, &o.soft_steps},
-                                    {&soft_member_steps, &o.soft_member_steps},
-                                    {&soft_contact_evaluations, &o.soft_contact_evaluations},
-                                    {&soft_joins, &o.soft_joins},
-                                    {&soft_rests, &o.soft_rests}})
-            *mine += *theirs;
+        std::array<std::uint64_t, kCounters> theirs{};
+        std::size_t k = 0;
+        o.for_each_counter([&](const char*, std::uint64_t v) { theirs[k++] = v; });
+        k = 0;
+        for_each_counter([&](const char*, std::uint64_t& mine) { mine += theirs[k++]; });
         return *this;
     }
     double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
     double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }
+
+    static constexpr std::size_t kCounters = 25;
+
+private:
+    template <class Self, class Visit>
+    static void each_counter(Self& self, Visit& visit) {
+        visit("gate_checks", self.gate_checks);
+        visit("gate_skips", self.gate_skips);
+        visit("memo_skips", self.memo_skips);
+        visit("bvh_queries", self.bvh_queries);
+        visit("bvh_hits", self.bvh_hits);
+        visit("triangles_returned", self.triangles_returned);
+        visit("triangle_tests", self.triangle_tests);
+        visit("touch_searches", self.touch_searches);
+        visit("events", self.events);
+        visit("stale_events", self.stale_events);
+        visit("box_renewals", self.box_renewals);
+        visit("pair_tests", self.pair_tests);
+        visit("mesh_predictions", self.mesh_predictions);
+        visit("rides", self.rides);
+        visit("search_resumes", self.search_resumes);
+        visit("grazes", self.grazes);
+        visit("substeps", self.substeps);
+        visit("sleeps", self.sleeps);
+        visit("collapse_guards", self.collapse_guards);
+        visit("hand_overs", self.hand_overs);
+        visit("soft_steps", self.soft_steps);
+        visit("soft_member_steps", self.soft_member_steps);
+        visit("soft_contact_evaluations", self.soft_contact_evaluations);
+        visit("soft_joins", self.soft_joins);
+        visit("soft_rests", self.soft_rests);
+    }
 };
+
+// Every counter is in the list: the counters are all the struct holds besides the stage times.
+static_assert(sizeof(StepStats) ==
+                  sizeof(std::array<double, static_cast<int>(Stage::count)>) + StepStats::kCounters * sizeof(std::uint64_t),
+              "a StepStats counter is missing from each_counter (and kCounters)");
 
 // Adds the wall time of its scope to one stage.
 class StageTimer {

@@ -183,7 +183,7 @@ TEST(RenderImpacts, TheHotColourLandsOnTheHitTriangles) {
             csv << t << ',' << (x > 0.0 ? 10.0 : 0.0) << ",," << (x > 0.0 ? 0.03 : 0.001) << ",0.5\n";
         }
     }
-    RenderImpactsOptions r{dir.path.string(), {"impacts"}, 320, 240};
+    RenderImpactsOptions r{dir.path.string(), {"impacts"}, 320, 240, std::nullopt};
     std::ostringstream out2, err2;
     ASSERT_EQ(render_impacts_job(r, out2, err2), kExitOk) << err2.str();
     const render::RgbaImage image = render::read_png((dir.path / "analysis" / "rod_map_impacts.png").string());
@@ -203,7 +203,7 @@ TEST(RenderImpacts, TheHotColourLandsOnTheHitTriangles) {
     EXPECT_GT(c.b, c.g + 20) << int(c.r) << " " << int(c.g) << " " << int(c.b);
     // The coverage map is scaled to its data (0 to 3 %, not 0 to 100 %): the covered half is in
     // the top colour, the rest at the bottom.
-    RenderImpactsOptions cov{dir.path.string(), {"coverage"}, 320, 240};
+    RenderImpactsOptions cov{dir.path.string(), {"coverage"}, 320, 240, std::nullopt};
     ASSERT_EQ(render_impacts_job(cov, out2, err2), kExitOk) << err2.str();
     const render::RgbaImage coverage = render::read_png((dir.path / "analysis" / "rod_map_coverage.png").string());
     const render::Rgba8 ch = coverage.at(static_cast<int>(hot->x()), static_cast<int>(hot->y()));
@@ -215,7 +215,7 @@ TEST(RenderImpacts, TheHotColourLandsOnTheHitTriangles) {
     EXPECT_EQ(render_impacts_job(bad_target, out2, err2), kExitInputError);
     EXPECT_NE(err2.str().find("--target"), std::string::npos) << err2.str();
     // An unknown field is a clear input error.
-    RenderImpactsOptions bad{dir.path.string(), {"heat"}, 320, 240};
+    RenderImpactsOptions bad{dir.path.string(), {"heat"}, 320, 240, std::nullopt};
     std::ostringstream out3, err3;
     EXPECT_EQ(render_impacts_job(bad, out3, err3), kExitInputError);
     EXPECT_NE(err3.str().find("unknown field 'heat'"), std::string::npos) << err3.str();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/checkpoint/field_list.h"
 #include "engine/simulation_state.h"
 #include "model/model.h"
 #include "output/speed_histogram.h"
@@ -24,6 +25,8 @@ struct Checkpoint {
     double wall_time_s = 0.0;                   // s, wall time spent before this checkpoint
 };
 
+// Every field's name and the format version that added it, in file order (checkpoint_fields.h).
+std::vector<FieldName> checkpoint_field_names();
 // The file ends with a checksum of everything before it.
 void save_checkpoint(const std::string& path, const Checkpoint& checkpoint);
 // Throws std::runtime_error if the file is missing; InputError (exit 2) if it is not a checkpoint,

@@ -91,7 +91,7 @@ TEST(CheckpointResumeChecks, StatesThatCannotBeResumedAreRefused) {
     EXPECT_NE(resume_error(c, *model).find("expected a time"), std::string::npos);
     c = good;
     c.state.shots.x[3] = nan;
-    EXPECT_NE(resume_error(c, *model).find("shot 3: a position, velocity or spin that is not a number"), std::string::npos);
+    EXPECT_NE(resume_error(c, *model).find("shot 3: shots.x is not a number"), std::string::npos);
     c = good;
     c.state.shots.vz[5] = std::numeric_limits<double>::infinity();
     EXPECT_NE(resume_error(c, *model).find("shot 5"), std::string::npos);
@@ -105,6 +105,26 @@ TEST(CheckpointResumeChecks, StatesThatCannotBeResumedAreRefused) {
     c = good;
     c.state.shots.resize(15);
     EXPECT_NE(resume_error(c, *model).find("expected 16 shot, got 15"), std::string::npos);
+    // Every list's length and every number, by the field's name (app/checkpoint/field_checks.h).
+    c = good;
+    c.state.shots.wy.pop_back();
+    EXPECT_NE(resume_error(c, *model).find("shots.wy: expected 16 values, one per shot slot, got 15"), std::string::npos);
+    c = good;
+    c.state.emitted_per_source.push_back(3);
+    EXPECT_NE(resume_error(c, *model).find("emitted_per_source: expected 0 values, one per shot source, got 1"), std::string::npos);
+    c = good;
+    c.state.impacts_per_component.pop_back();
+    EXPECT_NE(resume_error(c, *model).find("impacts_per_component: expected"), std::string::npos);
+    c = good;
+    c.state.lost.push_back({});
+    c.state.lost.back().where_m.y() = nan;
+    EXPECT_NE(resume_error(c, *model).find("lost[0].where_m: not a number"), std::string::npos);
+    c = good;
+    c.state.fastest_shot_m_per_s = std::numeric_limits<double>::infinity();
+    EXPECT_NE(resume_error(c, *model).find("fastest_shot_m_per_s: not a number"), std::string::npos);
+    c = good;
+    c.wall_time_s = nan;
+    EXPECT_NE(resume_error(c, *model).find("wall_time_s: not a number"), std::string::npos);
     c = good;
     c.scene_hash ^= 1;
     EXPECT_NE(resume_error(c, *model).find("the scene changed"), std::string::npos);
