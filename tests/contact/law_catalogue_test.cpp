@@ -29,6 +29,7 @@
 #include "scene/scene_parser.h"
 #include "support/files.h"
 #include "support/run_in_process.h"
+#include "support/run_through_loop.h"
 #include "support/temp_dir.h"
 
 namespace peensim::testing {
@@ -404,8 +405,7 @@ TEST(SceneContactLaws, ALawFromOutsideContactPlugsInWithoutTouchingTheSchemes) {
         model->components[gear].law =
             std::make_shared<CountingLaw>(contact::PairCoefficients{0.95, 0.5, 0.8, 0.1}, static_cast<int>(gear), model->shot_count);
         Simulation sim(model);
-        std::vector<ImpactRecord> impacts;
-        while (!sim.finished()) sim.step(impacts);
+        run_through_loop(sim);
         double counted = 0.0;
         for (double x : sim.state().law_state[gear]) counted += x;
         EXPECT_GT(sim.state().impacts_per_component[gear], 50u) << scheme;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -50,12 +51,7 @@ DropErrors drop(double travel_fraction, const std::string& scheme = "step") {
     // Centre of the chamber: 9 mm from every wall, 18 mm below the ceiling at the start.
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + kH0), Vec3::Zero()); });
 
-    std::vector<ImpactRecord> impacts, step_impacts;
-    while (!sim.finished()) {
-        sim.step(step_impacts);
-        impacts.insert(impacts.end(), step_impacts.begin(), step_impacts.end());
-        step_impacts.clear();
-    }
+    const std::vector<ImpactRecord> impacts = run_collecting_impacts(sim);
     EXPECT_EQ(sim.state().health.serious(), 0u);
     const auto sono = static_cast<std::size_t>(model->sonotrode);
     EXPECT_EQ(sim.state().impacts_per_component[sono], impacts.size());

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -56,15 +57,12 @@ TEST_P(EngineConservation, ElasticBoxKeepsItsKineticEnergy) {
     Simulation sim(model);
     const double e0 = kinetic_energy_per_mass(sim.state().shots);
     ASSERT_NEAR(e0, 50 * 0.5, 1e-12);
-    std::vector<ImpactRecord> impacts;
     std::size_t wall_impacts = 0;
     double worst = 0.0;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        wall_impacts += impacts.size();
-        impacts.clear();
-        worst = std::max(worst, std::abs(kinetic_energy_per_mass(sim.state().shots) - e0) / e0);
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         wall_impacts += impacts.size();
+                         worst = std::max(worst, std::abs(kinetic_energy_per_mass(sim.state().shots) - e0) / e0);
+                     }});
     const SimulationState& st = sim.state();
     std::cout << "[ energy   ] " << GetParam() << " scheme: " << st.steps << " steps, " << st.shot_shot_impacts << " shot-shot and "
               << wall_impacts << " wall impacts; worst relative energy change " << worst << "; overlap corrections: mesh "
@@ -99,8 +97,7 @@ TEST_P(EngineConservation, ShotShotImpactsConserveMomentum) {
     }
     const Vec3 p0 = momentum_per_mass(sim.state().shots);
     const double e0 = kinetic_energy_per_mass(sim.state().shots);
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) sim.step(impacts);
+    run_through_loop(sim);
     const SimulationState& st = sim.state();
     const Vec3 p1 = momentum_per_mass(st.shots);
     const double e1 = kinetic_energy_per_mass(st.shots);

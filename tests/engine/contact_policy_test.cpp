@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -47,13 +48,10 @@ Classified run(const TestSceneSpec& spec, const std::function<void(SimulationSta
     const double R = model->max_shot_radius_m;
     sim.edit_state([&](SimulationState& s) { place(s, R); });
     Classified c;
-    std::vector<ImpactRecord> step;
-    while (!sim.finished()) {
-        sim.step(step);
-        for (const ImpactRecord& r : step)
-            if (c.logged++ == 0) c.first_vn_in = r.vn_in_m_per_s;
-        step.clear();
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& step) {
+                         for (const ImpactRecord& r : step)
+                             if (c.logged++ == 0) c.first_vn_in = r.vn_in_m_per_s;
+                     }});
     const SimulationState& s = sim.state();
     c.impacts = s.impacts_per_component.at(0);
     c.slow_contacts = s.slow_contacts_per_component.at(0);

@@ -69,7 +69,8 @@ TestSceneSpec still_plate(const std::string& scheme) {
 
 class ContactState : public ::testing::TestWithParam<std::string> {};
 
-// Steps `sim` to time t_s (s), collecting its impacts; returns the longest step (s).
+// Steps `sim` to time t_s (s), collecting its impacts; returns the longest step (s). By hand: the
+// test edits the state mid-run (lifts the shot at t_s), and RunLoop ends only at restart points.
 double run_to(Simulation& sim, double t_s, std::vector<ImpactRecord>& all) {
     std::vector<ImpactRecord> impacts;
     double largest_step = 0.0;

@@ -20,6 +20,7 @@
 
 #include "engine/simulation.h"
 #include "kernels/closest_point.h"
+#include "support/run_through_loop.h"
 #include "support/sonotrode_crossing.h"
 #include "support/test_scene.h"
 
@@ -115,44 +116,43 @@ TEST_P(EngineContainment, ShotStayInsideAtTheExtremes) {
     // Grazes shallower than 0.5 % of the amplitude (0.5 um) may be missed by the engine's sampled
     // touch search (engine/contact_time.h, 32 samples a period); deeper crossings may not.
     SonotrodeCrossingCheck crossings(*model, 0.0, 0.005 * spec.amplitude_m);
-    std::vector<ImpactRecord> impacts;
     double worst_plate = std::numeric_limits<double>::infinity(), worst_wall = worst_plate, worst_part = worst_plate;
     std::string first_plate_violation;
     std::size_t plate_violations = 0, wall_violations = 0, part_violations = 0, part_impacts = 0;
-    while (!sim.finished()) {
-        crossings.before_step(sim.state());
-        sim.step(impacts);
-        crossings.after_step(sim.state(), impacts);
-        for (const ImpactRecord& r : impacts) part_impacts += r.component == part;
-        impacts.clear();
-        const SimulationState& st = sim.state();
-        const double d = plate.displacement(st.time);
-        std::optional<Pose> part_pose;
-        if (part >= 0) part_pose = model->components[static_cast<std::size_t>(part)].kinematics.pose(st.time);
-        for (std::size_t i = 0; i < st.shots.size(); ++i) {
-            if (!st.shots.active[i]) continue;
-            const Vec3 p = st.shots.position(i);
-            const double above_plate = p.z() - d - R;
-            worst_plate = std::min(worst_plate, above_plate);
-            if (above_plate < -kTolerance_m && plate_violations++ == 0) {
-                std::ostringstream e;
-                e.precision(10);
-                e << "shot " << i << " at t = " << st.time.seconds() << " s (step " << st.steps << "): centre z = " << p.z()
-                  << " m, vz = " << st.shots.vz[i] << " m/s; plate z = " << d << " m, vz = " << plate.displacement_rate(st.time)
-                  << " m/s; centre - plate - R = " << above_plate << " m";
-                first_plate_violation = e.str();
+    crossings.before_step(sim.state());
+    run_through_loop(
+        sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+            crossings.after_step(sim.state(), impacts);
+            crossings.before_step(sim.state());  // the next step starts from this state
+            for (const ImpactRecord& r : impacts) part_impacts += r.component == part;
+            const SimulationState& st = sim.state();
+            const double d = plate.displacement(st.time);
+            std::optional<Pose> part_pose;
+            if (part >= 0) part_pose = model->components[static_cast<std::size_t>(part)].kinematics.pose(st.time);
+            for (std::size_t i = 0; i < st.shots.size(); ++i) {
+                if (!st.shots.active[i]) continue;
+                const Vec3 p = st.shots.position(i);
+                const double above_plate = p.z() - d - R;
+                worst_plate = std::min(worst_plate, above_plate);
+                if (above_plate < -kTolerance_m && plate_violations++ == 0) {
+                    std::ostringstream e;
+                    e.precision(10);
+                    e << "shot " << i << " at t = " << st.time.seconds() << " s (step " << st.steps << "): centre z = " << p.z()
+                      << " m, vz = " << st.shots.vz[i] << " m/s; plate z = " << d << " m, vz = " << plate.displacement_rate(st.time)
+                      << " m/s; centre - plate - R = " << above_plate << " m";
+                    first_plate_violation = e.str();
+                }
+                const double wall =
+                    std::min({half.x() - std::abs(p.x()) - R, half.y() - std::abs(p.y()) - R, spec.chamber_size_m.z() - p.z() - R});
+                worst_wall = std::min(worst_wall, wall);
+                wall_violations += wall < -kTolerance_m;
+                if (part_pose) {
+                    const double clearance = (*part_clearance)(part_pose->to_component(p), 4.0 * R) - R;
+                    worst_part = std::min(worst_part, clearance);
+                    part_violations += clearance < -kPartTolerance_m;
+                }
             }
-            const double wall =
-                std::min({half.x() - std::abs(p.x()) - R, half.y() - std::abs(p.y()) - R, spec.chamber_size_m.z() - p.z() - R});
-            worst_wall = std::min(worst_wall, wall);
-            wall_violations += wall < -kTolerance_m;
-            if (part_pose) {
-                const double clearance = (*part_clearance)(part_pose->to_component(p), 4.0 * R) - R;
-                worst_part = std::min(worst_part, clearance);
-                part_violations += clearance < -kPartTolerance_m;
-            }
-        }
-    }
+        }});
     const SimulationState& st = sim.state();
     std::cout << "[ contain  ] " << param.name << ": " << st.steps << " steps; worst clearance: plate " << worst_plate << " m, walls "
               << worst_wall << " m, part " << (part >= 0 ? worst_part : 0.0) << " m; part impacts " << part_impacts << "; shot-shot "

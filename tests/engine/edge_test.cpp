@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -44,24 +45,22 @@ TEST_P(EngineEdge, SlidingAcrossInternalEdgesKeepsHeightAndSpeed) {
     const Vec3 u = path.direction.normalized();
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, path.start_m + Vec3(0, 0, R), speed * u); });
 
-    std::vector<ImpactRecord> impacts;
     std::size_t logged = 0;
     double worst_height = 0.0, worst_vz = 0.0, worst_speed = 0.0;
     int grid_lines_crossed = 0;
     const double cell = 2.5e-3;  // m
     Vec3 previous = sim.state().shots.position(0);
-    while (!sim.finished()) {
-        sim.step(impacts);
-        logged += impacts.size();
-        impacts.clear();
-        const Vec3 p = sim.state().shots.position(0), v = sim.state().shots.velocity(0);
-        worst_height = std::max(worst_height, std::abs(p.z() - R));
-        worst_vz = std::max(worst_vz, std::abs(v.z()));
-        worst_speed = std::max(worst_speed, std::abs(std::hypot(v.x(), v.y()) - speed));
-        for (int a = 0; a < 2; ++a)
-            grid_lines_crossed += std::abs(static_cast<int>(std::floor(p[a] / cell)) - static_cast<int>(std::floor(previous[a] / cell)));
-        previous = p;
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         logged += impacts.size();
+                         const Vec3 p = sim.state().shots.position(0), v = sim.state().shots.velocity(0);
+                         worst_height = std::max(worst_height, std::abs(p.z() - R));
+                         worst_vz = std::max(worst_vz, std::abs(v.z()));
+                         worst_speed = std::max(worst_speed, std::abs(std::hypot(v.x(), v.y()) - speed));
+                         for (int a = 0; a < 2; ++a)
+                             grid_lines_crossed +=
+                                 std::abs(static_cast<int>(std::floor(p[a] / cell)) - static_cast<int>(std::floor(previous[a] / cell)));
+                         previous = p;
+                     }});
     std::cout << "[ edges    ] " << path.name << ": " << sim.state().steps << " steps, " << grid_lines_crossed
               << " grid lines crossed; worst |z - R| " << worst_height << " m, |vz| " << worst_vz << " m/s, speed change " << worst_speed
               << " m/s, plate impacts " << logged << "\n";

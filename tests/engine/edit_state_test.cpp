@@ -20,6 +20,7 @@ TEST_P(EditState, AShotMovedMidRunFallsFromWhereItWasPut) {
     const TestScene scene(tube_scene(GetParam(), 10e-3, 30e-3, 1, R, 25e-6, 1.0));
     Simulation sim(scene.compile());
     sim.edit_state([&](SimulationState& s) { set_shot(s, 0, Vec3(0, 0, R + 1e-3), Vec3(0, 0, 0.5)); });
+    // By hand: a step from a state edited mid-run is what is tested, and RunLoop ends only at restart points.
     std::vector<ImpactRecord> impacts;
     while (sim.state().time.seconds() < 0.05) sim.step(impacts, 0.05);
     ASSERT_GE(sim.state().time.seconds(), 0.05);

@@ -29,6 +29,7 @@
 #include "scene/scene_parser.h"
 #include "support/overlap_check.h"
 #include "support/run_report.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -47,15 +48,14 @@ TEST(EngineEventExact, NoOverlapsAndNoLostShotInTheRodScene) {
     const auto t0 = std::chrono::steady_clock::now();
     Simulation sim(model);
     OverlapAudit audit(*model, kOverlapTolerance);
-    std::vector<ImpactRecord> impacts;
     std::size_t rod_impacts = 0;
     audit.audit(sim.state());
-    while (!sim.finished()) {
-        sim.step(impacts, sim.state().time.seconds() + kPause);
-        rod_impacts += impacts.size();
-        impacts.clear();
-        audit.audit(sim.state());
-    }
+    run_through_loop(sim, {.after_step =
+                               [&](const Simulation& s, const std::vector<ImpactRecord>& impacts) {
+                                   rod_impacts += impacts.size();
+                                   audit.audit(s.state());
+                               },
+                           .pause_at_s = pause_every(kPause)});
     const SimulationState& st = sim.state();
     std::uint64_t wall = 0;
     for (std::uint64_t n : st.impacts_per_component) wall += n;
@@ -102,16 +102,15 @@ TEST(EngineEventExact, ElasticBoxWithGravityKeepsItsMechanicalEnergy) {
     Simulation sim(model);
     const Vec3 g = model->gravity_m_per_s2;
     const double e0 = mechanical_energy_per_mass(sim.state().shots, g);
-    std::vector<ImpactRecord> impacts;
     std::size_t wall_impacts = 0;
     double worst = 0.0, worst_at = 0.0;
-    while (!sim.finished()) {
-        sim.step(impacts, sim.state().time.seconds() + 1e-3);
-        wall_impacts += impacts.size();
-        impacts.clear();
-        const double change = std::abs(mechanical_energy_per_mass(sim.state().shots, g) - e0) / e0;
-        if (change > worst) worst = change, worst_at = sim.state().time.seconds();
-    }
+    run_through_loop(sim, {.after_step =
+                               [&](const Simulation& s, const std::vector<ImpactRecord>& impacts) {
+                                   wall_impacts += impacts.size();
+                                   const double change = std::abs(mechanical_energy_per_mass(s.state().shots, g) - e0) / e0;
+                                   if (change > worst) worst = change, worst_at = s.state().time.seconds();
+                               },
+                           .pause_at_s = pause_every(1e-3)});
     const SimulationState& st = sim.state();
     std::cout << "[ energy g ] " << spec.scheme << " scheme (" << seconds_since(t0) << " s wall): " << st.steps << " units, "
               << st.shot_shot_impacts << " shot-shot and " << wall_impacts << " wall impacts; E0 " << e0 << " J/kg, worst relative change "
@@ -127,12 +126,7 @@ TEST(EngineEventExact, ElasticBoxWithGravityKeepsItsMechanicalEnergy) {
 
 std::vector<ImpactRecord> run_logging(const std::shared_ptr<const Model>& model, double pause_every_s) {
     Simulation sim(model);
-    std::vector<ImpactRecord> all, impacts;
-    while (!sim.finished()) {
-        sim.step(impacts, sim.state().time.seconds() + pause_every_s);
-        all.insert(all.end(), impacts.begin(), impacts.end());
-        impacts.clear();
-    }
+    const std::vector<ImpactRecord> all = run_collecting_impacts(sim, {.pause_at_s = pause_every(pause_every_s)});
     EXPECT_EQ(sim.state().health.serious(), 0u) << health_text(sim.state().health);
     return all;
 }

@@ -31,6 +31,7 @@
 #include "engine/simulation.h"
 #include "support/overlap_check.h"
 #include "support/run_report.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -98,17 +99,16 @@ TEST_P(EngineEventRegimes, ChatteringShotOnTheVibratingSonotrodeIsThrown) {
         sim.edit_state(
             [&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + c.amplitude_m * std::sin(c.phase_rad)), Vec3::Zero()); });
         OverlapAudit audit(*model, kOverlapTolerance);
-        std::vector<ImpactRecord> impacts;
         std::size_t logged = 0;
         double max_height = 0.0;                     // m, centre above R over the plate's rest top face
         const double pause = 0.05 / c.frequency_hz;  // s, 20 audits a period
-        while (!sim.finished()) {
-            sim.step(impacts, sim.state().time.seconds() + pause);
-            logged += impacts.size();
-            impacts.clear();
-            max_height = std::max(max_height, sim.state().shots.z[0] - R);
-            audit.audit(sim.state());
-        }
+        run_through_loop(sim, {.after_step =
+                                   [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                                       logged += impacts.size();
+                                       max_height = std::max(max_height, sim.state().shots.z[0] - R);
+                                       audit.audit(sim.state());
+                                   },
+                               .pause_at_s = pause_every(pause)});
         const SimulationState& st = sim.state();
         std::cout << "[ chatter  ] " << GetParam() << " scheme, " << c.name << " (" << seconds_since(t0) << " s wall): " << st.steps
                   << " units, " << impacts_on(*model, st, "sonotrode") << " sonotrode and " << impacts_on(*model, st, "chamber")
@@ -159,12 +159,8 @@ TEST_P(EngineEventRegimes, ShotDroppedOnTheStillSonotrodeComeToRest) {
     }
     OverlapAudit audit(*model, kOverlapTolerance);
     audit.audit(sim.state());
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        sim.step(impacts, sim.state().time.seconds() + 1e-3);
-        impacts.clear();
-        audit.audit(sim.state());
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>&) { audit.audit(sim.state()); },
+                           .pause_at_s = pause_every(1e-3)});
     const SimulationState& st = sim.state();
     const ShotArrays& s = st.shots;
     int on_plate = 0, on_shot = 0;
@@ -222,12 +218,8 @@ TEST_P(EngineEventRegimes, DenseLoadOnTheVibratingSonotrode) {
     for (std::size_t i = 0; i < sim.state().shots.size(); ++i) top = std::max(top, sim.state().shots.z[i]);
     OverlapAudit audit(*model, kOverlapTolerance);
     audit.audit(sim.state());
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        sim.step(impacts, sim.state().time.seconds() + 50e-6);
-        impacts.clear();
-        audit.audit(sim.state());
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>&) { audit.audit(sim.state()); },
+                           .pause_at_s = pause_every(50e-6)});
     const SimulationState& st = sim.state();
     std::cout << "[ dense    ] " << GetParam() << " scheme (" << seconds_since(t0) << " s wall): placed up to z = " << top << " m; "
               << st.steps << " units, " << impacts_on(*model, st, "sonotrode") << " sonotrode, " << impacts_on(*model, st, "chamber")
@@ -281,26 +273,26 @@ TEST_P(EngineEventRegimes, GrazingFlightsWithoutGravityLogNoImpacts) {
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(-8e-3, 0.0, kBoxTop + R), Vec3(0.5, 0.0, 0.0)); });
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 1, Vec3(-4e-3, -6e-3, R), Vec3(0.3, 0.0, 0.0)); });
     OverlapAudit audit(*model, kOverlapTolerance);
-    std::vector<ImpactRecord> impacts;
     double off_line = 0.0;  // m, largest departure of either shot from its line
     std::size_t box_passes = 0;
     bool over_box = false;
     std::string graze_impacts;  // every impact logged on the box or the plate, for the report
-    while (!sim.finished()) {
-        sim.step(impacts, sim.state().time.seconds() + 1e-4);
-        for (const ImpactRecord& r : impacts)
-            if (r.component != model->component_index("chamber"))
-                graze_impacts += " [t " + std::to_string(r.time_s) + " s, shot " + std::to_string(r.shot) + ", " +
-                                 model->components[static_cast<std::size_t>(r.component)].name + ", vn_in " +
-                                 std::to_string(r.vn_in_m_per_s) + " m/s]";
-        impacts.clear();
-        const ShotArrays& s = sim.state().shots;
-        off_line = std::max({off_line, std::abs(s.z[0] - (kBoxTop + R)), std::abs(s.y[0]), std::abs(s.z[1] - R), std::abs(s.y[1] + 6e-3)});
-        const bool over = std::abs(s.x[0]) < 2e-3;
-        box_passes += over && !over_box;
-        over_box = over;
-        audit.audit(sim.state());
-    }
+    run_through_loop(sim, {.after_step =
+                               [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                                   for (const ImpactRecord& r : impacts)
+                                       if (r.component != model->component_index("chamber"))
+                                           graze_impacts += " [t " + std::to_string(r.time_s) + " s, shot " + std::to_string(r.shot) +
+                                                            ", " + model->components[static_cast<std::size_t>(r.component)].name +
+                                                            ", vn_in " + std::to_string(r.vn_in_m_per_s) + " m/s]";
+                                   const ShotArrays& s = sim.state().shots;
+                                   off_line = std::max({off_line, std::abs(s.z[0] - (kBoxTop + R)), std::abs(s.y[0]), std::abs(s.z[1] - R),
+                                                        std::abs(s.y[1] + 6e-3)});
+                                   const bool over = std::abs(s.x[0]) < 2e-3;
+                                   box_passes += over && !over_box;
+                                   over_box = over;
+                                   audit.audit(sim.state());
+                               },
+                           .pause_at_s = pause_every(1e-4)});
     const SimulationState& st = sim.state();
     std::cout << "[ grazing  ] " << GetParam() << " scheme, no gravity (" << seconds_since(t0) << " s wall): " << st.steps
               << " units; impacts: box " << impacts_on(*model, st, "part") << ", plate " << impacts_on(*model, st, "sonotrode")
@@ -352,20 +344,19 @@ TEST_P(EngineEventRegimes, ShotSlidingOnTheFloorAndOffABoxTopLogNoSpuriousImpact
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start0, Vec3(0.1, 0.0, 0.0)); });
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 1, Vec3(-1.5e-3, 0.0, kBoxTop + R), Vec3(0.2, 0.0, 0.0)); });
     OverlapAudit audit(*model, kOverlapTolerance);
-    std::vector<ImpactRecord> impacts;
     std::size_t floor_impacts_of_0 = 0, box_top_impacts = 0;
     double sink = 0.0;  // m, largest |z - R| of shot 0
     const int part = model->component_index("part");
-    while (!sim.finished()) {
-        sim.step(impacts, sim.state().time.seconds() + 1e-4);
-        for (const ImpactRecord& r : impacts) {
-            floor_impacts_of_0 += r.shot == 0;
-            box_top_impacts += r.component == part && r.point_m.z() > kBoxTop - 1e-9;
-        }
-        impacts.clear();
-        sink = std::max(sink, std::abs(sim.state().shots.z[0] - R));
-        audit.audit(sim.state());
-    }
+    run_through_loop(sim, {.after_step =
+                               [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                                   for (const ImpactRecord& r : impacts) {
+                                       floor_impacts_of_0 += r.shot == 0;
+                                       box_top_impacts += r.component == part && r.point_m.z() > kBoxTop - 1e-9;
+                                   }
+                                   sink = std::max(sink, std::abs(sim.state().shots.z[0] - R));
+                                   audit.audit(sim.state());
+                               },
+                           .pause_at_s = pause_every(1e-4)});
     const SimulationState& st = sim.state();
     const ShotArrays& s = st.shots;
     const double slid = s.x[0] - start0.x(), expected = 0.1 * 0.1 / (2.0 * f * kG);
@@ -410,22 +401,22 @@ TEST_P(EngineEventRegimes, RotatingPartImpactsLieOnItsSurface) {
     const auto t0 = std::chrono::steady_clock::now();
     Simulation sim(model);
     OverlapAudit audit(*model, kOverlapTolerance);
-    std::vector<ImpactRecord> impacts;
     std::size_t logged = 0, off_surface = 0;
     double worst_distance = 0.0;  // m, farthest logged point from the part's mesh
-    while (!sim.finished()) {
-        sim.step(impacts, sim.state().time.seconds() + 50e-6);
-        for (const ImpactRecord& r : impacts) {
-            ++logged;
-            MeshCollider::Closest closest;
-            MeshCollider::QueryCounters counters;
-            const double d = rotor.collider->closest_within(r.point_m, 1e-3, closest, counters) ? closest.distance : 1e-3;
-            worst_distance = std::max(worst_distance, d);
-            off_surface += d >= 1e-9;
-        }
-        impacts.clear();
-        audit.audit(sim.state());
-    }
+    run_through_loop(sim, {.after_step =
+                               [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                                   for (const ImpactRecord& r : impacts) {
+                                       ++logged;
+                                       MeshCollider::Closest closest;
+                                       MeshCollider::QueryCounters counters;
+                                       const double d =
+                                           rotor.collider->closest_within(r.point_m, 1e-3, closest, counters) ? closest.distance : 1e-3;
+                                       worst_distance = std::max(worst_distance, d);
+                                       off_surface += d >= 1e-9;
+                                   }
+                                   audit.audit(sim.state());
+                               },
+                           .pause_at_s = pause_every(50e-6)});
     const SimulationState& st = sim.state();
     std::cout << "[ rotating ] " << GetParam() << " scheme, 1000 rpm (" << seconds_since(t0) << " s wall): " << st.steps << " units, "
               << logged << " part impacts, farthest point from the part surface " << worst_distance << " m (" << off_surface

@@ -23,6 +23,8 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,7 @@
 #include "scene/scene_parser.h"
 #include "support/rod_prototype.h"
 #include "support/run_report.h"
+#include "support/run_through_loop.h"
 
 namespace peensim::testing {
 namespace {
@@ -120,19 +123,19 @@ TEST(EngineEventRod, EventSchemeMatchesPeriodResolvingTimeStepping) {
     ASSERT_EQ(event_model->description.accuracy.scheme, SteppingScheme::event);
     const auto t_event = std::chrono::steady_clock::now();
     Simulation event(event_model);
-    std::vector<ImpactRecord> impacts;
     Batches event_batches(kEventEnd);
-    while (event.state().time.seconds() < kSettle) {
-        event.step(impacts, kSettle);
-        impacts.clear();
-    }
-    ASSERT_EQ(event.state().time.seconds(), kSettle);  // the event scheme stops exactly at a pause
-    const SimulationState settled = event.state();
-    while (!event.finished()) {
-        event.step(impacts);
-        event_batches.add(impacts);
-        impacts.clear();
-    }
+    std::optional<SimulationState> settled;  // the state at the pause at kSettle
+    run_through_loop(event, {.after_step =
+                                 [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                                     if (settled) {
+                                         event_batches.add(impacts);
+                                     } else if (event.state().time.seconds() >= kSettle) {
+                                         settled = event.state();
+                                     }
+                                 },
+                             .pause_at_s = [&](const Simulation&) { return settled ? std::numeric_limits<double>::infinity() : kSettle; }});
+    ASSERT_TRUE(settled);
+    ASSERT_EQ(settled->time.seconds(), kSettle);  // the event scheme stops exactly at a pause
     const double event_wall = seconds_since(t_event);
     EXPECT_EQ(event.state().health.serious(), 0u) << health_text(event.state().health);
 
@@ -146,16 +149,15 @@ TEST(EngineEventRod, EventSchemeMatchesPeriodResolvingTimeStepping) {
         TimeStepping::step_for(fine_model->peak_surface_speed_m_per_s, g, kFineTravelFraction * fine_model->max_shot_radius_m);
     ASSERT_LE(dt_bound, period / 20.0);
     const auto t_fine = std::chrono::steady_clock::now();
-    Simulation fine(fine_model, settled);
+    Simulation fine(fine_model, *settled);
     Batches fine_batches(kFineEnd);
     double longest_step = 0.0;
-    while (!fine.finished()) {
-        const double t0 = fine.state().time.seconds();
-        fine.step(impacts);
-        longest_step = std::max(longest_step, fine.state().time.seconds() - t0);
-        fine_batches.add(impacts);
-        impacts.clear();
-    }
+    double step_start = fine.state().time.seconds();  // s
+    run_through_loop(fine, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         longest_step = std::max(longest_step, fine.state().time.seconds() - step_start);
+                         step_start = fine.state().time.seconds();
+                         fine_batches.add(impacts);
+                     }});
     const double fine_wall = seconds_since(t_fine);
     EXPECT_EQ(fine.state().health.serious(), 0u) << health_text(fine.state().health);
     EXPECT_LE(longest_step, period / 20.0 * (1.0 + 1e-9));
@@ -165,7 +167,7 @@ TEST(EngineEventRod, EventSchemeMatchesPeriodResolvingTimeStepping) {
               << event.state().steps << " units of work): " << e.impacts << " rod impacts, rate " << e.rate.mean << " +- "
               << e.rate.standard_error << " /s, mean normal speed " << e.speed.mean << " +- " << e.speed.standard_error << " m/s\n";
     std::cout << "[ event rod] fine time stepping " << kSettle << "-" << kFineEnd << " s (" << fine_wall << " s wall, "
-              << fine.state().steps - settled.steps << " steps, longest " << longest_step << " s, bound " << dt_bound << " s, period/20 "
+              << fine.state().steps - settled->steps << " steps, longest " << longest_step << " s, bound " << dt_bound << " s, period/20 "
               << period / 20.0 << " s): " << f.impacts << " rod impacts, rate " << f.rate.mean << " +- " << f.rate.standard_error
               << " /s, mean normal speed " << f.speed.mean << " +- " << f.speed.standard_error << " m/s\n";
     std::cout << "[ event rod] batches of " << kBatch << " s (rate /s / mean speed m/s): event" << batch_series(event_batches)

@@ -20,6 +20,7 @@
 #include "app/run/run_job.h"
 #include "engine/simulation.h"
 #include "engine/time_stepping.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -64,14 +65,11 @@ Drop drop(const std::vector<std::string>& overrides, const std::string& scheme =
     d.R = model->max_shot_radius_m;
     d.sonotrode = static_cast<std::size_t>(model->sonotrode);
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, d.R + kH0), Vec3::Zero()); });
-    std::vector<ImpactRecord> step_impacts;
-    while (!sim.finished()) {
-        const double before = sim.state().time.seconds();
-        sim.step(step_impacts);
-        d.largest_step_s = std::max(d.largest_step_s, sim.state().time.seconds() - before);
-        d.impacts.insert(d.impacts.end(), step_impacts.begin(), step_impacts.end());
-        step_impacts.clear();
-    }
+    double before = sim.state().time.seconds();  // s, the step's start
+    d.impacts = run_collecting_impacts(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>&) {
+                                           d.largest_step_s = std::max(d.largest_step_s, sim.state().time.seconds() - before);
+                                           before = sim.state().time.seconds();
+                                       }});
     d.state = sim.state();
     EXPECT_EQ(d.state.health.serious(), 0u);
     return d;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -64,23 +65,20 @@ TubeRun run_tube(const TubeCase& c, double start_s) {
     }
     std::vector<double> floor(kShots, 0.0), ceiling(kShots, 0.0);
     double floor_speed = 0.0, ceiling_speed = 0.0;
-    std::vector<ImpactRecord> impacts;
     const int sonotrode = sim.model().sonotrode;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts) {
-            if (r.time_s < start_s + kSettle) continue;
-            const auto k = static_cast<std::size_t>(r.shot);
-            if (r.component == sonotrode) {
-                floor[k] += 1.0;
-                floor_speed += r.vn_in_m_per_s;
-            } else if (std::abs(r.point_m.z() - c.height_m) < 1e-9) {
-                ceiling[k] += 1.0;
-                ceiling_speed += r.vn_in_m_per_s;
-            }
-        }
-        impacts.clear();
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         for (const ImpactRecord& r : impacts) {
+                             if (r.time_s < start_s + kSettle) continue;
+                             const auto k = static_cast<std::size_t>(r.shot);
+                             if (r.component == sonotrode) {
+                                 floor[k] += 1.0;
+                                 floor_speed += r.vn_in_m_per_s;
+                             } else if (std::abs(r.point_m.z() - c.height_m) < 1e-9) {
+                                 ceiling[k] += 1.0;
+                                 ceiling_speed += r.vn_in_m_per_s;
+                             }
+                         }
+                     }});
     TubeRun run;
     const double span = kLength - kSettle;
     const auto mean_and_se = [&](const std::vector<double>& counts, double& mean, double& se) {

@@ -7,6 +7,7 @@
 #include "app/run/loss_report.h"
 #include "engine/loss_diagnosis.h"
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -25,11 +26,7 @@ TEST(EngineLossDiagnosis, AShotThroughAGapBesideThePlateIsALeakShownWhereItLeft)
     const auto model = scene.compile();
     Simulation sim(model);
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(8.9e-3, 0.0, 10e-3), Vec3(0.0, 0.0, -1.0)); });
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        impacts.clear();
-    }
+    run_through_loop(sim);
     const SimulationState& st = sim.state();
     ASSERT_EQ(st.lost.size(), 1u);
     const LostShot& l = st.lost.front();

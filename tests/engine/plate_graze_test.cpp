@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -44,12 +45,7 @@ TEST_P(EnginePlateGraze, AOneMicrosecondTouchAtTheTopOfTheStrokeIsOneImpactAtThe
         Simulation sim(scene.compile());
         const double R = 0.5 * spec.shot_diameter_m;
         sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + kA - kDelta), Vec3::Zero()); });
-        std::vector<ImpactRecord> impacts, all;
-        while (!sim.finished()) {
-            sim.step(impacts);
-            all.insert(all.end(), impacts.begin(), impacts.end());
-            impacts.clear();
-        }
+        const std::vector<ImpactRecord> all = run_collecting_impacts(sim);
         if (all.empty()) {
             ++missed;
             continue;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -28,13 +29,8 @@ TEST(EngineRest, ShotSettleOnStillSonotrodeWithoutSinkingOrJitter) {
     const auto model = scene.compile();
     Simulation sim(model);
     const double R = model->max_shot_radius_m;
-    std::vector<ImpactRecord> impacts;
     std::size_t logged = 0;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        logged += impacts.size();
-        impacts.clear();
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) { logged += impacts.size(); }});
     const ShotArrays& s = sim.state().shots;
     double worst_height = 0.0, fastest = 0.0;
     for (std::size_t i = 0; i < s.size(); ++i) {
@@ -68,32 +64,30 @@ TEST(EngineRest, SlidingShotSlowsDownByCoulombFriction) {
     const Vec3 direction(0.8, 0.6, 0.0);
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R), v0 * direction); });
 
-    std::vector<ImpactRecord> impacts;
     double t_a = -1.0, v_a = 0.0, t_b = 0.0, v_b = 0.0;
     double worst = 0.0;  // m/s, largest deviation from v0 - f g t while sliding
     int sliding_steps = 0;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        const double t = sim.state().time.seconds();
-        const Vec3 v = sim.state().shots.velocity(0);
-        const double expected = v0 - f * kG * t;
-        if (expected > 0.0) {
-            // Speed v0 - f g t after every step: the per-step slowdown f g dt adds up to f g t
-            // (exact sums but for roundings of ~1e-17 m/s per step; asserted 1e-12 m/s).
-            const double speed = std::hypot(v.x(), v.y());
-            worst = std::max(worst, std::abs(speed - expected));
-            EXPECT_NEAR(speed, expected, 1e-12) << "t = " << t;
-            // Direction kept (friction acts against the sliding direction only).
-            EXPECT_NEAR(v.x() * direction.y() - v.y() * direction.x(), 0.0, 1e-15) << "t = " << t;
-            if (t_a < 0.0) t_a = t, v_a = speed;
-            t_b = t, v_b = speed;
-            ++sliding_steps;
-        } else {
-            // Stopped, never reversed.
-            EXPECT_EQ(std::hypot(v.x(), v.y()), 0.0) << "t = " << t;
-        }
-        EXPECT_NEAR(sim.state().shots.z[0], R, 1e-9) << "t = " << t;
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>&) {
+                         const double t = sim.state().time.seconds();
+                         const Vec3 v = sim.state().shots.velocity(0);
+                         const double expected = v0 - f * kG * t;
+                         if (expected > 0.0) {
+                             // Speed v0 - f g t after every step: the per-step slowdown f g dt adds up to f g t
+                             // (exact sums but for roundings of ~1e-17 m/s per step; asserted 1e-12 m/s).
+                             const double speed = std::hypot(v.x(), v.y());
+                             worst = std::max(worst, std::abs(speed - expected));
+                             EXPECT_NEAR(speed, expected, 1e-12) << "t = " << t;
+                             // Direction kept (friction acts against the sliding direction only).
+                             EXPECT_NEAR(v.x() * direction.y() - v.y() * direction.x(), 0.0, 1e-15) << "t = " << t;
+                             if (t_a < 0.0) t_a = t, v_a = speed;
+                             t_b = t, v_b = speed;
+                             ++sliding_steps;
+                         } else {
+                             // Stopped, never reversed.
+                             EXPECT_EQ(std::hypot(v.x(), v.y()), 0.0) << "t = " << t;
+                         }
+                         EXPECT_NEAR(sim.state().shots.z[0], R, 1e-9) << "t = " << t;
+                     }});
     ASSERT_GT(sliding_steps, 10);
     const double deceleration = (v_a - v_b) / (t_b - t_a);
     std::cout << "[ friction ] " << sliding_steps << " sliding steps; deceleration " << deceleration << " m/s2 (f g = " << f * kG

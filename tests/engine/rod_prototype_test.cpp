@@ -12,6 +12,7 @@
 #include "model/model.h"
 #include "scene/scene_parser.h"
 #include "support/rod_prototype.h"
+#include "support/run_through_loop.h"
 
 namespace {
 
@@ -26,20 +27,17 @@ TEST_P(RodScene, MatchesTheEventDrivenPrototype) {
     overrides.push_back("accuracy.scheme=" + GetParam());
     const auto model = compile_model(parse_scene_file(std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml", overrides));
     Simulation sim(model);
-    std::vector<ImpactRecord> impacts;
     // The first 0.1 s (the bed fluidising from rest) is left out, as a steady state is compared.
     constexpr double kSettle = 0.1;  // s
     double speed_sum = 0.0;
     std::uint64_t count = 0;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts)
-            if (r.time_s >= kSettle) {
-                speed_sum += r.vn_in_m_per_s;
-                ++count;
-            }
-        impacts.clear();
-    }
+    peensim::testing::run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                                           for (const ImpactRecord& r : impacts)
+                                               if (r.time_s >= kSettle) {
+                                                   speed_sum += r.vn_in_m_per_s;
+                                                   ++count;
+                                               }
+                                       }});
     const double rate = static_cast<double>(count) / (model->duration_s - kSettle);
     const double mean = speed_sum / static_cast<double>(count);
     std::cout << "[ rod      ] " << GetParam() << " scheme: rod impact rate " << rate << " /s (prototype 8100-8500), mean normal speed "

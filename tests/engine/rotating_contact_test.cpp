@@ -17,6 +17,7 @@
 
 #include "engine/simulation.h"
 #include "kernels/closest_point.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -132,6 +133,7 @@ Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
     const std::shared_ptr<const Model> model = scene.compile();
     const auto part_index = static_cast<std::size_t>(model->component_index("part"));
     const double R = model->max_shot_radius_m, C = 0.6, mu = 0.8;
+    EXPECT_EQ(model->scheme, SteppingScheme::step);  // each throw's run ends right after its first impact
 
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> uni(0.0, 1.0);
@@ -149,8 +151,14 @@ Errors throw_at_turning_cylinder(double rpm, int throws, std::uint64_t seed) {
         const Vec3 v0 = -(0.3 + 2.7 * uni(rng)) * out;
         Simulation sim(model);
         sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start, v0); });
+        // The impacts of the first step that logged any (time stepping: every step is a restart
+        // point, so the run ends right after it).
         std::vector<ImpactRecord> impacts;
-        while (!sim.finished() && impacts.empty()) sim.step(impacts);
+        run_through_loop(sim, {.after_step =
+                                   [&](const Simulation&, const std::vector<ImpactRecord>& step) {
+                                       if (impacts.empty()) impacts = step;
+                                   },
+                               .done = [&](const Simulation&) { return !impacts.empty(); }});
         std::uint64_t first_elsewhere = sim.state().shot_shot_impacts;
         for (std::size_t c = 0; c < model->components.size(); ++c)
             if (c != part_index) first_elsewhere += sim.state().impacts_per_component[c];
@@ -217,8 +225,7 @@ Glide glide_over_the_cap(double rpm, double x0_m, double gap, double speed_m_per
     g.start = part.center_m + Vec3(x0_m, 5e-3 + R + gap * R, 0.0);
     g.sim = std::make_unique<Simulation>(g.model);
     g.sim->edit_state([&](SimulationState& edited) { set_shot(edited, 0, g.start, Vec3(speed_m_per_s, 0.0, 0.0)); });
-    std::vector<ImpactRecord> impacts;
-    while (!g.sim->finished()) g.sim->step(impacts);
+    run_through_loop(*g.sim);
     return g;
 }
 

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -31,13 +32,15 @@ FirstImpact first_part_impact(const TestSceneSpec& spec, const Vec3& shot_start_
     out.model = scene.compile();
     Simulation sim(out.model);
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, shot_start_m, Vec3::Zero()); });
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished() && out.part_impacts == 0) {
-        sim.step(impacts);
-        if (!impacts.empty()) out.record = impacts.front();
-        out.part_impacts += static_cast<int>(impacts.size());
-        impacts.clear();
-    }
+    // Time stepping (these scenes' scheme): every step is a restart point, so the run ends right
+    // after the step that logged the first impact.
+    EXPECT_EQ(out.model->scheme, SteppingScheme::step);
+    run_through_loop(sim, {.after_step =
+                               [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                                   if (!impacts.empty()) out.record = impacts.front();
+                                   out.part_impacts += static_cast<int>(impacts.size());
+                               },
+                           .done = [&](const Simulation&) { return out.part_impacts != 0; }});
     EXPECT_EQ(sim.state().health.serious(), 0u);
     // Nothing else was hit before the part.
     for (std::size_t c = 0; c < out.model->components.size(); ++c) {

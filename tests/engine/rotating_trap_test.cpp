@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -57,26 +58,23 @@ TEST_P(EngineRotatingTrap, ShotStayOutsideATurningCylinder) {
     // cylinder's length, is inside the part.
     const double inscribed = kRadius * std::cos(M_PI / kSegments);
     std::size_t inside_at_sync = 0, from_inside = 0, on_barrel = 0;
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        const ShotArrays& s = sim.state().shots;
-        for (std::size_t i = 0; i < s.size(); ++i) {
-            if (!s.active[i] || std::abs(s.y[i]) > 0.5 * part.length_m) continue;
-            inside_at_sync += std::hypot(s.x[i], s.z[i] - kAxisZ) < inscribed + kShotR - 1e-6;
-        }
-        for (const ImpactRecord& r : impacts) {
-            // Barrel impacts (component frame = the mesh's, axis along y through (0, 0, kAxisZ)): the
-            // approach points into the axis from outside, out of it from inside.
-            if (std::abs(r.point_m.y()) > 0.5 * part.length_m - 1e-9) continue;
-            ++on_barrel;
-            // A facet's normal is within pi/128 (1.4 deg) of the radial direction, so from outside the
-            // approach's outward radial part is below sin(1.4 deg) of its speed, even at a corner.
-            const Vec3 radial = Vec3(r.point_m.x(), 0.0, r.point_m.z() - kAxisZ).normalized();
-            from_inside += radial.dot(r.v_in_m_per_s) > std::sin(M_PI / kSegments) * r.v_in_m_per_s.norm();
-        }
-        impacts.clear();
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         const ShotArrays& s = sim.state().shots;
+                         for (std::size_t i = 0; i < s.size(); ++i) {
+                             if (!s.active[i] || std::abs(s.y[i]) > 0.5 * part.length_m) continue;
+                             inside_at_sync += std::hypot(s.x[i], s.z[i] - kAxisZ) < inscribed + kShotR - 1e-6;
+                         }
+                         for (const ImpactRecord& r : impacts) {
+                             // Barrel impacts (component frame = the mesh's, axis along y through (0, 0, kAxisZ)): the
+                             // approach points into the axis from outside, out of it from inside.
+                             if (std::abs(r.point_m.y()) > 0.5 * part.length_m - 1e-9) continue;
+                             ++on_barrel;
+                             // A facet's normal is within pi/128 (1.4 deg) of the radial direction, so from outside the
+                             // approach's outward radial part is below sin(1.4 deg) of its speed, even at a corner.
+                             const Vec3 radial = Vec3(r.point_m.x(), 0.0, r.point_m.z() - kAxisZ).normalized();
+                             from_inside += radial.dot(r.v_in_m_per_s) > std::sin(M_PI / kSegments) * r.v_in_m_per_s.norm();
+                         }
+                     }});
     const HealthCounters& h = sim.state().health;
     EXPECT_GT(on_barrel, 200u);
     EXPECT_EQ(from_inside, 0u);

@@ -63,7 +63,7 @@ class RunLoopSchemes : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RunLoopSchemes, ListenersSeeWhatStepByStepDrivingSees) {
     const TestScene scene(small(GetParam()));
-    // By hand.
+    // By hand: the reference the loop is compared with.
     Simulation by_hand(scene.compile());
     std::vector<ImpactRecord> expected, step;
     while (!by_hand.finished()) {

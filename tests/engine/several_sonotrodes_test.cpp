@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -48,12 +49,7 @@ PlateRun drop_on_second_sonotrode(const std::string& scheme) {
             set_shot(s, static_cast<std::size_t>(k), Vec3(2.5e-3 * (k % 4 - 1.5), 2.5e-3 * (k / 4 - 1.5), kPlateTop + R + 2e-3),
                      Vec3::Zero());
     });
-    std::vector<ImpactRecord> step_impacts;
-    while (!sim.finished()) {
-        sim.step(step_impacts);
-        r.impacts.insert(r.impacts.end(), step_impacts.begin(), step_impacts.end());
-        step_impacts.clear();
-    }
+    r.impacts = run_collecting_impacts(sim);
     r.state = sim.state();
     r.stats = sim.scheme().stats();
     return r;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/run_loop.h"
@@ -19,6 +20,7 @@
 #include "scene/scene_parser.h"
 #include "support/files.h"
 #include "support/run_in_process.h"
+#include "support/run_through_loop.h"
 #include "support/temp_dir.h"
 
 namespace peensim::testing {
@@ -124,26 +126,15 @@ struct FlowRun {
     std::shared_ptr<const Model> model;
 };
 
-// Impacts are kept in the test: a small run.
-class Collect : public RunListener {
-public:
-    explicit Collect(std::vector<ImpactRecord>& out) : out_(out) {}
-    void after_step(const Simulation&, const std::vector<ImpactRecord>& impacts) override {
-        out_.insert(out_.end(), impacts.begin(), impacts.end());
-    }
-
-private:
-    std::vector<ImpactRecord>& out_;
-};
-
 FlowRun run_nozzle(const std::string& scheme, const std::string& duration) {
     FlowRun r;
     r.model = compile_model(parse_scene_file(kNozzleScene, {"accuracy.scheme=" + scheme, "process.duration=" + duration}));
     Simulation sim(r.model);
     RunLoop loop(sim);
-    Collect collect(r.impacts);
+    ImpactCollector collect;  // impacts are kept in the test: a small run
     loop.add(collect);
     EXPECT_TRUE(loop.run());
+    r.impacts = std::move(collect.impacts);
     r.state = sim.state();
     return r;
 }
@@ -255,9 +246,10 @@ TEST_P(ShotFlow, ReboundScatterTurnsFastRebounds) {
         r.model = compile_model(parse_scene_file(study, set));
         Simulation sim(r.model);
         RunLoop loop(sim);
-        Collect collect(r.impacts);
+        ImpactCollector collect;
         loop.add(collect);
         EXPECT_TRUE(loop.run());
+        r.impacts = std::move(collect.impacts);
         EXPECT_EQ(sim.state().health.serious(), 0u);
         return r.impacts;
     };

@@ -10,8 +10,11 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,6 +32,7 @@
 #include "support/files.h"
 #include "support/overlap_check.h"
 #include "support/run_in_process.h"
+#include "support/run_through_loop.h"
 #include "support/temp_dir.h"
 #include "support/test_scene.h"
 
@@ -226,6 +230,22 @@ TEST(ShotMix, PlacedShotDrawTheirSizesApartFromThePlacement) {
 
 class ShotMixRun : public ::testing::TestWithParam<std::string> {};
 
+// Pauses at n evenly spaced times up to the scene's end, t_k = duration k / n (s), and calls `at`
+// with the state at the first step end at or past each (the event-driven schemes stop exactly
+// there); `each` sees every step's impacts first.
+LoopHooks at_even_times(const Model& model, int n, std::function<void(const Simulation&)> at,
+                        std::function<void(const std::vector<ImpactRecord>&)> each = {}) {
+    const auto next = std::make_shared<int>(1);  // k of the next time, shared by the two hooks
+    const auto time_s = [duration_s = model.duration_s, n](int k) { return duration_s * k / n; };
+    LoopHooks hooks;
+    hooks.after_step = [=](const Simulation& sim, const std::vector<ImpactRecord>& impacts) {
+        if (each) each(impacts);
+        for (; *next <= n && sim.state().time.seconds() >= time_s(*next); ++*next) at(sim);
+    };
+    hooks.pause_at_s = [=](const Simulation&) { return *next <= n ? time_s(*next) : std::numeric_limits<double>::infinity(); };
+    return hooks;
+}
+
 // Two shot of different sizes meet head on in free space (no gravity): a 2 mm shot at +1 m/s and
 // a 1 mm one (an eighth of its mass) at -1 m/s, centres 10 mm apart. They touch when the centres
 // are R_i + R_j = 1.5 mm apart, at t = 8.5 mm / 2 m/s = 4.25 ms; the exchange (1 + C) dV (C =
@@ -236,6 +256,7 @@ TEST_P(ShotMixRun, TwoSizesCollideAtTheSumOfTheirRadiiWithMomentumKept) {
     spec.shot_sizes = {{2e-3, 0.5}, {1e-3, 0.5}};
     spec.gravity_m_per_s2 = Vec3::Zero();
     spec.scheme = GetParam();
+    spec.duration_s = 6e-3;  // s, looked at 1.75 ms after the touch
     const TestScene scene(spec);
     Simulation sim(scene.compile());
     const double z = 10e-3;
@@ -245,14 +266,12 @@ TEST_P(ShotMixRun, TwoSizesCollideAtTheSumOfTheirRadiiWithMomentumKept) {
         set_shot(s, 0, Vec3(-5e-3, 0, z), Vec3(1, 0, 0));
         set_shot(s, 1, Vec3(5e-3, 0, z), Vec3(-1, 0, 0));
     });
-    std::vector<ImpactRecord> impacts;
-    const double t_end = 6e-3;
-    while (sim.state().time.seconds() < t_end) sim.step(impacts, t_end);
+    run_through_loop(sim);
     const SimulationState& s = sim.state();
     EXPECT_EQ(s.shot_shot_impacts, 1u);
     const double C = contact::normal_restitution(2.0, 0.9, 0.5), exchange = (1.0 + C) * 2.0;
     const double v0 = 1.0 - exchange / 9.0, v1 = -1.0 + 8.0 * exchange / 9.0;
-    const double t_touch = 4.25e-3, after = s.time.seconds() - t_touch;  // a step may end past t_end
+    const double t_touch = 4.25e-3, after = s.time.seconds() - t_touch;
     EXPECT_NEAR(s.shots.vx[0], v0, 1e-12);
     EXPECT_NEAR(s.shots.vx[1], v1, 1e-12);
     EXPECT_NEAR(8.0 * s.shots.vx[0] + s.shots.vx[1], 8.0 - 1.0, 1e-12);  // momentum in units of the small shot's mass
@@ -268,13 +287,7 @@ TEST_P(ShotMixRun, AMixInAUspChamberStaysApartAndHealthy) {
     const auto model = scene.compile();
     Simulation sim(model);
     OverlapAudit audit(*model, 1e-9);
-    std::vector<ImpactRecord> impacts;
-    for (int k = 1; k <= 30; ++k) {  // audited every 10 ms
-        const double t = model->duration_s * k / 30.0;
-        while (sim.state().time.seconds() < t) sim.step(impacts, t);
-        impacts.clear();
-        audit.audit(sim.state());
-    }
+    run_through_loop(sim, at_even_times(*model, 30, [&](const Simulation&) { audit.audit(sim.state()); }));  // audited every 10 ms
     const SimulationState& s = sim.state();
     EXPECT_EQ(s.health.serious(), 0u) << audit.summary();
     EXPECT_EQ(s.shots_per_size, (std::vector<std::uint64_t>{
@@ -300,17 +313,12 @@ TEST_P(ShotMixRun, TheJetLogsEverySizeWithItsDiameterAndKeepsShotApart) {
     const auto model = compile_model(parse_scene_file(kMixScene, {"accuracy.scheme=" + GetParam(), "process.duration=10 ms"}));
     Simulation sim(model);
     OverlapAudit audit(*model, 1e-9 * 0.71e-3);
-    std::vector<ImpactRecord> impacts;
     std::map<double, int> logged;
-    for (int k = 1; k <= 20; ++k) {  // audited every 0.5 ms
-        const double t = model->duration_s * k / 20.0;
-        while (sim.state().time.seconds() < t) {
-            impacts.clear();
-            sim.step(impacts, t);
-            for (const ImpactRecord& r : impacts) ++logged[r.shot_diameter_m];
-        }
-        audit.audit(sim.state());
-    }
+    run_through_loop(sim, at_even_times(  // audited every 0.5 ms
+                              *model, 20, [&](const Simulation&) { audit.audit(sim.state()); },
+                              [&](const std::vector<ImpactRecord>& impacts) {
+                                  for (const ImpactRecord& r : impacts) ++logged[r.shot_diameter_m];
+                              }));
     const SimulationState& s = sim.state();
     EXPECT_EQ(s.health.serious(), 0u);
     ASSERT_EQ(logged.size(), 4u);  // every size, with its own diameter

@@ -8,6 +8,7 @@
 
 #include "contact/hertz_mindlin.h"
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -34,12 +35,7 @@ Throw throw_at_plate(const SoftSpec& soft, const Vec3& v0, double height_m, doub
     const double R = model->max_shot_radius_m;
     sim.edit_state([&](SimulationState& s) { set_shot(s, 0, Vec3(0.0, 0.0, R + height_m), v0); });
     Throw out;
-    std::vector<ImpactRecord> step;
-    while (!sim.finished()) {
-        sim.step(step);
-        out.impacts.insert(out.impacts.end(), step.begin(), step.end());
-        step.clear();
-    }
+    out.impacts = run_collecting_impacts(sim);
     out.spin = sim.state().shots.spin(0);
     out.velocity = sim.state().shots.velocity(0);
     EXPECT_EQ(sim.state().health.serious(), 0u);
@@ -108,11 +104,7 @@ PairOutcome collide_pair(const SoftSpec& soft, const std::string& scheme, const 
         set_shot(s, 0, Vec3(-3e-3, 0.0, 20e-3), vi);
         set_shot(s, 1, Vec3(3e-3, offset_m, 20e-3), vj);
     });
-    std::vector<ImpactRecord> step;
-    while (!sim.finished()) {
-        sim.step(step);
-        step.clear();
-    }
+    run_through_loop(sim);
     PairOutcome out;
     for (std::size_t k = 0; k < 2; ++k) out.v[k] = sim.state().shots.velocity(k), out.w[k] = sim.state().shots.spin(k);
     out.impacts = sim.state().shot_shot_impacts;
@@ -257,11 +249,7 @@ TEST(SoftContact, ACradleIsOneClusterThatKeepsMomentumAndEnergy) {
         set_shot(s, 1, Vec3(0.0, 0.0, 20e-3), Vec3::Zero());
         set_shot(s, 2, Vec3(2e-3, 0.0, 20e-3), Vec3::Zero());  // touching shot 1
     });
-    std::vector<ImpactRecord> step;
-    while (!sim.finished()) {
-        sim.step(step);
-        step.clear();
-    }
+    run_through_loop(sim);
     const ShotArrays& s = sim.state().shots;
     const Vec3 p = s.velocity(0) + s.velocity(1) + s.velocity(2);
     const double ke = s.velocity(0).squaredNorm() + s.velocity(1).squaredNorm() + s.velocity(2).squaredNorm();
@@ -322,15 +310,12 @@ EnergyDrift bouncing_load_drift(double steps_per_contact) {
     const double R = model->max_shot_radius_m;
     const double e0 = energy_per_kg(sim.state(), model->gravity_m_per_s2, R);
     std::vector<double> ts, es;
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        impacts.clear();
-        if (sim.at_restart_point() && sim.state().soft_contacts.empty()) {
-            ts.push_back(sim.state().time.seconds());
-            es.push_back(energy_per_kg(sim.state(), model->gravity_m_per_s2, R) / e0 - 1.0);
-        }
-    }
+    run_through_loop(sim, {.at_restart_point = [&](const Simulation&) {
+                         if (sim.state().soft_contacts.empty()) {
+                             ts.push_back(sim.state().time.seconds());
+                             es.push_back(energy_per_kg(sim.state(), model->gravity_m_per_s2, R) / e0 - 1.0);
+                         }
+                     }});
     EnergyDrift d;
     d.samples = ts.size();
     double stt = 0.0, ste = 0.0;
@@ -401,15 +386,12 @@ Rebounds vertical_rebounds(double e, double duration_s) {
         }
     });
     Rebounds out;
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts) {
-            out.speed.push_back(r.vn_in_m_per_s);
-            out.ratio.push_back(r.vn_out_m_per_s / r.vn_in_m_per_s);
-        }
-        impacts.clear();
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         for (const ImpactRecord& r : impacts) {
+                             out.speed.push_back(r.vn_in_m_per_s);
+                             out.ratio.push_back(r.vn_out_m_per_s / r.vn_in_m_per_s);
+                         }
+                     }});
     EXPECT_EQ(sim.state().health.serious(), 0u);
     EXPECT_EQ(sim.state().shot_shot_impacts + sim.state().shot_shot_slow_contacts, 0u);
     return out;

@@ -11,6 +11,7 @@
 #include "contact/hertz_mindlin.h"
 #include "contact/linear_spring_dashpot_law.h"
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -65,12 +66,7 @@ ImpactRecord one_impact(double e, double v_m_per_s, double steps_per_contact) {
     Simulation sim(model);
     const double R = model->max_shot_radius_m;
     sim.edit_state([&](SimulationState& s) { set_shot(s, 0, Vec3(0.0, 0.0, R + 1e-3), Vec3(0.0, 0.0, -v_m_per_s)); });
-    std::vector<ImpactRecord> impacts, step;
-    while (!sim.finished()) {
-        sim.step(step);
-        impacts.insert(impacts.end(), step.begin(), step.end());
-        step.clear();
-    }
+    const std::vector<ImpactRecord> impacts = run_collecting_impacts(sim);
     EXPECT_EQ(sim.state().health.serious(), 0u);
     EXPECT_EQ(impacts.size(), 1u);
     return impacts.empty() ? ImpactRecord{} : impacts.front();

@@ -19,6 +19,7 @@
 #include "output/impact_csv_writer.h"
 #include "support/files.h"
 #include "support/run_in_process.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -37,13 +38,10 @@ TestSceneSpec soft_rod_scene(double duration_s, std::uint64_t seed = 5) {
 
 // Runs to the end; returns the impacts logged on the component `component` (-1: every one).
 std::size_t run_to_end(Simulation& sim, int component = -1) {
-    std::vector<ImpactRecord> impacts;
     std::size_t n = 0;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts) n += component < 0 || r.component == component;
-        impacts.clear();
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         for (const ImpactRecord& r : impacts) n += component < 0 || r.component == component;
+                     }});
     return n;
 }
 
@@ -102,13 +100,8 @@ TEST(SoftScheme, ACheckpointCarriesTheContactsInProgress) {
     const TestScene scene(spec);
     const auto model = scene.compile();
     Simulation sim(model);
-    std::vector<ImpactRecord> impacts;
     std::size_t most = 0;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        impacts.clear();
-        if (sim.at_restart_point()) most = std::max(most, sim.state().soft_contacts.size());
-    }
+    run_through_loop(sim, {.at_restart_point = [&](const Simulation&) { most = std::max(most, sim.state().soft_contacts.size()); }});
     std::cout << "[ restart  ] most soft contacts in progress at a restart point: " << most << "\n";
     EXPECT_GT(most, 0u);
     EXPECT_EQ(sim.state().health.serious(), 0u);
@@ -181,21 +174,19 @@ TEST(SoftScheme, ImpactsOnAPartTurningAt1000RpmLieOnItsSurface) {
     const auto model = scene.compile();
     const Component& rotor = model->components[static_cast<std::size_t>(model->component_index("part"))];
     Simulation sim(model);
-    std::vector<ImpactRecord> impacts;
     std::size_t logged = 0;
     double worst = 0.0;  // m, farthest logged point from the part's mesh
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts) {
-            ++logged;
-            MeshCollider::Closest closest;
-            MeshCollider::QueryCounters counters;
-            worst = std::max(worst, rotor.collider->closest_within(r.point_m, 1e-3, closest, counters) ? closest.distance : 1e-3);
-            EXPECT_GT(r.vn_in_m_per_s, 0.0);
-            EXPECT_GT(r.duration_s, 0.0);
-        }
-        impacts.clear();
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         for (const ImpactRecord& r : impacts) {
+                             ++logged;
+                             MeshCollider::Closest closest;
+                             MeshCollider::QueryCounters counters;
+                             worst = std::max(worst,
+                                              rotor.collider->closest_within(r.point_m, 1e-3, closest, counters) ? closest.distance : 1e-3);
+                             EXPECT_GT(r.vn_in_m_per_s, 0.0);
+                             EXPECT_GT(r.duration_s, 0.0);
+                         }
+                     }});
     std::cout << "[ rotating ] soft scheme, 1000 rpm: " << logged << " part impacts, farthest point from the part's surface " << worst
               << " m; " << sim.scheme().stats().soft_joins << " joins\n";
     EXPECT_GT(logged, 50u);

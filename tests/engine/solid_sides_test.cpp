@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -33,18 +34,15 @@ TEST_P(EngineSolidSides, ACentreBehindATopFaceIsPutOutThroughIt) {
     Simulation sim(scene.compile());
     // 0.3 R below the top face, 3 mm from the sides: the nearest point is on the top face, behind it.
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.2e-3, -0.1e-3, kTopZ - 0.3 * kShotR), Vec3::Zero()); });
-    std::vector<ImpactRecord> impacts;
     std::size_t from_inside = 0;
     double lowest_after_first_step = 1.0;
     bool first = true;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts) from_inside += r.v_in_m_per_s.z() > 0.0;  // hitting the top face from below
-        impacts.clear();
-        const double z = sim.state().shots.z[0];
-        if (!first) lowest_after_first_step = std::min(lowest_after_first_step, z);
-        first = false;
-    }
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         for (const ImpactRecord& r : impacts) from_inside += r.v_in_m_per_s.z() > 0.0;  // hitting the top face from below
+                         const double z = sim.state().shots.z[0];
+                         if (!first) lowest_after_first_step = std::min(lowest_after_first_step, z);
+                         first = false;
+                     }});
     const ShotArrays& s = sim.state().shots;
     EXPECT_TRUE(s.active[0]);
     // Out through the top face, resting on it (a touch tolerance below kTopZ + R at most).

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/sonotrode_crossing.h"
 #include "support/test_scene.h"
 #include "support/tube_scene.h"
@@ -96,32 +97,32 @@ EngineRun run_engine(const std::string& scheme) {
     // (engine/contact_time.h, 32 samples a period); deeper crossings may not.
     SonotrodeCrossingCheck crossings(*model, 0.0, scheme == "event" ? 1e-9 : 0.005 * kA);
     const Kinematics& plate = model->sonotrode_component().kinematics;
-    std::vector<ImpactRecord> impacts;
-    while (!sim.finished()) {
-        crossings.before_step(sim.state());
-        sim.step(impacts, sim.state().time.seconds() + 1.0 / kF);
-        crossings.after_step(sim.state(), impacts);
-        const double d = plate.displacement(sim.state().time);
-        for (std::size_t i = 0; i < sim.state().shots.size(); ++i) {
-            const double gap = sim.state().shots.z[i] - d - kR;
-            run.worst_step_end_gap_m = std::min(run.worst_step_end_gap_m, gap);
-            run.step_end_overlaps += gap < -1e-9;
-        }
-        for (const ImpactRecord& r : impacts) {
-            if (r.time_s < kStart) continue;
-            ShotStats& s = run.shots[static_cast<std::size_t>(r.shot)];
-            if (r.component == model->sonotrode) {
-                s.floor_rate += 1.0;
-                s.floor_speed += r.vn_in_m_per_s;
-            } else if (std::abs(r.point_m.z() - kH) < 1e-9) {
-                s.ceiling_rate += 1.0;
-                s.ceiling_speed += r.vn_in_m_per_s;
-            } else {
-                ++run.wall_hits;
-            }
-        }
-        impacts.clear();
-    }
+    crossings.before_step(sim.state());
+    run_through_loop(sim, {.after_step =
+                               [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                                   crossings.after_step(sim.state(), impacts);
+                                   crossings.before_step(sim.state());  // the next step starts from this state
+                                   const double d = plate.displacement(sim.state().time);
+                                   for (std::size_t i = 0; i < sim.state().shots.size(); ++i) {
+                                       const double gap = sim.state().shots.z[i] - d - kR;
+                                       run.worst_step_end_gap_m = std::min(run.worst_step_end_gap_m, gap);
+                                       run.step_end_overlaps += gap < -1e-9;
+                                   }
+                                   for (const ImpactRecord& r : impacts) {
+                                       if (r.time_s < kStart) continue;
+                                       ShotStats& s = run.shots[static_cast<std::size_t>(r.shot)];
+                                       if (r.component == model->sonotrode) {
+                                           s.floor_rate += 1.0;
+                                           s.floor_speed += r.vn_in_m_per_s;
+                                       } else if (std::abs(r.point_m.z() - kH) < 1e-9) {
+                                           s.ceiling_rate += 1.0;
+                                           s.ceiling_speed += r.vn_in_m_per_s;
+                                       } else {
+                                           ++run.wall_hits;
+                                       }
+                                   }
+                               },
+                           .pause_at_s = pause_every(1.0 / kF)});
     run.shot_shot = sim.state().shot_shot_impacts;
     run.serious_health = sim.state().health.serious();
     sim.state().health.for_each([&](const char* name, std::uint64_t value) {

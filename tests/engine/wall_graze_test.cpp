@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/simulation.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -41,13 +42,11 @@ TEST_P(EngineWallGraze, AShotSlidingUpAWallHitsTheLid) {
     const double z0 = 5e-3;
     sim.edit_state(
         [&](SimulationState& edited) { set_shot(edited, 0, Vec3(kHalf - c.radius_m, 0.0, z0), Vec3(c.drift_m_s, 0.0, c.up_speed_m_s)); });
-    std::vector<ImpactRecord> impacts, lid;
-    while (!sim.finished()) {
-        sim.step(impacts);
-        for (const ImpactRecord& r : impacts)
-            if (r.point_m.z() > kHeight - 1e-9) lid.push_back(r);
-        impacts.clear();
-    }
+    std::vector<ImpactRecord> lid;
+    run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
+                         for (const ImpactRecord& r : impacts)
+                             if (r.point_m.z() > kHeight - 1e-9) lid.push_back(r);
+                     }});
     EXPECT_EQ(sim.state().health.shot_lost, 0u);
     EXPECT_EQ(sim.state().health.deep_penetrations, 0u);
     ASSERT_GE(lid.size(), 1u);

@@ -12,6 +12,7 @@
 #include "engine/simulation.h"
 #include "kernels/air_drag_flight.h"
 #include "kernels/trajectory.h"
+#include "support/run_through_loop.h"
 #include "support/test_scene.h"
 
 namespace peensim::testing {
@@ -182,12 +183,13 @@ TEST(AirDragFlight, ShotDroppedThroughAirLandsAsTheClosedFormSays) {
     const double R = model->max_shot_radius_m, h = 30e-3, g = 9.81;
     Simulation sim(model);
     sim.edit_state([&](SimulationState& s) { set_shot(s, 0, Vec3(0.0, 0.0, R + h), Vec3::Zero()); });
-    std::vector<ImpactRecord> impacts, step_impacts;
-    while (!sim.finished() && impacts.empty()) {
-        sim.step(step_impacts);
-        impacts.insert(impacts.end(), step_impacts.begin(), step_impacts.end());
-        step_impacts.clear();
-    }
+    // Time stepping (asserted above): every step is a restart point, so the run ends right after
+    // the step that logged the first impact.
+    std::vector<ImpactRecord> impacts;
+    run_through_loop(sim,
+                     {.after_step = [&](const Simulation&,
+                                        const std::vector<ImpactRecord>& step) { impacts.insert(impacts.end(), step.begin(), step.end()); },
+                      .done = [&](const Simulation&) { return !impacts.empty(); }});
     ASSERT_FALSE(impacts.empty());
     const double k = 3.0 * 50.0 * 0.44 / (8.0 * 7800.0 * R), vt = std::sqrt(g / k);
     const double v_land = vt * std::sqrt(1.0 - std::exp(-2.0 * g * h / (vt * vt)));

@@ -15,6 +15,7 @@
 #include "model/mesh_sink.h"
 #include "model/model.h"
 #include "scene/scene_parser.h"
+#include "support/run_through_loop.h"
 #include "support/temp_dir.h"
 
 namespace peensim {
@@ -86,8 +87,7 @@ sinks:
     for (const char* scheme : {"event", "step"}) {
         const auto model = compile_model(parse_scene_file((dir.path / "jet.yaml").string(), {std::string("accuracy.scheme=") + scheme}));
         Simulation sim(model);
-        std::vector<ImpactRecord> impacts;
-        while (!sim.finished()) sim.step(impacts);
+        const std::vector<ImpactRecord> impacts = testing::run_collecting_impacts(sim);
         const SimulationState& s = sim.state();
         // 40 emitted in 20 ms (k / 2000 s); a shot reaches the outlet's face 49 mm away 2.45 ms after
         // it left (falling 29 um meanwhile), so k = 0..35 are collected, 36..39 still on their way.
