@@ -12,6 +12,7 @@
 #include "geometry/mesh_loader.h"
 #include "kernels/air_drag_flight.h"
 #include "model/enclosure.h"
+#include "model/make_source.h"
 #include "model/mesh_sink.h"
 #include "model/model.h"
 #include "scene/resolved_writer.h"
@@ -221,25 +222,17 @@ contact::ReboundScatter rebound_scatter_of(const SceneDescription& scene) {
     return r;
 }
 
-void add_flow(Model& model, const SceneDescription& scene) {
+void add_sources(Model& model, const SceneDescription& scene) {
+    const std::vector<double> shares = model.has_size_mix() ? model.size_count_fraction : std::vector<double>{};
     for (std::size_t k = 0; k < scene.sources.size(); ++k) {
         const SourceDesc& s = scene.sources[k];
-        NozzleSpec spec;
-        spec.name = s.name;
-        spec.position_m = s.position_m;
-        spec.direction = s.direction;
-        spec.exit_radius_m = s.exit_radius_m;
-        spec.speed_m_per_s = s.speed_m_per_s;
-        spec.speed_spread = s.speed_spread;
-        spec.spread_rad = s.spread_rad;
-        spec.rate_per_s = s.rate_per_s;
-        spec.start_s = s.start_s;
-        spec.stop_s = std::min(s.stop_s, scene.process.duration_s);
-        spec.seed = scene.process.seed;
-        spec.index = static_cast<int>(k);
-        if (model.has_size_mix()) spec.size_count_fraction = model.size_count_fraction;
-        model.sources.push_back(std::make_shared<const NozzleSource>(spec));
+        model.sources.push_back(
+            make_source(s, static_cast<int>(k), std::min(s.stop_s, scene.process.duration_s), scene.process.seed, shares));
     }
+}
+
+// After the world's bounds: a sink `outside` is the world box.
+void add_sinks(Model& model, const SceneDescription& scene) {
     for (std::size_t k = 0; k < scene.sinks.size(); ++k) {
         const SinkDesc& s = scene.sinks[k];
         if (s.region == SinkRegion::mesh) {
@@ -377,14 +370,16 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         model->peak_surface_speed_m_per_s =
             std::max(model->peak_surface_speed_m_per_s, c.kinematics.peak_surface_speed(c.max_axis_distance_m));
     }
-    for (const SourceDesc& s : scene.sources) {  // a nozzle's exit lies inside the bounds
-        model->world_lo = model->world_lo.cwiseMin(s.position_m - Vec3::Constant(s.exit_radius_m));
-        model->world_hi = model->world_hi.cwiseMax(s.position_m + Vec3::Constant(s.exit_radius_m));
+    add_sources(*model, scene);
+    for (const auto& source : model->sources) {  // where a source's shot start lies inside the bounds
+        const SourceOutline o = source->outline();
+        model->world_lo = model->world_lo.cwiseMin(o.start_lo_m);
+        model->world_hi = model->world_hi.cwiseMax(o.start_hi_m);
     }
     // A shot beyond the assembly's bounds by more than a diameter has certainly left it.
     model->world_lo -= Vec3::Constant(4.0 * R);
     model->world_hi += Vec3::Constant(4.0 * R);
-    add_flow(*model, scene);
+    add_sinks(*model, scene);
     if (model->scheme == SteppingScheme::soft) require_soft_laws(*model, scene);
     return model;
 }

@@ -1,13 +1,17 @@
-// Where shot enter and leave a run besides the initial load: sources emit shot during the run
-// (a conventional peening nozzle), sinks take them out (an outlet, a hopper: collected, not lost).
-// Both are part of the compiled model and pluggable: the schemes see only these interfaces.
+// Where shot enter and leave a run besides the initial load: sources emit shot during the run (a
+// conventional peening nozzle, model/nozzle_source.h; a hopper dropping shot, model/hopper_source.h),
+// sinks take them out (an outlet, a hopper's mouth: collected, not lost). Both are part of the
+// compiled model and pluggable: the schemes, the checks and the reports see only these interfaces
+// (model/make_source.h is the one place that knows every kind of source).
 //
 // A source's emissions are numbered; emission k's time, centre and velocity are a function of the
 // source, the scene's seed and k alone (counter-based random numbers), so a run resumed from a
 // checkpoint (which keeps how many each source has emitted) emits exactly the same shot.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +28,27 @@ struct Emission {
     int size = 0;                          // index into Model::shot_sizes
 };
 
+// A directed stream of shot (a nozzle's jet): what the conventional-peening figures need.
+struct SourceJet {
+    Vec3 exit_m = Vec3::Zero();  // m, world, the centre its shot leave
+    Vec3 axis = -Vec3::UnitZ();  // unit, world
+    double speed_m_per_s = 0.0;  // m/s, the mean exit speed v0
+};
+
+// What every kind of source tells the checks and the reports (check, summary, analysis, ParaView),
+// so that none of them needs to know the kind.
+struct SourceOutline {
+    std::string kind;                                           // the scene's `sources[].kind`: nozzle, hopper
+    double rate_per_s = 0.0;                                    // shot per second while it emits
+    double start_s = 0.0, stop_s = 0.0;                         // s, absolute: emissions in [start, stop)
+    double fastest_speed_m_per_s = 0.0;                         // m/s, the fastest shot it starts
+    Vec3 start_lo_m = Vec3::Zero(), start_hi_m = Vec3::Zero();  // m, world: the box its shot's centres start in
+    std::optional<SourceJet> jet;                               // a directed stream; none for a source that drops its shot
+    std::string start_place;                                    // its kind's word for where its shot start: "exit", "opening"
+    std::string start_keys;                                     // the scene keys that place it: "position, or target and distance"
+    std::string how;                                            // "at 100 m/s from its exit at (0, 0, 50) mm": for `check`
+};
+
 class ShotSource {
 public:
     virtual ~ShotSource() = default;
@@ -32,6 +57,7 @@ public:
     // same emission again elsewhere (same time; another point, direction and speed), for when the
     // first draw would overlap a shot already there.
     virtual std::optional<Emission> emission(std::uint64_t k, unsigned attempt = 0) const = 0;
+    virtual SourceOutline outline() const = 0;
 };
 
 class ShotSink {
@@ -44,48 +70,20 @@ public:
     virtual std::optional<double> first_entry(const Trajectory& path, double ta, double tb) const = 0;
 };
 
-// A nozzle: shot leave a disc of radius `exit_radius_m` centred on `position_m`, facing
-// `direction`, at speeds uniform in `speed` (1 +- `speed_spread`), in directions uniform over the
-// cone of half-angle `spread_rad` about `direction`, at points uniform over the disc; `rate_per_s`
-// shot per second from `start_s` until `stop_s` (s, absolute), emission k at start + k / rate.
-struct NozzleSpec {
-    std::string name;
-    Vec3 position_m = Vec3::Zero();
-    Vec3 direction = -Vec3::UnitZ();  // unit
-    double exit_radius_m = 0.0;
-    double speed_m_per_s = 0.0;  // m/s, the mean exit speed v0
-    double speed_spread = 0.0;   // -, exit speeds uniform in v0 (1 +- speed_spread)
-    double spread_rad = 0.0;
-    double rate_per_s = 0.0;
-    double start_s = 0.0;
-    double stop_s = 0.0;
-    std::uint64_t seed = 1;  // the scene's seed (mixed with the source's index)
-    int index = 0;           // the source's place in the scene
-    // -, the count share of each shot size (Model::size_count_fraction); empty for one size.
-    std::vector<double> size_count_fraction;
-};
+// m/s, the fastest shot any of `sources` starts (0 without sources).
+inline double fastest_start_speed_m_per_s(const std::vector<std::shared_ptr<const ShotSource>>& sources) {
+    double fastest = 0.0;
+    for (const auto& s : sources) fastest = std::max(fastest, s->outline().fastest_speed_m_per_s);
+    return fastest;
+}
 
-class NozzleSource final : public ShotSource {
-public:
-    explicit NozzleSource(const NozzleSpec& spec);
-    const std::string& name() const override { return spec_.name; }
-    std::optional<Emission> emission(std::uint64_t k, unsigned attempt = 0) const override;
-    const NozzleSpec& spec() const { return spec_; }
-
-private:
-    // The seed of emission k's draw `attempt`: the scene's seed, the source and k mixed (Random's
-    // SplitMix64 seeding spreads neighbouring seeds), the attempt above bit 40 (k never gets there).
-    std::uint64_t emission_stream(std::uint64_t k, unsigned attempt) const;
-    static constexpr unsigned kSizeStream = 255;  // the size's own stream: never a redraw's attempt (at most 32)
-    NozzleSpec spec_;
-    Vec3 e1_, e2_;  // unit, completing `direction` to a right-handed frame
-};
-
-// The dimensionless flow rate of a nozzle, eps = r_m D / (v0 m_shot) = rate D / v0 (r_m the mass
+// The dimensionless flow rate of a jet, eps = r_m D / (v0 m_shot) = rate D / v0 (r_m the mass
 // flow, kg/s; D the shot diameter, m): the conventional-peening study's measure of how crowded the
 // jet is (0.667 for 5.5 kg/min of 0.58 mm shot at 100 m/s, 3.154 for 13 kg/min at 50 m/s). For a
 // mix D is the mean diameter of the shot emitted (weighted by count): shot per diameter travelled.
-inline double nozzle_flow_rate_eps(const NozzleSpec& n, double shot_diameter_m) { return n.rate_per_s * shot_diameter_m / n.speed_m_per_s; }
+inline double jet_flow_rate_eps(double rate_per_s, const SourceJet& jet, double shot_diameter_m) {
+    return rate_per_s * shot_diameter_m / jet.speed_m_per_s;
+}
 
 // An axis-aligned box (world frame). Side inside: a shot whose centre enters it is collected (an
 // outlet, a hopper's opening). Side outside: a shot whose centre leaves it is (the chamber's

@@ -36,17 +36,18 @@ Inside inside_component(const Component& c, const Vec3& p_w) {
 
 std::vector<AssemblyIssue> source_issues(const Model& m) {
     std::vector<AssemblyIssue> out;
-    for (std::size_t s = 0; s < m.description.sources.size(); ++s) {
-        const SourceDesc& src = m.description.sources[s];
+    for (std::size_t s = 0; s < m.sources.size() && s < m.description.sources.size(); ++s) {
+        const SourceOutline o = m.sources[s]->outline();
+        const Vec3 start = 0.5 * (o.start_lo_m + o.start_hi_m);  // the middle of where its shot start
         for (const Component& c : m.components) {
             if (c.role == ComponentRole::chamber || !is_closed(*c.mesh)) continue;
-            const Inside inside = inside_component(c, src.position_m);
+            const Inside inside = inside_component(c, start);
             if (inside == Inside::no) continue;
-            out.push_back(
-                {true, src.where, "sources[" + std::to_string(s) + "]",
-                 "the exit of nozzle '" + src.name + "' at " + mm_point(src.position_m) + " lies inside '" + c.name + "'" +
-                     (inside == Inside::as_it_turns ? " as it turns" : "") +
-                     ": every shot would start inside it; expected an exit in the open (check position, or target and distance)"});
+            out.push_back({true, m.description.sources[s].where, "sources[" + std::to_string(s) + "]",
+                           "the " + o.start_place + " of " + o.kind + " '" + m.sources[s]->name() + "' at " + mm_point(start) +
+                               " lies inside '" + c.name + "'" + (inside == Inside::as_it_turns ? " as it turns" : "") +
+                               ": every shot would start inside it; expected an " + o.start_place + " in the open (check " + o.start_keys +
+                               ")"});
         }
     }
     return out;

@@ -112,11 +112,29 @@ void write_air(std::string& y, const AirDesc& air) {
     }
 }
 
+// A source's rate, as the scene gave it (a mass flow, or shot per second).
+void write_rate(std::string& y, const SourceDesc& d) {
+    if (d.mass_flow_kg_per_s)
+        y += "    mass_flow: " + num(*d.mass_flow_kg_per_s) + unit_comment(Dimension::mass_flow) + "  # " + num(d.rate_per_s) +
+             " shot per s\n";
+    else
+        y += "    rate: " + num(d.rate_per_s) + "  # shot per s\n";
+}
+
 // Sources and sinks, only when the scene has them (most have neither).
 void write_flow(std::string& y, const SceneDescription& s) {
     if (!s.sources.empty()) y += "sources:\n";
     for (const SourceDesc& d : s.sources) {
         y += "  - name: " + yaml_text(d.name) + "\n";
+        if (d.kind == SourceKind::hopper) {
+            y += "    kind: hopper\n";
+            y += "    opening_min: " + vec(d.opening->lo_m) + unit_comment(Dimension::length) + "\n";
+            y += "    opening_max: " + vec(d.opening->hi_m) + unit_comment(Dimension::length) + "\n";
+            write_rate(y, d);
+            y += "    start: " + num(d.start_s) + unit_comment(Dimension::time) + "\n";
+            y += "    stop: " + num(d.stop_s) + unit_comment(Dimension::time) + "\n";
+            continue;
+        }
         if (d.aim) {
             y += "    target: " + vec(d.aim->target_m) + unit_comment(Dimension::length) + "\n";
             y += "    distance: " + num(d.aim->distance_m) + unit_comment(Dimension::length) + "\n";
@@ -131,11 +149,7 @@ void write_flow(std::string& y, const SceneDescription& s) {
         y += "    speed: " + num(d.speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
         y += "    speed_spread: " + num(d.speed_spread) + "\n";
         if (d.air_speed_m_per_s) y += "    air_speed: " + num(*d.air_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
-        if (d.mass_flow_kg_per_s)
-            y += "    mass_flow: " + num(*d.mass_flow_kg_per_s) + unit_comment(Dimension::mass_flow) + "  # " + num(d.rate_per_s) +
-                 " shot per s\n";
-        else
-            y += "    rate: " + num(d.rate_per_s) + "  # shot per s\n";
+        write_rate(y, d);
         y += "    exit_radius: " + num(d.exit_radius_m) + unit_comment(Dimension::length) + "\n";
         y += "    spread: " + num(d.spread_rad) + unit_comment(Dimension::angle) + "\n";
         y += "    start: " + num(d.start_s) + unit_comment(Dimension::time) + "\n";

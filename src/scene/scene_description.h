@@ -280,7 +280,8 @@ struct AirDesc {
     SourceLocation where;
 };
 
-// A nozzle emitting shot during the run (model/shot_flow.h).
+// A source emitting shot during the run (model/shot_flow.h): a nozzle (model/nozzle_source.h) or a
+// hopper (model/hopper_source.h).
 // Where the jet aims, when the scene places a nozzle by its target (position and direction follow).
 struct NozzleAim {
     Vec3 target_m = Vec3::Zero();        // m, world
@@ -290,8 +291,19 @@ struct NozzleAim {
     double azimuth_rad = 0.0;            // rad
 };
 
+enum class SourceKind { nozzle, hopper };
+
+// A hopper's opening: the box its shot's centres start in (world frame).
+struct HopperOpening {
+    Vec3 lo_m = Vec3::Zero();  // m
+    Vec3 hi_m = Vec3::Zero();  // m
+};
+
 struct SourceDesc {
     std::string name;
+    SourceKind kind = SourceKind::nozzle;
+    std::optional<HopperOpening> opening;  // a hopper's (and only a hopper's)
+    // What follows down to rate is a nozzle's (a hopper's rate, mass flow, start and stop are its own too).
     Vec3 position_m = Vec3::Zero();            // m, world (given, or from `aim`)
     Vec3 direction = -Vec3::UnitZ();           // unit, world (given, or from `aim`)
     std::optional<NozzleAim> aim;              // the scene placed it by its target

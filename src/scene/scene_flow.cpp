@@ -55,6 +55,38 @@ void read_placement(const Cursor& c, const Vec3& up, SourceDesc& d) {
     d.direction = *read_optional_direction(c.child("direction"));
 }
 
+// A nozzle's keys: where it is and where it aims, how fast and how wide it throws.
+void read_nozzle(const Cursor& c, const Vec3& up, SourceDesc& d) {
+    for (const char* key : {"opening_min", "opening_max"})
+        if (c.child(key).present()) fail(c.child(key), std::string("'") + key + "' is only for kind hopper");
+    read_placement(c, up, d);
+    if (!c.child("speed").present()) fail(c, "missing required key 'speed' (a nozzle's mean exit speed)");
+    d.speed_m_per_s = read_quantity(c.child("speed"));
+    d.speed_spread = read_quantity(c.child("speed_spread"));
+    if (c.child("air_speed").present()) d.air_speed_m_per_s = read_quantity(c.child("air_speed"));
+    if (c.child("diameter").present() && c.child("exit_radius").present())
+        fail(c.child("diameter"), "expected `diameter` or `exit_radius`, not both");
+    d.exit_radius_m = c.child("diameter").present() ? 0.5 * read_quantity(c.child("diameter")) : read_quantity(c.child("exit_radius"));
+    d.spread_rad = read_quantity(c.child("spread"));
+}
+
+// A hopper's keys: its opening, and none of a nozzle's.
+void read_hopper(const Cursor& c, SourceDesc& d) {
+    for (const char* key : {"position", "direction", "target", "distance", "angle_of_attack", "target_normal", "azimuth", "speed",
+                            "speed_spread", "air_speed", "exit_radius", "diameter", "spread"})
+        if (c.child(key).present())
+            fail(c.child(key),
+                 std::string("'") + key + "' is a nozzle's; a hopper drops its shot at rest from `opening_min` to `opening_max`");
+    for (const char* key : {"opening_min", "opening_max"})
+        if (!c.child(key).present()) fail(c, std::string("missing required key '") + key + "' (a hopper's opening)");
+    HopperOpening o;
+    o.lo_m = read_vector(c.child("opening_min"));
+    o.hi_m = read_vector(c.child("opening_max"));
+    if (!((o.hi_m.array() >= o.lo_m.array()).all())) fail(c.child("opening_max"), "expected opening_max >= opening_min in x, y and z");
+    d.opening = o;
+    d.speed_m_per_s = 0.0;
+}
+
 }  // namespace
 
 void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, double shot_mass_kg, const Vec3& up,
@@ -64,10 +96,11 @@ void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, do
         const Cursor c = sources.item(i);
         SourceDesc d;
         d.name = checked_name(c.child("name"), names);
-        read_placement(c, up, d);
-        d.speed_m_per_s = read_quantity(c.child("speed"));
-        d.speed_spread = read_quantity(c.child("speed_spread"));
-        if (c.child("air_speed").present()) d.air_speed_m_per_s = read_quantity(c.child("air_speed"));
+        d.kind = read_choice(c.child("kind")) == "hopper" ? SourceKind::hopper : SourceKind::nozzle;
+        if (d.kind == SourceKind::hopper)
+            read_hopper(c, d);
+        else
+            read_nozzle(c, up, d);
         one_of(c, "rate", "mass_flow");
         if (c.child("mass_flow").present()) {
             d.mass_flow_kg_per_s = read_quantity(c.child("mass_flow"));
@@ -77,10 +110,6 @@ void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, do
         } else {
             d.rate_per_s = read_quantity(c.child("rate"));
         }
-        if (c.child("diameter").present() && c.child("exit_radius").present())
-            fail(c.child("diameter"), "expected `diameter` or `exit_radius`, not both");
-        d.exit_radius_m = c.child("diameter").present() ? 0.5 * read_quantity(c.child("diameter")) : read_quantity(c.child("exit_radius"));
-        d.spread_rad = read_quantity(c.child("spread"));
         d.start_s = read_quantity(c.child("start"));
         d.stop_s = c.child("stop").present() ? read_quantity(c.child("stop")) : duration_s;
         if (!(d.stop_s > d.start_s)) fail(c.child("stop"), "expected a stop after the start (" + format_si(d.start_s) + " s)");

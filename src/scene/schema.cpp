@@ -303,12 +303,21 @@ const std::array schema_table{
                 "logged and reported, but coverage, uniformity and the time to full coverage leave its area out."},
 
     SchemaEntry{"sources", K::list, D::dimensionless, false, "", "none", {}, "", "", "",
-                "Shot sources: nozzles that emit shot during the run (conventional peening). A scene with sources "
+                "Shot sources: nozzles that emit shot during the run (conventional peening), hoppers that drop them. A scene with sources "
                 "may have `shot.count: 0`, and then needs no sonotrode and no chamber. See the README's \"Shot "
                 "sources and sinks\"."},
-    SchemaEntry{"sources[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One nozzle."},
+    SchemaEntry{"sources[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One source."},
     SchemaEntry{"sources[].name", K::text, D::dimensionless, true, "", "", {}, "", "", "",
                 "Unique among sources and sinks (`[A-Za-z0-9_-]+`)."},
+    SchemaEntry{"sources[].kind", K::choice, D::dimensionless, false, "nozzle", "", {}, "nozzle|hopper", "", "",
+                "`nozzle`: shot leave an exit at a speed along an axis (the keys below down to `spread`); `hopper`: "
+                "shot drop at rest out of an opening (`opening_min`, `opening_max`) and fall. Both take `rate` or "
+                "`mass_flow`, `start` and `stop`."},
+    SchemaEntry{"sources[].opening_min", K::vector3, D::length, false, "", "", {}, "", "", "",
+                "`hopper`: lowest corner of the box its shot's centres start in, at points uniform over it (world "
+                "frame; a flat box, min = max in z, is an opening in a plane)."},
+    SchemaEntry{"sources[].opening_max", K::vector3, D::length, false, "", "", {}, "", "", "",
+                "`hopper`: highest corner of that box (>= min in x, y and z)."},
     SchemaEntry{"sources[].position", K::vector3, D::length, false, "", "from `target`", {}, "", "", "",
                 "Centre of the nozzle's exit (world frame): where the shot's centres start. Give `position` and "
                 "`direction`, or `target` and `distance` (with `angle_of_attack`, `target_normal`, `azimuth`)."},
@@ -326,7 +335,7 @@ const std::array schema_table{
     SchemaEntry{"sources[].azimuth", K::quantity, D::angle, false, "0 deg", "", {}, "", "", "",
                 "Side the nozzle leans from below 90 deg: the angle about `target_normal` from world x projected on "
                 "the surface (y when the normal is along x)."},
-    SchemaEntry{"sources[].speed", K::quantity, D::speed, true, "", "", open_closed(0, 1000), "", "", "",
+    SchemaEntry{"sources[].speed", K::quantity, D::speed, false, "", "none (a nozzle needs it)", open_closed(0, 1000), "", "", "",
                 "Mean speed of the shot leaving the nozzle (v0)."},
     SchemaEntry{"sources[].speed_spread", K::quantity, D::dimensionless, false, "0.05", "", closed(0, 0.9), "", "", "",
                 "Spread of the exit speed: uniform in v0 (1 +- speed_spread)."},

@@ -16,6 +16,7 @@
 #include "engine/simulation.h"
 #include "kernels/box_entry.h"
 #include "model/model.h"
+#include "model/nozzle_source.h"
 #include "model/shot_flow.h"
 #include "scene/scene_parser.h"
 #include "support/files.h"

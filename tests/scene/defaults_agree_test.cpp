@@ -158,6 +158,8 @@ const std::map<std::string, Accessor>& accessors() {
         {"components[].regions[].exclude", [](const S& s) -> Value { return std::string(region(s, "box").exclude ? "true" : "false"); }},
         {"sources[].angle_of_attack", [](const S& s) -> Value { return s.sources.at(0).aim.value().angle_of_attack_rad; }},
         {"sources[].azimuth", [](const S& s) -> Value { return s.sources.at(0).aim.value().azimuth_rad; }},
+        {"sources[].kind",
+         [](const S& s) -> Value { return std::string(s.sources.at(0).kind == SourceKind::hopper ? "hopper" : "nozzle"); }},
         {"sources[].speed_spread", [](const S& s) -> Value { return s.sources.at(0).speed_spread; }},
         {"sources[].exit_radius", [](const S& s) -> Value { return s.sources.at(0).exit_radius_m; }},
         {"sources[].spread", [](const S& s) -> Value { return s.sources.at(0).spread_rad; }},

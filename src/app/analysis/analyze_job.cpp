@@ -152,20 +152,21 @@ ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* ca
     if (c.almen)
         a.almen =
             almen_analysis_of(c, *a.mesh, shot_mass, scene.shot.density_kg_per_m3, m && m->yield_stress_pa ? *m->yield_stress_pa : 0.0);
-    if (!scene.sources.empty()) {
-        // Several nozzles: their exit speeds and axes weighted by their rates.
-        double rate = 0.0, v0 = 0.0;
-        Vec3 axis = Vec3::Zero();
-        for (const SourceDesc& s : scene.sources) {
-            rate += s.rate_per_s;
-            v0 += s.rate_per_s * s.speed_m_per_s;
-            axis += s.rate_per_s * s.direction;
+    // The sources that throw a jet (nozzles): their exit speeds and axes weighted by their rates.
+    double rate = 0.0, v0 = 0.0;
+    Vec3 axis = Vec3::Zero();
+    std::size_t jets = 0;
+    for (const auto& source : model.sources)
+        if (const SourceOutline o = source->outline(); o.jet) {
+            rate += o.rate_per_s;
+            v0 += o.rate_per_s * o.jet->speed_m_per_s;
+            axis += o.rate_per_s * o.jet->axis;
+            ++jets;
         }
-        if (rate > 0.0 && v0 > 0.0) {
-            a.jet.emplace(v0 / rate, kJetWindow);
-            a.jet_axis = (c.rotation.transpose() * axis).normalized();  // world -> component frame
-            a.jet_normal_meaningful = scene.sources.size() == 1 && !c.rotation_motion;
-        }
+    if (rate > 0.0 && v0 > 0.0) {
+        a.jet.emplace(v0 / rate, kJetWindow);
+        a.jet_axis = (c.rotation.transpose() * axis).normalized();  // world -> component frame
+        a.jet_normal_meaningful = jets == 1 && model.sources.size() == 1 && !c.rotation_motion;
     }
     return a;
 }
@@ -474,7 +475,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
                                                return std::string(std::istreambuf_iterator<char>(png), {});
                                            }));
     write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, window));
-    write_paraview_script(dir, scene, parts, duration, window);
+    write_paraview_script(dir, scene, fastest_start_speed_m_per_s(model->sources), parts, duration, window);
     out << analysis_summary_table(parts, window) << "analysis: " << adir.string()
         << "/{report.md, report.html, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp, *_coverage_series.pvd"
         << (context.pngs.empty() ? "" : ", *.png") << ", " << kParaviewScriptFileName << "}\n";

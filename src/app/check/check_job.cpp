@@ -71,10 +71,9 @@ void print_report(const Model& model, const AssemblyReport& assembly, std::size_
     const double dt_rest = TimeStepping::time_step(model, model.peak_surface_speed_m_per_s);
     if (model.sonotrode >= 0) out << "# shot: " << model.shot_count << " placed in " << shots.layers << " layer(s) on the sonotrode\n";
     for (const auto& source : model.sources) {
-        const auto& d = model.description.sources;
-        const auto it = std::find_if(d.begin(), d.end(), [&](const SourceDesc& s) { return s.name == source->name(); });
-        out << "# source " << source->name() << ": " << it->rate_per_s << " shot/s at " << it->speed_m_per_s << " m/s from " << it->start_s
-            << " s to " << it->stop_s << " s (" << static_cast<long long>((it->stop_s - it->start_s) * it->rate_per_s)
+        const SourceOutline o = source->outline();
+        out << "# source " << source->name() << " (" << o.kind << "): " << o.rate_per_s << " shot/s " << o.how << ", from " << o.start_s
+            << " s to " << o.stop_s << " s (" << static_cast<long long>(std::ceil((o.stop_s - o.start_s) * o.rate_per_s))
             << " shot at most)\n";
     }
     for (const auto& sink : model.sinks) out << "# sink " << sink->name() << "\n";

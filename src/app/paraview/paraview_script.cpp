@@ -358,13 +358,12 @@ double area_percentile_98(const ComponentAnalysis& a, double duration_s) {
 }
 
 // m/s, the top of the speed colour scales (shot and impacts alike): the animation's scale when the
-// scene records one, else the fastest impact or nozzle.
-double speed_scale(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts) {
+// scene records one, else the fastest impact or source.
+double speed_scale(const SceneDescription& scene, double fastest_source_m_per_s, const std::vector<ComponentAnalysis>& parts) {
     if (scene.render) return scene.render->speed_scale_m_per_s;
-    double fastest = 0.0;
+    double fastest = fastest_source_m_per_s;
     for (const ComponentAnalysis& a : parts)
         for (std::size_t t = 0; t < a.fields->triangle_count(); ++t) fastest = std::max(fastest, a.fields->max_normal_speed(t));
-    for (const SourceDesc& s : scene.sources) fastest = std::max(fastest, s.speed_m_per_s * (1.0 + s.speed_spread));
     return fastest > 0.0 ? fastest : 1.0;
 }
 
@@ -388,8 +387,8 @@ Vec3 impacts_seen_from(const SceneDescription& scene, const std::vector<Componen
 
 }  // namespace
 
-void write_paraview_script(const fs::path& run_dir, const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts,
-                           double run_duration_s, const AnalysisWindow& window) {
+void write_paraview_script(const fs::path& run_dir, const SceneDescription& scene, double fastest_source_m_per_s,
+                           const std::vector<ComponentAnalysis>& parts, double run_duration_s, const AnalysisWindow& window) {
     const fs::path analysis = fs::absolute(run_dir / "analysis");
     const Vec3& g = scene.process.gravity_m_per_s2;
     const Vec3 up = g.norm() > 0.0 ? Vec3(-g.normalized()) : Vec3(Vec3::UnitZ());
@@ -399,7 +398,7 @@ void write_paraview_script(const fs::path& run_dir, const SceneDescription& scen
                           {"window_from_s", window.from_s},
                           {"window_to_s", window.to_s},
                           {"up", {up.x(), up.y(), up.z()}},
-                          {"speed_scale_mps", speed_scale(scene, parts)},
+                          {"speed_scale_mps", speed_scale(scene, fastest_source_m_per_s, parts)},
                           {"impacts_seen_from", {from.x(), from.y(), from.z()}},
                           {"assembly", std::string("../") + kParaviewDirName + "/" + kAssemblyFileName},
                           {"shots", std::string("../") + kParaviewDirName + "/" + kShotSeriesFileName},

@@ -54,8 +54,8 @@ RunSummary build_summary(const Simulation& sim, const std::string& scene_file, c
                                 k < state.shots_per_size.size() ? state.shots_per_size[k] : 0});
     }
     for (const auto& source : model.sources)
-        if (const auto* nozzle = dynamic_cast<const NozzleSource*>(source.get()))
-            s.flow_rate_eps.emplace_back(nozzle->name(), nozzle_flow_rate_eps(nozzle->spec(), mean_diameter));
+        if (const SourceOutline o = source->outline(); o.jet)
+            s.flow_rate_eps.emplace_back(source->name(), jet_flow_rate_eps(o.rate_per_s, *o.jet, mean_diameter));
     s.impacts_per_component.push_back({"shot-shot", state.shot_shot_impacts});
     s.slow_contacts_per_component.push_back({"shot-shot", state.shot_shot_slow_contacts});
     s.impact_speed_m_per_s = model.impact_speed_m_per_s;
