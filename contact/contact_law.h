@@ -95,6 +95,8 @@ struct ShotShotResponse {
 // `linear-spring-dashpot`): the constants of a contact that starts approaching at approach_speed
 // (m/s, >= 0), its family saying which forces follow from them (soft_pair.h). A velocity-dependent
 // restitution fixes the contact's damping from its approach speed.
+// What such a contact remembers while it lasts is the law's per-contact state (SoftContactState:
+// the tangential spring), which the soft pool keeps with the contact and never reads.
 class SoftLaw {
 public:
     virtual ~SoftLaw() = default;

@@ -26,12 +26,32 @@ double soft_normal_force(const SoftPair& p, double delta_m, double delta_rate_m_
     return 0.0;
 }
 
-Vec3 soft_tangential_force(const SoftPair& p, double delta_m, double normal_force_n, const Vec3& v_t, const Vec3& slip_m, Vec3& spring_m) {
+namespace {
+
+Vec3 spring_of(const SoftContactState& state) { return {state[0], state[1], state[2]}; }
+void store_spring(SoftContactState& state, const Vec3& spring_m) { state = {spring_m.x(), spring_m.y(), spring_m.z()}; }
+
+}  // namespace
+
+void soft_turn_state(const SoftPair& /*p*/, SoftContactState& state, const Vec3& n) {
+    const Vec3 spring = spring_of(state);
+    const double length = spring.norm();
+    if (!(length > 0.0)) return store_spring(state, Vec3::Zero());
+    const Vec3 s = spring - spring.dot(n) * n;
+    const double in_plane = s.norm();
+    store_spring(state, in_plane > 0.0 ? Vec3(s * (length / in_plane)) : Vec3(Vec3::Zero()));
+}
+
+Vec3 soft_tangential_force(const SoftPair& p, double delta_m, double normal_force_n, const Vec3& v_t, const Vec3& slip_m,
+                           SoftContactState& state) {
+    Vec3 spring = spring_of(state);
+    Vec3 force = Vec3::Zero();
     switch (p.family) {
-        case SoftFamily::hertz_mindlin: return mindlin_tangential_force(p, delta_m, normal_force_n, v_t, slip_m, spring_m);
-        case SoftFamily::linear_spring_dashpot: return linear_tangential_force(p, normal_force_n, v_t, slip_m, spring_m);
+        case SoftFamily::hertz_mindlin: force = mindlin_tangential_force(p, delta_m, normal_force_n, v_t, slip_m, spring); break;
+        case SoftFamily::linear_spring_dashpot: force = linear_tangential_force(p, normal_force_n, v_t, slip_m, spring); break;
     }
-    return Vec3::Zero();
+    store_spring(state, spring);
+    return force;
 }
 
 double soft_elastic_energy(const SoftPair& p, double delta_m) {

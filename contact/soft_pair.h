@@ -7,6 +7,9 @@
 // its law file and its registration (law_registry.cpp): nothing in the engine changes.
 #pragma once
 
+#include <array>
+#include <cstddef>
+
 #include "common/vec.h"
 
 namespace peensim::contact {
@@ -46,11 +49,24 @@ SoftForceShape soft_force_shape(const SoftPair& p);
 // restitution (the caller decides).
 double soft_normal_force(const SoftPair& p, double delta_m, double delta_rate_m_per_s);
 
-// N, the tangential force on body a (opposing the slip) and the spring's new extension (m): the
-// spring extended by slip_m (this step's elastic slip), the damping acting on v_t (m/s, of a
-// against b, in the contact plane), at overlap delta (m) under normal force f_n (N); capped at
-// friction f_n (the spring then shortened to match: a slider).
-Vec3 soft_tangential_force(const SoftPair& p, double delta_m, double normal_force_n, const Vec3& v_t, const Vec3& slip_m, Vec3& spring_m);
+// What a soft contact remembers while it lasts, as its law's per-contact state (the same mechanism
+// as SurfaceLaw::state_per_contact: the law declares it, the engine keeps it with the contact and
+// in the checkpoint, zeros when the contact begins, and never reads it). Both families keep their
+// tangential spring (m, world) there.
+inline constexpr std::size_t kSoftStatePerContact = 3;
+using SoftContactState = std::array<double, kSoftStatePerContact>;
+
+// The state of a contact whose normal is now n (unit, world): the spring carried onto the new
+// tangent plane, its length kept (LIGGGHTS's rotation of the shear history), so a contact that
+// rolls or turns keeps its elastic slip.
+void soft_turn_state(const SoftPair& p, SoftContactState& state, const Vec3& n);
+
+// N, the tangential force on body a (opposing the slip), the state's spring extended by slip_m
+// (this step's elastic slip), the damping acting on v_t (m/s, of a against b, in the contact
+// plane), at overlap delta (m) under normal force f_n (N); capped at friction f_n (the spring then
+// shortened to match: a slider).
+Vec3 soft_tangential_force(const SoftPair& p, double delta_m, double normal_force_n, const Vec3& v_t, const Vec3& slip_m,
+                           SoftContactState& state);
 
 // J, the elastic energy stored at overlap delta (m).
 double soft_elastic_energy(const SoftPair& p, double delta_m);

@@ -67,7 +67,7 @@ void soft_contact_fields(Contact& k, Fields& f) {
     f.value("shot", k.shot, 7);
     f.value("partner", k.partner, 7);
     f.value("component", k.component, 7);
-    f.value("spring_m", k.spring_m, 7);
+    f.value("law_state", k.law_state, 7);
     f.value("normal", k.normal, 7);
     f.value("approach_m_per_s", k.approach_m_per_s, 7);
     f.value("start_time_s", k.start_time_s, 7);

@@ -5,6 +5,7 @@
 // that exists) is checked by check_resumable.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <concepts>
@@ -69,6 +70,10 @@ public:
 
 private:
     static bool finite(const Vec3& v) { return v.allFinite(); }
+    template <std::size_t N>
+    static bool finite(const std::array<double, N>& v) {
+        return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+    }
     template <class T>
     static bool finite(const T& v) {
         if constexpr (std::is_floating_point_v<T>)

@@ -17,16 +17,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMinStep = 1e-12;  // s, a step is never shorter (time always moves on)
 
-// The spring carried onto the tangent plane of normal n, its length kept (LIGGGHTS's rotation of
-// the shear history): a contact that rolls or turns keeps its elastic slip.
-Vec3 onto_plane(const Vec3& spring, const Vec3& n) {
-    const double length = spring.norm();
-    if (!(length > 0.0)) return Vec3::Zero();
-    const Vec3 s = spring - spring.dot(n) * n;
-    const double in_plane = s.norm();
-    return in_plane > 0.0 ? Vec3(s * (length / in_plane)) : Vec3(Vec3::Zero());
-}
-
 // m/s, the normal approach speed of a contact first seen now at overlap delta_m (m), closing at
 // rate_m_per_s (m/s): the approach at the step's start (approach_before, m/s) when it touched
 // already then (a touch found exactly: the shot joined there), else the speed that carries the
@@ -581,7 +571,7 @@ int SoftPool::continue_or_begin(int before, const SoftContact& key, double t, do
     Live l;
     l.c = key;
     l.c.approach_m_per_s = approach_now;
-    l.c.spring_m = Vec3::Zero();
+    l.c.law_state = {};
     const contact::SoftLaw* law =
         key.partner >= 0 ? model_->shot_shot_law->soft() : model_->components[static_cast<std::size_t>(key.component)].law->soft();
     l.pair = law->contact(approach_now);
@@ -670,9 +660,8 @@ void SoftPool::wall_contacts(int m, double t, double spring_dt, SimulationState&
             l.b = -1;
             // Its normal force here caps the tangential one (the normal kicks take it along its path).
             const double fn = contact::soft_normal_force(l.pair, delta, rate);
-            Vec3 spring = onto_plane(l.c.spring_m, n);
-            const Vec3 ft = contact::soft_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), spring);
-            l.c.spring_m = spring;
+            contact::soft_turn_state(l.pair, l.c.law_state, n);
+            const Vec3 ft = contact::soft_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), l.c.law_state);
             l.c.normal = n;
             l.delta_m = delta;
             l.point_m = q;
@@ -766,9 +755,8 @@ void SoftPool::shot_contacts(double t, double spring_dt) {
             l.b = mb;
             // Its normal force here caps the tangential one (the normal kicks take it along its path).
             const double fn = contact::soft_normal_force(l.pair, delta, rate);
-            Vec3 spring = onto_plane(l.c.spring_m, n);
-            const Vec3 ft = contact::soft_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), spring);  // on A
-            l.c.spring_m = spring;
+            contact::soft_turn_state(l.pair, l.c.law_state, n);
+            const Vec3 ft = contact::soft_tangential_force(l.pair, delta, fn, vt, Vec3(slip * spring_step), l.c.law_state);  // on A
             l.c.normal = -n;  // from the partner towards the shot
             l.delta_m = delta;
             l.point_m = A.p + arm * n;

@@ -46,7 +46,7 @@ Checkpoint everything_set() {
     s.law_state = {{0.5, 0.25}, {}};
     s.contacts.restore(15, {{{1, 0}, {16, {0.125}}}});
     SoftContact soft;
-    soft.shot = 0, soft.partner = 1, soft.component = -1, soft.spring_m = Vec3(1e-6, 0, 0), soft.normal = Vec3(0, 1, 0);
+    soft.shot = 0, soft.partner = 1, soft.component = -1, soft.law_state = {1e-6, 0, 0}, soft.normal = Vec3(0, 1, 0);
     soft.approach_m_per_s = 1.25, soft.start_time_s = 1.5, soft.mesh_triangle = 17, soft.start_point_m = Vec3(1, 2, 3);
     soft.start_velocity_m_per_s = Vec3(4, 5, 6), soft.start_tangential_m_per_s = 0.75;
     s.soft_contacts = {soft};
@@ -103,6 +103,7 @@ TEST(CheckpointFields, EveryFieldRoundTrips) {
     EXPECT_EQ(back.state.lost[0].radius_m, 1e-3);
     EXPECT_EQ(back.state.lost[0].cause, LossCause::leak);
     EXPECT_EQ(back.state.soft_contacts[0].start_velocity_m_per_s, Vec3(4, 5, 6));
+    EXPECT_EQ(back.state.soft_contacts[0].law_state, c.state.soft_contacts[0].law_state);
     EXPECT_EQ(back.state.first_search_fallback.position_m, Vec3(4, 4, 4));
     EXPECT_EQ(back.state.contacts.entries().at({1, 0}).values, std::vector<double>{0.125});
     EXPECT_EQ(back.state.contacts.resolutions(), 15u);
@@ -134,7 +135,7 @@ TEST(CheckpointFields, NamesAreUniqueAndTheVersionIsTheLatestField) {
         latest = std::max(latest, f.since);
     }
     EXPECT_EQ(latest, kSavedStateVersion);
-    for (const char* name : {"time.hi", "shots.size_class", "health.search_fallbacks", "lost[].radius_m", "soft_contacts[].spring_m",
+    for (const char* name : {"time.hi", "shots.size_class", "health.search_fallbacks", "lost[].radius_m", "soft_contacts[].law_state",
                              "law_state[].values", "normal_speeds[].histogram", "contacts", "wall_time_s"})
         EXPECT_TRUE(seen.count(name)) << name;
 }
