@@ -7,22 +7,19 @@
 namespace peensim {
 
 std::optional<Emission> HopperSource::emission(std::uint64_t k, unsigned attempt) const {
+    const std::optional<double> t = emission_time(spec_.plan, k);
+    if (!t) return std::nullopt;
     Emission e;
-    e.time_s = emission_time(spec_.start_s, spec_.rate_per_s, k);
-    if (!(e.time_s < spec_.stop_s)) return std::nullopt;
-    Random rng(emission_stream(spec_.seed, spec_.index, k, attempt));
+    e.time_s = *t;
+    Random rng(emission_stream(spec_.plan, k, attempt));
     for (int a = 0; a < 3; ++a) e.position_m[a] = spec_.opening_lo_m[a] + rng.uniform() * (spec_.opening_hi_m[a] - spec_.opening_lo_m[a]);
     e.velocity_m_per_s = Vec3::Zero();  // dropped: gravity does the rest
-    e.size = emission_size(spec_.seed, spec_.index, k, spec_.size_count_fraction);
+    e.size = emission_size(spec_.plan, k);
     return e;
 }
 
 SourceOutline HopperSource::outline() const {
-    SourceOutline o;
-    o.kind = "hopper";
-    o.rate_per_s = spec_.rate_per_s;
-    o.start_s = spec_.start_s;
-    o.stop_s = spec_.stop_s;
+    SourceOutline o = outline_of(spec_.plan, "hopper");
     o.fastest_speed_m_per_s = 0.0;
     o.start_lo_m = spec_.opening_lo_m;
     o.start_hi_m = spec_.opening_hi_m;

@@ -18,10 +18,11 @@ NozzleSource::NozzleSource(const NozzleSpec& spec) : spec_(spec) {
 }
 
 std::optional<Emission> NozzleSource::emission(std::uint64_t k, unsigned attempt) const {
+    const std::optional<double> t = emission_time(spec_.plan, k);
+    if (!t) return std::nullopt;
     Emission e;
-    e.time_s = emission_time(spec_.start_s, spec_.rate_per_s, k);
-    if (!(e.time_s < spec_.stop_s)) return std::nullopt;
-    Random rng(emission_stream(spec_.seed, spec_.index, k, attempt));
+    e.time_s = *t;
+    Random rng(emission_stream(spec_.plan, k, attempt));
     const double r = spec_.exit_radius_m * std::sqrt(rng.uniform());  // uniform over the disc
     const double phi = 2.0 * M_PI * rng.uniform();
     e.position_m = spec_.position_m + r * (std::cos(phi) * e1_ + std::sin(phi) * e2_);
@@ -32,16 +33,12 @@ std::optional<Emission> NozzleSource::emission(std::uint64_t k, unsigned attempt
     const Vec3 dir = cos_theta * spec_.direction + sin_theta * (std::cos(psi) * e1_ + std::sin(psi) * e2_);
     const double speed = spec_.speed_m_per_s * (1.0 + spec_.speed_spread * (2.0 * rng.uniform() - 1.0));
     e.velocity_m_per_s = speed * dir;
-    e.size = emission_size(spec_.seed, spec_.index, k, spec_.size_count_fraction);
+    e.size = emission_size(spec_.plan, k);
     return e;
 }
 
 SourceOutline NozzleSource::outline() const {
-    SourceOutline o;
-    o.kind = "nozzle";
-    o.rate_per_s = spec_.rate_per_s;
-    o.start_s = spec_.start_s;
-    o.stop_s = spec_.stop_s;
+    SourceOutline o = outline_of(spec_.plan, "nozzle");
     o.fastest_speed_m_per_s = spec_.speed_m_per_s * (1.0 + spec_.speed_spread);
     o.start_lo_m = spec_.position_m - Vec3::Constant(spec_.exit_radius_m);
     o.start_hi_m = spec_.position_m + Vec3::Constant(spec_.exit_radius_m);

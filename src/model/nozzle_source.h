@@ -1,38 +1,28 @@
 // A nozzle (conventional peening): shot leave a disc of radius `exit_radius_m` centred on
 // `position_m`, facing `direction`, at speeds uniform in `speed` (1 +- `speed_spread`), in
 // directions uniform over the cone of half-angle `spread_rad` about `direction`, at points uniform
-// over the disc; `rate_per_s` shot per second from `start_s` until `stop_s` (s, absolute),
-// emission k at start + k / rate.
+// over the disc, as its plan says when (model/emission_draw.h).
 #pragma once
 
-#include <string>
-#include <vector>
-
+#include "model/emission_draw.h"
 #include "model/shot_flow.h"
 
 namespace peensim {
 
 struct NozzleSpec {
-    std::string name;
+    EmissionPlan plan;
     Vec3 position_m = Vec3::Zero();
     Vec3 direction = -Vec3::UnitZ();  // unit
     double exit_radius_m = 0.0;
     double speed_m_per_s = 0.0;  // m/s, the mean exit speed v0
     double speed_spread = 0.0;   // -, exit speeds uniform in v0 (1 +- speed_spread)
     double spread_rad = 0.0;
-    double rate_per_s = 0.0;
-    double start_s = 0.0;
-    double stop_s = 0.0;
-    std::uint64_t seed = 1;  // the scene's seed (mixed with the source's index)
-    int index = 0;           // the source's place in the scene
-    // -, the count share of each shot size (Model::size_count_fraction); empty for one size.
-    std::vector<double> size_count_fraction;
 };
 
 class NozzleSource final : public ShotSource {
 public:
     explicit NozzleSource(const NozzleSpec& spec);
-    const std::string& name() const override { return spec_.name; }
+    const std::string& name() const override { return spec_.plan.name; }
     std::optional<Emission> emission(std::uint64_t k, unsigned attempt = 0) const override;
     SourceOutline outline() const override;
     const NozzleSpec& spec() const { return spec_; }

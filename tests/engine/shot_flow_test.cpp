@@ -58,15 +58,15 @@ TEST(BoxEntry, FirstTimeOutsideIsExact) {
 
 TEST(NozzleSource, EmissionsAreEvenlyTimedOnTheDiscInTheConeAndTheSameEveryTime) {
     NozzleSpec spec;
-    spec.name = "n";
+    spec.plan.name = "n";
     spec.position_m = Vec3(0.01, -0.02, 0.05);
     spec.direction = Vec3(1, 1, -1).normalized();
     spec.exit_radius_m = 3e-3;
     spec.speed_m_per_s = 60.0;
     spec.spread_rad = 5.0 * M_PI / 180.0;
-    spec.rate_per_s = 1000.0;
-    spec.start_s = 0.25;
-    spec.stop_s = 10.25;
+    spec.plan.rate_per_s = 1000.0;
+    spec.plan.start_s = 0.25;
+    spec.plan.stop_s = 10.25;
     const NozzleSource source(spec);
     double r2_sum = 0.0, cos_sum = 0.0;
     const int n = 10000;
@@ -97,11 +97,11 @@ TEST(NozzleSource, EmissionsAreEvenlyTimedOnTheDiscInTheConeAndTheSameEveryTime)
 // (v0 spread)^2 / 3 within 4 standard errors of 20,000 draws; the directions unchanged by it.
 TEST(NozzleSource, ExitSpeedsAreUniformOverTheSpread) {
     NozzleSpec spec;
-    spec.name = "n";
+    spec.plan.name = "n";
     spec.speed_m_per_s = 100.0;
     spec.speed_spread = 0.05;
-    spec.rate_per_s = 1000.0;
-    spec.stop_s = 100.0;
+    spec.plan.rate_per_s = 1000.0;
+    spec.plan.stop_s = 100.0;
     const NozzleSource source(spec);
     const int n = 20000;
     double sum = 0.0, sum2 = 0.0;

@@ -28,12 +28,12 @@ namespace fs = std::filesystem;
 
 TEST(HopperSource, DropsEvenlyTimedShotAtRestUniformlyOverItsOpening) {
     HopperSpec spec;
-    spec.name = "feed";
+    spec.plan.name = "feed";
     spec.opening_lo_m = Vec3(-0.01, 0.002, 0.05);
     spec.opening_hi_m = Vec3(0.01, 0.006, 0.05);  // flat in z: an opening in a plane
-    spec.rate_per_s = 500.0;
-    spec.start_s = 0.1;
-    spec.stop_s = 10.1;
+    spec.plan.rate_per_s = 500.0;
+    spec.plan.start_s = 0.1;
+    spec.plan.stop_s = 10.1;
     const HopperSource hopper(spec);
     const int n = 5000;
     Vec3 sum = Vec3::Zero();
