@@ -57,8 +57,9 @@ inline constexpr std::size_t kSoftStatePerContact = 3;
 using SoftContactState = std::array<double, kSoftStatePerContact>;
 
 // The state of a contact whose normal is now n (unit, world): the spring carried onto the new
-// tangent plane, its length kept (LIGGGHTS's rotation of the shear history), so a contact that
-// rolls or turns keeps its elastic slip.
+// tangent plane, its length kept, so a contact that rolls or turns keeps its elastic slip.
+// (LIGGGHTS 3.8's `tangential history` projects it without restoring the length: shorter by
+// 1 - cos of the turn per step, second order in it.)
 void soft_turn_state(const SoftPair& p, SoftContactState& state, const Vec3& n);
 
 // N, the tangential force on body a (opposing the slip), the state's spring extended by slip_m
