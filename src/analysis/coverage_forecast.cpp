@@ -726,6 +726,34 @@ std::vector<bool> batches_in_use(std::span<const ForecastImpact> impacts, int ba
     return used;
 }
 
+// The drift of the dent-area rate over the used batches: a least-squares line through them (its
+// standard error from their scatter about it, so an overdispersed rate is not called a drift).
+struct RateDrift {
+    double change = 0.0;  // -, fitted last used batch over first, less one, relative to the mean
+    bool significant = false;
+};
+RateDrift rate_drift(std::span<const ForecastImpact> impacts, int batches, const std::vector<bool>& used) {
+    std::vector<double> dent(static_cast<std::size_t>(batches), 0.0);
+    for (const ForecastImpact& i : impacts) dent[i.batch] += i.dent_area_m2;
+    std::vector<double> x, y;
+    for (int b = 0; b < batches; ++b)
+        if (used[static_cast<std::size_t>(b)]) x.push_back(b), y.push_back(dent[static_cast<std::size_t>(b)]);
+    const double n = static_cast<double>(x.size());
+    if (x.size() < 4) return {};
+    const double mx = std::accumulate(x.begin(), x.end(), 0.0) / n, my = std::accumulate(y.begin(), y.end(), 0.0) / n;
+    double sxx = 0.0, sxy = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) sxx += (x[k] - mx) * (x[k] - mx), sxy += (x[k] - mx) * (y[k] - my);
+    if (!(sxx > 0.0) || !(my > 0.0)) return {};
+    const double slope = sxy / sxx;
+    double ssr = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) ssr += std::pow(y[k] - (my + slope * (x[k] - mx)), 2);
+    const double se = std::sqrt(ssr / (n - 2.0) / sxx);
+    RateDrift d;
+    d.change = slope * (x.back() - x.front()) / my;
+    d.significant = se > 0.0 ? std::abs(slope) > kDriftSigmas * se : slope != 0.0;
+    return d;
+}
+
 // The latest of several crossing times, each normal (mean, sd; s) and independent: its mean and
 // standard deviation by draws (a fixed seed: the same answer every time). Areas far earlier than
 // the latest (beyond 6 sd) cannot be last and are skipped.
@@ -865,6 +893,9 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
     const int used_count = static_cast<int>(std::count(used.begin(), used.end(), true));
     const double rate_window = window_s * used_count / batches;
     f.summary.startup_left_out = startup;
+    const RateDrift drift = rate_drift(impacts, batches, used);
+    f.summary.rate_change = drift.change;
+    f.summary.rate_drifts = drift.significant;
     f.summary.batches = used_count;
     f.summary.rate_window_s = rate_window;
 

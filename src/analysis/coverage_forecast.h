@@ -92,9 +92,13 @@
 
 namespace peensim {
 
-inline constexpr double kForecastKappaBound = 0.5;      // q: s kappa_i stays below it for 99 % of impacts
-inline constexpr double kForecastDentQuantile = 0.99;   // the dent area a_q that sets h
-inline constexpr double kStartupSigmas = 4.0;           // a first batch this far off the others is a start-up
+inline constexpr double kForecastKappaBound = 0.5;     // q: s kappa_i stays below it for 99 % of impacts
+inline constexpr double kForecastDentQuantile = 0.99;  // the dent area a_q that sets h
+inline constexpr double kStartupSigmas = 4.0;          // a first batch this far off the others is a start-up
+// A line through the used batches' dent areas whose slope is this many of its standard errors from
+// flat: the rate drifts within the window (a load that grows or settles), which the forecast, taking
+// the window's mean rate for all time to come, does not model; the report says so.
+inline constexpr double kDriftSigmas = 4.0;
 inline constexpr double kTooShortFactor = 2.0;          // upper end / estimate beyond which no number is given
 inline constexpr double kForecastCellsPerRadius = 4.0;  // cells of side h / 4 carry the kernel sums
 inline constexpr int kEdgeBands = 8;                    // bands of distance to an edge line per largest dent radius
@@ -132,10 +136,14 @@ struct AreaForecast {
 const char* status_name(AreaForecast::Status s);
 
 struct ForecastSummary {
-    double radius_m = 0.0;           // h
-    double window_s = 0.0;           // the analysed window's length
-    double rate_window_s = 0.0;      // the part of it the rates come from (without a start-up batch)
-    bool startup_left_out = false;   // the first batch was a start-up transient
+    double radius_m = 0.0;          // h
+    double window_s = 0.0;          // the analysed window's length
+    double rate_window_s = 0.0;     // the part of it the rates come from (without a start-up batch)
+    bool startup_left_out = false;  // the first batch was a start-up transient
+    // -, the impact (dent area) rate's fitted change from the first used batch to the last, over its
+    // mean; `rate_drifts`: that slope stands kDriftSigmas standard errors from flat.
+    double rate_change = 0.0;
+    bool rate_drifts = false;
     int batches = 0;                 // batches the rates come from
     std::uint64_t face_impacts = 0;  // impacts on faces (the areal rates)
     std::uint64_t edge_impacts = 0;  // impacts on edges (the rates along edge lines, see above)

@@ -130,8 +130,10 @@ double exact_time(const Peening& p, int only = -1) {
 }
 
 // Peens for `window` s (a start-up burst of `burst` x the rate in the first tenth) and forecasts.
+// `burst`: the first batch's rate over the others'; `growth`: the rate grows linearly by this share of
+// itself from the first batch to the last.
 CoverageForecast peen_and_forecast(const Peening& p, const RegionSet& regions, double window, std::uint64_t seed, double burst = 1.0,
-                                   const ReachTest& reach = kEverywhere) {
+                                   const ReachTest& reach = kEverywhere, double growth = 0.0) {
     const double diameter = 2.0 * std::sqrt(p.dent_area / M_PI);
     auto progress = progress_of(p.cube, regions, reach, diameter / 5.0, diameter);
     Random rng(seed);
@@ -143,7 +145,8 @@ CoverageForecast peen_and_forecast(const Peening& p, const RegionSet& regions, d
         const double sign = f % 2 == 0 ? -1.0 : 1.0;
         for (int b = 0; b < batches; ++b) {
             // Poisson count per batch: exponential gaps.
-            const double length = window / batches, rate = p.rate[static_cast<std::size_t>(f)] * p.side * p.side * (b == 0 ? burst : 1.0);
+            const double length = window / batches, rate = p.rate[static_cast<std::size_t>(f)] * p.side * p.side * (b == 0 ? burst : 1.0) *
+                                                           (1.0 + growth * b / (batches - 1.0));
             for (double t = -std::log(1.0 - rng.uniform()) / rate; t < length; t += -std::log(1.0 - rng.uniform()) / rate) {
                 Vec3 x;
                 x[axis] = sign * half;
@@ -203,6 +206,7 @@ TEST(CoverageForecast, AnEvenRateGivesTheExactTimeWithinItsInterval) {
         // Without regions, everywhere is the whole peened area.
         EXPECT_EQ(f.everywhere.time_s, f.whole.time_s);
         EXPECT_FALSE(f.summary.startup_left_out);
+        EXPECT_FALSE(f.summary.rate_drifts) << seed << ": " << f.summary.rate_change;
     }
     EXPECT_GE(inside, seeds - 2) << "the 95 % interval must contain the exact time about 95 % of the time";
     // On average unbiased: the estimator's series is long enough that its truncation does not show
@@ -376,6 +380,23 @@ TEST(CoverageForecast, AStartUpBurstIsLeftOutOfTheRates) {
     // The burst's extra dents (2x the rate for 1 s) are on the map: 2 s of peening saved.
     const double exact = exact_time(p) - 2.0;
     EXPECT_NEAR(f.whole.time_s, exact, 0.1 * exact);
+}
+
+// A rate that doubles over the window (a load that grows) is said to drift, with its fitted change
+// (+100 % of the first batch's rate, over the mean 1.5x it: +67 %); an even one, over 12 seeds (in
+// AnEvenRate...), is not.
+TEST(CoverageForecast, ADriftingRateIsSaidAnEvenOneIsNot) {
+    const double rate = 0.01 / (M_PI * 0.125e-3 * 0.125e-3);
+    const Peening p = cube_peening(std::vector<double>(6, rate));
+    const RegionSet none(p.cube, {});
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const CoverageForecast grows = peen_and_forecast(p, none, 10.0, seed, 1.0, kEverywhere, 1.0);
+        EXPECT_TRUE(grows.summary.rate_drifts) << seed;
+        EXPECT_NEAR(grows.summary.rate_change, 2.0 / 3.0, 0.1) << seed;
+        const CoverageForecast settles = peen_and_forecast(p, none, 10.0, seed, 1.0, kEverywhere, -0.5);
+        EXPECT_TRUE(settles.summary.rate_drifts) << seed;
+        EXPECT_LT(settles.summary.rate_change, -0.4) << seed;
+    }
 }
 
 TEST(CoverageForecast, TooFewImpactsIsTooShortToSayAndSaysHowLongToRun) {

@@ -70,6 +70,8 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, c
             o["forecast"] = {{"radius_m", number(f.radius_m > 0.0 ? f.radius_m : NAN)},
                              {"rate_window_s", f.rate_window_s},
                              {"startup_left_out", f.startup_left_out},
+                             {"rate_change", f.rate_change},
+                             {"rate_drifts", f.rate_drifts},
                              {"face_impacts", f.face_impacts},
                              {"edge_impacts", f.edge_impacts},
                              {"edge_lines", f.edge_lines}};

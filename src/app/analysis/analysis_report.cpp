@@ -143,6 +143,12 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
             r << "; " << fmt(areas.excluded_m2 * 1e6) << " mm2 (" << percent(areas.excluded_m2 / areas.total_m2, 2) << ") excluded";
         r << "). " << percent(share_below(c, target)) << " of the peened area is below " << goal << ".\n";
         r << "- **Time to " << goal << "** (the whole peened area): " << forecast_sentence(w, analysed, x) << "\n";
+        if (const ForecastSummary& fs = c.forecast.summary; fs.rate_drifts)
+            r << "- **The impact rate drifted during the window:** " << (fs.rate_change > 0.0 ? "+" : "") << percent(fs.rate_change, 2)
+              << " from its first batch to its last (a load that grows, as a source feeding a closed chamber, or settles). The "
+                 "forecasts take the window's mean rate for all the time to come: with a rising rate they are late, with a "
+                 "falling one early. Analyse a window where the rate is steady (`peensim analyze RUN --from ...`), or run to "
+                 "the target (`--until-coverage`).\n";
         const Everywhere e = everywhere(c);
         if (c.regions.empty()) {
             r << "- **Everywhere: not known.** The part has no regions, and a whole-part time hides its least-peened places (on "
