@@ -118,7 +118,7 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
                                 (emitted > 0 ? " (and up to " + std::to_string(emitted) + " emitted)" : std::string()) + ", got " +
                                 std::to_string(n));
     // Every list's length and every number, from the field list.
-    std::array<std::size_t, 7> lengths{};
+    ExtentLengths lengths{};
     lengths[static_cast<std::size_t>(Extent::shots)] = n;
     lengths[static_cast<std::size_t>(Extent::components)] = model.components.size();
     lengths[static_cast<std::size_t>(Extent::logged_components)] = logged_components;

@@ -22,13 +22,15 @@
 
 namespace peensim {
 
+// Each extent's expected length (Extent::free's unused), indexed by the extent.
+using ExtentLengths = std::array<std::size_t, static_cast<std::size_t>(Extent::free) + 1>;
+
 // Throws std::runtime_error naming the field ("shots.vx: expected 16 values, one per shot, got
 // 15"; "lost[2].where_m: not a number"; "shot 3: shots.x is not a number").
 class FieldChecker {
 public:
-    // Each extent's expected length (Extent::free unused); `active`: the shot slots in use.
-    FieldChecker(const std::array<std::size_t, 7>& lengths, const std::vector<unsigned char>& active)
-        : lengths_(lengths), active_(active) {}
+    // `active`: the shot slots in use.
+    FieldChecker(const ExtentLengths& lengths, const std::vector<unsigned char>& active) : lengths_(lengths), active_(active) {}
 
     template <class T>
     void value(const char* name, const T& v, std::uint32_t) {
@@ -83,8 +85,8 @@ private:
     }
     void check_length(const char* name, std::size_t n, Extent extent) const {
         if (extent == Extent::free) return;
-        static constexpr std::array<const char*, 7> kEach{"shot slot", "component", "logged component", "shot source", "shot sink",
-                                                          "shot size", ""};
+        static constexpr std::array<const char*, std::tuple_size_v<ExtentLengths>> kEach{
+            "shot slot", "component", "logged component", "shot source", "shot sink", "shot size", ""};
         const std::size_t expected = lengths_[static_cast<std::size_t>(extent)];
         if (n != expected)
             fail(name, "expected " + std::to_string(expected) + " values, one per " + kEach[static_cast<std::size_t>(extent)] + ", got " +
@@ -94,7 +96,7 @@ private:
         throw std::runtime_error(prefix_ + name + ": " + problem);
     }
 
-    std::array<std::size_t, 7> lengths_;
+    ExtentLengths lengths_;
     const std::vector<unsigned char>& active_;
     std::string prefix_;
 };
