@@ -14,6 +14,7 @@
 
 #include "engine/impact_record.h"
 #include "engine/simulation_state.h"
+#include "model/assembly_checks.h"
 #include "model/model.h"
 
 namespace peensim {
@@ -58,7 +59,9 @@ struct RenderModule {
                                                 const SimulationState& now);
     int (*render_impacts)(const RenderImpactsOptions& options, std::ostream& out, std::ostream& err);
     // `check --render`: the assembly at t = 0 with the placed shot, into a PNG (throws on failure).
-    void (*draw_assembly)(const Model& model, const SimulationState& start, const std::string& png_path, int width_px, int height_px);
+    // `issues`: those naming a point (at_m) are marked there, numbered as the picture lists them.
+    void (*draw_assembly)(const Model& model, const SimulationState& start, const std::vector<AssemblyIssue>& issues,
+                          const std::string& png_path, int width_px, int height_px);
     int (*render_regions)(const RenderRegionsOptions& options, std::ostream& out, std::ostream& err);
     // The analysis' picture of one region of component `ci`: the triangles with weight[t] >= 0.5
     // highlighted and named `label`, the rest in grey, darkened by the share no shot reaches (reach);

@@ -1,4 +1,4 @@
-// The `peensim` command line: run, check, analyze, render-impacts, render-regions, sweep, bench, trade, export-fem,
+// The `peensim` command line: run, check, new, analyze, render-impacts, render-regions, sweep, bench, trade, export-fem,
 // almen-fit, generate, schema.
 #include <CLI/CLI.hpp>
 
@@ -10,6 +10,7 @@
 #include "app/bench/trade_job.h"
 #include "app/check/check_job.h"
 #include "app/fem/export_fem_job.h"
+#include "app/new_scene/new_scene_job.h"
 #include "app/render_module.h"
 #include "app/run/run_job.h"
 #include "app/sweep/sweep_job.h"
@@ -152,6 +153,18 @@ int main(int argc, char** argv) {
     generate_cmd->prefix_command();
     generate_cmd->set_help_flag();
 
+    NewSceneOptions new_scene;
+    auto* new_cmd = app.add_subcommand(
+        "new", "write a ready scene around your part: a chamber and a sonotrode sized for it, shot, regions (prints what it chose)");
+    new_cmd->add_option("part", new_scene.part_path, "the part's mesh file (STL, OBJ, PLY)")->required();
+    new_cmd->add_option("--unit", new_scene.unit, "the part file's length unit: mm, cm, m, um or in")->default_str("mm");
+    new_cmd->add_option("--rotate-about", new_scene.rotate_about, "turn the part about its own x, y or z axis through its centre");
+    new_cmd->add_option("--rpm", new_scene.rpm, "the turning speed (rev/min), with --rotate-about");
+    new_cmd->add_option("--material", new_scene.material, "the part's material: steel, aluminium or titanium")->default_str("steel");
+    new_cmd->add_option("--shot-diameter", new_scene.shot_diameter, "the shot's diameter (mm, or with a unit)")->default_str("2 mm");
+    new_cmd->add_option("-o,--output", new_scene.scene_path, "the scene file to write (default: <part's name>.yaml here)");
+    new_cmd->add_flag("--force", new_scene.force, "write over the files of an earlier `new` of the same name");
+
     TradeOptions trade;
     auto* trade_cmd = app.add_subcommand("trade",
                                          "the speed/accuracy trade: every accuracy knob (rigid event, time step, soft resolution and "
@@ -279,6 +292,10 @@ int main(int argc, char** argv) {
     }
     if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
     if (*trade_cmd) return trade_job(trade, std::cout, std::cerr);
+    if (*new_cmd) {
+        for (int i = 0; i < argc; ++i) new_scene.command_line += (i == 0 ? std::string("peensim") : " " + std::string(argv[i]));
+        return new_scene_job(new_scene, std::cout, std::cerr);
+    }
     if (*fem_cmd) {
         if (fem_impacts_option->count() > 0) fem.max_impacts = fem_impacts;
         return export_fem_job(fem, std::cout, std::cerr);

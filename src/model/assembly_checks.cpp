@@ -256,11 +256,36 @@ bool hits_swept(const Component& f, const Vec3& offset, const SweptProfile& s, c
     return false;
 }
 
-void add(AssemblyReport& r, const Model& m, std::size_t i, bool error, std::string field_suffix, std::string message) {
+void add(AssemblyReport& r, const Model& m, std::size_t i, bool error, std::string field_suffix, std::string message,
+         std::optional<Vec3> at = std::nullopt) {
     // Named as the user knows it: the field path says where in the file, the name which part.
     const ComponentDesc& d = m.description.components[i];
     r.issues.push_back(
-        {error, d.where, component_field(i) + field_suffix, std::string(role_name(d.role)) + " '" + d.name + "': " + message});
+        {error, d.where, component_field(i) + field_suffix, std::string(role_name(d.role)) + " '" + d.name + "': " + message, at});
+}
+
+// The mesh's bounds as placed at t = 0, and a turning part's swept solid's: a vertex at radius rho
+// from the axis (unit u) sweeps a circle that reaches rho sqrt(1 - u_k^2) either way along world
+// axis k from its centre.
+void rest_and_swept_bounds(const Component& c, ComponentFacts& facts) {
+    const Pose pose = c.kinematics.rest;
+    const bool turning = c.kinematics.kind == Kinematics::Kind::rotating;
+    const Vec3& p = c.kinematics.axis_point_m;
+    const Vec3& u = c.kinematics.axis_direction;
+    const Vec3 reach = (Vec3::Ones() - u.cwiseProduct(u)).cwiseMax(0.0).cwiseSqrt();
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo, swept_lo = lo, swept_hi = hi;
+    double radius = 0.0;
+    for (const Vec3& v : c.mesh->vertices) {
+        const Vec3 w = pose.to_world(v);
+        lo = lo.cwiseMin(w), hi = hi.cwiseMax(w);
+        if (!turning) continue;
+        const Vec3 centre = p + u.dot(w - p) * u;
+        const double rho = (w - centre).norm();
+        radius = std::max(radius, rho);
+        swept_lo = swept_lo.cwiseMin(centre - rho * reach), swept_hi = swept_hi.cwiseMax(centre + rho * reach);
+    }
+    facts.rest_lo = lo, facts.rest_hi = hi;
+    if (turning) facts.swept_lo = swept_lo, facts.swept_hi = swept_hi, facts.swept_radius_m = radius;
 }
 
 }  // namespace
@@ -290,6 +315,7 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
         ComponentFacts facts;
         facts.lo = c.world_lo;
         facts.hi = c.world_hi;
+        rest_and_swept_bounds(c, facts);
         facts.triangles = c.mesh->triangle_count();
         facts.closed = is_closed(*c.mesh);
         if (c.mesh->dropped_degenerate_facets > 0)
@@ -352,23 +378,27 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
                     add(report, m, i, true, "",
                         "intersects the sonotrode" + std::string(sonotrodes.size() > 1 ? " " + label(m, k) : "") +
                             std::string(offset.isZero() ? "" : " within its vibration travel (+-A0)") + " near " + mm_point(at) + "; " +
-                            where.str() + ": move it clear of the sonotrode's face");
+                            where.str() + ": move it clear of the sonotrode's face",
+                        at);
                     break;
                 }
         }
         for (std::size_t j = i + 1; j < n; ++j)
             if (is_solid_role(m.components[j].role) && meshes_cross(c, Vec3::Zero(), m.components[j], Vec3::Zero(), at))
-                add(report, m, i, true, "", "intersects " + label(m, j) + " near " + mm_point(at) + ": components may touch, not overlap");
+                add(report, m, i, true, "", "intersects " + label(m, j) + " near " + mm_point(at) + ": components may touch, not overlap",
+                    at);
         for (std::size_t j = 0; j < n; ++j)
             if (m.components[j].role == ComponentRole::chamber && meshes_cross(c, Vec3::Zero(), m.components[j], Vec3::Zero(), at))
                 add(report, m, i, false, "",
                     "passes through the wall of " + label(m, j) + " near " + mm_point(at) +
-                        " (a shaft through a wall is a real design; if this part was meant to be inside, check its placement)");
+                        " (a shaft through a wall is a real design; if this part was meant to be inside, check its placement)",
+                    at);
         std::size_t open_edges = 0;
         if (cavity && exposed_opening(m, i, *cavity, at, open_edges))
             add(report, m, i, true, ".mesh",
                 "the mesh is open (" + std::to_string(open_edges) + " boundary edges) and shot can reach an opening near " + mm_point(at) +
-                    ": close the mesh (a missing cap?) or seal the opening against a wall");
+                    ": close the mesh (a missing cap?) or seal the opening against a wall",
+                at);
         if (c.kinematics.kind == Kinematics::Kind::rotating && c.kinematics.omega_rad_per_s != 0.0) {
             const SweptProfile profile = swept_profile(c, 0.5 * R);
             for (std::size_t j = 0; j < n; ++j) {
@@ -386,7 +416,8 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
                 if (hit)
                     add(report, m, i, true, ".motion",
                         "turning, it sweeps through " + label(m, j) + " near " + mm_point(at) + " (axis through " +
-                            mm_point(c.kinematics.axis_point_m) + "): check motion.axis_point and axis_direction");
+                            mm_point(c.kinematics.axis_point_m) + "): check motion.axis_point and axis_direction",
+                        at);
             }
         }
     }

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,15 +29,23 @@
 namespace peensim {
 
 struct AssemblyIssue {
-    bool error = true;     // false: a warning (an error with --strict)
-    SourceLocation where;  // the component's entry in the scene file
-    std::string field;     // "components[2]", "components[2].mesh", ...
-    std::string message;   // what is wrong, where (mm), what to check
+    bool error = true;         // false: a warning (an error with --strict)
+    SourceLocation where;      // the component's entry in the scene file
+    std::string field;         // "components[2]", "components[2].mesh", ...
+    std::string message;       // what is wrong, where (mm), what to check
+    std::optional<Vec3> at_m;  // m, world: the point it names (two meshes crossing), marked in the check picture
 };
 
 // What `check` prints about each component.
 struct ComponentFacts {
-    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // m, world bounds at t = 0 (rotating: swept)
+    Vec3 lo = Vec3::Zero(),
+         hi = Vec3::Zero();  // m, world bounds at t = 0 (rotating: a sphere about the axis point holding the swept solid)
+    Vec3 rest_lo = Vec3::Zero(), rest_hi = Vec3::Zero();  // m, the mesh's own world bounds at t = 0, as placed
+    // A turning part: the exact bounds of the solid it sweeps in a turn (each vertex's circle), and
+    // its farthest vertex from the axis (m); NaN for anything else.
+    Vec3 swept_lo = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    Vec3 swept_hi = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    double swept_radius_m = std::numeric_limits<double>::quiet_NaN();
     std::size_t triangles = 0;
     bool closed = false;  // watertight mesh
     // m, nearest distance to the sonotrode at rest less its amplitude, and to the chamber; NaN if

@@ -78,12 +78,12 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     std::vector<AssemblyIssue> out;
     const SceneDescription& scene = m.description;
     auto warn = [&](const SourceLocation& where, std::string field, std::string message) {
-        out.push_back({false, where, std::move(field), std::move(message)});
+        out.push_back({false, where, std::move(field), std::move(message), std::nullopt});
     };
     for (const SceneDescription::Warning& w : scene.warnings) warn(w.where, w.field, w.message);
 
     auto issue = [&](bool error, const SourceLocation& where, std::string field, std::string message) {
-        out.push_back({error, where, std::move(field), std::move(message)});
+        out.push_back({error, where, std::move(field), std::move(message), std::nullopt});
     };
     for (std::size_t k = 0; k < m.components.size(); ++k) {
         if (m.components[k].role == ComponentRole::sonotrode) sonotrode_issues(m, k, warn);

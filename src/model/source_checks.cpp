@@ -47,7 +47,8 @@ std::vector<AssemblyIssue> source_issues(const Model& m) {
                            "the " + o.start_place + " of " + o.kind + " '" + m.sources[s]->name() + "' at " + mm_point(start) +
                                " lies inside '" + c.name + "'" + (inside == Inside::as_it_turns ? " as it turns" : "") +
                                ": every shot would start inside it; expected an " + o.start_place + " in the open (check " + o.start_keys +
-                               ")"});
+                               ")",
+                           start});
         }
     }
     return out;

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <utility>
 
+#include "render/label_layout.h"
+
 namespace peensim::render {
 
 namespace {
@@ -157,12 +159,19 @@ void OverlayLayer::draw(int width, int height, std::span<const std::string> line
     vertices_.clear();
     const float margin = std::round(0.6f * static_cast<float>(atlas_.pixel_height()));
     float baseline = margin + static_cast<float>(atlas_.ascender());
+    float widest = 0.0f;
     for (const std::string& line : lines) {
         add_shadowed_text(margin, baseline, line);
         baseline += static_cast<float>(atlas_.line_height());
+        widest = std::max(widest, static_cast<float>(atlas_.text_width(line)));
     }
     if (bar != nullptr) add_colour_bar(width, height, *bar);
-    for (const Label& label : labels) {
+    // The labels, none over another nor over the text block.
+    const LabelMetrics metrics{[this](const std::string& t) { return static_cast<float>(atlas_.text_width(t)); },
+                               static_cast<float>(atlas_.ascender()), static_cast<float>(atlas_.line_height())};
+    std::vector<LabelBox> taken;
+    if (!lines.empty()) taken.push_back({0.0f, 0.0f, margin + widest + 2.0f, baseline - static_cast<float>(atlas_.line_height()) + margin});
+    for (const Label& label : lay_out_labels(labels, metrics, width, height, std::move(taken))) {
         const float x = std::round(label.x_px - 0.5f * static_cast<float>(atlas_.text_width(label.text)));
         add_text(x + 1.0f, std::round(label.y_px) + 1.0f, label.text, kShadowColour);
         add_text(x, std::round(label.y_px), label.text, label.colour);

@@ -1,5 +1,6 @@
 #include "app/check/check_job.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <optional>
@@ -33,11 +34,19 @@ void print_assembly(const Model& model, const AssemblyReport& report, std::ostre
     for (std::size_t i = 0; i < model.components.size(); ++i) {
         const Component& c = model.components[i];
         const ComponentFacts& f = report.components[i];
-        const Vec3 size = f.hi - f.lo;
+        // As placed at t = 0 (its real size); a turning part's swept solid on a line of its own.
+        const Vec3 size = f.rest_hi - f.rest_lo;
         out << "#   " << std::left << std::setw(14) << c.name << std::setw(10) << role_name(c.role) << std::right << " from ("
-            << mm(f.lo.x()) << ", " << mm(f.lo.y()) << ", " << mm(f.lo.z()) << ") to (" << mm(f.hi.x()) << ", " << mm(f.hi.y()) << ", "
-            << mm(f.hi.z()) << "), size " << mm(size.x()) << " x " << mm(size.y()) << " x " << mm(size.z()) << ", " << f.triangles
-            << " triangles, " << (f.closed ? "closed" : "open") << "\n";
+            << mm(f.rest_lo.x()) << ", " << mm(f.rest_lo.y()) << ", " << mm(f.rest_lo.z()) << ") to (" << mm(f.rest_hi.x()) << ", "
+            << mm(f.rest_hi.y()) << ", " << mm(f.rest_hi.z()) << "), size " << mm(size.x()) << " x " << mm(size.y()) << " x "
+            << mm(size.z()) << ", " << f.triangles << " triangles, " << (f.closed ? "closed" : "open") << "\n";
+        if (std::isfinite(f.swept_radius_m)) {
+            const Vec3 swept = f.swept_hi - f.swept_lo;
+            out << "#   " << std::setw(24) << ""
+                << " swept in a turn: from (" << mm(f.swept_lo.x()) << ", " << mm(f.swept_lo.y()) << ", " << mm(f.swept_lo.z()) << ") to ("
+                << mm(f.swept_hi.x()) << ", " << mm(f.swept_hi.y()) << ", " << mm(f.swept_hi.z()) << "), " << mm(swept.x()) << " x "
+                << mm(swept.y()) << " x " << mm(swept.z()) << ", radius " << mm(f.swept_radius_m) << " about its axis\n";
+        }
         if (std::isfinite(f.reachable_fraction))
             out << "#   " << std::setw(24) << ""
                 << " clearance to the sonotrode (less A0) " << mm(f.clearance_to_sonotrode_m) << ", to the chamber "
@@ -92,18 +101,22 @@ std::size_t check_scene(const std::string& scene_path, const std::optional<std::
     const SceneDescription scene = parse_scene(scene_path, scene_text, overrides);
     const auto model = compile_model(scene);
     // The picture is drawn whatever the checks find: a misplaced part is what it is for.
+    // The issues that name a point (two meshes crossing) are marked in it.
+    std::vector<AssemblyIssue> issues;
     const auto draw = [&](const std::vector<Vec3>& shot_positions, const char* what) {
         if (picture_png.empty()) return;
         SimulationState start;
         start.shots.resize(shot_positions.size());
         for (std::size_t i = 0; i < shot_positions.size(); ++i) start.shots.set_position(i, shot_positions[i]);
-        render_module().draw_assembly(*model, start, picture_png, 1280, 720);
-        out << "# picture of the assembly" << what << ": " << picture_png << "\n";
+        render_module().draw_assembly(*model, start, issues, picture_png, 1280, 720);
+        const auto marked = std::count_if(issues.begin(), issues.end(), [](const AssemblyIssue& i) { return i.at_m.has_value(); });
+        out << "# picture of the assembly" << what << ": " << picture_png
+            << (marked ? " (" + std::to_string(marked) + " point(s) marked where meshes cross)" : std::string()) << "\n";
     };
     std::optional<SetupCheck> setup;
     InitialShots shots;
     try {
-        setup.emplace(check_setup(*model, strict, err));
+        setup.emplace(check_setup(*model, strict, err, &issues));
         if (setup->cavity) shots = place_shots(*model, *setup->cavity, setup->rng);
     } catch (const InputError&) {
         draw({}, " (without shot: the setup has an error)");

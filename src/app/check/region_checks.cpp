@@ -22,7 +22,8 @@ std::vector<AssemblyIssue> region_issues(const Model& model) {
             out.push_back({false, regions.entry(r).where, component_field(i) + ".regions[" + regions.name(r) + "]",
                            "region '" + regions.name(r) + "' selects none of the surface of '" + desc.name +
                                "'; its conditions are in the component's frame (the mesh's, after mesh_unit): "
-                               "see them drawn with `peensim render-regions`"});
+                               "see them drawn with `peensim render-regions`",
+                           std::nullopt});
         }
     }
     return out;

@@ -24,13 +24,14 @@ std::size_t report_setup_issues(const std::vector<AssemblyIssue>& issues, bool s
     return warnings;
 }
 
-SetupCheck check_setup(const Model& model, bool strict, std::ostream& err) {
+SetupCheck check_setup(const Model& model, bool strict, std::ostream& err, std::vector<AssemblyIssue>* found) {
     SetupCheck s{Random(model.seed), nullptr, {}, 0};
     s.warnings = report_setup_issues(plausibility_issues(model), strict, err);
     s.warnings += report_setup_issues(region_issues(model), strict, err);
     s.warnings += report_setup_issues(source_issues(model), strict, err);
     if (model.sonotrode >= 0) s.cavity = std::make_unique<ShotCavity>(model, s.rng);
     s.assembly = check_assembly(model, s.cavity.get());
+    if (found) *found = s.assembly.issues;
     s.warnings += report_setup_issues(s.assembly.issues, strict, err);
     return s;
 }

@@ -23,7 +23,8 @@ struct SetupCheck {
     std::size_t warnings = 0;
 };
 
-SetupCheck check_setup(const Model& model, bool strict, std::ostream& err);
+// found: if given, receives the assembly's issues before any is thrown (the check picture marks them).
+SetupCheck check_setup(const Model& model, bool strict, std::ostream& err, std::vector<AssemblyIssue>* found = nullptr);
 
 // Writes the issues (all but the error it throws), then throws InputError for the first error, or
 // with `strict` the first warning. Returns the number of warnings.

@@ -17,12 +17,6 @@
 
 namespace peensim {
 
-bool launched_by_mpi() {
-    for (const char* size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS"})
-        if (const char* v = std::getenv(size); v != nullptr && std::atoi(v) > 1) return true;
-    return false;
-}
-
 namespace {
 
 constexpr int kTagAsk = 1;  // worker -> rank 0: {the run it ran, its exit code} ({-1, 0}: none yet)

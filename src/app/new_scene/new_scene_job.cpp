@@ -1,0 +1,221 @@
+#include "app/new_scene/new_scene_job.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iterator>
+#include <optional>
+#include <ostream>
+
+#include "app/new_scene/scene_design.h"
+#include "app/new_scene/scene_yaml.h"
+#include "app/report_errors.h"
+#include "common/input_error.h"
+#include "common/units.h"
+#include "geometry/cylinder_mesh.h"
+#include "geometry/mesh_loader.h"
+#include "geometry/part_envelope.h"
+#include "geometry/stepped_chamber_mesh.h"
+#include "geometry/stl_writer.h"
+#include "output/atomic_file.h"
+
+namespace peensim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A part under 5 shot across (or 1 mm) is a unit mistake (an inch file read in mm) or shot far too large.
+constexpr double kSmallestPartM = 1e-3;  // m
+constexpr double kSmallestPartShots = 5.0;
+constexpr double kLargestPartM = 2.0;   // m: no USP chamber holds a part larger than this
+constexpr double kFastestRpm = 3000.0;  // rev/min: beyond any USP fixture
+constexpr int kSegments = 128;          // around the chamber and the sonotrode, as the gear case's
+
+InputError option_error(const std::string& option, const std::string& problem) { return InputError({}, option, problem); }
+
+std::string mm_text(double metres) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.1f", metres * 1e3);
+    return std::string(buf) == "-0.0" ? "0.0" : buf;
+}
+
+// A name the scene accepts ([A-Za-z0-9_-]+) from the part file's name.
+std::string component_name(const fs::path& part) {
+    std::string name;
+    for (char c : part.stem().string()) name += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '-';
+    return name.empty() ? "part" : name;
+}
+
+// Layers of quads so that the chamber's quads are at most kQuadAspect times as tall as wide (the
+// shipped gear chamber's upper wall: 2.5); finer only costs triangles (a wall is flat along z).
+constexpr double kQuadAspect = 2.5;
+int layers_for(double height_m, double radius_m) {
+    const double side_m = kQuadAspect * 2.0 * M_PI * radius_m / kSegments;
+    return std::max(1, static_cast<int>(std::ceil(height_m / side_m)));
+}
+
+// The path the scene names `target` by: relative to the scene's folder when they share more than
+// the root (a project's scenes/ and parts/), else absolute (a part in /home/... seen from /tmp).
+std::string relative_to(const fs::path& target, const fs::path& folder) {
+    std::error_code ec;
+    const fs::path absolute_target = fs::weakly_canonical(fs::absolute(target), ec);
+    const fs::path absolute_folder = fs::weakly_canonical(fs::absolute(folder), ec);
+    const fs::path rel = absolute_target.lexically_relative(absolute_folder);
+    const fs::path below_root = absolute_folder.relative_path();
+    const auto depth = std::distance(below_root.begin(), below_root.end());
+    long climbs = 0;
+    for (const fs::path& part : rel)
+        if (part == "..") ++climbs;
+    return rel.empty() || climbs >= depth ? absolute_target.generic_string() : rel.generic_string();
+}
+
+int run(const NewSceneOptions& o, std::ostream& out) {
+    // The request.
+    double unit_m = 0.0;
+    if (o.unit != "mm" && o.unit != "cm" && o.unit != "m" && o.unit != "um" && o.unit != "in")
+        throw option_error("--unit",
+                           "expected mm, cm, m, um or in (the part file's length unit; STL has none of its own), got '" + o.unit + "'");
+    unit_m = parse_quantity("1 " + o.unit, Dimension::length);
+    const PartMaterial* material = find_part_material(o.material);
+    if (!material) throw option_error("--material", "expected one of " + part_material_options() + ", got '" + o.material + "'");
+    NewSceneRequest request;
+    try {
+        request.shot_diameter_m = parse_quantity(o.shot_diameter, Dimension::length, "mm");
+    } catch (const QuantityError& e) {
+        throw option_error("--shot-diameter", e.what());
+    }
+    if (!(request.shot_diameter_m >= 0.1e-3 && request.shot_diameter_m <= 10e-3))
+        throw option_error("--shot-diameter", "expected a shot between 0.1 and 10 mm, got '" + o.shot_diameter + "'");
+    if (!o.rotate_about.empty()) {
+        if (o.rotate_about == "x")
+            request.turning_axis = Axis::x;
+        else if (o.rotate_about == "y")
+            request.turning_axis = Axis::y;
+        else if (o.rotate_about == "z")
+            request.turning_axis = Axis::z;
+        else
+            throw option_error("--rotate-about",
+                               "expected x, y or z (an axis of the part's own frame, through its centre), got '" + o.rotate_about + "'");
+        if (o.rpm.empty()) throw option_error("--rpm", "a turning part needs its speed, e.g. --rpm 30");
+        std::string rpm_text = o.rpm;
+        double rpm = 0.0;
+        if (!parse_plain_number(rpm_text, rpm)) {
+            try {
+                rpm = parse_quantity(rpm_text, Dimension::angular_speed) * 60.0 / (2.0 * M_PI);
+            } catch (const QuantityError& e) {
+                throw option_error("--rpm", e.what());
+            }
+        }
+        if (!(rpm > 0.0 && rpm <= kFastestRpm))
+            throw option_error("--rpm", "expected a speed above 0 and at most 3000 rpm, got '" + o.rpm + "'");
+        request.rpm = rpm;
+    } else if (!o.rpm.empty()) {
+        throw option_error("--rpm", "a speed needs an axis to turn about: add --rotate-about x, y or z");
+    }
+
+    // The files: never over an existing one unless forced, never over the part.
+    const fs::path part = o.part_path;
+    const fs::path scene = o.scene_path.empty() ? fs::path(part.stem().string() + ".yaml") : fs::path(o.scene_path);
+    if (scene.extension() != ".yaml" && scene.extension() != ".yml")
+        throw option_error("-o", "expected a scene file name ending in .yaml, got '" + scene.string() + "'");
+    const fs::path folder = scene.has_parent_path() ? scene.parent_path() : fs::path(".");
+    // Beside the scene ("x-assets", not "./x-assets", for a scene in the current folder).
+    const auto beside_scene = [&](const std::string& name) { return scene.has_parent_path() ? folder / name : fs::path(name); };
+    const fs::path assets = beside_scene(scene.stem().string() + "-assets");
+    const fs::path chamber_stl = assets / "chamber.stl", sonotrode_stl = assets / "sonotrode.stl";
+    std::error_code ec;
+    for (const fs::path& p : {scene, chamber_stl, sonotrode_stl}) {
+        if (fs::exists(part) && fs::equivalent(part, p, ec))
+            throw option_error("-o", "'" + p.string() + "' is the part itself: choose another scene name");
+        if (fs::exists(p) && !o.force)
+            throw option_error("-o", "'" + p.string() + "' exists; choose another scene name, or --force to write over it");
+    }
+
+    // The part and the design around it.
+    const TriangleMesh mesh = load_mesh(o.part_path, unit_m);
+    const PartEnvelope envelope = part_envelope(mesh, request.turning_axis);
+    const double largest = envelope.size_m.maxCoeff();
+    const std::string size_text =
+        mm_text(envelope.size_m.x()) + " x " + mm_text(envelope.size_m.y()) + " x " + mm_text(envelope.size_m.z()) + " mm";
+    if (largest > kLargestPartM || largest < kSmallestPartM)
+        throw InputError(
+            {o.part_path}, "--unit",
+            "read in " + o.unit + " the part is " + size_text + ": expected 1 mm to 2 m across; is its unit right (--unit mm, cm, m, in)?");
+    if (largest < kSmallestPartShots * request.shot_diameter_m)
+        throw InputError({o.part_path}, "--unit",
+                         "read in " + o.unit + " the part is " + size_text + ", under 5 shot of " + mm_text(request.shot_diameter_m) +
+                             " mm across: is its unit right (--unit in, cm, m), or the shot too large (--shot-diameter)?");
+    const SceneDesign design = design_scene(envelope, request);
+
+    // The chamber and the sonotrode (mm files, as the shipped ones).
+    SteppedChamberSpec chamber;
+    chamber.lower_radius_m = design.lower_radius_m;
+    chamber.upper_radius_m = design.upper_radius_m;
+    chamber.bottom_z_m = design.bottom_z_m;
+    chamber.step_z_m = design.step_z_m;
+    chamber.lid_z_m = design.lid_z_m;
+    chamber.segments = kSegments;
+    chamber.lower_layers = layers_for(design.step_z_m - design.bottom_z_m, design.lower_radius_m);
+    chamber.upper_layers = layers_for(design.lid_z_m - design.step_z_m, design.upper_radius_m);
+    chamber.step_rings = layers_for(design.upper_radius_m - design.lower_radius_m, design.upper_radius_m);
+    chamber.lid_rings = std::max(2, layers_for(design.upper_radius_m, design.upper_radius_m) / 4);
+    CylinderSpec disk;
+    disk.radius_m = design.sonotrode_radius_m;
+    disk.height_m = design.sonotrode_thickness_m;
+    disk.segments = kSegments;
+    disk.axis = Axis::z;
+    disk.center_m = Vec3(0.0, 0.0, -0.5 * design.sonotrode_thickness_m);
+    disk.cap_rings = 6;
+    const TriangleMesh chamber_mesh = stepped_tube_chamber(chamber), disk_mesh = cylinder(disk);
+
+    NewSceneFiles files;
+    files.part_name = component_name(part);
+    if (files.part_name == "sonotrode" || files.part_name == "chamber") files.part_name += "-part";
+    files.part_mesh = relative_to(part, folder);
+    files.unit_name = o.unit;
+    files.chamber_mesh = relative_to(chamber_stl, folder);
+    files.sonotrode_mesh = relative_to(sonotrode_stl, folder);
+    files.command = o.command_line.empty() ? "peensim new " + o.part_path : o.command_line;
+    const std::string yaml = new_scene_yaml(design, request, *material, files);
+
+    fs::create_directories(assets, ec);
+    if (ec) throw std::runtime_error("cannot create " + assets.string() + ": " + ec.message());
+    write_binary_stl(chamber_mesh, chamber_stl.string(), 1e-3, "chamber");
+    write_binary_stl(disk_mesh, sonotrode_stl.string(), 1e-3, "sonotrode");
+    write_file_atomically(scene.string(), yaml);
+
+    // What it chose.
+    const Vec3& sz = envelope.size_m;
+    out << "peensim new: " << o.part_path << " (" << mesh.triangle_count() << " triangles, read in " << o.unit << ")\n";
+    out << "  part       " << mm_text(sz.x()) << " x " << mm_text(sz.y()) << " x " << mm_text(sz.z()) << " mm, " << material->name
+        << " (yield stress " << material->yield_stress_mpa << " MPa: edit it in the scene)\n";
+    if (request.turning_axis)
+        out << "  turning    about its " << o.rotate_about << " axis through its centre at " << request.rpm << " rpm: sweeps "
+            << mm_text(envelope.swept_radius_m) << " mm about it\n";
+    out << "  placed     centred over the sonotrode, its lowest point " << mm_text(design.standoff_m) << " mm above it (translation ["
+        << mm_text(design.translation_m.x()) << ", " << mm_text(design.translation_m.y()) << ", " << mm_text(design.translation_m.z())
+        << "] mm)\n";
+    out << "  sonotrode  " << mm_text(2.0 * design.sonotrode_radius_m) << " mm across (the part's footprint "
+        << mm_text(2.0 * envelope.footprint_radius_m) << " mm + " << mm_text(design.sonotrode_margin_m) << " mm a side), "
+        << design.amplitude_m * 1e6 << " um at " << design.frequency_hz * 1e-3 << " kHz\n";
+    out << "  chamber    " << mm_text(2.0 * design.upper_radius_m) << " mm across above z = " << mm_text(design.step_z_m) << " mm, "
+        << mm_text(2.0 * design.lower_radius_m) << " mm below, lid at z = " << mm_text(design.lid_z_m) << " mm\n";
+    out << "  shot       " << design.shot_count << " x " << request.shot_diameter_m * 1e3 << " mm steel ("
+        << std::lround(100.0 * design.shot_fill) << " % of the sonotrode's face)\n";
+    out << "  run        " << design.duration_s << " s" << (design.turns > 0 ? " (" + std::to_string(design.turns) + " whole turns)" : "")
+        << "; regions " << (request.turning_axis ? "the two ends and 8 sectors about the axis" : "by facing direction (6)") << "\n";
+    out << "wrote " << scene.string() << ", " << chamber_stl.string() << ", " << sonotrode_stl.string() << "\n";
+    out << "next:  peensim check " << scene.string() << " --render " << beside_scene(scene.stem().string() + "-check.png").string()
+        << "\n       peensim run " << scene.string() << "\n";
+    return kExitOk;
+}
+
+}  // namespace
+
+int new_scene_job(const NewSceneOptions& options, std::ostream& out, std::ostream& err) {
+    return report_errors(err, [&] { return run(options, out); });
+}
+
+}  // namespace peensim
