@@ -1,4 +1,4 @@
-// The exit codes of every job (documented in the README). Their own header so that the pieces
+// The exit codes of every job (documented in docs/user-guide.md, "Using peensim"). Their own header so that the pieces
 // every job shares (report_errors.h, interrupt.*) need not include the run's (run/run_job.h).
 #pragma once
 

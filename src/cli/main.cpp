@@ -118,7 +118,9 @@ int main(int argc, char** argv) {
     SweepOptions sweep;
     auto* sweep_cmd = app.add_subcommand(
         "sweep", "what-if sweep: every combination of --vary values x --seeds replicates, run on the local cores, compared (DIR/sweep/)");
-    sweep_cmd->add_option("scene", sweep.scene_path, "scene file (YAML), or a sweep file naming one (see the README's \"What-if sweeps\")")
+    sweep_cmd
+        ->add_option("scene", sweep.scene_path,
+                     "scene file (YAML), or a sweep file naming one (see docs/user-guide.md, \"What-if sweeps\")")
         ->required();
     sweep_cmd->add_option("-o,--output", sweep.output_dir, "the sweep's directory: a run directory per variant and seed, and sweep/")
         ->required();

@@ -8,7 +8,7 @@ namespace peensim {
 
 namespace {
 
-// Fitted (tests/bench/fem_cost_fit.py) to the ccx runs of the README's table, per block element and
+// Fitted (tests/bench/fem_cost_fit.py) to the ccx runs of the table in docs/user-guide.md, per block element and
 // dynamics: wall = seconds x planned increments x (nodes / 1e4)^exponent, peak memory = bytes x
 // (nodes / 1e4)^exponent. Explicit: about linear in the nodes (no equation solve per increment);
 // implicit: a Newton solve per increment and ccx's contact cutbacks, steeper. Laws not measured

@@ -3,7 +3,7 @@
 // the increments its dynamic steps plan (explicit: each step's duration over the stable increment;
 // implicit: over its largest increment, and ccx cuts back several times more where contact begins),
 // with constants of their own for each (the fitted constants absorb ccx's own factors). The constants
-// were fitted to ccx runs measured on the project's 2-core machine (README, "FEM hand-off": the
+// were fitted to ccx runs measured on the project's 2-core machine (docs/user-guide.md, "FEM hand-off": the
 // runs, the fit and its error on a deck it was not fitted to). Pure computation: no I/O.
 #pragma once
 

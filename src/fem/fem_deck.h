@@ -16,7 +16,7 @@ namespace peensim {
 // The target block's brick. C3D8 integrates fully and locks under the near-incompressible plastic
 // flow of a dent (issue 30: C3D8I moved the dent depth +18 % and the rim 2.8x on the same mesh);
 // C3D8I (incompatible modes) and C3D8R (reduced integration, CalculiX's hourglass control) do not.
-// The README's convergence study chose the default.
+// The convergence study (docs/user-guide.md, "FEM hand-off") chose the default.
 enum class FemElement { C3D8, C3D8I, C3D8R };
 
 inline const char* fem_element_name(FemElement e) {

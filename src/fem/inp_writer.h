@@ -6,7 +6,7 @@
 // displacements (U) and the shot centres' velocities (V) to the .dat file at its end, and a final
 // static relaxation step (contact removed, shot held) printing the residual dent (NPROFILE U) and
 // the residual stresses of the column under the centre (EAXIS S, PEEQ). Set names are listed in
-// the README.
+// docs/user-guide.md, "FEM hand-off".
 #pragma once
 
 #include <iosfwd>

@@ -36,7 +36,7 @@ namespace peensim {
 enum class VtkType { float64, int64, int32 };
 
 // Name, type and width of one point or cell array. Units belong in the name, in the CSV columns'
-// style ("vn_in_mps", "energy_J_per_m2", "shot_diameter_m"; README "ParaView files").
+// style ("vn_in_mps", "energy_J_per_m2", "shot_diameter_m"; docs/user-guide.md, "ParaView files").
 struct VtkArraySpec {
     std::string name;
     VtkType type = VtkType::float64;

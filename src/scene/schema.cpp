@@ -49,7 +49,7 @@ const std::array schema_table{
                 "The line between an impact and sustained contact. A shot approaching a surface (relative to its "
                 "moving material) or another shot at a normal speed at least this is an impact (restitution, "
                 "logged); slower is sustained contact (the approach is removed, Coulomb friction acts, no rebound, "
-                "not logged: counted once per landing in `slow_contacts_per_component`). See the README's \"Impacts "
+                "not logged: counted once per landing in `slow_contacts_per_component`). See docs/design.md, \"Impacts "
                 "and sustained contact\"."},
     SchemaEntry{"accuracy.scheme", K::choice, D::dimensionless, false, "event", "", {}, "step|event|soft", "", "",
                 "Stepping scheme: `event`, event-driven (each shot flies exactly to its next collision, found in "
@@ -57,10 +57,10 @@ const std::array schema_table{
                 "advances by the step of eq. 7; contacts found at step ends and taken back to their exact touch time); "
                 "both with instantaneous rigid impacts. `soft`: event-driven flights, and every impact a soft-sphere "
                 "contact integrated while it lasts (every pair's law a soft-sphere one, `hertz-mindlin` or "
-                "`linear-spring-dashpot`; materials with `youngs_modulus` and `poisson_ratio`). See the README's \"Choosing the stepping scheme\"."},
+                "`linear-spring-dashpot`; materials with `youngs_modulus` and `poisson_ratio`). See docs/design.md, \"Choosing the stepping scheme\"."},
     SchemaEntry{"accuracy.soft_steps_per_contact", K::quantity, D::dimensionless, false, "20", "", closed(4, 10000), "", "", "",
                 "Soft scheme only: integration steps per Hertz contact time (the duration of an elastic contact at "
-                "the contact's approach speed); the soft contacts' accuracy knob (see \"Soft-sphere contacts\")."},
+                "the contact's approach speed); the soft contacts' accuracy knob (see docs/design.md, \"Soft-sphere contacts\")."},
 
     SchemaEntry{"shot", K::map, D::dimensionless, true, "", "", {}, "", "", "", "The shot: one size (`diameter`) or a mix (`sizes`)."},
     SchemaEntry{"shot.count", K::integer, D::dimensionless, true, "", "", closed(0, 1e8), "", "", "",
@@ -70,7 +70,7 @@ const std::array schema_table{
     SchemaEntry{"shot.sizes", K::list, D::dimensionless, false, "", "one size, `diameter`", {}, "", "", "",
                 "A mix of sizes (a sieve analysis, SAE J444), instead of `diameter`: up to 32 items of `diameter` and "
                 "`fraction`, the fractions summing to 1 (within 0.005, then scaled to it). Each shot placed or emitted "
-                "draws its size from the seed; a mass flow counts the mix's mean mass. See the README's \"Shot size mixes\"."},
+                "draws its size from the seed; a mass flow counts the mix's mean mass. See docs/user-guide.md, \"Shot size mixes\"."},
     SchemaEntry{"shot.sizes[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One size of the mix."},
     SchemaEntry{"shot.sizes[].diameter", K::quantity, D::length, true, "", "", open_closed(0, 0.02), "", "", "",
                 "This size's diameter; each diameter once."},
@@ -194,7 +194,7 @@ const std::array schema_table{
     SchemaEntry{"components[].almen.calibration", K::map, D::dimensionless, false, "", "not calibrated", {}, "", "", "",
                 "The predictive model's calibration on one measured saturation curve and the run that reproduced it, "
                 "as `peensim almen-fit CURVE --calibrate RUNDIR` prints it: the analysis then predicts this strip's "
-                "saturation curve, J443 saturation time and intensity from its dents (README, \"Almen strips\"). "
+                "saturation curve, J443 saturation time and intensity from its dents (docs/user-guide.md, \"Almen strips\"). "
                 "Not with `saturation_arc_height` and `dose_constant`."},
     SchemaEntry{"components[].almen.calibration.saturation_arc_height", K::quantity, D::length, true, "", "", above(0), "", "", "",
                 "a of the measured curve h = a (1 - exp(-(t / tau)^c))."},
@@ -304,7 +304,7 @@ const std::array schema_table{
 
     SchemaEntry{"sources", K::list, D::dimensionless, false, "", "none", {}, "", "", "",
                 "Shot sources: nozzles that emit shot during the run (conventional peening), hoppers that drop them. A scene with sources "
-                "may have `shot.count: 0`, and then needs no sonotrode and no chamber. See the README's \"Shot "
+                "may have `shot.count: 0`, and then needs no sonotrode and no chamber. See docs/user-guide.md, \"Shot "
                 "sources and sinks\"."},
     SchemaEntry{"sources[]", K::map, D::dimensionless, false, "", "", {}, "", "", "", "One source."},
     SchemaEntry{"sources[].name", K::text, D::dimensionless, true, "", "", {}, "", "", "",
@@ -341,7 +341,7 @@ const std::array schema_table{
                 "Spread of the exit speed: uniform in v0 (1 +- speed_spread)."},
     SchemaEntry{"sources[].air_speed", K::quantity, D::speed, false, "", "still air", open_closed(0, 1000), "", "", "",
                 "The air's exit speed U_0: the nozzle blows a round free jet (B = 5.8, S = 0.094: a potential core at U_0 "
-                "closing at 5.8 exit diameters, then U_0 5.8 D_n / s on the axis, half-width 0.094 s; see README \"Air "
+                "closing at 5.8 exit diameters, then U_0 5.8 D_n / s on the axis, half-width 0.094 s; see docs/user-guide.md, \"Air "
                 "drag\") that the shot's drag (and rebound scatter's Re*) is taken against. Needs `air.drag: sphere` or "
                 "`air.rebound_scatter`, and an exit diameter."},
     SchemaEntry{"sources[].rate", K::quantity, D::frequency, false, "", "from `mass_flow`", open_closed(0, 1e8), "", "", "",
@@ -392,7 +392,7 @@ const std::array schema_table{
                 "Simulated time between the steps of the shot-position series for ParaView (`paraview/shots.pvd`: "
                 "every shot's centre, velocity, speed, diameter and index at 0, this, twice this... up to the run's "
                 "end; at most 100 000 steps). Written while the run goes; a resumed run continues it, and resumes "
-                "only with the same value. See the README's \"ParaView files\"."},
+                "only with the same value. See docs/user-guide.md, \"ParaView files\"."},
     SchemaEntry{"output.coverage_steps", K::integer, D::dimensionless, false, "10", "", closed(0, 1000), "", "", "",
                 "Times at which the analysis writes each logged part's per-triangle coverage for ParaView "
                 "(`analysis/<part>_coverage_series.pvd`): at the analysed window's start (0 by default) and this many even steps to its end (the "
@@ -402,7 +402,7 @@ const std::array schema_table{
                 closed(1e-6, 1), "", "", "",
                 "Radius of the surface over which `peensim analyze` smooths its per-area fields (the `*_smoothed` "
                 "columns and the maps of `render-impacts`): the maps' resolution, the same whatever the mesh's "
-                "tessellation; `analyze --smoothing-radius` overrides it. See the README's \"Smoothed maps\"."},
+                "tessellation; `analyze --smoothing-radius` overrides it. See docs/user-guide.md, \"Smoothed maps\"."},
 
     SchemaEntry{"render", K::map, D::dimensionless, false, "", "no animation", {}, "", "", "",
                 "Record an off-screen animation while simulating (also `peensim run --render`): PNG frames "

@@ -116,7 +116,7 @@ TEST(JetStream, AnalyzeReportsTheJetOfANozzleScene) {
 // deg): the same law, only the normal restitution differs (constant 0.4 against 0.4 rising to 0.63
 // by hits within one shot diameter). The study's trends: fewer shot-shot collisions and a higher
 // mean normal impact speed; more shot arriving straight from the nozzle (its shot-target count
-// rises; ours falls, with fewer knocked-back impacts: README, "Conventional peening").
+// rises; ours falls, with fewer knocked-back impacts: docs/user-guide.md, "Conventional peening").
 TEST(JetStream, ImpactHistoryRestitutionMovesTheStudysTrendsItsWay) {
     struct Counts {
         std::uint64_t shot_shot = 0, at_v0 = 0, target = 0;
@@ -153,7 +153,7 @@ TEST(JetStream, ImpactHistoryRestitutionMovesTheStudysTrendsItsWay) {
     };
     const Counts constant = run("[0.4]"), history = run("[0.4, 0.5, 0.56, 0.6, 0.63]");
     ASSERT_GT(constant.target, 5000u);
-    // Measured over 60 ms (README): shot-shot -24 %, mean v_n +15 %, at v0 +7 %. Margins of several
+    // Measured over 60 ms (docs/user-guide.md): shot-shot -24 %, mean v_n +15 %, at v0 +7 %. Margins of several
     // standard errors at 25 ms (one seed: shot-shot counts ~8000, at v0 ~2200).
     EXPECT_LT(static_cast<double>(history.shot_shot), 0.85 * static_cast<double>(constant.shot_shot));
     EXPECT_GT(history.mean_vn, 1.08 * constant.mean_vn);

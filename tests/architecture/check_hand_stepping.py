@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The tests drive the engine through the run loop (README, "Tests"; engine/run_loop.h): a test that
+"""The tests drive the engine through the run loop (docs/contributing.md, "Tests"; engine/run_loop.h): a test that
 steps a Simulation by hand (`sim.step(...)`, `sim->step(...)`) runs a second run loop that can drift
 from the one `run` and `bench` use (the pauses listeners ask for, the end at a restart point, the
 hooks). tests/support/run_through_loop.h gives a test its hooks instead. Grep-level: every call of a

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""The folders are the architecture (README, "Layout"): each folder of src/ and contact/ may include
-only the folders its row of the README's dependency table lists (common/ always), and no folders
-may include each other in a cycle. Reads the table from README.md and the `#include "..."` lines of
-every source file; prints each offending include with its file and line, and exits 1 on any.
+"""The folders are the architecture (docs/contributing.md, "Layout"): each folder of src/ and contact/
+may include only the folders its row of that document's dependency table lists (common/ always), and
+no folders may include each other in a cycle. Reads the table from docs/contributing.md and the
+`#include "..."` lines of every source file; prints each offending include with its file and line,
+and exits 1 on any.
 
     tests/architecture/check_layers.py [REPO]
 
@@ -17,10 +18,13 @@ import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 
+# The document that holds the dependency table, relative to the repository.
+TABLE_DOCUMENT = "docs/contributing.md"
 
-def read_table(readme):
-    """{folder: set of folders it may include} from the README's dependency block."""
-    text = open(readme, encoding="utf-8").read()
+
+def read_table(document):
+    """{folder: set of folders it may include} from the contributor guide's dependency block."""
+    text = open(document, encoding="utf-8").read()
     start = text.index("    folder       depends on (besides common/)\n")
     rows, order = {}, []
     for line in text[start:].splitlines()[1:]:
@@ -104,7 +108,7 @@ def cycles(edges):
 
 def main():
     repo = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    table = read_table(os.path.join(repo, "README.md"))
+    table = read_table(os.path.join(repo, TABLE_DOCUMENT))
     problems, edges = [], {}
     for here, there, rel, number in includes(repo):
         edges.setdefault(here, set()).add(there)
@@ -112,9 +116,9 @@ def main():
         if top_there in ("common", top_here):
             continue
         if top_here not in table:
-            problems.append(f"{rel}:{number}: folder '{top_here}' has no row in README.md's dependency table")
+            problems.append(f"{rel}:{number}: folder '{top_here}' has no row in {TABLE_DOCUMENT}'s dependency table")
         elif top_there not in table[top_here]:
-            problems.append(f"{rel}:{number}: '{top_here}' includes '{there}', which its row in README.md's table does not list "
+            problems.append(f"{rel}:{number}: '{top_here}' includes '{there}', which its row in {TABLE_DOCUMENT}'s table does not list "
                             f"(it lists: {', '.join(sorted(table[top_here])) or 'nothing'})")
     for c in cycles(edges):
         problems.append("a cycle of folders including each other: " + " <-> ".join(c))

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The tests mirror the source folders (README, "Layout"): every GoogleTest file (*_test.cpp) under
+"""The tests mirror the source folders (docs/contributing.md, "Layout"): every GoogleTest file (*_test.cpp) under
 tests/ lies in the folder that mirrors a folder of src/ or contact/ (tests/engine/ for src/engine/,
 tests/app/sweep/ for src/app/sweep/, tests/contact/ for contact/), or in tests/support/ beside the
 support code it tests. Prints each file that lies elsewhere (at the top of tests/ too) and exits 1

@@ -23,7 +23,8 @@ TABLE = """# x
 
 def repo(files):
     d = tempfile.mkdtemp()
-    with open(os.path.join(d, "README.md"), "w") as f:
+    os.makedirs(os.path.join(d, "docs"))
+    with open(os.path.join(d, "docs", "contributing.md"), "w") as f:
         f.write(TABLE)
     for path, text in files.items():
         os.makedirs(os.path.dirname(os.path.join(d, path)), exist_ok=True)
@@ -54,7 +55,7 @@ class CheckLayers(unittest.TestCase):
     def test_an_unlisted_include_fails_naming_file_line_and_folders(self):
         code, out = check({**KNOWN, "src/geometry/g.cpp": '// g\n#include "kernels/k.h"\n'})
         self.assertEqual(code, 1)
-        self.assertIn("src/geometry/g.cpp:2: 'geometry' includes 'kernels', which its row in README.md's table does not list", out)
+        self.assertIn("src/geometry/g.cpp:2: 'geometry' includes 'kernels', which its row in docs/contributing.md's table does not list", out)
 
     def test_a_folder_without_a_row_fails(self):
         code, out = check({**KNOWN, "src/extra/e.cpp": '#include "kernels/k.h"\n'})

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""The FEM deck's convergence study (README, "FEM hand-off"): the quarter single-impact deck of
+"""The FEM deck's convergence study (docs/user-guide.md, "FEM hand-off"): the quarter single-impact deck of
 `peensim export-fem` (default: a 0.58 mm steel shot at 50 m/s onto steel, 500 MPa, perfectly
 plastic) for each block element (C3D8, C3D8I, C3D8R) and mesh (--elements-per-dent), run in
 CalculiX one at a time (one thread, nice, a time cap); prints, per case, the mesh, the ccx wall
 time and peak memory, the residual dent (after the relaxation step), the rebound (CoR) and the
 residual in-plane stress sigma_xx under the centre (surface layer, the most compressive and its
-depth, where it turns tensile), as the README's table. Cases already run in OUT (a .dat and a
+depth, where it turns tensile), as the table of docs/user-guide.md. Cases already run in OUT (a .dat and a
 time.txt there) are read, not rerun.
 
   tests/bench/fem_convergence.py [--peensim build/peensim] [--out out/fem-convergence]
@@ -21,7 +21,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fem_read  # noqa: E402
 
-DEFAULT_CASES = "C3D8I:4,C3D8I:6,C3D8I:8,C3D8I:10"  # the README's explicit table
+DEFAULT_CASES = "C3D8I:4,C3D8I:6,C3D8I:8,C3D8I:10"  # the explicit table of docs/user-guide.md
 
 
 def run_case(args, element, per_dent, directory):

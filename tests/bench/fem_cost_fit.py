@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Fits the CalculiX cost model of src/fem/ccx_cost.cpp to measured ccx runs of export-fem decks
-and checks it on runs left out of the fit (README, "FEM hand-off").
+and checks it on runs left out of the fit (docs/user-guide.md, "FEM hand-off").
 
   tests/bench/fem_cost_fit.py --fit DIR[,DIR...] [--check DIR[,DIR...]]
 

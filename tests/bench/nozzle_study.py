@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The reference's conventional-peening (DEM-FEM) study, run at the study's own conditions
 (reference section 6) with scenes/nozzle-study.yaml: 0.58 mm shot (7800 kg/m3), a nozzle 20 mm from
-a flat steel target, Hertz-Mindlin e = 0.4. Prints the README's tables:
+a flat steel target, Hertz-Mindlin e = 0.4. Prints the tables of docs/user-guide.md, "Conventional peening":
 
   1. paper against peensim, case by case: the reference case (9.25 kg/min, 75 m/s, 67.5 deg), the
      flow-rate matrix (62.5 deg), the angle study (9.25 kg/min, 100 m/s), the shot-size study

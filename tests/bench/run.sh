@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Benchmark: prints what a step costs on the shipped scenes (see README, "Benchmark").
+# Benchmark: prints what a step costs on the shipped scenes (see docs/design.md, "Benchmark").
 #   tests/bench/run.sh [--quick | --long]
-# Needs a Release build in build/ (the README's commands make one). --quick runs every case for a
-# tenth of its simulated time (for a smoke test; the README's figures come from full runs); --long
+# Needs a Release build in build/ (the README's quick start makes one). --quick runs every case for a
+# tenth of its simulated time (for a smoke test; the figures of docs/design.md come from full runs); --long
 # adds the published model's long case (3072 shot, 60 s: ~7 min).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -17,7 +17,7 @@ echo "# peensim benchmark, $(date -u +%Y-%m-%d), $(nproc) cores, single thread"
 
 # schemes side by side: peensim bench
 # Every shipped scene with time stepping and with the event-driven scheme: speed ratio and the
-# difference of the impact statistics (README, "Benchmark"). --quick runs a tenth of each scene's
+# difference of the impact statistics (docs/design.md, "Benchmark"). --quick runs a tenth of each scene's
 # own process.duration (read from `peensim check`). A failure is reported and the other sections
 # still run.
 peensim="$root/build/peensim"

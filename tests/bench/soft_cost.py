@@ -7,7 +7,7 @@ integration resolution (steps per contact).
 
     tests/bench/soft_cost.py [--peensim build/peensim] [--quick]
 
-Runs on one core; run it on a quiet machine (the README's figures: see "Benchmark"). Standard
+Runs on one core; run it on a quiet machine (the figures of docs/design.md, "Benchmark"). Standard
 library only.
 """
 import argparse

@@ -113,7 +113,7 @@ TEST(HertzMindlin, TheTangentialSpringSticksBelowCoulombsCapAndSlidesAtIt) {
 }
 
 // LIGGGHTS 3.8's `tangential history` (its src/tangential_model_history.h), written out for the
-// comparison of tests/bench/soft_vs_liggghts (README, "Soft-sphere contacts"): the same spring and
+// comparison of tests/bench/soft_vs_liggghts (docs/design.md, "Soft-sphere contacts"): the same spring and
 // damping, but its Coulomb cap compares the spring's force alone with f |F_n| (the magnitude of the
 // damped normal force, which pulls at the end of a damped contact) and drops the damping while
 // sliding; mindlin_tangential_force caps the spring and its damping together at f max(0, F_n).

@@ -17,7 +17,7 @@
 // asserted for the event scheme only (`exact` below), and printed for both: no overlap beyond
 // 1e-9 m, no impact logged for a touch at zero approach speed, impact points on a rotating part's
 // surface to 1e-9 m. Time stepping does not claim them: it resolves shot pairs at step ends and
-// corrects only overlaps above 1 % of R (README), and moves a rotating part linearly within a step
+// corrects only overlaps above 1 % of R (docs/user-guide.md, "Outputs"), and moves a rotating part linearly within a step
 // (EngineRotatingPart's bounds).
 #include <gtest/gtest.h>
 

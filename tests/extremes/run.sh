@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The extremes matrix (issue 10, "Trust at the extremes"; README, "Extremes matrix").
+# The extremes matrix (issue 10, "Trust at the extremes"; docs/design.md, "Extremes matrix").
 #   tests/extremes/run.sh [--quick | --full] [--jobs N] [--md FILE] [--out DIR] [--cases REGEX]
 #                         [--build-dir DIR] [--no-build]
 #

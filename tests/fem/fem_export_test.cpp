@@ -584,7 +584,8 @@ TEST(ExportFemJob, PrintsTheCalculixEstimateAndWarnsWhenImpractical) {
     ASSERT_EQ(export_fem_job(o, out, err), kExitOk) << err.str();
     EXPECT_NE(out.str().find("block 1152 C3D8I elements"), std::string::npos) << out.str();
     EXPECT_NE(out.str().find("  CalculiX estimate: "), std::string::npos) << out.str();
-    EXPECT_NE(out.str().find(" planned increments; one core, the cost model of the README)"), std::string::npos) << out.str();
+    EXPECT_NE(out.str().find(" planned increments; one core, the cost model of docs/user-guide.md, \"FEM hand-off\")"), std::string::npos)
+        << out.str();
     EXPECT_LT(out.str().find("CalculiX estimate"), out.str().find("deck: "));
     EXPECT_EQ(err.str().find("warning"), std::string::npos) << err.str();
     const std::string readme = read_file((dir.path / "small" / "README.md").string());

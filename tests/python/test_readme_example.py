@@ -1,5 +1,6 @@
-"""The README's worked example (section "Python API") runs as written: a fresh directory with the
-shipped scenes and assets, the example's code exactly, its plot checked."""
+"""The user guide's worked example (docs/user-guide.md, section "Python API"; it was the README's) runs
+as written: a fresh directory with the shipped scenes and assets, the example's code exactly, its
+plot checked."""
 
 import os
 import re
@@ -10,12 +11,15 @@ import unittest
 from support import SOURCE_DIR, TempDirTest
 
 
+GUIDE = os.path.join("docs", "user-guide.md")
+
+
 def readme_example():
-    with open(os.path.join(SOURCE_DIR, "README.md"), encoding="utf-8") as f:
-        readme = f.read()
-    found = re.search(r"<!-- python-example:begin -->\s*```python\n(.*?)```\s*<!-- python-example:end -->", readme, re.S)
+    with open(os.path.join(SOURCE_DIR, GUIDE), encoding="utf-8") as f:
+        guide = f.read()
+    found = re.search(r"<!-- python-example:begin -->\s*```python\n(.*?)```\s*<!-- python-example:end -->", guide, re.S)
     if not found:
-        raise AssertionError("README.md lacks the python-example markers around a ```python block")
+        raise AssertionError(GUIDE + " lacks the python-example markers around a ```python block")
     return found.group(1)
 
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Time to coverage, forecast against brute force (issue 27; README "How long to peen").
+# Time to coverage, forecast against brute force (issue 27; docs/design.md, "How long to peen: the forecast against running to coverage").
 #   tests/validation/time_to_coverage.sh --case gear|rotating-gear|grooved-shaft [--seeds "1 2 ..."]
 #                                        [--out DIR] [--build-dir DIR] [--lengths "5 20 60"]
 #   tests/validation/time_to_coverage.sh --table [--out DIR] [--md FILE]
@@ -15,7 +15,7 @@
 # --table reads every case in DIR and prints the validation table (markdown; --md also writes it):
 # per case and run length, how often the 95 % interval holds the truth (whole part, everywhere,
 # regions), the forecasts that said "too short", and the errors of the 60 s forecasts.
-# Not a timed test: hours of CPU for 10 seeds of the three cases. The README shows its table.
+# Not a timed test: hours of CPU for 10 seeds of the three cases. docs/design.md shows its table.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 here="$root/tests/validation"

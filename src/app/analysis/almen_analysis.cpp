@@ -51,7 +51,7 @@ void prediction_text(std::ostringstream& r, const AlmenAnalysis& a, const AlmenE
       << "Calibrated on a measured curve h = " << fmt(m.measured.a * 1e3) << " mm (1 - exp(-(t / " << fmt(m.time_constant_s()) << " s)^"
       << fmt(m.measured.c) << ")) and the run that reproduced it (dent size " << fmt(m.run.dent_size_m * 1e6) << " um, covering rate "
       << fmt(m.run.covering_rate_per_s) << " /s): the saturated arc height follows the dent size, the time scale the covering rate "
-      << "(README, \"Almen strips\").\n";
+      << "(docs/user-guide.md, \"Almen strips\").\n";
     if (!e.valid()) {
         r << "\nNo prediction: "
           << (a.yield_stress_pa > 0.0 ? "no dent on the peened face in this run"

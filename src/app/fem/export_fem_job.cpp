@@ -30,7 +30,7 @@ namespace peensim {
 
 namespace {
 
-// Steel, where the scene does not say (documented in the README).
+// Steel, where the scene does not say (documented in docs/user-guide.md, "FEM hand-off").
 constexpr double kSteelYoungsModulusPa = 210e9;  // Pa
 constexpr double kSteelPoissonRatio = 0.3;       // -
 constexpr double kSteelDensity = 7850.0;         // kg/m3
@@ -499,7 +499,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             << deck.shots.size() << " shots x " << deck.shot_mesh.mesh.elements.size()
             << " elements\n  CalculiX estimate: " << duration_text(cost.seconds) << ", " << gigabytes(cost.bytes) << " GB ("
             << static_cast<long long>(cost.nodes) << " nodes, " << static_cast<long long>(cost.planned_increments)
-            << " planned increments; one core, the cost model of the README)\n";
+            << " planned increments; one core, the cost model of docs/user-guide.md, \"FEM hand-off\")\n";
         if (cost.seconds > kCcxPracticalSeconds || cost.bytes > kCcxPracticalBytes)
             err << "warning: this deck is impractical for CalculiX on one core: about " << duration_text(cost.seconds) << " and "
                 << gigabytes(cost.bytes) << " GB estimated (more than " << duration_text(kCcxPracticalSeconds) << " or "
@@ -532,7 +532,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         readme << "\nRun it with CalculiX: `ccx -i " << o.name << "` (in this directory; results in " << o.name << ".dat and " << o.name
                << ".frd). Expect about " << duration_text(cost.seconds) << " and " << gigabytes(cost.bytes) << " GB on one core ("
                << static_cast<long long>(cost.nodes) << " nodes, " << static_cast<long long>(cost.planned_increments)
-               << " planned increments; the cost model of peensim's README, fitted to measured ccx 2.20 runs).\n\n";
+               << " planned increments; the cost model of peensim's docs/user-guide.md, \"FEM hand-off\", fitted to measured ccx 2.20 "
+                  "runs).\n\n";
         readme << "Block: " << deck.block.mesh.nodes.size() << " nodes, " << deck.block.mesh.elements.size() << " "
                << fem_element_name(element) << " elements; each shot " << deck.shot_mesh.mesh.nodes.size() << " nodes, "
                << deck.shot_mesh.mesh.elements.size() << " elements.\n\n";

@@ -82,7 +82,7 @@ public:
     // gaining almost no time) goes on in sustained-contact substeps, which always advance time by
     // a substep; counted in HealthCounters::search_fallbacks. The net under "simulated time always
     // advances" (a blade turning at 1000 rpm once stalled so); rare: nozzle-gear 7 times in 30 s,
-    // a shot pressed by a turning surface chattering in arcs of about 1 um (README, health counters).
+    // a shot pressed by a turning surface chattering in arcs of about 1 um (docs/user-guide.md, "Outputs": the health counters).
     static constexpr int kMaxResumedSearches = 4;
     // Work between restart points, in work units (work_units(): ~0.25 us of wall time each): at
     // least kMinWorkBudget, and kWorkPerRestart times what the last restart cost (re-predicting

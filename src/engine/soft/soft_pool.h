@@ -22,7 +22,7 @@
 // around a node are integrated along the one path (so their errors cancel to a higher order).
 // Its length: the smallest, over the contacts (and the gaps that may close within about a step),
 // of the Hertz contact time at the speed that carries the contact's energy now, divided by
-// `accuracy.soft_steps_per_contact` (the rule and its error: README "Soft-sphere contacts"). A
+// `accuracy.soft_steps_per_contact` (the rule and its error: docs/design.md, "Soft-sphere contacts"). A
 // vibrating or turning component is at its exact pose at every node.
 //
 // Who is a member: a shot joins when the scheme finds its exact touch (an impact, or any touch on a

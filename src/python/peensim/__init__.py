@@ -211,7 +211,7 @@ class Run:
 
     @property
     def summary(self):
-        """summary.json as a dict (README, "Outputs"); None before the run wrote one."""
+        """summary.json as a dict (docs/user-guide.md, "Outputs"); None before the run wrote one."""
         path = os.path.join(self.dir, "summary.json")
         return _json(path) if os.path.isfile(path) else None
 
@@ -349,7 +349,7 @@ class Sweep:
 
     @property
     def comparison(self):
-        """sweep/comparison.csv as a dict of NumPy arrays: a row per variant (README, "What-if sweeps")."""
+        """sweep/comparison.csv as a dict of NumPy arrays: a row per variant (docs/user-guide.md, "What-if sweeps")."""
         return _native.read_csv(os.path.join(self.dir, "sweep", "comparison.csv"))
 
     @property

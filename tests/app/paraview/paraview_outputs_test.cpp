@@ -1,4 +1,4 @@
-// The ParaView outputs of a run and its analysis (README "ParaView"), read back with VTK's own
+// The ParaView outputs of a run and its analysis (docs/user-guide.md, "ParaView files"), read back with VTK's own
 // readers (VTK's Python from python3-paraview, tests/support/vtk_python.h): the assembly in the world frame at t = 0,
 // the shot-position series against the closed-form flight and across a resume, the moving
 // components' poses, the coverage series against the analysis' coverage curve, the field names of
