@@ -1,0 +1,85 @@
+# The tests that took 3 s or more on this 2-core machine (measured 2026-11-28: a full `ctest -j2`,
+# build/Testing/Temporary/CTestCostData.txt). They are labelled `slow`, every other test `quick`:
+#   ctest --test-dir build -L quick -j2    the everyday subset (about 650 tests, 2.5 min)
+# A test found to take 3 s or more belongs here (a gtest filter pattern: Suite.Name, * allowed).
+set(PEENSIM_SLOW_GTESTS
+  AlmenFitJob.CalibrationRoundTripThroughRuns
+  AnalysisCoverage.TimingOnAManyTriangleCylinder
+  AnalysisReport.TheDecisionsAgreeWithTheRegionsAndTheFigures
+  AnalyzeJob.AlmenStripReportsDoseAndNeedsCalibration
+  AnalyzeJob.AnInterruptedRunIsAnalysedWithANote
+  AnalyzeJob.FiguresJsonAgreesWithTheLog
+  AnalyzeJob.GearTeethHistogramsAddUpToTheWholeGear
+  AnalyzeSmoothing.TheRadiusComesFromTheOptionThenTheScene
+  AnalyzeWindow.ImpactsOutsideTheWindowOrTooSlowAreLeftOut
+  CheckpointResumeChecks.EverySingleBitFlipIsRefused
+  ContactPolicy.AShotShotTouchIsAnImpactInEverySchemeExactlyFromTheImpactLine
+  CoverageForecast.ARunNearItsTargetStillGetsANumber
+  CoverageForecast.AnEvenRateGivesTheExactTimeWithinItsInterval
+  CoverageForecast.ImpactsOnEdgesAreALineProcessWithTheExactFootprint
+  CoverageForecast.NearTheReachBoundaryOnlyTheDentsOnItsOwnSideCover
+  CoverageForecast.RateBandsAtTheKernelsScaleAreHeldOnceTheRunResolvesThem
+  DiskFull.ARunThatFillsTheDiskResumesToTheUninterruptedBytes
+  EngineDeterminism.EventDrivenRunResumedTwiceEqualsUninterrupted
+  EngineDeterminism.InterruptedAndResumedRunEqualsUninterrupted
+  EngineDeterminism.ResumedTwiceEqualsUninterrupted
+  EngineEventRod.EventSchemeMatchesPeriodResolvingTimeStepping
+  EngineRotatingContact.ThrowsAtACylinderTurningAt1000RpmLogTheExactNormalAndApproach
+  EngineRotatingContact.ThrowsAtACylinderTurningAt300RpmLogTheExactNormalAndApproach
+  EventMeshFirstHit.FineCylinderLongThrowsMatchBruteForce
+  EventMeshFirstHit.FineCylinderMatchesBruteForce
+  EventMeshFirstHit.LeavesVisitedStayFlatFromCoarseToFineMesh
+  EventVibratingPlane.RandomDropsMatchTheDenseReference
+  ExportFemCalculix.SingleImpactRunsAndLeavesTheDentOfEq10
+  ExportFemJob.TheDefaultElementFollowsTheDentsThatMatter
+  FacetReach.TheBoreIsOutOfReachAndTheBottomLandsNeedSmallShot
+  FuzzInputs.AlmenFitCurvesAreFittedOrRefusedWithAnInputError
+  FuzzInputs.AnalyzeWindowsAreAnalysedOrRefusedWithAnInputError
+  FuzzInputs.ExportFemArgumentsAreExportedOrRefusedWithAnInputError
+  FuzzInputs.MeshFilesAreReadOrRefusedWithAnInputError
+  FuzzInputs.RenderSizesAreDrawnOrRefusedWithExitTwo
+  FuzzInputs.SceneFilesAreReadOrRefusedWithAnInputError
+  FuzzInputs.SweepFilesAreReadOrRefusedWithAnInputError
+  FuzzInputs.TradeArgumentsAreRunOrRefusedWithAnInputError
+  FuzzInputs.VaryStringsAreReadOrRefusedWithAnInputError
+  HostileInputs3.AResumedRunNeverLeavesTheSummaryOfTheSessionBefore
+  HostileInputs3.AnalyzeOfAPartWithEveryFacetExcludedSaysSoInWords
+  HostileInputs3.AnalyzeSaysWhereItsLogWasCutAndRefusesDamage
+  HostileInputs3.AnalyzeTakesTheTimeAKilledRunSimulated
+  HostileInputs3.ExportFemRegionCentreIsOnTheRegionsSurface
+  HostileInputs3.ResumingAFinishedRunSaysItIsFinishedAndWhere
+  JetStream.AnalyzeReportsTheJetOfANozzleScene
+  ParaviewAnalysis.CoverageSeriesFollowsTheCoverageCurve
+  ParaviewAnalysis.CoverageSeriesSpansTheAnalysedWindow
+  ParaviewScript.ParaViewOpensTheRunPosedAtATimeAndRendersAFrame
+  Readme.ExampleCommandsAreValidScenesAndOverrides
+  Readme.SummaryKeysHealthCountersAndAlmenFiguresAreTheProgramsOwn
+  RenderImpacts.TheHotColourLandsOnTheHitTriangles
+  RotatingAnalysis.WholeTurnsAndNoTimeFromLessThanATurn
+  RunInterruptTwice.SecondSignalAbandonsAtOnceAndTheLastCheckpointResumes
+  SceneContactLaws.ALawFromOutsideContactPlugsInWithoutTouchingTheSchemes
+  SceneContactLaws.TheLawsStateIsCheckpointedAndAResumedRunEqualsTheUninterruptedOne
+  Schemes/ShotMixRun.AResumedMixRunIsTheUninterruptedOne/*
+  SetupPlausibility.AnSiFileIsNotBlamedForAUnitInAnOverride
+  SetupPlausibility.TheShippedScenesPassWithoutAWarning
+  ShotMix.TheAnalysisWeighsEachImpactByItsOwnShot
+  ShotSeries.PausingForItChangesNoImpact
+  SoftContact.ABouncingLoadKeepsItsEnergyAtEOne
+  SoftScheme.ResumedTwiceAcrossSoftContactsEqualsUninterrupted
+  SoftScheme.SameSeedSameBytesOtherSeedOtherBytes
+  SurfaceSmoothing.TheGearAtTwoTessellationsGivesTheSameField
+  SweepJob.ASweepFileListsNamedVariants
+  SweepJob.AnInterruptedSweepGoesOnWhereItStopped
+  SweepJob.EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept
+  SweepKill.ASweepKilledOutrightTakesItsRunsWithItAndTheRerunResumesAtOnce
+  SweepKill.AnMpiRankKilledTakesItsRunWithItAndTheRerunResumesAtOnce
+  SweepMpi.RanksShareTheRunsAndEachRunIsTheLocalOne
+  UntilCoverage.StopsWhenTheAnalysisSaysTheTargetIsReachedAndResumesToTheSameEnd
+)
+set(PEENSIM_SLOW_OTHER_TESTS
+  ExtremesMatrix.QuickSubset
+  Python.test_readme_example
+  Python.test_run
+  Python.test_scene
+  Python.test_sweep
+)
