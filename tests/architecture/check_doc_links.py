@@ -26,11 +26,9 @@ def documents(repo):
     return sorted(found)
 
 
-def prose_lines(text):
-    """(line number, line) outside code blocks, code spans blanked (same length). A fenced block is
-    code; so is a line indented 4 spaces or more after a blank line or another such line (an
-    indented block, also inside a list item)."""
-    fence, indented, previous_blank = None, False, True
+def outside_fences(text):
+    """(line number, line) of the lines outside fenced code blocks (``` or ~~~)."""
+    fence = None
     for number, line in enumerate(text.split("\n"), 1):
         stripped = line.lstrip()
         if fence is None and (stripped.startswith("```") or stripped.startswith("~~~")):
@@ -40,6 +38,16 @@ def prose_lines(text):
             if stripped.startswith(fence):
                 fence = None
             continue
+        yield number, line
+
+
+def prose_lines(text):
+    """(line number, line) outside code blocks, code spans blanked (same length). A fenced block is
+    code; so is a line indented 4 spaces or more after a blank line or another such line (an
+    indented block, also inside a list item)."""
+    indented, previous_blank = False, True
+    for number, line in outside_fences(text):
+        stripped = line.lstrip()
         blank = not stripped
         indented = not blank and len(line) - len(stripped) >= 4 and (previous_blank or indented)
         previous_blank = blank if not indented else previous_blank
@@ -59,16 +67,7 @@ def slug(heading):
 def anchors(text):
     """Every anchor the document's headings give."""
     seen, out = {}, set()
-    fence = None
-    for line in text.split("\n"):
-        stripped = line.lstrip()
-        if fence is None and (stripped.startswith("```") or stripped.startswith("~~~")):
-            fence = stripped[:3]
-            continue
-        if fence is not None:
-            if stripped.startswith(fence):
-                fence = None
-            continue
+    for _, line in outside_fences(text):
         m = HEADING.match(line)
         if not m:
             continue
