@@ -158,8 +158,9 @@ int main(int argc, char** argv) {
     NewSceneOptions new_scene;
     auto* new_cmd = app.add_subcommand(
         "new", "write a ready scene around your part: a chamber and a sonotrode sized for it, shot, regions (prints what it chose)");
-    new_cmd->add_option("part", new_scene.part_path, "the part's mesh file (STL, OBJ, PLY)")->required();
-    new_cmd->add_option("--unit", new_scene.unit, "the part file's length unit: mm, cm, m, um or in")->default_str("mm");
+    new_cmd->add_option("part", new_scene.part_path, "the part's file (STL, OBJ, PLY; STEP or IGES)")->required();
+    new_cmd->add_option("--unit", new_scene.unit,
+                        "the part file's length unit: mm, cm, m, um or in (default mm; a STEP or IGES file's own)");
     new_cmd->add_option("--rotate-about", new_scene.rotate_about, "turn the part about its own x, y or z axis through its centre");
     new_cmd->add_option("--rpm", new_scene.rpm, "the turning speed (rev/min), with --rotate-about");
     new_cmd->add_option("--material", new_scene.material, "the part's material: steel, aluminium or titanium")->default_str("steel");

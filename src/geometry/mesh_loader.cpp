@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "common/cad_file.h"
 #include "common/input_error.h"
 #include "geometry/mesh_builder.h"
 #include "geometry/mesh_file_precheck.h"
@@ -90,11 +91,15 @@ TriangleMesh without_degenerate_triangles(const TriangleMesh& welded, double uni
 
 }  // namespace
 
-TriangleMesh load_mesh(const std::string& path, double unit_m) {
+TriangleMesh load_mesh(const std::string& path, double unit_m) { return load_mesh(path, MeshFileOptions{unit_m, Tessellation{}}); }
+
+TriangleMesh load_mesh(const std::string& path, const MeshFileOptions& options) {
+    const double unit_m = options.unit_m;
     if (!(unit_m > 0.0) || !std::isfinite(unit_m)) fail(path, "the mesh unit must be a positive length");
     std::error_code error;
     if (!std::filesystem::exists(path, error)) fail(path, "mesh file not found");
     if (!std::filesystem::is_regular_file(path, error)) fail(path, "not a regular file");
+    if (is_cad_file(path)) return read_cad_mesh(path, options.tessellation);
 
     precheck_mesh_file(path);
     Assimp::Importer importer;

@@ -13,17 +13,30 @@
 // a triangle's normal is its winding (see mesh_checks.h). Groups: one per distinct name of an
 // assimp mesh (STL "solid <name>", OBJ "g <name>"), or of the node holding it if the mesh is
 // unnamed; "" if neither has a name. Node transforms are applied (identity for STL/OBJ/PLY).
+//
+// STEP and IGES files (common/cad_file.h: by the extension) are read by geometry/cad_reader.h
+// instead, under the same contract: tessellated with the options' tolerances, in the length unit
+// the file states (unit_m does not apply to them), one facet per B-rep face, one group per solid.
 #pragma once
 
 #include <string>
 
+#include "geometry/cad_reader.h"
 #include "geometry/triangle_mesh.h"
 
 namespace peensim {
 
-// unit_m: metres per length unit of the file (1e-3 for a file in mm).
+struct MeshFileOptions {
+    double unit_m = 1.0;        // m per length unit of a mesh file (1e-3 for a file in mm); not for STEP/IGES
+    Tessellation tessellation;  // STEP/IGES only: how their exact surfaces become triangles
+};
+
 // Throws InputError (file = path, field "mesh") if the file is missing, cannot be parsed,
 // holds a non-finite coordinate, or holds no triangle of non-zero area.
+TriangleMesh load_mesh(const std::string& path, const MeshFileOptions& options);
+
+// unit_m: metres per length unit of the file (1e-3 for a file in mm); a STEP/IGES file is
+// tessellated at the default tolerances (Tessellation{}) in its own unit.
 TriangleMesh load_mesh(const std::string& path, double unit_m);
 
 }  // namespace peensim

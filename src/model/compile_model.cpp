@@ -11,6 +11,7 @@
 #include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
 #include "kernels/air_drag_flight.h"
+#include "model/component_mesh.h"
 #include "model/enclosure.h"
 #include "model/make_source.h"
 #include "model/mesh_sink.h"
@@ -339,7 +340,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         c.role = desc.role;
         c.material = desc.material;
         try {
-            c.mesh = std::make_shared<const TriangleMesh>(load_mesh(desc.mesh_path, desc.mesh_unit_m));
+            c.mesh = std::make_shared<const TriangleMesh>(load_component_mesh(desc));
         } catch (const InputError& e) {
             throw InputError(desc.where, component_field(i, "mesh"), e.problem_at_its_place());
         }

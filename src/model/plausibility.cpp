@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/cad_file.h"
 #include "model/shot_cavity.h"
 
 namespace peensim {
@@ -109,6 +110,7 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     for (std::size_t i = 0; i < m.components.size(); ++i) {
         const Component& c = m.components[i];
         const ComponentDesc& desc = scene.components[i];
+        if (is_cad_file(desc.mesh_path)) continue;  // read in the unit the file states: there is no mesh_unit to have slipped
         Vec3 clo = Vec3::Constant(1e300), chi = -clo;
         for (const Vec3& v : c.mesh->vertices) clo = clo.cwiseMin(v), chi = chi.cwiseMax(v);
         const double size = (chi - clo).maxCoeff();  // m, in the component's own frame (not swept)

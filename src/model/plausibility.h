@@ -7,7 +7,7 @@
 // - gravity neither ~9.81 m/s2 nor zero (weightless);
 // - a mesh whose size is implausible in its mesh_unit (a part or chamber under 1 mm or over 2 m
 //   across; a part under a twentieth of the chamber, which inches would make plausible), naming
-//   the unit it probably is;
+//   the unit it probably is (not for a STEP or IGES file: it states its own unit);
 // - a plain number for a length in a scene that gives units elsewhere (the parser notes them);
 // - a rotating part whose rim runs faster than kPlausibleRimSpeed_m_per_s (an error above
 //   kLargestRimSpeed_m_per_s: no part survives it, and the run would crawl);

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/cad_file.h"
 #include "common/fnv_hash.h"
 #include "common/units.h"
 #include "scene/schema.h"
@@ -161,7 +162,8 @@ void write_flow(std::string& y, const SceneDescription& s) {
         y += std::string("    region: ") + (d.region == SinkRegion::box ? "box" : d.region == SinkRegion::mesh ? "mesh" : "outside") + "\n";
         if (d.region == SinkRegion::mesh) {
             y += "    mesh: " + yaml_text(d.mesh_path) + "\n";
-            y += "    mesh_unit: " + mesh_unit_name(d.mesh_unit_m) + "  # " + num(d.mesh_unit_m) + " m per mesh unit\n";
+            if (!is_cad_file(d.mesh_path))  // (a STEP/IGES file states its own unit)
+                y += "    mesh_unit: " + mesh_unit_name(d.mesh_unit_m) + "  # " + num(d.mesh_unit_m) + " m per mesh unit\n";
             y += "    translation: " + vec(d.translation_m) + unit_comment(Dimension::length) + "\n";
         }
         if (d.region != SinkRegion::box) continue;
@@ -241,7 +243,11 @@ void write_component(std::string& y, const ComponentDesc& k) {
     y += "  - name: " + yaml_text(k.name) + "\n";
     y += std::string("    role: ") + role_name(k.role) + "\n";
     y += "    mesh: " + yaml_text(k.mesh_path) + "\n";
-    y += "    mesh_unit: " + mesh_unit_name(k.mesh_unit_m) + "  # " + num(k.mesh_unit_m) + " m per mesh unit\n";
+    if (is_cad_file(k.mesh_path))  // its own unit; the tessellation instead
+        y += "    tessellation: {chordal: " + num(k.tessellation.chordal_m) + ", angular: " + num(k.tessellation.angular_rad) +
+             "}  # m, rad\n";
+    else
+        y += "    mesh_unit: " + mesh_unit_name(k.mesh_unit_m) + "  # " + num(k.mesh_unit_m) + " m per mesh unit\n";
     y += "    translation: " + vec(k.translation_m) + unit_comment(Dimension::length) + "\n";
     const Eigen::AngleAxisd aa(k.rotation);
     y += "    rotation:  # " + num(aa.angle()) + " rad about " + vec(aa.axis()) + "\n";

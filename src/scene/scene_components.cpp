@@ -2,6 +2,7 @@
 #include <cmath>
 #include <system_error>
 
+#include "common/cad_file.h"
 #include "scene/scene_sections.h"
 
 namespace peensim {
@@ -122,13 +123,33 @@ std::optional<AlmenDesc> read_almen(const Cursor& c, const ComponentDesc& k) {
     return a;
 }
 
+// A STEP or IGES file states its length unit and is read in it (a CAD user expects the file to win):
+// a mesh_unit beside it would be ignored or contradict it, so it is refused; tessellation is for
+// those files only (a mesh file is already triangles).
+void read_mesh_unit_and_tessellation(const Cursor& c, ComponentDesc& k) {
+    const Cursor unit = c.child("mesh_unit");
+    const Cursor tessellation = c.child("tessellation");
+    if (!is_cad_file(k.mesh_path)) {
+        if (tessellation.present())
+            fail(tessellation, "tessellation is only for STEP and IGES files; '" + k.mesh_path + "' is a mesh file, already triangles");
+        k.mesh_unit_m = parse_quantity("1 " + read_choice(unit), Dimension::length);
+        return;
+    }
+    if (unit.present())
+        fail(unit, "mesh_unit does not apply to a STEP or IGES file: '" + k.mesh_path +
+                       "' states its own length unit, which is used; remove mesh_unit");
+    k.mesh_unit_m = 1.0;  // the reader returns metres
+    k.tessellation.chordal_m = read_quantity(tessellation.child("chordal"));
+    k.tessellation.angular_rad = read_quantity(tessellation.child("angular"));
+}
+
 ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene_dir, const std::vector<MaterialDesc>& materials) {
     ComponentDesc k;
     k.name = read_text(c.child("name"));
     if (!is_valid_name(k.name)) fail(c.child("name"), "invalid name '" + k.name + "'; names use only A-Z a-z 0-9 _ -");
     k.role = role_from(read_choice(c.child("role")));
     k.mesh_path = resolve_mesh(c.child("mesh"), scene_dir);
-    k.mesh_unit_m = parse_quantity("1 " + read_choice(c.child("mesh_unit")), Dimension::length);
+    read_mesh_unit_and_tessellation(c, k);
     k.translation_m = read_vector(c.child("translation"));
     k.rotation = read_rotation(c.child("rotation"));
     k.material = read_text(c.child("material"));

@@ -157,11 +157,18 @@ struct AlmenDesc {
     SourceLocation where;
 };
 
+// How a STEP or IGES file's exact surfaces become triangles (geometry/cad_reader.h).
+struct TessellationDesc {
+    double chordal_m = 0.0;    // m, largest distance from a triangle to the exact surface
+    double angular_rad = 0.0;  // rad, largest turn of the surface normal along a triangle edge
+};
+
 struct ComponentDesc {
     std::string name;
     ComponentRole role = ComponentRole::fixture;
     std::string mesh_path;                        // absolute or relative to the working directory (resolved by the parser)
-    double mesh_unit_m = 0.0;                     // m per mesh-file length unit (mm -> 1e-3)
+    double mesh_unit_m = 0.0;                     // m per mesh-file length unit (mm -> 1e-3); 1 for STEP/IGES (read in m)
+    TessellationDesc tessellation;                // STEP/IGES files only (common/cad_file.h); the schema's defaults
     Vec3 translation_m = Vec3::Zero();            // m, placement of the component frame in the world
     Mat3 rotation = Mat3::Identity();             // component frame -> world (applied before translation)
     std::string material;                         // key into SceneDescription::materials

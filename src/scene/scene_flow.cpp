@@ -2,6 +2,7 @@
 #include <cmath>
 #include <set>
 
+#include "common/cad_file.h"
 #include "scene/scene_sections.h"
 
 namespace peensim {
@@ -128,7 +129,10 @@ void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, do
         if (d.region == SinkRegion::mesh) {
             if (!c.child("mesh").present()) fail(c, "missing required key 'mesh' (a mesh sink needs its closed mesh)");
             d.mesh_path = resolve_mesh(c.child("mesh"), scene_dir);
-            d.mesh_unit_m = parse_quantity("1 " + read_choice(c.child("mesh_unit")), Dimension::length);
+            if (is_cad_file(d.mesh_path) && c.child("mesh_unit").present())  // as for components (scene_components.cpp)
+                fail(c.child("mesh_unit"), "mesh_unit does not apply to a STEP or IGES file: '" + d.mesh_path +
+                                               "' states its own length unit, which is used; remove mesh_unit");
+            d.mesh_unit_m = is_cad_file(d.mesh_path) ? 1.0 : parse_quantity("1 " + read_choice(c.child("mesh_unit")), Dimension::length);
             d.translation_m = read_vector(c.child("translation"));
         }
         if (d.region == SinkRegion::box) {

@@ -148,9 +148,20 @@ const std::array schema_table{
                 "placed on the first one listed; a scene fed by `sources` may have none. `almen`: a virtual SAE Almen "
                 "strip (static; impacts always logged; see `almen`)."},
     SchemaEntry{"components[].mesh", K::text, D::dimensionless, true, "", "", {}, "", "", "",
-                "Mesh file (STL, OBJ, ...), relative to the scene file's directory."},
+                "Mesh file (STL, OBJ, PLY, ...) or CAD file (STEP `.step`/`.stp`, IGES `.iges`/`.igs`: tessellated, see "
+                "`tessellation`), relative to the scene file's directory."},
     SchemaEntry{"components[].mesh_unit", K::choice, D::dimensionless, false, "m", "", {}, "m|cm|mm|um|in", "",
-                "", "Length unit of the mesh file's coordinates."},
+                "", "Length unit of the mesh file's coordinates. Not for a STEP or IGES file: it states its own unit, "
+                "which is used."},
+    SchemaEntry{"components[].tessellation", K::map, D::dimensionless, false, "", "the defaults below", {}, "", "", "",
+                "Only for a STEP or IGES file: how its exact surfaces become triangles (OpenCASCADE's mesher). One facet "
+                "per B-rep face, one group per solid (`solid1`, `solid2`, ...). See docs/step-iges.md."},
+    // Defaults: those of geometry/cad_reader.h's Tessellation (a test keeps them equal), reasoned there.
+    SchemaEntry{"components[].tessellation.chordal", K::quantity, D::length, false, "0.01 mm", "", open_closed(0, 1e-3), "", "", "",
+                "Largest distance from a triangle to the exact surface (a 2 mm shot's dent is ~0.01 mm deep)."},
+    SchemaEntry{"components[].tessellation.angular", K::quantity, D::angle, false, "5 deg", "", open_closed(0, 0.7853981633974483), "",
+                "", "", "Largest turn of the surface normal along a triangle edge (a facet's normal is within about half of it "
+                "of the true one); binds on tight curves (fillets, holes), where the chordal tolerance leaves wide facets."},
     SchemaEntry{"components[].translation", K::vector3, D::length, false, "[0, 0, 0]", "", {}, "", "", "",
                 "Position of the component frame in the world; `[x, y, z]`, `\"x y z unit\"` (one unit for all) "
                 "or `\"x unit y unit z unit\"`."},
@@ -371,7 +382,8 @@ const std::array schema_table{
                 "obstacle) is collected; `outside`: a shot leaving the assembly's bounds is collected instead of lost (an "
                 "open setup)."},
     SchemaEntry{"sinks[].mesh", K::text, D::dimensionless, false, "", "", {}, "", "", "",
-                "`mesh`: the closed mesh file (STL, OBJ, PLY...; relative to the scene file)."},
+                "`mesh`: the closed mesh file (STL, OBJ, PLY...; STEP or IGES at the default tessellation, in its own unit; "
+                "relative to the scene file)."},
     SchemaEntry{"sinks[].mesh_unit", K::choice, D::dimensionless, false, "m", "", {}, "m|cm|mm|um|in", "", "",
                 "`mesh`: length unit of the mesh file's coordinates."},
     SchemaEntry{"sinks[].translation", K::vector3, D::length, false, "[0, 0, 0]", "", {}, "", "", "",

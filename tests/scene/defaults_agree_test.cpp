@@ -65,6 +65,7 @@ components:
     mesh: m.stl
     almen: {calibration: {saturation_arc_height: 2e-4, time_constant: 1, dent_size: 3e-4, covering_rate: 1}}
   - {name: strip2, role: almen, mesh: m.stl}
+  - {name: cad, role: fixture, mesh: m.step}
 sources:
   - {name: jet, target: [0, 0, 0], distance: 0.1, speed: 50, rate: 100}
   - {name: jet2, position: [0, 0, 1], direction: [0, 0, -1], speed: 50, mass_flow: 0.1}
@@ -80,6 +81,7 @@ SceneDescription parse_bare(const std::vector<std::string>& overrides = {}, bool
         const fs::path d = fs::temp_directory_path() / "peensim_scene_defaults_agree_test";
         fs::create_directories(d);
         std::ofstream(d / "m.stl") << "solid empty\nendsolid empty\n";
+        std::ofstream(d / "m.step") << "ISO-10303-21;\nEND-ISO-10303-21;\n";  // (a STEP file: `tessellation`)
         return d;
     }();
     std::string text = kBareScene;
@@ -141,6 +143,8 @@ const std::map<std::string, Accessor>& accessors() {
         {"contacts.*.law", [](const S& s) -> Value { return pair(s, "default").law; }},
         {"components[].mesh_unit", [](const S& s) -> Value { return mesh_unit_word(component(s, "horn").mesh_unit_m); }},
         {"components[].translation", [](const S& s) -> Value { return component(s, "horn").translation_m; }},
+        {"components[].tessellation.chordal", [](const S& s) -> Value { return component(s, "cad").tessellation.chordal_m; }},
+        {"components[].tessellation.angular", [](const S& s) -> Value { return component(s, "cad").tessellation.angular_rad; }},
         {"components[].vibration.phase", [](const S& s) -> Value { return component(s, "horn").vibration.value().phase_rad; }},
         {"components[].almen.face_normal", [](const S& s) -> Value { return component(s, "strip").almen.value().face_normal; }},
         {"components[].almen.calibration.shape",
@@ -266,6 +270,7 @@ std::string field_path_of(std::string_view schema_path) {
                                   : block == "almen" && rest.find("calibration") != std::string::npos ? "strip"
                                   : block == "almen"                                                  ? "strip2"
                                   : block == "regions" || block == "motion"                           ? "gear"
+                                  : block == "tessellation"                                           ? "cad"
                                                                                                       : "horn";
         replace("components[]", "components[" + owner + "]");
     }

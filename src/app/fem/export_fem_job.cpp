@@ -18,7 +18,7 @@
 #include "fem/impact_steps.h"
 #include "fem/inp_writer.h"
 #include "fem/patch_frame.h"
-#include "geometry/mesh_loader.h"
+#include "model/component_mesh.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
 #include "output/output_names.h"
@@ -261,7 +261,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         std::size_t region_index = 0;
         std::vector<int> first_triangle_of_facet;
         if (component) {
-            mesh = load_mesh(component->mesh_path, component->mesh_unit_m);
+            mesh = load_component_mesh(*component);
             for (std::size_t t = 0; t < mesh->triangle_count(); ++t) {
                 const auto f = static_cast<std::size_t>(mesh->source_facet[t]);
                 if (first_triangle_of_facet.size() <= f) first_triangle_of_facet.resize(f + 1, -1);

@@ -1,5 +1,6 @@
 #include "app/new_scene/new_scene_job.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include "app/new_scene/scene_design.h"
 #include "app/new_scene/scene_yaml.h"
 #include "app/report_errors.h"
+#include "common/cad_file.h"
 #include "common/input_error.h"
 #include "common/units.h"
 #include "geometry/cylinder_mesh.h"
@@ -33,7 +35,23 @@ constexpr double kLargestPartM = 2.0;   // m: no USP chamber holds a part larger
 constexpr double kFastestRpm = 3000.0;  // rev/min: beyond any USP fixture
 constexpr int kSegments = 128;          // around the chamber and the sonotrode, as the gear case's
 
-InputError option_error(const std::string& option, const std::string& problem) { return InputError({}, option, problem); }
+InputError option_error(const std::string& option, const std::string& problem) { return InputError({"peensim new"}, option, problem); }
+
+// `text` as the shell reads it back: quoted when it holds anything but [A-Za-z0-9_./+-].
+std::string shell_word(const std::string& text) {
+    const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) {
+        return std::isalnum(c) || c == '_' || c == '.' || c == '/' || c == '+' || c == '-';
+    });
+    if (plain) return text;
+    std::string q = "'";
+    for (char c : text) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
+// A sonotrode wider than this or more shot than this is a unit mistake more often than a part:
+// said, not refused (a large disc is peened on large sonotrodes).
+constexpr double kWidestLikelySonotrodeM = 0.2;
+constexpr int kMostLikelyShot = 5000;
 
 std::string mm_text(double metres) {
     char buf[64];
@@ -73,11 +91,16 @@ std::string relative_to(const fs::path& target, const fs::path& folder) {
 
 int run(const NewSceneOptions& o, std::ostream& out) {
     // The request.
-    double unit_m = 0.0;
-    if (o.unit != "mm" && o.unit != "cm" && o.unit != "m" && o.unit != "um" && o.unit != "in")
+    // A STEP or IGES file states its unit (the reader converts); a mesh file's is --unit, mm by default.
+    const bool cad = is_cad_file(o.part_path);
+    if (cad && !o.unit.empty())
+        throw option_error("--unit", "a STEP or IGES file states its own length unit, which is used: leave --unit out");
+    const std::string unit = o.unit.empty() ? "mm" : o.unit;
+    if (unit != "mm" && unit != "cm" && unit != "m" && unit != "um" && unit != "in")
         throw option_error("--unit",
-                           "expected mm, cm, m, um or in (the part file's length unit; STL has none of its own), got '" + o.unit + "'");
-    unit_m = parse_quantity("1 " + o.unit, Dimension::length);
+                           "expected mm, cm, m, um or in (the part file's length unit; STL has none of its own), got '" + unit + "'");
+    const double unit_m = parse_quantity("1 " + unit, Dimension::length);
+    const std::string unit_said = cad ? "the file's unit" : unit == "in" ? "inches" : unit;
     const PartMaterial* material = find_part_material(o.material);
     if (!material) throw option_error("--material", "expected one of " + part_material_options() + ", got '" + o.material + "'");
     NewSceneRequest request;
@@ -140,12 +163,12 @@ int run(const NewSceneOptions& o, std::ostream& out) {
     const std::string size_text =
         mm_text(envelope.size_m.x()) + " x " + mm_text(envelope.size_m.y()) + " x " + mm_text(envelope.size_m.z()) + " mm";
     if (largest > kLargestPartM || largest < kSmallestPartM)
-        throw InputError(
-            {o.part_path}, "--unit",
-            "read in " + o.unit + " the part is " + size_text + ": expected 1 mm to 2 m across; is its unit right (--unit mm, cm, m, in)?");
+        throw InputError({o.part_path}, "--unit",
+                         "read in " + unit_said + " the part is " + size_text +
+                             ": expected 1 mm to 2 m across; is its unit right (--unit mm, cm, m, um, in)?");
     if (largest < kSmallestPartShots * request.shot_diameter_m)
         throw InputError({o.part_path}, "--unit",
-                         "read in " + o.unit + " the part is " + size_text + ", under 5 shot of " + mm_text(request.shot_diameter_m) +
+                         "read in " + unit_said + " the part is " + size_text + ", under 5 shot of " + mm_text(request.shot_diameter_m) +
                              " mm across: is its unit right (--unit in, cm, m), or the shot too large (--shot-diameter)?");
     const SceneDesign design = design_scene(envelope, request);
 
@@ -174,7 +197,7 @@ int run(const NewSceneOptions& o, std::ostream& out) {
     files.part_name = component_name(part);
     if (files.part_name == "sonotrode" || files.part_name == "chamber") files.part_name += "-part";
     files.part_mesh = relative_to(part, folder);
-    files.unit_name = o.unit;
+    files.unit_name = cad ? "" : unit;
     files.chamber_mesh = relative_to(chamber_stl, folder);
     files.sonotrode_mesh = relative_to(sonotrode_stl, folder);
     files.command = o.command_line.empty() ? "peensim new " + o.part_path : o.command_line;
@@ -188,7 +211,7 @@ int run(const NewSceneOptions& o, std::ostream& out) {
 
     // What it chose.
     const Vec3& sz = envelope.size_m;
-    out << "peensim new: " << o.part_path << " (" << mesh.triangle_count() << " triangles, read in " << o.unit << ")\n";
+    out << "peensim new: " << o.part_path << " (" << mesh.triangle_count() << " triangles, read in " << unit_said << ")\n";
     out << "  part       " << mm_text(sz.x()) << " x " << mm_text(sz.y()) << " x " << mm_text(sz.z()) << " mm, " << material->name
         << " (yield stress " << material->yield_stress_mpa << " MPa: edit it in the scene)\n";
     if (request.turning_axis)
@@ -204,11 +227,16 @@ int run(const NewSceneOptions& o, std::ostream& out) {
         << mm_text(2.0 * design.lower_radius_m) << " mm below, lid at z = " << mm_text(design.lid_z_m) << " mm\n";
     out << "  shot       " << design.shot_count << " x " << request.shot_diameter_m * 1e3 << " mm steel ("
         << std::lround(100.0 * design.shot_fill) << " % of the sonotrode's face)\n";
-    out << "  run        " << design.duration_s << " s" << (design.turns > 0 ? " (" + std::to_string(design.turns) + " whole turns)" : "")
+    out << "  run        " << design.duration_s << " s"
+        << (design.turns > 0 ? " (" + std::to_string(design.turns) + (design.turns == 1 ? " whole turn)" : " whole turns)") : "")
         << "; regions " << (request.turning_axis ? "the two ends and 8 sectors about the axis" : "by facing direction (6)") << "\n";
     out << "wrote " << scene.string() << ", " << chamber_stl.string() << ", " << sonotrode_stl.string() << "\n";
-    out << "next:  peensim check " << scene.string() << " --render " << beside_scene(scene.stem().string() + "-check.png").string()
-        << "\n       peensim run " << scene.string() << "\n";
+    if (2.0 * design.sonotrode_radius_m > kWidestLikelySonotrodeM || design.shot_count > kMostLikelyShot)
+        out << "warning: a " << mm_text(2.0 * design.sonotrode_radius_m) << " mm sonotrode and " << design.shot_count
+            << " shot: is the part really " << size_text << "? If not, its unit is wrong (--unit, read in " << unit_said << ")\n";
+    out << "next:  peensim check " << shell_word(scene.string()) << " --render "
+        << shell_word(beside_scene(scene.stem().string() + "-check.png").string()) << "\n       peensim run " << shell_word(scene.string())
+        << "\n";
     return kExitOk;
 }
 

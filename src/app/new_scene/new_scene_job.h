@@ -11,7 +11,7 @@ namespace peensim {
 
 struct NewSceneOptions {
     std::string part_path;
-    std::string unit = "mm";         // the part file's unit: mm, cm, m, um, in
+    std::string unit;                // the part file's length unit: mm, cm, m, um, in ("": mm; a STEP or IGES file's own)
     std::string rotate_about;        // "", x, y or z: the part's own axis through its centre
     std::string rpm;                 // with rotate_about: the speed ("30", "30 rpm")
     std::string material = "steel";  // steel, aluminium, titanium

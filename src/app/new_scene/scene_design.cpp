@@ -80,7 +80,9 @@ SceneDesign design_scene(const PartEnvelope& envelope, const NewSceneRequest& re
         // Whole turns (the analysis of a turning part counts whole turns): the fewest covering 5 s.
         const double turn_s = 60.0 / request.rpm;
         s.turns = std::max(1, static_cast<int>(std::ceil(kFirstRunS / turn_s - 1e-9)));
-        s.duration_s = s.turns * turn_s;
+        // Rounded up to the millisecond: a duration written short of the last turn (16/3 s as
+        // 5.33333333) would lose that turn to the analysis; one a little past it loses nothing.
+        s.duration_s = std::ceil(s.turns * turn_s * 1e3 - 1e-6) / 1e3;
     }
     return s;
 }

@@ -72,7 +72,8 @@ std::string new_scene_yaml(const SceneDesign& s, const NewSceneRequest& r, const
       << "name: " << f.part_name << " (peensim new)\n"
       << "process:\n";
     if (s.turns > 0)
-        y << "  # " << s.turns << " whole turns at " << number(r.rpm) << " rpm (the analysis counts whole turns), at least 5 s:\n"
+        y << "  # " << s.turns << (s.turns == 1 ? " whole turn at " : " whole turns at ") << number(r.rpm)
+          << " rpm (the analysis counts whole turns), at least 5 s:\n"
           << "  # enough for a first forecast of the time to 98 % with its interval; the report says if it is not.\n";
     else
         y << "  # 5 s: enough for a first forecast of the time to 98 % with its interval; the report says if not.\n";
@@ -115,7 +116,7 @@ std::string new_scene_yaml(const SceneDesign& s, const NewSceneRequest& r, const
       << "  - name: chamber\n"
       << "    role: chamber\n"
       << "    # Steel, open at the bottom where the sonotrode closes it: the lower section hugs the sonotrode\n"
-      << "    # (" << mm(s.gap_m) << " mm gap, under a quarter shot: none escape) up to z = " << mm(s.step_z_m)
+      << "    # (" << mm(s.gap_m) << " mm gap, at most a quarter shot: none escape) up to z = " << mm(s.step_z_m)
       << " mm, the upper one leaves the part " << mm(s.upper_radius_m - s.envelope.footprint_radius_m) << " mm\n"
       << "    # to the wall (radius " << mm(s.upper_radius_m) << " mm); the lid is " << mm(s.lid_clearance_m)
       << " mm above the part's top, at z = " << mm(s.lid_z_m) << " mm.\n"
@@ -125,7 +126,9 @@ std::string new_scene_yaml(const SceneDesign& s, const NewSceneRequest& r, const
       << "  - name: " << f.part_name << "\n"
       << "    role: part\n"
       << "    mesh: " << f.part_mesh << "\n"
-      << "    mesh_unit: " << f.unit_name << "\n"
+      << (f.unit_name.empty()
+              ? std::string("    # A STEP or IGES file: its own unit, tessellated at the default tolerances (`tessellation`).\n")
+              : "    mesh_unit: " + f.unit_name + "\n")
       << "    # Centred over the sonotrode, its lowest point" << (r.turning_axis ? " (of the solid it sweeps)" : "") << " "
       << mm(s.standoff_m) << " mm above it (the gear case: 20 mm).\n"
       << "    # Nothing holds it: add your fixture as a component with role: fixture.\n"

@@ -11,7 +11,7 @@ namespace peensim {
 struct NewSceneFiles {
     std::string part_name;     // the component's name (from the part file's name)
     std::string part_mesh;     // the part's file, as the scene refers to it (relative to the scene's folder)
-    std::string unit_name;     // the part file's unit as the scene spells it (mm, cm, m, in)
+    std::string unit_name;     // the part file's unit as the scene spells it (mm, cm, m, in); "": a STEP or IGES file's own
     std::string chamber_mesh;  // the generated meshes, relative to the scene's folder
     std::string sonotrode_mesh;
     std::string command;  // the command that wrote it (for the header)

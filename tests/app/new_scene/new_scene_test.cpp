@@ -14,6 +14,7 @@
 #include "app/check/check_job.h"
 #include "app/exit_codes.h"
 #include "app/new_scene/new_scene_job.h"
+#include "app/new_scene/scene_design.h"
 #include "geometry/mesh_loader.h"
 #include "geometry/stl_writer.h"
 #include "scene/scene_parser.h"
@@ -221,6 +222,48 @@ TEST(NewScene, ItNeverWritesOverAFileUnaskedNorOverThePart) {
     EXPECT_EQ(r.code, kExitInputError);
     EXPECT_NE(r.err.find("the part itself"), std::string::npos) << r.err;
     EXPECT_EQ(fs::file_size(dir.path / "part.yaml"), fs::file_size(kBracket));
+}
+
+// A STEP part states its unit: `new` writes no mesh_unit, refuses --unit beside it, and the scene
+// it writes checks clean (the rod of scenes/rod.yaml as an exact cylinder, written in mm by
+// tests/validation/write_step_rod.cpp).
+TEST(NewScene, AStepPartIsReadInItsOwnUnit) {
+    testing::TempDir dir;
+    const fs::path step = kSource / "tests" / "app" / "new_scene" / "rod.step";
+    const NewResult r = run_new(options(step, dir.path / "rod.yaml"));
+    ASSERT_EQ(r.code, kExitOk) << r.err;
+    EXPECT_NE(r.out.find("read in the file's unit"), std::string::npos) << r.out;
+    std::ifstream in(dir.path / "rod.yaml");
+    const std::string yaml((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_EQ(yaml.find("mesh_unit: mm\n    # Centred"), std::string::npos) << "no mesh_unit for the STEP part";
+    const SceneDescription s = parse_scene_file((dir.path / "rod.yaml").string());
+    Vec3 lo, hi;
+    world_bounds(component(s, "rod"), lo, hi);
+    EXPECT_NEAR(hi.y() - lo.y(), 30e-3, kMicrometre);  // 30 mm long, in the file's mm
+    EXPECT_NEAR(lo.z(), 20e-3, 2 * kMicrometre);
+    expect_checks_clean(dir.path / "rod.yaml");
+
+    NewSceneOptions with_unit = options(step, dir.path / "again.yaml");
+    with_unit.unit = "mm";
+    const NewResult refused = run_new(with_unit);
+    EXPECT_EQ(refused.code, kExitInputError);
+    EXPECT_NE(refused.err.find("--unit"), std::string::npos) << refused.err;
+}
+
+// The duration is written to the millisecond; it must not fall short of its last whole turn (45
+// rpm: 4 turns are 16/3 s, which written as 5.33333333 s left the analysis 3 turns).
+TEST(NewScene, TheDurationHoldsItsWholeTurnsWhateverTheSpeed) {
+    const PartEnvelope envelope = part_envelope(load_mesh(kBracket.string(), 1e-3), Axis::z);
+    for (double rpm : {7.0, 13.0, 30.0, 45.0, 59.0, 300.0, 2999.0}) {
+        NewSceneRequest request;
+        request.turning_axis = Axis::z;
+        request.rpm = rpm;
+        const SceneDesign d = design_scene(envelope, request);
+        const double turn_s = 60.0 / rpm;
+        EXPECT_GE(d.duration_s, 5.0) << rpm;
+        EXPECT_EQ(std::floor(d.duration_s / turn_s * (1.0 + 1e-12)), d.turns) << rpm << " rpm: " << d.duration_s << " s";
+        EXPECT_LT(d.duration_s - d.turns * turn_s, 1e-3) << rpm;  // at most a millisecond past the last turn
+    }
 }
 
 TEST(NewScene, EveryBadOptionIsAnInputErrorNamingIt) {
