@@ -40,6 +40,7 @@
 
 #include "app/check/check_job.h"
 #include "app/exit_codes.h"
+#include "support/mesh_error.h"
 #include "support/run_in_process.h"
 #endif
 
@@ -50,15 +51,7 @@ namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979323846;
 
 std::string error_of(const std::string& file, const Tessellation& tessellation = {}) {
-    try {
-        load_mesh(file, MeshFileOptions{1.0, tessellation});
-    } catch (const InputError& e) {
-        EXPECT_EQ(e.field(), "mesh");
-        EXPECT_EQ(e.where().file, file);
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for " << file;
-    return "";
+    return testing::mesh_error_of(file, [&] { load_mesh(file, MeshFileOptions{1.0, tessellation}); });
 }
 
 // The scene's defaults (schema.cpp) are the reader's (a `new` or `check` of a bare file uses them).

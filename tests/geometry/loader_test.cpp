@@ -13,6 +13,7 @@
 #include "geometry/mesh_generators.h"
 #include "geometry/mesh_loader.h"
 #include "geometry/stl_writer.h"
+#include "support/mesh_error.h"
 
 namespace peensim {
 namespace {
@@ -38,15 +39,7 @@ protected:
 };
 
 std::string error_of(const std::string& file) {
-    try {
-        load_mesh(file, 1e-3);
-    } catch (const InputError& e) {
-        EXPECT_EQ(e.field(), "mesh");
-        EXPECT_EQ(e.where().file, file);
-        return e.what();
-    }
-    ADD_FAILURE() << "no InputError for " << file;
-    return "";
+    return testing::mesh_error_of(file, [&] { load_mesh(file, 1e-3); });
 }
 
 TEST_F(GeometryLoader, BinaryStlRoundTripInMillimetres) {
