@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "analysis/cube_keys.h"
+#include "analysis/latest_crossing.h"
 #include "analysis/reach_boundary.h"
 #include "analysis/row_runs.h"
 #include "analysis/sample_mean.h"
@@ -754,32 +755,6 @@ RateDrift rate_drift(std::span<const ForecastImpact> impacts, int batches, const
     return d;
 }
 
-// The latest of several crossing times, each normal (mean, sd; s) and independent: its mean and
-// standard deviation by draws (a fixed seed: the same answer every time). Areas far earlier than
-// the latest (beyond 6 sd) cannot be last and are skipped.
-struct LatestOf {
-    double mean_s = 0.0, sd_s = 0.0;
-};
-LatestOf latest_of(const std::vector<std::pair<double, double>>& crossings, double latest_mean_s) {
-    std::vector<std::pair<double, double>> close;
-    double widest = 0.0;
-    for (const auto& c : crossings) widest = std::max(widest, c.second);
-    for (const auto& c : crossings)
-        if (c.first + 6.0 * c.second >= latest_mean_s - 6.0 * widest) close.push_back(c);
-    if (close.size() == 1) return {close[0].first, close[0].second};  // the one area: its own
-    constexpr int kDraws = 4000;
-    std::mt19937_64 rng(20261127);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    double sum = 0.0, sum2 = 0.0;
-    for (int d = 0; d < kDraws; ++d) {
-        double last = -kInf;
-        for (const auto& [mean, sd] : close) last = std::max(last, mean + sd * normal(rng));
-        sum += last, sum2 += last * last;
-    }
-    const double mean = sum / kDraws;
-    return {mean, std::sqrt(std::max(0.0, sum2 / kDraws - mean * mean))};
-}
-
 // The smallest kernel: kHoleMargin dent radii (of a_q). An uncovered point has no impact within a
 // dent radius of it, so a kernel that reaches no farther sees none and says "never"; a short
 // extrapolation (a long run near its target) would otherwise shrink h below that.
@@ -1003,14 +978,15 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
                 if (!pending(a)) continue;
                 finish(out[a], spans[a] * rate_window, replicate[a], wide.span_to(a, remaining(a), -1) * rate_window, process_sd[a]);
             }
-            // Everywhere: the slowest counted area, in every replicate. Each area's run crosses at
-            // its own time, spread by its own noise (disjoint areas: independent), so the last of
-            // them comes later than the latest forecast when several are close: its time is the
-            // mean of the latest over draws of them all, its spread theirs.
+            // Everywhere: the slowest counted area, in every replicate, as the latest of the areas'
+            // crossings (latest_crossing.h): later than the latest forecast when several are close
+            // (each area's run crosses at its own time), earlier by what the forecasts' own error
+            // adds to the latest of them (the winner's curse of areas alike).
             if (!everywhere_areas.empty()) {
                 double tau = -kInf, wide_tau = -kInf;
                 std::vector<double> taus(replicate[everywhere_areas.front()].size(), -kInf);
-                std::vector<std::pair<double, double>> crossings;  // (tau, sd) of each pending area, s
+                std::vector<AreaCrossing> crossings;  // of each pending area
+                std::vector<double> wide_taus;        // of each pending area at 2 h, s
                 bool any = false;
                 for (std::size_t a : everywhere_areas) {
                     if (!pending(a)) continue;
@@ -1019,27 +995,34 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
                         tau = spans[a] * rate_window;
                         f.slowest_region = a == rest ? CoverageForecast::kRestOfPart : static_cast<int>(a) - 1;
                     }
-                    crossings.emplace_back(spans[a] * rate_window, process_sd[a]);
-                    wide_tau = std::max(wide_tau, wide.span_to(a, remaining(a), -1) * rate_window);
+                    crossings.push_back({spans[a] * rate_window, process_sd[a], replicate[a]});
+                    wide_taus.push_back(wide.span_to(a, remaining(a), -1) * rate_window);
                     taus.resize(std::max(taus.size(), replicate[a].size()), -kInf);
                     for (std::size_t k = 0; k < replicate[a].size(); ++k) taus[k] = std::max(taus[k], replicate[a][k]);
                     if (!std::isfinite(spans[a])) taus.assign(taus.size(), kInf);
                 }
                 double sd = 0.0;
                 if (any && std::isfinite(tau)) {
-                    const LatestOf latest = latest_of(crossings, tau);
-                    const double shift = latest.mean_s - tau;  // the latest of several comes later
+                    const LatestCrossing latest = latest_crossing(crossings);
+                    const double shift = latest.mean_s - tau;
                     tau += shift;
-                    wide_tau += shift;
                     for (double& t : taus) t += shift;
+                    // The smoothing bias: the areas' own (tau(h) - tau(2 h)), each by how often it is
+                    // the last (the difference of the latest at h and at 2 h would add the winner's
+                    // curse of the noisier h).
+                    double bias = 0.0;
+                    for (std::size_t k = 0; k < crossings.size(); ++k)
+                        if (latest.last_share[k] > 0.0) bias += latest.last_share[k] * (crossings[k].tau_s - wide_taus[k]);
+                    wide_tau = std::isfinite(bias) ? tau - bias : kInf;  // a last area never reached at 2 h: no upper end
                     sd = latest.sd_s;
+                    f.summary.everywhere_chance_excess_s = latest.chance_excess_s;
                 }
                 if (any) finish(f.everywhere, tau, taus, wide_tau, sd);
-                // Never before any of its areas (each has its own bias correction).
+                // Its upper end never below any of its areas' (the point may be: the latest of
+                // several forecasts alike is late by chance, see above).
                 if (f.everywhere.status == AreaForecast::Status::forecast)
                     for (std::size_t a : everywhere_areas) {
                         if (!pending(a) || out[a].status != AreaForecast::Status::forecast) continue;
-                        f.everywhere.time_s = std::max(f.everywhere.time_s, out[a].time_s);
                         f.everywhere.high_s = std::max(f.everywhere.high_s, out[a].high_s);
                     }
             }

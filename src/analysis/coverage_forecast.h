@@ -149,6 +149,9 @@ struct ForecastSummary {
     std::uint64_t edge_impacts = 0;  // impacts on edges (the rates along edge lines, see above)
     std::size_t edge_lines = 0;      // edge lines with impacts
     std::size_t cells = 0;           // kernel cells with uncovered area
+    // s, what the areas' forecasts' own error added to the latest of them, taken off everywhere's
+    // time (latest_crossing.h: the winner's curse of areas alike).
+    double everywhere_chance_excess_s = 0.0;
 };
 
 struct CoverageForecast {
@@ -156,9 +159,11 @@ struct CoverageForecast {
     AreaForecast whole;                 // the peened area
     std::vector<AreaForecast> regions;  // per region (RegionSet order); an excluded region: status none
     // Everywhere: every counted region (not excluded, with peened area) at the target, and the
-    // rest of the peened area when the regions leave some out (or all of it, without regions);
-    // its interval from the jackknife of the slowest area's time (the slowest may change between
-    // replicates). coverage_now: the lowest area's.
+    // rest of the peened area when the regions leave some out (or all of it, without regions):
+    // the latest of their crossings (latest_crossing.h), which may come before the latest of their
+    // forecasts when several are alike; its interval from the jackknife of the slowest area's time
+    // (the slowest may change between replicates), its upper end never below any area's.
+    // coverage_now: the lowest area's.
     AreaForecast everywhere;
     static constexpr int kRestOfPart = -2;  // slowest_region: the peened area in no counted region
     int slowest_region = -1;                // the region that reaches the target last (kRestOfPart; -1: none)

@@ -369,6 +369,76 @@ TEST(CoverageForecast, NearTheReachBoundaryOnlyTheDentsOnItsOwnSideCover) {
     EXPECT_GE(inside, seeds - 1);
 }
 
+// The cube's six faces as six regions (the facing direction).
+RegionSet six_faces(const TriangleMesh& cube) {
+    std::vector<RegionDesc> faces;
+    const char* names[] = {"-x", "+x", "-y", "+y", "-z", "+z"};
+    for (int f = 0; f < 6; ++f) {
+        RegionDesc r;
+        r.name = names[f];
+        Vec3 n = Vec3::Zero();
+        n[f / 2] = f % 2 == 0 ? -1.0 : 1.0;
+        r.facing = FacingCondition{n, 1e-3};
+        faces.push_back(r);
+    }
+    return RegionSet(cube, faces);
+}
+
+// Six regions alike (the faces of an evenly peened cube, as the teeth of a turning gear) reach the
+// target together: everywhere is their common time (each face has 10^5 dents to go: its own run's
+// spread is small). The latest of their six forecasts is late by chance, by about 1.3 of their
+// standard errors (8 % each from 5 s); everywhere takes most of that off (latest_crossing.h), its
+// interval holding the exact time.
+TEST(CoverageForecast, EverywhereOfRegionsAlikeIsNotTheLatestOfTheirForecasts) {
+    const double rate = 0.01 / (M_PI * 0.125e-3 * 0.125e-3);
+    const Peening p = cube_peening(std::vector<double>(6, rate));
+    const RegionSet faces = six_faces(p.cube);
+    const double exact = exact_time(p, 0);
+    const int seeds = 12;
+    int inside = 0;
+    double sum = 0.0, sum_latest = 0.0;
+    for (int seed = 1; seed <= seeds; ++seed) {
+        const CoverageForecast f = peen_and_forecast(p, faces, 5.0, static_cast<std::uint64_t>(seed));
+        ASSERT_EQ(f.everywhere.status, AreaForecast::Status::forecast) << seed;
+        double latest = 0.0;
+        for (const AreaForecast& r : f.regions) latest = std::max(latest, r.time_s);
+        EXPECT_GT(f.summary.everywhere_chance_excess_s, 0.0) << seed;
+        EXPECT_LE(f.everywhere.low_s, f.everywhere.time_s);
+        EXPECT_GE(f.everywhere.high_s, latest);
+        inside += f.everywhere.low_s <= exact && exact <= f.everywhere.high_s;
+        sum += f.everywhere.time_s, sum_latest += latest;
+    }
+    std::printf("six faces alike: everywhere %+.2f %%, the latest region's forecast %+.2f %% of the exact time over %d seeds, %d held\n",
+                100.0 * (sum / seeds / exact - 1.0), 100.0 * (sum_latest / seeds / exact - 1.0), seeds, inside);
+    // Measured (2026-11-28): the latest region's forecast +11.5 %, everywhere +4.2 % (the regions'
+    // own forecasts +1.2 % on average from 5 s); 12 of 12 intervals held. What is left is the
+    // between-region spread estimated from six values: noise often reads as a real difference,
+    // and then the forecasts are not pulled together all the way.
+    EXPECT_GT(sum_latest / seeds, 1.08 * exact) << "the latest of six forecasts alike is late by chance";
+    EXPECT_LT(sum / seeds - exact, 0.5 * (sum_latest / seeds - exact));
+    EXPECT_NEAR(sum / seeds, exact, 0.05 * exact);
+    EXPECT_GE(inside, seeds - 2);
+}
+
+// One face clearly slower than the five others (0.6 x their rate): it alone sets everywhere, and
+// the correction for areas alike leaves its forecast as it is.
+TEST(CoverageForecast, EverywhereOfOneClearlySlowerRegionIsThatRegions) {
+    const double rate = 0.01 / (M_PI * 0.125e-3 * 0.125e-3);
+    Peening p = cube_peening(std::vector<double>(6, rate));
+    p.rate[2] = 0.6 * rate;
+    const RegionSet faces = six_faces(p.cube);
+    const double exact = exact_time(p, 2);
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const CoverageForecast f = peen_and_forecast(p, faces, 5.0, seed);
+        ASSERT_EQ(f.everywhere.status, AreaForecast::Status::forecast) << seed;
+        EXPECT_EQ(f.slowest_region, 2) << seed;
+        EXPECT_LT(f.summary.everywhere_chance_excess_s, 0.002 * f.regions[2].time_s) << seed;
+        EXPECT_NEAR(f.everywhere.time_s, f.regions[2].time_s, 0.005 * f.regions[2].time_s) << seed;
+        EXPECT_LE(f.everywhere.low_s, exact) << seed;
+        EXPECT_GE(f.everywhere.high_s, exact) << seed;
+    }
+}
+
 TEST(CoverageForecast, AStartUpBurstIsLeftOutOfTheRates) {
     const double rate = 0.01 / (M_PI * 0.125e-3 * 0.125e-3);
     const Peening p = cube_peening(std::vector<double>(6, rate));

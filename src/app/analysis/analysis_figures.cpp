@@ -72,6 +72,7 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, c
                              {"startup_left_out", f.startup_left_out},
                              {"rate_change", f.rate_change},
                              {"rate_drifts", f.rate_drifts},
+                             {"everywhere_chance_excess_s", f.everywhere_chance_excess_s},
                              {"face_impacts", f.face_impacts},
                              {"edge_impacts", f.edge_impacts},
                              {"edge_lines", f.edge_lines}};

@@ -16,6 +16,9 @@ namespace peensim {
 
 namespace {
 
+// The chance excess of everywhere (latest_crossing.h) is said when above this share of its time.
+constexpr double kShownChanceExcess = 0.005;
+
 // "1500 s (25 min)": seconds, and minutes or hours when that reads better.
 std::string duration_text(double s) {
     if (std::isinf(s)) return "never at this rate";
@@ -160,6 +163,12 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
             const std::string least = slowest_area_name(c, e.least_covered);
             r << "- **Everywhere** (every region at " << goal << "): " << forecast_sentence(e.time, analysed, x);
             if (!least.empty()) r << " The last region there: **" << least << "**.";
+            if (const double excess = c.forecast.summary.everywhere_chance_excess_s;
+                e.time.status == AreaForecast::Status::forecast && excess > kShownChanceExcess * e.time.time_s)
+                r << " Several regions are forecast alike, and the latest of forecasts alike is late by chance (the one that came "
+                     "out latest is the one whose estimate ran late): that chance adds "
+                  << fmt(excess, 3) << " s to the latest here, and everywhere takes it off. So a region's own figure can exceed this "
+                  << "one; the upper end covers every region's.";
             r << "\n";
             if (std::isfinite(e.uniformity))
                 r << "- **Uniformity:** " << fmt(e.uniformity, 3) << " (" << fmt(e.uniformity_low, 3) << "-" << fmt(e.uniformity_high, 3)

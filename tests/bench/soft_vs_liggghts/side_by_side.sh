@@ -10,8 +10,9 @@
 #                          [--reuse-liggghts] [--restitution E] [--friction F] [--friction-shot-shot F]
 #
 #   --case C            rod (default) or plate
-#   --duration S        simulated time, s (default 0.35)
-#   --settle S          time left out of the statistics at the start, s (default 0.15)
+#   --duration S        simulated time, s (default 0.35; plate 0.75)
+#   --settle S          time left out of the statistics at the start, s (default 0.15; plate 0.45: LIGGGHTS's
+#                       shot start at rest in the air and its bed is still warming up before, docs/design.md)
 #   --liggghts-runs K   LIGGGHTS runs, seeds 1..K (default 3: ~1.5 min each)
 #   --peensim-runs K    peensim runs, seeds 1..K (default 8: ~1 s each)
 #   --reuse-liggghts    keep OUTDIR/liggghts-*/liggghts_stats.json where they are there
@@ -27,13 +28,13 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../../.." && pwd)"
 
-usage() { sed -n '2,24p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+usage() { sed -n '2,25p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 
 [[ $# -ge 1 ]] || usage
 outdir="$1"; shift
 [[ "$outdir" != -* ]] || usage
-duration=0.35
-settle=0.15
+duration=""
+settle=""
 liggghts_runs=3
 peensim_runs=8
 reuse=0
@@ -56,6 +57,7 @@ while [[ $# -gt 0 ]]; do
     esac
 done
 [[ "$case_name" == rod || "$case_name" == plate ]] || usage
+if [[ "$case_name" == plate ]]; then : "${duration:=0.75}" "${settle:=0.45}"; else : "${duration:=0.35}" "${settle:=0.15}"; fi
 if [[ -n "${fss:-}" ]]; then
     # the shot-shot pair's own entry: the case's restitution unless given
     e_default=$([[ "$case_name" == rod ]] && echo 0.9 || echo 0.8)
