@@ -12,7 +12,7 @@ namespace peensim::contact {
 
 namespace {
 
-constexpr std::array kParameters{
+constexpr std::array kHertzMindlinParameters{
     LawParameter{"e", Dimension::dimensionless, "0.9", open_closed(0, 1), false,
                  "Coefficient of restitution: rebound over approach normal speed of one contact (the damping's beta)."},
     LawParameter{"f", Dimension::dimensionless, "0.1", at_least(0), false,
@@ -135,7 +135,7 @@ SoftPair HertzMindlinShotShotLaw::contact(double approach_speed_m_per_s) const {
 
 ShotShotResponse HertzMindlinShotShotLaw::respond(const ShotShotInput& in) const { return rigid_limit_respond(in, k_); }
 
-std::span<const LawParameter> hertz_mindlin_parameters() { return kParameters; }
+std::span<const LawParameter> hertz_mindlin_parameters() { return kHertzMindlinParameters; }
 
 std::shared_ptr<const SurfaceLaw> make_hertz_mindlin_surface(const ParameterValues& v, const SurfacePair& pair) {
     const ElasticMaterial& shot = shot_elastic_for("hertz-mindlin", pair.shot_elastic, pair.shot_material);

@@ -8,7 +8,7 @@ namespace peensim::contact {
 
 namespace {
 
-constexpr std::array kParameters{
+constexpr std::array kLinearSpringDashpotParameters{
     LawParameter{"e", Dimension::dimensionless, "0.9", open_closed(0, 1), false,
                  "Coefficient of restitution: rebound over approach normal speed of one contact, at every speed (the dampers)."},
     LawParameter{"f", Dimension::dimensionless, "0.1", at_least(0), false,
@@ -69,7 +69,7 @@ SurfaceContactResponse LinearSpringDashpotSurfaceLaw::sustain(const SurfaceConta
 
 ShotShotResponse LinearSpringDashpotShotShotLaw::respond(const ShotShotInput& in) const { return rigid_limit_respond(in, rigid_); }
 
-std::span<const LawParameter> linear_spring_dashpot_parameters() { return kParameters; }
+std::span<const LawParameter> linear_spring_dashpot_parameters() { return kLinearSpringDashpotParameters; }
 
 std::shared_ptr<const SurfaceLaw> make_linear_spring_dashpot_surface(const ParameterValues& v, const SurfacePair& pair) {
     const ElasticMaterial& shot = shot_elastic_for("linear-spring-dashpot", pair.shot_elastic, pair.shot_material);

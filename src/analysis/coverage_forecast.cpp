@@ -17,14 +17,13 @@
 #include "analysis/sample_mean.h"
 #include "analysis/student_t.h"
 #include "analysis/surface_kernel.h"
+#include "common/float_limits.h"
 #include "geometry/mesh_checks.h"
 
 namespace peensim {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kRadiusRounds = 3;            // h is re-chosen at most this often as the extrapolation settles
 constexpr double kRadiusSettled = 0.25;     // relative change of the extrapolation below which h stays
 constexpr int kRootIterations = 60;         // bisection steps on the span

@@ -5,11 +5,9 @@
 #include <cmath>
 #include <limits>
 
-namespace peensim {
+#include "common/float_limits.h"
 
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}  // namespace
+namespace peensim {
 
 CoverageProgress::CoverageProgress(std::unique_ptr<CoverageMap> map, SampleClasses classes, double target)
     : map_(std::move(map)), classes_(std::move(classes)), target_(target) {

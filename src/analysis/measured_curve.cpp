@@ -70,8 +70,7 @@ Unit unit_of_column(const std::string& path, int line, const Field& header, cons
     if (!option.empty()) {
         from_option = named(lower(option));
         if (!from_option)
-            throw InputError({"<command line>", 0, 0}, option_name,
-                             "expected one of " + std::string(expected) + ", got " + text_excerpt(option));
+            throw InputError(kCommandLine, option_name, "expected one of " + std::string(expected) + ", got " + text_excerpt(option));
     }
     if (from_header && from_option && from_header->name != from_option->name)
         throw InputError({path, line, header.column}, header.text,

@@ -10,7 +10,7 @@
 namespace peensim {
 namespace {
 
-constexpr double full_turn_rad = 2.0 * std::numbers::pi;  // rad
+constexpr double kRegionFullTurnRad = 2.0 * std::numbers::pi;  // rad
 
 // Angle of `p` about the frame's axis, right-hand about axis_direction, 0 along the reference
 // projected normal to the axis; in [0, 2 pi) (rad). A point on the axis gets angle 0.
@@ -19,19 +19,19 @@ double axis_angle(const AxisAngleFrame& f, const Vec3& p) {
     const Vec3 v = f.axis_direction.cross(u);
     const Vec3 d = p - f.axis_point_m;
     const double a = std::atan2(d.dot(v), d.dot(u));  // rad, (-pi, pi]
-    return a < 0.0 ? a + full_turn_rad : a;
+    return a < 0.0 ? a + kRegionFullTurnRad : a;
 }
 
 // Whether `angle` lies in [from, from + width) modulo a full turn (rad).
 bool in_sector(double angle, double from, double width) {
-    double d = std::fmod(angle - from, full_turn_rad);
-    if (d < 0.0) d += full_turn_rad;
-    return d < width || width >= full_turn_rad;
+    double d = std::fmod(angle - from, kRegionFullTurnRad);
+    if (d < 0.0) d += kRegionFullTurnRad;
+    return d < width || width >= kRegionFullTurnRad;
 }
 
 // Whether `angle_rad` lies in sector `sector` of a `sectors` condition.
 bool in_sector_of(const SectorsCondition& c, int sector, double angle_rad) {
-    const double centre = c.offset_rad + sector * full_turn_rad / c.count;
+    const double centre = c.offset_rad + sector * kRegionFullTurnRad / c.count;
     return in_sector(angle_rad, centre - 0.5 * c.width_rad, c.width_rad);
 }
 
@@ -39,9 +39,9 @@ bool in_sector_of(const SectorsCondition& c, int sector, double angle_rad) {
 // within a width before the angle are looked at (one for sectors that tile the turn), not all.
 template <class F>
 void for_each_sector_holding(const SectorsCondition& c, double angle_rad, F&& f) {
-    const double pitch = full_turn_rad / c.count;                                         // rad between sector centres
-    double m = std::fmod(angle_rad - (c.offset_rad - 0.5 * c.width_rad), full_turn_rad);  // from sector 0's start
-    if (m < 0.0) m += full_turn_rad;
+    const double pitch = kRegionFullTurnRad / c.count;                                         // rad between sector centres
+    double m = std::fmod(angle_rad - (c.offset_rad - 0.5 * c.width_rad), kRegionFullTurnRad);  // from sector 0's start
+    if (m < 0.0) m += kRegionFullTurnRad;
     const int last = std::min(c.count - 1, static_cast<int>(m / pitch));  // the last sector starting at or before m
     const int reach = std::min(c.count, static_cast<int>(std::ceil(c.width_rad / pitch)) + 1);
     for (int j = 0; j < reach; ++j) {

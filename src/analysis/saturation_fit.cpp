@@ -10,12 +10,11 @@
 #include <vector>
 
 #include "analysis/student_t.h"
+#include "common/float_limits.h"
 
 namespace peensim {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The profile grid the fits start from, in the scaled units below (exposures / the longest, so
 // b' = b t_max^c): ln b' from ln 1e-4 (the longest strip at 0.01 % of the plateau: a straight line)

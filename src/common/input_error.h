@@ -16,6 +16,9 @@ struct SourceLocation {
     int column = 0;    // 1-based; 0 = unknown
 };
 
+// Where an error in a command-line option is: no file, no line.
+inline const SourceLocation kCommandLine{"<command line>", 0, 0};
+
 class InputError : public std::runtime_error {
 public:
     InputError(SourceLocation where, std::string field, std::string problem)

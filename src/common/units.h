@@ -12,6 +12,8 @@
 
 namespace peensim {
 
+inline constexpr double kMetresPerInch = 0.0254;  // m, exact (Almen intensities are quoted in inches)
+
 enum class Dimension {
     length,           // m
     time,             // s

@@ -17,7 +17,7 @@ std::string upper(std::string s) {
     return s;
 }
 
-std::string trimmed(const std::string& s) {
+std::string trimmed_line(const std::string& s) {
     const auto b = s.find_first_not_of(" \t\r");
     if (b == std::string::npos) return "";
     return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
@@ -37,7 +37,7 @@ std::map<int, Vec3> read_inp_nodes(const std::string& inp_path) {
                 upper(line).rfind("*NODE", 0) == 0 && upper(line).rfind("*NODE PRINT", 0) != 0 && upper(line).rfind("*NODE FILE", 0) != 0;
             continue;
         }
-        if (!in_nodes || trimmed(line).empty()) continue;
+        if (!in_nodes || trimmed_line(line).empty()) continue;
         std::replace(line.begin(), line.end(), ',', ' ');
         std::istringstream fields(line);
         int id = 0;
@@ -80,7 +80,7 @@ std::map<int, Vec3> read_dat_last_table(const std::string& dat_path, const std::
     std::map<int, Vec3> table, current;
     bool reading = false;
     for (std::string line; std::getline(in, line);) {
-        const std::string t = trimmed(line);
+        const std::string t = trimmed_line(line);
         if (upper(line).find(upper(head)) != std::string::npos) {
             reading = true;
             current.clear();

@@ -12,7 +12,7 @@ constexpr int kIdsPerLine = 8;                       // ids per data line (the f
 constexpr double kRelaxationInitialIncrement = 0.1;  // -, of the relaxation step's unit (pseudo-)time
 
 // CalculiX reads at most 20 characters a field: 12 significant digits ("-1.23456789012e-05", 18).
-std::string num(double v) {
+std::string inp_number(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.12g", v);
     return buf;
@@ -42,13 +42,13 @@ std::vector<int> block_nodes(const std::vector<int>& nodes) {
 }
 
 void write_material(std::ostream& out, const FemMaterial& m) {
-    out << "*MATERIAL, NAME=" << m.name << "\n*ELASTIC\n" << num(m.youngs_modulus_pa) << ", " << num(m.poisson_ratio) << "\n";
+    out << "*MATERIAL, NAME=" << m.name << "\n*ELASTIC\n" << inp_number(m.youngs_modulus_pa) << ", " << inp_number(m.poisson_ratio) << "\n";
     if (m.yield_stress_pa) {
-        out << "*PLASTIC\n" << num(*m.yield_stress_pa) << ", 0.\n";
+        out << "*PLASTIC\n" << inp_number(*m.yield_stress_pa) << ", 0.\n";
         // Linear isotropic hardening: a second point at a plastic strain of 1.
-        if (m.hardening_modulus_pa > 0.0) out << num(*m.yield_stress_pa + m.hardening_modulus_pa) << ", 1.\n";
+        if (m.hardening_modulus_pa > 0.0) out << inp_number(*m.yield_stress_pa + m.hardening_modulus_pa) << ", 1.\n";
     }
-    out << "*DENSITY\n" << num(m.density_kg_per_m3) << "\n";
+    out << "*DENSITY\n" << inp_number(m.density_kg_per_m3) << "\n";
 }
 
 }  // namespace
@@ -62,7 +62,8 @@ void write_inp(std::ostream& out, const FemDeck& d) {
     out << "** The target block (patch frame: surface z = 0, material z < 0)\n*NODE, NSET=NBLOCK\n";
     for (std::size_t i = 0; i < block.nodes.size(); ++i) {
         const Vec3& p = block.nodes[i];
-        out << block_node_id(static_cast<int>(i)) << ", " << num(p.x()) << ", " << num(p.y()) << ", " << num(p.z()) << "\n";
+        out << block_node_id(static_cast<int>(i)) << ", " << inp_number(p.x()) << ", " << inp_number(p.y()) << ", " << inp_number(p.z())
+            << "\n";
     }
     out << "*ELEMENT, TYPE=" << fem_element_name(d.block_element) << ", ELSET=EBLOCK\n";
     for (std::size_t e = 0; e < block.elements.size(); ++e) {
@@ -78,7 +79,8 @@ void write_inp(std::ostream& out, const FemDeck& d) {
         out << "** Shot " << tag << " (impact " << shot.impact + 1 << ", step " << shot.step + 1 << ")\n*NODE, NSET=NSHOT" << tag << "\n";
         for (std::size_t i = 0; i < ball.nodes.size(); ++i) {
             const Vec3 p = ball.nodes[i] + shot.start_centre_m;
-            out << shot_node_id(d, si, static_cast<int>(i)) << ", " << num(p.x()) << ", " << num(p.y()) << ", " << num(p.z()) << "\n";
+            out << shot_node_id(d, si, static_cast<int>(i)) << ", " << inp_number(p.x()) << ", " << inp_number(p.y()) << ", "
+                << inp_number(p.z()) << "\n";
         }
         out << "*ELEMENT, TYPE=C3D8, ELSET=ESHOT" << tag << "\n";
         for (std::size_t e = 0; e < ball.elements.size(); ++e) {
@@ -145,7 +147,7 @@ void write_inp(std::ostream& out, const FemDeck& d) {
 
     // Contact: penalty, frictionless; slave the block's top, master the shots' surfaces.
     out << "*SURFACE INTERACTION, NAME=SHOTCONTACT\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n"
-        << num(d.contact_stiffness_pa_per_m) << "\n";
+        << inp_number(d.contact_stiffness_pa_per_m) << "\n";
     out << "*CONTACT PAIR, INTERACTION=SHOTCONTACT, TYPE=NODE TO SURFACE\nSTOP, SSHOTS\n";
 
     // Boundary conditions: bottom fixed, sides on rollers (normal displacement 0), symmetry planes.
@@ -156,7 +158,8 @@ void write_inp(std::ostream& out, const FemDeck& d) {
     if (!d.shots.empty()) {
         out << "*INITIAL CONDITIONS, TYPE=VELOCITY\n";
         for (std::size_t s = 0; s < d.shots.size(); ++s)
-            for (int k = 0; k < 3; ++k) out << "NSHOT" << s + 1 << ", " << k + 1 << ", " << num(d.shots[s].velocity_m_per_s[k]) << "\n";
+            for (int k = 0; k < 3; ++k)
+                out << "NSHOT" << s + 1 << ", " << k + 1 << ", " << inp_number(d.shots[s].velocity_m_per_s[k]) << "\n";
     }
 
     for (std::size_t k = 0; k < d.steps.size(); ++k) {
@@ -165,11 +168,11 @@ void write_inp(std::ostream& out, const FemDeck& d) {
         for (int s : st.shots) out << " " << s + 1;
         out << "\n*STEP, NLGEOM, INC=10000000\n";
         if (d.explicit_dynamics)  // ccx takes the stable (Courant) increment itself
-            out << "*DYNAMIC, EXPLICIT\n" << num(st.initial_increment_s) << ", " << num(st.duration_s) << "\n";
+            out << "*DYNAMIC, EXPLICIT\n" << inp_number(st.initial_increment_s) << ", " << inp_number(st.duration_s) << "\n";
         else
-            out << "*DYNAMIC, ALPHA=" << num(d.alpha) << "\n"
-                << num(st.initial_increment_s) << ", " << num(st.duration_s) << ", " << num(st.initial_increment_s * 1e-4) << ", "
-                << num(st.max_increment_s) << "\n";
+            out << "*DYNAMIC, ALPHA=" << inp_number(d.alpha) << "\n"
+                << inp_number(st.initial_increment_s) << ", " << inp_number(st.duration_s) << ", "
+                << inp_number(st.initial_increment_s * 1e-4) << ", " << inp_number(st.max_increment_s) << "\n";
         out << "*NODE PRINT, NSET=NPROFILE, FREQUENCY=1000000\nU\n";
         out << "*NODE PRINT, NSET=NSHOTCENTRES, FREQUENCY=1000000\nV\n";
         out << "*NODE FILE, FREQUENCY=1000000\nU\n*EL FILE, FREQUENCY=1000000\nS, PEEQ\n*END STEP\n";
@@ -181,7 +184,7 @@ void write_inp(std::ostream& out, const FemDeck& d) {
     // equilibrium: what it prints and writes then is the residual state.
     if (d.steps.empty()) return;
     out << "** Relaxation: static equilibrium without the shot, the residual state\n*STEP, NLGEOM, INC=1000\n*STATIC\n"
-        << num(kRelaxationInitialIncrement)
+        << inp_number(kRelaxationInitialIncrement)
         << ", 1., 1e-05, 1.\n*MODEL CHANGE, TYPE=CONTACT PAIR, REMOVE\nSTOP, SSHOTS\n*BOUNDARY, FIXED\n";
     for (std::size_t s = 0; s < d.shots.size(); ++s) out << "NSHOT" << s + 1 << ", 1, 3\n";
     out << "*NODE PRINT, NSET=NPROFILE\nU\n*EL PRINT, ELSET=EAXIS\nS, PEEQ\n";

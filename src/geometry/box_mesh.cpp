@@ -22,7 +22,7 @@ void check(const BoxSpec& spec) {
     }
 }
 
-TriangleMesh build(const BoxSpec& spec, std::optional<BoxFace> open_face, Facing facing) {
+TriangleMesh build_box(const BoxSpec& spec, std::optional<BoxFace> open_face, Facing facing) {
     check(spec);
     // Grid coordinates per axis, computed once: faces that meet share exact values.
     std::array<std::vector<double>, 3> grid;
@@ -70,8 +70,8 @@ TriangleMesh build(const BoxSpec& spec, std::optional<BoxFace> open_face, Facing
 
 }  // namespace
 
-TriangleMesh box(const BoxSpec& spec) { return build(spec, std::nullopt, Facing::outward); }
+TriangleMesh box(const BoxSpec& spec) { return build_box(spec, std::nullopt, Facing::outward); }
 
-TriangleMesh box_open(const BoxSpec& spec, BoxFace open_face, Facing facing) { return build(spec, open_face, facing); }
+TriangleMesh box_open(const BoxSpec& spec, BoxFace open_face, Facing facing) { return build_box(spec, open_face, facing); }
 
 }  // namespace peensim

@@ -18,7 +18,7 @@ namespace peensim {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+[[noreturn]] void fail_load(const std::string& path, const std::string& problem) {
     throw InputError(SourceLocation{path, 0, 0}, "mesh", problem);
 }
 
@@ -95,10 +95,10 @@ TriangleMesh load_mesh(const std::string& path, double unit_m) { return load_mes
 
 TriangleMesh load_mesh(const std::string& path, const MeshFileOptions& options) {
     const double unit_m = options.unit_m;
-    if (!(unit_m > 0.0) || !std::isfinite(unit_m)) fail(path, "the mesh unit must be a positive length");
+    if (!(unit_m > 0.0) || !std::isfinite(unit_m)) fail_load(path, "the mesh unit must be a positive length");
     std::error_code error;
-    if (!std::filesystem::exists(path, error)) fail(path, "mesh file not found");
-    if (!std::filesystem::is_regular_file(path, error)) fail(path, "not a regular file");
+    if (!std::filesystem::exists(path, error)) fail_load(path, "mesh file not found");
+    if (!std::filesystem::is_regular_file(path, error)) fail_load(path, "not a regular file");
     if (is_cad_file(path)) return read_cad_mesh(path, options.tessellation);
 
     precheck_mesh_file(path);
@@ -106,8 +106,8 @@ TriangleMesh load_mesh(const std::string& path, const MeshFileOptions& options) 
     // No post-processing: assimp's triangulation and vertex joining would lose the facet map
     // (and joining compares normals); both are done here instead.
     const aiScene* scene = importer.ReadFile(path, 0U);
-    if (scene == nullptr) fail(path, std::string("cannot read mesh file: ") + importer.GetErrorString());
-    if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0U) fail(path, "mesh file is incomplete");
+    if (scene == nullptr) fail_load(path, std::string("cannot read mesh file: ") + importer.GetErrorString());
+    if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0U) fail_load(path, "mesh file is incomplete");
 
     std::vector<MeshPlacement> placements(scene->mNumMeshes);
     if (scene->mRootNode != nullptr) collect_placements(scene->mRootNode, aiMatrix4x4(), placements);
@@ -124,11 +124,12 @@ TriangleMesh load_mesh(const std::string& path, const MeshFileOptions& options) 
             if (face.mNumIndices < 3) continue;  // a point or a line, not a facet
             corners.clear();
             for (unsigned k = 0; k < face.mNumIndices; ++k) {
-                if (face.mIndices[k] >= mesh.mNumVertices) fail(path, "facet " + std::to_string(facet) + " refers to a missing vertex");
+                if (face.mIndices[k] >= mesh.mNumVertices)
+                    fail_load(path, "facet " + std::to_string(facet) + " refers to a missing vertex");
                 aiVector3D p = mesh.mVertices[face.mIndices[k]];
                 if (placement.found && !placement.transform.IsIdentity()) p = placement.transform * p;
                 const Vec3 position(p.x, p.y, p.z);
-                if (!position.allFinite()) fail(path, "facet " + std::to_string(facet) + " has a non-finite coordinate");
+                if (!position.allFinite()) fail_load(path, "facet " + std::to_string(facet) + " has a non-finite coordinate");
                 // Weld on the file's values; scaling identical values gives identical results.
                 corners.push_back(builder.vertex(position));
             }
@@ -141,8 +142,9 @@ TriangleMesh load_mesh(const std::string& path, const MeshFileOptions& options) 
 
     TriangleMesh out = without_degenerate_triangles(builder.take(), unit_m);
     if (out.triangles.empty()) {
-        fail(path, facet == 0 ? "mesh file contains no triangles"
-                              : "mesh file contains no triangle of non-zero area (" + std::to_string(facet) + " facets, all degenerate)");
+        fail_load(path, facet == 0
+                            ? "mesh file contains no triangles"
+                            : "mesh file contains no triangle of non-zero area (" + std::to_string(facet) + " facets, all degenerate)");
     }
     return out;
 }

@@ -15,7 +15,7 @@ namespace peensim {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
+[[noreturn]] void fail_write(const std::string& path, const std::string& problem) {
     throw InputError(SourceLocation{path, 0, 0}, "output", problem);
 }
 
@@ -24,7 +24,7 @@ class PartialFile {
 public:
     PartialFile(const std::string& path, std::ios::openmode mode)
         : path_(path), partial_(path + ".partial"), stream_(partial_, mode | std::ios::trunc) {
-        if (!stream_) fail(path_, "cannot open '" + partial_ + "' for writing");
+        if (!stream_) fail_write(path_, "cannot open '" + partial_ + "' for writing");
     }
     PartialFile(const PartialFile&) = delete;
     PartialFile& operator=(const PartialFile&) = delete;
@@ -40,10 +40,10 @@ public:
 
     void commit() {
         stream_.close();
-        if (!stream_) fail(path_, "writing '" + partial_ + "' failed (disk full?)");
+        if (!stream_) fail_write(path_, "writing '" + partial_ + "' failed (disk full?)");
         std::error_code error;
         std::filesystem::rename(partial_, path_, error);
-        if (error) fail(path_, "cannot rename '" + partial_ + "' into place: " + error.message());
+        if (error) fail_write(path_, "cannot rename '" + partial_ + "' into place: " + error.message());
         committed_ = true;
     }
 

@@ -5,11 +5,12 @@
 #include <limits>
 #include <utility>
 
+#include "common/float_limits.h"
+
 namespace peensim {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 // |p(t)| below this many eps times sum |c_i| |t|^i is zero: Horner's own error is at most
 // 2 * degree * eps times that sum, and a critical point located to an ulp adds about as much again.
 constexpr double kZeroSlack = 16.0;

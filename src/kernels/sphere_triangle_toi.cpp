@@ -4,13 +4,13 @@
 #include <cmath>
 #include <limits>
 
+#include "common/float_limits.h"
 #include "kernels/polynomial_roots.h"
 
 namespace peensim {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Culls reject a feature only when it is clear by more than this fraction of the radius, far
 // above the rounding of the distances they compare.
 constexpr double kCullSlack = 1e-9;

@@ -5,11 +5,12 @@
 #include <limits>
 #include <utility>
 
+#include "common/float_limits.h"
+
 namespace peensim {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 // The box grows by this fraction of the radius beyond the radius itself, so that a root found an
 // ulp late, or a box corner rounded inwards, can never cut off a contact.
 constexpr double kRelativePad = 1e-6;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/float_limits.h"
 #include "common/sim_time.h"
 #include "kernels/polynomial_roots.h"
 
@@ -12,7 +13,6 @@ namespace peensim {
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kTwoPi = 2.0 * M_PI;
 // A gap below this many eps times the magnitude of the terms it is summed from is a touch: the
 // rounding of those terms (positions of ~0.1 m, the radius, the amplitude) is a few eps of it.

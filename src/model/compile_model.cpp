@@ -23,7 +23,7 @@ namespace peensim {
 
 namespace {
 
-std::string component_field(std::size_t i, const std::string& leaf) { return "components[" + std::to_string(i) + "]." + leaf; }
+std::string component_leaf_field(std::size_t i, const std::string& leaf) { return "components[" + std::to_string(i) + "]." + leaf; }
 
 // Mean outward normal of the triangles facing `up` (area weighted), in the mesh frame.
 Vec3 mean_upward_normal(const TriangleMesh& mesh, const Vec3& up_in_mesh) {
@@ -104,7 +104,7 @@ void check_extent(const Component& c, const ComponentDesc& desc, std::size_t i) 
           << far.y() / desc.mesh_unit_m << ", " << far.z() / desc.mesh_unit_m << ") file units, mesh_unit " << desc.mesh_unit_m << " m)";
     s << ": expected an assembly within " << kLargestCoordinate_m << " m of the origin; check "
       << (in_mesh ? "the file's vertices and mesh_unit" : "translation and the units it is given in");
-    throw InputError(desc.where, component_field(i, in_mesh ? "mesh" : "translation"), s.str());
+    throw InputError(desc.where, component_leaf_field(i, in_mesh ? "mesh" : "translation"), s.str());
 }
 
 const ContactPairDesc& contact_for(const SceneDescription& scene, const std::string& key) {
@@ -342,7 +342,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         try {
             c.mesh = std::make_shared<const TriangleMesh>(load_component_mesh(desc));
         } catch (const InputError& e) {
-            throw InputError(desc.where, component_field(i, "mesh"), e.problem_at_its_place());
+            throw InputError(desc.where, component_leaf_field(i, "mesh"), e.problem_at_its_place());
         }
         c.collider = std::make_shared<const MeshCollider>(*c.mesh);
         c.kinematics = build_kinematics(desc, *c.mesh, up);

@@ -10,7 +10,7 @@ namespace peensim {
 
 namespace {
 
-std::string num(double v) {
+std::string short_number(double v) {
     std::ostringstream s;
     s.precision(4);
     s << v;
@@ -27,18 +27,18 @@ void sonotrode_issues(const Model& m, std::size_t sono, Warn&& warn) {
     if (vib.amplitude_m > 1e-3) {
         const bool in_um = vib.amplitude_m * 1e-6 >= 1e-6 && vib.amplitude_m * 1e-6 <= 1e-3;
         warn(sono_where, component_field(sono) + ".vibration.amplitude",
-             "A0 " + num(vib.amplitude_m * 1e3) + " mm is far above ultrasonic peening's 10-100 um" +
-                 (in_um ? "; did you mean " + num(vib.amplitude_m) + " um?" : std::string()));
+             "A0 " + short_number(vib.amplitude_m * 1e3) + " mm is far above ultrasonic peening's 10-100 um" +
+                 (in_um ? "; did you mean " + short_number(vib.amplitude_m) + " um?" : std::string()));
     }
     if (vib.frequency_hz > 0.0 && (vib.frequency_hz < 1e3 || vib.frequency_hz > 1e5)) {
         const auto in_window = [](double f) { return f >= 1e3 && f <= 1e5; };
         std::string hint;
         if (in_window(vib.frequency_hz * 1e3))
-            hint = "; did you mean " + num(vib.frequency_hz) + " kHz?";
+            hint = "; did you mean " + short_number(vib.frequency_hz) + " kHz?";
         else if (in_window(vib.frequency_hz * 1e-3))
-            hint = "; did you mean " + num(vib.frequency_hz * 1e-3) + " Hz?";
+            hint = "; did you mean " + short_number(vib.frequency_hz * 1e-3) + " Hz?";
         warn(sono_where, component_field(sono) + ".vibration.frequency",
-             num(vib.frequency_hz) + " Hz is outside 1-100 kHz (ultrasonic sonotrodes run at ~20 kHz)" + hint);
+             short_number(vib.frequency_hz) + " Hz is outside 1-100 kHz (ultrasonic sonotrodes run at ~20 kHz)" + hint);
     }
 }
 
@@ -55,10 +55,11 @@ void rotation_issues(const Model& m, std::size_t i, Issue&& issue) {
     if (!(rim_m_per_s > kPlausibleRimSpeed_m_per_s)) return;
     const double rpm = std::abs(k.omega_rad_per_s) * 60.0 / (2.0 * M_PI);
     issue(rim_m_per_s > kLargestRimSpeed_m_per_s, m.description.components[i].where, component_field(i) + ".motion.speed",
-          num(rpm) + " rpm puts the rim of '" + c.name + "' (" + num(radius_m * 1e3) + " mm from the axis) at " + num(rim_m_per_s) +
-              " m/s: " +
-              (rim_m_per_s > kLargestRimSpeed_m_per_s ? "expected at most " + num(kLargestRimSpeed_m_per_s) + " m/s (no part survives it)"
-                                                      : "peening turns parts at a few m/s") +
+          short_number(rpm) + " rpm puts the rim of '" + c.name + "' (" + short_number(radius_m * 1e3) + " mm from the axis) at " +
+              short_number(rim_m_per_s) + " m/s: " +
+              (rim_m_per_s > kLargestRimSpeed_m_per_s
+                   ? "expected at most " + short_number(kLargestRimSpeed_m_per_s) + " m/s (no part survives it)"
+                   : "peening turns parts at a few m/s") +
               "; a plain number is rad/s (e.g. speed: \"30 rpm\")");
 }
 
@@ -70,7 +71,8 @@ void start_speed_issues(const Model& m, Warn&& warn) {
     const double v = vector ? shot.initial_velocity_m_per_s.norm() : shot.initial_speed_m_per_s;
     if (shot.initial == InitialVelocityKind::rest || !(v > kPlausibleStartSpeed_m_per_s)) return;
     warn(shot.where, vector ? "shot.initial_velocity" : "shot.initial_speed",
-         "shot start at " + num(v) + " m/s: far above ultrasonic peening's 1-20 m/s (the sonotrode sets their speed within a few impacts)");
+         "shot start at " + short_number(v) +
+             " m/s: far above ultrasonic peening's 1-20 m/s (the sonotrode sets their speed within a few impacts)");
 }
 
 }  // namespace
@@ -99,13 +101,13 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
     const double D = 2.0 * m.max_shot_radius_m;            // the largest of a mix
     if (lo.x() <= hi.x() && D > 0.1 * chamber.minCoeff())  // (a scene fed by sources may have no chamber)
         warn(scene.shot.where, scene.shot.sizes_given ? "shot.sizes" : "shot.diameter",
-             "shot of " + num(D * 1e3) + " mm in a chamber " + num(chamber.minCoeff() * 1e3) +
+             "shot of " + short_number(D * 1e3) + " mm in a chamber " + short_number(chamber.minCoeff() * 1e3) +
                  " mm across at its narrowest: more than a tenth of it; check shot.diameter and the chamber's mesh_unit");
 
     const double g = m.gravity_m_per_s2.norm();
     if (g != 0.0 && std::abs(g - 9.81) > 0.1)
         warn(scene.process.where, "process.gravity",
-             num(g) + " m/s2: expected ~9.81 m/s2 (or zero for a weightless test); gravity is in m/s2");
+             short_number(g) + " m/s2: expected ~9.81 m/s2 (or zero for a weightless test); gravity is in m/s2");
 
     for (std::size_t i = 0; i < m.components.size(); ++i) {
         const Component& c = m.components[i];
@@ -114,23 +116,24 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
         Vec3 clo = Vec3::Constant(1e300), chi = -clo;
         for (const Vec3& v : c.mesh->vertices) clo = clo.cwiseMin(v), chi = chi.cwiseMax(v);
         const double size = (chi - clo).maxCoeff();  // m, in the component's own frame (not swept)
-        const std::string unit_now = num(desc.mesh_unit_m) + " m per file unit";
+        const std::string unit_now = short_number(desc.mesh_unit_m) + " m per file unit";
         const std::string field = component_field(i) + ".mesh_unit";
         if (size > 2.0) {
             const double mm = size / desc.mesh_unit_m * 1e-3;
             warn(desc.where, field,
-                 "'" + c.name + "' is " + num(size) + " m across (" + unit_now + "): implausible for a peening chamber" +
-                     (mm <= 2.0 && mm >= 1e-3 ? "; in mm it would be " + num(mm * 1e3) + " mm (mesh_unit: mm)" : std::string()));
+                 "'" + c.name + "' is " + short_number(size) + " m across (" + unit_now + "): implausible for a peening chamber" +
+                     (mm <= 2.0 && mm >= 1e-3 ? "; in mm it would be " + short_number(mm * 1e3) + " mm (mesh_unit: mm)" : std::string()));
         } else if (size < 1e-3) {
             const double in_mm = size / desc.mesh_unit_m * 1e-3;
             warn(desc.where, field,
-                 "'" + c.name + "' is " + num(size * 1e3) + " mm across (" + unit_now + "): implausibly small" +
-                     (in_mm >= 1e-3 ? "; in mm it would be " + num(in_mm * 1e3) + " mm (mesh_unit: mm)" : std::string()));
+                 "'" + c.name + "' is " + short_number(size * 1e3) + " mm across (" + unit_now + "): implausibly small" +
+                     (in_mm >= 1e-3 ? "; in mm it would be " + short_number(in_mm * 1e3) + " mm (mesh_unit: mm)" : std::string()));
         } else if ((c.role == ComponentRole::part || c.role == ComponentRole::fixture) && size < chamber.maxCoeff() / 20.0 &&
                    size * 25.4 <= chamber.maxCoeff() && desc.mesh_unit_m == 1e-3) {
             warn(desc.where, field,
-                 "'" + c.name + "' is " + num(size * 1e3) + " mm across, small beside the chamber (" + num(chamber.maxCoeff() * 1e3) +
-                     " mm): if the file is in inches, set mesh_unit: in (" + num(size * 25.4 * 1e3) + " mm)");
+                 "'" + c.name + "' is " + short_number(size * 1e3) + " mm across, small beside the chamber (" +
+                     short_number(chamber.maxCoeff() * 1e3) + " mm): if the file is in inches, set mesh_unit: in (" +
+                     short_number(size * 25.4 * 1e3) + " mm)");
         }
     }
     return out;

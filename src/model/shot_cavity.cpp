@@ -11,7 +11,7 @@ namespace peensim {
 
 namespace {
 
-constexpr double kClearance = 0.01;  // -, gap left between a probed shot and surfaces, fraction of R
+constexpr double kProbeClearance = 0.01;  // -, gap left between a probed shot and surfaces, fraction of R
 
 SonotrodeFaces upward_faces(const Component& sonotrode, const Vec3& up) {
     SonotrodeFaces s;
@@ -80,10 +80,10 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
     std::vector<Vec3> covered_face;  // face points under a roof where no shot of radius R fits
     for (int k = 0; k < 256 && roofed < 64; ++k) {
         const Vec3 face = faces.sample(rng);
-        const Vec3 p = face + up * (R * (1.0 + kClearance));
+        const Vec3 p = face + up * (R * (1.0 + kProbeClearance));
         // Only points where a shot fits (a point hugging a wall may sit in a cell the walls mark).
         if (!clear_of_meshes(model, p, R) || !has_roof(model, p, up, scratch)) {
-            if (covered_face.size() < 64 && has_roof(model, face + up * (kClearance * R), up, scratch)) covered_face.push_back(face);
+            if (covered_face.size() < 64 && has_roof(model, face + up * (kProbeClearance * R), up, scratch)) covered_face.push_back(face);
             continue;
         }
         ++roofed;
@@ -114,10 +114,10 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
         double widest = 0.0;  // m, radius
         for (const Vec3& face : covered_face) {
             double lo = widest, hi = R;
-            if (!clear_of_meshes(model, face + up * (lo * (1.0 + kClearance)), lo)) continue;
+            if (!clear_of_meshes(model, face + up * (lo * (1.0 + kProbeClearance)), lo)) continue;
             for (int i = 0; i < 40; ++i) {
                 const double mid = 0.5 * (lo + hi);
-                (clear_of_meshes(model, face + up * (mid * (1.0 + kClearance)), mid) ? lo : hi) = mid;
+                (clear_of_meshes(model, face + up * (mid * (1.0 + kProbeClearance)), mid) ? lo : hi) = mid;
             }
             widest = std::max(widest, lo);
         }
@@ -140,7 +140,7 @@ int cavity_region(const Model& model, Enclosure& enclosure, const SonotrodeFaces
     Random probe(model.seed ^ 0x9e3779b97f4a7c15ULL);
     std::unordered_map<int, int> votes;
     for (int k = 0; k < 256; ++k) {
-        const Vec3 p = faces.sample(probe) + up * (R * (1.0 + kClearance));
+        const Vec3 p = faces.sample(probe) + up * (R * (1.0 + kProbeClearance));
         const int region = enclosure.region(p);
         if (region >= 0 && clear_of_meshes(model, p, R)) ++votes[region];
     }

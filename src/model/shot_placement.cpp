@@ -12,7 +12,7 @@ namespace peensim {
 namespace {
 
 constexpr int kRejectionsPerLayer = 400;
-constexpr double kClearance = 0.01;  // -, gap left between placed shot and surfaces, fraction of R
+constexpr double kPlacementClearance = 0.01;  // -, gap left between placed shot and surfaces, fraction of R
 
 // Shot already placed, hashed by cells one diameter wide.
 class PlacedShots {
@@ -66,8 +66,8 @@ InitialShots place_shots(const Model& model, ShotCavity& cavity, Random& rng) {
     PlacedShots placed(D);
     int layer = 0, in_layer = 0, rejections = 0;
     while (static_cast<int>(out.positions.size()) < model.shot_count) {
-        const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kClearance) + layer * D * (1.0 + kClearance));
-        const bool ok = cavity.contains(p) && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kClearance));
+        const Vec3 p = faces.sample(rng) + up * (R * (1.0 + kPlacementClearance) + layer * D * (1.0 + kPlacementClearance));
+        const bool ok = cavity.contains(p) && !placed.overlaps(p) && clear_of_meshes(model, p, R * (1.0 + 0.5 * kPlacementClearance));
         if (ok) {
             placed.add(p);
             out.positions.push_back(p);

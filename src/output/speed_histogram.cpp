@@ -12,7 +12,7 @@ namespace {
 
 // Guards against absurd bin counts (and against corrupt checkpoint bytes asking for them).
 constexpr double kMaxBins = 1e8;
-constexpr std::string_view kMagic = "PSHIST01";
+constexpr std::string_view kHistogramMagic = "PSHIST01";
 
 }  // namespace
 
@@ -112,7 +112,7 @@ std::string SpeedHistogram::serialize() const {
     std::uint64_t filled = 0;
     for (const auto c : bins_) filled += c != 0 ? 1 : 0;
     ByteWriter out;
-    out.put_raw(kMagic);
+    out.put_raw(kHistogramMagic);
     out.put<std::uint64_t>(bins_.size());
     out.put(bin_width_);
     out.put(count_);
@@ -133,7 +133,7 @@ std::string SpeedHistogram::serialize() const {
 
 SpeedHistogram SpeedHistogram::deserialize(std::string_view bytes) {
     ByteReader in(bytes, "speed histogram checkpoint data is invalid");
-    if (in.take(kMagic.size()) != kMagic) in.fail("wrong magic");
+    if (in.take(kHistogramMagic.size()) != kHistogramMagic) in.fail("wrong magic");
     const std::uint64_t bin_count = in.get<std::uint64_t>();
     const double width = in.get<double>();
     if (bin_count < 1 || static_cast<double>(bin_count) > kMaxBins || !(width > 0.0) || !std::isfinite(width)) {

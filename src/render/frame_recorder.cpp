@@ -35,6 +35,11 @@ std::string frame_name(std::int64_t k) {
     return name;
 }
 
+}  // namespace
+
+// The recorder's parts (named, not anonymous: FrameRecorder::Impl, declared in the header, holds them).
+namespace frame_recording {
+
 // Writes PNG frames on its own thread, one frame at a time: the caller hands over a filled image
 // and gets back the one written before, so drawing and encoding overlap without copies.
 class PngWriterThread {
@@ -103,7 +108,10 @@ struct Flash {
     double radius_m = 0.0;  // m, its shot's
 };
 
-}  // namespace
+}  // namespace frame_recording
+
+using frame_recording::Flash;
+using frame_recording::PngWriterThread;
 
 struct FrameRecorder::Impl {
     const Model& model;

@@ -8,7 +8,7 @@ namespace {
 
 // The square's corners are offset in clip space by radius_px pixels (times w, so that the
 // perspective divide leaves exactly that many pixels): the sprite's size ignores the distance.
-constexpr const char* kVertexShader = R"GLSL(#version 330 core
+constexpr const char* kGlowVertexShader = R"GLSL(#version 330 core
 layout(location = 0) in vec4 centre_lift;
 layout(location = 1) in float radius_px;
 layout(location = 2) in vec4 instance_colour;
@@ -36,7 +36,7 @@ void main() {
 // Premultiplied output, blended as ONE, ONE_MINUS_SRC_ALPHA: the disc (r < 0.5) is laid over the
 // scene (alpha = its opacity), the halo (r > 0.5) adds light to it (alpha 0), so that it shows on
 // the dark background, a grey wall and the orange part alike.
-constexpr const char* kFragmentShader = R"GLSL(#version 330 core
+constexpr const char* kGlowFragmentShader = R"GLSL(#version 330 core
 in vec2 corner;
 flat in vec4 colour;
 out vec4 fragment;
@@ -58,7 +58,9 @@ void main() {
 }  // namespace
 
 GlowLayer::GlowLayer()
-    : program_(gl::make_program("impact glow", kVertexShader, kFragmentShader)), vao_(gl::make_vertex_array()), buffer_(gl::make_buffer()) {
+    : program_(gl::make_program("impact glow", kGlowVertexShader, kGlowFragmentShader)),
+      vao_(gl::make_vertex_array()),
+      buffer_(gl::make_buffer()) {
     u_view_ = gl::uniform(program_, "view");
     u_projection_ = gl::uniform(program_, "projection");
     u_viewport_ = gl::uniform(program_, "viewport");

@@ -7,7 +7,7 @@ namespace peensim::render {
 
 namespace {
 
-constexpr const char* kVertexShader = R"GLSL(#version 330 core
+constexpr const char* kMeshVertexShader = R"GLSL(#version 330 core
 layout(location = 0) in vec3 position;
 uniform mat4 model_view;
 uniform mat4 projection;
@@ -23,7 +23,7 @@ void main() {
 // triangle's plane: no normal array to upload, and welded vertices (shared by neighbouring
 // triangles) still shade flat. |n.v| lights both sides alike, so a cut-away chamber's inner
 // walls are lit whatever their winding. gl_PrimitiveID is the triangle index of the draw call.
-constexpr const char* kFragmentShader = R"GLSL(#version 330 core
+constexpr const char* kMeshFragmentShader = R"GLSL(#version 330 core
 in vec3 view_position;
 uniform vec4 colour;
 uniform bool per_triangle;
@@ -46,7 +46,7 @@ constexpr float kDiffuse = 0.65f;
 
 }  // namespace
 
-MeshLayer::MeshLayer() : program_(gl::make_program("mesh", kVertexShader, kFragmentShader)) {
+MeshLayer::MeshLayer() : program_(gl::make_program("mesh", kMeshVertexShader, kMeshFragmentShader)) {
     u_model_view_ = gl::uniform(program_, "model_view");
     u_projection_ = gl::uniform(program_, "projection");
     u_colour_ = gl::uniform(program_, "colour");

@@ -12,7 +12,7 @@ namespace peensim::render {
 
 namespace {
 
-constexpr const char* kVertexShader = R"GLSL(#version 330 core
+constexpr const char* kOverlayVertexShader = R"GLSL(#version 330 core
 layout(location = 0) in vec2 pixel;
 layout(location = 1) in vec2 texel;
 layout(location = 2) in vec4 vertex_colour;
@@ -26,7 +26,7 @@ void main() {
 }
 )GLSL";
 
-constexpr const char* kFragmentShader = R"GLSL(#version 330 core
+constexpr const char* kOverlayFragmentShader = R"GLSL(#version 330 core
 in vec2 uv;
 in vec4 colour;
 uniform sampler2D atlas;
@@ -44,7 +44,7 @@ constexpr Rgba8 kFrameColour{0, 0, 0, 200};
 
 OverlayLayer::OverlayLayer(FontAtlas atlas)
     : atlas_(std::move(atlas)),
-      program_(gl::make_program("overlay", kVertexShader, kFragmentShader)),
+      program_(gl::make_program("overlay", kOverlayVertexShader, kOverlayFragmentShader)),
       texture_(gl::make_texture()),
       vao_(gl::make_vertex_array()),
       buffer_(gl::make_buffer()) {

@@ -10,7 +10,7 @@ namespace {
 // The square sits in the plane through the centre, square to the eye-centre line; its half
 // size is the radius of the cone of rays tangent to the sphere there, d r / sqrt(d^2 - r^2),
 // so it covers the silhouette exactly under perspective. A sphere around the eye is skipped.
-constexpr const char* kVertexShader = R"GLSL(#version 330 core
+constexpr const char* kSphereVertexShader = R"GLSL(#version 330 core
 layout(location = 0) in vec4 centre_radius;
 layout(location = 1) in vec4 instance_colour;
 uniform mat4 view;
@@ -45,7 +45,7 @@ void main() {
 // Ray from the eye (the origin of view space) through the square point. The squared distance
 // from the centre to the ray is computed as a vector length, not as |c|^2 - (c.d)^2, which
 // would cancel in float for a 1 mm sphere 1 m away.
-constexpr const char* kFragmentShader = R"GLSL(#version 330 core
+constexpr const char* kSphereFragmentShader = R"GLSL(#version 330 core
 in vec3 square_point;
 flat in vec3 centre;
 flat in float radius;
@@ -85,7 +85,7 @@ constexpr float kMarkerDiffuse = 0.3f;
 }  // namespace
 
 SphereLayer::SphereLayer()
-    : program_(gl::make_program("sphere impostor", kVertexShader, kFragmentShader)),
+    : program_(gl::make_program("sphere impostor", kSphereVertexShader, kSphereFragmentShader)),
       vao_(gl::make_vertex_array()),
       buffer_(gl::make_buffer()) {
     u_view_ = gl::uniform(program_, "view");

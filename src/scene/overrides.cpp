@@ -27,7 +27,7 @@ struct OverrideWalk {
     void record(const std::string& field_path) const { context->overrides.push_back({field_path, text}); }
 };
 
-std::string trim(const std::string& s) {
+std::string trimmed_text(const std::string& s) {
     const auto first = s.find_first_not_of(" \t");
     if (first == std::string::npos) return std::string();
     return s.substr(first, s.find_last_not_of(" \t") - first + 1);
@@ -41,7 +41,7 @@ std::vector<PathStep> split_path(const OverrideWalk& w) {
         if (p[i] == '[') {
             const std::size_t close = p.find(']', i);
             if (close == std::string::npos) w.fail("'[' without ']'");
-            const std::string sel = trim(p.substr(i + 1, close - i - 1));
+            const std::string sel = trimmed_text(p.substr(i + 1, close - i - 1));
             if (sel.empty() || steps.empty()) w.fail("expected [name] or [index] after a list key");
             steps.push_back({true, sel});
             i = close + 1;
@@ -141,7 +141,7 @@ void set_at(YAML::Node node, std::size_t i, const std::string& schema_path, cons
 
 const SchemaEntry* override_schema_entry(const std::string& path) {
     OverrideWalk w;
-    w.text = w.path = trim(path);
+    w.text = w.path = trimmed_text(path);
     try {
         w.steps = split_path(w);
     } catch (const InputError&) {
@@ -168,9 +168,9 @@ void apply_overrides(YAML::Node root, const std::vector<std::string>& overrides,
         w.text = text;
         w.context = &context;
         const std::size_t eq = text.find('=');
-        w.path = trim(text.substr(0, eq));
+        w.path = trimmed_text(text.substr(0, eq));
         if (eq == std::string::npos) w.fail("expected path=value");
-        const std::string value_text = trim(text.substr(eq + 1));
+        const std::string value_text = trimmed_text(text.substr(eq + 1));
         if (value_text.empty()) w.fail("missing value after '='");
         try {
             w.value = load_yaml(value_text);

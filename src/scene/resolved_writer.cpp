@@ -40,11 +40,11 @@ std::string yaml_text(const std::string& s) {
     return out + "\"";
 }
 
-std::string num(double v) { return format_si(v); }
+std::string si_text(double v) { return format_si(v); }
 
 std::string vec(const Vec3& v) {
     std::string out = "[";  // appended piece by piece: GCC 12 warns falsely on "literal" + string&&
-    out += num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]";
+    out += si_text(v.x()) + ", " + si_text(v.y()) + ", " + si_text(v.z()) + "]";
     return out;
 }
 
@@ -53,48 +53,49 @@ std::string unit_comment(Dimension d) { return "  # " + std::string(si_unit(d));
 std::string mesh_unit_name(double metres_per_unit) {
     for (std::string_view unit : split_choices(find_schema_entry("components[].mesh_unit")->choices))
         if (parse_quantity("1 " + std::string(unit), Dimension::length) == metres_per_unit) return std::string(unit);
-    throw std::invalid_argument("resolved_scene_yaml: mesh_unit_m " + num(metres_per_unit) + " is none of the scene file's mesh units");
+    throw std::invalid_argument("resolved_scene_yaml: mesh_unit_m " + si_text(metres_per_unit) + " is none of the scene file's mesh units");
 }
 
 void write_header(std::string& y, const SceneDescription& s) {
     y += "# Resolved scene: every default filled in, SI units, absolute paths.\n";
     y += "name: " + yaml_text(s.name) + "\n";
     y += "process:\n";
-    y += "  duration: " + num(s.process.duration_s) + unit_comment(Dimension::time) + "\n";
+    y += "  duration: " + si_text(s.process.duration_s) + unit_comment(Dimension::time) + "\n";
     y += "  gravity: " + vec(s.process.gravity_m_per_s2) + unit_comment(Dimension::acceleration) + "\n";
     y += "  seed: " + std::to_string(s.process.seed) + "\n";
     if (s.process.until_coverage) {
-        y += "  until_coverage: " + num(*s.process.until_coverage) + "\n";
+        y += "  until_coverage: " + si_text(*s.process.until_coverage) + "\n";
         std::string of;
         for (const std::string& n : s.process.until_coverage_of) of += (of.empty() ? "" : ", ") + yaml_text(n);
         if (!of.empty()) y += "  until_coverage_of: [" + of + "]\n";
     }
     y += "accuracy:\n";
-    y += "  travel_fraction: " + num(s.accuracy.travel_fraction) + "  # of the shot radius\n";
-    y += "  impact_speed: " + num(s.accuracy.impact_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
+    y += "  travel_fraction: " + si_text(s.accuracy.travel_fraction) + "  # of the shot radius\n";
+    y += "  impact_speed: " + si_text(s.accuracy.impact_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
     y += std::string("  scheme: ") + scheme_name(s.accuracy.scheme) + "\n";
-    y += "  soft_steps_per_contact: " + num(s.accuracy.soft_steps_per_contact) + "  # per Hertz contact time (soft scheme)\n";
+    y += "  soft_steps_per_contact: " + si_text(s.accuracy.soft_steps_per_contact) + "  # per Hertz contact time (soft scheme)\n";
 }
 
 void write_shot(std::string& y, const ShotDesc& shot) {
     y += "shot:\n";
     y += "  count: " + std::to_string(shot.count) + "\n";
     if (!shot.sizes_given) {
-        y += "  diameter: " + num(shot.sizes.front().diameter_m) + unit_comment(Dimension::length) + "\n";
+        y += "  diameter: " + si_text(shot.sizes.front().diameter_m) + unit_comment(Dimension::length) + "\n";
     } else {
         y += std::string("  fractions_by: ") + (shot.fractions_by_mass ? "mass" : "count") + "\n";
         y += "  sizes:\n";
         for (const ShotSizeDesc& s : shot.sizes)
-            y += "    - {diameter: " + num(s.diameter_m) + ", fraction: " + num(s.fraction) + "}" + unit_comment(Dimension::length) + "\n";
+            y += "    - {diameter: " + si_text(s.diameter_m) + ", fraction: " + si_text(s.fraction) + "}" +
+                 unit_comment(Dimension::length) + "\n";
     }
     if (shot.material.empty())
-        y += "  density: " + num(shot.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
+        y += "  density: " + si_text(shot.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
     else
-        y += "  material: " + yaml_text(shot.material) + "  # density " + num(shot.density_kg_per_m3) + " kg/m3\n";
+        y += "  material: " + yaml_text(shot.material) + "  # density " + si_text(shot.density_kg_per_m3) + " kg/m3\n";
     if (shot.initial == InitialVelocityKind::vector)
         y += "  initial_velocity: " + vec(shot.initial_velocity_m_per_s) + unit_comment(Dimension::speed) + "\n";
     else if (shot.initial == InitialVelocityKind::random_upward)
-        y += "  initial_speed: " + num(shot.initial_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
+        y += "  initial_speed: " + si_text(shot.initial_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
     else
         y += "  # initially at rest\n";
 }
@@ -102,24 +103,24 @@ void write_shot(std::string& y, const ShotDesc& shot) {
 void write_air(std::string& y, const AirDesc& air) {
     y += "air:\n";
     y += std::string("  drag: ") + (air.drag ? "sphere" : "none") + "\n";
-    y += "  density: " + num(air.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
-    y += "  viscosity: " + num(air.viscosity_pa_s) + unit_comment(Dimension::viscosity) + "\n";
-    if (air.drag_coefficient) y += "  drag_coefficient: " + num(*air.drag_coefficient) + "\n";
+    y += "  density: " + si_text(air.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
+    y += "  viscosity: " + si_text(air.viscosity_pa_s) + unit_comment(Dimension::viscosity) + "\n";
+    if (air.drag_coefficient) y += "  drag_coefficient: " + si_text(*air.drag_coefficient) + "\n";
     if (air.rebound_scatter) {
         y += "  rebound_scatter:\n";
-        y += "    spread: " + num(air.rebound_scatter->spread_rad) + unit_comment(Dimension::angle) + "\n";
-        y += "    min_reynolds: " + num(air.rebound_scatter->min_reynolds) + "\n";
-        y += "    min_speed: " + num(air.rebound_scatter->min_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
+        y += "    spread: " + si_text(air.rebound_scatter->spread_rad) + unit_comment(Dimension::angle) + "\n";
+        y += "    min_reynolds: " + si_text(air.rebound_scatter->min_reynolds) + "\n";
+        y += "    min_speed: " + si_text(air.rebound_scatter->min_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
     }
 }
 
 // A source's rate, as the scene gave it (a mass flow, or shot per second).
 void write_rate(std::string& y, const SourceDesc& d) {
     if (d.mass_flow_kg_per_s)
-        y += "    mass_flow: " + num(*d.mass_flow_kg_per_s) + unit_comment(Dimension::mass_flow) + "  # " + num(d.rate_per_s) +
+        y += "    mass_flow: " + si_text(*d.mass_flow_kg_per_s) + unit_comment(Dimension::mass_flow) + "  # " + si_text(d.rate_per_s) +
              " shot per s\n";
     else
-        y += "    rate: " + num(d.rate_per_s) + "  # shot per s\n";
+        y += "    rate: " + si_text(d.rate_per_s) + "  # shot per s\n";
 }
 
 // Sources and sinks, only when the scene has them (most have neither).
@@ -132,29 +133,29 @@ void write_flow(std::string& y, const SceneDescription& s) {
             y += "    opening_min: " + vec(d.opening->lo_m) + unit_comment(Dimension::length) + "\n";
             y += "    opening_max: " + vec(d.opening->hi_m) + unit_comment(Dimension::length) + "\n";
             write_rate(y, d);
-            y += "    start: " + num(d.start_s) + unit_comment(Dimension::time) + "\n";
-            y += "    stop: " + num(d.stop_s) + unit_comment(Dimension::time) + "\n";
+            y += "    start: " + si_text(d.start_s) + unit_comment(Dimension::time) + "\n";
+            y += "    stop: " + si_text(d.stop_s) + unit_comment(Dimension::time) + "\n";
             continue;
         }
         if (d.aim) {
             y += "    target: " + vec(d.aim->target_m) + unit_comment(Dimension::length) + "\n";
-            y += "    distance: " + num(d.aim->distance_m) + unit_comment(Dimension::length) + "\n";
-            y += "    angle_of_attack: " + num(d.aim->angle_of_attack_rad) + unit_comment(Dimension::angle) + "\n";
+            y += "    distance: " + si_text(d.aim->distance_m) + unit_comment(Dimension::length) + "\n";
+            y += "    angle_of_attack: " + si_text(d.aim->angle_of_attack_rad) + unit_comment(Dimension::angle) + "\n";
             y += "    target_normal: " + vec(d.aim->target_normal) + "\n";
-            y += "    azimuth: " + num(d.aim->azimuth_rad) + unit_comment(Dimension::angle) + "\n";
+            y += "    azimuth: " + si_text(d.aim->azimuth_rad) + unit_comment(Dimension::angle) + "\n";
             y += "    # position: " + vec(d.position_m) + " m, direction: " + vec(d.direction) + " (from the target)\n";
         } else {
             y += "    position: " + vec(d.position_m) + unit_comment(Dimension::length) + "\n";
             y += "    direction: " + vec(d.direction) + "\n";
         }
-        y += "    speed: " + num(d.speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
-        y += "    speed_spread: " + num(d.speed_spread) + "\n";
-        if (d.air_speed_m_per_s) y += "    air_speed: " + num(*d.air_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
+        y += "    speed: " + si_text(d.speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
+        y += "    speed_spread: " + si_text(d.speed_spread) + "\n";
+        if (d.air_speed_m_per_s) y += "    air_speed: " + si_text(*d.air_speed_m_per_s) + unit_comment(Dimension::speed) + "\n";
         write_rate(y, d);
-        y += "    exit_radius: " + num(d.exit_radius_m) + unit_comment(Dimension::length) + "\n";
-        y += "    spread: " + num(d.spread_rad) + unit_comment(Dimension::angle) + "\n";
-        y += "    start: " + num(d.start_s) + unit_comment(Dimension::time) + "\n";
-        y += "    stop: " + num(d.stop_s) + unit_comment(Dimension::time) + "\n";
+        y += "    exit_radius: " + si_text(d.exit_radius_m) + unit_comment(Dimension::length) + "\n";
+        y += "    spread: " + si_text(d.spread_rad) + unit_comment(Dimension::angle) + "\n";
+        y += "    start: " + si_text(d.start_s) + unit_comment(Dimension::time) + "\n";
+        y += "    stop: " + si_text(d.stop_s) + unit_comment(Dimension::time) + "\n";
     }
     if (!s.sinks.empty()) y += "sinks:\n";
     for (const SinkDesc& d : s.sinks) {
@@ -163,7 +164,7 @@ void write_flow(std::string& y, const SceneDescription& s) {
         if (d.region == SinkRegion::mesh) {
             y += "    mesh: " + yaml_text(d.mesh_path) + "\n";
             if (!is_cad_file(d.mesh_path))  // (a STEP/IGES file states its own unit)
-                y += "    mesh_unit: " + mesh_unit_name(d.mesh_unit_m) + "  # " + num(d.mesh_unit_m) + " m per mesh unit\n";
+                y += "    mesh_unit: " + mesh_unit_name(d.mesh_unit_m) + "  # " + si_text(d.mesh_unit_m) + " m per mesh unit\n";
             y += "    translation: " + vec(d.translation_m) + unit_comment(Dimension::length) + "\n";
         }
         if (d.region != SinkRegion::box) continue;
@@ -180,10 +181,10 @@ void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
             continue;
         }
         y += "  " + yaml_text(m.name) + ":\n";
-        if (m.density_kg_per_m3) y += "    density: " + num(*m.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
-        if (m.yield_stress_pa) y += "    yield_stress: " + num(*m.yield_stress_pa) + unit_comment(Dimension::stress) + "\n";
-        if (m.youngs_modulus_pa) y += "    youngs_modulus: " + num(*m.youngs_modulus_pa) + unit_comment(Dimension::stress) + "\n";
-        if (m.poisson_ratio) y += "    poisson_ratio: " + num(*m.poisson_ratio) + "\n";
+        if (m.density_kg_per_m3) y += "    density: " + si_text(*m.density_kg_per_m3) + unit_comment(Dimension::density) + "\n";
+        if (m.yield_stress_pa) y += "    yield_stress: " + si_text(*m.yield_stress_pa) + unit_comment(Dimension::stress) + "\n";
+        if (m.youngs_modulus_pa) y += "    youngs_modulus: " + si_text(*m.youngs_modulus_pa) + unit_comment(Dimension::stress) + "\n";
+        if (m.poisson_ratio) y += "    poisson_ratio: " + si_text(*m.poisson_ratio) + "\n";
     }
     y += "contacts:\n";
     for (const ContactPairDesc& c : s.contacts) {
@@ -193,7 +194,7 @@ void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
             const SchemaEntry* e = find_schema_entry("contacts.*." + p.name);
             const Dimension d = e != nullptr ? e->dimension : Dimension::dimensionless;
             std::string text;
-            for (double v : p.values) text += (text.empty() ? "" : ", ") + num(v);
+            for (double v : p.values) text += (text.empty() ? "" : ", ") + si_text(v);
             if (e != nullptr && e->kind == ValueKind::quantity_list) text = "[" + text + "]";
             y += "    " + p.name + ": " + text + (d == Dimension::dimensionless ? "" : unit_comment(d)) + "\n";
         }
@@ -202,7 +203,8 @@ void write_materials_and_contacts(std::string& y, const SceneDescription& s) {
 
 std::string matrix_text(const Mat3& m) {
     std::string out = "[";
-    for (int r = 0; r < 3; ++r) out += std::string(r ? ", " : "") + "[" + num(m(r, 0)) + ", " + num(m(r, 1)) + ", " + num(m(r, 2)) + "]";
+    for (int r = 0; r < 3; ++r)
+        out += std::string(r ? ", " : "") + "[" + si_text(m(r, 0)) + ", " + si_text(m(r, 1)) + ", " + si_text(m(r, 2)) + "]";
     return out + "]";
 }
 
@@ -213,16 +215,17 @@ std::string frame_text(const AxisAngleFrame& f) {
 
 // A distance range's min and max (no max: no upper bound).
 std::string distance_range_text(double min_m, double max_m) {
-    return "min: " + num(min_m) + (std::isfinite(max_m) ? ", max: " + num(max_m) : std::string());
+    return "min: " + si_text(min_m) + (std::isfinite(max_m) ? ", max: " + si_text(max_m) : std::string());
 }
 
 std::string region_text(const RegionDesc& r) {
     std::string out = "{name: " + yaml_text(r.name);
     if (r.sector)
-        out += ", sector: {" + frame_text(r.sector->frame) + ", from: " + num(r.sector->from_rad) + ", to: " + num(r.sector->to_rad) + "}";
+        out += ", sector: {" + frame_text(r.sector->frame) + ", from: " + si_text(r.sector->from_rad) +
+               ", to: " + si_text(r.sector->to_rad) + "}";
     if (r.sectors)
         out += ", sectors: {" + frame_text(r.sectors->frame) + ", count: " + std::to_string(r.sectors->count) +
-               ", width: " + num(r.sectors->width_rad) + ", offset: " + num(r.sectors->offset_rad) +
+               ", width: " + si_text(r.sectors->width_rad) + ", offset: " + si_text(r.sectors->offset_rad) +
                ", name_prefix: " + yaml_text(r.sectors->name_prefix) + "}";
     if (r.box) out += ", box: {min: " + vec(r.box->min_m) + ", max: " + vec(r.box->max_m) + "}";
     if (r.half_space) out += ", half_space: {point: " + vec(r.half_space->point_m) + ", normal: " + vec(r.half_space->normal) + "}";
@@ -233,7 +236,7 @@ std::string region_text(const RegionDesc& r) {
     if (r.distance_to_point)
         out += ", distance_to_point: {point: " + vec(r.distance_to_point->point_m) + ", " +
                distance_range_text(r.distance_to_point->min_m, r.distance_to_point->max_m) + "}";
-    if (r.facing) out += ", facing: {direction: " + vec(r.facing->direction) + ", within: " + num(r.facing->within_rad) + "}";
+    if (r.facing) out += ", facing: {direction: " + vec(r.facing->direction) + ", within: " + si_text(r.facing->within_rad) + "}";
     if (r.group) out += ", group: " + yaml_text(*r.group);
     if (r.exclude) out += ", exclude: true";
     return out + "}  # m, rad";
@@ -244,21 +247,21 @@ void write_component(std::string& y, const ComponentDesc& k) {
     y += std::string("    role: ") + role_name(k.role) + "\n";
     y += "    mesh: " + yaml_text(k.mesh_path) + "\n";
     if (is_cad_file(k.mesh_path))  // its own unit; the tessellation instead
-        y += "    tessellation: {chordal: " + num(k.tessellation.chordal_m) + ", angular: " + num(k.tessellation.angular_rad) +
+        y += "    tessellation: {chordal: " + si_text(k.tessellation.chordal_m) + ", angular: " + si_text(k.tessellation.angular_rad) +
              "}  # m, rad\n";
     else
-        y += "    mesh_unit: " + mesh_unit_name(k.mesh_unit_m) + "  # " + num(k.mesh_unit_m) + " m per mesh unit\n";
+        y += "    mesh_unit: " + mesh_unit_name(k.mesh_unit_m) + "  # " + si_text(k.mesh_unit_m) + " m per mesh unit\n";
     y += "    translation: " + vec(k.translation_m) + unit_comment(Dimension::length) + "\n";
     const Eigen::AngleAxisd aa(k.rotation);
-    y += "    rotation:  # " + num(aa.angle()) + " rad about " + vec(aa.axis()) + "\n";
+    y += "    rotation:  # " + si_text(aa.angle()) + " rad about " + vec(aa.axis()) + "\n";
     y += "      matrix: " + matrix_text(k.rotation) + "\n";
     if (!k.material.empty()) y += "    material: " + yaml_text(k.material) + "\n";
     if (k.vibration) {
         const VibrationDesc& v = *k.vibration;
         y += "    vibration:\n";
-        y += "      amplitude: " + num(v.amplitude_m) + unit_comment(Dimension::length) + "\n";
-        y += "      frequency: " + num(v.frequency_hz) + unit_comment(Dimension::frequency) + "\n";
-        y += "      phase: " + num(v.phase_rad) + unit_comment(Dimension::angle) + "\n";
+        y += "      amplitude: " + si_text(v.amplitude_m) + unit_comment(Dimension::length) + "\n";
+        y += "      frequency: " + si_text(v.frequency_hz) + unit_comment(Dimension::frequency) + "\n";
+        y += "      phase: " + si_text(v.phase_rad) + unit_comment(Dimension::angle) + "\n";
         if (v.axis)
             y += "      axis: " + vec(*v.axis) + "\n";
         else
@@ -269,19 +272,19 @@ void write_component(std::string& y, const ComponentDesc& k) {
         y += "    almen:\n";
         y += "      face_normal: " + vec(a.face_normal) + "\n";
         if (a.saturation_arc_height_m) {
-            y += "      saturation_arc_height: " + num(*a.saturation_arc_height_m) + unit_comment(Dimension::length) + "\n";
-            y += "      dose_constant: " + num(*a.dose_constant_J_per_m2) + unit_comment(Dimension::energy_per_area) + "\n";
+            y += "      saturation_arc_height: " + si_text(*a.saturation_arc_height_m) + unit_comment(Dimension::length) + "\n";
+            y += "      dose_constant: " + si_text(*a.dose_constant_J_per_m2) + unit_comment(Dimension::energy_per_area) + "\n";
         } else if (!a.calibration) {
             y += "      # saturation_arc_height, dose_constant: not calibrated (dose only)\n";
         }
         if (a.calibration) {
             const AlmenCalibrationDesc& m = *a.calibration;
             y += "      calibration:\n";
-            y += "        saturation_arc_height: " + num(m.saturation_arc_height_m) + unit_comment(Dimension::length) + "\n";
-            y += "        time_constant: " + num(m.time_constant_s) + unit_comment(Dimension::time) + "\n";
-            y += "        shape: " + num(m.shape) + "\n";
-            y += "        dent_size: " + num(m.dent_size_m) + unit_comment(Dimension::length) + "\n";
-            y += "        covering_rate: " + num(m.covering_rate_per_s) + unit_comment(Dimension::frequency) + "\n";
+            y += "        saturation_arc_height: " + si_text(m.saturation_arc_height_m) + unit_comment(Dimension::length) + "\n";
+            y += "        time_constant: " + si_text(m.time_constant_s) + unit_comment(Dimension::time) + "\n";
+            y += "        shape: " + si_text(m.shape) + "\n";
+            y += "        dent_size: " + si_text(m.dent_size_m) + unit_comment(Dimension::length) + "\n";
+            y += "        covering_rate: " + si_text(m.covering_rate_per_s) + unit_comment(Dimension::frequency) + "\n";
             if (!m.strip.empty()) y += "        strip: " + m.strip + "\n";
         }
     }
@@ -296,7 +299,7 @@ void write_component(std::string& y, const ComponentDesc& k) {
     y += "      type: rotating\n";
     y += "      axis_point: " + vec(r.axis_point_m) + unit_comment(Dimension::length) + "\n";
     y += "      axis_direction: " + vec(r.axis_direction) + "\n";
-    y += "      speed: " + num(r.speed_rad_per_s) + unit_comment(Dimension::angular_speed) + "\n";
+    y += "      speed: " + si_text(r.speed_rad_per_s) + unit_comment(Dimension::angular_speed) + "\n";
 }
 
 // What a scene's hash leaves out of the output block: the analysis' settings (they do not change
@@ -314,14 +317,14 @@ void write_output(std::string& y, const OutputDesc& o, OutputSettings settings) 
         y += "  directory: " + yaml_text(o.directory) + "\n";
     else
         y += "  # directory: given on the command line\n";
-    y += "  checkpoint_interval: " + num(o.checkpoint_interval_s) + unit_comment(Dimension::time) + "\n";
+    y += "  checkpoint_interval: " + si_text(o.checkpoint_interval_s) + unit_comment(Dimension::time) + "\n";
     if (o.shot_positions_s)
-        y += "  shot_positions: " + num(*o.shot_positions_s) + unit_comment(Dimension::time) + "\n";
+        y += "  shot_positions: " + si_text(*o.shot_positions_s) + unit_comment(Dimension::time) + "\n";
     else if (settings == OutputSettings::all)
         y += "  # shot_positions: off\n";
     if (settings == OutputSettings::all) y += "  coverage_steps: " + std::to_string(o.coverage_steps) + "\n";
     if (o.smoothing_radius_m)
-        y += "  smoothing_radius: " + num(*o.smoothing_radius_m) + unit_comment(Dimension::length) + "\n";
+        y += "  smoothing_radius: " + si_text(*o.smoothing_radius_m) + unit_comment(Dimension::length) + "\n";
     else if (settings == OutputSettings::all)
         y += "  # smoothing_radius: chosen by the analysis (dent size, impact density)\n";
 }
@@ -331,9 +334,9 @@ void write_render(std::string& y, const RenderDesc& r) {
     y += "  width: " + std::to_string(r.width_px) + "\n";
     y += "  height: " + std::to_string(r.height_px) + "\n";
     y += "  fps: " + std::to_string(r.fps) + "\n";
-    y += "  slow_motion: " + num(r.slow_motion_s) + unit_comment(Dimension::time) + "\n";
-    y += "  start: " + num(r.start_s) + unit_comment(Dimension::time) + "\n";
-    y += "  duration: " + num(r.duration_s) + unit_comment(Dimension::time) + "\n";
+    y += "  slow_motion: " + si_text(r.slow_motion_s) + unit_comment(Dimension::time) + "\n";
+    y += "  start: " + si_text(r.start_s) + unit_comment(Dimension::time) + "\n";
+    y += "  duration: " + si_text(r.duration_s) + unit_comment(Dimension::time) + "\n";
     y += "  camera:\n";
     if (r.camera_position_m)
         y += "    position: " + vec(*r.camera_position_m) + unit_comment(Dimension::length) + "\n";
@@ -344,8 +347,8 @@ void write_render(std::string& y, const RenderDesc& r) {
     else
         y += "    # look_at: the chamber's centre\n";
     y += "    up: " + vec(r.camera_up) + "\n";
-    y += "    fov: " + num(r.fov_rad) + unit_comment(Dimension::angle) + "\n";
-    y += "  speed_scale: " + num(r.speed_scale_m_per_s) + unit_comment(Dimension::speed) + "\n";
+    y += "    fov: " + si_text(r.fov_rad) + unit_comment(Dimension::angle) + "\n";
+    y += "  speed_scale: " + si_text(r.speed_scale_m_per_s) + unit_comment(Dimension::speed) + "\n";
     y += std::string("  video: ") + (r.video ? "mp4" : "none") + "\n";
 }
 

@@ -77,7 +77,7 @@ void check_until_coverage(const Cursor& process, const SceneDescription& d) {
     }
 }
 
-SceneDescription build(const Cursor& root, const std::filesystem::path& scene_dir) {
+SceneDescription build_scene(const Cursor& root, const std::filesystem::path& scene_dir) {
     SceneDescription d;
     d.name = read_text(root.child("name"));
     d.process = read_process(root.child("process"));
@@ -134,7 +134,7 @@ SceneDescription parse_scene_text(const std::string& yaml_text, const std::strin
         const Cursor top = root_cursor(context, root);
         check_structure(top);
         const std::filesystem::path scene_dir = std::filesystem::absolute(virtual_path).parent_path();
-        SceneDescription d = build(top, scene_dir);
+        SceneDescription d = build_scene(top, scene_dir);
         d.source_file = virtual_path;
         // A plain number in the file is a slip when the file writes units elsewhere (a file all in
         // SI, such as a resolved scene, stays quiet whatever unit an override writes); one in an

@@ -13,7 +13,7 @@
 namespace peensim {
 namespace {
 
-constexpr double full_turn_rad = 2.0 * std::numbers::pi;  // rad
+constexpr double kSceneFullTurnRad = 2.0 * std::numbers::pi;  // rad
 // A reference direction closer to the axis than this (sine of the angle, -) leaves angle 0
 // undefined to within round-off.
 constexpr double min_reference_sine = 1e-9;
@@ -38,7 +38,7 @@ AxisAngleFrame read_frame(const Cursor& c) {
 SectorCondition read_sector(const Cursor& c) {
     SectorCondition s{read_frame(c), read_quantity(c.child("from")), read_quantity(c.child("to"))};
     if (!(s.from_rad < s.to_rad)) fail(c.child("to"), "expected an angle greater than `from`");
-    if (!(s.to_rad - s.from_rad <= full_turn_rad + full_turn_slack_rad)) fail(c.child("to"), "expected at most 360 deg from `from`");
+    if (!(s.to_rad - s.from_rad <= kSceneFullTurnRad + full_turn_slack_rad)) fail(c.child("to"), "expected at most 360 deg from `from`");
     return s;
 }
 
@@ -47,7 +47,7 @@ SectorsCondition read_sectors(const Cursor& c, const std::string& entry_name) {
     s.frame = read_frame(c);
     s.count = static_cast<int>(read_integer(c.child("count")));
     s.width_rad = read_quantity(c.child("width"));
-    if (!(s.width_rad <= full_turn_rad + full_turn_slack_rad)) fail(c.child("width"), "expected a width of at most 360 deg");
+    if (!(s.width_rad <= kSceneFullTurnRad + full_turn_slack_rad)) fail(c.child("width"), "expected a width of at most 360 deg");
     s.offset_rad = read_quantity(c.child("offset"));
     const Cursor prefix = c.child("name_prefix");
     s.name_prefix = prefix.present() ? read_text(prefix) : entry_name + "-";
@@ -99,7 +99,7 @@ RegionDesc read_region(const Cursor& c) {
     }
     if (const Cursor f = c.child("facing"); f.present()) {
         r.facing = FacingCondition{read_direction(f.child("direction")), read_quantity(f.child("within"))};
-        if (!(r.facing->within_rad <= 0.5 * full_turn_rad + full_turn_slack_rad)) fail(f.child("within"), "expected at most 180 deg");
+        if (!(r.facing->within_rad <= 0.5 * kSceneFullTurnRad + full_turn_slack_rad)) fail(f.child("within"), "expected at most 180 deg");
     }
     if (const Cursor g = c.child("group"); g.present()) r.group = read_text(g);
     r.exclude = read_choice(c.child("exclude")) == "true";

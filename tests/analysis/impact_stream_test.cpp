@@ -21,7 +21,7 @@ namespace {
 // Spans several blocks of the stream (8192 rows each) and ends inside one.
 constexpr int kRows = 30001;
 
-std::string write_log(const fs::path& dir, int rows) {
+std::string write_stream_log(const fs::path& dir, int rows) {
     ImpactCsvWriter w(dir.string(), {"gear", "chamber", "axle"});
     for (int k = 0; k < rows; ++k) {
         ImpactRecord r;
@@ -41,7 +41,7 @@ std::string write_log(const fs::path& dir, int rows) {
 
 TEST(ImpactStream, DeliversEveryRowInOrderWithComponentIndices) {
     TempDir dir;
-    const std::string path = write_log(dir.path, kRows);
+    const std::string path = write_stream_log(dir.path, kRows);
     int reader_side_rows = 0;
     std::thread::id reader_thread;
     // "axle" is not asked for: its rows come with component -1 and skip the reader-side work.
@@ -70,7 +70,7 @@ TEST(ImpactStream, DeliversEveryRowInOrderWithComponentIndices) {
 
 TEST(ImpactStream, ADamagedRowIsRethrownAfterTheRowsBeforeIt) {
     TempDir dir;
-    const std::string path = write_log(dir.path, kRows);
+    const std::string path = write_stream_log(dir.path, kRows);
     { std::ofstream(path, std::ios::app) << "0.5,1,gear,oops\n"; }
     ImpactStream stream(path, {"gear"});
     int rows = 0;
@@ -85,7 +85,7 @@ TEST(ImpactStream, ADamagedRowIsRethrownAfterTheRowsBeforeIt) {
 
 TEST(ImpactStream, ATruncatedLogIsSaidAndAnAbandonedStreamStops) {
     TempDir dir;
-    const std::string path = write_log(dir.path, kRows);
+    const std::string path = write_stream_log(dir.path, kRows);
     {
         std::ofstream(path, std::ios::app) << "0.5,1,ge";  // a run killed mid-write
     }

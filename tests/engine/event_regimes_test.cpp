@@ -37,8 +37,8 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kG = 9.81;                 // m/s2
-constexpr double kOverlapTolerance = 1e-9;  // m
+constexpr double kG = 9.81;                       // m/s2
+constexpr double kRegimeOverlapTolerance = 1e-9;  // m
 
 class EngineEventRegimes : public ::testing::TestWithParam<std::string> {
 protected:
@@ -98,7 +98,7 @@ TEST_P(EngineEventRegimes, ChatteringShotOnTheVibratingSonotrodeIsThrown) {
         const double R = model->max_shot_radius_m;
         sim.edit_state(
             [&](SimulationState& edited) { set_shot(edited, 0, Vec3(0.0, 0.0, R + c.amplitude_m * std::sin(c.phase_rad)), Vec3::Zero()); });
-        OverlapAudit audit(*model, kOverlapTolerance);
+        OverlapAudit audit(*model, kRegimeOverlapTolerance);
         std::size_t logged = 0;
         double max_height = 0.0;                     // m, centre above R over the plate's rest top face
         const double pause = 0.05 / c.frequency_hz;  // s, 20 audits a period
@@ -157,7 +157,7 @@ TEST_P(EngineEventRegimes, ShotDroppedOnTheStillSonotrodeComeToRest) {
             sim.edit_state([&](SimulationState& edited) { set_shot(edited, static_cast<std::size_t>(20 + i / 2), above, Vec3::Zero()); });
         }
     }
-    OverlapAudit audit(*model, kOverlapTolerance);
+    OverlapAudit audit(*model, kRegimeOverlapTolerance);
     audit.audit(sim.state());
     run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>&) { audit.audit(sim.state()); },
                            .pause_at_s = pause_every(1e-3)});
@@ -216,7 +216,7 @@ TEST_P(EngineEventRegimes, DenseLoadOnTheVibratingSonotrode) {
     Simulation sim(model);
     double top = 0.0;
     for (std::size_t i = 0; i < sim.state().shots.size(); ++i) top = std::max(top, sim.state().shots.z[i]);
-    OverlapAudit audit(*model, kOverlapTolerance);
+    OverlapAudit audit(*model, kRegimeOverlapTolerance);
     audit.audit(sim.state());
     run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>&) { audit.audit(sim.state()); },
                            .pause_at_s = pause_every(50e-6)});
@@ -272,7 +272,7 @@ TEST_P(EngineEventRegimes, GrazingFlightsWithoutGravityLogNoImpacts) {
     const double R = model->max_shot_radius_m;
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, Vec3(-8e-3, 0.0, kBoxTop + R), Vec3(0.5, 0.0, 0.0)); });
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 1, Vec3(-4e-3, -6e-3, R), Vec3(0.3, 0.0, 0.0)); });
-    OverlapAudit audit(*model, kOverlapTolerance);
+    OverlapAudit audit(*model, kRegimeOverlapTolerance);
     double off_line = 0.0;  // m, largest departure of either shot from its line
     std::size_t box_passes = 0;
     bool over_box = false;
@@ -343,7 +343,7 @@ TEST_P(EngineEventRegimes, ShotSlidingOnTheFloorAndOffABoxTopLogNoSpuriousImpact
     const Vec3 start0(-4e-3, -6e-3, R);
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 0, start0, Vec3(0.1, 0.0, 0.0)); });
     sim.edit_state([&](SimulationState& edited) { set_shot(edited, 1, Vec3(-1.5e-3, 0.0, kBoxTop + R), Vec3(0.2, 0.0, 0.0)); });
-    OverlapAudit audit(*model, kOverlapTolerance);
+    OverlapAudit audit(*model, kRegimeOverlapTolerance);
     std::size_t floor_impacts_of_0 = 0, box_top_impacts = 0;
     double sink = 0.0;  // m, largest |z - R| of shot 0
     const int part = model->component_index("part");
@@ -400,7 +400,7 @@ TEST_P(EngineEventRegimes, RotatingPartImpactsLieOnItsSurface) {
     const Component& rotor = model->components[static_cast<std::size_t>(model->component_index("part"))];
     const auto t0 = std::chrono::steady_clock::now();
     Simulation sim(model);
-    OverlapAudit audit(*model, kOverlapTolerance);
+    OverlapAudit audit(*model, kRegimeOverlapTolerance);
     std::size_t logged = 0, off_surface = 0;
     double worst_distance = 0.0;  // m, farthest logged point from the part's mesh
     run_through_loop(sim, {.after_step =

@@ -26,9 +26,9 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kG = 9.81;   // m/s2
-constexpr double kH0 = 2e-3;  // m, drop height of the centre above its height at contact
-constexpr double kC = 0.8;    // -, shot-sonotrode restitution (V0 1000 m/s: always elastic)
+constexpr double kGravityAcceleration = 9.81;  // m/s2
+constexpr double kH0 = 2e-3;                   // m, drop height of the centre above its height at contact
+constexpr double kC = 0.8;                     // -, shot-sonotrode restitution (V0 1000 m/s: always elastic)
 
 TestSceneSpec still_plate(const std::string& scheme = "step") {
     TestSceneSpec spec;
@@ -43,7 +43,7 @@ TestSceneSpec still_plate(const std::string& scheme = "step") {
 
 // Bounces the closed form says are impacts at this threshold (m/s).
 int expected_impacts(double impact_speed) {
-    const double v1 = std::sqrt(2.0 * kG * kH0);
+    const double v1 = std::sqrt(2.0 * kGravityAcceleration * kH0);
     return static_cast<int>(std::floor(std::log(impact_speed / v1) / std::log(kC))) + 1;
 }
 
@@ -78,8 +78,8 @@ Drop drop(const std::vector<std::string>& overrides, const std::string& scheme =
 void expect_closed_form(const Drop& d, double impact_speed) {
     const int n = expected_impacts(impact_speed);
     ASSERT_EQ(static_cast<int>(d.impacts.size()), n) << "impact speed " << impact_speed << " m/s";
-    const double v1 = std::sqrt(2.0 * kG * kH0);
-    double t = std::sqrt(2.0 * kH0 / kG);
+    const double v1 = std::sqrt(2.0 * kGravityAcceleration * kH0);
+    double t = std::sqrt(2.0 * kH0 / kGravityAcceleration);
     for (int k = 0; k < n; ++k) {
         const ImpactRecord& r = d.impacts[static_cast<std::size_t>(k)];
         const double v_in = std::pow(kC, k) * v1;
@@ -87,7 +87,7 @@ void expect_closed_form(const Drop& d, double impact_speed) {
         EXPECT_NEAR(r.time_s, t, 1e-12) << "impact " << k;
         EXPECT_NEAR(r.vn_in_m_per_s, v_in, 1e-12) << "impact " << k;
         EXPECT_NEAR(r.vn_out_m_per_s, kC * v_in, 1e-12) << "impact " << k;
-        t += 2.0 * kC * v_in / kG;
+        t += 2.0 * kC * v_in / kGravityAcceleration;
     }
     // The next landing (slower than the threshold) ended the bouncing: once counted, then rest.
     EXPECT_LT(std::pow(kC, n) * v1, impact_speed);
@@ -100,7 +100,7 @@ void expect_closed_form(const Drop& d, double impact_speed) {
     EXPECT_LT(std::abs(d.state.shots.vz[0]), 1e-3 * impact_speed);
     // Time stepping: gravity adds at most a tenth of the threshold per step.
     if (d.scheme == "step") {
-        EXPECT_LE(d.largest_step_s * kG, 0.1 * impact_speed * (1.0 + 1e-12));
+        EXPECT_LE(d.largest_step_s * kGravityAcceleration, 0.1 * impact_speed * (1.0 + 1e-12));
     }
     std::cout << "[ impact speed ] " << impact_speed << " m/s: " << d.impacts.size() << " impacts, last at "
               << d.impacts.back().vn_in_m_per_s << " m/s, then 1 slow contact; largest step " << d.largest_step_s * 1e6 << " us\n";
@@ -136,10 +136,11 @@ TEST(EngineImpactSpeed, TheStepIsCappedSoGravityAddsATenthOfTheThresholdAtMost) 
     const auto model = scene.compile({"accuracy.impact_speed=2 cm/s"});
     EXPECT_DOUBLE_EQ(model->impact_speed_m_per_s, 0.02);
     // A still shot on a still plate: eq. 7 alone would give 4.5 ms.
-    EXPECT_GT(TimeStepping::step_for(0.0, kG, 0.25 * model->max_shot_radius_m), 4e-3);
-    EXPECT_DOUBLE_EQ(TimeStepping::time_step(*model, 0.0), 0.1 * 0.02 / kG);
+    EXPECT_GT(TimeStepping::step_for(0.0, kGravityAcceleration, 0.25 * model->max_shot_radius_m), 4e-3);
+    EXPECT_DOUBLE_EQ(TimeStepping::time_step(*model, 0.0), 0.1 * 0.02 / kGravityAcceleration);
     // Fast shot: eq. 7 decides.
-    EXPECT_DOUBLE_EQ(TimeStepping::time_step(*model, 10.0), TimeStepping::step_for(10.0, kG, 0.25 * model->max_shot_radius_m));
+    EXPECT_DOUBLE_EQ(TimeStepping::time_step(*model, 10.0),
+                     TimeStepping::step_for(10.0, kGravityAcceleration, 0.25 * model->max_shot_radius_m));
 }
 
 TEST(EngineImpactSpeed, TheSummaryCountsSlowContactsPerComponent) {
@@ -152,7 +153,7 @@ TEST(EngineImpactSpeed, TheSummaryCountsSlowContactsPerComponent) {
     o.output_dir = scene.make_subdirectory("out");
     o.progress = false;
     o.analyze = false;
-    o.overrides = {"shot.initial_velocity=[0, 0, " + std::to_string(std::sqrt(2.0 * kG * kH0)) + "]"};
+    o.overrides = {"shot.initial_velocity=[0, 0, " + std::to_string(std::sqrt(2.0 * kGravityAcceleration * kH0)) + "]"};
     std::ostringstream out, err;
     ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
     std::ifstream in(o.output_dir + "/summary.json");

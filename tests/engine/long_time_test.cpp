@@ -39,7 +39,7 @@ struct TubeRun {
 constexpr int kGrid = 4;
 constexpr int kShots = kGrid * kGrid;
 constexpr double kFrequency = 20e3;  // Hz
-constexpr double kSettle = 0.3;      // s, statistics start this long after the start
+constexpr double kLongSettle = 0.3;  // s, statistics start this long after the start
 constexpr double kLength = 2.0;      // s, run length
 
 TubeRun run_tube(const TubeCase& c, double start_s) {
@@ -68,7 +68,7 @@ TubeRun run_tube(const TubeCase& c, double start_s) {
     const int sonotrode = sim.model().sonotrode;
     run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>& impacts) {
                          for (const ImpactRecord& r : impacts) {
-                             if (r.time_s < start_s + kSettle) continue;
+                             if (r.time_s < start_s + kLongSettle) continue;
                              const auto k = static_cast<std::size_t>(r.shot);
                              if (r.component == sonotrode) {
                                  floor[k] += 1.0;
@@ -80,7 +80,7 @@ TubeRun run_tube(const TubeCase& c, double start_s) {
                          }
                      }});
     TubeRun run;
-    const double span = kLength - kSettle;
+    const double span = kLength - kLongSettle;
     const auto mean_and_se = [&](const std::vector<double>& counts, double& mean, double& se) {
         double sum = 0.0, sum2 = 0.0;
         for (double n : counts) sum += n / span;

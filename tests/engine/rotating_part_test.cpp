@@ -17,7 +17,7 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kG = 9.81;  // m/s2
+constexpr double kGravityAcceleration = 9.81;  // m/s2
 
 struct FirstImpact {
     ImpactRecord record;
@@ -90,14 +90,14 @@ TEST(EngineRotatingPart, ShotDroppedOnAPlatformSpinningAboutTheVerticalAxis) {
     ASSERT_EQ(hit.part_impacts, 1);
     const ImpactRecord& r = hit.record;
 
-    const double t_star = std::sqrt(2.0 * h / kG);
+    const double t_star = std::sqrt(2.0 * h / kGravityAcceleration);
     const Mat3 back = Eigen::AngleAxisd(-omega * t_star, Vec3::UnitZ()).toRotationMatrix();
-    const Vec3 v_shot(0.0, 0.0, -kG * t_star);
+    const Vec3 v_shot(0.0, 0.0, -kGravityAcceleration * t_star);
     const Vec3 v_surface = omega * Vec3::UnitZ().cross(xw - P);
     const Vec3 v_rel = back * (v_shot - v_surface);
     const Vec3 point = back * (xw - P) + P;
     const double C = 0.6, mu = 0.8;
-    const Vec3 v_out = back * (mu * (-v_surface) + C * kG * t_star * Vec3::UnitZ());
+    const Vec3 v_out = back * (mu * (-v_surface) + C * kGravityAcceleration * t_star * Vec3::UnitZ());
 
     std::cout.precision(12);
     std::cout << "[ rotating ] vertical axis: t " << r.time_s << " (expected " << t_star << "), point " << r.point_m.transpose()
@@ -110,9 +110,9 @@ TEST(EngineRotatingPart, ShotDroppedOnAPlatformSpinningAboutTheVerticalAxis) {
         EXPECT_NEAR(r.v_in_m_per_s[k], v_rel[k], 1e-12) << "v_in " << k;
         EXPECT_NEAR(r.v_out_m_per_s[k], v_out[k], 1e-12) << "v_out " << k;
     }
-    EXPECT_NEAR(r.vn_in_m_per_s, kG * t_star, 1e-12);
+    EXPECT_NEAR(r.vn_in_m_per_s, kGravityAcceleration * t_star, 1e-12);
     EXPECT_NEAR(r.vt_in_m_per_s, v_surface.norm(), 1e-12);
-    EXPECT_NEAR(r.vn_out_m_per_s, C * kG * t_star, 1e-12);
+    EXPECT_NEAR(r.vn_out_m_per_s, C * kGravityAcceleration * t_star, 1e-12);
     // The logged facet is on the top face (normal +z in the part frame).
     EXPECT_NEAR(facet_normal(*hit.model->components[static_cast<std::size_t>(hit.model->component_index("part"))].mesh, r.triangle).z(),
                 1.0, 1e-12);
@@ -151,7 +151,7 @@ TEST(EngineRotatingPart, ShotDroppedOnAPlateTiltingAboutAHorizontalAxis) {
     // Closed form, solved numerically: f(t) = n(theta) . (c - P) - (1 mm + R), decreasing near the touch.
     const auto f = [&](double t) {
         const double th = omega * t;
-        return std::sin(th) * x0 + std::cos(th) * (z0 - 0.5 * kG * t * t - P.z()) - (1e-3 + R);
+        return std::sin(th) * x0 + std::cos(th) * (z0 - 0.5 * kGravityAcceleration * t * t - P.z()) - (1e-3 + R);
     };
     double lo = 0.0, hi = 0.05;
     ASSERT_GT(f(lo), 0.0);
@@ -162,11 +162,11 @@ TEST(EngineRotatingPart, ShotDroppedOnAPlateTiltingAboutAHorizontalAxis) {
     }
     const double t_star = 0.5 * (lo + hi), th = omega * t_star;
     const Vec3 n(std::sin(th), 0.0, std::cos(th));
-    const Vec3 c(x0, 0.0, z0 - 0.5 * kG * t_star * t_star);
+    const Vec3 c(x0, 0.0, z0 - 0.5 * kGravityAcceleration * t_star * t_star);
     const Vec3 xw = c - R * n;
     const Mat3 back = Eigen::AngleAxisd(-th, Vec3::UnitY()).toRotationMatrix();
     const Vec3 point = back * (xw - P) + P;
-    const Vec3 v_rel = back * (Vec3(0.0, 0.0, -kG * t_star) - omega * Vec3::UnitY().cross(xw - P));
+    const Vec3 v_rel = back * (Vec3(0.0, 0.0, -kGravityAcceleration * t_star) - omega * Vec3::UnitY().cross(xw - P));
     // The contact point lies on the top face, inside it.
     EXPECT_NEAR(point.z(), P.z() + 1e-3, 1e-15);
     EXPECT_LT(std::abs(point.x()), 5e-3);

@@ -52,8 +52,6 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kFrequency = kTubeFrequencyHz;
-constexpr double kGravity = kTubeGravity;
 constexpr int kGrid = 4;  // 4 x 4 columns
 constexpr int kColumns = kGrid * kGrid;
 constexpr double kShortSeconds = 2.0;      // s, run length when PEENSIM_TUBE_SECONDS is unset (~2.5 s of wall at most)
@@ -176,9 +174,9 @@ Tally compute_reference(const TubeCase& c, double seconds, double impact_speed_m
     Tally tally(window_count(seconds));
     for (int i = 0; i < kColumns; ++i) {
         VibratingFloorCase r{.R = c.radius_m,
-                             .g = kGravity,
+                             .g = kTubeGravity,
                              .A = c.amplitude_m,
-                             .F = kFrequency,
+                             .F = kTubeFrequencyHz,
                              .phase = 0.0,
                              .H = c.height_m,
                              .z0 = start_position(c, i).z(),

@@ -40,8 +40,8 @@ constexpr double kG = kTubeGravity;      // m/s2
 constexpr double kStart = 0.5;           // s, statistics start (after the start-up transient)
 constexpr double kEngineEnd = 3.0;       // s, engine run length (~0.8 s of wall time)
 constexpr double kReferenceEnd = 60.0;   // s, reference run length per start (~0.05 s of wall time)
-constexpr int kGrid = 4;                 // 4 x 4 shot
-constexpr int kShots = kGrid * kGrid;
+constexpr int kFloorGrid = 4;            // 4 x 4 shot
+constexpr int kShots = kFloorGrid * kFloorGrid;
 constexpr double kSpacing = 5e-3;  // m, between shot centres
 
 // Per-shot statistics over [kStart, end].
@@ -64,13 +64,13 @@ struct EngineRun {
     CrossingReport crossings;
 };
 
-struct MeanAndError {
+struct FloorMeanAndError {
     double mean = 0.0;
     double standard_error = 0.0;
 };
 
 template <class Field>
-MeanAndError over_shots(const std::vector<ShotStats>& shots, Field field) {
+FloorMeanAndError over_shots(const std::vector<ShotStats>& shots, Field field) {
     double sum = 0.0, sum2 = 0.0;
     for (const ShotStats& s : shots) sum += field(s);
     const double n = static_cast<double>(shots.size());
@@ -81,11 +81,11 @@ MeanAndError over_shots(const std::vector<ShotStats>& shots, Field field) {
 
 double start_height(int i) { return kR + 1e-3 * (i + 1); }  // m, 2 ... 17 mm: distinct starts
 Vec3 start_position(int i) {
-    return {(i % kGrid - 0.5 * (kGrid - 1)) * kSpacing, (i / kGrid - 0.5 * (kGrid - 1)) * kSpacing, start_height(i)};
+    return {(i % kFloorGrid - 0.5 * (kFloorGrid - 1)) * kSpacing, (i / kFloorGrid - 0.5 * (kFloorGrid - 1)) * kSpacing, start_height(i)};
 }
 
 EngineRun run_engine(const std::string& scheme) {
-    const TestScene scene(tube_scene(scheme, kGrid * kSpacing, kH, kShots, kR, kA, kEngineEnd));
+    const TestScene scene(tube_scene(scheme, kFloorGrid * kSpacing, kH, kShots, kR, kA, kEngineEnd));
     const auto model = scene.compile();
     Simulation sim(model);
     for (int i = 0; i < kShots; ++i)
@@ -212,7 +212,7 @@ TEST_P(EngineVibratingFloor, RatesAndSpeedsMatchTheExactReference) {
                                    {"ceiling mean speed (m/s)", &ShotStats::ceiling_speed}};
     for (const Quantity& q : quantities) {
         const auto field = [&](const ShotStats& s) { return s.*(q.field); };
-        const MeanAndError e = over_shots(engine, field), r = over_shots(reference, field);
+        const FloorMeanAndError e = over_shots(engine, field), r = over_shots(reference, field);
         const double bound = 3.0 * std::hypot(e.standard_error, r.standard_error);
         std::cout << "[ vib floor] " << GetParam() << " scheme, " << q.name << ": engine " << e.mean << " +- " << e.standard_error
                   << ", reference " << r.mean << " +- " << r.standard_error << "; difference " << (e.mean - r.mean) / r.mean * 100.0

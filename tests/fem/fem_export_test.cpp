@@ -479,6 +479,11 @@ TEST(ExportFemCalculix, SingleImpactRunsAndLeavesTheDentOfEq10) {
     o.single = "0,0,0,0,0,-50 m/s";
     o.shot_diameter = "0.58 mm";
     o.quarter = true;
+    // Coarser than the defaults (6 elements a dent, 8 shot divisions: 1152 + 128 elements, ~3 min of
+    // ccx): 512 + 54 elements run in ~1 min and still put the dent within a third of eq. 10 and the
+    // residual stresses where they belong; the defaults' convergence is the user guide's ("FEM hand-off").
+    o.elements_per_dent = 4.0;
+    o.shot_divisions = 6;
     std::ostringstream out, err;
     ASSERT_EQ(export_fem_job(o, out, err), kExitOk) << err.str();
     const auto start = std::chrono::steady_clock::now();

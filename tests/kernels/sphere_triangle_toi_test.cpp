@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kG = 9.81;  // m/s^2
 constexpr double kR = 1e-3;  // m, shot radius
-const Vec3 kGravity(0, 0, -kG);
+const Vec3 kToiGravity(0, 0, -kG);
 
 double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
     return (p - closest_point_on_triangle(p, a, b, c).point).norm();
@@ -29,7 +29,7 @@ TEST(EventSphereTriangle, DropFromRestMatchesFreeFall) {
     const Floor f;
     for (double h : {1e-4, 0.02, 0.5}) {  // m, fall to contact
         const double t0 = 0.37;           // s, an arbitrary start
-        const Trajectory path{Vec3(0.001, -0.002, h + kR), Vec3::Zero(), kGravity, t0};
+        const Trajectory path{Vec3(0.001, -0.002, h + kR), Vec3::Zero(), kToiGravity, t0};
         TriangleContact contact;
         ASSERT_EQ(sphere_triangle_toi(path, kR, f.a, f.b, f.c, t0, t0 + 1.0, contact), ToiStatus::impact);
         const double fall = std::sqrt(2.0 * h / kG);
@@ -46,7 +46,7 @@ TEST(EventSphereTriangle, DropOnTheUndersideAndThrowUpward) {
     // The kernel is two-sided: a shot thrown up at a ceiling (normal pointing away from it).
     const Floor f;
     const double vz = 2.0, gap = 0.05;  // m/s, m between centre and ceiling minus R
-    const Trajectory path{Vec3(0, 0, -gap - kR), Vec3(0, 0, vz), kGravity, 0.0};
+    const Trajectory path{Vec3(0, 0, -gap - kR), Vec3(0, 0, vz), kToiGravity, 0.0};
     TriangleContact contact;
     ASSERT_EQ(sphere_triangle_toi(path, kR, f.a, f.b, f.c, 0.0, 1.0, contact), ToiStatus::impact);
     const double t = (vz - std::sqrt(vz * vz - 2.0 * kG * gap)) / kG;  // first root of gap = vz t - g t^2 / 2
@@ -117,7 +117,7 @@ TEST(EventSphereTriangle, VertexHitUnderGravity) {
     // when the fall is h - R, h the height of the centre above the vertex.
     const Rotated tri = edge_and_vertex_case(1, Vec3(0, 0, 0), Vec3(-0.01, -0.005, -0.004), Vec3(-0.01, 0.005, -0.004));
     const double h = 0.03;
-    const Trajectory path{Vec3(0, 0, h), Vec3::Zero(), kGravity, 0.0};
+    const Trajectory path{Vec3(0, 0, h), Vec3::Zero(), kToiGravity, 0.0};
     TriangleContact contact;
     ASSERT_EQ(sphere_triangle_toi(path, kR, tri.corner[0], tri.corner[1], tri.corner[2], 0.0, 1.0, contact), ToiStatus::impact);
     const double t = std::sqrt(2.0 * (h - kR) / kG);
@@ -132,7 +132,7 @@ TEST(EventSphereTriangle, GrazingTheFaceAtTheApexIsATouch) {
     const double vz = 1.0, apex = vz * vz / (2.0 * kG);
     const double ceiling = apex + kR;
     const Vec3 a(-0.02, -0.02, ceiling), b(0.0, 0.02, ceiling), c(0.02, -0.02, ceiling);
-    const Trajectory path{Vec3::Zero(), Vec3(0, 0, vz), kGravity, 0.0};
+    const Trajectory path{Vec3::Zero(), Vec3(0, 0, vz), kToiGravity, 0.0};
     TriangleContact contact;
     ASSERT_EQ(sphere_triangle_toi(path, kR, a, b, c, 0.0, 1.0, contact), ToiStatus::impact);
     EXPECT_NEAR(contact.time, vz / kG, 1e-12 * vz / kG);
@@ -168,7 +168,7 @@ TEST(EventSphereTriangle, NoRedetectionRightAfterABounce) {
     const Floor f;
     const double vz = 0.5;
     for (double gap : {0.0, -1e-12 * kR, 1e-12 * kR, -1e-16, 1e-16}) {
-        const Trajectory path{Vec3(0.004, 0.001, kR + gap), Vec3(0.03, -0.02, vz), kGravity, 2.0};
+        const Trajectory path{Vec3(0.004, 0.001, kR + gap), Vec3(0.03, -0.02, vz), kToiGravity, 2.0};
         TriangleContact contact;
         ASSERT_EQ(sphere_triangle_toi(path, kR, f.a, f.b, f.c, 2.0, 3.0, contact), ToiStatus::impact) << gap;
         const double back = (vz + std::sqrt(vz * vz + 2.0 * kG * gap)) / kG;
@@ -187,14 +187,14 @@ TEST(EventSphereTriangle, NoRedetectionRightAfterABounce) {
 TEST(EventSphereTriangle, TouchingWhileApproachingIsAnImpactNow) {
     const Floor f;
     for (double gap : {0.0, -1e-12 * kR}) {
-        const Trajectory path{Vec3(0, 0, kR + gap), Vec3(0.1, 0, -0.5), kGravity, 1.0};
+        const Trajectory path{Vec3(0, 0, kR + gap), Vec3(0.1, 0, -0.5), kToiGravity, 1.0};
         TriangleContact contact;
         ASSERT_EQ(sphere_triangle_toi(path, kR, f.a, f.b, f.c, 1.0, 2.0, contact), ToiStatus::impact);
         EXPECT_NEAR(contact.time, 1.0, 1e-15);
         EXPECT_EQ(contact.feature, TriangleFeature::face);
     }
     // Resting (no normal velocity) but pulled in by gravity: in contact now.
-    const Trajectory resting{Vec3(0, 0, kR), Vec3(0.1, 0, 0), kGravity, 1.0};
+    const Trajectory resting{Vec3(0, 0, kR), Vec3(0.1, 0, 0), kToiGravity, 1.0};
     TriangleContact contact;
     ASSERT_EQ(sphere_triangle_toi(resting, kR, f.a, f.b, f.c, 1.0, 2.0, contact), ToiStatus::impact);
     EXPECT_EQ(contact.time, 1.0);
@@ -202,22 +202,22 @@ TEST(EventSphereTriangle, TouchingWhileApproachingIsAnImpactNow) {
 
 TEST(EventSphereTriangle, OverlapAtTheStartIsReportedAsSuch) {
     const Floor f;
-    const Trajectory deep{Vec3(0.001, 0, 0.5 * kR), Vec3(0, 0, -1), kGravity, 0.0};
+    const Trajectory deep{Vec3(0.001, 0, 0.5 * kR), Vec3(0, 0, -1), kToiGravity, 0.0};
     TriangleContact contact;
     ASSERT_EQ(sphere_triangle_toi(deep, kR, f.a, f.b, f.c, 0.0, 1.0, contact), ToiStatus::overlapping);
     EXPECT_EQ(contact.time, 0.0);
     EXPECT_EQ(contact.feature, TriangleFeature::face);
     EXPECT_NEAR((contact.normal - Vec3::UnitZ()).norm(), 0.0, 1e-12);
     // Moving away does not make an overlap any less of one.
-    const Trajectory leaving{Vec3(0.001, 0, -0.5 * kR), Vec3(0, 0, -1), kGravity, 0.0};
+    const Trajectory leaving{Vec3(0.001, 0, -0.5 * kR), Vec3(0, 0, -1), kToiGravity, 0.0};
     ASSERT_EQ(sphere_triangle_toi(leaving, kR, f.a, f.b, f.c, 0.0, 1.0, contact), ToiStatus::overlapping);
     EXPECT_NEAR((contact.normal + Vec3::UnitZ()).norm(), 0.0, 1e-12);
     // Overlapping an edge from outside the face.
-    const Trajectory edge{Vec3(0.02 - 0.3 * kR, -0.02 - 0.5 * kR, 0.0), Vec3(1, 0, 0), kGravity, 0.0};
+    const Trajectory edge{Vec3(0.02 - 0.3 * kR, -0.02 - 0.5 * kR, 0.0), Vec3(1, 0, 0), kToiGravity, 0.0};
     ASSERT_EQ(sphere_triangle_toi(edge, kR, f.a, f.b, f.c, 0.0, 1.0, contact), ToiStatus::overlapping);
     EXPECT_EQ(contact.feature, TriangleFeature::edge_ab);
     // A 1e-6 R overlap is an overlap; a 1e-12 R one is a touch.
-    const Trajectory slight{Vec3(0, 0, kR * (1 - 1e-6)), Vec3(0, 0, 1), kGravity, 0.0};
+    const Trajectory slight{Vec3(0, 0, kR * (1 - 1e-6)), Vec3(0, 0, 1), kToiGravity, 0.0};
     EXPECT_EQ(sphere_triangle_toi(slight, kR, f.a, f.b, f.c, 0.0, 1.0, contact), ToiStatus::overlapping);
 }
 
@@ -242,7 +242,7 @@ TEST(EventSphereTriangle, SearchAloneStartsWhereTheCallerSays) {
     // sphere_triangle_first_touch does not read the start state: from a point clear of the
     // triangle it finds the same contact as the full query; an empty window finds nothing.
     const Floor f;
-    const Trajectory path{Vec3(0.001, 0.0, 0.02 + kR), Vec3::Zero(), kGravity, 0.0};
+    const Trajectory path{Vec3(0.001, 0.0, 0.02 + kR), Vec3::Zero(), kToiGravity, 0.0};
     TriangleContact full, search;
     ASSERT_EQ(sphere_triangle_toi(path, kR, f.a, f.b, f.c, 0.0, 1.0, full), ToiStatus::impact);
     ASSERT_TRUE(sphere_triangle_first_touch(path, kR, f.a, f.b, f.c, 0.03, 1.0, search));

@@ -19,11 +19,11 @@
 namespace peensim {
 namespace {
 
-constexpr double kG = 9.81;   // m/s^2
-constexpr double kR = 1e-3;   // m, shot radius
-constexpr double kA = 25e-6;  // m, sonotrode amplitude
-constexpr double kF = 20e3;   // Hz
-const Vec3 kGravity(0, 0, -kG);
+constexpr double kPlaneG = 9.81;  // m/s^2
+constexpr double kPlaneR = 1e-3;  // m, shot radius
+constexpr double kA = 25e-6;      // m, sonotrode amplitude
+constexpr double kF = 20e3;       // Hz
+const Vec3 kPlaneGravity(0, 0, -kPlaneG);
 
 using Real = long double;
 constexpr Real kTwoPiL = 6.283185307179586476925286766559005768L;
@@ -165,10 +165,10 @@ struct Tally {
 // One query against the reference; `from` is where the reference search starts (after leaving).
 void check_against_reference(const Trajectory& path, const VibratingPlane& plane, double t_begin, double t_end, Real from, long samples,
                              Tally& tally, const char* what, int trial) {
-    const Exact exact(path, kR, plane);
+    const Exact exact(path, kPlaneR, plane);
     const Real expected = reference_contact(exact, from, t_end, samples);
     PlaneContact contact;
-    const ToiStatus status = vibrating_plane_toi(path, kR, plane, t_begin, t_end, contact);
+    const ToiStatus status = vibrating_plane_toi(path, kPlaneR, plane, t_begin, t_end, contact);
     if (std::isnan(expected)) {
         EXPECT_EQ(status, ToiStatus::miss) << what << " trial " << trial << " t " << contact.time;
         ++tally.misses;
@@ -183,7 +183,7 @@ void check_against_reference(const Trajectory& path, const VibratingPlane& plane
     EXPECT_NEAR(plane.normal.dot(contact.plate_velocity), static_cast<double>(exact.plate_speed(contact.time)),
                 1e-11 * (1.0 + plane.amplitude_m * plane.angular_frequency()))
         << what << " trial " << trial;
-    EXPECT_NEAR((contact.point - (path.position(contact.time) - kR * plane.normal)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((contact.point - (path.position(contact.time) - kPlaneR * plane.normal)).norm(), 0.0, 1e-12);
 }
 
 TEST(EventVibratingPlane, PhaseAgreesWithTheEngineKinematics) {
@@ -215,10 +215,10 @@ TEST(EventVibratingPlane, StillPlateMatchesFreeFall) {
             plane.amplitude_m = 0.0;
         for (double h : {1e-4, 0.02, 0.5}) {  // m, fall to contact
             const double t0 = 0.37;           // s
-            const Trajectory path{Vec3(0.001, -0.002, 0.004 + h + kR), Vec3::Zero(), kGravity, t0};
+            const Trajectory path{Vec3(0.001, -0.002, 0.004 + h + kPlaneR), Vec3::Zero(), kPlaneGravity, t0};
             PlaneContact contact;
-            ASSERT_EQ(vibrating_plane_toi(path, kR, plane, t0, t0 + 1.0, contact), ToiStatus::impact) << h;
-            const double fall = std::sqrt(2.0 * h / kG);
+            ASSERT_EQ(vibrating_plane_toi(path, kPlaneR, plane, t0, t0 + 1.0, contact), ToiStatus::impact) << h;
+            const double fall = std::sqrt(2.0 * h / kPlaneG);
             EXPECT_NEAR(contact.time - t0, fall, 1e-12 * fall) << h << " sliding " << sliding;
             EXPECT_NEAR((contact.point - Vec3(0.001, -0.002, 0.004)).norm(), 0.0, 1e-15);
             EXPECT_EQ(contact.normal, Vec3::UnitZ());
@@ -226,7 +226,7 @@ TEST(EventVibratingPlane, StillPlateMatchesFreeFall) {
                 EXPECT_NEAR(contact.plate_velocity.x(), plane.velocity(contact.time).x(), 1e-15);
                 EXPECT_GT(contact.plate_velocity.norm(), 0.0);
             }
-            EXPECT_EQ(vibrating_plane_toi(path, kR, plane, t0, t0 + 0.999 * fall, contact), ToiStatus::miss);
+            EXPECT_EQ(vibrating_plane_toi(path, kPlaneR, plane, t0, t0 + 0.999 * fall, contact), ToiStatus::miss);
         }
     }
 }
@@ -234,9 +234,9 @@ TEST(EventVibratingPlane, StillPlateMatchesFreeFall) {
 // A shot placed on the plate at t, at gap `offset`, with a velocity relative to it along the normal.
 Trajectory on_the_plate(const VibratingPlane& plane, double t, double relative_speed, double offset = 0.0) {
     const Vec3 sideways(0.003, -0.002, 0.0);
-    const Vec3 centre = plane.point_m + plane.displacement(t) * plane.axis + (kR + offset) * plane.normal +
+    const Vec3 centre = plane.point_m + plane.displacement(t) * plane.axis + (kPlaneR + offset) * plane.normal +
                         (sideways - plane.normal.dot(sideways) * plane.normal);
-    return {centre, plane.velocity(t) + relative_speed * plane.normal, kGravity, t};
+    return {centre, plane.velocity(t) + relative_speed * plane.normal, kPlaneGravity, t};
 }
 
 // The phase offset that gives the plate phase theta at time t.
@@ -249,12 +249,12 @@ TEST(EventVibratingPlane, TouchingAndApproachingIsAnImpactNow) {
         PlaneContact contact;
         // Approaching, at a gap of 0 and of +-half the start band.
         for (double offset : {0.0, 0.5e-12, -0.5e-12}) {
-            ASSERT_EQ(vibrating_plane_toi(on_the_plate(plane, t, -0.1, offset), kR, plane, t, t + 0.01, contact), ToiStatus::impact);
+            ASSERT_EQ(vibrating_plane_toi(on_the_plate(plane, t, -0.1, offset), kPlaneR, plane, t, t + 0.01, contact), ToiStatus::impact);
             EXPECT_EQ(contact.time, t);
             EXPECT_NEAR((contact.plate_velocity - plane.velocity(t)).norm(), 0.0, 1e-15);
         }
         // Overlapping beyond the band.
-        ASSERT_EQ(vibrating_plane_toi(on_the_plate(plane, t, 0.5, -1e-9), kR, plane, t, t + 0.01, contact), ToiStatus::overlapping);
+        ASSERT_EQ(vibrating_plane_toi(on_the_plate(plane, t, 0.5, -1e-9), kPlaneR, plane, t, t + 0.01, contact), ToiStatus::overlapping);
         EXPECT_EQ(contact.time, t);
     }
 }
@@ -267,9 +267,9 @@ TEST(EventVibratingPlane, AtRestOnThePlateIsAnImpactOnlyWhenPulledIn) {
     for (double phase = 0.05; phase < 2.0 * M_PI; phase += 0.5) {
         const VibratingPlane plane = sonotrode(phase_for(phase, t));  // phase `phase` at t
         const Trajectory path = on_the_plate(plane, t, 0.0);
-        const Exact exact(path, kR, plane);
+        const Exact exact(path, kPlaneR, plane);
         PlaneContact contact;
-        const ToiStatus status = vibrating_plane_toi(path, kR, plane, t, t + 1.0, contact);
+        const ToiStatus status = vibrating_plane_toi(path, kPlaneR, plane, t, t + 1.0, contact);
         if (exact.curvature(t) < 0) {
             EXPECT_EQ(status, ToiStatus::impact) << phase;
             EXPECT_EQ(contact.time, t) << phase;
@@ -295,7 +295,7 @@ TEST(EventVibratingPlane, AtRestOnThePlateIsAnImpactOnlyWhenPulledIn) {
     VibratingPlane still = sonotrode();
     still.amplitude_m = 0.0;
     PlaneContact contact;
-    EXPECT_EQ(vibrating_plane_toi(on_the_plate(still, t, 0.0), kR, still, t, t + 1.0, contact), ToiStatus::impact);
+    EXPECT_EQ(vibrating_plane_toi(on_the_plate(still, t, 0.0), kPlaneR, still, t, t + 1.0, contact), ToiStatus::impact);
     EXPECT_EQ(contact.time, t);
 }
 
@@ -311,7 +311,7 @@ TEST(EventVibratingPlane, NoRedetectionRightAfterABounce) {
         Trajectory path = on_the_plate(plane, t, 0.05 + 3.0 * u(rng), offset);
         const Vec3 sideways(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
         path.v0 += sideways - plane.normal.dot(sideways) * plane.normal;
-        const Exact exact(path, kR, plane);
+        const Exact exact(path, kPlaneR, plane);
         ASSERT_GT(exact.rate(t), 0);
         check_against_reference(path, plane, t, t + 1.5, leave(exact, t), 4096, tally, "launch", trial);
     }
@@ -328,7 +328,7 @@ TEST(EventVibratingPlane, AShotThatNeverReallyLeftIsAnImpactNotAMiss) {
     const VibratingPlane plane = sonotrode(phase_for(phase, t));
     const Trajectory path = on_the_plate(plane, t, 1e-9, -0.5e-12);
     PlaneContact contact;
-    ASSERT_EQ(vibrating_plane_toi(path, kR, plane, t, t + 0.01, contact), ToiStatus::impact);
+    ASSERT_EQ(vibrating_plane_toi(path, kPlaneR, plane, t, t + 0.01, contact), ToiStatus::impact);
     EXPECT_GE(contact.time, t);
     EXPECT_LE(contact.time, t + 1e-13);
     EXPECT_GT(plane.normal.dot(contact.plate_acceleration), 1e5);
@@ -362,20 +362,20 @@ TEST(EventVibratingPlane, FindsAGrazingDoubleRoot) {
         const Graze exact = graze_at(theta, t_star, 0.0);
         const double t_begin = t_star - 20.5 * period, t_end = t_star + 0.02 * period;
         PlaneContact contact;
-        ASSERT_EQ(vibrating_plane_toi(exact.path, kR, exact.plane, t_begin, t_end, contact), ToiStatus::impact) << theta;
+        ASSERT_EQ(vibrating_plane_toi(exact.path, kPlaneR, exact.plane, t_begin, t_end, contact), ToiStatus::impact) << theta;
         // A double root is ill-conditioned: the ~1e-19 m rounding of the constructed gap moves it
         // by sqrt(2e-19 / h''), below 1e-12 s.
         EXPECT_NEAR(contact.time, t_star, 2e-12) << theta;
-        const Exact e_exact(exact.path, kR, exact.plane);
+        const Exact e_exact(exact.path, kPlaneR, exact.plane);
         EXPECT_TRUE(std::isnan(certified_first_contact(e_exact, t_begin, t_star - 1e-9))) << theta;
         // 0.1 nm higher it is a near miss; 0.1 nm lower, two roots 2 sqrt(2e-10 / h'') ~ 50 ns
         // apart, which 32 samples a period (1.6 us) would step over.
         const Graze above = graze_at(theta, t_star, 1e-10);
-        EXPECT_EQ(vibrating_plane_toi(above.path, kR, above.plane, t_begin, t_end, contact), ToiStatus::miss) << theta;
-        EXPECT_TRUE(std::isnan(certified_first_contact(Exact(above.path, kR, above.plane), t_begin, t_end)));
+        EXPECT_EQ(vibrating_plane_toi(above.path, kPlaneR, above.plane, t_begin, t_end, contact), ToiStatus::miss) << theta;
+        EXPECT_TRUE(std::isnan(certified_first_contact(Exact(above.path, kPlaneR, above.plane), t_begin, t_end)));
         const Graze below = graze_at(theta, t_star, -1e-10);
-        ASSERT_EQ(vibrating_plane_toi(below.path, kR, below.plane, t_begin, t_end, contact), ToiStatus::impact);
-        const Exact e(below.path, kR, below.plane);
+        ASSERT_EQ(vibrating_plane_toi(below.path, kPlaneR, below.plane, t_begin, t_end, contact), ToiStatus::impact);
+        const Exact e(below.path, kPlaneR, below.plane);
         const double curvature = static_cast<double>(e.curvature(t_star));
         // ~ t_star - sqrt(2e-10 / h''), to the few per cent the jerk A w^3 moves it.
         EXPECT_NEAR(contact.time, t_star - std::sqrt(2e-10 / curvature), 0.1 * std::sqrt(2e-10 / curvature));
@@ -389,19 +389,19 @@ TEST(EventVibratingPlane, LongFlightAboveTheBandCostsNothing) {
     // with a handful of pieces.
     const VibratingPlane plane = sonotrode(0.4);
     const double t0 = 1.25;
-    const Trajectory path{Vec3(0.001, 0.002, kR + kA + 1e-3), Vec3(0.1, 0.0, 2.5), kGravity, t0};
+    const Trajectory path{Vec3(0.001, 0.002, kPlaneR + kA + 1e-3), Vec3(0.1, 0.0, 2.5), kPlaneGravity, t0};
     PlaneContact contact;
     PlaneToiWork work;
-    EXPECT_EQ(vibrating_plane_toi(path, kR, plane, t0, t0 + 0.5, contact, &work), ToiStatus::miss);
+    EXPECT_EQ(vibrating_plane_toi(path, kPlaneR, plane, t0, t0 + 0.5, contact, &work), ToiStatus::miss);
     EXPECT_EQ(work.windows, 0);
     EXPECT_EQ(work.pieces, 0);
 
     work = PlaneToiWork{};
-    ASSERT_EQ(vibrating_plane_toi(path, kR, plane, t0, t0 + 1.0, contact, &work), ToiStatus::impact);
+    ASSERT_EQ(vibrating_plane_toi(path, kPlaneR, plane, t0, t0 + 1.0, contact, &work), ToiStatus::impact);
     EXPECT_GT(contact.time - t0, 0.5);
     EXPECT_LE(work.windows, 1);
     EXPECT_LE(work.pieces, 6);
-    const Exact exact(path, kR, plane);
+    const Exact exact(path, kPlaneR, plane);
     EXPECT_NEAR(contact.time, static_cast<double>(reference_contact(exact, t0, t0 + 1.0, 1 << 20)), 1e-12);
 }
 
@@ -413,11 +413,11 @@ TEST(EventVibratingPlane, ContactAfterThousandsOfPeriodsFromInsideTheBand) {
     const Trajectory path = on_the_plate(plane, t, 1.5);
     PlaneContact contact;
     PlaneToiWork work;
-    ASSERT_EQ(vibrating_plane_toi(path, kR, plane, t, t + 1.0, contact, &work), ToiStatus::impact);
+    ASSERT_EQ(vibrating_plane_toi(path, kPlaneR, plane, t, t + 1.0, contact, &work), ToiStatus::impact);
     EXPECT_GT(contact.time - t, 0.25);
     EXPECT_EQ(work.windows, 2);
     EXPECT_LE(work.pieces, 12);
-    const Exact exact(path, kR, plane);
+    const Exact exact(path, kPlaneR, plane);
     EXPECT_NEAR(contact.time, static_cast<double>(reference_contact(exact, leave(exact, t), t + 1.0, 1 << 20)), 1e-12);
 }
 
@@ -434,8 +434,8 @@ void random_drops(std::uint64_t seed, int trials, double t_min, double t_span, l
         const double height = band + 1e-6 + 5e-3 * u(rng) * u(rng);  // m, static gap at t_begin
         const Vec3 foot = plane.point_m + Vec3(0.01 * u(rng) - 0.005, 0.01 * u(rng) - 0.005, 0.0);
         Vec3 v(u(rng) - 0.5, u(rng) - 0.5, ceiling ? 0.3 + 1.7 * u(rng) : 1.0 - 3.0 * u(rng));
-        const Vec3 centre = foot + (kR + height - plane.normal.dot(foot - plane.point_m)) * plane.normal;
-        const Trajectory path{centre, v, kGravity, t_begin};
+        const Vec3 centre = foot + (kPlaneR + height - plane.normal.dot(foot - plane.point_m)) * plane.normal;
+        const Trajectory path{centre, v, kPlaneGravity, t_begin};
         const double t_end = t_begin + (u(rng) < 0.1 ? 0.02 : 0.8) * u(rng);
         check_against_reference(path, plane, t_begin, t_end, t_begin, trial < dense_trials ? (1L << 20) : 64, tally, what, trial);
     }
@@ -454,11 +454,11 @@ TEST(EventVibratingPlane, PhaseStaysAccurateNearSixtySeconds) {
 
 TEST(EventVibratingPlane, EmptyOrReversedIntervalIsAMiss) {
     const VibratingPlane plane = sonotrode();
-    const Trajectory path{Vec3(0, 0, kR + 1e-3), Vec3::Zero(), kGravity, 0.0};
+    const Trajectory path{Vec3(0, 0, kPlaneR + 1e-3), Vec3::Zero(), kPlaneGravity, 0.0};
     PlaneContact contact;
-    EXPECT_EQ(vibrating_plane_toi(path, kR, plane, 0.1, 0.05, contact), ToiStatus::miss);
-    EXPECT_EQ(vibrating_plane_toi(path, kR, plane, 0.0, 0.0, contact), ToiStatus::miss);
-    EXPECT_GT(vibrating_plane_gap(path, kR, plane, 0.0), 0.0);
+    EXPECT_EQ(vibrating_plane_toi(path, kPlaneR, plane, 0.1, 0.05, contact), ToiStatus::miss);
+    EXPECT_EQ(vibrating_plane_toi(path, kPlaneR, plane, 0.0, 0.0, contact), ToiStatus::miss);
+    EXPECT_GT(vibrating_plane_gap(path, kPlaneR, plane, 0.0), 0.0);
 }
 
 }  // namespace

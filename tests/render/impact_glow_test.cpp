@@ -32,7 +32,7 @@ using namespace peensim::render;
 
 namespace {
 
-constexpr int kW = 320, kH = 240;
+constexpr int kGlowWidth = 320, kGlowHeight = 240;
 
 TriangleMesh unit_box(const Vec3& centre, double size) {
     BoxSpec spec;
@@ -79,7 +79,7 @@ int changed_pixels(const RgbaImage& a, const RgbaImage& b) {
 }  // namespace
 
 TEST(ImpactGlow, AGlowIsASizeInPixelsAroundItsPointAndHidesBehindAPart) {
-    OffscreenContext context({.width = kW, .height = kH});
+    OffscreenContext context({.width = kGlowWidth, .height = kGlowHeight});
     RenderOptions options;
     options.overlay = false;
     Renderer renderer(context, options);
@@ -98,8 +98,8 @@ TEST(ImpactGlow, AGlowIsASizeInPixelsAroundItsPointAndHidesBehindAPart) {
         const std::vector<ImpactGlow> glows{{open, 0.01, radius_px, map.map(0.0, 0.0, 5.0)},
                                             {hidden, 0.01, radius_px, map.map(0.0, 0.0, 5.0)}};
         renderer.render(camera, {.glows = glows}, glowing);
-        const auto at_open = camera.project_to_pixel(open, kW, kH);
-        const auto at_hidden = camera.project_to_pixel(hidden, kW, kH);
+        const auto at_open = camera.project_to_pixel(open, kGlowWidth, kGlowHeight);
+        const auto at_hidden = camera.project_to_pixel(hidden, kGlowWidth, kGlowHeight);
         ASSERT_TRUE(at_open && at_hidden);
         // Its core is near white, far brighter than the wall (luminance 77).
         const Difference open_d = compare(glowing, plain, *at_open, radius_px + 1.0);
@@ -177,7 +177,7 @@ TEST(ImpactGlow, AnImpactGlowsInTheNextFramesAndFadesAfter) {
 }
 
 TEST(ColourBarMark, AMarkLiesAcrossTheBarAtItsValueOrIsNotedAboveTheScale) {
-    OffscreenContext context({.width = kW, .height = kH});
+    OffscreenContext context({.width = kGlowWidth, .height = kGlowHeight});
     RenderOptions options;
     options.background = {0.0f, 0.0f, 0.0f, 1.0f};
     Renderer renderer(context, options);
@@ -188,9 +188,9 @@ TEST(ColourBarMark, AMarkLiesAcrossTheBarAtItsValueOrIsNotedAboveTheScale) {
     RgbaImage plain, marked, above;
     renderer.render(camera, {.colour_bar = &bar}, plain);
     // The bar's rows: from its top colour to its bottom colour.
-    int top = kH, bottom = -1;
-    for (int y = 0; y < kH; ++y)
-        for (int x = kW / 2; x < kW; ++x) {
+    int top = kGlowHeight, bottom = -1;
+    for (int y = 0; y < kGlowHeight; ++y)
+        for (int x = kGlowWidth / 2; x < kGlowWidth; ++x) {
             const Rgba8 c = plain.at(x, y);
             if (std::abs(c.r - 0xFD) < 8 && std::abs(c.g - 0xE7) < 8 && std::abs(c.b - 0x25) < 8) top = std::min(top, y);
             if (std::abs(c.r - 0x44) < 8 && std::abs(c.g - 0x01) < 8 && std::abs(c.b - 0x54) < 8) bottom = std::max(bottom, y);
@@ -199,9 +199,9 @@ TEST(ColourBarMark, AMarkLiesAcrossTheBarAtItsValueOrIsNotedAboveTheScale) {
     bar.mark = 0.01;  // a quarter up the bar
     bar.mark_label = "target 1 %";
     renderer.render(camera, {.colour_bar = &bar}, marked);
-    int white_rows_min = kH, white_rows_max = -1, white = 0;
+    int white_rows_min = kGlowHeight, white_rows_max = -1, white = 0;
     for (int y = top; y <= bottom; ++y)
-        for (int x = kW / 2; x < kW; ++x) {
+        for (int x = kGlowWidth / 2; x < kGlowWidth; ++x) {
             const Rgba8 c = marked.at(x, y);
             if (c == plain.at(x, y) || c.r < 250 || c.g < 250 || c.b < 250) continue;
             if (plain.at(x, y).b < 20 && plain.at(x, y).g < 20) continue;  // text over the black background, not the line
@@ -217,8 +217,8 @@ TEST(ColourBarMark, AMarkLiesAcrossTheBarAtItsValueOrIsNotedAboveTheScale) {
     bar.mark_label = "target 98 %";
     renderer.render(camera, {.colour_bar = &bar}, above);
     int inside = 0, below = 0;
-    for (int y = 0; y < kH; ++y)
-        for (int x = kW / 2; x < kW; ++x) {
+    for (int y = 0; y < kGlowHeight; ++y)
+        for (int x = kGlowWidth / 2; x < kGlowWidth; ++x) {
             if (above.at(x, y) == plain.at(x, y)) continue;
             (y <= bottom + 1 ? inside : below) += 1;
         }

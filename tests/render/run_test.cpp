@@ -21,15 +21,15 @@
 #include "render/video_encoder.h"
 #include "scene/scene_parser.h"
 #include "support/shell_command.h"
+#include "support/shipped_scenes.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
+using peensim::testing::kRod;
 using peensim::testing::TempDir;
 using namespace peensim;
 
 namespace {
-
-const std::string kRod = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
 
 // 10 ms of the rod scene at 160x120, a frame every simulated ms (10 fps, 10 ms per video second):
 // frames 0 .. 10.

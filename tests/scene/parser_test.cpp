@@ -84,7 +84,7 @@ std::string error_of(const std::string& text, const std::vector<std::string>& ov
     return "(no error)";
 }
 
-const ComponentDesc& component(const SceneDescription& s, const std::string& name) {
+const ComponentDesc& component_named(const SceneDescription& s, const std::string& name) {
     for (const ComponentDesc& k : s.components)
         if (k.name == name) return k;
     throw std::runtime_error("no component " + name);
@@ -130,7 +130,7 @@ TEST(SceneParser, FullSceneReadsInSI) {
     EXPECT_EQ(contact(s, "default").value("C0"), 0.85);
     EXPECT_EQ(contact(s, "default").value("V0"), 0.4);
 
-    const ComponentDesc& sono = component(s, "sonotrode");
+    const ComponentDesc& sono = component_named(s, "sonotrode");
     EXPECT_EQ(sono.role, ComponentRole::sonotrode);
     EXPECT_EQ(sono.mesh_path, tetrahedron_path());
     EXPECT_EQ(sono.mesh_unit_m, 1e-3);
@@ -144,18 +144,18 @@ TEST(SceneParser, FullSceneReadsInSI) {
     EXPECT_EQ(*sono.vibration->axis, Vec3(0, 0, 1));  // normalised
     EXPECT_FALSE(sono.rotation_motion.has_value());
 
-    const ComponentDesc& chamber = component(s, "chamber");
+    const ComponentDesc& chamber = component_named(s, "chamber");
     EXPECT_EQ(chamber.mesh_path, tetrahedron_path());
     EXPECT_EQ(chamber.translation_m, Vec3(0, 0, 0.01));
     EXPECT_FALSE(chamber.vibration.has_value());
 
-    const ComponentDesc& gear = component(s, "gear");
+    const ComponentDesc& gear = component_named(s, "gear");
     EXPECT_EQ(gear.mesh_path, tetrahedron_path());
     ASSERT_TRUE(gear.rotation_motion.has_value());
     EXPECT_EQ(gear.rotation_motion->axis_point_m, Vec3(0, 0, 0.04));
     EXPECT_EQ(gear.rotation_motion->axis_direction, Vec3(0, 1, 0));
     EXPECT_EQ(gear.rotation_motion->speed_rad_per_s, pi);
-    EXPECT_FALSE(component(s, "axle").rotation_motion.has_value());
+    EXPECT_FALSE(component_named(s, "axle").rotation_motion.has_value());
 
     EXPECT_EQ(s.output.logged_components, (std::vector<std::string>{"gear", "axle"}));
     EXPECT_EQ(s.output.directory, "out/gear");
@@ -166,8 +166,8 @@ TEST(SceneParser, FieldsRememberWhereTheyCameFrom) {
     const SceneDescription s = parse_scene_text(full_scene, virtual_path);
     EXPECT_EQ(s.shot.where.file, virtual_path);
     EXPECT_EQ(s.shot.where.line, 5);
-    EXPECT_EQ(component(s, "gear").where.line, 31);
-    EXPECT_EQ(component(s, "sonotrode").vibration->where.line, 26);
+    EXPECT_EQ(component_named(s, "gear").where.line, 31);
+    EXPECT_EQ(component_named(s, "sonotrode").vibration->where.line, 26);
 }
 
 TEST(SceneParser, DefaultsAreFilledIn) {
@@ -185,7 +185,7 @@ TEST(SceneParser, DefaultsAreFilledIn) {
     EXPECT_EQ(s.contacts[0].value("V0"), 0.5);
     EXPECT_EQ(s.contacts[0].value("mu"), 0.71);
     EXPECT_EQ(s.contacts[0].value("f"), 0.1);
-    const ComponentDesc& sono = component(s, "sono");
+    const ComponentDesc& sono = component_named(s, "sono");
     EXPECT_EQ(sono.mesh_unit_m, 1.0);
     EXPECT_EQ(sono.translation_m, Vec3::Zero());
     EXPECT_EQ(sono.rotation, Mat3::Identity());
@@ -221,7 +221,7 @@ TEST(SceneParser, RotationFormsAgree) {
                                  "  - {name: r, role: fixture, mesh: tetrahedron.stl, "
                                  "rotation: " +
                                  rotation + "}\n";
-        return component(parse_scene_text(text, virtual_path), "r").rotation;
+        return component_named(parse_scene_text(text, virtual_path), "r").rotation;
     };
     const Mat3 expected = (Eigen::AngleAxisd(pi / 2, Vec3::UnitX()) * Eigen::AngleAxisd(pi / 6, Vec3::UnitZ())).toRotationMatrix();
     EXPECT_TRUE(rotation_of("{euler_xyz: [90, 0, 30]}").isApprox(expected, 1e-15));
@@ -243,7 +243,7 @@ TEST(SceneParser, VectorsAsOneString) {
                                  "  - {name: t, role: fixture, mesh: tetrahedron.stl, "
                                  "translation: \"" +
                                  t + "\"}\n";
-        return component(parse_scene_text(text, virtual_path), "t").translation_m;
+        return component_named(parse_scene_text(text, virtual_path), "t").translation_m;
     };
     EXPECT_EQ(translation_of("0 0 -5 mm"), Vec3(0, 0, -0.005));
     EXPECT_EQ(translation_of("1 2 3"), Vec3(1, 2, 3));
@@ -263,8 +263,8 @@ TEST(SceneParser, OverridesApplyBeforeValidation) {
     EXPECT_EQ(s.process.duration_s, 0.2);
     EXPECT_EQ(s.process.seed, 7u);
     EXPECT_EQ(s.shot.sizes.front().diameter_m, 0.001);
-    EXPECT_EQ(component(s, "gear").rotation_motion->speed_rad_per_s, 2 * pi);
-    EXPECT_EQ(component(s, "chamber").translation_m, Vec3(0.001, 0.002, 0.003));
+    EXPECT_EQ(component_named(s, "gear").rotation_motion->speed_rad_per_s, 2 * pi);
+    EXPECT_EQ(component_named(s, "chamber").translation_m, Vec3(0.001, 0.002, 0.003));
     EXPECT_EQ(s.output.logged_components, std::vector<std::string>{"gear"});
     EXPECT_EQ(s.process.gravity_m_per_s2, Vec3(0, 0, -1.62));
     EXPECT_EQ(*s.materials[1].density_kg_per_m3, 4430.0);
@@ -280,8 +280,8 @@ TEST(SceneParser, OverridesCanAddKeysAndSections) {
                           "axis_direction: [1, 0, 0], speed: 10 rpm}",
                           "materials.copper.density=8.96 g/cm3", "shot.density=8960", "process.duration=1", "process.duration=2"});
     EXPECT_EQ(s.accuracy.travel_fraction, 0.1);
-    ASSERT_TRUE(component(s, "rod").rotation_motion.has_value());
-    EXPECT_EQ(component(s, "rod").rotation_motion->axis_direction, Vec3(1, 0, 0));
+    ASSERT_TRUE(component_named(s, "rod").rotation_motion.has_value());
+    EXPECT_EQ(component_named(s, "rod").rotation_motion->axis_direction, Vec3(1, 0, 0));
     EXPECT_EQ(*s.materials.at(0).density_kg_per_m3, 8960.0);
     EXPECT_EQ(s.process.duration_s, 2.0);  // the last override wins
 }

@@ -17,7 +17,9 @@
 #include "app/analysis/analysis_plots.h"
 #include "app/report_errors.h"
 #include "common/input_error.h"
+#include "common/units.h"
 #include "output/atomic_file.h"
+#include "output/json_number.h"
 #include "output/output_names.h"
 
 namespace fs = std::filesystem;
@@ -26,12 +28,7 @@ namespace peensim {
 
 namespace {
 
-constexpr double kMetresPerInch = 0.0254;  // m, exact
-constexpr int kJ443MinimumExposures = 4;   // SAE J443: a saturation curve of at least four strips
-
-const SourceLocation kCommandLine{"<command line>", 0, 0};
-
-nlohmann::ordered_json number(double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); }
+constexpr int kJ443MinimumExposures = 4;  // SAE J443: a saturation curve of at least four strips
 
 // Shortest text that reads back as the same double (the calibration's round trip is exact).
 std::string exact(double v) {
@@ -114,15 +111,15 @@ nlohmann::ordered_json fit_json(const SaturationFit& f, const MeasuredCurve& m, 
     o["b_unit"] = "1/" + m.exposure_unit.name + (f.curve.c == 1.0 ? "" : "^c");
     o["c"] = f.curve.c;
     o["rms_residual_m"] = f.rms_residual;
-    o["residual_sd_m"] = number(f.residual_sd);
+    o["residual_sd_m"] = json_number(f.residual_sd);
     o["saturation_point"] = f.point.exists;
-    o["saturation_time"] = number(f.point.exists ? f.point.time : NAN);
-    o["saturation_time_se"] = number(f.time_standard_error);
-    o["saturation_time_s"] = number(f.point.exists && time ? f.point.time * m.exposure_unit.seconds : NAN);
-    o["intensity_m"] = number(f.point.exists ? f.point.intensity : NAN);
-    o["intensity_se_m"] = number(f.intensity_standard_error);
-    o["intensity_in"] = number(f.point.exists ? f.point.intensity / kMetresPerInch : NAN);
-    o["intensity_thou"] = number(f.point.exists ? f.point.intensity / kMetresPerInch * 1e3 : NAN);
+    o["saturation_time"] = json_number(f.point.exists ? f.point.time : NAN);
+    o["saturation_time_se"] = json_number(f.time_standard_error);
+    o["saturation_time_s"] = json_number(f.point.exists && time ? f.point.time * m.exposure_unit.seconds : NAN);
+    o["intensity_m"] = json_number(f.point.exists ? f.point.intensity : NAN);
+    o["intensity_se_m"] = json_number(f.intensity_standard_error);
+    o["intensity_in"] = json_number(f.point.exists ? f.point.intensity / kMetresPerInch : NAN);
+    o["intensity_thou"] = json_number(f.point.exists ? f.point.intensity / kMetresPerInch * 1e3 : NAN);
     o["intensity_label"] = f.point.exists && !strip.empty() ? nlohmann::ordered_json(almen_intensity_label(f.point.intensity, strip))
                                                             : nlohmann::ordered_json(nullptr);
     return o;
@@ -283,7 +280,7 @@ std::string plot_fits(const std::string& png, const MeasuredCurve& m, const Satu
     return plot_with_gnuplot(dir, stem, s.str());
 }
 
-int run(const AlmenFitOptions& o, std::ostream& out, std::ostream& err) {
+int run_almen_fit(const AlmenFitOptions& o, std::ostream& out, std::ostream& err) {
     if (!o.strip.empty() && o.strip != "A" && o.strip != "N" && o.strip != "C")
         throw InputError(kCommandLine, "--strip", "expected A, N or C (the SAE J442 strip type), got '" + o.strip + "'");
     if (!o.form.empty() && o.form != "2P" && o.form != "3P")
@@ -336,7 +333,7 @@ int run(const AlmenFitOptions& o, std::ostream& out, std::ostream& err) {
     j["file"] = m.path;
     j["exposure_column"] = m.exposure_column;
     j["exposure_unit"] = u;
-    j["exposure_unit_s"] = number(m.exposure_unit.is_time() ? m.exposure_unit.seconds : NAN);
+    j["exposure_unit_s"] = json_number(m.exposure_unit.is_time() ? m.exposure_unit.seconds : NAN);
     j["height_column"] = m.height_column;
     j["height_unit"] = m.height_unit.name;
     j["height_unit_m"] = m.height_unit.metres;
@@ -352,7 +349,7 @@ int run(const AlmenFitOptions& o, std::ostream& out, std::ostream& err) {
     j["intensity_label"] =
         o.strip.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(almen_intensity_label(used.point.intensity, o.strip));
     j["saturation_time"] = used.point.time;
-    j["saturation_time_s"] = number(m.exposure_unit.is_time() ? used.point.time * m.exposure_unit.seconds : NAN);
+    j["saturation_time_s"] = json_number(m.exposure_unit.is_time() ? used.point.time * m.exposure_unit.seconds : NAN);
     j["warnings"] = warnings;
 
     if (!o.calibrate_run.empty()) {
@@ -400,7 +397,7 @@ int run(const AlmenFitOptions& o, std::ostream& out, std::ostream& err) {
 }  // namespace
 
 int almen_fit_job(const AlmenFitOptions& options, std::ostream& out, std::ostream& err) {
-    return report_errors(err, [&] { return run(options, out, err); });
+    return report_errors(err, [&] { return run_almen_fit(options, out, err); });
 }
 
 }  // namespace peensim

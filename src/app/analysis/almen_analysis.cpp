@@ -7,17 +7,14 @@
 
 #include "app/analysis/analysis_format.h"
 #include "common/input_error.h"
+#include "common/units.h"
 #include "contact/dent.h"
 #include "output/atomic_file.h"
+#include "output/json_number.h"
 
 namespace peensim {
 
 namespace {
-
-constexpr double kMetresPerInch = 0.0254;  // m, exact
-
-// JSON has no NaN: a figure that does not exist is null.
-nlohmann::ordered_json number(double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); }
 
 AlmenModelCalibration model_of(const AlmenCalibrationDesc& d) {
     AlmenModelCalibration m;
@@ -156,17 +153,17 @@ std::string almen_report_sections(const std::vector<ComponentAnalysis>& parts, d
 }
 
 void add_almen_figures(nlohmann::ordered_json& o, const AlmenAnalysis& a) {
-    o["almen_dose_J_per_m2"] = number(a.dose->dose_J_per_m2());
+    o["almen_dose_J_per_m2"] = json_number(a.dose->dose_J_per_m2());
     const AlmenExposure e = almen_exposure(a.curve);
-    o["almen_dent_size_m"] = number(e.valid() ? e.dent_size_m : NAN);
-    o["almen_covering_rate_per_s"] = number(e.valid() ? e.covering_rate_per_s : NAN);
+    o["almen_dent_size_m"] = json_number(e.valid() ? e.dent_size_m : NAN);
+    o["almen_covering_rate_per_s"] = json_number(e.valid() ? e.covering_rate_per_s : NAN);
     double intensity = NAN, time = NAN;
     if (a.model && e.valid()) {
         const AlmenPrediction p = predict_almen(*a.model, e);
         if (p.point.exists) intensity = p.point.intensity, time = p.point.time;
     }
-    o["almen_predicted_intensity_m"] = number(intensity);
-    o["almen_predicted_saturation_time_s"] = number(time);
+    o["almen_predicted_intensity_m"] = json_number(intensity);
+    o["almen_predicted_saturation_time_s"] = json_number(time);
 }
 
 std::string almen_intensity_label(double intensity_m, const std::string& strip) {

@@ -38,6 +38,7 @@
 #include "output/impact_csv_writer.h"
 #include "output/markdown_html.h"
 #include "scene/scene_parser.h"
+#include "scene/scene_sections.h"
 #include "scene/shot_mix.h"
 
 namespace fs = std::filesystem;
@@ -48,12 +49,6 @@ namespace {
 
 constexpr int kCoverageSamples = 50;       // points of the coverage- and dose-vs-time curves
 constexpr std::uint64_t kJetWindow = 500;  // impacts per window of the jet's figures
-
-const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
-    for (const MaterialDesc& m : scene.materials)
-        if (m.name == name) return &m;
-    return nullptr;
-}
 
 // The time of the log's last complete row (s), read from its tail; nullopt when it has no row.
 // Rows come in time order (the writer logs each step's impacts after the step), so the last is
@@ -148,7 +143,7 @@ ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* ca
         a.unreachable =
             find_unreachable_area(map, a.coverage->classes(), a.regions, reach_test(model, ci, cavity), model.min_shot_radius_m);
     }
-    const MaterialDesc* m = material_named(scene, c.material);
+    const MaterialDesc* m = find_material(scene.materials, c.material);
     if (c.almen)
         a.almen =
             almen_analysis_of(c, *a.mesh, shot_mass, scene.shot.density_kg_per_m3, m && m->yield_stress_pa ? *m->yield_stress_pa : 0.0);

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include "common/float_limits.h"
+
 namespace peensim {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool known(const AreaForecast& f) { return f.status == AreaForecast::Status::reached || f.status == AreaForecast::Status::forecast; }
 }  // namespace

@@ -14,7 +14,7 @@ namespace peensim {
 
 namespace {
 
-std::string mm(double m, int digits = 3) { return fmt(m * 1e3, digits) + " mm"; }
+std::string mm_rounded(double m, int digits = 3) { return fmt(m * 1e3, digits) + " mm"; }
 
 // A length rounded down to two significant digits (a shot size a user can ask for and that still
 // reaches what the finer figure reached).
@@ -101,11 +101,11 @@ std::string unreachable_section(const ComponentAnalysis& c, const ReportContext&
     std::ostringstream r;
     r << "\n### " << c.name << ": out of the shot's reach\n\n";
     r << "**" << fmt(u.whole.area_m2 * 1e6, 4) << " mm2 (" << fmt(100.0 * u.whole.area_m2 / areas.total_m2, 3) << " %) of " << c.name
-      << " no " << mm(u.shot_diameter_m)
+      << " no " << mm_rounded(u.shot_diameter_m)
       << " shot can touch** in the assembly as placed: there is no room for a shot centre a radius "
          "away along the surface's normal. It is left out of coverage (the rest can reach 100 %) and no peening time changes it. ";
     const auto reached_by = [&](double d) {
-        return d > 0.0 ? "a shot of " + mm(d) + " or smaller" : std::string("no shot at all (closed off)");
+        return d > 0.0 ? "a shot of " + mm_rounded(d) + " or smaller" : std::string("no shot at all (closed off)");
     };
     r << "Half of it would be reached by " << reached_by(u.whole.half_reached_by_m) << ", 90 % by " << reached_by(u.whole.most_reached_by_m)
       << " (the same reach test with a smaller shot, " << u.whole.points << " points of it).\n\n";
@@ -176,8 +176,8 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
             r << "- **Reach the " << fmt(u.whole.area_m2 * 1e6, 4) << " mm2 of " << c.name << " out of the shot's reach.** ";
             if (u.whole.most_reached_by_m > 0.0 && scene.shot.sizes.size() == 1) {
                 const double half = round_down_2(u.whole.half_reached_by_m), most = round_down_2(u.whole.most_reached_by_m);
-                r << "By this run's reach test a shot of " << mm(half, 2) << " reaches half of it and one of " << mm(most, 2)
-                  << " 90 % (now " << mm(u.shot_diameter_m, 3)
+                r << "By this run's reach test a shot of " << mm_rounded(half, 2) << " reaches half of it and one of "
+                  << mm_rounded(most, 2) << " 90 % (now " << mm_rounded(u.shot_diameter_m, 3)
                   << "); a smaller shot dents less (dent size goes with the diameter), so check the time and the Almen intensity it "
                      "gives:\n\n      "
                   << sweep_command(x, "shot",
@@ -185,7 +185,7 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
                                                                fmt(most * 1e3, 3) + " mm"}))
                   << "\n\n";
             } else if (u.whole.most_reached_by_m > 0.0) {
-                r << "A shot of " << mm(u.whole.most_reached_by_m, 2)
+                r << "A shot of " << mm_rounded(u.whole.most_reached_by_m, 2)
                   << " or smaller reaches 90 % of it by this run's reach test "
                      "(the mix's sizes are the scene's `shot.sizes`).\n";
             } else {

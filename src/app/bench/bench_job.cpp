@@ -14,6 +14,7 @@
 
 #include "app/report_errors.h"
 #include "app/run/run_job.h"
+#include "common/float_limits.h"
 #include "common/input_error.h"
 #include "engine/run_loop.h"
 #include "engine/simulation.h"
@@ -133,7 +134,6 @@ std::vector<std::string> shipped_scenes(const std::string& executable_path) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---------------------------------------------------------------------------------------------
 // Schemes and runs

@@ -15,6 +15,7 @@
 #include "analysis/sample_mean.h"
 #include "app/analysis/analysis_plots.h"
 #include "app/report_errors.h"
+#include "common/float_limits.h"
 #include "common/input_error.h"
 #include "common/units.h"
 #include "contact/dent.h"
@@ -33,8 +34,6 @@ namespace peensim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-const SourceLocation kCommandLine{"<command line>", 0, 0};
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kBatches = 10;        // time batches of the measured window (batch-means standard errors)
 constexpr double kSpeedBin = 1e-3;  // m/s, bin of the normal-speed histograms (percentiles)
 constexpr int kSpeedBins = 200000;  // up to 200 m/s (faster: the last bin)
@@ -46,7 +45,7 @@ struct Knob {
     bool reference = false;
 };
 
-std::string number(double v) {
+std::string knob_number(double v) {
     char b[64];
     std::snprintf(b, sizeof b, "%g", v);
     return b;
@@ -56,23 +55,24 @@ std::string number(double v) {
 // rigid schemes. Stiffness is every material's youngs_modulus scaled.
 std::vector<Knob> knobs_of(const SceneDescription& scene, double reference_steps) {
     const auto soft = [](double steps) {
-        return std::vector<std::string>{"accuracy.scheme=soft", "accuracy.soft_steps_per_contact=" + number(steps)};
+        return std::vector<std::string>{"accuracy.scheme=soft", "accuracy.soft_steps_per_contact=" + knob_number(steps)};
     };
     std::vector<Knob> k;
-    k.push_back({"soft, " + number(reference_steps) + " steps/contact (reference)", "soft", soft(reference_steps), true});
+    k.push_back({"soft, " + knob_number(reference_steps) + " steps/contact (reference)", "soft", soft(reference_steps), true});
     for (const double steps : {40.0, 20.0, 10.0})
-        if (steps < reference_steps) k.push_back({"soft, " + number(steps) + " steps/contact", "soft", soft(steps)});
+        if (steps < reference_steps) k.push_back({"soft, " + knob_number(steps) + " steps/contact", "soft", soft(steps)});
     for (const double factor : {0.1, 0.01}) {
-        Knob s{"soft, 20 steps, E x " + number(factor), "soft", soft(20.0)};
+        Knob s{"soft, 20 steps, E x " + knob_number(factor), "soft", soft(20.0)};
         for (const MaterialDesc& m : scene.materials)
             if (m.youngs_modulus_pa)
-                s.overrides.push_back("materials." + m.name + ".youngs_modulus=" + number(*m.youngs_modulus_pa * factor) + " Pa");
+                s.overrides.push_back("materials." + m.name + ".youngs_modulus=" + knob_number(*m.youngs_modulus_pa * factor) + " Pa");
         k.push_back(s);
     }
     k.push_back({"rigid, event-driven", "event", {"accuracy.scheme=event"}});
     for (const double travel : {0.25, 0.1, 0.05})
-        k.push_back(
-            {"rigid, time step R x " + number(travel), "step", {"accuracy.scheme=step", "accuracy.travel_fraction=" + number(travel)}});
+        k.push_back({"rigid, time step R x " + knob_number(travel),
+                     "step",
+                     {"accuracy.scheme=step", "accuracy.travel_fraction=" + knob_number(travel)}});
     return k;
 }
 
@@ -82,7 +82,7 @@ struct Figure {
     double error_percent = kNaN, error_se = kNaN;  // against the reference: %, and in combined standard errors
 };
 
-void compare(Figure& f, const Figure& ref) {
+void compare_figure(Figure& f, const Figure& ref) {
     if (!(ref.value != 0.0) || std::isnan(f.value) || std::isnan(ref.value)) return;
     f.error_percent = 100.0 * (f.value - ref.value) / ref.value;
     const double se = std::sqrt(std::pow(std::isnan(f.se) ? 0.0 : f.se, 2) + std::pow(std::isnan(ref.se) ? 0.0 : ref.se, 2));
@@ -267,7 +267,7 @@ KnobResult run_knob(const TradeOptions& o, const Knob& knob, double settle_s) {
     return r;
 }
 
-std::string cell(const Figure& f, int digits, bool reference) {
+std::string table_cell(const Figure& f, int digits, bool reference) {
     char b[96];
     if (std::isnan(f.value)) return "-";
     if (reference || std::isnan(f.error_percent))
@@ -277,7 +277,7 @@ std::string cell(const Figure& f, int digits, bool reference) {
     return b;
 }
 
-std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s + " " : s + std::string(w - s.size(), ' '); }
+std::string padded_cell(const std::string& s, std::size_t w) { return s.size() >= w ? s + " " : s + std::string(w - s.size(), ' '); }
 
 void write_csv(const std::string& path, const std::vector<KnobResult>& results) {
     std::ostringstream c;
@@ -305,7 +305,7 @@ std::string plot(const std::string& png_path, const std::vector<KnobResult>& res
         if (r.knob.reference) continue;
         data << r.wall_s;
         for (const Figure* f : {&r.rate, &r.mean, &r.p90, &r.coverage})
-            data << "," << (std::isnan(f->error_percent) ? std::string("NaN") : number(std::max(0.01, std::abs(f->error_percent))));
+            data << "," << (std::isnan(f->error_percent) ? std::string("NaN") : knob_number(std::max(0.01, std::abs(f->error_percent))));
         data << ",\"" << r.knob.label << "\"\n";
     }
     write_file_atomically((fs::path(dir) / (stem + ".csv")).string(), data.str());
@@ -336,7 +336,7 @@ std::string plot(const std::string& png_path, const std::vector<KnobResult>& res
 // The options that need no scene, checked before it is read: a bad one is refused at once.
 void check_options(const TradeOptions& o) {
     if (!(o.reference_steps >= 20.0 && o.reference_steps <= 10000.0))  // CLI11's range lets nan through
-        throw InputError(kCommandLine, "--reference-steps", "expected a number from 20 to 10000, got " + number(o.reference_steps));
+        throw InputError(kCommandLine, "--reference-steps", "expected a number from 20 to 10000, got " + knob_number(o.reference_steps));
     if (!(o.seeds >= 1 && o.seeds <= 1000))
         throw InputError(kCommandLine, "--seeds", "expected a count from 1 to 1000, got " + std::to_string(o.seeds));
     if (!o.csv_path.empty()) check_output_file_directory("--csv", o.csv_path);
@@ -375,10 +375,10 @@ int trade_job(const TradeOptions& o, std::ostream& out, std::ostream& err) {
         const double settle = settle_time(o, duration);
         if (!(settle < duration))
             throw InputError(kCommandLine, "--settle",
-                             "expected less than the run's duration (" + number(duration) + " s), got " + number(settle) + " s");
+                             "expected less than the run's duration (" + knob_number(duration) + " s), got " + knob_number(settle) + " s");
         const std::vector<Knob> knobs = knobs_of(base, o.reference_steps);
-        out << "== " << o.scene_path << ": " << number(duration) << " s simulated"
-            << (o.seeds > 1 ? " x " + std::to_string(o.seeds) + " seeds" : "") << "; rates and speeds from " << number(settle)
+        out << "== " << o.scene_path << ": " << knob_number(duration) << " s simulated"
+            << (o.seeds > 1 ? " x " + std::to_string(o.seeds) + " seeds" : "") << "; rates and speeds from " << knob_number(settle)
             << " s on (10 batches: +- one standard error), coverage after the run; the reference: " << knobs.front().label << "\n";
         std::vector<KnobResult> results;
         for (const Knob& k : knobs) {
@@ -389,26 +389,26 @@ int trade_job(const TradeOptions& o, std::ostream& out, std::ostream& err) {
         const KnobResult& ref = results.front();
         for (KnobResult& r : results) {
             if (r.knob.reference) continue;
-            compare(r.rate, ref.rate);
-            compare(r.mean, ref.mean);
-            compare(r.p90, ref.p90);
-            compare(r.coverage, ref.coverage);
+            compare_figure(r.rate, ref.rate);
+            compare_figure(r.mean, ref.mean);
+            compare_figure(r.p90, ref.p90);
+            compare_figure(r.coverage, ref.coverage);
         }
-        out << pad("knob", 34) << pad("wall s", 9) << pad("impacts/s", 36) << pad("mean vn m/s", 36) << pad("p90 vn m/s", 36)
-            << "coverage %\n";
+        out << padded_cell("knob", 34) << padded_cell("wall s", 9) << padded_cell("impacts/s", 36) << padded_cell("mean vn m/s", 36)
+            << padded_cell("p90 vn m/s", 36) << "coverage %\n";
         for (const KnobResult& r : results) {
             char wall[32];
             std::snprintf(wall, sizeof wall, "%.2f", r.wall_s);
-            out << pad(r.knob.label, 34) << pad(wall, 9) << pad(cell(r.rate, 0, r.knob.reference), 36)
-                << pad(cell(r.mean, 3, r.knob.reference), 36) << pad(cell(r.p90, 3, r.knob.reference), 36)
-                << cell(r.coverage, 2, r.knob.reference)
+            out << padded_cell(r.knob.label, 34) << padded_cell(wall, 9) << padded_cell(table_cell(r.rate, 0, r.knob.reference), 36)
+                << padded_cell(table_cell(r.mean, 3, r.knob.reference), 36) << padded_cell(table_cell(r.p90, 3, r.knob.reference), 36)
+                << table_cell(r.coverage, 2, r.knob.reference)
                 << (r.serious ? " (" + std::to_string(r.serious) + " serious health counts)" : std::string()) << "\n";
         }
         for (const KnobResult& r : results) {
             if (r.knob.label != "rigid, event-driven") continue;
-            out << "the rigid, instantaneous impact against the soft reference: impact rate " << cell(r.rate, 0, false) << ", mean vn "
-                << cell(r.mean, 3, false) << ", in " << number(std::round(r.wall_s / ref.wall_s * 1000.0) / 1000.0)
-                << "x the reference's wall time\n";
+            out << "the rigid, instantaneous impact against the soft reference: impact rate " << table_cell(r.rate, 0, false)
+                << ", mean vn " << table_cell(r.mean, 3, false) << ", in "
+                << knob_number(std::round(r.wall_s / ref.wall_s * 1000.0) / 1000.0) << "x the reference's wall time\n";
         }
         if (!o.csv_path.empty()) write_csv(o.csv_path, results);
         if (!o.plot_path.empty()) {

@@ -23,7 +23,7 @@ namespace peensim {
 
 namespace {
 
-std::string mm(double m) {
+std::string fixed_mm(double m) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(3) << m * 1e3;
     return s.str();
@@ -37,21 +37,23 @@ void print_assembly(const Model& model, const AssemblyReport& report, std::ostre
         // As placed at t = 0 (its real size); a turning part's swept solid on a line of its own.
         const Vec3 size = f.rest_hi - f.rest_lo;
         out << "#   " << std::left << std::setw(14) << c.name << std::setw(10) << role_name(c.role) << std::right << " from ("
-            << mm(f.rest_lo.x()) << ", " << mm(f.rest_lo.y()) << ", " << mm(f.rest_lo.z()) << ") to (" << mm(f.rest_hi.x()) << ", "
-            << mm(f.rest_hi.y()) << ", " << mm(f.rest_hi.z()) << "), size " << mm(size.x()) << " x " << mm(size.y()) << " x "
-            << mm(size.z()) << ", " << f.triangles << " triangles, " << (f.closed ? "closed" : "open") << "\n";
+            << fixed_mm(f.rest_lo.x()) << ", " << fixed_mm(f.rest_lo.y()) << ", " << fixed_mm(f.rest_lo.z()) << ") to ("
+            << fixed_mm(f.rest_hi.x()) << ", " << fixed_mm(f.rest_hi.y()) << ", " << fixed_mm(f.rest_hi.z()) << "), size "
+            << fixed_mm(size.x()) << " x " << fixed_mm(size.y()) << " x " << fixed_mm(size.z()) << ", " << f.triangles << " triangles, "
+            << (f.closed ? "closed" : "open") << "\n";
         if (std::isfinite(f.swept_radius_m)) {
             const Vec3 swept = f.swept_hi - f.swept_lo;
             out << "#   " << std::setw(24) << ""
-                << " swept in a turn: from (" << mm(f.swept_lo.x()) << ", " << mm(f.swept_lo.y()) << ", " << mm(f.swept_lo.z()) << ") to ("
-                << mm(f.swept_hi.x()) << ", " << mm(f.swept_hi.y()) << ", " << mm(f.swept_hi.z()) << "), " << mm(swept.x()) << " x "
-                << mm(swept.y()) << " x " << mm(swept.z()) << ", radius " << mm(f.swept_radius_m) << " about its axis\n";
+                << " swept in a turn: from (" << fixed_mm(f.swept_lo.x()) << ", " << fixed_mm(f.swept_lo.y()) << ", "
+                << fixed_mm(f.swept_lo.z()) << ") to (" << fixed_mm(f.swept_hi.x()) << ", " << fixed_mm(f.swept_hi.y()) << ", "
+                << fixed_mm(f.swept_hi.z()) << "), " << fixed_mm(swept.x()) << " x " << fixed_mm(swept.y()) << " x " << fixed_mm(swept.z())
+                << ", radius " << fixed_mm(f.swept_radius_m) << " about its axis\n";
         }
         if (std::isfinite(f.reachable_fraction))
             out << "#   " << std::setw(24) << ""
-                << " clearance to the sonotrode (less A0) " << mm(f.clearance_to_sonotrode_m) << ", to the chamber "
-                << mm(f.clearance_to_chamber_m) << "; shot reach " << std::setprecision(0) << std::fixed << 100.0 * f.reachable_fraction
-                << " % of its surface\n"
+                << " clearance to the sonotrode (less A0) " << fixed_mm(f.clearance_to_sonotrode_m) << ", to the chamber "
+                << fixed_mm(f.clearance_to_chamber_m) << "; shot reach " << std::setprecision(0) << std::fixed
+                << 100.0 * f.reachable_fraction << " % of its surface\n"
                 << std::defaultfloat << std::setprecision(6);
         if (c.kinematics.kind == Kinematics::Kind::vibrating)
             out << "#   " << std::setw(24) << ""
@@ -61,8 +63,8 @@ void print_assembly(const Model& model, const AssemblyReport& report, std::ostre
             const Vec3& p = c.kinematics.axis_point_m;
             const Vec3& u = c.kinematics.axis_direction;
             out << "#   " << std::setw(24) << ""
-                << " turns about the axis through (" << mm(p.x()) << ", " << mm(p.y()) << ", " << mm(p.z()) << ") along (" << u.x() << ", "
-                << u.y() << ", " << u.z() << ") at " << c.kinematics.omega_rad_per_s * 30.0 / M_PI << " rpm\n";
+                << " turns about the axis through (" << fixed_mm(p.x()) << ", " << fixed_mm(p.y()) << ", " << fixed_mm(p.z()) << ") along ("
+                << u.x() << ", " << u.y() << ", " << u.z() << ") at " << c.kinematics.omega_rad_per_s * 30.0 / M_PI << " rpm\n";
         }
     }
 }

@@ -23,7 +23,7 @@ namespace {
 // The file: "PEENCKPT", the format version (kSavedStateVersion, 4 bytes), the fields of
 // checkpoint_fields.h in their order, and a checksum of everything before it (8 bytes). Files of
 // formats 1-9 began "PEENCKP" and their version as one character.
-constexpr std::string_view kMagic = "PEENCKPT";
+constexpr std::string_view kCheckpointMagic = "PEENCKPT";
 constexpr std::string_view kOldMagic = "PEENCKP";
 
 // Any single flipped bit (and almost any damage) changes it.
@@ -56,7 +56,7 @@ std::vector<FieldName> checkpoint_field_names() {
 
 void save_checkpoint(const std::string& path, const Checkpoint& c) {
     ByteWriter w;
-    w.put_raw(kMagic);
+    w.put_raw(kCheckpointMagic);
     w.put(kSavedStateVersion);
     FieldWriter fields(w);
     checkpoint_fields(c, fields);
@@ -72,16 +72,16 @@ Checkpoint load_checkpoint(const std::string& path) {
     const std::string bytes = buffer.str();
     const std::string_view view(bytes);
     if (!view.starts_with(kOldMagic)) throw damaged(path, "not a peensim checkpoint");
-    if (!view.starts_with(kMagic)) {
+    if (!view.starts_with(kCheckpointMagic)) {
         const char old = bytes.size() > kOldMagic.size() ? bytes[kOldMagic.size()] : '?';
         if (old < '1' || old > '9') throw damaged(path, "not a peensim checkpoint");
         throw damaged(path, version_difference(static_cast<std::uint32_t>(old - '0')));
     }
     constexpr std::size_t kSum = sizeof(std::uint64_t);
-    constexpr std::size_t kHeader = kMagic.size() + sizeof(std::uint32_t);
+    constexpr std::size_t kHeader = kCheckpointMagic.size() + sizeof(std::uint32_t);
     if (bytes.size() < kHeader + kSum) throw damaged(path, "the file is truncated");
     std::uint32_t version = 0;
-    std::memcpy(&version, bytes.data() + kMagic.size(), sizeof(version));
+    std::memcpy(&version, bytes.data() + kCheckpointMagic.size(), sizeof(version));
     const std::string_view body = view.substr(0, bytes.size() - kSum);
     std::uint64_t stored = 0;
     std::memcpy(&stored, bytes.data() + body.size(), kSum);

@@ -23,6 +23,7 @@
 #include "output/impact_csv_writer.h"
 #include "output/output_names.h"
 #include "scene/scene_parser.h"
+#include "scene/scene_sections.h"
 
 namespace fs = std::filesystem;
 
@@ -65,12 +66,6 @@ const ComponentDesc& logged_component(const SceneDescription& scene, const std::
     return *logged.front();
 }
 
-const MaterialDesc* material_named(const SceneDescription& scene, const std::string& name) {
-    for (const MaterialDesc& m : scene.materials)
-        if (m.name == name) return &m;
-    return nullptr;
-}
-
 std::vector<std::string> split_commas(std::string text) {
     text.erase(std::remove(text.begin(), text.end(), '['), text.end());
     text.erase(std::remove(text.begin(), text.end(), ']'), text.end());
@@ -103,7 +98,7 @@ Vec3 point_option(const std::string& option, const std::string& text) {
             quantity(option, parts[2], Dimension::length)};
 }
 
-std::string mm(double m) {
+std::string fem_mm(double m) {
     std::ostringstream s;
     s.precision(4);
     s << m * 1e3;
@@ -111,7 +106,7 @@ std::string mm(double m) {
 }
 
 // "40 s", "12 min", "3.5 h": a duration as a person reads it.
-std::string duration_text(double seconds) {
+std::string fem_duration_text(double seconds) {
     std::ostringstream s;
     if (seconds < 90.0)
         s << std::fixed << std::setprecision(0) << seconds << " s";
@@ -129,7 +124,7 @@ std::string gigabytes(double bytes) {
     return s.str();
 }
 
-std::string mm3(const Vec3& p) { return "(" + mm(p.x()) + ", " + mm(p.y()) + ", " + mm(p.z()) + ") mm"; }
+std::string mm3(const Vec3& p) { return "(" + fem_mm(p.x()) + ", " + fem_mm(p.y()) + ", " + fem_mm(p.z()) + ") mm"; }
 
 // The centre of a --region's patch: the point of the region's surface nearest its area centroid.
 // Not the centroid itself: a region that is not flat (a gear tooth: both flanks, the tip and the
@@ -207,12 +202,12 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         if (scene) {
             shot_diameter = scene->shot.sizes.front().diameter_m;
             shot_density = scene->shot.density_kg_per_m3;
-            if (const MaterialDesc* m = material_named(*scene, scene->shot.material)) {
+            if (const MaterialDesc* m = find_material(scene->materials, scene->shot.material)) {
                 if (m->youngs_modulus_pa) shot_mat.youngs_modulus_pa = *m->youngs_modulus_pa;
                 if (m->poisson_ratio) shot_mat.poisson_ratio = *m->poisson_ratio;
             }
             component = &logged_component(*scene, o.component, scene_file);
-            if (const MaterialDesc* m = material_named(*scene, component->material)) {
+            if (const MaterialDesc* m = find_material(scene->materials, component->material)) {
                 if (m->youngs_modulus_pa)
                     target.youngs_modulus_pa = *m->youngs_modulus_pa;
                 else
@@ -232,7 +227,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             std::string sizes;
             bool known = false;
             for (const ShotSizeDesc& size : scene->shot.sizes) {
-                sizes += (sizes.empty() ? "" : ", ") + mm(size.diameter_m) + " mm";
+                sizes += (sizes.empty() ? "" : ", ") + fem_mm(size.diameter_m) + " mm";
                 known |= std::abs(size.diameter_m - shot_diameter) <= 1e-9 * size.diameter_m;
             }
             if (o.shot_diameter.empty())
@@ -241,7 +236,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
                                      "); expected --shot-diameter to choose whose impacts to export (the deck has one ball size)");
             if (!known)
                 throw InputError({"--shot-diameter"}, "",
-                                 "expected one of the run's sizes (" + sizes + "), got " + mm(shot_diameter) + " mm");
+                                 "expected one of the run's sizes (" + sizes + "), got " + fem_mm(shot_diameter) + " mm");
         }
         if (!(shot_diameter > 0.0))
             throw InputError({"--shot-diameter"}, "", "expected the shot diameter (there is no run directory to take it from)");
@@ -321,8 +316,8 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             const SurfacePoint s = closest_surface_point(*mesh, centre, region_triangles);
             if (s.distance_m > R && !centre_on_region)
                 throw InputError({"--center"}, "",
-                                 mm3(centre) + " is " + mm(s.distance_m) + " mm from the surface of component '" + component->name +
-                                     "'; expected a point on it (within a shot radius, " + mm(R) + " mm)");
+                                 mm3(centre) + " is " + fem_mm(s.distance_m) + " mm from the surface of component '" + component->name +
+                                     "'; expected a point on it (within a shot radius, " + fem_mm(R) + " mm)");
             centre = s.point_m;
             const double r_frame = o.radius.empty() ? kPatchRadii * R : positive("--radius", o.radius, Dimension::length);
             frame = tangent_frame(*mesh, centre, s.triangle, r_frame);
@@ -397,7 +392,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
             if (p.point_m.norm() <= radius && (!o.max_impacts || static_cast<int>(impacts.size()) < *o.max_impacts)) impacts.push_back(p);
         if (impacts.empty())
             throw InputError({o.run_dir.empty() ? "--single" : o.run_dir}, "",
-                             "no impact of component '" + (component ? component->name : std::string("-")) + "' within " + mm(radius) +
+                             "no impact of component '" + (component ? component->name : std::string("-")) + "' within " + fem_mm(radius) +
                                  " mm of " + mm3(frame.centre_m) + " (" + std::to_string(log_rows) +
                                  " rows read); expected a centre where the part was hit");
         if (o.quarter) {
@@ -436,14 +431,14 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         const double cells = std::pow((o.quarter ? 1.0 : 2.0) * spec.fine_half_width_m / h, 2.0) * spec.fine_depth_m / h;
         if (cells > kMaxElements)
             throw InputError({"--element-size"}, "",
-                             "the fine zone alone would need ~" + std::to_string(static_cast<long long>(cells)) +
-                                 " elements (h = " + mm(h) + " mm), more than the " + std::to_string(static_cast<long long>(kMaxElements)) +
+                             "the fine zone alone would need ~" + std::to_string(static_cast<long long>(cells)) + " elements (h = " +
+                                 fem_mm(h) + " mm), more than the " + std::to_string(static_cast<long long>(kMaxElements)) +
                                  " written at most; give a larger --element-size or fewer --impacts");
         const double elements = block_element_count(spec);
         if (elements > kMaxElements)
             throw InputError({"--element-size"}, "",
-                             "the block would have " + std::to_string(static_cast<long long>(elements)) + " elements (h = " + mm(h) +
-                                 " mm, patch radius " + mm(radius) + " mm), more than the " +
+                             "the block would have " + std::to_string(static_cast<long long>(elements)) + " elements (h = " + fem_mm(h) +
+                                 " mm, patch radius " + fem_mm(radius) + " mm), more than the " +
                                  std::to_string(static_cast<long long>(kMaxElements)) +
                                  " written at most; give a larger --element-size, a smaller --radius or fewer --impacts");
 
@@ -495,14 +490,14 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         // better refused by its user now than found out after a night of ccx).
         const CcxCostEstimate cost = estimate_ccx_cost(deck);
         out << "export-fem: " << impacts.size() << " impacts in " << deck.steps.size() << " steps; block "
-            << deck.block.mesh.elements.size() << " " << fem_element_name(element) << " elements (fine " << mm(h) << " mm), "
+            << deck.block.mesh.elements.size() << " " << fem_element_name(element) << " elements (fine " << fem_mm(h) << " mm), "
             << deck.shots.size() << " shots x " << deck.shot_mesh.mesh.elements.size()
-            << " elements\n  CalculiX estimate: " << duration_text(cost.seconds) << ", " << gigabytes(cost.bytes) << " GB ("
+            << " elements\n  CalculiX estimate: " << fem_duration_text(cost.seconds) << ", " << gigabytes(cost.bytes) << " GB ("
             << static_cast<long long>(cost.nodes) << " nodes, " << static_cast<long long>(cost.planned_increments)
             << " planned increments; one core, the cost model of docs/user-guide.md, \"FEM hand-off\")\n";
         if (cost.seconds > kCcxPracticalSeconds || cost.bytes > kCcxPracticalBytes)
-            err << "warning: this deck is impractical for CalculiX on one core: about " << duration_text(cost.seconds) << " and "
-                << gigabytes(cost.bytes) << " GB estimated (more than " << duration_text(kCcxPracticalSeconds) << " or "
+            err << "warning: this deck is impractical for CalculiX on one core: about " << fem_duration_text(cost.seconds) << " and "
+                << gigabytes(cost.bytes) << " GB estimated (more than " << fem_duration_text(kCcxPracticalSeconds) << " or "
                 << gigabytes(kCcxPracticalBytes)
                 << " GB); fewer --impacts, a larger --element-size (fewer --elements-per-dent), "
                    "a smaller --radius or --shot-divisions 4 make it smaller; it is written all the same\n";
@@ -530,7 +525,7 @@ int export_fem_job(const ExportFemOptions& o, std::ostream& out, std::ostream& e
         readme << "# FEM deck `" << o.name << ".inp` (peensim export-fem)\n\n";
         for (const std::string& l : deck.header) readme << l << "\n";
         readme << "\nRun it with CalculiX: `ccx -i " << o.name << "` (in this directory; results in " << o.name << ".dat and " << o.name
-               << ".frd). Expect about " << duration_text(cost.seconds) << " and " << gigabytes(cost.bytes) << " GB on one core ("
+               << ".frd). Expect about " << fem_duration_text(cost.seconds) << " and " << gigabytes(cost.bytes) << " GB on one core ("
                << static_cast<long long>(cost.nodes) << " nodes, " << static_cast<long long>(cost.planned_increments)
                << " planned increments; the cost model of peensim's docs/user-guide.md, \"FEM hand-off\", fitted to measured ccx 2.20 "
                   "runs).\n\n";

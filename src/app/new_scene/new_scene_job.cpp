@@ -16,6 +16,7 @@
 #include "common/input_error.h"
 #include "common/units.h"
 #include "geometry/cylinder_mesh.h"
+#include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
 #include "geometry/part_envelope.h"
 #include "geometry/stepped_chamber_mesh.h"
@@ -53,10 +54,37 @@ std::string shell_word(const std::string& text) {
 constexpr double kWidestLikelySonotrodeM = 0.2;
 constexpr int kMostLikelyShot = 5000;
 
-std::string mm_text(double metres) {
+std::string mm_one_decimal(double metres) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.1f", metres * 1e3);
     return std::string(buf) == "-0.0" ? "0.0" : buf;
+}
+
+// What the regions are, said in a line ("the two ends and 5 of 8 sectors about the axis; left out,
+// holding none of its surface: sector-0 sector-1 sector-2").
+std::string regions_text(const ProposedRegions& regions, const NewSceneRequest& request) {
+    const auto count = [&](const char* prefix) {
+        std::size_t n = 0;
+        for (const RegionDesc& e : regions.entries)
+            if (e.name.rfind(prefix, 0) == 0) n += e.sectors ? static_cast<std::size_t>(e.sectors->count) : 1;
+        return n;
+    };
+    std::string text;
+    if (request.turning_axis) {
+        const std::size_t ends = count("end-"), sectors = count("sector");
+        text = (ends == 2   ? "the two ends"
+                : ends == 1 ? "one end"
+                            : "no end") +
+               std::string(" and ") + (sectors == kProposedSectors ? "" : std::to_string(sectors) + " of ") +
+               std::to_string(kProposedSectors) + " sectors about the axis";
+    } else {
+        text = "by facing direction (" + std::to_string(regions.entries.size()) + ")";
+    }
+    if (!regions.left_out.empty()) {
+        text += "; left out, holding none of its surface:";
+        for (const std::string& name : regions.left_out) text += " " + name;
+    }
+    return text;
 }
 
 // A name the scene accepts ([A-Za-z0-9_-]+) from the part file's name.
@@ -89,7 +117,7 @@ std::string relative_to(const fs::path& target, const fs::path& folder) {
     return rel.empty() || climbs >= depth ? absolute_target.generic_string() : rel.generic_string();
 }
 
-int run(const NewSceneOptions& o, std::ostream& out) {
+int run_new_scene(const NewSceneOptions& o, std::ostream& out) {
     // The request.
     // A STEP or IGES file states its unit (the reader converts); a mesh file's is --unit, mm by default.
     const bool cad = is_cad_file(o.part_path);
@@ -160,17 +188,19 @@ int run(const NewSceneOptions& o, std::ostream& out) {
     const TriangleMesh mesh = load_mesh(o.part_path, unit_m);
     const PartEnvelope envelope = part_envelope(mesh, request.turning_axis);
     const double largest = envelope.size_m.maxCoeff();
-    const std::string size_text =
-        mm_text(envelope.size_m.x()) + " x " + mm_text(envelope.size_m.y()) + " x " + mm_text(envelope.size_m.z()) + " mm";
+    const std::string size_text = mm_one_decimal(envelope.size_m.x()) + " x " + mm_one_decimal(envelope.size_m.y()) + " x " +
+                                  mm_one_decimal(envelope.size_m.z()) + " mm";
     if (largest > kLargestPartM || largest < kSmallestPartM)
         throw InputError({o.part_path}, "--unit",
                          "read in " + unit_said + " the part is " + size_text +
                              ": expected 1 mm to 2 m across; is its unit right (--unit mm, cm, m, um, in)?");
     if (largest < kSmallestPartShots * request.shot_diameter_m)
         throw InputError({o.part_path}, "--unit",
-                         "read in " + unit_said + " the part is " + size_text + ", under 5 shot of " + mm_text(request.shot_diameter_m) +
+                         "read in " + unit_said + " the part is " + size_text + ", under 5 shot of " +
+                             mm_one_decimal(request.shot_diameter_m) +
                              " mm across: is its unit right (--unit in, cm, m), or the shot too large (--shot-diameter)?");
     const SceneDesign design = design_scene(envelope, request);
+    const ProposedRegions regions = propose_regions(mesh, envelope, request.turning_axis);
 
     // The chamber and the sonotrode (mm files, as the shipped ones).
     SteppedChamberSpec chamber;
@@ -201,7 +231,7 @@ int run(const NewSceneOptions& o, std::ostream& out) {
     files.chamber_mesh = relative_to(chamber_stl, folder);
     files.sonotrode_mesh = relative_to(sonotrode_stl, folder);
     files.command = o.command_line.empty() ? "peensim new " + o.part_path : o.command_line;
-    const std::string yaml = new_scene_yaml(design, request, *material, files);
+    const std::string yaml = new_scene_yaml(design, request, *material, regions, files);
 
     fs::create_directories(assets, ec);
     if (ec) throw std::runtime_error("cannot create " + assets.string() + ": " + ec.message());
@@ -212,27 +242,33 @@ int run(const NewSceneOptions& o, std::ostream& out) {
     // What it chose.
     const Vec3& sz = envelope.size_m;
     out << "peensim new: " << o.part_path << " (" << mesh.triangle_count() << " triangles, read in " << unit_said << ")\n";
-    out << "  part       " << mm_text(sz.x()) << " x " << mm_text(sz.y()) << " x " << mm_text(sz.z()) << " mm, " << material->name
-        << " (yield stress " << material->yield_stress_mpa << " MPa: edit it in the scene)\n";
+    out << "  part       " << mm_one_decimal(sz.x()) << " x " << mm_one_decimal(sz.y()) << " x " << mm_one_decimal(sz.z()) << " mm, "
+        << material->name << " (yield stress " << material->yield_stress_mpa << " MPa: edit it in the scene)\n";
     if (request.turning_axis)
         out << "  turning    about its " << o.rotate_about << " axis through its centre at " << request.rpm << " rpm: sweeps "
-            << mm_text(envelope.swept_radius_m) << " mm about it\n";
-    out << "  placed     centred over the sonotrode, its lowest point " << mm_text(design.standoff_m) << " mm above it (translation ["
-        << mm_text(design.translation_m.x()) << ", " << mm_text(design.translation_m.y()) << ", " << mm_text(design.translation_m.z())
-        << "] mm)\n";
-    out << "  sonotrode  " << mm_text(2.0 * design.sonotrode_radius_m) << " mm across (the part's footprint "
-        << mm_text(2.0 * envelope.footprint_radius_m) << " mm + " << mm_text(design.sonotrode_margin_m) << " mm a side), "
+            << mm_one_decimal(envelope.swept_radius_m) << " mm about it\n";
+    out << "  placed     centred over the sonotrode, its lowest point " << mm_one_decimal(design.standoff_m)
+        << " mm above it (translation [" << mm_one_decimal(design.translation_m.x()) << ", " << mm_one_decimal(design.translation_m.y())
+        << ", " << mm_one_decimal(design.translation_m.z()) << "] mm)\n";
+    out << "  sonotrode  " << mm_one_decimal(2.0 * design.sonotrode_radius_m) << " mm across (the part's footprint "
+        << mm_one_decimal(2.0 * envelope.footprint_radius_m) << " mm + " << mm_one_decimal(design.sonotrode_margin_m) << " mm a side), "
         << design.amplitude_m * 1e6 << " um at " << design.frequency_hz * 1e-3 << " kHz\n";
-    out << "  chamber    " << mm_text(2.0 * design.upper_radius_m) << " mm across above z = " << mm_text(design.step_z_m) << " mm, "
-        << mm_text(2.0 * design.lower_radius_m) << " mm below, lid at z = " << mm_text(design.lid_z_m) << " mm\n";
+    out << "  chamber    " << mm_one_decimal(2.0 * design.upper_radius_m) << " mm across above z = " << mm_one_decimal(design.step_z_m)
+        << " mm, " << mm_one_decimal(2.0 * design.lower_radius_m) << " mm below, lid at z = " << mm_one_decimal(design.lid_z_m) << " mm\n";
     out << "  shot       " << design.shot_count << " x " << request.shot_diameter_m * 1e3 << " mm steel ("
         << std::lround(100.0 * design.shot_fill) << " % of the sonotrode's face)\n";
     out << "  run        " << design.duration_s << " s"
         << (design.turns > 0 ? " (" + std::to_string(design.turns) + (design.turns == 1 ? " whole turn)" : " whole turns)") : "")
-        << "; regions " << (request.turning_axis ? "the two ends and 8 sectors about the axis" : "by facing direction (6)") << "\n";
+        << "; regions " << regions_text(regions, request) << "\n";
     out << "wrote " << scene.string() << ", " << chamber_stl.string() << ", " << sonotrode_stl.string() << "\n";
+    // An open mesh runs, but its holes let shot into the part and its inside counts as surface.
+    const EdgeReport edges = edge_report(mesh);
+    if (edges.boundary_edges > 0 || edges.non_manifold_edges > 0)
+        out << "warning: the part's mesh is not closed (" << edges.boundary_edges << " edges on one triangle only, "
+            << edges.non_manifold_edges << " on three or more): shot can pass through its holes into the part, whose inside then\n"
+            << "         counts as surface; export it as a closed solid (STEP, or an STL of the solid), or see `peensim check`\n";
     if (2.0 * design.sonotrode_radius_m > kWidestLikelySonotrodeM || design.shot_count > kMostLikelyShot)
-        out << "warning: a " << mm_text(2.0 * design.sonotrode_radius_m) << " mm sonotrode and " << design.shot_count
+        out << "warning: a " << mm_one_decimal(2.0 * design.sonotrode_radius_m) << " mm sonotrode and " << design.shot_count
             << " shot: is the part really " << size_text << "? If not, its unit is wrong (--unit, read in " << unit_said << ")\n";
     out << "next:  peensim check " << shell_word(scene.string()) << " --render "
         << shell_word(beside_scene(scene.stem().string() + "-check.png").string()) << "\n       peensim run " << shell_word(scene.string())
@@ -243,7 +279,7 @@ int run(const NewSceneOptions& o, std::ostream& out) {
 }  // namespace
 
 int new_scene_job(const NewSceneOptions& options, std::ostream& out, std::ostream& err) {
-    return report_errors(err, [&] { return run(options, out); });
+    return report_errors(err, [&] { return run_new_scene(options, out); });
 }
 
 }  // namespace peensim

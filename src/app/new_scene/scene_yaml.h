@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "app/new_scene/proposed_regions.h"
 #include "app/new_scene/scene_design.h"
 
 namespace peensim {
@@ -18,6 +19,6 @@ struct NewSceneFiles {
 };
 
 std::string new_scene_yaml(const SceneDesign& design, const NewSceneRequest& request, const PartMaterial& material,
-                           const NewSceneFiles& files);
+                           const ProposedRegions& regions, const NewSceneFiles& files);
 
 }  // namespace peensim

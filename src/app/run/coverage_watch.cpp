@@ -7,16 +7,13 @@
 
 #include "analysis/impact_stream.h"
 #include "app/analysis/coverage_setup.h"
+#include "common/float_limits.h"
 #include "common/input_error.h"
 #include "common/random.h"
 #include "contact/dent.h"
 #include "model/shot_cavity.h"
 
 namespace peensim {
-
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}  // namespace
 
 struct CoverageWatch::Part {
     std::string name;

@@ -6,7 +6,7 @@ namespace peensim {
 
 namespace {
 
-std::string mm(const Vec3& p) {
+std::string point_mm(const Vec3& p) {
     std::ostringstream o;
     o << "(" << p.x() * 1e3 << ", " << p.y() * 1e3 << ", " << p.z() * 1e3 << ") mm";
     return o.str();
@@ -23,19 +23,20 @@ std::string describe_loss(const Model& model, const LostShot& l) {
     const double D_mm = 2e3 * (l.radius_m > 0.0 ? l.radius_m : model.min_shot_radius_m);
     switch (l.cause) {
         case LossCause::leak:
-            o << "warning: shot " << l.shot << " left the assembly at t = " << l.time_s << " s through an opening near " << mm(l.where_m)
-              << " (" << l.clearance_m * 1e3 << " mm from " << name_of(model, l.component) << "): its whole sphere flew from "
-              << mm(l.from_m) << " (t = " << l.from_time_s << " s) out of the chamber's bounds without touching any surface, so the "
+            o << "warning: shot " << l.shot << " left the assembly at t = " << l.time_s << " s through an opening near "
+              << point_mm(l.where_m) << " (" << l.clearance_m * 1e3 << " mm from " << name_of(model, l.component)
+              << "): its whole sphere flew from " << point_mm(l.from_m) << " (t = " << l.from_time_s
+              << " s) out of the chamber's bounds without touching any surface, so the "
               << "assembly is open there by at least the shot diameter (" << D_mm << " mm): check the meshes and their placement";
             break;
         case LossCause::engine_error:
             o << "error: shot " << l.shot << " was lost at t = " << l.time_s
-              << " s by an engine error: after its last event at t = " << l.from_time_s << " s at " << mm(l.from_m) << " it crossed "
-              << name_of(model, l.component) << " at " << mm(l.where_m) << " unseen and left at " << mm(l.position_m)
+              << " s by an engine error: after its last event at t = " << l.from_time_s << " s at " << point_mm(l.from_m) << " it crossed "
+              << name_of(model, l.component) << " at " << point_mm(l.where_m) << " unseen and left at " << point_mm(l.position_m)
               << " (counted in engine_errors; please report this run)";
             break;
         case LossCause::not_diagnosed:
-            o << "warning: shot " << l.shot << " left the chamber at t = " << l.time_s << " s near " << mm(l.position_m)
+            o << "warning: shot " << l.shot << " left the chamber at t = " << l.time_s << " s near " << point_mm(l.position_m)
               << " (time stepping: not diagnosed; the event-driven scheme tells a leak from an engine error)";
             break;
     }

@@ -35,7 +35,7 @@ bool finished(const SweepRun& run) {
     return !j.is_discarded() && j.value("finished", false);
 }
 
-std::string duration_text(double s) {
+std::string sweep_duration_text(double s) {
     if (!(s >= 0.0) || !std::isfinite(s)) return "?";
     const auto t = static_cast<long long>(std::llround(s));
     return t >= 3600 ? std::to_string(t / 3600) + "h" + std::to_string(t % 3600 / 60) + "m"
@@ -84,8 +84,8 @@ void SweepBook::outcome(std::size_t k, int code) {
         const std::size_t left = total() - done_;
         const double eta = elapsed / static_cast<double>(done_here_) * static_cast<double>(left) /
                            static_cast<double>(std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(slots_), left)));
-        out_ << "sweep: " << done_ << "/" << total() << " done (" << label_of(k) << ", " << duration_text(elapsed) << " elapsed"
-             << (left > 0 ? ", about " + duration_text(eta) + " to go" : std::string()) << ")\n"
+        out_ << "sweep: " << done_ << "/" << total() << " done (" << label_of(k) << ", " << sweep_duration_text(elapsed) << " elapsed"
+             << (left > 0 ? ", about " + sweep_duration_text(eta) + " to go" : std::string()) << ")\n"
              << std::flush;
     } else if (code == kExitInterrupted && stopped_) {
         // Checkpointed: the next sweep resumes it.

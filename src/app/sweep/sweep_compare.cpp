@@ -169,7 +169,7 @@ SweepFigure figure(const std::vector<RunFigures>& runs, double RunFigures::*memb
     return mean_with_ci95(v);
 }
 
-std::string cell(const std::optional<double>& x) {
+std::string csv_cell(const std::optional<double>& x) {
     if (!x) return "";
     std::ostringstream s;
     s.precision(6);
@@ -328,19 +328,19 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
         const Row& r = rows[v];
         csv << plan.variants[v].name;
         for (const SweepAxis& a : plan.axes) csv << ",\"" << sweep_value(plan.variants[v], a.path) << "\"";
-        csv << "," << r.runs << "," << cell(std::isfinite(target) ? std::optional<double>(target) : std::nullopt);
-        for (const Column& c : columns) csv << "," << cell((r.*c.figure).mean) << "," << cell((r.*c.figure).ci95);
+        csv << "," << r.runs << "," << csv_cell(std::isfinite(target) ? std::optional<double>(target) : std::nullopt);
+        for (const Column& c : columns) csv << "," << csv_cell((r.*c.figure).mean) << "," << csv_cell((r.*c.figure).ci95);
         csv << "," << r.slowest_region;
         for (const SweepFigure* f : {&r.whole, &r.slowest, &r.everywhere}) csv << ",\"" << f->missing << "\"";
         for (const Column& c : columns)
             if (c.compared) {
                 const SweepDifference d = compare_figures(r.*c.figure, rows[base].*c.figure);
-                csv << "," << cell(d.delta) << "," << d.verdict;
+                csv << "," << csv_cell(d.delta) << "," << d.verdict;
             }
         for (const std::string& name : region_names) {
             const auto it = r.regions.find(name);
             const Row::Region g = it != r.regions.end() ? it->second : Row::Region{};
-            for (const SweepFigure* f : {&g.rate, &g.coverage, &g.time}) csv << "," << cell(f->mean) << "," << cell(f->ci95);
+            for (const SweepFigure* f : {&g.rate, &g.coverage, &g.time}) csv << "," << csv_cell(f->mean) << "," << csv_cell(f->ci95);
         }
         csv << "\n";
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/float_limits.h"
 #include "engine/event/event_core.h"
 #include "engine/impact_recording.h"
 #include "engine/law_input.h"
@@ -15,7 +16,6 @@ namespace peensim {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMaxWindowTravel = 64.0;  // radii: windows double up to this while a flight finds nothing
 constexpr double kCollapseWindow = 1e-6;   // s, TC rule: a shot-shot collision this soon after one is elastic
 constexpr int kMaxQuickGrazes = 4;         // grazes each within kCollapseWindow of the last, then sustained contact

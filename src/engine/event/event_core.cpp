@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "common/float_limits.h"
 #include "engine/law_input.h"
 #include "engine/time_stepping.h"
 
@@ -12,7 +13,6 @@ namespace peensim {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kSubstep = 50e-6;                    // s, sustained-contact substep (fall per substep g t^2/2 = 12 nm)
 constexpr double kSubstepTravel = 0.25;               // of R, the most a shot (or a turning surface) moves in a substep
 constexpr double kMinImpactSpeed = 1e-6;              // m/s, slower approaches are never impacts

@@ -2,13 +2,10 @@
 
 #include <limits>
 
+#include "common/float_limits.h"
 #include "kernels/sphere_pair_toi.h"
 
 namespace peensim {
-
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
 
 PairPredictor::PairPredictor(int shot_count, double resting_speed_m_per_s)
     : shot_count_(shot_count), resting_speed_(resting_speed_m_per_s), boxes_(std::make_unique<ShotBoxTree>(shot_count)) {

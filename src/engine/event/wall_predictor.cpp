@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "collision/surface_clearance.h"
+#include "common/float_limits.h"
 #include "kernels/box_entry.h"
 #include "kernels/closest_point.h"
 #include "kernels/swept_sphere_box.h"
@@ -13,7 +14,6 @@
 namespace peensim {
 
 namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxAdvancement = 2000;  // conservative-advancement iterations per search (then it resumes later)
 constexpr double kSkimBand = 1e-6;     // gap (x R) within which a gap that stops closing is a touch
 }  // namespace

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "common/float_limits.h"
 #include "contact/contact_policy.h"
 #include "kernels/sphere_pair_toi.h"
 
@@ -14,7 +15,6 @@ namespace peensim {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kMinStep = 1e-12;  // s, a step is never shorter (time always moves on)
 
 // m/s, the normal approach speed of a contact first seen now at overlap delta_m (m), closing at

@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <limits>
 
-namespace peensim {
+#include "common/float_limits.h"
 
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
+namespace peensim {
 
 SoftStepping::SoftStepping(std::shared_ptr<const Model> model) : model_(model), core_(model), pool_(std::move(model), core_.walls()) {
     core_.set_pool(this);

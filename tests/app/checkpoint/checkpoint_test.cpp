@@ -41,7 +41,7 @@ Checkpoint sample() {
     return c;
 }
 
-std::string load_error(const fs::path& path) {
+std::string checkpoint_load_error(const fs::path& path) {
     try {
         load_checkpoint(path.string());
     } catch (const std::runtime_error& e) {
@@ -96,19 +96,19 @@ TEST(Checkpoint, DamagedFilesAreRefusedWithTheirName) {
     // Cut at every length: always a clear refusal, never a crash or a half-loaded state.
     for (std::size_t n = 0; n < bytes.size(); n += 7) {
         const fs::path p = write("cut.bin", bytes.substr(0, n));
-        const std::string e = load_error(p);
+        const std::string e = checkpoint_load_error(p);
         EXPECT_NE(e.find(p.string()), std::string::npos) << n << ": " << e;
         EXPECT_TRUE(e.find("truncated") != std::string::npos || e.find("not a peensim checkpoint") != std::string::npos ||
                     e.find("damaged") != std::string::npos)
             << n << ": " << e;
     }
-    EXPECT_NE(load_error(write("other.bin", "PK\x03\x04 a zip file")).find("not a peensim checkpoint"), std::string::npos);
-    EXPECT_NE(load_error(write("long.bin", bytes + "x")).find("damaged"), std::string::npos);
+    EXPECT_NE(checkpoint_load_error(write("other.bin", "PK\x03\x04 a zip file")).find("not a peensim checkpoint"), std::string::npos);
+    EXPECT_NE(checkpoint_load_error(write("long.bin", bytes + "x")).find("damaged"), std::string::npos);
     std::string other_version = bytes;
     other_version[7] = '2';
-    EXPECT_NE(load_error(write("v2.bin", other_version)).find("written by another version of peensim (checkpoint format 2"),
+    EXPECT_NE(checkpoint_load_error(write("v2.bin", other_version)).find("written by another version of peensim (checkpoint format 2"),
               std::string::npos);
-    EXPECT_NE(load_error(dir.path / "missing.bin").find("no checkpoint to resume from"), std::string::npos);
+    EXPECT_NE(checkpoint_load_error(dir.path / "missing.bin").find("no checkpoint to resume from"), std::string::npos);
     // A corrupt histogram inside: its own message.
     EXPECT_THROW(SpeedHistogram::deserialize("PSHIST01garbage"), std::runtime_error);
 }

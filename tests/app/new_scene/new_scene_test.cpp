@@ -18,6 +18,7 @@
 #include "geometry/mesh_loader.h"
 #include "geometry/stl_writer.h"
 #include "scene/scene_parser.h"
+#include "support/files.h"
 #include "support/run_in_process.h"
 #include "support/temp_dir.h"
 
@@ -193,6 +194,61 @@ TEST(NewScene, AnOpenScadPartOffTheOriginInchesOrMovedGivesTheSameScene) {
     write_binary_stl(moved, (dir.path / "moved.stl").string());
     ASSERT_EQ(run_new(options(dir.path / "moved.stl", dir.path / "moved.yaml")).code, kExitOk);
     expect_same(placed(dir.path / "moved.yaml", "moved"), mm);
+}
+
+// Every region `new` writes holds some of the part's surface: the L-bracket turning about y leaves
+// three of the eight sectors empty (the L's inside), which are left out and said so; the gear fills
+// all eight, which stay one `sectors` entry.
+TEST(NewScene, EveryRegionItWritesHoldsSomeOfThePartsSurface) {
+    testing::TempDir dir;
+    NewSceneOptions o = options(kBracket, dir.path / "turning.yaml");
+    o.rotate_about = "y";
+    o.rpm = "30";
+    const NewResult r = run_new(o);
+    ASSERT_EQ(r.code, kExitOk) << r.err;
+    EXPECT_NE(r.out.find("regions the two ends and 5 of 8 sectors about the axis; left out, holding none of its surface: sector-0 "
+                         "sector-1 sector-2"),
+              std::string::npos)
+        << r.out;
+    const std::string yaml = testing::read_file(dir.path / "turning.yaml");
+    EXPECT_NE(yaml.find("# Left out, as none of the part's surface lies in them: sector-0 sector-1 sector-2."), std::string::npos) << yaml;
+    const SceneDescription s = parse_scene_file((dir.path / "turning.yaml").string());
+    const ComponentDesc& bracket = component(s, "bracket");
+    ASSERT_EQ(bracket.regions.size(), 7u);  // two ends, five sectors
+    for (std::size_t i = 2; i < 7; ++i) {
+        ASSERT_TRUE(bracket.regions[i].sector.has_value()) << bracket.regions[i].name;
+        EXPECT_EQ(bracket.regions[i].name, "sector-" + std::to_string(i + 1));
+        // Sector k of 8 spans [45 k - 22.5, 45 k + 22.5) deg, as the `sectors` entry makes it.
+        EXPECT_NEAR(bracket.regions[i].sector->from_rad, (45.0 * static_cast<double>(i + 1) - 22.5) * M_PI / 180.0, 1e-12);
+        EXPECT_NEAR(bracket.regions[i].sector->to_rad, (45.0 * static_cast<double>(i + 1) + 22.5) * M_PI / 180.0, 1e-12);
+    }
+    expect_checks_clean(dir.path / "turning.yaml");  // no region that selects none of the surface
+
+    NewSceneOptions g = options(kSource / "assets" / "gear.stl", dir.path / "gear.yaml");
+    g.rotate_about = "y";
+    g.rpm = "30";
+    const NewResult gr = run_new(g);
+    ASSERT_EQ(gr.code, kExitOk) << gr.err;
+    EXPECT_NE(gr.out.find("regions the two ends and 8 sectors about the axis\n"), std::string::npos) << gr.out;
+    const SceneDescription gs = parse_scene_file((dir.path / "gear.yaml").string());
+    const ComponentDesc& gear = component(gs, "gear");
+    ASSERT_EQ(gear.regions.size(), 3u);
+    ASSERT_TRUE(gear.regions[2].sectors.has_value());
+    EXPECT_EQ(gear.regions[2].sectors->count, 8);
+}
+
+// A part's mesh with a hole runs, but `new` says what a hole does and how to close it.
+TEST(NewScene, AnOpenPartMeshIsWarnedOf) {
+    testing::TempDir dir;
+    TriangleMesh open = load_mesh(kBracket.string(), 1e-3);
+    open.triangles.pop_back();
+    write_binary_stl(open, (dir.path / "open.stl").string());
+    const NewResult r = run_new(options(dir.path / "open.stl", dir.path / "open.yaml"));
+    ASSERT_EQ(r.code, kExitOk) << r.err;
+    EXPECT_NE(r.out.find("warning: the part's mesh is not closed (3 edges on one triangle only, 0 on three or more)"), std::string::npos)
+        << r.out;
+    const NewResult closed = run_new(options(kBracket, dir.path / "closed.yaml"));
+    EXPECT_EQ(closed.out.find("not closed"), std::string::npos) << closed.out;
 }
 
 TEST(NewScene, ItNeverWritesOverAFileUnaskedNorOverThePart) {

@@ -13,6 +13,7 @@
 #include "app/run/run_job.h"
 #include "support/child_process.h"
 #include "support/files.h"
+#include "support/shipped_scenes.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -21,7 +22,6 @@ namespace peensim::testing {
 namespace {
 
 const std::string kSource = PEENSIM_SOURCE_DIR;
-const std::string kRod = kSource + "/scenes/rod.yaml";
 const std::string kGear = kSource + "/scenes/gear.yaml";
 
 // "1,2,...,n" (from `first`), as `seq -s, first n` writes it.

@@ -18,14 +18,13 @@
 #include "app/run/run_job.h"
 #include "support/child_process.h"
 #include "support/files.h"
+#include "support/shipped_scenes.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace peensim::testing {
 namespace {
-
-const std::string kRod = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
 
 // A process seen in /proc: its pid and start time (a pid reused later is another process).
 struct Process {

@@ -24,14 +24,13 @@
 #include "common/input_error.h"
 #include "support/child_process.h"
 #include "support/files.h"
+#include "support/shipped_scenes.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace peensim::testing {
 namespace {
-
-const std::string kRod = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
 
 TEST(SweepPlan, AxesSplitAtTopLevelCommasOnly) {
     const SweepAxis speed = parse_sweep_axis("components[gear].motion.speed=15 rpm, 30 rpm,60 rpm");
