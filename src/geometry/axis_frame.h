@@ -10,6 +10,9 @@ namespace peensim {
 
 enum class Axis { x, y, z };
 
+inline const char* axis_name(Axis a) { return a == Axis::x ? "x" : a == Axis::y ? "y" : "z"; }
+inline Vec3 axis_unit(Axis a) { return a == Axis::x ? Vec3::UnitX() : a == Axis::y ? Vec3::UnitY() : Vec3::UnitZ(); }
+
 struct AxisFrame {
     Axis axis = Axis::z;           // the world axis that local w maps to
     Vec3 origin_m = Vec3::Zero();  // m, world position of local (0, 0, 0)

@@ -11,8 +11,6 @@ namespace {
 
 constexpr double kFacingWithinRad = std::numbers::pi / 4.0;  // 45 deg: each face goes to the direction it looks most
 
-Vec3 unit(Axis a) { return a == Axis::x ? Vec3::UnitX() : a == Axis::y ? Vec3::UnitY() : Vec3::UnitZ(); }
-
 RegionDesc facing(const std::string& name, const Vec3& direction) {
     RegionDesc r;
     r.name = name;
@@ -20,17 +18,15 @@ RegionDesc facing(const std::string& name, const Vec3& direction) {
     return r;
 }
 
-std::string axis_letter(Axis a) { return a == Axis::x ? "x" : a == Axis::y ? "y" : "z"; }
-
 }  // namespace
 
 ProposedRegions propose_regions(const TriangleMesh& mesh, const PartEnvelope& envelope, const std::optional<Axis>& turning_axis) {
     std::vector<RegionDesc> candidates;
     if (turning_axis) {
         const Axis a = *turning_axis;
-        const Vec3 n = unit(a);
-        candidates.push_back(facing("end-plus-" + axis_letter(a), n));
-        candidates.push_back(facing("end-minus-" + axis_letter(a), -n));
+        const Vec3 n = axis_unit(a);
+        candidates.push_back(facing(std::string("end-plus-") + axis_name(a), n));
+        candidates.push_back(facing(std::string("end-minus-") + axis_name(a), -n));
         RegionDesc sectors;
         sectors.name = "sectors";
         SectorsCondition c;

@@ -24,8 +24,6 @@ std::string yaml_number(double x, const char* format = "%.6g") {
     std::snprintf(buf, sizeof buf, format, x);
     return buf;
 }
-const char* axis_name(Axis a) { return a == Axis::x ? "x" : a == Axis::y ? "y" : "z"; }
-std::string axis_vector(Axis a) { return a == Axis::x ? "[1, 0, 0]" : a == Axis::y ? "[0, 1, 0]" : "[0, 0, 1]"; }
 
 // A direction as the scene writes it: its components, 0 or +-1 here.
 std::string direction_vector(const Vec3& v) {  // + 0.0: no "-0"
@@ -151,7 +149,7 @@ std::string new_scene_yaml(const SceneDesign& s, const NewSceneRequest& r, const
         y << "    # Turning about its own " << axis_name(*r.turning_axis) << " axis through its centre (world " << mm_vector(s.axis_point_m)
           << ").\n"
           << "    motion: {type: rotating, axis_point: " << mm_vector(s.axis_point_m)
-          << ", axis_direction: " << axis_vector(*r.turning_axis) << ", speed: " << yaml_number(r.rpm) << " rpm}\n";
+          << ", axis_direction: " << direction_vector(axis_unit(*r.turning_axis)) << ", speed: " << yaml_number(r.rpm) << " rpm}\n";
     y << "output:\n"
       << "  log: [" << f.part_name << "]\n";
     return y.str();

@@ -52,6 +52,14 @@ NewSceneOptions options(const fs::path& part, const fs::path& scene) {
     return o;
 }
 
+// The part turning about its y axis at 30 rpm.
+NewSceneOptions turning_about_y(const fs::path& part, const fs::path& scene) {
+    NewSceneOptions o = options(part, scene);
+    o.rotate_about = "y";
+    o.rpm = "30";
+    return o;
+}
+
 const ComponentDesc& component(const SceneDescription& s, const std::string& name) {
     for (const auto& c : s.components)
         if (c.name == name) return c;
@@ -90,10 +98,7 @@ std::uint64_t impacts_on_part(const fs::path& scene, const fs::path& out_dir, co
 
 TEST(NewScene, TheShippedGearTurningFollowsTheRulesChecksCleanAndRuns) {
     testing::TempDir dir;
-    NewSceneOptions o = options(kSource / "assets" / "gear.stl", dir.path / "my-gear.yaml");
-    o.rotate_about = "y";
-    o.rpm = "30";
-    const NewResult r = run_new(o);
+    const NewResult r = run_new(turning_about_y(kSource / "assets" / "gear.stl", dir.path / "my-gear.yaml"));
     ASSERT_EQ(r.code, kExitOk) << r.err;
     EXPECT_NE(r.out.find("sonotrode"), std::string::npos) << r.out;
     EXPECT_TRUE(fs::exists(dir.path / "my-gear-assets" / "chamber.stl"));
@@ -201,10 +206,7 @@ TEST(NewScene, AnOpenScadPartOffTheOriginInchesOrMovedGivesTheSameScene) {
 // all eight, which stay one `sectors` entry.
 TEST(NewScene, EveryRegionItWritesHoldsSomeOfThePartsSurface) {
     testing::TempDir dir;
-    NewSceneOptions o = options(kBracket, dir.path / "turning.yaml");
-    o.rotate_about = "y";
-    o.rpm = "30";
-    const NewResult r = run_new(o);
+    const NewResult r = run_new(turning_about_y(kBracket, dir.path / "turning.yaml"));
     ASSERT_EQ(r.code, kExitOk) << r.err;
     EXPECT_NE(r.out.find("regions the two ends and 5 of 8 sectors about the axis; left out, holding none of its surface: sector-0 "
                          "sector-1 sector-2"),
@@ -224,10 +226,7 @@ TEST(NewScene, EveryRegionItWritesHoldsSomeOfThePartsSurface) {
     }
     expect_checks_clean(dir.path / "turning.yaml");  // no region that selects none of the surface
 
-    NewSceneOptions g = options(kSource / "assets" / "gear.stl", dir.path / "gear.yaml");
-    g.rotate_about = "y";
-    g.rpm = "30";
-    const NewResult gr = run_new(g);
+    const NewResult gr = run_new(turning_about_y(kSource / "assets" / "gear.stl", dir.path / "gear.yaml"));
     ASSERT_EQ(gr.code, kExitOk) << gr.err;
     EXPECT_NE(gr.out.find("regions the two ends and 8 sectors about the axis\n"), std::string::npos) << gr.out;
     const SceneDescription gs = parse_scene_file((dir.path / "gear.yaml").string());
