@@ -14,11 +14,8 @@
 #include "support/rod_prototype.h"
 #include "support/run_through_loop.h"
 
-namespace {
-
+// Not in an anonymous namespace: the test classes GoogleTest derives from it are not either.
 class RodScene : public ::testing::TestWithParam<std::string> {};
-
-}  // namespace
 
 TEST_P(RodScene, MatchesTheEventDrivenPrototype) {
     using namespace peensim;
