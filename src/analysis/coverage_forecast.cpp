@@ -7,15 +7,17 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <unordered_map>
 
 #include "analysis/cube_keys.h"
+#include "analysis/edge_lines.h"
 #include "analysis/latest_crossing.h"
 #include "analysis/reach_boundary.h"
-#include "analysis/row_runs.h"
 #include "analysis/sample_mean.h"
 #include "analysis/student_t.h"
+#include "analysis/surface_cells.h"
 #include "analysis/surface_kernel.h"
 #include "common/float_limits.h"
 #include "geometry/mesh_checks.h"
@@ -31,169 +33,9 @@ constexpr double kLargestSpan = 1e6;        // tau / T beyond which a target cou
 constexpr double kRestAreaShare = 1e-6;     // a rest smaller than this share of the peened area is round-off of the regions
 constexpr double kLeastThinnedShare = 0.1;  // the kernel left to an impact after its hole, at least (see "The selection")
 
-// Ids sorted by their cube keys -> the map from a key to its run [first, end) in `ids`: every id
-// of a cube in one look-up.
-template <class Id>
-void index_by_cube(std::vector<std::pair<std::uint64_t, Id>>& keyed,
-                   std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>>& grid, std::vector<Id>& ids) {
-    std::sort(keyed.begin(), keyed.end());
-    ids.resize(keyed.size());
-    for (std::size_t i = 0; i < keyed.size(); ++i) {
-        ids[i] = keyed[i].second;
-        auto [it, added] = grid.try_emplace(keyed[i].first, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i));
-        it->second.second = static_cast<std::uint32_t>(i + 1);
-    }
-}
-
-// What an area holds of a cell (m2); group >= 0: of the cell's samples near an edge line, that
-// group's (EdgeGroup).
-struct AreaTerm {
-    std::uint32_t cell = 0;
-    double m2 = 0.0;
-    std::int32_t group = -1;
-    std::int32_t reach_group = -1;  // >= 0: of the cell's samples near a reach boundary (ReachGroup)
-};
-
-// The edge lines with impacts on them (see the header): each a segment of the mesh shared by the
-// triangles that have it, with its impacts sorted along it.
-struct EdgeLines {
-    struct Line {
-        Vec3 start = Vec3::Zero();         // m
-        Vec3 along = Vec3::UnitX();        // unit
-        double length_m = 0.0;             // m
-        double largest_radius_m = 0.0;     // m, of its impacts' dents
-        std::size_t first = 0, count = 0;  // its impacts in `impacts`
-    };
-    struct Impact {
-        double s_m = 0.0;       // m along the line
-        double radius_m = 0.0;  // m, the dent's
-        std::uint8_t batch = 0;
-    };
-    std::vector<Line> lines;
-    std::vector<Impact> impacts;  // line by line, increasing s
-    std::uint64_t count = 0;      // edge impacts
-
-    EdgeLines(const TriangleMesh& mesh, std::span<const ForecastImpact> all) {
-        // A segment is known by its two end points, in a fixed order: the triangles on both sides
-        // of it find the same line whether or not the mesh shares their vertices.
-        using Key = std::array<double, 6>;
-        const auto key_of = [&](std::size_t t, int k, bool& flipped) {
-            const Vec3& a = mesh.corner(t, k);
-            const Vec3& b = mesh.corner(t, (k + 1) % 3);
-            flipped = std::lexicographical_compare(b.data(), b.data() + 3, a.data(), a.data() + 3);
-            const Vec3& p = flipped ? b : a;
-            const Vec3& q = flipped ? a : b;
-            return Key{p.x(), p.y(), p.z(), q.x(), q.y(), q.z()};
-        };
-        std::map<Key, std::int32_t> line_of;
-        std::vector<std::vector<Impact>> per_line;
-        for (const ForecastImpact& i : all) {
-            if (i.edge < 0) continue;
-            ++count;
-            bool flipped = false;
-            const Key key = key_of(i.triangle, i.edge, flipped);
-            const auto [it, added] = line_of.try_emplace(key, static_cast<std::int32_t>(lines.size()));
-            if (added) {
-                Line l;
-                l.start = Vec3(key[0], key[1], key[2]);
-                const Vec3 d = Vec3(key[3], key[4], key[5]) - l.start;
-                l.length_m = d.norm();
-                l.along = l.length_m > 0.0 ? Vec3(d / l.length_m) : Vec3::UnitX();
-                lines.push_back(l);
-                per_line.emplace_back();
-            }
-            Line& l = lines[static_cast<std::size_t>(it->second)];
-            const Vec3 p(i.point_m[0], i.point_m[1], i.point_m[2]);
-            const double radius = std::sqrt(static_cast<double>(i.dent_area_m2) / M_PI);
-            l.largest_radius_m = std::max(l.largest_radius_m, radius);
-            per_line[static_cast<std::size_t>(it->second)].push_back(
-                {std::clamp((p - l.start).dot(l.along), 0.0, l.length_m), radius, i.batch});
-        }
-        for (std::size_t k = 0; k < lines.size(); ++k) {
-            std::vector<Impact>& v = per_line[k];
-            std::sort(v.begin(), v.end(), [](const Impact& a, const Impact& b) { return a.s_m < b.s_m; });
-            lines[k].first = impacts.size();
-            lines[k].count = v.size();
-            impacts.insert(impacts.end(), v.begin(), v.end());
-        }
-        if (lines.empty()) return;
-        // A grid of cubes of side `reach` (the largest dent radius of any line) listing the lines
-        // that pass within it: a sample finds every line whose dents can cover it in its cube.
-        for (const Line& l : lines) reach_m = std::max(reach_m, l.largest_radius_m);
-        inverse_side_ = 1.0 / reach_m;
-        std::vector<std::pair<std::uint64_t, std::int32_t>> keyed;
-        for (std::size_t k = 0; k < lines.size(); ++k) {
-            const Line& l = lines[k];
-            const Vec3 end = l.start + l.length_m * l.along;
-            const auto lo = cube_of(l.start.cwiseMin(end) - Vec3::Constant(l.largest_radius_m), inverse_side_);
-            const auto hi = cube_of(l.start.cwiseMax(end) + Vec3::Constant(l.largest_radius_m), inverse_side_);
-            for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-                for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-                    for (std::int64_t x = lo[0]; x <= hi[0]; ++x) keyed.emplace_back(cube_key(x, y, z, -1), static_cast<std::int32_t>(k));
-        }
-        index_by_cube(keyed, grid_, grid_lines_);
-        // The triangles some line passes near: their samples are placed one by one.
-        near_triangle_.assign(mesh.triangle_count(), false);
-        for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-            const Vec3 a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
-            const auto lo = cube_of(a.cwiseMin(b).cwiseMin(c), inverse_side_);
-            const auto hi = cube_of(a.cwiseMax(b).cwiseMax(c), inverse_side_);
-            for (std::int64_t z = lo[2]; z <= hi[2] && !near_triangle_[t]; ++z)
-                for (std::int64_t y = lo[1]; y <= hi[1] && !near_triangle_[t]; ++y)
-                    for (std::int64_t x = lo[0]; x <= hi[0] && !near_triangle_[t]; ++x)
-                        if (grid_.count(cube_key(x, y, z, -1)) != 0) near_triangle_[t] = true;
-        }
-    }
-
-    bool near(std::size_t t) const { return !near_triangle_.empty() && near_triangle_[t]; }
-
-    // A line within dent reach of a point: which, how far (m, from the infinite line: the dents
-    // of radius rho centred on it that cover the point lie on a chord 2 sqrt(rho^2 - d^2) long
-    // whatever side the point is on) and where along it (m, the foot of the perpendicular, which
-    // lies off the segment for a point beyond its end).
-    struct Near {
-        std::int32_t line = -1;
-        double distance_m = 0.0, s_m = 0.0;
-    };
-    // The (at most) two nearest lines whose largest dent reaches x; returns how many.
-    int nearest(const Vec3& x, std::array<Near, 2>& out) const {
-        int found = 0;
-        const auto q = cube_of(x, inverse_side_);
-        const auto it = grid_.find(cube_key(q[0], q[1], q[2], -1));
-        if (it == grid_.end()) return 0;
-        for (std::uint32_t i = it->second.first; i < it->second.second; ++i) {
-            const std::int32_t id = grid_lines_[i];
-            const Line& l = lines[static_cast<std::size_t>(id)];
-            const Vec3 r = x - l.start;
-            const double foot = r.dot(l.along);
-            const double s = std::clamp(foot, 0.0, l.length_m);
-            const double d = (r - s * l.along).norm();  // to the segment
-            if (!(d < l.largest_radius_m)) continue;
-            const Near n{id, (r - foot * l.along).norm(), foot};
-            if (found < 2) {
-                out[static_cast<std::size_t>(found++)] = n;
-            } else if (d < out[1].distance_m) {
-                out[1] = n;
-            } else {
-                continue;
-            }
-            if (found == 2 && out[1].distance_m < out[0].distance_m) std::swap(out[0], out[1]);
-        }
-        return found;
-    }
-
-    double reach_m = 0.0;  // m, the largest dent radius of any line
-
-private:
-    double inverse_side_ = 0.0;
-    std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> grid_;
-    std::vector<std::int32_t> grid_lines_;
-    std::vector<bool> near_triangle_;
-};
-
-// The samples of one cell and class near the same one or two edge lines, each in the same band of
-// distance to it.
-struct EdgeGroup {
+// An edge group (surface_cells.h) with its means: the samples of one cell and class near the same
+// one or two edge lines, each in the same band of distance to it.
+struct EdgeGroupMean {
     std::uint32_t cell = 0;
     std::uint16_t cls = 0;
     std::int32_t line[2] = {-1, -1};
@@ -202,162 +44,21 @@ struct EdgeGroup {
     double distance_m[2] = {0.0, 0.0};  // m, and distance to it
 };
 
-// The uncovered samples of one cell and class within a dent radius of the reach boundary, in the
-// same band of distance to it (kReachBands per largest dent radius).
-struct ReachGroup {
+// A reach group (surface_cells.h) with its mean distance to the boundary.
+struct ReachGroupMean {
     std::uint32_t cell = 0;
     std::uint16_t cls = 0;
     double uncovered_m2 = 0.0;  // m2
     double distance_m = 0.0;    // m, the area-weighted mean distance to the boundary
 };
 
-// The surface binned into cells of (cube of side `side`, facing), each with its reachable area,
-// that area's first moments, and the uncovered peened area of each class in it.
-struct SurfaceCells {
-    double side = 0.0;  // m
-    std::vector<std::array<std::int64_t, 3>> cube;
-    std::vector<int> facing;
-    std::vector<double> reach_m2;                             // m2
-    std::vector<Vec3> point_sum;                              // m3: sum of area x position
-    std::vector<Vec3> normal_sum;                             // m2: sum of area x unit normal
-    std::vector<std::pair<std::uint64_t, double>> uncovered;  // (cell << 16 | class, m2), sorted, away from edge lines
-    std::vector<EdgeGroup> edge_groups;                       // the uncovered samples near edge lines
-    std::vector<ReachGroup> reach_groups;                     // the uncovered samples near the reach boundary, by cell
-
-    SurfaceCells(const CoverageProgress& progress, const TriangleMesh& mesh, const EdgeLines& edges, const ReachBoundary& boundary,
-                 double side_m)
-        : side(side_m) {
-        const CoverageMap& map = progress.map();
-        const SampleClasses& classes = progress.classes();
-        const double inverse_side = 1.0 / side;
-        std::unordered_map<std::uint64_t, std::uint32_t> cell_of;
-        std::unordered_map<std::uint64_t, double> uncovered_of;
-        std::map<std::uint64_t, std::pair<double, double>> near_boundary_of;  // (cell << 16 | class) << 8 | band -> (m2, m3)
-        const double band_width = boundary.reach_m() / kReachBands;
-        // Edge groups by (cell, class, line, band).
-        struct GroupKey {
-            std::uint32_t cell;
-            std::int32_t line0, line1;
-            std::uint16_t cls;
-            std::uint8_t band0, band1;
-            bool operator==(const GroupKey&) const = default;
-        };
-        struct GroupHash {
-            std::size_t operator()(const GroupKey& k) const {
-                std::uint64_t h = static_cast<std::uint64_t>(k.cell) << 32 | static_cast<std::uint32_t>(k.line0);
-                h = h * 0x9E3779B97F4A7C15ull ^ (static_cast<std::uint64_t>(static_cast<std::uint32_t>(k.line1)) << 24 |
-                                                 static_cast<std::uint64_t>(k.cls) << 8 | k.band0);
-                return std::hash<std::uint64_t>()(h * 0x9E3779B97F4A7C15ull ^ k.band1);
-            }
-        };
-        std::unordered_map<GroupKey, std::size_t, GroupHash> group_of;
-        const auto cell_at = [&](const Vec3& p, int face) {
-            const std::array<std::int64_t, 3> c = cube_of(p, inverse_side);
-            const auto [it, added] = cell_of.try_emplace(cube_key(c[0], c[1], c[2], face), static_cast<std::uint32_t>(reach_m2.size()));
-            if (added) {
-                cube.push_back(c);
-                facing.push_back(face);
-                reach_m2.push_back(0.0);
-                point_sum.emplace_back(Vec3::Zero());
-                normal_sum.emplace_back(Vec3::Zero());
-            }
-            return it->second;
-        };
-        map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double area,
-                                    std::int64_t index) {
-            if (classes.reachable_samples(t) == 0) return;
-            const Vec3 normal = triangle_normal(mesh, t);
-            const int face = facing_of(normal);
-            // A triangle along an edge line with impacts has its samples placed one by one; near the
-            // reach boundary, those of the voxels within reach of it (ReachBoundary).
-            const bool near_edges = edges.near(t);
-            const bool near_boundary = boundary.near(t);
-            const std::uint16_t own = classes.triangle_class(t);
-            // The run [i, i + run) of cell `cell` at once: its area, its positions' sum in closed
-            // form, its uncovered samples by a popcount (all of class `own`).
-            const auto whole_run = [&](std::int64_t i, std::int64_t run, std::uint32_t cell) {
-                if (!classes.info(own).reachable) return;
-                const Vec3 p = first + static_cast<double>(i) * step;
-                const double n = static_cast<double>(run);
-                reach_m2[cell] += n * area;
-                point_sum[cell] += area * (n * p + 0.5 * n * (n - 1.0) * step);
-                normal_sum[cell] += n * area * normal;
-                if (!classes.info(own).peened()) return;
-                const std::int64_t open = run - map.covered_samples(index + i, run);
-                if (open > 0) uncovered_of[static_cast<std::uint64_t>(cell) << 16 | own] += static_cast<double>(open) * area;
-            };
-            const auto each_sample = [&](std::int64_t i, std::int64_t run, std::uint32_t cell, std::uint32_t source) {
-                for (std::int64_t j = i; j < i + run; ++j) {
-                    const std::uint16_t k = classes.class_of(t, index + j);
-                    if (!classes.info(k).reachable) continue;
-                    const Vec3 x = first + static_cast<double>(j) * step;
-                    reach_m2[cell] += area;
-                    point_sum[cell] += area * x;
-                    normal_sum[cell] += area * normal;
-                    if (!classes.info(k).peened() || map.covered(index + j)) continue;
-                    std::array<EdgeLines::Near, 2> lines;
-                    const int n = near_edges ? edges.nearest(x, lines) : 0;
-                    if (n == 0) {
-                        const double d = near_boundary
-                                             ? boundary.distance(x, source != ReachBoundary::kNoSource ? source : boundary.source_near(x))
-                                             : kInf;
-                        if (std::isfinite(d)) {
-                            const auto band = static_cast<std::uint64_t>(std::min<double>(kReachBands - 1, std::floor(d / band_width)));
-                            auto& [m2, m3] = near_boundary_of[(static_cast<std::uint64_t>(cell) << 16 | k) << 8 | band];
-                            m2 += area, m3 += area * d;
-                        } else {
-                            uncovered_of[static_cast<std::uint64_t>(cell) << 16 | k] += area;
-                        }
-                        continue;
-                    }
-                    const auto band = [&](int m) {
-                        if (m >= n) return std::uint8_t{0};
-                        const double width =
-                            edges.lines[static_cast<std::size_t>(lines[static_cast<std::size_t>(m)].line)].largest_radius_m / kEdgeBands;
-                        return static_cast<std::uint8_t>(
-                            std::min<double>(kEdgeBands - 1, std::floor(lines[static_cast<std::size_t>(m)].distance_m / width)));
-                    };
-                    const GroupKey key{cell, lines[0].line, n > 1 ? lines[1].line : -1, k, band(0), band(1)};
-                    const auto [it, added] = group_of.try_emplace(key, edge_groups.size());
-                    if (added) {
-                        EdgeGroup g;
-                        g.cell = cell, g.cls = k, g.line[0] = key.line0, g.line[1] = key.line1;
-                        edge_groups.push_back(g);
-                    }
-                    EdgeGroup& g = edge_groups[it->second];
-                    g.uncovered_m2 += area;
-                    for (int m = 0; m < n; ++m) {
-                        g.s_m[m] += area * lines[static_cast<std::size_t>(m)].s_m;
-                        g.distance_m[m] += area * lines[static_cast<std::size_t>(m)].distance_m;
-                    }
-                }
-            };
-            for_each_cube_run(first, step, count, Vec3::Zero(), inverse_side, [&](std::int64_t i, std::int64_t run) {
-                const Vec3 p = first + static_cast<double>(i) * step;
-                const std::uint32_t cell = cell_at(p + 0.5 * static_cast<double>(run - 1) * step, face);
-                if (near_edges || own == SampleClasses::kMixed) {
-                    each_sample(i, run, cell, ReachBoundary::kNoSource);
-                } else if (!near_boundary) {
-                    whole_run(i, run, cell);
-                } else {
-                    for_each_cube_run(p, step, run, Vec3::Zero(), boundary.inverse_side(), [&](std::int64_t k, std::int64_t part) {
-                        const std::uint32_t source = boundary.source_near(p + static_cast<double>(k) * step);
-                        if (source != ReachBoundary::kNoSource)
-                            each_sample(i + k, part, cell, source);
-                        else
-                            whole_run(i + k, part, cell);
-                    });
-                }
-            });
-        });
-        uncovered.assign(uncovered_of.begin(), uncovered_of.end());
-        std::sort(uncovered.begin(), uncovered.end());
-        for (const auto& [key, sums] : near_boundary_of)  // in cell order (the key's high bits)
-            reach_groups.push_back({static_cast<std::uint32_t>(key >> 24), static_cast<std::uint16_t>(key >> 8 & 0xFFFF), sums.first,
-                                    sums.second / sums.first});
-        for (EdgeGroup& g : edge_groups)
-            for (int m = 0; m < 2; ++m) g.s_m[m] /= g.uncovered_m2, g.distance_m[m] /= g.uncovered_m2;
-    }
+// What an area holds of a cell (m2); group >= 0: of the cell's samples near an edge line, that
+// group's (EdgeGroup).
+struct AreaTerm {
+    std::uint32_t cell = 0;
+    double m2 = 0.0;
+    std::int32_t group = -1;
+    std::int32_t reach_group = -1;  // >= 0: of the cell's samples near a reach boundary (ReachGroup)
 };
 
 // The 1D quartic kernel along an edge line centred at s, (1 - (u - s)^2/h^2)^2, integrated over
@@ -438,11 +139,12 @@ double uncovered_pair_integral(double m_now, double m_then) {
 // the spans they forecast.
 class KernelField {
 public:
-    KernelField(const CoverageProgress& progress, const TriangleMesh& mesh, std::span<const ForecastImpact> impacts, const EdgeLines& edges,
-                const ReachBoundary& boundary, int batches, const std::vector<bool>& batch_used, double radius_m, double line_radius_m,
+    // cells: the surface in cells of side about radius_m / kForecastCellsPerRadius (CellsForRadius).
+    KernelField(const SurfaceCells& cells, const TriangleMesh& mesh, std::span<const ForecastImpact> impacts, const EdgeLines& edges,
+                int batches, const std::vector<bool>& batch_used, double radius_m, double line_radius_m,
                 const std::vector<std::vector<std::uint32_t>>& areas_of_class, std::size_t area_count)
         : batches_(batches), batch_used_(batch_used), radius_(radius_m), line_radius_(line_radius_m) {
-        adopt(SurfaceCells(progress, mesh, edges, boundary, radius_m / kForecastCellsPerRadius), areas_of_class, area_count);
+        adopt(cells, areas_of_class, area_count);
         build_neighbours();
         sum_kernels(mesh, impacts);
         sum_edges(edges);
@@ -463,25 +165,37 @@ public:
         }
         if (now <= remaining_m2) return 0.0;
         if (never >= remaining_m2) return kInf;
-        const auto uncovered = [&](double s) {
+        // The uncovered area at span s (m2), and its slope (m2 per unit of span).
+        const auto uncovered = [&](double s, double& slope) {
             double u = 0.0;
+            slope = 0.0;
             for (std::size_t k = 0; k < terms.size(); ++k) {
                 const auto& m = moments_[k];
-                u += terms[k].m2 * std::exp(-series(m, s));
+                const double kept = terms[k].m2 * std::exp(-series(m, s));
+                u += kept;
+                slope -= kept * series_slope(m, s);
             }
             return u;
         };
-        double lo = 0.0, hi = 1.0;
-        while (uncovered(hi) > remaining_m2) {
+        double lo = 0.0, hi = 1.0, slope = 0.0;
+        while (uncovered(hi, slope) > remaining_m2) {
             lo = hi;
             hi *= 2.0;
             if (hi > kLargestSpan) return kInf;
         }
+        // Newton's method on log(uncovered), which is nearly straight in s, kept inside the
+        // bracket [lo, hi] (a step that leaves it bisects instead): a handful of evaluations where
+        // bisection took forty.
+        double s = lo > 0.0 ? std::sqrt(lo * hi) : 0.5 * hi;
         for (int i = 0; i < kRootIterations && hi - lo > 1e-9 * hi; ++i) {
-            const double mid = lo > 0.0 ? std::sqrt(lo * hi) : 0.5 * hi;
-            (uncovered(mid) > remaining_m2 ? lo : hi) = mid;
+            const double u = uncovered(s, slope);
+            (u > remaining_m2 ? lo : hi) = s;
+            double next = u > 0.0 && slope < 0.0 ? s - std::log(u / remaining_m2) * u / slope : kNaN;
+            if (!(next > lo && next < hi)) next = lo > 0.0 ? std::sqrt(lo * hi) : 0.5 * hi;
+            if (std::abs(next - s) <= 1e-12 * s) return next;
+            s = next;
         }
-        return 0.5 * (lo + hi);
+        return s;
     }
 
     // The spread of the run itself about that forecast (see "The run's own noise" in the header):
@@ -564,18 +278,26 @@ private:
             }
         }
         // The samples near the reach boundary: a term per group, and each cell's groups.
-        reach_groups_ = cells.reach_groups;
+        reach_groups_.clear();
+        for (const ReachGroup& g : cells.reach_groups)
+            reach_groups_.push_back({g.cell, g.cls, g.uncovered_m2, g.distance_sum_m3 / g.uncovered_m2});
         reach_first_.assign(n + 1, 0);
-        for (const ReachGroup& g : reach_groups_) ++reach_first_[g.cell + 1];
+        for (const ReachGroupMean& g : reach_groups_) ++reach_first_[g.cell + 1];
         for (std::size_t c = 0; c < n; ++c) reach_first_[c + 1] += reach_first_[c];
         for (std::size_t g = 0; g < reach_groups_.size(); ++g) {
-            const ReachGroup& group = reach_groups_[g];
+            const ReachGroupMean& group = reach_groups_[g];
             uncovered_cell_[group.cell] = true;
             for (std::uint32_t a : areas_of_class[group.cls])
                 terms_[a].push_back({group.cell, group.uncovered_m2, -1, static_cast<std::int32_t>(g)});
         }
         // The samples near edge lines: a term per group.
-        groups_ = cells.edge_groups;
+        groups_.clear();
+        for (const EdgeGroup& g : cells.edge_groups) {
+            EdgeGroupMean mean{g.cell, g.cls, {g.line[0], g.line[1]}, g.uncovered_m2};
+            for (int m = 0; m < 2; ++m)
+                mean.s_m[m] = g.s_sum_m3[m] / g.uncovered_m2, mean.distance_m[m] = g.distance_sum_m3[m] / g.uncovered_m2;
+            groups_.push_back(mean);
+        }
         for (std::size_t g = 0; g < groups_.size(); ++g) {
             uncovered_cell_[groups_[g].cell] = true;
             for (std::uint32_t a : areas_of_class[groups_[g].cls])
@@ -653,7 +375,7 @@ private:
         edge_sums_.assign(groups_.size() * static_cast<std::size_t>(batches_) * kSeriesTerms, 0.0);
         const double h = line_radius_, inv_h2 = 1.0 / (h * h);
         for (std::size_t g = 0; g < groups_.size(); ++g) {
-            const EdgeGroup& group = groups_[g];
+            const EdgeGroupMean& group = groups_[g];
             for (int m = 0; m < 2; ++m) {
                 if (group.line[m] < 0) continue;
                 const EdgeLines::Line& line = edges.lines[static_cast<std::size_t>(group.line[m])];
@@ -689,8 +411,8 @@ private:
     std::vector<bool> batch_used_;
     double radius_;
     double line_radius_;  // m, along edge lines
-    std::vector<EdgeGroup> groups_;
-    std::vector<ReachGroup> reach_groups_;
+    std::vector<EdgeGroupMean> groups_;
+    std::vector<ReachGroupMean> reach_groups_;
     std::vector<std::uint32_t> reach_first_;  // per cell: its reach groups [reach_first_[c], reach_first_[c + 1])
     std::vector<double> reach_sums_;          // per reach group, batch: sums of (w a f)^1 .. (w a f)^kSeriesTerms
     std::vector<double> edge_sums_;           // per edge group, batch: sums of kappa^1 .. kappa^kSeriesTerms
@@ -706,6 +428,38 @@ private:
     std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> grid_;
     std::vector<std::uint32_t> grid_cells_;
     mutable std::vector<std::array<double, kSeriesTerms>> moments_;  // scratch of span_to
+};
+
+// The surface's cells for each kernel radius h, from as few binnings of the samples as may be
+// (surface_cells.h): the cells of side h / kForecastCellsPerRadius are made of whole fine cells,
+// binned for the first h and again for an h whose cells they do not make up exactly (the 2 h of
+// the smoothing bias never bins again).
+class CellsForRadius {
+public:
+    CellsForRadius(const CoverageProgress& progress, const TriangleMesh& mesh, const EdgeLines& edges, const ReachBoundary& boundary)
+        : progress_(progress), mesh_(mesh), edges_(edges), boundary_(boundary) {}
+
+    SurfaceCells at(double radius_m) {
+        const double side = radius_m / kForecastCellsPerRadius;
+        const auto whole = [&] { return fine_ ? static_cast<int>(std::floor(side / fine_->side)) : 0; };
+        if (whole() < 1 || fine_->side * whole() != side) {
+            // Fine cells of at least kSamplesPerFineCell sample spacings (finer would only cost),
+            // a power of two to a cell so that they make up 2 h's exactly.
+            int split = kFineCellsPerCell;
+            while (split > 1 && side / split < kSamplesPerFineCell * progress_.map().spacing()) split /= 2;
+            fine_.emplace(progress_, mesh_, edges_, boundary_, side / split);
+        }
+        return fine_->coarsened(whole());
+    }
+
+private:
+    static constexpr int kFineCellsPerCell = 8;
+    static constexpr double kSamplesPerFineCell = 4.0;
+    const CoverageProgress& progress_;
+    const TriangleMesh& mesh_;
+    const EdgeLines& edges_;
+    const ReachBoundary& boundary_;
+    std::optional<SurfaceCells> fine_;
 };
 
 // Which batches the rates come from: all but the first when that is a start-up transient (its
@@ -810,7 +564,11 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
     const std::size_t rest = areas - 1;
     CoverageForecast f;
     f.summary.window_s = window_s;
-    const EdgeLines edges(mesh, impacts);
+    // The largest dent's radius (m): how far an edge line or the reach boundary matters.
+    float largest_dent_m2 = 0.0f;
+    for (const ForecastImpact& i : impacts) largest_dent_m2 = std::max(largest_dent_m2, i.dent_area_m2);
+    const double reach_m = std::sqrt(largest_dent_m2 / M_PI);
+    const EdgeLines edges(mesh, impacts, reach_m);
     f.summary.edge_impacts = edges.count;
     f.summary.face_impacts = impacts.size() - edges.count;
     f.summary.edge_lines = edges.lines.size();
@@ -891,7 +649,7 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
         for (const ForecastImpact& i : impacts)
             dent_sum += i.dent_area_m2, dent_sum2 += static_cast<double>(i.dent_area_m2) * i.dent_area_m2;
         const double dent_spread_area = dent_sum > 0.0 ? dent_sum2 / dent_sum : 0.0;
-        const ReachBoundary boundary(progress, mesh, std::sqrt(*std::max_element(dents.begin(), dents.end()) / M_PI));
+        const ReachBoundary boundary(progress, mesh, reach_m);
 
         // The first extrapolation span: as if each area's rate were even (C = 1 - exp(-k t)), doubled.
         double span = 0.0;
@@ -903,12 +661,13 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
         span = std::clamp(span, 0.1, kLargestSpan);
         const auto remaining = [&](std::size_t a) { return (1.0 - target) * area_m2[a]; };
 
+        CellsForRadius cells(progress, mesh, edges, boundary);
         std::vector<double> spans(areas, kNaN);
         double radius = radius_for(span, dent_q);
         for (int round = 0; round < kRadiusRounds; ++round) {
             radius = radius_for(span, dent_q);
             const double line_radius = line_radius_for(span, dent_q, radius);
-            const KernelField field(progress, mesh, impacts, edges, boundary, batches, used, radius, line_radius, areas_of_class, areas);
+            const KernelField field(cells.at(radius), mesh, impacts, edges, batches, used, radius, line_radius, areas_of_class, areas);
             f.summary.cells = field.uncovered_cells();
             double slowest = 0.0;
             for (std::size_t a = 0; a < areas; ++a) {
@@ -922,8 +681,8 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
 
             // The jackknife at h (each used batch left out in turn: the rate window shrinks with
             // it), and the smoothing bias from 2 h.
-            const KernelField wide(progress, mesh, impacts, edges, boundary, batches, used, 2.0 * radius, 2.0 * line_radius, areas_of_class,
-                                   areas);
+            const KernelField wide(cells.at(2.0 * radius), mesh, impacts, edges, batches, used, 2.0 * radius, 2.0 * line_radius,
+                                   areas_of_class, areas);
             const double quantile = student_t_two_sided_quantile(0.05, std::max(1.0, used_count - 1.0));
             const double left_out_window = rate_window * (used_count - 1) / std::max(1, used_count);
             std::vector<std::vector<double>> replicate(areas);  // per area: tau of each replicate (s)

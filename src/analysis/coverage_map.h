@@ -118,7 +118,12 @@ public:
     // `area`; covered_samples(index, count) says how many of them a dent covers.
     template <class F>
     void for_each_sample_row(F&& f) const {
-        for (std::size_t t = 0; t < patches_.size(); ++t) {
+        for_each_sample_row(0, patches_.size(), f);
+    }
+    // The same for the triangles [first_triangle, end_triangle) only.
+    template <class F>
+    void for_each_sample_row(std::size_t first_triangle, std::size_t end_triangle, F&& f) const {
+        for (std::size_t t = first_triangle; t < end_triangle; ++t) {
             const Patch& p = patches_[t];
             if (p.n == 0) continue;
             const std::int64_t n = p.n;

@@ -3,9 +3,13 @@
 // of the reach boundary (reach_boundary.cpp). A grid spans 2^20 cubes per axis before keys repeat.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "common/vec.h"
 
@@ -17,15 +21,35 @@ inline std::uint64_t cube_key(std::int64_t x, std::int64_t y, std::int64_t z, in
     return axis(x) | axis(y) << 20 | axis(z) << 40 | static_cast<std::uint64_t>(facing + 1) << 60;
 }
 
+// floor(x) as an integer, for finite x within the range of int64 (std::floor is a library call
+// on the baseline x86-64 instruction set, and the forecast bins tens of millions of samples).
+inline std::int64_t floor_to_int(double x) {
+    const auto i = static_cast<std::int64_t>(x);  // towards zero
+    return static_cast<double>(i) > x ? i - 1 : i;
+}
+
 // The cube of side 1 / inverse_side (corner at the origin) holding p (m).
 inline std::array<std::int64_t, 3> cube_of(const Vec3& p, double inverse_side) {
-    return {static_cast<std::int64_t>(std::floor(p.x() * inverse_side)), static_cast<std::int64_t>(std::floor(p.y() * inverse_side)),
-            static_cast<std::int64_t>(std::floor(p.z() * inverse_side))};
+    return {floor_to_int(p.x() * inverse_side), floor_to_int(p.y() * inverse_side), floor_to_int(p.z() * inverse_side)};
 }
 
 inline std::uint64_t cube_key_of(const Vec3& p, double inverse_side) {
     const auto c = cube_of(p, inverse_side);
     return cube_key(c[0], c[1], c[2]);
+}
+
+// Ids sorted by their cube keys -> the map from a key to its run [first, end) in `ids`: every id
+// of a cube in one look-up.
+template <class Id>
+void index_by_cube(std::vector<std::pair<std::uint64_t, Id>>& keyed,
+                   std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>>& grid, std::vector<Id>& ids) {
+    std::sort(keyed.begin(), keyed.end());
+    ids.resize(keyed.size());
+    for (std::size_t i = 0; i < keyed.size(); ++i) {
+        ids[i] = keyed[i].second;
+        auto [it, added] = grid.try_emplace(keyed[i].first, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i));
+        it->second.second = static_cast<std::uint32_t>(i + 1);
+    }
 }
 
 }  // namespace peensim

@@ -3,20 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
-#include <unordered_set>
 
 #include "analysis/cube_keys.h"
 #include "analysis/row_runs.h"
+#include "common/flat_key_map.h"
+#include "common/parallel_chunks.h"
 #include "geometry/mesh_checks.h"
 
 namespace peensim {
 
 namespace {
 
+using CubeSet = FlatKeyMap<std::uint8_t>;  // the keys of cubes (the values unused)
+constexpr std::size_t kChunks = 32;        // of triangles, binned on every core and joined in order
+
 constexpr double kSameFacingCos = 0.5;  // a source within 60 degrees of a sample's normal bounds its dents
-// The sources' voxels are finer (a source's place is its samples' mean: off the boundary by up to
-// half its voxel, which would read as distance).
-constexpr double kSourceVoxelsPerVoxel = 4.0;
 
 }  // namespace
 
@@ -25,10 +26,6 @@ double disc_share_inside(double d_m, double rho_m) {
     const double d = std::max(d_m, -rho_m) / rho_m;                    // in radii
     const double segment = std::acos(d) - d * std::sqrt(1.0 - d * d);  // / rho^2: the part beyond the line
     return 1.0 - segment / M_PI;
-}
-
-std::uint64_t ReachBoundary::key(const Vec3& p, bool reachable) const {
-    return reachable ? cube_key_of(p, inverse_side_) | std::uint64_t{1} << 63 : cube_key_of(p, kSourceVoxelsPerVoxel * inverse_side_);
 }
 
 ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMesh& mesh, double reach_m) : reach_m_(reach_m) {
@@ -42,25 +39,34 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
     };
     // The cubes of side reach_m holding a sample of the triangles `of` picks that is (not)
     // `reachable`.
+    const std::size_t triangles = map.triangle_count();
     const auto cubes_with = [&](bool reachable, const auto& of) {
-        std::unordered_set<std::uint64_t> cubes;
-        map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
-            if (!of(t)) return;
-            const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
-            for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
-                for (std::int64_t j = i; j < i + run; ++j)
-                    if (!mixed || classes.info(classes.class_of(t, index + j)).reachable == reachable) {
-                        cubes.insert(cube_key_of(first + static_cast<double>(j) * step, inverse_reach));
-                        return;
-                    }
-            });
+        std::vector<CubeSet> parts(kChunks);
+        for_each_chunk(kChunks, [&](std::size_t c) {
+            const auto [begin, end] = chunk_range(triangles, kChunks, c);
+            CubeSet& cubes = parts[c];
+            map.for_each_sample_row(
+                begin, end, [&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
+                    if (!of(t)) return;
+                    const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
+                    for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
+                        for (std::int64_t j = i; j < i + run; ++j)
+                            if (!mixed || classes.info(classes.class_of(t, index + j)).reachable == reachable) {
+                                cubes.try_emplace(cube_key_of(first + static_cast<double>(j) * step, inverse_reach), 1);
+                                return;
+                            }
+                    });
+                });
         });
+        CubeSet cubes;
+        for (const CubeSet& part : parts) part.for_each([&](std::uint64_t key, std::uint8_t) { cubes.try_emplace(key, 1); });
         return cubes;
     };
     // Cubes holding unreachable samples; the triangles with reachable samples whose bounding box
     // comes within reach of one.
-    const std::unordered_set<std::uint64_t> unreachable_cubes = cubes_with(false, [&](std::size_t t) { return !reachable_triangle(t); });
+    const CubeSet unreachable_cubes = cubes_with(false, [&](std::size_t t) { return !reachable_triangle(t); });
     if (unreachable_cubes.empty()) return;
+    inverse_reach_ = inverse_reach;
     near_triangle_.assign(mesh.triangle_count(), false);
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
         if (classes.reachable_samples(t) == 0) continue;
@@ -70,73 +76,111 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
         bool found = false;
         for (std::int64_t z = from[2]; z <= to[2] && !found; ++z)
             for (std::int64_t y = from[1]; y <= to[1] && !found; ++y)
-                for (std::int64_t x = from[0]; x <= to[0] && !found; ++x) found = unreachable_cubes.count(cube_key(x, y, z)) != 0;
+                for (std::int64_t x = from[0]; x <= to[0] && !found; ++x) found = unreachable_cubes.contains(cube_key(x, y, z));
         near_triangle_[t] = found;
     }
     // Cubes with reachable samples of those triangles.
-    const std::unordered_set<std::uint64_t> reachable_cubes = cubes_with(true, [&](std::size_t t) { return near_triangle_[t]; });
-    // Whether a cube of side reach_m or one of its neighbours is in `cubes`: only there can a
-    // sample lie within reach_m of one in `cubes`.
-    const auto next_to = [&](const std::unordered_set<std::uint64_t>& cubes, const Vec3& p) {
-        const auto c = cube_of(p, inverse_reach);
-        for (std::int64_t dz = -1; dz <= 1; ++dz)
-            for (std::int64_t dy = -1; dy <= 1; ++dy)
-                for (std::int64_t dx = -1; dx <= 1; ++dx)
-                    if (cubes.count(cube_key(c[0] + dx, c[1] + dy, c[2] + dz)) != 0) return true;
-        return false;
+    const CubeSet reachable_cubes = cubes_with(true, [&](std::size_t t) { return near_triangle_[t]; });
+    // The cubes of side reach_m that are in `cubes` or next to one: only there can a sample lie
+    // within reach_m of one in `cubes` (one look-up a run, not 27).
+    const auto next_to = [](const CubeSet& cubes) {
+        CubeSet near(27 * cubes.size());
+        cubes.for_each([&](std::uint64_t key, std::uint8_t) {
+            const auto axis = [&](int k) { return static_cast<std::int64_t>(key >> (20 * k) & 0xFFFFF); };
+            for (std::int64_t dz = -1; dz <= 1; ++dz)
+                for (std::int64_t dy = -1; dy <= 1; ++dy)
+                    for (std::int64_t dx = -1; dx <= 1; ++dx) near.try_emplace(cube_key(axis(0) + dx, axis(1) + dy, axis(2) + dz), 1);
+        });
+        return near;
     };
+    const CubeSet next_to_unreachable = next_to(unreachable_cubes);
+    const CubeSet next_to_reachable = next_to(reachable_cubes);
 
     // The voxels, in the cubes next to the boundary: the reachable samples of the near triangles,
     // and the unreachable samples (the sources), each voxel of the run by its first sample.
     inverse_side_ = kReachVoxelsPerRadius * inverse_reach;
-    const auto voxel_of = [&](const Vec3& p, bool reachable, const Vec3& n) -> Voxel& {
-        const auto [it, added] = index_.try_emplace(key(p, reachable), static_cast<std::uint32_t>(voxels_.size()));
-        if (added) {
-            Voxel v;
-            v.reachable = reachable;
-            for (int k = 0; k < 3; ++k) v.normal[k] = static_cast<float>(n[k]);
-            if (reachable) v.point = p;
-            voxels_.push_back(v);
-        }
-        return voxels_[it->second];
+    // Chunk by chunk of triangles on every core, each with its own voxels, joined in chunk order
+    // below: the voxels come out numbered as one pass over the triangles in turn would number them.
+    struct Voxels {
+        std::vector<Voxel> voxels;
+        std::vector<std::uint64_t> keys;
+        FlatKeyMap<std::uint32_t> index;
     };
-    map.for_each_sample_row([&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
-        const bool all_reachable = reachable_triangle(t);
-        if (all_reachable && !near_triangle_[t]) return;
-        const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
-        const Vec3 n = triangle_normal(mesh, t);
-        for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
-            const Vec3 p = first + static_cast<double>(i) * step;
-            const bool reachable_here = near_triangle_[t] && next_to(unreachable_cubes, p);
-            const bool sources_here = !all_reachable && next_to(reachable_cubes, p);
-            if (!reachable_here && !sources_here) return;
-            // The voxels nest in the cubes (the sources' in the reachable ones): the run's voxel runs.
-            for_each_cube_run(p, step, run, Vec3::Zero(), (all_reachable ? 1.0 : kSourceVoxelsPerVoxel) * inverse_side_,
-                              [&](std::int64_t k, std::int64_t part) {
-                                  const Vec3 q = p + static_cast<double>(k) * step;
-                                  if (!mixed) {  // one class: the part at once
-                                      if (all_reachable) {
-                                          voxel_of(q, true, n);
-                                          return;
-                                      }
-                                      Voxel& v = voxel_of(q, false, n);
-                                      const Vec3 mean = q + 0.5 * static_cast<double>(part - 1) * step;
-                                      v.count += static_cast<std::uint32_t>(part);
-                                      v.point += (mean - v.point) * (static_cast<double>(part) / static_cast<double>(v.count));
-                                      return;
-                                  }
-                                  for (std::int64_t j = i + k; j < i + k + part; ++j) {
-                                      const Vec3 x = first + static_cast<double>(j) * step;
-                                      if (classes.info(classes.class_of(t, index + j)).reachable) {
-                                          if (reachable_here) voxel_of(x, true, n);
-                                      } else if (sources_here) {
-                                          Voxel& v = voxel_of(x, false, n);
-                                          v.point += (x - v.point) / static_cast<double>(++v.count);
-                                      }
-                                  }
-                              });
-        });
+    std::vector<Voxels> parts(kChunks);
+    for_each_chunk(kChunks, [&](std::size_t c) {
+        Voxels& part = parts[c];
+        const auto voxel_of = [&](const Vec3& p, bool reachable, const Vec3& n) -> Voxel& {
+            const std::uint64_t k = key(p, reachable);
+            const auto [index, added] = part.index.try_emplace(k, static_cast<std::uint32_t>(part.voxels.size()));
+            if (added) {
+                Voxel v;
+                v.reachable = reachable;
+                for (int a = 0; a < 3; ++a) v.normal[a] = static_cast<float>(n[a]);
+                if (reachable) v.point = p;
+                part.voxels.push_back(v);
+                part.keys.push_back(k);
+            }
+            return part.voxels[*index];
+        };
+        const auto [begin, end] = chunk_range(triangles, kChunks, c);
+        map.for_each_sample_row(
+            begin, end, [&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
+                const bool all_reachable = reachable_triangle(t);
+                if (all_reachable && !near_triangle_[t]) return;
+                const bool mixed = classes.triangle_class(t) == SampleClasses::kMixed;
+                const Vec3 n = triangle_normal(mesh, t);
+                for_each_cube_run(first, step, count, Vec3::Zero(), inverse_reach, [&](std::int64_t i, std::int64_t run) {
+                    const Vec3 p = first + static_cast<double>(i) * step;
+                    const std::uint64_t cube = cube_key_of(p, inverse_reach);
+                    const bool reachable_here = near_triangle_[t] && next_to_unreachable.contains(cube);
+                    const bool sources_here = !all_reachable && next_to_reachable.contains(cube);
+                    if (!reachable_here && !sources_here) return;
+                    // The voxels nest in the cubes (the sources' in the reachable ones): the run's voxel runs.
+                    for_each_cube_run(p, step, run, Vec3::Zero(), (all_reachable ? 1.0 : kSourceVoxelsPerVoxel) * inverse_side_,
+                                      [&](std::int64_t k, std::int64_t part_run) {
+                                          const Vec3 q = p + static_cast<double>(k) * step;
+                                          if (!mixed) {  // one class: the part at once
+                                              if (all_reachable) {
+                                                  voxel_of(q, true, n);
+                                                  return;
+                                              }
+                                              Voxel& v = voxel_of(q, false, n);
+                                              const Vec3 mean = q + 0.5 * static_cast<double>(part_run - 1) * step;
+                                              v.count += static_cast<std::uint32_t>(part_run);
+                                              v.point += (mean - v.point) * (static_cast<double>(part_run) / static_cast<double>(v.count));
+                                              return;
+                                          }
+                                          for (std::int64_t j = i + k; j < i + k + part_run; ++j) {
+                                              const Vec3 x = first + static_cast<double>(j) * step;
+                                              if (classes.info(classes.class_of(t, index + j)).reachable) {
+                                                  if (reachable_here) voxel_of(x, true, n);
+                                              } else if (sources_here) {
+                                                  Voxel& v = voxel_of(x, false, n);
+                                                  v.point += (x - v.point) / static_cast<double>(++v.count);
+                                              }
+                                          }
+                                      });
+                });
+            });
     });
+    for (Voxels& part : parts) {
+        for (std::size_t a = 0; a < part.voxels.size(); ++a) {
+            const Voxel& v = part.voxels[a];
+            const auto [index, added] = index_.try_emplace(part.keys[a], static_cast<std::uint32_t>(voxels_.size()));
+            if (added) {
+                voxels_.push_back(v);
+                continue;
+            }
+            // A voxel met again in a later chunk: a reachable one keeps its first sample, a source
+            // takes the mean of all its samples.
+            Voxel& w = voxels_[*index];
+            if (w.reachable) continue;
+            const std::uint32_t total = w.count + v.count;
+            w.point += (v.point - w.point) * (static_cast<double>(v.count) / static_cast<double>(total));
+            w.count = total;
+        }
+        part = {};  // the memory back
+    }
 
     // Vector propagation from the sources through the reachable voxels, while within reach.
     std::deque<std::uint32_t> queue;
@@ -161,21 +205,25 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
         for (int dz = -1; dz <= 1; ++dz)
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
-                    const auto it = index_.find(key(from_point + side * Vec3(dx, dy, dz), true));
-                    if (it == index_.end()) continue;
-                    Voxel& to = voxels_[it->second];
+                    const std::uint32_t* it = index_.find(key(from_point + side * Vec3(dx, dy, dz), true));
+                    if (it == nullptr) continue;
+                    Voxel& to = voxels_[*it];
                     if (Vec3(to.normal[0], to.normal[1], to.normal[2]).dot(source_normal) < kSameFacingCos) continue;
                     const auto d2 = static_cast<float>((to.point - source_point).squaredNorm());
                     if (!(d2 < to.source_d2) || !(d2 < reach2)) continue;
                     to.source = source_index, to.source_d2 = d2;
-                    queue.push_back(it->second);
+                    queue.push_back(*it);
                 }
     }
+    // The cubes holding a voxel with a source (a voxel's first sample lies in it, and the voxels
+    // nest in the cubes).
+    for (const Voxel& v : voxels_)
+        if (v.reachable && v.source != kNoSource) source_cubes_.try_emplace(cube_key_of(v.point, inverse_reach), 1);
 }
 
 std::uint32_t ReachBoundary::source_near(const Vec3& x) const {
-    const auto it = index_.find(key(x, true));
-    return it == index_.end() || voxels_[it->second].source == kNoSource ? kNoSource : it->second;
+    const std::uint32_t* it = index_.find(key(x, true));
+    return it == nullptr || voxels_[*it].source == kNoSource ? kNoSource : *it;
 }
 
 double ReachBoundary::distance(const Vec3& x, std::uint32_t voxel) const {

@@ -27,10 +27,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
 #include <vector>
 
 #include "analysis/coverage_progress.h"
+#include "analysis/cube_keys.h"
+#include "common/flat_key_map.h"
 #include "geometry/triangle_mesh.h"
 
 namespace peensim {
@@ -60,8 +61,14 @@ public:
     // boundary; +inf from reach_m on, or without a voxel.
     double distance(const Vec3& x, std::uint32_t voxel) const;
 
+    // Whether a reachable voxel with a source lies in the cube of side reach_m (corner at the
+    // origin) holding x: only there can source_near find one, so a row's samples need looking up
+    // voxel by voxel only in those cubes.
+    bool sources_near(const Vec3& x) const { return !source_cubes_.empty() && source_cubes_.contains(cube_key_of(x, inverse_reach_)); }
+
     double reach_m() const { return reach_m_; }
-    double inverse_side() const { return inverse_side_; }  // 1/m, of the voxels
+    double inverse_side() const { return inverse_side_; }    // 1/m, of the voxels
+    double inverse_reach() const { return inverse_reach_; }  // 1/m, of the cubes of side reach_m (0 without a boundary)
 
 private:
     struct Voxel {
@@ -72,11 +79,18 @@ private:
         std::uint32_t count = 0;                                   // samples (sources)
         bool reachable = false;
     };
-    std::uint64_t key(const Vec3& p, bool reachable) const;
+    // The sources' voxels are finer (a source's place is its samples' mean: off the boundary by
+    // up to half its voxel, which would read as distance).
+    static constexpr double kSourceVoxelsPerVoxel = 4.0;
+    std::uint64_t key(const Vec3& p, bool reachable) const {
+        return reachable ? cube_key_of(p, inverse_side_) | std::uint64_t{1} << 63 : cube_key_of(p, kSourceVoxelsPerVoxel * inverse_side_);
+    }
     double reach_m_ = 0.0;
-    double inverse_side_ = 0.0;  // 1/m, of the voxels
+    double inverse_reach_ = 0.0;  // 1/m, of the cubes of side reach_m
+    double inverse_side_ = 0.0;   // 1/m, of the voxels
     std::vector<Voxel> voxels_;
-    std::unordered_map<std::uint64_t, std::uint32_t> index_;
+    FlatKeyMap<std::uint32_t> index_;
+    FlatKeyMap<std::uint8_t> source_cubes_;  // the cubes of side reach_m with a reachable voxel that has a source
     std::vector<bool> near_triangle_;
 };
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/parallel_chunks.h"
+
 namespace peensim {
 
 namespace {
@@ -66,28 +68,64 @@ SampleClasses::SampleClasses(const CoverageMap& map, const TriangleMesh& mesh, c
         return std::any_of(rs.begin(), rs.end(), [&regions](std::uint32_t r) { return regions.excluded(r); });
     };
 
-    ProbeGrid grid;
+    // The reach tests, triangle by triangle on every core (they are most of the cost: a distance
+    // query to every component each), into one result per triangle.
+    struct TriangleReach {
+        ProbeGrid grid;
+        int reached = 0;                   // probe vertices a shot reaches
+        std::vector<std::int8_t> samples;  // a triangle whose probes disagree: each sample's answer
+        std::uint64_t tests = 0, sample_tests = 0;
+    };
+    std::vector<TriangleReach> reach_of(triangles);
+    constexpr std::size_t kChunks = 64;
+    for_each_chunk(kChunks, [&](std::size_t chunk) {
+        const auto [begin, end] = chunk_range(triangles, kChunks, chunk);
+        for (std::size_t t = begin; t < end; ++t) {
+            const std::int64_t samples = map.samples_of_triangle(t);
+            if (samples == 0) continue;  // degenerate: no samples, no area
+            TriangleReach& out = reach_of[t];
+            ProbeGrid& grid = out.grid;
+            const Vec3 a = mesh.corner(t, 0), ab = mesh.corner(t, 1) - a, ac = mesh.corner(t, 2) - a;
+            const double longest = std::max({ab.norm(), ac.norm(), (ac - ab).norm()});
+            // Probes: never finer than the samples themselves.
+            const int n_samples = static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples))));
+            grid.m = std::clamp(static_cast<int>(std::ceil(longest / probe_spacing_m)), 1, std::max(1, n_samples));
+            grid.reach.assign(static_cast<std::size_t>((grid.m + 1) * (grid.m + 2) / 2), 0);
+            for (int i = 0; i <= grid.m; ++i)
+                for (int j = 0; i + j <= grid.m; ++j) {
+                    const Vec3 p = a + (static_cast<double>(i) / grid.m) * ab + (static_cast<double>(j) / grid.m) * ac;
+                    const bool r = reach(p, t, shot_radius_m);
+                    ++out.tests;
+                    grid.reach[grid.vertex(i, j)] = r ? 1 : 0;
+                    out.reached += r ? 1 : 0;
+                }
+            const int vertices = static_cast<int>(grid.reach.size());
+            if (out.reached == 0 || out.reached == vertices) continue;
+            // Probes that disagree: each sample of a cell whose vertices disagree is tested.
+            out.samples.resize(static_cast<std::size_t>(samples));
+            const std::int64_t first = map.first_sample_of_triangle(t);
+            map.for_each_sample_of_triangle(t, [&](std::int64_t index, const Vec3& p, double u, double v) {
+                int r = grid.cell_answer(u, v);
+                if (r < 0) {
+                    r = reach(p, t, shot_radius_m) ? 1 : 0;
+                    ++out.tests;
+                    ++out.sample_tests;
+                }
+                out.samples[static_cast<std::size_t>(index - first)] = static_cast<std::int8_t>(r);
+            });
+        }
+    });
+
     std::vector<std::uint32_t> sample_regions;
     for (std::size_t t = 0; t < triangles; ++t) {
         first_sample_[t] = map.first_sample_of_triangle(t);
         const std::int64_t samples = map.samples_of_triangle(t);
         if (samples == 0) continue;  // degenerate: no samples, no area
-        const Vec3 a = mesh.corner(t, 0), ab = mesh.corner(t, 1) - a, ac = mesh.corner(t, 2) - a;
-        const double longest = std::max({ab.norm(), ac.norm(), (ac - ab).norm()});
-        // Probes: never finer than the samples themselves.
-        const int n_samples = static_cast<int>(std::lround(std::sqrt(static_cast<double>(samples))));
-        grid.m = std::clamp(static_cast<int>(std::ceil(longest / probe_spacing_m)), 1, std::max(1, n_samples));
-        grid.reach.assign(static_cast<std::size_t>((grid.m + 1) * (grid.m + 2) / 2), 0);
-        int reached = 0;
-        for (int i = 0; i <= grid.m; ++i)
-            for (int j = 0; i + j <= grid.m; ++j) {
-                const Vec3 p = a + (static_cast<double>(i) / grid.m) * ab + (static_cast<double>(j) / grid.m) * ac;
-                const bool r = reach(p, t, shot_radius_m);
-                ++reach_tests_;
-                grid.reach[grid.vertex(i, j)] = r ? 1 : 0;
-                reached += r ? 1 : 0;
-            }
-        const int vertices = static_cast<int>(grid.reach.size());
+        const TriangleReach& probed = reach_of[t];
+        reach_tests_ += probed.tests;
+        sample_tests_ += probed.sample_tests;
+        const int vertices = static_cast<int>(probed.grid.reach.size());
+        const int reached = probed.reached;
         const bool regions_uniform = all_one(tri_shares[t]);
         const bool reach_uniform = reached == 0 || reached == vertices;
         const double sample_area = map.sample_area(t);
@@ -105,13 +143,9 @@ SampleClasses::SampleClasses(const CoverageMap& map, const TriangleMesh& mesh, c
         mixed_start_[t] = static_cast<std::int64_t>(sample_class_.size());
         sample_class_.resize(sample_class_.size() + static_cast<std::size_t>(samples));
         std::uint16_t last = kMixed;
-        map.for_each_sample_of_triangle(t, [&](std::int64_t index, const Vec3& p, double u, double v) {
-            int r = reach_uniform ? (reached == vertices ? 1 : 0) : grid.cell_answer(u, v);
-            if (r < 0) {
-                r = reach(p, t, shot_radius_m) ? 1 : 0;
-                ++reach_tests_;
-                ++sample_tests_;
-            }
+        map.for_each_sample_of_triangle(t, [&](std::int64_t index, const Vec3& p, double, double) {
+            const int r =
+                reach_uniform ? (reached == vertices ? 1 : 0) : probed.samples[static_cast<std::size_t>(index - first_sample_[t])];
             const std::vector<std::uint32_t>* rs = &tri_regions[t];
             if (!regions_uniform) {
                 regions.regions_at(p, t, sample_regions);
@@ -128,6 +162,7 @@ SampleClasses::SampleClasses(const CoverageMap& map, const TriangleMesh& mesh, c
             reachable_samples_[t] += r;
             peened_samples_[t] += classes_[k].peened() ? 1 : 0;
         });
+        reach_of[t] = {};  // done with it: the memory back
     }
 
     region_peened_m2_.assign(regions.size(), 0.0);

@@ -28,7 +28,8 @@
 namespace peensim {
 
 // Whether a shot of radius shot_radius_m (m) can touch the point point_m (component frame, m) of
-// triangle `triangle` (model/facet_reach.h gives the assembly's).
+// triangle `triangle` (model/facet_reach.h gives the assembly's). Called from several threads at
+// once (the triangles are probed on every core): it must be safe so.
 using ReachTest = std::function<bool(const Vec3& point_m, std::size_t triangle, double shot_radius_m)>;
 
 struct SampleClass {

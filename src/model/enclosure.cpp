@@ -133,6 +133,11 @@ int Enclosure::region(const Vec3& p) {
     return here - kFirstRegion;
 }
 
+bool Enclosure::in_region(const Vec3& p, int number) const {
+    int i, j, k;
+    return number >= 0 && probe_cell(p, i, j, k) && inside_cell(i, j, k) && label_[index(i, j, k)] == number + kFirstRegion;
+}
+
 bool Enclosure::inside(const Vec3& p) const {
     int i, j, k;
     return probe_cell(p, i, j, k) && inside_cell(i, j, k);

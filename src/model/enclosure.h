@@ -42,6 +42,9 @@ public:
     // The enclosed region p (world, m) lies in (a number >= 0, the same for every point of the
     // region), or -1 if p is not inside. A region is numbered (flood-filled) when first asked for.
     int region(const Vec3& p);
+    // Whether p lies in region `number` (region()'s), which must have been numbered already: a
+    // query that numbers nothing, so safe from several threads at once.
+    bool in_region(const Vec3& p, int number) const;
 
     double cell_size() const { return grid_.cell_size(); }
 

@@ -217,6 +217,6 @@ ShotCavity::ShotCavity(const Model& model, Random& rng)
     region_ = cavity_region(model, enclosure_, faces_, up_);
 }
 
-bool ShotCavity::contains(const Vec3& p) { return region_ >= 0 && enclosure_.region(p) == region_; }
+bool ShotCavity::contains(const Vec3& p) const { return enclosure_.in_region(p, region_); }
 
 }  // namespace peensim

@@ -29,7 +29,8 @@ public:
     ShotCavity(const Model& model, Random& rng);
 
     // True if a shot centre at p (world, m) lies in the cavity (not inside a part, not outside).
-    bool contains(const Vec3& p);
+    // Safe from several threads at once.
+    bool contains(const Vec3& p) const;
 
     const SonotrodeFaces& sonotrode_faces() const { return faces_; }
     const Vec3& up() const { return up_; }  // unit, world: from the sonotrode into the chamber

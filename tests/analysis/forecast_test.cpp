@@ -14,6 +14,7 @@
 #include "analysis/reach_boundary.h"
 #include "analysis/regions.h"
 #include "analysis/sample_classes.h"
+#include "common/parallel_chunks.h"
 #include "common/random.h"
 #include "geometry/box_mesh.h"
 #include "geometry/mesh_checks.h"
@@ -367,6 +368,28 @@ TEST(CoverageForecast, NearTheReachBoundaryOnlyTheDentsOnItsOwnSideCover) {
     std::printf("reach strips: mean forecast %+.2f %% of the exact time over %d seeds\n", 100.0 * (sum / seeds / exact - 1.0), seeds);
     EXPECT_NEAR(sum / seeds, exact, 0.04 * exact);
     EXPECT_GE(inside, seeds - 1);
+}
+
+// The analysis bins the samples and probes the reach on every core, in fixed chunks: the forecast
+// comes out the same to the bit on one thread or several.
+TEST(CoverageForecast, TheSameOnAnyNumberOfThreads) {
+    const double mu = 0.01, rho = 0.125e-3;  // 1/s, m: as the reach strips above, unevenly per face
+    Peening p = cube_peening({mu / (M_PI * rho * rho), 2 * mu / (M_PI * rho * rho), mu / (M_PI * rho * rho), 1.5 * mu / (M_PI * rho * rho),
+                              mu / (M_PI * rho * rho), 0.8 * mu / (M_PI * rho * rho)});
+    const auto reachable = [](const Vec3& x) { return x.x() + 0.3 * x.y() < 4e-3; };
+    p.share = [&](const Vec3& x) { return reachable(x) ? 1.0 : 0.0; };
+    const ReachTest reach = [&](const Vec3& x, std::size_t, double) { return reachable(x); };
+    const RegionSet none(p.cube, {});
+    set_analysis_threads(1);
+    const CoverageForecast one = peen_and_forecast(p, none, 10.0, 5, 1.0, reach);
+    set_analysis_threads(3);
+    const CoverageForecast three = peen_and_forecast(p, none, 10.0, 5, 1.0, reach);
+    set_analysis_threads(0);
+    ASSERT_EQ(one.whole.status, AreaForecast::Status::forecast);
+    EXPECT_EQ(one.whole.time_s, three.whole.time_s);
+    EXPECT_EQ(one.whole.low_s, three.whole.low_s);
+    EXPECT_EQ(one.whole.high_s, three.whole.high_s);
+    EXPECT_EQ(one.summary.cells, three.summary.cells);
 }
 
 // The cube's six faces as six regions (the facing direction).

@@ -29,17 +29,17 @@ struct PathOverride {
     ~PathOverride() { setenv("PATH", saved.c_str(), 1); }
 };
 
-void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+void write_plot_input(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
 void write_csvs(const fs::path& dir, const std::string& component, bool with_dents) {
-    write(dir / (component + "_coverage.csv"), "time_s,coverage\n0,0\n0.1,0.3\n0.2,0.55\n0.3,0.7\n0.4,0.81\n");
+    write_plot_input(dir / (component + "_coverage.csv"), "time_s,coverage\n0,0\n0.1,0.3\n0.2,0.55\n0.3,0.7\n0.4,0.81\n");
     std::string h =
         "region,quantity,bin_low,bin_high,unit,count\n"
         "all,normal_speed,0,0.25,m/s,3\nall,normal_speed,0.25,0.5,m/s,12\nall,normal_speed,0.5,0.75,m/s,7\n"
         "all,impact_angle,0,5,deg,4\nall,impact_angle,5,10,deg,9\nall,impact_angle,10,15,deg,9\n";
     if (with_dents) h += "all,dent_diameter,100,110,um,5\nall,dent_diameter,110,120,um,17\n";
     h += "tooth0,normal_speed,0,0.25,m/s,3\n";  // a region's rows: not in the whole-component panels
-    write(dir / (component + "_histograms.csv"), h);
+    write_plot_input(dir / (component + "_histograms.csv"), h);
 }
 
 struct PngInfo {
@@ -94,13 +94,14 @@ TEST(AnalysisPlots, RendersCoverageAndHistogramPngsOfTheRequestedSize) {
 TEST(AnalysisPlots, RegionAndAlmenPlotsWhenTheirTablesExist) {
     if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed";
     TempDir dir;
-    write(dir.path / "gear_regions.csv",
-          "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n"
-          "tooth0,10,20.5,30,0.3,1.5,3,0.01,0.2\ntooth1,10,20.5,60,0.6,2.5,4,0.02,0.4\n");
-    write(dir.path / "strip_almen.csv", "time_s,dose_J_per_m2,arc_height_mm\n0,0,0\n1,2,0.05\n2,4,0.09\n");
-    write(dir.path / "bare_almen.csv", "time_s,dose_J_per_m2,arc_height_mm\n0,0,\n1,2,\n2,4,\n");
-    write(dir.path / "model_almen.csv",
-          "time_s,dose_J_per_m2,arc_height_mm,dent_area_ratio,predicted_arc_height_mm\n0,0,,0,0\n1,2,,0.1,0.04\n2,4,,0.2,0.07\n");
+    write_plot_input(dir.path / "gear_regions.csv",
+                     "region,triangles,area_mm2,impacts,impacts_per_mm2_s,mean_vn_mps,max_vn_mps,energy_J_per_m2,coverage\n"
+                     "tooth0,10,20.5,30,0.3,1.5,3,0.01,0.2\ntooth1,10,20.5,60,0.6,2.5,4,0.02,0.4\n");
+    write_plot_input(dir.path / "strip_almen.csv", "time_s,dose_J_per_m2,arc_height_mm\n0,0,0\n1,2,0.05\n2,4,0.09\n");
+    write_plot_input(dir.path / "bare_almen.csv", "time_s,dose_J_per_m2,arc_height_mm\n0,0,\n1,2,\n2,4,\n");
+    write_plot_input(
+        dir.path / "model_almen.csv",
+        "time_s,dose_J_per_m2,arc_height_mm,dent_area_ratio,predicted_arc_height_mm\n0,0,,0,0\n1,2,,0.1,0.04\n2,4,,0.2,0.07\n");
     std::string note;
     const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"gear", "strip", "bare", "model"}, 0.98, note);
     EXPECT_EQ(note, "");
@@ -135,7 +136,7 @@ TEST(AnalysisPlots, EmptyHistogramPanelAndQuotedNamesStillRender) {
 TEST(AnalysisPlots, MissingCsvsGiveNoPlotAndNoError) {
     if (!gnuplot_installed()) GTEST_SKIP() << "gnuplot not installed";
     TempDir dir;
-    write(dir.path / "rod_histograms.csv", "region,quantity,bin_low,bin_high,unit,count\nall,normal_speed,0,0.25,m/s,2\n");
+    write_plot_input(dir.path / "rod_histograms.csv", "region,quantity,bin_low,bin_high,unit,count\nall,normal_speed,0,0.25,m/s,2\n");
     std::string note;
     const std::vector<std::string> pngs = write_analysis_plots(dir.path.string(), {"rod", "absent"}, 0.98, note);
     EXPECT_EQ(note, "");

@@ -29,20 +29,17 @@
 #include "render/render_impacts_job.h"
 #include "render/render_view.h"
 #include "scene/scene_parser.h"
+#include "support/files.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
+using peensim::testing::read_file;
 using peensim::testing::TempDir;
 using namespace peensim;
 
 namespace {
 
 const std::string kSource = PEENSIM_SOURCE_DIR;
-
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 }  // namespace
 

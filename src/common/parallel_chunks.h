@@ -1,0 +1,62 @@
+// Work cut into a fixed number of chunks, run on every core: the analysis's passes over tens of
+// millions of coverage samples. The chunks, not the threads, decide what is summed together, so a
+// caller that keeps one result per chunk and merges them in chunk order gets the same bytes on any
+// number of cores.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace peensim {
+
+// The threads for_each_chunk uses by default: set_analysis_threads's, else one per core.
+inline std::atomic<unsigned>& analysis_threads_wanted() {
+    static std::atomic<unsigned> wanted{0};
+    return wanted;
+}
+inline void set_analysis_threads(unsigned threads) { analysis_threads_wanted() = threads; }  // 0: one per core
+inline unsigned analysis_threads() {
+    const unsigned wanted = analysis_threads_wanted();
+    return wanted > 0 ? wanted : std::max(1u, std::thread::hardware_concurrency());
+}
+
+// Calls f(chunk) once for every chunk in 0 .. chunks - 1, on up to `threads` threads (this one
+// among them), each chunk on one thread, in no particular order; returns when all are done and
+// rethrows the first exception one threw (the chunks not yet started are skipped).
+template <class F>
+void for_each_chunk(std::size_t chunks, F&& f, unsigned threads = analysis_threads()) {
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    const auto work = [&] {
+        for (std::size_t c = next++; c < chunks; c = next++) {
+            try {
+                f(c);
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(failure_mutex);
+                if (!failure) failure = std::current_exception();
+                next = chunks;  // start no more
+            }
+        }
+    };
+    std::vector<std::thread> helpers;
+    const std::size_t extra = std::min<std::size_t>(threads, chunks) > 1 ? std::min<std::size_t>(threads, chunks) - 1 : 0;
+    helpers.reserve(extra);
+    for (std::size_t i = 0; i < extra; ++i) helpers.emplace_back(work);
+    work();
+    for (std::thread& h : helpers) h.join();
+    if (failure) std::rethrow_exception(failure);
+}
+
+// [begin, end) of chunk c of n items cut into `chunks` nearly equal parts.
+inline std::pair<std::size_t, std::size_t> chunk_range(std::size_t n, std::size_t chunks, std::size_t c) {
+    return {n * c / chunks, n * (c + 1) / chunks};
+}
+
+}  // namespace peensim
