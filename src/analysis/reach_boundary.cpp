@@ -84,7 +84,7 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
     // The cubes of side reach_m that are in `cubes` or next to one: only there can a sample lie
     // within reach_m of one in `cubes` (one look-up a run, not 27).
     const auto next_to = [](const CubeSet& cubes) {
-        CubeSet near(27 * cubes.size());
+        CubeSet near;
         cubes.for_each([&](std::uint64_t key, std::uint8_t) {
             const auto axis = [&](int k) { return static_cast<std::int64_t>(key >> (20 * k) & 0xFFFFF); };
             for (std::int64_t dz = -1; dz <= 1; ++dz)
@@ -193,19 +193,26 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
     // A voxel whose first sample lies beyond reach may still hold samples within it: out to reach
     // plus the voxel's diagonal (each sample's own distance decides, in distance()).
     const double reach2 = std::pow(reach_m + std::sqrt(3.0) / inverse_side_, 2);
+    // A voxel queued again for a better source is passed on once per source: passing it on twice
+    // from the same one changes nothing (a neighbour's distance only ever falls).
+    std::vector<std::uint32_t> passed_on(voxels_.size(), kNoSource);
     while (!queue.empty()) {
-        const Voxel& from = voxels_[queue.front()];
+        const std::uint32_t from_index = queue.front();
         queue.pop_front();
+        const Voxel& from = voxels_[from_index];
+        if (passed_on[from_index] == from.source) continue;
+        passed_on[from_index] = from.source;
         const Voxel& source = voxels_[from.source];
         const Vec3 source_point = source.point;
         const Vec3 source_normal(source.normal[0], source.normal[1], source.normal[2]);
-        const Vec3 from_point = from.point;
-        const double side = 1.0 / inverse_side_;
         const std::uint32_t source_index = from.source;
+        // The neighbours by the voxel's own coordinates (a source's point, its samples' mean, lies
+        // in the reachable voxel grid's cube of those).
+        const auto c = cube_of(from.point, inverse_side_);
         for (int dz = -1; dz <= 1; ++dz)
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
-                    const std::uint32_t* it = index_.find(key(from_point + side * Vec3(dx, dy, dz), true));
+                    const std::uint32_t* it = index_.find(cube_key(c[0] + dx, c[1] + dy, c[2] + dz) | kReachableKeyBit);
                     if (it == nullptr) continue;
                     Voxel& to = voxels_[*it];
                     if (Vec3(to.normal[0], to.normal[1], to.normal[2]).dot(source_normal) < kSameFacingCos) continue;

@@ -82,8 +82,9 @@ private:
     // The sources' voxels are finer (a source's place is its samples' mean: off the boundary by
     // up to half its voxel, which would read as distance).
     static constexpr double kSourceVoxelsPerVoxel = 4.0;
+    static constexpr std::uint64_t kReachableKeyBit = std::uint64_t{1} << 63;  // a reachable voxel's key has it
     std::uint64_t key(const Vec3& p, bool reachable) const {
-        return reachable ? cube_key_of(p, inverse_side_) | std::uint64_t{1} << 63 : cube_key_of(p, kSourceVoxelsPerVoxel * inverse_side_);
+        return reachable ? cube_key_of(p, inverse_side_) | kReachableKeyBit : cube_key_of(p, kSourceVoxelsPerVoxel * inverse_side_);
     }
     double reach_m_ = 0.0;
     double inverse_reach_ = 0.0;  // 1/m, of the cubes of side reach_m
