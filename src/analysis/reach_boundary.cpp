@@ -14,8 +14,8 @@ namespace peensim {
 
 namespace {
 
-using CubeSet = FlatKeyMap<std::uint8_t>;  // the keys of cubes (the values unused)
-constexpr std::size_t kChunks = 32;        // of triangles, binned on every core and joined in order
+using CubeSet = FlatKeyMap<std::uint8_t>;    // the keys of cubes (the values unused)
+constexpr std::size_t kBoundaryChunks = 32;  // of triangles, binned on every core and joined in order
 
 constexpr double kSameFacingCos = 0.5;  // a source within 60 degrees of a sample's normal bounds its dents
 
@@ -41,9 +41,9 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
     // `reachable`.
     const std::size_t triangles = map.triangle_count();
     const auto cubes_with = [&](bool reachable, const auto& of) {
-        std::vector<CubeSet> parts(kChunks);
-        for_each_chunk(kChunks, [&](std::size_t c) {
-            const auto [begin, end] = chunk_range(triangles, kChunks, c);
+        std::vector<CubeSet> parts(kBoundaryChunks);
+        for_each_chunk(kBoundaryChunks, [&](std::size_t c) {
+            const auto [begin, end] = chunk_range(triangles, kBoundaryChunks, c);
             CubeSet& cubes = parts[c];
             map.for_each_sample_row(
                 begin, end, [&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
@@ -106,8 +106,8 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
         std::vector<std::uint64_t> keys;
         FlatKeyMap<std::uint32_t> index;
     };
-    std::vector<Voxels> parts(kChunks);
-    for_each_chunk(kChunks, [&](std::size_t c) {
+    std::vector<Voxels> parts(kBoundaryChunks);
+    for_each_chunk(kBoundaryChunks, [&](std::size_t c) {
         Voxels& part = parts[c];
         const auto voxel_of = [&](const Vec3& p, bool reachable, const Vec3& n) -> Voxel& {
             const std::uint64_t k = key(p, reachable);
@@ -122,7 +122,7 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
             }
             return part.voxels[*index];
         };
-        const auto [begin, end] = chunk_range(triangles, kChunks, c);
+        const auto [begin, end] = chunk_range(triangles, kBoundaryChunks, c);
         map.for_each_sample_row(
             begin, end, [&](std::size_t t, const Vec3& first, const Vec3& step, std::int64_t count, double, std::int64_t index) {
                 const bool all_reachable = reachable_triangle(t);

@@ -77,9 +77,9 @@ SampleClasses::SampleClasses(const CoverageMap& map, const TriangleMesh& mesh, c
         std::uint64_t tests = 0, sample_tests = 0;
     };
     std::vector<TriangleReach> reach_of(triangles);
-    constexpr std::size_t kChunks = 64;
-    for_each_chunk(kChunks, [&](std::size_t chunk) {
-        const auto [begin, end] = chunk_range(triangles, kChunks, chunk);
+    constexpr std::size_t kProbeChunks = 64;
+    for_each_chunk(kProbeChunks, [&](std::size_t chunk) {
+        const auto [begin, end] = chunk_range(triangles, kProbeChunks, chunk);
         for (std::size_t t = begin; t < end; ++t) {
             const std::int64_t samples = map.samples_of_triangle(t);
             if (samples == 0) continue;  // degenerate: no samples, no area

@@ -63,11 +63,11 @@ SurfaceCells::SurfaceCells(const CoverageProgress& progress, const TriangleMesh&
                            const ReachBoundary& boundary, double side_m) {
     // The triangles in a fixed number of chunks, binned on every core and merged in chunk order:
     // the same sums on any number of cores.
-    constexpr std::size_t kChunks = 32;
+    constexpr std::size_t kBinningChunks = 32;
     const std::size_t triangles = progress.map().triangle_count();
-    std::vector<SurfaceCells> parts(kChunks);
-    for_each_chunk(kChunks, [&](std::size_t c) {
-        const auto [first, end] = chunk_range(triangles, kChunks, c);
+    std::vector<SurfaceCells> parts(kBinningChunks);
+    for_each_chunk(kBinningChunks, [&](std::size_t c) {
+        const auto [first, end] = chunk_range(triangles, kBinningChunks, c);
         parts[c] = SurfaceCells(progress, mesh, edges, boundary, side_m, first, end);
     });
     *this = merged(parts, 1);
