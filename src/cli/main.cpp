@@ -17,6 +17,7 @@
 #include "app/sweep/sweep_plan.h"
 #include "cli/generate_command.h"
 #include "common/input_error.h"
+#include "common/parallel_chunks.h"
 #include "common/units.h"
 #include "scene/schema.h"
 
@@ -66,6 +67,9 @@ int main(int argc, char** argv) {
                         "process.duration caps the run");
     std::uint64_t stop_after = 0;
     run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
+    unsigned threads = 0;  // 0: every core
+    const std::string threads_help = "cores the analysis uses (default: every core; its figures are the same on any number)";
+    run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 4096));
 
     std::string check_scene;
     std::vector<std::string> check_overrides;
@@ -82,6 +86,7 @@ int main(int argc, char** argv) {
     std::string analyze_from, analyze_to, analyze_min_speed, analyze_target;
     auto* analyze_cmd = app.add_subcommand("analyze", "analyse a run's impacts: coverage, per-triangle fields, histograms, report.md");
     analyze_cmd->add_option("outdir", analyze_dir, "the run's output directory")->required();
+    analyze_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 4096));
     analyze_cmd->add_option("--from", analyze_from, "leave out the impacts before this time, e.g. a start-up transient (s, or \"500 ms\")");
     analyze_cmd->add_option("--to", analyze_to, "leave out the impacts after this time (default: the end of the run)");
     analyze_cmd->add_option("--min-speed", analyze_min_speed, "leave out impacts with a slower normal speed (m/s, or \"20 cm/s\")");
@@ -240,6 +245,7 @@ int main(int argc, char** argv) {
         return app.exit(e) == 0 ? 0 : kExitInputError;
     }
 
+    set_analysis_threads(threads);
     if (*run_cmd) {
         if (stop_after > 0) run.stop_after_steps = stop_after;
         if (!scheme.empty()) run.overrides.push_back("accuracy.scheme=" + scheme);

@@ -311,6 +311,20 @@ TEST(HostileInputs3, TradeRefusesTimesAndNumbersThatAreNotOnes) {
 
 // ---- analyze -----------------------------------------------------------------------------
 
+// The analysis on any number of cores: the same figures to the byte; no cores is refused.
+TEST(HostileInputs3, AnalyzeGivesTheSameFiguresOnOneCoreAsOnSeveral) {
+    Runs& r = runs();
+    TempDir dir;
+    const fs::path one = copy_run(r.rod, dir.path / "one"), three = copy_run(r.rod, dir.path / "three");
+    expect_cli(peensim({"analyze", one.string(), "--threads", "1"}), 0, {"analysis:"});
+    expect_cli(peensim({"analyze", three.string(), "--threads", "3"}), 0, {"analysis:"});
+    const std::string figures = read_file(one / "analysis" / "figures.json");
+    EXPECT_NE(figures.find("time_to_target"), std::string::npos);
+    EXPECT_EQ(figures, read_file(three / "analysis" / "figures.json"));
+    expect_cli(peensim({"analyze", one.string(), "--threads", "0"}), 2, {"--threads"});
+    expect_cli(peensim({"run", kScenes + "rod.yaml", "--threads", "-2"}), 2, {"--threads"});
+}
+
 // 9. A log cut mid-row was analysed without a word; a NaN row in the middle was dropped without one.
 TEST(HostileInputs3, AnalyzeSaysWhereItsLogWasCutAndRefusesDamage) {
     Runs& r = runs();

@@ -98,8 +98,9 @@ void SweepBook::outcome(std::size_t k, int code) {
     }
 }
 
-pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log) {
-    std::vector<std::string> args{executable, "run", scene, "-o", run.dir, "--quiet"};
+pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log,
+                      unsigned threads) {
+    std::vector<std::string> args{executable, "run", scene, "-o", run.dir, "--quiet", "--threads", std::to_string(threads)};
     if (fs::exists(run.dir + "/checkpoint.bin")) args.push_back("--resume");
     for (const std::string& o : run.overrides) args.insert(args.end(), {"--set", o});
     std::vector<char*> argv;

@@ -49,11 +49,13 @@ private:
     std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
 };
 
-// Starts `executable run scene -o <run dir> --quiet [--resume] --set ...` (resuming from the run's
-// checkpoint if it has one), stdin from /dev/null, stdout and stderr appended to `log`, in a
-// process group of its own. It dies with the thread that started it (SIGKILL, PR_SET_PDEATHSIG):
-// a sweep or MPI rank killed outright leaves no run behind holding its directory.
-pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log);
+// Starts `executable run scene -o <run dir> --quiet --threads N [--resume] --set ...` (resuming
+// from the run's checkpoint if it has one; N: the cores its analysis uses, its share of those the
+// sweep runs on), stdin from /dev/null, stdout and stderr appended to `log`, in a process group of
+// its own. It dies with the thread that started it (SIGKILL, PR_SET_PDEATHSIG): a sweep or MPI rank
+// killed outright leaves no run behind holding its directory.
+pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log,
+                      unsigned threads);
 
 // Where run `run`'s messages go: logs_dir/<variant>.s<k>.log.
 std::string sweep_run_log(const SweepPlan& plan, const std::string& logs_dir, std::size_t run);

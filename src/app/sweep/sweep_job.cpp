@@ -116,6 +116,9 @@ int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err)
     SweepBook book(plan, sweep_dir + "/logs", jobs, out, err);
     out << "sweep: " << plan.variants.size() << " variants x " << plan.seeds << " seeds = " << book.total() << " runs, " << jobs
         << " at once" << (book.done() ? ", " + std::to_string(book.done()) + " finished before" : std::string()) << "\n";
+    // Each run's analysis its share of the cores: `jobs` runs at once on all of them would
+    // oversubscribe them.
+    const unsigned threads_per_run = std::max(1u, std::max(1u, std::thread::hardware_concurrency()) / static_cast<unsigned>(jobs));
     std::map<pid_t, std::size_t> running;
     while (book.has_queued() || !running.empty()) {
         if (stop.requested() && !book.stopped()) {
@@ -124,7 +127,7 @@ int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err)
         }
         while (book.has_queued() && static_cast<int>(running.size()) < jobs) {
             const std::size_t k = book.take();
-            running[start_sweep_run(executable, o.scene_path, plan.runs[k], book.log_of(k))] = k;
+            running[start_sweep_run(executable, o.scene_path, plan.runs[k], book.log_of(k), threads_per_run)] = k;
         }
         int status = 0;
         const pid_t pid = ::waitpid(-1, &status, WNOHANG);

@@ -56,7 +56,7 @@ void MpiSweep::work(const std::string& executable, const std::string& scene, con
         if (k < 0) return;
         const auto run = static_cast<std::size_t>(k);
         std::filesystem::create_directories(std::filesystem::path(plan.runs[run].dir).parent_path());
-        const pid_t pid = start_sweep_run(executable, scene, plan.runs[run], sweep_run_log(plan, logs_dir, run));
+        const pid_t pid = start_sweep_run(executable, scene, plan.runs[run], sweep_run_log(plan, logs_dir, run), 1);  // a rank a core
         report[0] = k;
         report[1] = wait_for(pid, stop);
     }
@@ -74,7 +74,7 @@ void MpiSweep::coordinate(SweepBook& book, const std::string& executable, const 
         }
         while (book.has_queued() && static_cast<int>(running.size()) < slots) {
             const std::size_t k = book.take();
-            running[start_sweep_run(executable, scene, plan.runs[k], book.log_of(k))] = k;
+            running[start_sweep_run(executable, scene, plan.runs[k], book.log_of(k), 1)] = k;  // a rank a core
             busy = true;
         }
         int asking = 0;
