@@ -67,8 +67,7 @@ public:
     bool sources_near(const Vec3& x) const { return !source_cubes_.empty() && source_cubes_.contains(cube_key_of(x, inverse_reach_)); }
 
     double reach_m() const { return reach_m_; }
-    double inverse_side() const { return inverse_side_; }    // 1/m, of the voxels
-    double inverse_reach() const { return inverse_reach_; }  // 1/m, of the cubes of side reach_m (0 without a boundary)
+    double inverse_side() const { return inverse_side_; }  // 1/m, of the voxels
 
 private:
     struct Voxel {
