@@ -184,7 +184,9 @@ SweepPlan plan_sweep_variants(const std::vector<SweepVariant>& variants, int see
             throw InputError(v.origin, field + ".set",
                              "variant '" + v.name + "' sets the same values as variant '" + at->second->name +
                                  "'; expected each variant to differ (replicates of one variant: seeds)");
-        for (const auto& [path, value] : v.set) {
+        for (const auto& setting_entry : v.set) {
+            const auto& path = setting_entry.first;  // a name, not a structured binding: Clang before 16 cannot capture those
+            const auto& value = setting_entry.second;
             auto axis = std::find_if(plan.axes.begin(), plan.axes.end(), [&](const SweepAxis& a) { return a.path == path; });
             if (axis == plan.axes.end()) axis = plan.axes.insert(plan.axes.end(), SweepAxis{path, {}, v.origin, field + ".set." + path});
             if (std::find(axis->values.begin(), axis->values.end(), value) == axis->values.end()) axis->values.push_back(value);
