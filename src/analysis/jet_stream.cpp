@@ -1,5 +1,7 @@
 #include "analysis/jet_stream.h"
 
+#include "analysis/warm_up.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -60,20 +62,9 @@ std::optional<std::uint64_t> JetStreamStats::steady_after() const {
     // of the run. A minimum past the run's middle means the stream is still drifting: none.
     const std::size_t n = complete_.size();
     if (n < 4) return std::nullopt;
-    // From the last window back, so that each truncation costs O(1): a run of hours makes millions
-    // of windows.
-    std::size_t best = 0;
-    double best_mser = std::numeric_limits<double>::infinity(), sum = 0.0, sum_sq = 0.0;
-    std::vector<double> mser(n, 0.0);
-    for (std::size_t d = n; d-- > 0;) {
-        const double x = complete_[d].fast_share();
-        sum += x;
-        sum_sq += x * x;
-        const double m = static_cast<double>(n - d);
-        mser[d] = std::max(0.0, sum_sq - sum * sum / m) / (m * m);
-    }
-    for (std::size_t d = 0; d + 1 < n; ++d)
-        if (mser[d] < best_mser - 1e-15) best_mser = mser[d], best = d;
+    std::vector<double> shares(n);
+    for (std::size_t k = 0; k < n; ++k) shares[k] = complete_[k].fast_share();
+    const std::size_t best = mser_minimiser(shares, n - 2);
     if (best > n / 2) return std::nullopt;
     return complete_[best].first_impact;
 }

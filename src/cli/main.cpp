@@ -70,6 +70,13 @@ int main(int argc, char** argv) {
     unsigned threads = 0;  // 0: every core
     const std::string threads_help = "cores the analysis uses (default: every core; its figures are the same on any number)";
     run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 4096));
+    int replicas = 1;
+    run_cmd
+        ->add_option("--replicas", replicas,
+                     "run the chamber as this many independent replicas on as many cores, each warmed up and then run for "
+                     "its share of the duration, logged one after another (a steady process: no sources, no impact-history "
+                     "law)")
+        ->check(CLI::Range(1, 1024));
 
     std::string check_scene;
     std::vector<std::string> check_overrides;
@@ -253,6 +260,7 @@ int main(int argc, char** argv) {
         std::ostream null_stream(nullptr);
         run.progress = !quiet;
         run.analyze = !no_analyze;
+        run.replicas = replicas;
         if (render_on) run.render = true;
         if (render_off) run.render = false;
         return run_job(run, quiet ? null_stream : std::cout, std::cerr);

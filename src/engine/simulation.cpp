@@ -33,13 +33,21 @@ SimulationState initial_state(const Model& model, const InitialShots& shots) {
 }  // namespace
 
 Simulation::Simulation(std::shared_ptr<const Model> model)
-    : model_(std::move(model)), state_(initial_state(*model_, place_shots(*model_))), scheme_(make_stepper(model_)), emitter_(*model_) {}
+    : model_(std::move(model)),
+      state_(initial_state(*model_, place_shots(*model_))),
+      scheme_(make_stepper(model_)),
+      emitter_(*model_),
+      end_s_(model_->duration_s) {}
 
 Simulation::Simulation(std::shared_ptr<const Model> model, const InitialShots& shots)
-    : model_(std::move(model)), state_(initial_state(*model_, shots)), scheme_(make_stepper(model_)), emitter_(*model_) {}
+    : model_(std::move(model)),
+      state_(initial_state(*model_, shots)),
+      scheme_(make_stepper(model_)),
+      emitter_(*model_),
+      end_s_(model_->duration_s) {}
 
 Simulation::Simulation(std::shared_ptr<const Model> model, SimulationState state)
-    : model_(std::move(model)), state_(std::move(state)), scheme_(make_stepper(model_)), emitter_(*model_) {
+    : model_(std::move(model)), state_(std::move(state)), scheme_(make_stepper(model_)), emitter_(*model_), end_s_(model_->duration_s) {
     // A state made by hand (a test) may leave the sources' and sinks' counts out.
     state_.emitted_per_source.resize(model_->sources.size(), 0);
     state_.collected_per_sink.resize(model_->sinks.size(), 0);
@@ -53,7 +61,7 @@ void Simulation::step(std::vector<ImpactRecord>& impacts, double pause_at_s) {
     pause_at_s = std::min(pause_at_s, emitter_.next_time(state_));
     // A pause at or before the present is no pause (asked again and again, it would stall the run).
     if (!(pause_at_s > now)) pause_at_s = std::numeric_limits<double>::infinity();
-    scheme_->advance(state_, model_->duration_s, pause_at_s, impacts);
+    scheme_->advance(state_, end_s_, pause_at_s, impacts);
     emit_due();
 }
 

@@ -2,6 +2,7 @@
 // buffer the caller drains after each step (app/run/run_job writes them).
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -29,7 +30,11 @@ public:
     // (s) if it comes first (see Stepper::advance); a pause not after the present is ignored.
     // The sources' shot due by then join the state (ShotEmitter), the scheme told of them.
     void step(std::vector<ImpactRecord>& impacts, double pause_at_s = std::numeric_limits<double>::infinity());
-    bool finished() const { return !(state_.time.seconds() < model_->duration_s); }
+    bool finished() const { return !(state_.time.seconds() < end_s_); }
+    // Ends the run at t_s (s) instead of the scene's duration (a replica's window: app/run/replica_plan.h);
+    // never past the duration.
+    void end_at(double t_s) { end_s_ = std::min(t_s, model_->duration_s); }
+    double end_s() const { return end_s_; }  // s, where finished() is true
     // A checkpoint of the state now resumes into exactly this run (Stepper::at_restart_point).
     bool at_restart_point() const { return scheme_->at_restart_point(); }
 
@@ -50,6 +55,7 @@ private:
     SimulationState state_;
     std::unique_ptr<Stepper> scheme_;
     ShotEmitter emitter_;
+    double end_s_ = 0.0;        // s, the scene's duration unless end_at() moved it
     std::vector<int> emitted_;  // scratch: the slots of the shot just emitted
 
     void emit_due();  // the emissions at or before the state's time

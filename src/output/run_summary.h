@@ -108,6 +108,23 @@ struct RunSummary {
         bool reached = false;  // every area reached it (the run ended there, before the duration)
     };
     std::optional<CoverageGoal> until_coverage;
+    // A run on several cores as replicas (run --replicas, app/run/replica_plan.h): the measured
+    // start-up transient and each replica's window of the run.
+    struct Replicas {
+        double pilot_s = 0.0;    // s, replica 0's time when the warm-up was measured
+        double warm_up_s = 0.0;  // s, the start-up transient MSER-5 found
+        double turn_s = 0.0;     // s, the part's turn the windows are shifted by whole numbers of (0: none)
+        struct Window {
+            int replica = 0;
+            std::uint64_t seed = 0;
+            double start_s = 0.0;      // s, run time: the window is [start_s, end_s)
+            double end_s = 0.0;        // s
+            double own_start_s = 0.0;  // s, the window's start in the replica's own time (its warm-up)
+            std::uint64_t logged_impacts = 0;
+        };
+        std::vector<Window> windows;
+    };
+    std::optional<Replicas> replicas;
 };
 
 }  // namespace peensim

@@ -36,6 +36,20 @@ std::string summary_to_json(const RunSummary& s) {
                               std::isfinite(a.reached_at_s) ? nlohmann::ordered_json(a.reached_at_s) : nlohmann::ordered_json(nullptr)}});
         j["until_coverage"] = {{"target", s.until_coverage->target}, {"reached", s.until_coverage->reached}, {"areas", std::move(areas)}};
     }
+    if (s.replicas) {
+        auto windows = nlohmann::ordered_json::array();
+        for (const auto& w : s.replicas->windows)
+            windows.push_back({{"replica", w.replica},
+                               {"seed", w.seed},
+                               {"start_s", w.start_s},
+                               {"end_s", w.end_s},
+                               {"own_start_s", w.own_start_s},
+                               {"logged_impacts", w.logged_impacts}});
+        j["replicas"] = {{"pilot_s", s.replicas->pilot_s},
+                         {"warm_up_s", s.replicas->warm_up_s},
+                         {"turn_s", s.replicas->turn_s},
+                         {"windows", std::move(windows)}};
+    }
 
     auto impacts = nlohmann::ordered_json::array();
     for (const auto& c : s.impacts_per_component) {

@@ -93,6 +93,12 @@ std::string summary_to_text(const RunSummary& s) {
                 : printf_string("%.4g %% reached in %d of %zu areas; not yet: %s%s", target, reached, s.until_coverage->areas.size(),
                                 missing.c_str(), reached + 1 < static_cast<int>(s.until_coverage->areas.size()) ? ", ..." : ""));
     }
+    if (s.replicas)
+        rows.emplace_back(
+            "replicas",
+            printf_string("%zu, each warmed up %.4g s (measured at %.4g s) then run for its window of %.4g s", s.replicas->windows.size(),
+                          s.replicas->warm_up_s, s.replicas->pilot_s,
+                          s.replicas->windows.size() > 1 ? s.replicas->windows[1].end_s - s.replicas->windows[1].start_s : s.duration_s));
     // Flights other than the exact parabola (air drag) run with time stepping only: say why.
     if (!s.flight.empty() && s.flight != "parabola")
         rows.emplace_back("flight", s.flight + " (time stepping: the event scheme solves exact parabolas only)");

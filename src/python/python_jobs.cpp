@@ -98,7 +98,7 @@ std::vector<std::string> logged_components(const std::string& scene_path) {
 
 int run(const std::string& path, const std::optional<std::string>& text, const std::vector<std::string>& overrides,
         const std::string& output_dir, bool resume, bool strict, bool analyze, std::optional<bool> render, bool verbose,
-        const py::object& progress) {
+        const py::object& progress, int replicas) {
     PythonStop stop;
     RunOptions o;
     o.scene_path = path;
@@ -110,6 +110,8 @@ int run(const std::string& path, const std::optional<std::string>& text, const s
     o.strict = strict;
     o.analyze = analyze;
     o.render = render;
+    if (replicas < 1) throw py::value_error("replicas: expected 1 or more, got " + std::to_string(replicas));
+    o.replicas = replicas;
     o.stop_requested = [&stop] { return stop(); };
     if (!progress.is_none()) {
         o.on_progress = [&](const RunProgress& p) {
@@ -214,7 +216,7 @@ void bind_jobs(py::module_& m) {
           "Where a run of the scene writes.");
     m.def("logged_components", &logged_components, py::arg("scene_path"), "The components a scene's run logs, in the scene's order.");
     m.def("run", &run, py::arg("path"), py::arg("text"), py::arg("overrides"), py::arg("output_dir"), py::arg("resume"), py::arg("strict"),
-          py::arg("analyze"), py::arg("render"), py::arg("verbose"), py::arg("progress"),
+          py::arg("analyze"), py::arg("render"), py::arg("verbose"), py::arg("progress"), py::arg("replicas") = 1,
           "Runs a scene as `peensim run` does; returns its exit code (0, 3 strict failure, 130 stopped).");
     m.def("analyze", &analyze, py::arg("dir"), py::arg("verbose"), py::arg("from_s"), py::arg("to_s"), py::arg("min_speed"),
           py::arg("target"), py::arg("smoothing_radius"), "Analyses a run directory as `peensim analyze` does.");

@@ -9,7 +9,8 @@
 #include "contact/hertz_mindlin.h"
 #include "contact/soft_pair.h"
 
-namespace peensim::contact {
+// A named namespace of its own: the file's constants are unique in any unity grouping of the tests.
+namespace peensim::contact::soft_pair_cases {
 namespace {
 
 const ElasticMaterial kSteel{200e9, 0.3};
@@ -49,4 +50,4 @@ TEST(SoftPairState, TheTangentialSpringIsTheLawsPerContactState) {
 }
 
 }  // namespace
-}  // namespace peensim::contact
+}  // namespace peensim::contact::soft_pair_cases

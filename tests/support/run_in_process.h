@@ -18,6 +18,7 @@ struct InProcessRun {
     bool analyze = false;                           // the tests that use this look at the run's own outputs
     std::optional<std::uint64_t> stop_after_steps;  // then an interrupted run (kExitInterrupted)
     std::vector<std::string> overrides;             // --set
+    int replicas = 1;                               // --replicas
 };
 
 struct InProcessResult {
@@ -34,6 +35,7 @@ inline InProcessResult run_in_process(const InProcessRun& r) {
     o.resume = r.resume;
     o.stop_after_steps = r.stop_after_steps;
     o.overrides = r.overrides;
+    o.replicas = r.replicas;
     std::ostringstream out, err;
     InProcessResult result;
     result.code = run_job(o, out, err);

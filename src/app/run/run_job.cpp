@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <span>
 
 #include "app/analysis/analyze_job.h"
 #include "app/check/setup_checks.h"
@@ -22,8 +24,11 @@
 #include "app/report_errors.h"
 #include "app/run/coverage_watch.h"
 #include "app/run/loss_report.h"
+#include "app/run/replica_pilot.h"
+#include "app/run/replica_runs.h"
 #include "app/run/summary_builder.h"
 #include "common/input_error.h"
+#include "common/random.h"
 #include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "model/assembly_checks.h"
@@ -66,6 +71,9 @@ public:
     int run() {
         const SceneDescription scene = parse_scene(options_.scene_path, options_.scene_text, options_.overrides);
         model_ = compile_model(scene);
+        if (options_.replicas > 1 && !options_.resume)
+            if (const std::optional<std::string> why = replica_refusal(*model_))
+                throw InputError(scene.process.where, "--replicas", *why + "; expected --replicas 1 for this scene");
         // Before anything is written; a fresh run places its shot in the cavity the check built.
         SetupCheck setup = check_setup(*model_, options_.strict, err_);
         dir_ = run_output_directory(options_, scene);
@@ -168,10 +176,17 @@ private:
             // removed, so that nothing (analyze) reads it as this run's if this session is killed.
             // A finished or interrupted session writes its own.
             fs::remove(fs::path(dir_) / "summary.json");
+            fs::remove_all(fs::path(dir_) / kReplicaSpillDirectory);  // an interrupted replicas run's: dropped
+            if (options_.replicas > 1) err_ << "note: a resumed run goes on as one replica (--replicas is for a fresh run)\n";
         } else {
             fs::remove(checkpoint_path());
             fs::remove(fs::path(dir_) / kImpactCsvFileName);
             sim_ = std::make_unique<Simulation>(model_, cavity ? place_shots(*model_, *cavity, setup.rng) : InitialShots{});
+            // The other replicas' loads, each from its own seed, placed now: the cavity goes below.
+            for (int k = 1; cavity && k < options_.replicas; ++k) {
+                Random rng(replica_seed(model_->seed, k));
+                replica_shots_.push_back(place_shots(*model_, *cavity, rng));
+            }
             writer_ = std::make_unique<ImpactCsvWriter>(dir_, component_names(*model_), model_->has_size_mix());
             speeds_.assign(logged, SpeedHistogram());
         }
@@ -209,7 +224,9 @@ private:
             double pause_at_s() const override {
                 return job.recorder_ ? job.recorder_->next_frame_s() : std::numeric_limits<double>::infinity();
             }
-            void after_step(const Simulation& sim, const std::vector<ImpactRecord>& impacts) override {
+            void after_step(const Simulation& sim, const std::vector<ImpactRecord>& all) override {
+                // A replica's window ends at its end; time stepping's last step may go past it.
+                const std::vector<ImpactRecord>& impacts = job.replicas_ ? job.before_end(all) : all;
                 if (!impacts.empty()) {
                     const auto t = Clock::now();
                     job.writer_->write(impacts);
@@ -219,7 +236,7 @@ private:
                     job.output_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
                 }
                 if (job.recorder_) job.recorder_->after_step(sim.state(), impacts, job.logged_impacts_);
-                progress.update(sim.state().time.seconds(), job.model_->duration_s, job.logged_impacts_);
+                progress.update(sim.state().time.seconds(), sim.end_s(), job.logged_impacts_);
                 if (job.options_.on_progress) {
                     const auto now = Clock::now();
                     if (now >= next_callback) call_back(now);
@@ -240,12 +257,64 @@ private:
         started_ = Clock::now();
         RunLoop run(*sim_);
         if (coverage_watch_) run.add(*coverage_watch_);  // first: the others see a step after its dents count
+        std::unique_ptr<ReplicaPilot> pilot;
+        if (!replica_shots_.empty()) {
+            pilot = std::make_unique<ReplicaPilot>(
+                *model_, options_.replicas, [this](const ReplicaPlan& plan) { start_replicas(plan); },
+                [this](const std::string& why) {
+                    err_ << "note: --replicas " << options_.replicas << ": the run goes on as one replica: " << why << "\n";
+                    replica_shots_.clear();
+                });
+            run.add(*pilot);
+        }
         run.add(listener);
         if (shot_series_) run.add(*shot_series_);
         // Checkpoints (and so stops) wait for a restart point: time stepping reaches one at every
         // step, the event-driven scheme at its restart interval.
         return run.run(
             [&](std::uint64_t steps) { return stop.requested() || (options_.stop_after_steps && steps >= *options_.stop_after_steps); });
+    }
+
+    // The pilot found the warm-up: replica 0 (this run) now ends at its window's end, and the others start.
+    void start_replicas(const ReplicaPlan& plan) {
+        plan_ = plan;
+        sim_->end_at(plan.windows.front().run_to_s);
+        std::vector<ReplicaWindow> others(plan.windows.begin() + 1, plan.windows.end());
+        replicas_ = std::make_unique<ReplicaRuns>(model_, std::move(others), std::move(replica_shots_), dir_, slots_);
+        replica_shots_.clear();
+    }
+
+    // The impacts of a step before replica 0's end (a copy only when some are past it).
+    const std::vector<ImpactRecord>& before_end(const std::vector<ImpactRecord>& impacts) {
+        const double end = sim_->end_s();
+        if (std::all_of(impacts.begin(), impacts.end(), [end](const ImpactRecord& r) { return r.time_s < end; })) return impacts;
+        kept_.clear();
+        for (const ImpactRecord& r : impacts)
+            if (r.time_s < end) kept_.push_back(r);
+        return kept_;
+    }
+
+    // The other replicas, once replica 0 has finished: their windows' impacts after its own in
+    // impacts.csv (in window order: the run's time order), their speeds into the histograms.
+    void gather_replicas() {
+        replica_results_ = replicas_->wait();
+        own_logged_impacts_ = logged_impacts_;
+        for (std::size_t k = 0; k < replica_results_.size(); ++k) {
+            replicas_->replay(k, [this](std::span<const ImpactRecord> batch) { writer_->write(batch); });
+            for (std::size_t slot = 0; slot < speeds_.size(); ++slot) speeds_[slot].merge(replica_results_[k].speeds[slot]);
+            logged_impacts_ += replica_results_[k].logged_impacts;
+        }
+        replicas_->discard();
+    }
+
+    // An interrupted run drops the other replicas' work: --resume goes on from replica 0's checkpoint.
+    void drop_replicas() {
+        replicas_->stop();
+        try {
+            replicas_->wait();
+        } catch (const std::exception&) {}  // of no use now either way
+        replicas_->discard();
+        err_ << "note: the other replicas' work is dropped; --resume continues this run as one replica\n";
     }
 
     double wall_time() const { return wall_before_ + std::chrono::duration<double>(Clock::now() - started_).count(); }
@@ -274,10 +343,12 @@ private:
         }
         for (StageTime& st : s.stage_times)
             if (st.stage == "record_impacts") st.seconds += output_seconds_;
+        if (finished && plan_) merge_replica_summaries(s, *plan_, replica_results_, own_logged_impacts_);
         return s;
     }
 
     int interrupted() {
+        if (replicas_) drop_replicas();
         if (recorder_) recorder_->flush();  // the frames drawn so far are complete files
         if (shot_series_) shot_series_->flush();
         checkpoint();
@@ -290,6 +361,7 @@ private:
     }
 
     int complete() {
+        if (replicas_) gather_replicas();
         writer_->finish();
         // The ParaView files before the checkpoint goes: a full disk here still leaves a run to resume.
         const std::string series = shot_series_ ? shot_series_->finish(sim_->state()) : "";
@@ -307,6 +379,9 @@ private:
                  << (n > 0 ? " (" + std::to_string(recorder_->draw_seconds() / n * 1e3) + " ms per frame)" : std::string()) << "\n";
         }
         for (const LostShot& l : sim_->state().lost) err_ << describe_loss(*model_, l) << "\n";
+        for (const ReplicaResult& r : replica_results_)
+            for (const LostShot& l : r.lost)
+                err_ << "replica " << r.window.replica << " (its own time): " << describe_loss(*model_, l) << "\n";
         if (options_.analyze) {
             const int code = analyze_job(dir_, out_, err_);
             if (code != kExitOk) {
@@ -336,6 +411,13 @@ private:
     std::unique_ptr<ShotSeriesRecorder> shot_series_;  // only when the scene asks (output.shot_positions)
     std::unique_ptr<CoverageWatch> coverage_watch_;    // only when running until coverage
     std::vector<SpeedHistogram> speeds_;
+    // --replicas (fresh run): the other replicas' loads until the pilot plans them, then their runs.
+    std::vector<InitialShots> replica_shots_;
+    std::optional<ReplicaPlan> plan_;
+    std::unique_ptr<ReplicaRuns> replicas_;
+    std::vector<ReplicaResult> replica_results_;
+    std::uint64_t own_logged_impacts_ = 0;  // replica 0's share of logged_impacts_
+    std::vector<ImpactRecord> kept_;        // before_end()'s scratch
     std::uint64_t logged_impacts_ = 0;
     double wall_before_ = 0.0;     // s, wall time of earlier sessions of a resumed run
     double output_seconds_ = 0.0;  // s, spent writing impacts

@@ -27,13 +27,16 @@ struct RunOptions {
     // The scene as YAML text in memory (the Python module's dict): scene_path then only names it in
     // messages and is the directory relative mesh paths are read from. Empty: read scene_path.
     std::optional<std::string> scene_text;
-    std::vector<std::string> overrides;                // --set path=value
-    std::string output_dir;                            // -o; "" = the scene's output.directory, else out/<scene name>
-    bool progress = true;                              // draw a progress bar (only on a terminal)
-    bool resume = false;                               // continue from output_dir/checkpoint.bin
-    bool strict = false;                               // fail (exit 3) if a serious health counter is non-zero
-    bool analyze = true;                               // run `peensim analyze` on the outputs when the run finishes
-    std::optional<bool> render;                        // --render / --no-render; empty = as the scene's `render` block says
+    std::vector<std::string> overrides;  // --set path=value
+    std::string output_dir;              // -o; "" = the scene's output.directory, else out/<scene name>
+    bool progress = true;                // draw a progress bar (only on a terminal)
+    bool resume = false;                 // continue from output_dir/checkpoint.bin
+    bool strict = false;                 // fail (exit 3) if a serious health counter is non-zero
+    bool analyze = true;                 // run `peensim analyze` on the outputs when the run finishes
+    std::optional<bool> render;          // --render / --no-render; empty = as the scene's `render` block says
+    // --replicas K: the run as K replicas of the chamber on K threads (app/run/replica_plan.h); 1: one
+    // trajectory. A resumed run goes on as one replica.
+    int replicas = 1;
     std::optional<std::uint64_t> stop_after_steps;     // interrupt after this many steps (tests, benchmarks)
     WallClock checkpoint_clock = steady_wall_clock();  // the clock checkpoint intervals follow (tests: a fake one)
     // Asked after every step whether to stop (checkpoint, exit 130). Empty: Ctrl-C and SIGTERM, caught

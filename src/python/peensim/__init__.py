@@ -299,7 +299,7 @@ class Run:
 
 
 def run(scene, output_dir=None, *, progress=None, resume=False, strict=False, analyze=True, render=None,
-        scheme=None, verbose=False):
+        scheme=None, verbose=False, replicas=1):
     """Runs a scene as `peensim run` does and returns its Run.
 
     scene: a Scene, a scene file's path, or a dict. output_dir: the run directory (default: the
@@ -310,11 +310,12 @@ def run(scene, output_dir=None, *, progress=None, resume=False, strict=False, an
     raises. strict: warnings are errors, and numerical trouble raises HealthError. analyze: write
     analysis/ when it finishes. render: True/False records or not the animation (None: as the
     scene says). scheme: "event", "step" or "soft". verbose: print the summary as the command does.
+    replicas: the run as that many replicas of the chamber on as many cores (`--replicas`).
     """
     scene = _as_scene(scene)
     overrides = scene.overrides + ([f"accuracy.scheme={scheme}"] if scheme else [])
     directory = _native.output_directory(scene._path, scene._text, overrides, os.fspath(output_dir) if output_dir else "")
-    code = _native.run(scene._path, scene._text, overrides, directory, resume, strict, analyze, render, verbose, progress)
+    code = _native.run(scene._path, scene._text, overrides, directory, resume, strict, analyze, render, verbose, progress, replicas)
     result = Run(directory)
     if code == 3:
         raise HealthError(f"{directory}: the run had numerical trouble: {result.summary['health_counters']}", result)

@@ -1,0 +1,87 @@
+// The replicas of a run other than its own (app/run/replica_plan.h), each on a thread: a
+// Simulation of the shared, immutable model from its own shot placement, run to its window's end.
+// The impacts of its window, moved to their place in the run, are spilled as raw records to a file
+// in the run's directory and handed back in order once all are done (the run writes impacts.csv
+// from them); its counts, speeds and lost shot come back for the summary.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include "app/run/replica_plan.h"
+#include "engine/impact_record.h"
+#include "engine/simulation_state.h"
+#include "model/model.h"
+#include "model/shot_placement.h"
+#include "output/run_summary.h"
+#include "output/speed_histogram.h"
+
+namespace peensim {
+
+struct ReplicaResult {
+    ReplicaWindow window;
+    RunSummary summary;  // its own, at its end: its counts include its warm-up's
+    // Its summary's impact and slow-contact counts (same entries) when its window began: the
+    // window's own are the difference.
+    std::vector<std::uint64_t> impacts_at_window_start;
+    std::vector<std::uint64_t> slow_contacts_at_window_start;
+    std::vector<SpeedHistogram> speeds;  // its window's normal speeds, per logged component
+    std::uint64_t logged_impacts = 0;    // its window's impacts on logged components
+    std::vector<LostShot> lost;          // times in its own clock
+    double wall_s = 0.0;                 // s
+};
+
+// The spills' folder in the run's directory (removed once read, and by a new run: run_directory.h).
+inline constexpr std::string_view kReplicaSpillDirectory = "replicas";
+// Replica r's spill, relative to the run's directory.
+std::string replica_spill_name(int replica);
+
+class ReplicaRuns {
+public:
+    // windows: the replicas to run (not replica 0); shots: each one's placement; slots: the logged
+    // slot of each component (-1: not logged), as the run's speed histograms are kept.
+    ReplicaRuns(std::shared_ptr<const Model> model, std::vector<ReplicaWindow> windows, std::vector<InitialShots> shots,
+                std::string run_dir, std::vector<int> slots);
+    ~ReplicaRuns();  // stops and joins whatever still runs
+    ReplicaRuns(const ReplicaRuns&) = delete;
+    ReplicaRuns& operator=(const ReplicaRuns&) = delete;
+
+    // Asks every replica to stop at its next step (an interrupted run discards them).
+    void stop();
+    // Waits for every replica; rethrows the first failure (after all have ended).
+    std::vector<ReplicaResult> wait();
+    // Hands replica `k`'s (the k-th of the windows) spilled impacts to `sink` in order, a batch at a
+    // time, then removes its spill. After wait().
+    void replay(std::size_t k, const std::function<void(std::span<const ImpactRecord>)>& sink) const;
+    // Removes the spills' folder (once all are read, or an interrupted or failed run).
+    void discard() const;
+
+private:
+    void run_one(std::size_t k);
+
+    std::shared_ptr<const Model> model_;
+    std::vector<ReplicaWindow> windows_;
+    std::vector<InitialShots> shots_;
+    std::string dir_;
+    std::vector<int> slots_;
+    std::vector<ReplicaResult> results_;
+    std::vector<std::exception_ptr> failures_;
+    std::vector<std::thread> threads_;
+    std::atomic<bool> stop_{false};
+};
+
+// Adds the replicas' windows to the run's summary `s` (replica 0's, with the merged speeds): their
+// impacts and slow contacts within their windows, their steps, health counters and stage times,
+// the state at the run's end (the last replica's), and the plan.
+void merge_replica_summaries(RunSummary& s, const ReplicaPlan& plan, const std::vector<ReplicaResult>& results,
+                             std::uint64_t own_logged_impacts);
+
+}  // namespace peensim
