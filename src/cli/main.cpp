@@ -156,7 +156,8 @@ int main(int argc, char** argv) {
     bench_cmd->add_option("--set", bench.overrides, "override a scene field for every scene and scheme")->allow_extra_args(false);
     bench_cmd
         ->add_option("--schemes", bench.schemes,
-                     "schemes to compare with the first, e.g. step,event or step,step:accuracy.travel_fraction=0.1")
+                     "schemes to compare with the first, e.g. step,event or step,step:accuracy.travel_fraction=0.1; :replicas=K runs one "
+                     "as K replicas (run --replicas), e.g. event,event:replicas=2")
         ->delimiter(',')
         ->allow_extra_args(false)
         ->default_str("step,event");

@@ -1,5 +1,7 @@
 #include "app/bench/bench_job.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <charconv>
 #include <chrono>
@@ -10,15 +12,22 @@
 #include <memory>
 #include <optional>
 #include <ostream>
+#include <span>
 #include <sstream>
+#include <string_view>
 
 #include "app/report_errors.h"
+#include "app/run/replica_pilot.h"
+#include "app/run/replica_runs.h"
 #include "app/run/run_job.h"
 #include "common/float_limits.h"
 #include "common/input_error.h"
+#include "common/random.h"
 #include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "model/model.h"
+#include "model/shot_cavity.h"
+#include "model/shot_placement.h"
 #include "output/atomic_file.h"
 #include "output/output_names.h"
 #include "scene/scene_parser.h"
@@ -142,6 +151,7 @@ struct SchemeSpec {
     std::string label;                   // as given on --schemes, "#k" added when two are the same
     std::string name;                    // step | event | soft
     std::vector<std::string> overrides;  // its own path=value overrides
+    int replicas = 1;                    // `:replicas=K`: the run as K replicas (run --replicas)
 };
 
 std::vector<SchemeSpec> parse_schemes(const std::vector<std::string>& texts) {
@@ -158,6 +168,13 @@ std::vector<SchemeSpec> parse_schemes(const std::vector<std::string>& texts) {
             fail("expected step, event or soft, optionally followed by :path=value overrides, got '" + text + "'");
         for (std::string o; std::getline(parts, o, ':');) {
             if (o.find('=') == std::string::npos) fail("expected path=value after ':' in '" + text + "', got '" + o + "'");
+            if (o.rfind("replicas=", 0) == 0) {
+                const std::string k = o.substr(9);
+                const auto [end, ec] = std::from_chars(k.data(), k.data() + k.size(), s.replicas);
+                if (ec != std::errc() || end != k.data() + k.size() || s.replicas < 1 || s.replicas > 1024)
+                    fail("expected replicas=K with K from 1 to 1024 in '" + text + "', got '" + o + "'");
+                continue;
+            }
             s.overrides.push_back(o);
         }
         specs.push_back(std::move(s));
@@ -193,7 +210,61 @@ struct SchemeRun {
     double per_simulated_s(double v) const { return v / duration_s; }
 };
 
-SchemeRun run_scheme(const SceneDescription& scene, const SchemeSpec& spec) {
+// A scheme's run as replicas (run --replicas): the other replicas' loads placed beforehand, the
+// pilot listening to replica 0 (the bench's own simulation), then the others on threads, their
+// windows' impacts handed to `add` once all have ended. Their spills go to a folder of their own
+// under the system's temporary directory, removed at the end.
+class BenchReplicas {
+public:
+    BenchReplicas(std::shared_ptr<const Model> model, Simulation& sim, const std::vector<int>& slots, int replicas)
+        : model_(std::move(model)), sim_(sim), slots_(slots) {
+        if (const std::optional<std::string> why = replica_refusal(*model_))
+            throw InputError(model_->description.process.where, "--schemes replicas", *why);
+        for (int k = 1; k < replicas; ++k) {
+            Random rng(replica_seed(model_->seed, k));
+            ShotCavity cavity(*model_, rng);
+            shots_.push_back(place_shots(*model_, cavity, rng));
+        }
+        pilot_ = std::make_unique<ReplicaPilot>(
+            *model_, replicas,
+            [this](const ReplicaPlan& plan) {
+                sim_.end_at(plan.windows.front().run_to_s);
+                dir_ = fs::temp_directory_path() / ("peensim-bench-replicas-" + std::to_string(::getpid()));
+                runs_ = std::make_unique<ReplicaRuns>(model_, std::vector<ReplicaWindow>(plan.windows.begin() + 1, plan.windows.end()),
+                                                      std::move(shots_), dir_.string(), slots_);
+            },
+            [this](const std::string& why) { note_ = why; });
+    }
+    ~BenchReplicas() {
+        if (runs_) runs_->discard();
+        std::error_code ignored;
+        if (!dir_.empty()) fs::remove_all(dir_, ignored);
+    }
+    RunListener& pilot() { return *pilot_; }
+    const std::string& note() const { return note_; }
+    // Waits for the others and hands their windows' impacts to `add`; their results.
+    std::vector<ReplicaResult> gather(const std::function<void(const ImpactRecord&)>& add) {
+        if (!runs_) return {};
+        std::vector<ReplicaResult> results = runs_->wait();
+        for (std::size_t k = 0; k < results.size(); ++k)
+            runs_->replay(k, [&](std::span<const ImpactRecord> batch) {
+                for (const ImpactRecord& r : batch) add(r);
+            });
+        return results;
+    }
+
+private:
+    std::shared_ptr<const Model> model_;
+    Simulation& sim_;
+    const std::vector<int>& slots_;
+    std::vector<InitialShots> shots_;
+    std::unique_ptr<ReplicaPilot> pilot_;
+    std::unique_ptr<ReplicaRuns> runs_;
+    fs::path dir_;
+    std::string note_;
+};
+
+SchemeRun run_scheme(const SceneDescription& scene, const SchemeSpec& spec, std::ostream& err) {
     const std::shared_ptr<const Model> model = compile_model(scene);
     Simulation sim(model);
     const std::size_t n = model->components.size();
@@ -210,24 +281,36 @@ SchemeRun run_scheme(const SceneDescription& scene, const SchemeSpec& spec) {
         const std::vector<int>& slot;
         std::vector<BatchedImpactStats>& logged;
         Binning(const std::vector<int>& s, std::vector<BatchedImpactStats>& l) : slot(s), logged(l) {}
-        void after_step(const Simulation&, const std::vector<ImpactRecord>& impacts) override {
-            for (const ImpactRecord& r : impacts) {
-                const int s = slot[static_cast<std::size_t>(r.component)];
-                if (s >= 0) logged[static_cast<std::size_t>(s)].add(r.time_s, r.vn_in_m_per_s);
-            }
+        void add(const ImpactRecord& r) {
+            const int s = slot[static_cast<std::size_t>(r.component)];
+            if (s >= 0) logged[static_cast<std::size_t>(s)].add(r.time_s, r.vn_in_m_per_s);
+        }
+        void after_step(const Simulation& sim, const std::vector<ImpactRecord>& impacts) override {
+            // As replicas, replica 0's window ends at its end (time stepping's last step may go past it).
+            for (const ImpactRecord& r : impacts)
+                if (r.time_s < sim.end_s()) add(r);
         }
     } binning(slot, logged);
     RunLoop loop(sim);
+    std::unique_ptr<BenchReplicas> replicas;
+    if (spec.replicas > 1) {
+        replicas = std::make_unique<BenchReplicas>(model, sim, slot, spec.replicas);
+        loop.add(replicas->pilot());
+    }
     loop.add(binning);
     const auto t0 = Clock::now();
     loop.run();
+    const std::vector<ReplicaResult> others =
+        replicas ? replicas->gather([&](const ImpactRecord& r) { binning.add(r); }) : std::vector<ReplicaResult>{};
     const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (replicas && !replicas->note().empty())
+        err << "note: " << spec.label << ": the run went on as one replica: " << replicas->note() << "\n";
 
     const SimulationState& st = sim.state();
     SchemeRun run;
     run.spec = spec;
     run.duration_s = model->duration_s;
-    run.simulated_s = st.time.seconds();
+    run.simulated_s = others.empty() ? st.time.seconds() : others.back().window.window_end_s();
     run.wall_s = wall;
     run.shot_count = model->shot_count;
     run.steps = st.steps;
@@ -235,12 +318,27 @@ SchemeRun run_scheme(const SceneDescription& scene, const SchemeSpec& spec) {
     run.shot_shot_impacts = st.shot_shot_impacts;
     run.health = st.health;
     run.stats = sim.scheme().stats();
+    // The others' work (their warm-ups too) and their windows' impacts (the summary's entries:
+    // shot-shot first, then each component).
+    std::vector<std::uint64_t> window_impacts(n, 0);
+    for (const ReplicaResult& r : others) {
+        run.steps += r.summary.steps;
+        run.shot_steps += r.summary.shot_steps;
+        run.shot_shot_impacts += r.summary.impacts_per_component[0].count - r.impacts_at_window_start[0];
+        for (std::size_t c = 0; c < n; ++c)
+            window_impacts[c] += r.summary.impacts_per_component[c + 1].count - r.impacts_at_window_start[c + 1];
+        r.health.for_each([&](const char* name, std::uint64_t count) {
+            run.health.for_each([&](const char* own, std::uint64_t& total) {
+                if (std::string_view(own) == name) total += count;
+            });
+        });
+    }
     BatchedImpactStats total(model->duration_s);
     for (std::size_t c = 0; c < n; ++c) {
         ComponentFigures f;
         f.name = model->components[c].name;
         f.logged = slot[c] >= 0;
-        f.impacts = c < st.impacts_per_component.size() ? st.impacts_per_component[c] : 0;
+        f.impacts = (c < st.impacts_per_component.size() ? st.impacts_per_component[c] : 0) + window_impacts[c];
         if (f.logged) {
             f.stats = logged[static_cast<std::size_t>(slot[c])];
             f.impacts = f.stats->count();
@@ -461,7 +559,7 @@ std::string own_executable() {
     return ec ? std::string() : exe.string();
 }
 
-int bench(const BenchOptions& options, std::ostream& out) {
+int bench(const BenchOptions& options, std::ostream& out, std::ostream& err) {
     if (!options.csv_path.empty()) check_output_file_directory("--csv", options.csv_path);  // before minutes of runs
     const std::vector<SchemeSpec> schemes = parse_schemes(options.schemes);
     const std::vector<std::string> scenes =
@@ -491,7 +589,7 @@ int bench(const BenchOptions& options, std::ostream& out) {
     std::string csv = csv_header();
     for (std::size_t i = 0; i < scenes.size(); ++i) {
         std::vector<SchemeRun> runs;
-        for (std::size_t s = 0; s < schemes.size(); ++s) runs.push_back(run_scheme(descriptions[i][s], schemes[s]));
+        for (std::size_t s = 0; s < schemes.size(); ++s) runs.push_back(run_scheme(descriptions[i][s], schemes[s], err));
         print_scene(scenes[i], runs, out);
         out.flush();
         summary.push_back(summary_line(scenes[i], runs));
@@ -510,7 +608,7 @@ int bench(const BenchOptions& options, std::ostream& out) {
 }  // namespace
 
 int bench_job(const BenchOptions& options, std::ostream& out, std::ostream& err) {
-    return report_errors(err, [&] { return bench(options, out); });
+    return report_errors(err, [&] { return bench(options, out, err); });
 }
 
 }  // namespace peensim

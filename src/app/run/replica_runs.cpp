@@ -126,6 +126,7 @@ void ReplicaRuns::run_one(std::size_t k) {
         result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         result.summary = build_summary(sim, "", result.speeds, result.wall_s, finished);
         result.lost = sim.state().lost;
+        result.health = sim.state().health;
         if (result.impacts_at_window_start.empty()) {  // stopped before its window
             result.impacts_at_window_start = impact_counts(sim.state());
             result.slow_contacts_at_window_start = slow_counts(sim.state());

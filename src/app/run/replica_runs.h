@@ -36,6 +36,7 @@ struct ReplicaResult {
     std::vector<SpeedHistogram> speeds;  // its window's normal speeds, per logged component
     std::uint64_t logged_impacts = 0;    // its window's impacts on logged components
     std::vector<LostShot> lost;          // times in its own clock
+    HealthCounters health;               // at its end (--strict counts every replica's)
     double wall_s = 0.0;                 // s
 };
 

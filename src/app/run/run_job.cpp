@@ -391,7 +391,9 @@ private:
                 return code;
             }
         }
-        if (options_.strict && sim_->state().health.serious() > 0) {
+        std::uint64_t serious = sim_->state().health.serious();
+        for (const ReplicaResult& r : replica_results_) serious += r.health.serious();
+        if (options_.strict && serious > 0) {
             err_ << "error: --strict: the run had numerical trouble (see health counters in summary.json)\n";
             return kExitHealthFailure;
         }

@@ -210,6 +210,29 @@ TEST(BenchJob, PerSchemeOverridesReachTheirRunOnly) {
     EXPECT_FALSE(b->at("verdict").empty());
 }
 
+TEST(BenchJob, ReplicasAreOneOfTheSchemesComparedWithinNoise) {
+    // The rod, 4 s, as one trajectory and as 2 replicas (run --replicas): the replicas' rows count
+    // the windows' impacts (about the same rate), and bench's own batch-means comparison finds them
+    // within noise.
+    TempDir dir;
+    BenchOptions o;
+    o.scene_paths = {std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml"};
+    o.schemes = {"event", "event:replicas=2"};
+    o.duration = "4";
+    o.csv_path = (dir.path / "bench.csv").string();
+    std::ostringstream out, err;
+    ASSERT_EQ(bench_job(o, out, err), kExitOk) << err.str();
+    SCOPED_TRACE(out.str() + err.str());
+    EXPECT_EQ(err.str().find("went on as one replica"), std::string::npos);
+    EXPECT_NE(out.str().find("event:replicas=2 against event: speed ratio "), std::string::npos);
+    const std::vector<CsvRow> rows = read_csv(o.csv_path);
+    const CsvRow* a = find_row(rows, "event", "rod");
+    const CsvRow* b = find_row(rows, "event:replicas=2", "rod");
+    ASSERT_TRUE(a && b);
+    EXPECT_NEAR(std::stod(b->at("impacts")) / std::stod(a->at("impacts")), 1.0, 0.05);
+    EXPECT_EQ(b->at("verdict"), "within noise");
+}
+
 TEST(BenchJob, BadSceneIsAClearInputError) {
     std::ostringstream out, err;
     BenchOptions o;
@@ -230,8 +253,11 @@ TEST(BenchJob, BadSceneIsAClearInputError) {
 
 TEST(BenchJob, BadSchemesAreInputErrors) {
     const TestScene scene(tiny_spec());
-    for (const std::vector<std::string>& schemes :
-         std::vector<std::vector<std::string>>{{"step"}, {"step", "leapfrog"}, {"step", "step:travel_fraction"}}) {
+    for (const std::vector<std::string>& schemes : std::vector<std::vector<std::string>>{{"step"},
+                                                                                         {"step", "leapfrog"},
+                                                                                         {"step", "step:travel_fraction"},
+                                                                                         {"event", "event:replicas=0"},
+                                                                                         {"event", "event:replicas=two"}}) {
         std::ostringstream out, err;
         BenchOptions o;
         o.scene_paths = {scene.scene_path()};
