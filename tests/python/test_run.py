@@ -27,6 +27,17 @@ class RunTest(TempDirTest):
         self.assertEqual(set(run.summary), set(peensim.Run(self.path("cli")).summary))
         self.assertEqual(run.summary["simulated_time_s"], 0.3)
 
+    def test_replicas_are_the_command_line_s_replicas(self):
+        # The rod, 4 s, as two replicas from Python and from the command line: the same bytes;
+        # replicas below 1 are a ValueError.
+        rod = peensim.Scene(scene("rod.yaml")).set("process.duration", "4 s")
+        run = peensim.run(rod, self.path("py"), analyze=False, replicas=2)
+        cli("run", scene("rod.yaml"), "-o", self.path("cli"), "--set", "process.duration=4 s", "--quiet", "--no-analyze", "--replicas", "2")
+        self.assertEqual(len(run.summary["replicas"]["windows"]), 2)
+        self.assertEqual(read_bytes(self.path("py", "impacts.csv")), read_bytes(self.path("cli", "impacts.csv")))
+        with self.assertRaises(ValueError):
+            peensim.run(rod, self.path("bad"), analyze=False, replicas=0)
+
     def test_a_dict_scene_runs_as_its_file(self):
         file_scene = peensim.Scene(scene("gear.yaml")).set("process.duration", "0.4 s")
         dict_scene = peensim.Scene.from_dict(file_scene.to_dict(), base_dir=os.path.join(SOURCE_DIR, "scenes"), name="gear-dict")
