@@ -31,6 +31,12 @@ struct ReportContext {
     std::vector<std::pair<std::string, double>> flow_rate_eps;
     std::optional<double> wall_per_simulated_s;
     std::vector<std::string> overrides;  // the run's --set options (summary.json): the title says them
+    // A run as replicas (`--replicas K`, summary.json): each window follows a start from rest.
+    struct Replicas {
+        std::size_t windows = 0;
+        double shortest_window_s = 0.0;  // s
+    };
+    std::optional<Replicas> replicas;
 };
 
 std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, const ReportContext& context);

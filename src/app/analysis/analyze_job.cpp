@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -342,6 +343,15 @@ void read_summary_figures(const fs::path& dir, ReportContext& context) {
         for (const auto& e : j.value("flow_rate_eps", nlohmann::json::array()))
             context.flow_rate_eps.emplace_back(e.value("source", ""), e.value("eps", 0.0));
         context.overrides = j.value("overrides", std::vector<std::string>{});
+        if (const auto r = j.find("replicas"); r != j.end() && r->is_object() && r->contains("windows")) {
+            ReportContext::Replicas replicas;
+            replicas.shortest_window_s = std::numeric_limits<double>::infinity();
+            for (const auto& w : (*r)["windows"]) {
+                ++replicas.windows;
+                replicas.shortest_window_s = std::min(replicas.shortest_window_s, w.value("end_s", 0.0) - w.value("start_s", 0.0));
+            }
+            if (replicas.windows > 1) context.replicas = replicas;
+        }
         const double wall = j.value("wall_time_s", 0.0), simulated = j.value("simulated_time_s", 0.0);
         if (wall > 0.0 && simulated > 0.0) context.wall_per_simulated_s = wall / simulated;
     } catch (const std::exception&) {}  // an older or damaged summary: the report goes without

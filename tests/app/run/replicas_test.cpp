@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -87,6 +88,37 @@ TEST(Replicas, OneLogOfTheWindowsInTimeOrderWhoseCountsAddUpAndTheSameBytesTwice
     const InProcessResult b = run_rod(dir.path / "b", 4.0, 2);
     ASSERT_EQ(b.code, kExitOk) << b.err;
     EXPECT_EQ(read_file(dir.path / "a" / kImpactCsvFileName), read_file(dir.path / "b" / kImpactCsvFileName));
+}
+
+// Every window follows a start from rest: the report says so beside the forecasts, with the
+// shortest window (what their start-up bias is that of), and a run as one trajectory's does not.
+TEST(Replicas, TheReportSaysEachWindowHoldsAStartUp) {
+    TempDir dir;
+    InProcessRun r;
+    r.scene_path = kRod;
+    r.output_dir = (dir.path / "k2").string();
+    r.replicas = 2;
+    r.analyze = true;
+    r.overrides = {"process.duration=4", "process.seed=1"};
+    const InProcessResult k2 = run_in_process(r);
+    ASSERT_EQ(k2.code, kExitOk) << k2.err;
+    const auto& windows = summary_of(dir.path / "k2")["replicas"]["windows"];
+    ASSERT_EQ(windows.size(), 2u);
+    const double shortest = std::min(windows[0]["end_s"].get<double>() - windows[0]["start_s"].get<double>(),
+                                     windows[1]["end_s"].get<double>() - windows[1]["start_s"].get<double>());
+    std::ostringstream expected;
+    expected << "**A run as 2 replicas:** each of its windows (the shortest " << std::setprecision(3) << shortest
+             << " s) follows a start from rest";
+    const std::string report = read_file(dir.path / "k2" / "analysis" / "report.md");
+    EXPECT_NE(report.find(expected.str()), std::string::npos) << expected.str() << "\n" << report;
+
+    // The same report without the replicas' summary (as a run of one trajectory has): no such line.
+    nlohmann::json plain = summary_of(dir.path / "k2");
+    plain.erase("replicas");
+    std::ofstream(dir.path / "k2" / "summary.json") << plain.dump();
+    const ShellResult analyzed = run_shell(std::string(PEENSIM_BINARY) + " analyze " + (dir.path / "k2").string());
+    ASSERT_EQ(analyzed.status, 0) << analyzed.output;
+    EXPECT_EQ(read_file(dir.path / "k2" / "analysis" / "report.md").find("replicas:**"), std::string::npos);
 }
 
 TEST(Replicas, ARunTooShortForThePilotGoesOnAsOneReplicaWithThePlainRunsBytes) {
