@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
         ->add_option("--replicas", replicas,
                      "run the chamber as this many independent replicas on as many cores, each warmed up and then run for "
                      "its share of the duration, logged one after another (a steady process: no sources, no impact-history "
-                     "law)")
+                     "law); under mpirun -n K, one replica a rank")
         ->check(CLI::Range(1, 1024));
 
     std::string check_scene;

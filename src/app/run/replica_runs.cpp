@@ -35,7 +35,7 @@ std::vector<std::uint64_t> slow_counts(const SimulationState& state) {
 class WindowListener final : public RunListener {
 public:
     WindowListener(const ReplicaWindow& w, ReplicaResult& result, const std::vector<int>& slots, const std::string& spill_path,
-                   const std::atomic<bool>& stop)
+                   const std::function<bool()>& stop)
         : w_(w), result_(result), slots_(slots), spill_(spill_path, std::ios::binary | std::ios::trunc), stop_(stop) {
         if (!spill_) throw std::runtime_error("cannot write " + spill_path);
         buffer_.reserve(kBatch);
@@ -67,7 +67,7 @@ public:
         spill_.close();
         if (!spill_) throw std::runtime_error("cannot write a replica's impacts (disk full?)");
     }
-    bool stopping() const { return stop_.load(std::memory_order_relaxed); }
+    bool stopping() const { return stop_(); }
 
 private:
     static constexpr std::size_t kBatch = 4096;
@@ -75,78 +75,56 @@ private:
     ReplicaResult& result_;
     const std::vector<int>& slots_;
     std::ofstream spill_;
-    const std::atomic<bool>& stop_;
+    const std::function<bool()>& stop_;
     std::vector<ImpactRecord> buffer_;
     bool started_ = false;
 };
 
 }  // namespace
 
+std::vector<int> logged_slots(const Model& model) {
+    std::vector<int> slots;
+    int next = 0;
+    for (const Component& c : model.components) slots.push_back(c.logged ? next++ : -1);
+    return slots;
+}
+
 std::string replica_spill_name(int replica) {
     return std::string(kReplicaSpillDirectory) + "/replica-" + std::to_string(replica) + ".impacts.bin";
 }
 
-ReplicaRuns::ReplicaRuns(std::shared_ptr<const Model> model, std::vector<ReplicaWindow> windows, std::vector<InitialShots> shots,
-                         std::string run_dir, std::vector<int> slots)
-    : model_(std::move(model)), windows_(std::move(windows)), shots_(std::move(shots)), dir_(std::move(run_dir)), slots_(std::move(slots)) {
-    if (shots_.size() != windows_.size()) throw std::invalid_argument("ReplicaRuns: one placement per window");
+ReplicaResult run_replica(std::shared_ptr<const Model> model, const ReplicaWindow& w, const InitialShots& shots, const std::string& run_dir,
+                          const std::vector<int>& slots, const std::function<bool()>& stop) {
+    const auto started = std::chrono::steady_clock::now();
+    ReplicaResult result;
+    result.window = w;
     std::size_t logged = 0;
-    for (const int s : slots_) logged += s >= 0 ? 1 : 0;
-    results_.resize(windows_.size());
-    failures_.resize(windows_.size());
-    for (std::size_t k = 0; k < windows_.size(); ++k) {
-        results_[k].window = windows_[k];
-        results_[k].speeds.assign(logged, SpeedHistogram());
+    for (const int s : slots) logged += s >= 0 ? 1 : 0;
+    result.speeds.assign(logged, SpeedHistogram());
+    Simulation sim(std::move(model), shots);
+    sim.end_at(w.run_to_s);
+    WindowListener listener(w, result, slots, (fs::path(run_dir) / replica_spill_name(w.replica)).string(), stop);
+    RunLoop loop(sim);
+    loop.add(listener);
+    const bool finished = loop.run([&](std::uint64_t) { return listener.stopping(); });
+    listener.close();
+    result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    result.summary = build_summary(sim, "", result.speeds, result.wall_s, finished);
+    result.lost = sim.state().lost;
+    result.health = sim.state().health;
+    if (result.impacts_at_window_start.empty()) {  // stopped before its window
+        result.impacts_at_window_start = impact_counts(sim.state());
+        result.slow_contacts_at_window_start = slow_counts(sim.state());
     }
+    return result;
+}
+
+ReplicaRunner::ReplicaRunner(std::vector<ReplicaWindow> windows, std::string run_dir)
+    : windows_(std::move(windows)), dir_(std::move(run_dir)) {
     fs::create_directories(fs::path(dir_) / kReplicaSpillDirectory);
-    threads_.reserve(windows_.size());
-    for (std::size_t k = 0; k < windows_.size(); ++k) threads_.emplace_back([this, k] { run_one(k); });
 }
 
-ReplicaRuns::~ReplicaRuns() {
-    stop();
-    for (std::thread& t : threads_)
-        if (t.joinable()) t.join();
-}
-
-void ReplicaRuns::stop() { stop_.store(true, std::memory_order_relaxed); }
-
-void ReplicaRuns::run_one(std::size_t k) {
-    try {
-        const auto started = std::chrono::steady_clock::now();
-        const ReplicaWindow& w = windows_[k];
-        ReplicaResult& result = results_[k];
-        Simulation sim(model_, shots_[k]);
-        sim.end_at(w.run_to_s);
-        WindowListener listener(w, result, slots_, (fs::path(dir_) / replica_spill_name(w.replica)).string(), stop_);
-        RunLoop loop(sim);
-        loop.add(listener);
-        const bool finished = loop.run([&](std::uint64_t) { return listener.stopping(); });
-        listener.close();
-        result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        result.summary = build_summary(sim, "", result.speeds, result.wall_s, finished);
-        result.lost = sim.state().lost;
-        result.health = sim.state().health;
-        if (result.impacts_at_window_start.empty()) {  // stopped before its window
-            result.impacts_at_window_start = impact_counts(sim.state());
-            result.slow_contacts_at_window_start = slow_counts(sim.state());
-        }
-    } catch (...) {
-        failures_[k] = std::current_exception();
-        stop();  // the others are of no use without it
-    }
-}
-
-std::vector<ReplicaResult> ReplicaRuns::wait() {
-    for (std::thread& t : threads_)
-        if (t.joinable()) t.join();
-    threads_.clear();
-    for (const std::exception_ptr& f : failures_)
-        if (f) std::rethrow_exception(f);
-    return results_;
-}
-
-void ReplicaRuns::replay(std::size_t k, const std::function<void(std::span<const ImpactRecord>)>& sink) const {
+void ReplicaRunner::replay(std::size_t k, const std::function<void(std::span<const ImpactRecord>)>& sink) const {
     const fs::path path = fs::path(dir_) / replica_spill_name(windows_.at(k).replica);
     {
         std::ifstream in(path, std::ios::binary);
@@ -161,9 +139,45 @@ void ReplicaRuns::replay(std::size_t k, const std::function<void(std::span<const
     fs::remove(path);
 }
 
-void ReplicaRuns::discard() const {
+void ReplicaRunner::discard() const {
     std::error_code ignored;
     fs::remove_all(fs::path(dir_) / kReplicaSpillDirectory, ignored);
+}
+
+ReplicaRuns::ReplicaRuns(std::shared_ptr<const Model> model, std::vector<ReplicaWindow> windows, std::vector<InitialShots> shots,
+                         std::string run_dir, std::vector<int> slots)
+    : ReplicaRunner(std::move(windows), std::move(run_dir)), model_(std::move(model)), shots_(std::move(shots)), slots_(std::move(slots)) {
+    if (shots_.size() != windows_.size()) throw std::invalid_argument("ReplicaRuns: one placement per window");
+    results_.resize(windows_.size());
+    failures_.resize(windows_.size());
+    threads_.reserve(windows_.size());
+    for (std::size_t k = 0; k < windows_.size(); ++k) threads_.emplace_back([this, k] { run_one(k); });
+}
+
+ReplicaRuns::~ReplicaRuns() {
+    stop();
+    for (std::thread& t : threads_)
+        if (t.joinable()) t.join();
+}
+
+void ReplicaRuns::stop() { stop_.store(true, std::memory_order_relaxed); }
+
+void ReplicaRuns::run_one(std::size_t k) {
+    try {
+        results_[k] = run_replica(model_, windows_[k], shots_[k], dir_, slots_, [this] { return stop_.load(std::memory_order_relaxed); });
+    } catch (...) {
+        failures_[k] = std::current_exception();
+        stop();  // the others are of no use without it
+    }
+}
+
+std::vector<ReplicaResult> ReplicaRuns::wait() {
+    for (std::thread& t : threads_)
+        if (t.joinable()) t.join();
+    threads_.clear();
+    for (const std::exception_ptr& f : failures_)
+        if (f) std::rethrow_exception(f);
+    return results_;
 }
 
 void merge_replica_summaries(RunSummary& s, const ReplicaPlan& plan, const std::vector<ReplicaResult>& results,

@@ -42,36 +42,59 @@ struct ReplicaResult {
 
 // The spills' folder in the run's directory (removed once read, and by a new run: run_directory.h).
 inline constexpr std::string_view kReplicaSpillDirectory = "replicas";
+// The slot of each component in the per-logged-component statistics (-1 if not logged).
+std::vector<int> logged_slots(const Model& model);
+
 // Replica r's spill, relative to the run's directory.
 std::string replica_spill_name(int replica);
 
-class ReplicaRuns {
+// Runs replica `window` of `model` from `shots` on this thread, from its own t = 0 to its window's
+// end, spilling the window's impacts to replica_spill_name() in `run_dir`; stop() -> true ends it
+// at its next step. slots: the logged slot of each component (-1: not logged).
+ReplicaResult run_replica(std::shared_ptr<const Model> model, const ReplicaWindow& window, const InitialShots& shots,
+                          const std::string& run_dir, const std::vector<int>& slots, const std::function<bool()>& stop);
+
+// The other replicas of a run, wherever they run: threads of this process (ReplicaRuns) or the
+// other ranks of an MPI job (app/run/replica_ranks.h). Their spills are in the run's directory.
+class ReplicaRunner {
 public:
-    // windows: the replicas to run (not replica 0); shots: each one's placement; slots: the logged
-    // slot of each component (-1: not logged), as the run's speed histograms are kept.
-    ReplicaRuns(std::shared_ptr<const Model> model, std::vector<ReplicaWindow> windows, std::vector<InitialShots> shots,
-                std::string run_dir, std::vector<int> slots);
-    ~ReplicaRuns();  // stops and joins whatever still runs
-    ReplicaRuns(const ReplicaRuns&) = delete;
-    ReplicaRuns& operator=(const ReplicaRuns&) = delete;
+    ReplicaRunner(std::vector<ReplicaWindow> windows, std::string run_dir);
+    virtual ~ReplicaRunner() = default;
+    ReplicaRunner(const ReplicaRunner&) = delete;
+    ReplicaRunner& operator=(const ReplicaRunner&) = delete;
 
     // Asks every replica to stop at its next step (an interrupted run discards them).
-    void stop();
+    virtual void stop() = 0;
     // Waits for every replica; rethrows the first failure (after all have ended).
-    std::vector<ReplicaResult> wait();
+    virtual std::vector<ReplicaResult> wait() = 0;
     // Hands replica `k`'s (the k-th of the windows) spilled impacts to `sink` in order, a batch at a
     // time, then removes its spill. After wait().
     void replay(std::size_t k, const std::function<void(std::span<const ImpactRecord>)>& sink) const;
     // Removes the spills' folder (once all are read, or an interrupted or failed run).
     void discard() const;
 
+protected:
+    std::vector<ReplicaWindow> windows_;
+    std::string dir_;
+};
+
+// The other replicas on threads of this process, sharing the immutable model.
+class ReplicaRuns final : public ReplicaRunner {
+public:
+    // windows: the replicas to run (not replica 0); shots: each one's placement; slots: the logged
+    // slot of each component (-1: not logged), as the run's speed histograms are kept.
+    ReplicaRuns(std::shared_ptr<const Model> model, std::vector<ReplicaWindow> windows, std::vector<InitialShots> shots,
+                std::string run_dir, std::vector<int> slots);
+    ~ReplicaRuns() override;  // stops and joins whatever still runs
+
+    void stop() override;
+    std::vector<ReplicaResult> wait() override;
+
 private:
     void run_one(std::size_t k);
 
     std::shared_ptr<const Model> model_;
-    std::vector<ReplicaWindow> windows_;
     std::vector<InitialShots> shots_;
-    std::string dir_;
     std::vector<int> slots_;
     std::vector<ReplicaResult> results_;
     std::vector<std::exception_ptr> failures_;

@@ -18,6 +18,7 @@
 #include "app/checkpoint/checkpoint.h"
 #include "app/checkpoint/checkpoint_cadence.h"
 #include "app/interrupt.h"
+#include "app/mpi_launch.h"
 #include "app/paraview/paraview_assembly.h"
 #include "app/paraview/paraview_shot_series.h"
 #include "app/render_module.h"
@@ -25,6 +26,7 @@
 #include "app/run/coverage_watch.h"
 #include "app/run/loss_report.h"
 #include "app/run/replica_pilot.h"
+#include "app/run/replica_ranks.h"
 #include "app/run/replica_runs.h"
 #include "app/run/summary_builder.h"
 #include "common/input_error.h"
@@ -49,14 +51,6 @@ namespace peensim {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Slot of each component in the per-logged-component statistics (-1 if not logged).
-std::vector<int> logged_slots(const Model& model) {
-    std::vector<int> slots;
-    int next = 0;
-    for (const Component& c : model.components) slots.push_back(c.logged ? next++ : -1);
-    return slots;
-}
 
 std::vector<std::string> component_names(const Model& model) {
     std::vector<std::string> names;
@@ -178,12 +172,15 @@ private:
             fs::remove(fs::path(dir_) / "summary.json");
             fs::remove_all(fs::path(dir_) / kReplicaSpillDirectory);  // an interrupted replicas run's: dropped
             if (options_.replicas > 1) err_ << "note: a resumed run goes on as one replica (--replicas is for a fresh run)\n";
+            if (options_.replica_ranks) release_replica_ranks();
         } else {
             fs::remove(checkpoint_path());
             fs::remove(fs::path(dir_) / kImpactCsvFileName);
             sim_ = std::make_unique<Simulation>(model_, cavity ? place_shots(*model_, *cavity, setup.rng) : InitialShots{});
-            // The other replicas' loads, each from its own seed, placed now: the cavity goes below.
-            for (int k = 1; cavity && k < options_.replicas; ++k) {
+            // The other replicas' loads, each from its own seed, placed now: the cavity goes below
+            // (over MPI ranks, each rank places its own).
+            replicas_wanted_ = cavity && options_.replicas > 1;
+            for (int k = 1; cavity && k < options_.replicas && !options_.replica_ranks; ++k) {
                 Random rng(replica_seed(model_->seed, k));
                 replica_shots_.push_back(place_shots(*model_, *cavity, rng));
             }
@@ -258,12 +255,14 @@ private:
         RunLoop run(*sim_);
         if (coverage_watch_) run.add(*coverage_watch_);  // first: the others see a step after its dents count
         std::unique_ptr<ReplicaPilot> pilot;
-        if (!replica_shots_.empty()) {
+        if (replicas_wanted_) {
             pilot = std::make_unique<ReplicaPilot>(
                 *model_, options_.replicas, [this](const ReplicaPlan& plan) { start_replicas(plan); },
                 [this](const std::string& why) {
                     err_ << "note: --replicas " << options_.replicas << ": the run goes on as one replica: " << why << "\n";
                     replica_shots_.clear();
+                    replicas_wanted_ = false;
+                    if (options_.replica_ranks) release_replica_ranks();
                 });
             run.add(*pilot);
         }
@@ -280,7 +279,10 @@ private:
         plan_ = plan;
         sim_->end_at(plan.windows.front().run_to_s);
         std::vector<ReplicaWindow> others(plan.windows.begin() + 1, plan.windows.end());
-        replicas_ = std::make_unique<ReplicaRuns>(model_, std::move(others), std::move(replica_shots_), dir_, slots_);
+        if (options_.replica_ranks)
+            replicas_ = std::make_unique<ReplicaRanks>(std::move(others), dir_);
+        else
+            replicas_ = std::make_unique<ReplicaRuns>(model_, std::move(others), std::move(replica_shots_), dir_, slots_);
         replica_shots_.clear();
     }
 
@@ -415,8 +417,9 @@ private:
     std::vector<SpeedHistogram> speeds_;
     // --replicas (fresh run): the other replicas' loads until the pilot plans them, then their runs.
     std::vector<InitialShots> replica_shots_;
+    bool replicas_wanted_ = false;  // a fresh run with --replicas, until the pilot plans them or gives up
     std::optional<ReplicaPlan> plan_;
-    std::unique_ptr<ReplicaRuns> replicas_;
+    std::unique_ptr<ReplicaRunner> replicas_;
     std::vector<ReplicaResult> replica_results_;
     std::uint64_t own_logged_impacts_ = 0;  // replica 0's share of logged_impacts_
     std::vector<ImpactRecord> kept_;        // before_end()'s scratch
@@ -435,6 +438,9 @@ std::string run_output_directory(const RunOptions& options, const SceneDescripti
 }
 
 int run_job(const RunOptions& options, std::ostream& out, std::ostream& err) {
+    // Replicas under an MPI launcher: one a rank (a run without --replicas stays one process a rank,
+    // as a sweep's runs are).
+    if (options.replicas > 1 && !options.replica_ranks && launched_by_mpi()) return run_replicas_over_mpi(options, out, err);
     return report_errors(err, [&] { return run_scene(options, out, err); });
 }
 

@@ -37,6 +37,9 @@ struct RunOptions {
     // --replicas K: the run as K replicas of the chamber on K threads (app/run/replica_plan.h); 1: one
     // trajectory. A resumed run goes on as one replica.
     int replicas = 1;
+    // The other replicas run on the other ranks of an MPI job (app/run/replica_ranks.h: it sets this
+    // on rank 0), not on threads.
+    bool replica_ranks = false;
     std::optional<std::uint64_t> stop_after_steps;     // interrupt after this many steps (tests, benchmarks)
     WallClock checkpoint_clock = steady_wall_clock();  // the clock checkpoint intervals follow (tests: a fake one)
     // Asked after every step whether to stop (checkpoint, exit 130). Empty: Ctrl-C and SIGTERM, caught

@@ -8,14 +8,11 @@
 #include <string>
 
 #include "app/interrupt.h"
+#include "app/mpi_launch.h"
 #include "app/sweep/sweep_book.h"
 #include "app/sweep/sweep_plan.h"
 
 namespace peensim {
-
-// The process was started by an MPI launcher with more than one rank (Open MPI's or PMI's
-// environment): then a sweep spreads over the ranks.
-bool launched_by_mpi();
 
 // MPI_Init on construction, MPI_Finalize on destruction.
 class MpiSweep {

@@ -102,7 +102,8 @@ TEST(Replicas, TheReportSaysEachWindowHoldsAStartUp) {
     r.overrides = {"process.duration=4", "process.seed=1"};
     const InProcessResult k2 = run_in_process(r);
     ASSERT_EQ(k2.code, kExitOk) << k2.err;
-    const auto& windows = summary_of(dir.path / "k2")["replicas"]["windows"];
+    const nlohmann::json summary = summary_of(dir.path / "k2");
+    const auto& windows = summary["replicas"]["windows"];
     ASSERT_EQ(windows.size(), 2u);
     const double shortest = std::min(windows[0]["end_s"].get<double>() - windows[0]["start_s"].get<double>(),
                                      windows[1]["end_s"].get<double>() - windows[1]["start_s"].get<double>());

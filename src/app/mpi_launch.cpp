@@ -2,7 +2,7 @@
 // build without MPI (sweep_mpi_absent.cpp) can tell too.
 #include <cstdlib>
 
-#include "app/sweep/sweep_mpi.h"
+#include "app/mpi_launch.h"
 
 namespace peensim {
 

@@ -1,0 +1,190 @@
+#include "app/run/replica_result_codec.h"
+
+#include <type_traits>
+
+#include "common/byte_stream.h"
+
+namespace peensim {
+
+namespace {
+
+constexpr std::uint32_t kResultMagic = 0x52505231;  // "RPR1"
+constexpr std::uint32_t kPlanMagic = 0x504c4e31;    // "PLN1"
+
+static_assert(std::is_trivially_copyable_v<HealthCounters>);
+
+void put_window(ByteWriter& w, const ReplicaWindow& x) {
+    w.put(x.replica);
+    w.put(x.seed);
+    w.put(x.log_from_s);
+    w.put(x.run_to_s);
+    w.put(x.shift_s);
+}
+
+ReplicaWindow get_window(ByteReader& r) {
+    ReplicaWindow x;
+    x.replica = r.get<int>();
+    x.seed = r.get<std::uint64_t>();
+    x.log_from_s = r.get<double>();
+    x.run_to_s = r.get<double>();
+    x.shift_s = r.get<double>();
+    return x;
+}
+
+void put_vec(ByteWriter& w, const Vec3& v) {
+    for (int i = 0; i < 3; ++i) w.put(v[i]);
+}
+
+Vec3 get_vec(ByteReader& r) {
+    Vec3 v;
+    for (int i = 0; i < 3; ++i) v[i] = r.get<double>();
+    return v;
+}
+
+void put_lost(ByteWriter& w, const std::vector<LostShot>& lost) {
+    w.put<std::uint64_t>(lost.size());
+    for (const LostShot& l : lost) {
+        w.put(l.shot);
+        w.put(l.time_s);
+        put_vec(w, l.position_m);
+        w.put(l.cause);
+        w.put(l.from_time_s);
+        put_vec(w, l.from_m);
+        w.put(l.component);
+        put_vec(w, l.where_m);
+        w.put(l.clearance_m);
+        w.put(l.radius_m);
+    }
+}
+
+std::vector<LostShot> get_lost(ByteReader& r) {
+    const auto n = r.get<std::uint64_t>();
+    if (n > r.remaining()) r.fail("truncated");
+    std::vector<LostShot> lost(n);
+    for (LostShot& l : lost) {
+        l.shot = r.get<int>();
+        l.time_s = r.get<double>();
+        l.position_m = get_vec(r);
+        l.cause = r.get<LossCause>();
+        l.from_time_s = r.get<double>();
+        l.from_m = get_vec(r);
+        l.component = r.get<int>();
+        l.where_m = get_vec(r);
+        l.clearance_m = r.get<double>();
+        l.radius_m = r.get<double>();
+    }
+    return lost;
+}
+
+void put_counts(ByteWriter& w, const std::vector<NamedCount>& v) {
+    w.put<std::uint64_t>(v.size());
+    for (const NamedCount& c : v) {
+        w.put_string(c.name);
+        w.put(c.count);
+    }
+}
+
+std::vector<NamedCount> get_counts(ByteReader& r) {
+    const auto n = r.get<std::uint64_t>();
+    if (n > r.remaining()) r.fail("truncated");
+    std::vector<NamedCount> v(n);
+    for (NamedCount& c : v) {
+        c.name = r.get_string();
+        c.count = r.get<std::uint64_t>();
+    }
+    return v;
+}
+
+}  // namespace
+
+std::string encode_replica_result(const ReplicaResult& x) {
+    ByteWriter w;
+    w.put(kResultMagic);
+    put_window(w, x.window);
+    const RunSummary& s = x.summary;
+    put_counts(w, s.impacts_per_component);
+    put_counts(w, s.slow_contacts_per_component);
+    put_counts(w, s.health_counters);
+    w.put<std::uint64_t>(s.stage_times.size());
+    for (const StageTime& t : s.stage_times) {
+        w.put_string(t.stage);
+        w.put(t.seconds);
+    }
+    w.put(s.steps);
+    w.put(s.shot_steps);
+    w.put(s.shot_lost);
+    w.put(s.shots_in_flight);
+    w.put(s.shots_at_rest);
+    w.put(s.finished);
+    w.put_vector(x.impacts_at_window_start);
+    w.put_vector(x.slow_contacts_at_window_start);
+    w.put<std::uint64_t>(x.speeds.size());
+    for (const SpeedHistogram& h : x.speeds) w.put_string(h.serialize());
+    w.put(x.logged_impacts);
+    put_lost(w, x.lost);
+    w.put(x.health);
+    w.put(x.wall_s);
+    return w.bytes();
+}
+
+ReplicaResult decode_replica_result(std::string_view bytes) {
+    ByteReader r(bytes, "a replica's result");
+    if (r.get<std::uint32_t>() != kResultMagic) r.fail("not a replica's result");
+    ReplicaResult x;
+    x.window = get_window(r);
+    RunSummary& s = x.summary;
+    s.impacts_per_component = get_counts(r);
+    s.slow_contacts_per_component = get_counts(r);
+    s.health_counters = get_counts(r);
+    const auto stages = r.get<std::uint64_t>();
+    if (stages > r.remaining()) r.fail("truncated");
+    s.stage_times.resize(stages);
+    for (StageTime& t : s.stage_times) {
+        t.stage = r.get_string();
+        t.seconds = r.get<double>();
+    }
+    s.steps = r.get<std::uint64_t>();
+    s.shot_steps = r.get<std::uint64_t>();
+    s.shot_lost = r.get<std::uint64_t>();
+    s.shots_in_flight = r.get<std::uint64_t>();
+    s.shots_at_rest = r.get<std::uint64_t>();
+    s.finished = r.get<bool>();
+    x.impacts_at_window_start = r.get_vector<std::uint64_t>();
+    x.slow_contacts_at_window_start = r.get_vector<std::uint64_t>();
+    const auto histograms = r.get<std::uint64_t>();
+    if (histograms > r.remaining()) r.fail("truncated");
+    for (std::uint64_t k = 0; k < histograms; ++k) x.speeds.push_back(SpeedHistogram::deserialize(r.get_string()));
+    x.logged_impacts = r.get<std::uint64_t>();
+    x.lost = get_lost(r);
+    x.health = r.get<HealthCounters>();
+    x.wall_s = r.get<double>();
+    if (!r.at_end()) r.fail("bytes after its end");
+    return x;
+}
+
+std::string encode_replica_plan(const ReplicaPlan& plan) {
+    ByteWriter w;
+    w.put(kPlanMagic);
+    w.put(plan.pilot_s);
+    w.put(plan.warm_up_s);
+    w.put(plan.turn_s);
+    w.put<std::uint64_t>(plan.windows.size());
+    for (const ReplicaWindow& x : plan.windows) put_window(w, x);
+    return w.bytes();
+}
+
+ReplicaPlan decode_replica_plan(std::string_view bytes) {
+    ByteReader r(bytes, "the replicas' plan");
+    if (r.get<std::uint32_t>() != kPlanMagic) r.fail("not a replicas' plan");
+    ReplicaPlan plan;
+    plan.pilot_s = r.get<double>();
+    plan.warm_up_s = r.get<double>();
+    plan.turn_s = r.get<double>();
+    const auto n = r.get<std::uint64_t>();
+    if (n > r.remaining()) r.fail("truncated");
+    for (std::uint64_t k = 0; k < n; ++k) plan.windows.push_back(get_window(r));
+    if (!r.at_end()) r.fail("bytes after its end");
+    return plan;
+}
+
+}  // namespace peensim

@@ -1,0 +1,24 @@
+// A replica's result as bytes and back (app/run/replica_runs.h): how a replica run on another MPI
+// rank (app/run/replica_ranks.h) hands rank 0 what the run's summary merges from it. Only those
+// fields travel: the window, the counts at its start and end, the steps, the speeds, the lost shot
+// and the health counters, the wall time.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "app/run/replica_plan.h"
+#include "app/run/replica_runs.h"
+
+namespace peensim {
+
+std::string encode_replica_result(const ReplicaResult& r);
+// Throws std::runtime_error on bytes that are not encode_replica_result's.
+ReplicaResult decode_replica_result(std::string_view bytes);
+
+// The plan as bytes and back (rank 0 hands it to the other ranks); an empty plan: none (the run
+// goes on as one replica, or stopped before it had one).
+std::string encode_replica_plan(const ReplicaPlan& plan);
+ReplicaPlan decode_replica_plan(std::string_view bytes);
+
+}  // namespace peensim
