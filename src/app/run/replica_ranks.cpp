@@ -1,6 +1,7 @@
 #include "app/run/replica_ranks.h"
 
 #include <chrono>
+#include <filesystem>
 #include <ostream>
 #include <stdexcept>
 #include <thread>
@@ -20,6 +21,8 @@
 namespace peensim {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 constexpr int kTagPlan = 11;    // rank 0 -> rank k: the plan's bytes (no windows: none, end)
 constexpr int kTagResult = 12;  // rank k -> rank 0: 'R' and its result's bytes, or 'E' and why it failed
@@ -90,6 +93,11 @@ int run_replica_rank(const RunOptions& options, int rank) {
     }
     const ReplicaPlan plan = decode_replica_plan(receive_bytes(0, kTagPlan));
     if (plan.windows.empty()) return kExitOk;  // rank 0 goes on alone, or stopped before a plan
+    // Rank 0 made the spills' folder before it sent the plan: a rank that cannot see it would spill
+    // where rank 0 never reads.
+    if (failure.empty() && !fs::is_directory(fs::path(dir) / kReplicaSpillDirectory))
+        failure = "cannot see the run's directory " + dir + " as rank 0 made it (no " + std::string(kReplicaSpillDirectory) +
+                  "/ in it): every rank must see the run's directory, on a shared file system and from the same working directory";
     std::string answer;
     if (failure.empty()) {
         try {

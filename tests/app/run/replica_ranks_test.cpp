@@ -27,18 +27,23 @@ namespace fs = std::filesystem;
 
 const std::string kMpirun = "/usr/bin/mpirun";
 
-// `mpirun -n ranks peensim run rod.yaml --replicas replicas` of 4 s into dir, with `extra` options.
-ShellResult run_over_ranks(const fs::path& dir, int ranks, int replicas, const std::string& extra = "") {
+// mpirun as root (this machine's CI), and under the sanitizers as the MPI sweep's test has it
+// (tests/app/sweep/sweep_test.cpp): Open MPI's allocations left at exit are told apart from ours by
+// the suppressions, which need its plugins loaded and whole stacks.
+void mpirun_environment() {
     ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
     ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
 #if defined(__SANITIZE_ADDRESS__)
-    // As the MPI sweep's test (tests/app/sweep/sweep_test.cpp): Open MPI's allocations left at exit
-    // are told apart from ours by the suppressions, which need its plugins loaded and whole stacks.
     ::setenv("OMPI_MCA_mca_base_component_disable_dlclose", "1", 1);
     if (const char* asan = std::getenv("ASAN_OPTIONS");
         asan == nullptr || std::string(asan).find("fast_unwind_on_malloc") == std::string::npos)
         ::setenv("ASAN_OPTIONS", (std::string(asan != nullptr ? asan : "") + ":fast_unwind_on_malloc=0").c_str(), 1);
 #endif
+}
+
+// `mpirun -n ranks peensim run rod.yaml --replicas replicas` of 4 s into dir, with `extra` options.
+ShellResult run_over_ranks(const fs::path& dir, int ranks, int replicas, const std::string& extra = "") {
+    mpirun_environment();
     return run_shell(kMpirun + " -n " + std::to_string(ranks) + " --oversubscribe " + PEENSIM_BINARY + " run " + PEENSIM_SOURCE_DIR +
                      "/scenes/rod.yaml -o " + dir.string() + " --quiet --no-analyze --no-render --replicas " + std::to_string(replicas) +
                      " --set process.duration=4 --set process.seed=1 " + extra);
@@ -94,6 +99,23 @@ TEST(ReplicaRanks, AnInterruptedRankZeroStopsTheOthersAndResumesAsOne) {
     plain.overrides = {"process.duration=4", "process.seed=1"};
     ASSERT_EQ(run_in_process(plain).code, kExitOk);
     EXPECT_EQ(read_file(dir.path / "run" / kImpactCsvFileName), read_file(dir.path / "plain" / kImpactCsvFileName));
+}
+
+// Ranks that do not share the run's directory (here: each started in its own working directory,
+// the run's -o relative) are told apart before any replica runs, with a message that says why.
+TEST(ReplicaRanks, ARankThatCannotSeeTheRunsDirectorySaysSoBeforeItRuns) {
+    ASSERT_TRUE(fs::exists(kMpirun)) << "mpirun not found: .ci/install-deps installs openmpi-bin";
+    TempDir dir;
+    fs::create_directories(dir.path / "a");
+    fs::create_directories(dir.path / "b");
+    mpirun_environment();
+    const std::string args = std::string(" ") + PEENSIM_BINARY + " run " + PEENSIM_SOURCE_DIR +
+                             "/scenes/rod.yaml -o out --quiet --no-analyze --no-render --replicas 2 --set process.duration=4";
+    const ShellResult r = run_shell(kMpirun + " --oversubscribe -n 1 --wdir " + (dir.path / "a").string() + args + " : -n 1 --wdir " +
+                                    (dir.path / "b").string() + args);
+    EXPECT_NE(exit_code(r), kExitOk) << r.output;
+    EXPECT_NE(r.output.find("replica 1 (MPI rank 1): cannot see the run's directory out as rank 0 made it"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.path / "b" / "out"));  // rank 1 wrote nothing of its own
 }
 
 TEST(ReplicaResultCodec, AResultAndAPlanComeBackTheSameAndOtherBytesAreRefused) {
