@@ -71,6 +71,9 @@ int ranks() {
 
 // Rank k: its replica, quietly; whatever happens it answers rank 0's plan and ends on its word.
 int run_replica_rank(const RunOptions& options, int rank) {
+    // Ctrl-C reaches every rank from the launcher: caught from the start, so that a rank waiting for
+    // the plan is not ended by it (rank 0 checkpoints and tells the others).
+    const StopRequest interrupt({}, "");
     std::shared_ptr<const Model> model;
     InitialShots shots;
     std::string dir;
@@ -101,7 +104,6 @@ int run_replica_rank(const RunOptions& options, int rank) {
     std::string answer;
     if (failure.empty()) {
         try {
-            const StopRequest interrupt({}, "");
             bool told_to_stop = false;
             std::uint64_t steps = 0;
             const ReplicaResult result = run_replica(model, plan.windows.at(static_cast<std::size_t>(rank)), shots, dir, slots, [&] {
