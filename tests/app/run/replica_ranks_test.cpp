@@ -49,6 +49,16 @@ ShellResult run_over_ranks(const fs::path& dir, int ranks, int replicas, const s
                      " --set process.duration=4 --set process.seed=1 " + extra);
 }
 
+// The same run in this process, its replicas (if any) on threads.
+InProcessResult run_on_threads(const fs::path& dir, int replicas) {
+    InProcessRun r;
+    r.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
+    r.output_dir = dir.string();
+    r.replicas = replicas;
+    r.overrides = {"process.duration=4", "process.seed=1"};
+    return run_in_process(r);
+}
+
 int exit_code(const ShellResult& r) { return WIFEXITED(r.status) ? WEXITSTATUS(r.status) : -1; }
 
 nlohmann::json summary_of(const fs::path& dir) { return nlohmann::json::parse(read_file(dir / "summary.json")); }
@@ -58,12 +68,7 @@ TEST(ReplicaRanks, OverMpiRanksARunHasTheBytesOfItsReplicasOnThreads) {
     TempDir dir;
     const ShellResult ranks = run_over_ranks(dir.path / "ranks", 2, 2);
     ASSERT_EQ(exit_code(ranks), kExitOk) << ranks.output;
-    InProcessRun threads;
-    threads.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
-    threads.output_dir = (dir.path / "threads").string();
-    threads.replicas = 2;
-    threads.overrides = {"process.duration=4", "process.seed=1"};
-    const InProcessResult t = run_in_process(threads);
+    const InProcessResult t = run_on_threads(dir.path / "threads", 2);
     ASSERT_EQ(t.code, kExitOk) << t.err;
     EXPECT_EQ(read_file(dir.path / "ranks" / kImpactCsvFileName), read_file(dir.path / "threads" / kImpactCsvFileName));
     const nlohmann::json a = summary_of(dir.path / "ranks"), b = summary_of(dir.path / "threads");
@@ -93,11 +98,7 @@ TEST(ReplicaRanks, AnInterruptedRankZeroStopsTheOthersAndResumesAsOne) {
     EXPECT_FALSE(fs::exists(dir.path / "run" / "replicas"));
     const ShellResult resumed = run_over_ranks(dir.path / "run", 2, 2, "--resume");
     ASSERT_EQ(exit_code(resumed), kExitOk) << resumed.output;
-    InProcessRun plain;
-    plain.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rod.yaml";
-    plain.output_dir = (dir.path / "plain").string();
-    plain.overrides = {"process.duration=4", "process.seed=1"};
-    ASSERT_EQ(run_in_process(plain).code, kExitOk);
+    ASSERT_EQ(run_on_threads(dir.path / "plain", 1).code, kExitOk);
     EXPECT_EQ(read_file(dir.path / "run" / kImpactCsvFileName), read_file(dir.path / "plain" / kImpactCsvFileName));
 }
 

@@ -48,8 +48,9 @@ std::vector<double> impact_times(const fs::path& dir) {
     return t;
 }
 
-InProcessResult run_rod(const fs::path& dir, double duration_s, int replicas, std::uint64_t seed = 1) {
+InProcessResult run_rod(const fs::path& dir, double duration_s, int replicas, std::uint64_t seed = 1, bool analyze = false) {
     InProcessRun r;
+    r.analyze = analyze;
     r.scene_path = kRod;
     r.output_dir = dir.string();
     r.replicas = replicas;
@@ -94,13 +95,7 @@ TEST(Replicas, OneLogOfTheWindowsInTimeOrderWhoseCountsAddUpAndTheSameBytesTwice
 // shortest window (what their start-up bias is that of), and a run as one trajectory's does not.
 TEST(Replicas, TheReportSaysEachWindowHoldsAStartUp) {
     TempDir dir;
-    InProcessRun r;
-    r.scene_path = kRod;
-    r.output_dir = (dir.path / "k2").string();
-    r.replicas = 2;
-    r.analyze = true;
-    r.overrides = {"process.duration=4", "process.seed=1"};
-    const InProcessResult k2 = run_in_process(r);
+    const InProcessResult k2 = run_rod(dir.path / "k2", 4.0, 2, 1, true);
     ASSERT_EQ(k2.code, kExitOk) << k2.err;
     const nlohmann::json summary = summary_of(dir.path / "k2");
     const auto& windows = summary["replicas"]["windows"];
