@@ -85,7 +85,8 @@ std::string base64(const std::string& bytes) {
 }
 
 std::string markdown_to_html(const std::string& markdown, const std::string& title,
-                             const std::function<std::optional<std::string>(const std::string& src)>& image_bytes) {
+                             const std::function<std::optional<std::string>(const std::string& src)>& image_bytes,
+                             const std::map<std::string, std::string>& raw_blocks) {
     std::vector<std::string> lines;
     std::istringstream in(markdown);
     for (std::string l; std::getline(in, l);) lines.push_back(l);
@@ -100,7 +101,11 @@ std::string markdown_to_html(const std::string& markdown, const std::string& tit
     for (std::size_t i = 0; i < lines.size();) {
         const std::string& line = lines[i];
         std::string alt, src;
-        if (line.empty()) {
+        if (const auto block = raw_blocks.find(line); block != raw_blocks.end()) {
+            end_paragraph();
+            h << block->second;
+            ++i;
+        } else if (line.empty()) {
             end_paragraph();
             ++i;
         } else if (starts_with(line, "#")) {

@@ -100,6 +100,10 @@ class RunTest(TempDirTest):
         self.assertEqual(figures["components"][0]["impacts"], len(impacts["time_s"]))
         self.assertAlmostEqual(figures["components"][0]["coverage"], coverage["coverage"][-1], places=5)
         self.assertIn("# peensim analysis", run.report)
+        with open(run.report_html, encoding="utf-8") as f:
+            page = f.read()
+        if os.path.isfile("/usr/share/javascript/three/three.min.js"):  # libjs-three: the main job's packages
+            self.assertIn('<div class="pv" data-part="gear">', page)
         histograms = run.histograms()
         self.assertEqual(set(histograms["quantity"].tolist()), {"normal_speed", "impact_angle", "dent_diameter"})
 

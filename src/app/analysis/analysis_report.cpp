@@ -39,7 +39,8 @@ std::string interval_text(double low, double high) {
 // "98 %": the target as the headings write it.
 std::string target_text(double target) { return fmt(100.0 * target, 4) + " %"; }
 
-// A forecast in a table cell: "1320 s [1279-1383]", "reached at 41 s", "too short (run 40 s)".
+}  // namespace
+
 std::string forecast_cell(const AreaForecast& f) {
     switch (f.status) {
         case AreaForecast::Status::reached: return "reached at " + fmt(f.time_s) + " s";
@@ -52,6 +53,8 @@ std::string forecast_cell(const AreaForecast& f) {
     }
     return "";
 }
+
+namespace {
 
 // A forecast as a sentence of the report, ending with a full stop.
 std::string forecast_sentence(const AreaForecast& f, double analysed_s, const ReportContext& x) {
@@ -344,6 +347,15 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
     if (x.truncated) r << "The impact log ended inside a row (a run killed mid-write): that row was left out.\n";
     r << turn_sentences(w);
     r << verdict_sections(parts, x);
+    if (!x.views.empty() || !x.view_note.empty()) {
+        r << "\n## The parts in 3D\n\n";
+        if (!x.views.empty())
+            r << "report.html shows each part in 3D: choose the field it is coloured by (coverage, with the target marked on the colour "
+                 "bar; the impact density and the mean normal speed, smoothed as in the tables; the time its region takes to the target; "
+                 "the region), drag to turn it, and click on it to read the values there.\n\n";
+        for (const std::string& part : x.views) r << part_view_marker(part) << "\n";
+        if (!x.view_note.empty()) r << (x.views.empty() ? "" : "\n") << x.view_note << "\n";
+    }
     r << "\n## Summary\n\n" << analysis_summary_table(parts, w);
     r << "\nCoverage follows SAE J2277: the area fraction covered by at least one dent, each dent of diameter "
          "phi = D (8 rho v_n^2 / (9 sigma_y))^(1/4) (eq. 10), sampled on a grid of spacing a fifth of the dent at 1 m/s, over the "

@@ -37,7 +37,17 @@ struct ReportContext {
         double shortest_window_s = 0.0;  // s
     };
     std::optional<Replicas> replicas;
+    // The parts report.html shows in 3D (report_views.h), or why it shows none.
+    std::vector<std::string> views;
+    std::string view_note;
 };
+
+// A forecast in a table cell: "1320 s [1279-1383 s]", "reached at 41 s", "too short to say (run 40 s)".
+std::string forecast_cell(const AreaForecast& f);
+
+// The line of report.md that report.html replaces by the 3D view of `part` (an HTML comment:
+// Markdown viewers show nothing).
+inline std::string part_view_marker(const std::string& part) { return "<!-- 3D view: " + part + " -->"; }
 
 std::string analysis_report(const SceneDescription& scene, const std::vector<ComponentAnalysis>& parts, const ReportContext& context);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -23,6 +24,7 @@
 #include "app/analysis/coverage_setup.h"
 #include "app/analysis/coverage_verdict.h"
 #include "app/analysis/map_smoothing.h"
+#include "app/analysis/report_views.h"
 #include "app/checkpoint/checkpoint.h"
 #include "app/component_analysis.h"
 #include "app/paraview/paraview_coverage_series.h"
@@ -469,16 +471,20 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     read_summary_figures(dir, context);
     draw_least_covered(*model, parts, adir, context);
     context.pngs = write_analysis_plots(adir.string(), names, window.target_coverage, context.plot_note);
+    const char* three_js_dir = std::getenv("PEENSIM_THREE_JS");  // elsewhere than Debian puts libjs-three
+    const std::map<std::string, std::string> views = report_views(parts, window, three_js_dir ? three_js_dir : kThreeJsDir, context);
     const std::string report = analysis_report(scene, parts, context);
     write_file_atomically((adir / "report.md").string(), report);
     // The same page with its pictures inside: one file to send.
     write_file_atomically((adir / "report.html").string(),
-                          markdown_to_html(report, "peensim analysis: " + (scene.name.empty() ? output_dir : scene.name),
-                                           [&adir](const std::string& src) -> std::optional<std::string> {
-                                               std::ifstream png(adir / src, std::ios::binary);
-                                               if (!png) return std::nullopt;
-                                               return std::string(std::istreambuf_iterator<char>(png), {});
-                                           }));
+                          markdown_to_html(
+                              report, "peensim analysis: " + (scene.name.empty() ? output_dir : scene.name),
+                              [&adir](const std::string& src) -> std::optional<std::string> {
+                                  std::ifstream png(adir / src, std::ios::binary);
+                                  if (!png) return std::nullopt;
+                                  return std::string(std::istreambuf_iterator<char>(png), {});
+                              },
+                              views));
     write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, window));
     write_paraview_script(dir, scene, fastest_start_speed_m_per_s(model->sources), parts, duration, window);
     out << analysis_summary_table(parts, window) << "analysis: " << adir.string()

@@ -280,6 +280,13 @@ class Run:
         with open(self._analysis_file("report.md"), encoding="utf-8") as f:
             return f.read()
 
+    @property
+    def report_html(self):
+        """The path of analysis/report.html: the report with its pictures and each part in 3D (turn it,
+        colour it by coverage, impact density, mean normal speed, its region's time to the target or
+        region, click to read them), one file that opens offline: webbrowser.open(run.report_html)."""
+        return self._analysis_file("report.html")
+
     def analyze(self, verbose=False, *, from_s=0.0, to_s=None, min_speed=0.0, target=None, smoothing_radius=None):
         """Analyses the run (as `peensim analyze`): writes analysis/. Returns the run.
         from_s, to_s (s): analyse only the impacts in this window (drop a start-up transient);

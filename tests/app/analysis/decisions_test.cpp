@@ -284,6 +284,16 @@ TEST(MarkdownHtml, TheReportsSubsetExactly) {
     EXPECT_EQ(base64("foobar"), "Zm9vYmFy");
 }
 
+TEST(MarkdownHtml, AMarkerLineIsReplacedByItsBlockAsItStands) {
+    const std::string md = "Before.\n<!-- 3D view: gear -->\n<!-- 3D view: other -->\nAfter <b>.\n";
+    const std::string html = markdown_to_html(md, "T", [](const std::string&) -> std::optional<std::string> { return std::nullopt; },
+                                              {{"<!-- 3D view: gear -->", "<div id=\"v\"><script>1 < 2</script></div>\n"}});
+    const std::string body = html.substr(html.find("<body>\n") + 7);
+    EXPECT_EQ(body,
+              "<p>Before.</p>\n<div id=\"v\"><script>1 < 2</script></div>\n<p>&lt;!-- 3D view: other --&gt; After &lt;b&gt;.</p>\n"
+              "</body>\n</html>\n");
+}
+
 TEST(RenderRegions, EachRegionInItsColourWhereItIs) {
     // The rod with two regions, x > 0 and x < 0, drawn from its scene file.
     TempDir dir;

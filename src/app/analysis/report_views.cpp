@@ -1,0 +1,165 @@
+#include "app/analysis/report_views.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+
+#include "app/analysis/analysis_format.h"
+#include "geometry/vertex_clustering.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
+
+// The colour bar's top: the 99th percentile of the finite values (one hot triangle would wash
+// the rest out), or their largest when that is 0.
+double bar_top(const std::vector<float>& values) {
+    std::vector<float> v;
+    v.reserve(values.size());
+    for (float x : values)
+        if (std::isfinite(x)) v.push_back(x);
+    if (v.empty()) return 1.0;
+    const std::size_t k = static_cast<std::size_t>(0.99 * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    const double top = v[k];
+    return top > 0.0 ? top : std::max(1.0, static_cast<double>(*std::max_element(v.begin(), v.end())));
+}
+
+std::optional<std::string> read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) {
+    PartView v;
+    v.name = c.name;
+    const ThinnedMesh shown = thin_for_display(*c.mesh, kViewMaxTriangles);
+    v.positions_mm.reserve(3 * shown.vertices.size());
+    for (const Vec3& p : shown.vertices)
+        for (int k = 0; k < 3; ++k) v.positions_mm.push_back(static_cast<float>(p[k] * 1e3));
+    for (const auto& t : shown.triangles)
+        for (int k : t) v.indices.push_back(static_cast<std::uint32_t>(k));
+    v.source = shown.source;
+    if (shown.cell_m > 0.0)
+        v.note = "Shown: " + std::to_string(shown.triangles.size()) + " of the part's " + std::to_string(c.mesh->triangle_count()) +
+                 " triangles (vertices merged in cubes of " + fmt(shown.cell_m * 1e3, 3) +
+                 " mm for display); a click reads the values of the part's triangle it falls on.";
+
+    const double duration = window.length_s();  // s
+    const auto per_shown = [&](auto&& value_of) {
+        std::vector<float> values;
+        values.reserve(v.source.size());
+        for (std::uint32_t t : v.source) {
+            const double x = value_of(static_cast<std::size_t>(t));
+            values.push_back(std::isfinite(x) ? static_cast<float>(x) : kNone);
+        }
+        return values;
+    };
+    if (c.coverage) {
+        PartViewField f{"coverage",
+                        "coverage (%)",
+                        "%",
+                        per_shown([&](std::size_t t) { return 100.0 * c.coverage->shown_triangle_coverage(t); }),
+                        0.0,
+                        100.0,
+                        100.0 * window.target_coverage,
+                        1,
+                        false};
+        v.fields.push_back(std::move(f));
+    }
+    if (!c.smoothed.empty()) {
+        PartViewField density{"impacts_per_mm2_s_smoothed",
+                              "impact density (impacts/mm2/s, smoothed)",
+                              "/mm2/s",
+                              per_shown([&](std::size_t t) { return c.smoothed[t].impacts_per_m2() / 1e6 / duration; }),
+                              0.0,
+                              1.0,
+                              std::nullopt,
+                              4,
+                              false};
+        density.hi = bar_top(density.values);
+        v.fields.push_back(std::move(density));
+        PartViewField speed{"mean_vn_mps_smoothed",
+                            "mean normal speed (m/s, smoothed)",
+                            "m/s",
+                            per_shown([&](std::size_t t) { return c.smoothed[t].mean_normal_speed(); }),
+                            0.0,
+                            1.0,
+                            std::nullopt,
+                            3,
+                            false};
+        speed.hi = bar_top(speed.values);
+        v.fields.push_back(std::move(speed));
+    }
+    if (!c.regions.empty()) {
+        for (std::size_t r = 0; r < c.regions.size(); ++r)
+            v.regions.push_back(
+                {c.regions.name(r), c.coverage && r < c.forecast.regions.size() ? forecast_cell(c.forecast.regions[r]) : ""});
+        const auto region_time = [&](std::size_t t) {
+            const int r = c.regions.dominant_region(t);
+            if (r < 0 || !c.coverage || static_cast<std::size_t>(r) >= c.forecast.regions.size()) return std::nan("");
+            const AreaForecast& f = c.forecast.regions[static_cast<std::size_t>(r)];
+            const bool timed = f.status == AreaForecast::Status::forecast || f.status == AreaForecast::Status::reached;
+            return timed ? f.time_s : std::nan("");
+        };
+        PartViewField time{"region_time_to_target_s",
+                           "time to the target of its region (s, forecast)",
+                           "s",
+                           per_shown(region_time),
+                           0.0,
+                           1.0,
+                           std::nullopt,
+                           0,
+                           false};
+        double top = 0.0;
+        for (float x : time.values)
+            if (std::isfinite(x)) top = std::max(top, static_cast<double>(x));
+        time.hi = top > 0.0 ? top : 1.0;
+        if (c.coverage) v.fields.push_back(std::move(time));
+        v.fields.push_back({"region", "region", "",
+                            per_shown([&](std::size_t t) { return static_cast<double>(c.regions.dominant_region(t)); }), 0.0, 1.0,
+                            std::nullopt, 0, true});
+    }
+    // Far below the target the coverage field is one colour (a 5 s run of a part that needs 20
+    // minutes): draw where the impacts land first, the coverage one choice away.
+    const bool low = c.coverage && c.coverage->coverage() < 0.5 * window.target_coverage;
+    if (low && v.fields.size() > 1 && v.fields[1].name == "impacts_per_mm2_s_smoothed") v.shown = 1;
+    return v;
+}
+
+std::map<std::string, std::string> report_views(const std::vector<ComponentAnalysis>& parts, const AnalysisWindow& window,
+                                                const std::string& library_dir, ReportContext& context) {
+    std::map<std::string, std::string> blocks;
+    const fs::path dir(library_dir);
+    const std::optional<std::string> three = read_text(dir / "three.min.js");
+    const std::optional<std::string> orbit = read_text(dir / "examples/js/controls/OrbitControls.js");
+    bool any = false;
+    for (const ComponentAnalysis& c : parts) any = any || (c.coverage && c.mesh && c.mesh->triangle_count() > 0);
+    if (!any) return blocks;
+    if (!three || !orbit) {
+        context.view_note = "No 3D view in report.html: it inlines three.js from Debian's libjs-three, not found in " + library_dir +
+                            " (`apt-get install libjs-three`, then `peensim analyze` the run again).";
+        return blocks;
+    }
+    for (const ComponentAnalysis& c : parts) {
+        if (!c.coverage || !c.mesh || c.mesh->triangle_count() == 0) continue;
+        std::string html = blocks.empty() ? part_view_scripts(*three, *orbit) : std::string();
+        html += part_view_html(part_view_of(c, window));
+        blocks[part_view_marker(c.name)] = std::move(html);
+        context.views.push_back(c.name);
+    }
+    return blocks;
+}
+
+}  // namespace peensim

@@ -1,0 +1,129 @@
+// report.html's 3D view of a part (app/analysis/report_views.h, output/part_view_html.h), end to
+// end on a short gear run: the page holds the view and its library inline, and in headless
+// Chromium it draws the part, and a pick of a triangle reads that triangle's values as the
+// triangles CSV gives them. Without the library the report says what to install.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/analysis/analyze_job.h"
+#include "app/analysis/report_views.h"
+#include "app/run/run_job.h"
+#include "support/csv_columns.h"
+#include "support/shell_command.h"
+#include "support/temp_dir.h"
+
+namespace fs = std::filesystem;
+using peensim::testing::TempDir;
+
+namespace peensim {
+namespace report_view_cases {
+
+std::string read_all(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// A 0.3 s run of the shipped gear, analysed.
+void analysed_gear(const fs::path& dir) {
+    RunOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml";
+    o.output_dir = dir.string();
+    o.overrides = {"process.duration=0.3"};
+    o.progress = false;
+    o.analyze = false;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir.string(), out, err), kExitOk) << err.str();
+}
+
+// The headless browser the test drives (CI installs chromium-headless-shell), or "" for none.
+std::string headless_browser() {
+    for (const char* b : {"/usr/bin/chromium-headless-shell", "/usr/lib/chromium/chromium-headless-shell", "/usr/bin/chromium"})
+        if (fs::exists(b)) return b;
+    return "";
+}
+
+TEST(ReportView, TheReportHoldsAViewOfEachPartWithItsLibraryInline) {
+    if (!fs::exists(std::string(kThreeJsDir) + "/three.min.js")) GTEST_SKIP() << "libjs-three is not installed";
+    TempDir dir;
+    analysed_gear(dir.path);
+    const std::string md = read_all(dir.path / "analysis" / "report.md");
+    EXPECT_NE(md.find("## The parts in 3D"), std::string::npos);
+    EXPECT_NE(md.find("<!-- 3D view: gear -->"), std::string::npos);
+    const std::string html = read_all(dir.path / "analysis" / "report.html");
+    EXPECT_EQ(html.find("<!-- 3D view: gear -->"), std::string::npos) << "the marker is replaced by the view";
+    EXPECT_NE(html.find("<div class=\"pv\" data-part=\"gear\">"), std::string::npos);
+    EXPECT_NE(html.find("OrbitControls"), std::string::npos);
+    EXPECT_NE(html.find("peensimPartView"), std::string::npos);
+    EXPECT_EQ(html.find("<script src="), std::string::npos) << "one file that opens offline";
+    // The view's data: the mesh of the gear (4,960 triangles, not thinned) and five fields.
+    const std::size_t open = html.find("<script type=\"application/json\">"), close = html.find("</script>", open);
+    ASSERT_NE(open, std::string::npos);
+    const auto data = nlohmann::json::parse(html.substr(open + 32, close - open - 32));
+    EXPECT_EQ(data["name"], "gear");
+    ASSERT_EQ(data["fields"].size(), 5u);
+    EXPECT_EQ(data["fields"][0]["name"], "coverage");
+    EXPECT_DOUBLE_EQ(data["fields"][0]["target"].get<double>(), 98.0);
+    EXPECT_EQ(data["fields"][4]["categorical"], true);
+    EXPECT_EQ(data["regions"].size(), 21u);  // the 20 teeth and the bore
+}
+
+TEST(ReportView, WithoutTheLibraryTheReportSaysWhatToInstall) {
+    TempDir dir;
+    ::setenv("PEENSIM_THREE_JS", (dir.path / "no-three-here").c_str(), 1);
+    analysed_gear(dir.path);
+    ::unsetenv("PEENSIM_THREE_JS");
+    const std::string md = read_all(dir.path / "analysis" / "report.md");
+    EXPECT_NE(md.find("apt-get install libjs-three"), std::string::npos);
+    EXPECT_EQ(read_all(dir.path / "analysis" / "report.html").find("class=\"pv\""), std::string::npos);
+}
+
+TEST(ReportView, InAHeadlessBrowserThePartIsDrawnAndAPickReadsTheTrianglesValues) {
+    const std::string browser = headless_browser();
+    if (browser.empty() || !fs::exists(std::string(kThreeJsDir) + "/three.min.js"))
+        GTEST_SKIP() << "needs chromium-headless-shell and libjs-three (CI installs both)";
+    TempDir dir;
+    analysed_gear(dir.path);
+    // The most hit triangle of the gear: on the outside, where a shot can reach.
+    const auto csv = testing::read_csv_columns(dir.path / "analysis" / "gear_triangles.csv");
+    const std::vector<double>& impacts = csv.at("impacts");
+    std::size_t t = 0;
+    for (std::size_t k = 0; k < impacts.size(); ++k)
+        if (impacts[k] > impacts[t]) t = k;
+    ASSERT_GT(impacts[t], 0.0);
+    const fs::path page = dir.path / "analysis" / "report.html";
+    const auto r = testing::run_shell("'" + browser +
+                                      "' --headless --no-sandbox --disable-gpu --enable-unsafe-swiftshader --use-angle=swiftshader "
+                                      "--virtual-time-budget=20000 --dump-dom 'file://" +
+                                      page.string() + "#pick=0:" + std::to_string(t) + "' 2>/dev/null");
+    ASSERT_EQ(r.status, 0) << r.output.substr(0, 2000);
+    const auto attribute = [&](const std::string& name) {
+        std::smatch m;
+        const std::regex re(name + "=\"([^\"]*)\"");
+        return std::regex_search(r.output, m, re) ? m[1].str() : std::string();
+    };
+    ASSERT_EQ(attribute("data-error"), "");
+    EXPECT_EQ(attribute("data-views-ready"), "1");
+    EXPECT_EQ(attribute("data-picked"), "yes");
+    EXPECT_GT(std::stol("0" + attribute("data-lit-pixels")), 10000) << "the part is drawn";
+    ASSERT_EQ(attribute("data-triangle"), std::to_string(t));
+    // Its values, as the triangles CSV has them (the CSV rounds to 4-6 digits; the view holds floats).
+    std::string values = attribute("data-values");
+    const auto v = nlohmann::json::parse(values);
+    ASSERT_EQ(v.size(), 5u);
+    EXPECT_NEAR(v[0].get<double>(), 100.0 * csv.at("coverage")[t], 1e-3 * std::max(1.0, 100.0 * csv.at("coverage")[t]));
+    EXPECT_NEAR(v[1].get<double>(), csv.at("impacts_per_mm2_s_smoothed")[t], 1e-3 * csv.at("impacts_per_mm2_s_smoothed")[t]);
+    EXPECT_NEAR(v[2].get<double>(), csv.at("mean_vn_mps_smoothed")[t], 1e-3 * csv.at("mean_vn_mps_smoothed")[t]);
+    EXPECT_FALSE(attribute("data-region").empty());
+}
+
+}  // namespace report_view_cases
+}  // namespace peensim
