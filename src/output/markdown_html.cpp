@@ -1,5 +1,8 @@
 #include "output/markdown_html.h"
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -82,6 +85,14 @@ std::string base64(const std::string& bytes) {
         for (std::size_t k = 0; k < 4; ++k) out += k <= n ? kDigits[(v >> (18 - 6 * k)) & 63u] : '=';
     }
     return out;
+}
+
+std::function<std::optional<std::string>(const std::string& src)> image_files_in(const std::string& directory) {
+    return [directory](const std::string& src) -> std::optional<std::string> {
+        std::ifstream file(std::filesystem::path(directory) / src, std::ios::binary);
+        if (!file) return std::nullopt;
+        return std::string(std::istreambuf_iterator<char>(file), {});
+    };
 }
 
 std::string markdown_to_html(const std::string& markdown, const std::string& title,

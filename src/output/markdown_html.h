@@ -19,6 +19,9 @@ std::string markdown_to_html(const std::string& markdown, const std::string& tit
                              const std::function<std::optional<std::string>(const std::string& src)>& image_bytes,
                              const std::map<std::string, std::string>& raw_blocks = {});
 
+// image_bytes for pictures beside the page: the bytes of directory/src, nullopt when unreadable.
+std::function<std::optional<std::string>(const std::string& src)> image_files_in(const std::string& directory);
+
 // RFC 4648 base64 (with padding).
 std::string base64(const std::string& bytes);
 

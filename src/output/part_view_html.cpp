@@ -72,6 +72,8 @@ std::string part_view_html(const PartView& view) {
                                   {"categorical", f.categorical}});
     }
     data["shown"] = view.shown < view.fields.size() ? view.shown : 0;
+    data["instances"] = view.instances;
+    if (!view.instances.empty()) data["instance"] = array_base64(view.instance);
     data["regions"] = nlohmann::json::array();
     for (const PartViewRegion& r : view.regions) data["regions"].push_back({{"name", r.name}, {"forecast", r.forecast}});
     std::string h = "<div class=\"pv\" data-part=\"" + xml_text(view.name) + "\">\n<div class=\"pv-top\"><b>" + xml_text(view.name) +

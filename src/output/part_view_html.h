@@ -37,6 +37,10 @@ struct PartView {
     std::vector<std::uint32_t> source;   // per triangle shown: the part's triangle
     std::vector<PartViewField> fields;
     std::vector<PartViewRegion> regions;
+    // Several copies of the part side by side (a sweep's variants, left to right): their names, and
+    // per triangle shown the copy it belongs to. Empty: one part.
+    std::vector<std::string> instances;
+    std::vector<std::uint32_t> instance;
     std::size_t shown = 0;  // the field drawn first
     std::string note;       // under the view: what it shows (e.g. "3,120 of 500,480 triangles")
 };

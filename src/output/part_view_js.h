@@ -7,9 +7,10 @@
 // vertex), indices (uint32, 3 per triangle shown), source (uint32 per triangle shown: the part's
 // triangle), region (int32 per triangle shown, -1: none), fields [{name, label, unit, values
 // (float32 per triangle shown; NaN: none), lo, hi, target|null, digits, categorical}],
-// regions [{name, forecast}], shown (the field drawn first).
+// regions [{name, forecast}], shown (the field drawn first), instances (names of copies shown side
+// by side, a sweep's variants) with instance (uint32 per triangle shown: its copy).
 //
-// A test hook: report.html#pick=V:T picks triangle T (the part's numbering) of view V once the
+// A test hook: report.html#pick=V:T[:C] picks triangle T (the part's numbering; of copy C) of view V once the
 // page is drawn, as a click on it would (the camera moved just outside it, looking at it along its
 // normal, the ray cast from the middle of the view), and writes what it found into the view's
 // info element as data-* attributes; data-lit-pixels counts the pixels the part covers.
@@ -50,6 +51,7 @@ inline constexpr const char* kPartViewJs = R"JS(
     var positions = new Float32Array(bytes(data.positions));
     var indices = new Uint32Array(bytes(data.indices));
     var source = new Uint32Array(bytes(data.source));
+    var instance = data.instances.length ? new Uint32Array(bytes(data.instance)) : null;
     var triangles = indices.length / 3;
     data.fields.forEach(function (f) { f.array = new Float32Array(bytes(f.values)); });
 
@@ -79,7 +81,7 @@ inline constexpr const char* kPartViewJs = R"JS(
     scene.add(mesh);
     var sphere = geometry.boundingSphere;
     var camera = new THREE.PerspectiveCamera(35, canvas.clientWidth / canvas.clientHeight, sphere.radius * 0.001, sphere.radius * 20);
-    camera.position.copy(sphere.center).add(new THREE.Vector3(1.2, 0.9, 1.6).normalize().multiplyScalar(sphere.radius * 3.0));
+    camera.position.copy(sphere.center).add((data.instances.length ? new THREE.Vector3(0.1, 0.75, 1.0) : new THREE.Vector3(1.2, 0.9, 1.6)).normalize().multiplyScalar(sphere.radius * 3.0));
     camera.lookAt(sphere.center);
     scene.add(new THREE.AmbientLight(0xffffff, 0.45));
     var light = new THREE.DirectionalLight(0xffffff, 0.65);
@@ -130,10 +132,12 @@ inline constexpr const char* kPartViewJs = R"JS(
         rows.push('<b>' + f.label + '</b>: ' + text(f, f.array[t]));
       });
       var region = r >= 0 ? data.regions[Math.round(r)] : null;
-      info.innerHTML = 'Triangle ' + source[t] + ' at (' + p.x.toFixed(2) + ', ' + p.y.toFixed(2) + ', ' + p.z.toFixed(2) + ') mm' +
+      var copy = instance ? data.instances[instance[t]] : '';
+      info.innerHTML = (copy ? 'Variant <b>' + copy + '</b>: t' : 'T') + 'riangle ' + source[t] + ' at (' + p.x.toFixed(2) + ', ' + p.y.toFixed(2) + ', ' + p.z.toFixed(2) + ') mm' +
         (region ? ', region <b>' + region.name + '</b>' + (region.forecast ? ' (to the target: ' + region.forecast + ')' : '') : '') +
         '<br>' + rows.join('; ');
       info.setAttribute('data-triangle', source[t]);
+      info.setAttribute('data-instance', copy);
       info.setAttribute('data-region', region ? region.name : '');
       info.setAttribute('data-values', JSON.stringify(data.fields.map(function (f) { return f.array[t]; })));
     }
@@ -150,10 +154,12 @@ inline constexpr const char* kPartViewJs = R"JS(
       pick(new THREE.Vector2(2 * (e.clientX - box.left) / box.width - 1, 1 - 2 * (e.clientY - box.top) / box.height));
     });
 
-    // Pick triangle `wanted` (the part's numbering) as a click on it would: from just outside it.
-    this.pickTriangle = function (wanted) {
+    // Pick triangle `wanted` (the part's numbering; of copy `copy` side by side) as a click on it
+    // would: from just outside it.
+    this.pickTriangle = function (wanted, copy) {
       var t = -1;
-      for (var i = 0; i < triangles; i++) if (source[i] === wanted) { t = i; break; }
+      for (var i = 0; i < triangles; i++)
+        if (source[i] === wanted && (!instance || instance[i] === (copy || 0))) { t = i; break; }
       if (t < 0) { show(null); return false; }
       var a = new THREE.Vector3().fromArray(xyz, 9 * t), b = new THREE.Vector3().fromArray(xyz, 9 * t + 3);
       var c = new THREE.Vector3().fromArray(xyz, 9 * t + 6);
@@ -193,10 +199,10 @@ inline constexpr const char* kPartViewJs = R"JS(
         views.push(null);
       }
     });
-    var m = /pick=(\d+):(\d+)/.exec(location.hash);
+    var m = /pick=(\d+):(\d+)(?::(\d+))?/.exec(location.hash);
     if (m && views[+m[1]]) {
       var root = document.querySelectorAll('.pv')[+m[1]];
-      root.querySelector('.pv-info').setAttribute('data-picked', views[+m[1]].pickTriangle(+m[2]) ? 'yes' : 'no');
+      root.querySelector('.pv-info').setAttribute('data-picked', views[+m[1]].pickTriangle(+m[2], +(m[3] || 0)) ? 'yes' : 'no');
     }
     document.body.setAttribute('data-views-ready', views.length);
   });

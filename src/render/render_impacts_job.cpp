@@ -16,6 +16,7 @@
 #include "analysis/area_percentile.h"
 #include "app/report_errors.h"
 #include "app/run/run_job.h"
+#include "common/csv_column.h"
 #include "model/model.h"
 #include "render/map_mesh.h"
 #include "render/png_io.h"
@@ -46,30 +47,16 @@ const std::array<MapView, 4> kViews{{
     {"side", Vec3(-1.0, 0.15, -0.2)},
 }};
 
-// One column of <component>_triangles.csv, NaN for an empty cell.
+// One column of <component>_triangles.csv, NaN for an empty cell; a missing file or column says
+// to analyse the run (again).
 std::vector<double> read_column(const fs::path& csv, const std::string& column) {
-    std::ifstream in(csv);
-    if (!in)
-        throw std::runtime_error(csv.string() + ": not found (run `peensim analyze " + csv.parent_path().parent_path().string() +
-                                 "` first)");
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::string> header;
-    std::stringstream hs(line);
-    for (std::string h; std::getline(hs, h, ',');) header.push_back(h);
-    const auto it = std::find(header.begin(), header.end(), column);
-    if (it == header.end())
-        throw std::runtime_error(csv.string() + ": no column '" + column + "' (written by an older peensim? run `peensim analyze " +
-                                 csv.parent_path().parent_path().string() + "` again)");
-    const auto col = static_cast<std::size_t>(it - header.begin());
-    std::vector<double> values;
-    while (std::getline(in, line)) {
-        std::stringstream ls(line);
-        std::string field;
-        for (std::size_t k = 0; k <= col; ++k) std::getline(ls, field, ',');
-        values.push_back(field.empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(field));
+    const std::string run = csv.parent_path().parent_path().string();
+    if (!fs::exists(csv)) throw std::runtime_error(csv.string() + ": not found (run `peensim analyze " + run + "` first)");
+    try {
+        return read_csv_numbers(csv, column);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(std::string(e.what()) + " (written by an older peensim? run `peensim analyze " + run + "` again)");
     }
-    return values;
 }
 
 // The colour scale's top: the value that 98 % of the part's area does not exceed (values above are

@@ -477,14 +477,8 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     write_file_atomically((adir / "report.md").string(), report);
     // The same page with its pictures inside: one file to send.
     write_file_atomically((adir / "report.html").string(),
-                          markdown_to_html(
-                              report, "peensim analysis: " + (scene.name.empty() ? output_dir : scene.name),
-                              [&adir](const std::string& src) -> std::optional<std::string> {
-                                  std::ifstream png(adir / src, std::ios::binary);
-                                  if (!png) return std::nullopt;
-                                  return std::string(std::istreambuf_iterator<char>(png), {});
-                              },
-                              views));
+                          markdown_to_html(report, "peensim analysis: " + (scene.name.empty() ? output_dir : scene.name),
+                                           image_files_in(adir.string()), views));
     write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, window));
     write_paraview_script(dir, scene, fastest_start_speed_m_per_s(model->sources), parts, duration, window);
     out << analysis_summary_table(parts, window) << "analysis: " << adir.string()

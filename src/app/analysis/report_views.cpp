@@ -19,9 +19,15 @@ namespace {
 
 constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
 
-// The colour bar's top: the 99th percentile of the finite values (one hot triangle would wash
-// the rest out), or their largest when that is 0.
-double bar_top(const std::vector<float>& values) {
+std::optional<std::string> read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+double colour_bar_top(const std::vector<float>& values) {
     std::vector<float> v;
     v.reserve(values.size());
     for (float x : values)
@@ -33,13 +39,18 @@ double bar_top(const std::vector<float>& values) {
     return top > 0.0 ? top : std::max(1.0, static_cast<double>(*std::max_element(v.begin(), v.end())));
 }
 
-std::optional<std::string> read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    return std::string(std::istreambuf_iterator<char>(in), {});
+std::optional<std::string> view_scripts(const std::string& library_dir) {
+    const fs::path dir(library_dir);
+    const std::optional<std::string> three = read_text(dir / "three.min.js");
+    const std::optional<std::string> orbit = read_text(dir / "examples/js/controls/OrbitControls.js");
+    if (!three || !orbit) return std::nullopt;
+    return part_view_scripts(*three, *orbit);
 }
 
-}  // namespace
+std::string no_view_library_note(const std::string& library_dir) {
+    return "No 3D view in report.html: it inlines three.js from Debian's libjs-three, not found in " + library_dir +
+           " (`apt-get install libjs-three`, then make the report again).";
+}
 
 PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) {
     PartView v;
@@ -88,7 +99,7 @@ PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) 
                               std::nullopt,
                               4,
                               false};
-        density.hi = bar_top(density.values);
+        density.hi = colour_bar_top(density.values);
         v.fields.push_back(std::move(density));
         PartViewField speed{"mean_vn_mps_smoothed",
                             "mean normal speed (m/s, smoothed)",
@@ -99,7 +110,7 @@ PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) 
                             std::nullopt,
                             3,
                             false};
-        speed.hi = bar_top(speed.values);
+        speed.hi = colour_bar_top(speed.values);
         v.fields.push_back(std::move(speed));
     }
     if (!c.regions.empty()) {
@@ -141,20 +152,17 @@ PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) 
 std::map<std::string, std::string> report_views(const std::vector<ComponentAnalysis>& parts, const AnalysisWindow& window,
                                                 const std::string& library_dir, ReportContext& context) {
     std::map<std::string, std::string> blocks;
-    const fs::path dir(library_dir);
-    const std::optional<std::string> three = read_text(dir / "three.min.js");
-    const std::optional<std::string> orbit = read_text(dir / "examples/js/controls/OrbitControls.js");
     bool any = false;
     for (const ComponentAnalysis& c : parts) any = any || (c.coverage && c.mesh && c.mesh->triangle_count() > 0);
     if (!any) return blocks;
-    if (!three || !orbit) {
-        context.view_note = "No 3D view in report.html: it inlines three.js from Debian's libjs-three, not found in " + library_dir +
-                            " (`apt-get install libjs-three`, then `peensim analyze` the run again).";
+    const std::optional<std::string> scripts = view_scripts(library_dir);
+    if (!scripts) {
+        context.view_note = no_view_library_note(library_dir);
         return blocks;
     }
     for (const ComponentAnalysis& c : parts) {
         if (!c.coverage || !c.mesh || c.mesh->triangle_count() == 0) continue;
-        std::string html = blocks.empty() ? part_view_scripts(*three, *orbit) : std::string();
+        std::string html = blocks.empty() ? *scripts : std::string();
         html += part_view_html(part_view_of(c, window));
         blocks[part_view_marker(c.name)] = std::move(html);
         context.views.push_back(c.name);

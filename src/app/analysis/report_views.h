@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,5 +30,16 @@ std::map<std::string, std::string> report_views(const std::vector<ComponentAnaly
                                                 const std::string& library_dir, ReportContext& context);
 
 inline constexpr const char* kThreeJsDir = "/usr/share/javascript/three";
+
+// The scripts a page of views needs (part_view_scripts), from library_dir; empty when its files
+// are not there.
+std::optional<std::string> view_scripts(const std::string& library_dir);
+
+// The sentence a report gives for views it could not draw: what to install.
+std::string no_view_library_note(const std::string& library_dir);
+
+// A colour bar's top: the 99th percentile of the finite values (one hot triangle would wash the
+// rest out), or their largest when that is 0, or 1 when there is none.
+double colour_bar_top(const std::vector<float>& values);
 
 }  // namespace peensim

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -14,8 +15,11 @@
 #include "analysis/student_t.h"
 #include "app/analysis/analysis_format.h"
 #include "app/analysis/analysis_plots.h"
+#include "app/analysis/report_views.h"
 #include "app/component_analysis.h"
+#include "app/sweep/sweep_views.h"
 #include "output/atomic_file.h"
+#include "output/markdown_html.h"
 
 namespace fs = std::filesystem;
 
@@ -425,7 +429,21 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
         }
     }
     if (!result.plot_note.empty()) md << "\nPlots: " << result.plot_note << ".\n";
+    // The variants side by side in 3D: in report.html, which is report.md with its plots inside.
+    const char* three_js_dir = std::getenv("PEENSIM_THREE_JS");
+    std::string view_note;
+    const std::map<std::string, std::string> views = sweep_views(plan, result.component, std::isfinite(target) ? target : kFullCoverage,
+                                                                 three_js_dir ? three_js_dir : kThreeJsDir, view_note);
+    md << "\n## The variants in 3D\n\n";
+    if (!views.empty())
+        md << "report.html shows the variants side by side in one 3D view, on one colour bar per field (coverage with the target "
+              "marked, impact density, mean normal speed, region): drag to turn them, click on one to read its values there.\n\n"
+           << kSweepViewMarker << "\n";
+    else
+        md << view_note << "\n";
     write_file_atomically(sweep_dir + "/report.md", md.str());
+    write_file_atomically(sweep_dir + "/report.html",
+                          markdown_to_html(md.str(), "peensim sweep: " + title, image_files_in(sweep_dir), views));
     return result;
 }
 

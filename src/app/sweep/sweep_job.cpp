@@ -44,7 +44,7 @@ int finish(const SweepBook& book, const SweepPlan& plan, const std::string& swee
         return kExitInterrupted;
     }
     const SweepCompareResult compared = write_sweep_comparison(plan, sweep_dir, o.baseline, scene.name.empty() ? o.scene_path : scene.name);
-    out << "comparison: " << sweep_dir << "/{comparison.csv, report.md" << (compared.pngs.empty() ? "" : ", *.png") << "}\n";
+    out << "comparison: " << sweep_dir << "/{comparison.csv, report.md, report.html" << (compared.pngs.empty() ? "" : ", *.png") << "}\n";
     if (!compared.plot_note.empty()) out << "plots: " << compared.plot_note << "\n";
     return book.failed().empty() ? kExitOk : kExitRuntimeError;
 }

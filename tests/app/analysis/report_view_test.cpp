@@ -16,6 +16,7 @@
 #include "app/analysis/analyze_job.h"
 #include "app/analysis/report_views.h"
 #include "app/run/run_job.h"
+#include "app/sweep/sweep_job.h"
 #include "support/csv_columns.h"
 #include "support/shell_command.h"
 #include "support/temp_dir.h"
@@ -123,6 +124,52 @@ TEST(ReportView, InAHeadlessBrowserThePartIsDrawnAndAPickReadsTheTrianglesValues
     EXPECT_NEAR(v[1].get<double>(), csv.at("impacts_per_mm2_s_smoothed")[t], 1e-3 * csv.at("impacts_per_mm2_s_smoothed")[t]);
     EXPECT_NEAR(v[2].get<double>(), csv.at("mean_vn_mps_smoothed")[t], 1e-3 * csv.at("mean_vn_mps_smoothed")[t]);
     EXPECT_FALSE(attribute("data-region").empty());
+}
+
+// A sweep's report.html: the variants side by side in one view; a pick on the second variant's
+// triangle reads the mean of that variant's runs (two seeds) from their triangles CSVs.
+TEST(ReportView, ASweepsVariantsSideBySideReadTheirOwnRunsMeans) {
+    const std::string browser = headless_browser();
+    if (browser.empty() || !fs::exists(std::string(kThreeJsDir) + "/three.min.js"))
+        GTEST_SKIP() << "needs chromium-headless-shell and libjs-three (CI installs both)";
+    TempDir dir;
+    SweepOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml";
+    o.output_dir = dir.path.string();
+    o.vary = {"components[sonotrode].vibration.amplitude=40 um,80 um"};
+    o.overrides = {"process.duration=0.3"};
+    o.seeds = 2;
+    o.executable = PEENSIM_BINARY;
+    std::ostringstream out, err;
+    ASSERT_EQ(sweep_job(o, out, err), kExitOk) << err.str();
+    const fs::path page = dir.path / "sweep" / "report.html";
+    ASSERT_TRUE(fs::exists(page));
+    EXPECT_NE(read_all(dir.path / "sweep" / "report.md").find("<!-- 3D view: variants -->"), std::string::npos);
+    // The second variant's most hit triangle in its first run.
+    const auto first = testing::read_csv_columns(dir.path / "amplitude-80um" / "s0" / "analysis" / "gear_triangles.csv");
+    const auto second = testing::read_csv_columns(dir.path / "amplitude-80um" / "s1" / "analysis" / "gear_triangles.csv");
+    std::size_t t = 0;
+    for (std::size_t k = 0; k < first.at("impacts").size(); ++k)
+        if (first.at("impacts")[k] > first.at("impacts")[t]) t = k;
+    const auto r = testing::run_shell("'" + browser +
+                                      "' --headless --no-sandbox --disable-gpu --enable-unsafe-swiftshader --use-angle=swiftshader "
+                                      "--virtual-time-budget=20000 --dump-dom 'file://" +
+                                      page.string() + "#pick=0:" + std::to_string(t) + ":1' 2>/dev/null");
+    ASSERT_EQ(r.status, 0) << r.output.substr(0, 2000);
+    const auto attribute = [&](const std::string& name) {
+        std::smatch m;
+        const std::regex re(name + "=\"([^\"]*)\"");
+        return std::regex_search(r.output, m, re) ? m[1].str() : std::string();
+    };
+    EXPECT_EQ(attribute("data-picked"), "yes");
+    EXPECT_GT(std::stol("0" + attribute("data-lit-pixels")), 10000);
+    EXPECT_EQ(attribute("data-instance"), "amplitude-80um");
+    ASSERT_EQ(attribute("data-triangle"), std::to_string(t));
+    const auto v = nlohmann::json::parse(attribute("data-values"));
+    const auto mean = [&](const std::string& column, double scale) { return 0.5 * scale * (first.at(column)[t] + second.at(column)[t]); };
+    EXPECT_NEAR(v[0].get<double>(), mean("coverage", 100.0), 1e-3 * std::max(1.0, mean("coverage", 100.0)));
+    EXPECT_NEAR(v[1].get<double>(), mean("impacts_per_mm2_s_smoothed", 1.0), 1e-3 * mean("impacts_per_mm2_s_smoothed", 1.0));
+    EXPECT_NEAR(v[2].get<double>(), mean("mean_vn_mps_smoothed", 1.0), 1e-3 * mean("mean_vn_mps_smoothed", 1.0));
 }
 
 }  // namespace report_view_cases
