@@ -41,6 +41,8 @@ class SweepTest(TempDirTest):
         self.assertEqual(table["impact_rate_per_s"].dtype, np.float64)  # whole numbers here, a float column still
         self.assertTrue((table["impact_rate_per_s_ci95"] >= 0).all())
         self.assertIn("baseline `gravity-00-9.81`", study.report)
+        with open(study.report_html, encoding="utf-8") as f:
+            self.assertIn("<h2>The variants in 3D</h2>", f.read())
 
     def test_a_dict_scene_is_swept_from_its_resolved_file_and_a_rerun_skips_finished_runs(self):
         d = peensim.Scene(scene("rod.yaml")).to_dict()

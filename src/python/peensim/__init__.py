@@ -367,6 +367,12 @@ class Sweep:
             return f.read()
 
     @property
+    def report_html(self):
+        """The path of sweep/report.html: the comparison with its plots and the variants side by side
+        in one 3D view, one file that opens offline: webbrowser.open(study.report_html)."""
+        return os.path.join(self.dir, "sweep", "report.html")
+
+    @property
     def runs(self):
         """{variant name: [Run of seed replicate 0, 1, ...]} for every run directory of the sweep, in
         the sweep's order (the comparison's rows) once it has been compared."""
