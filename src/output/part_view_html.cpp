@@ -1,5 +1,6 @@
 #include "output/part_view_html.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -41,12 +42,30 @@ std::string script_safe(const std::string& code) {
 
 constexpr const char* kViewStyle =
     ".pv{border:1px solid #ccc;margin:1em 0;padding:.5em}.pv canvas{width:100%;height:28em;display:block;cursor:crosshair}"
-    ".pv-top{display:flex;gap:1em;align-items:center;flex-wrap:wrap;margin-bottom:.4em}.pv-bar{display:flex;align-items:center;gap:.4em}"
+    ".pv-top{display:flex;gap:1em;align-items:center;flex-wrap:wrap;margin-bottom:.4em}"
+    ".pv-bar{display:flex;align-items:center;gap:.4em;flex-wrap:wrap;max-width:100%}"
     ".pv-ramp{position:relative;display:inline-block;width:16em;height:.9em;border:1px solid #888}"
     ".pv-target{position:absolute;top:-.3em;bottom:-.3em;width:2px;background:#d00}.pv-key{display:inline-block;width:.9em;height:.9em;"
     "margin:0 .2em 0 .6em;vertical-align:middle}.pv-info{margin-top:.4em;min-height:2.6em}.pv-note{color:#555}";
 
 }  // namespace
+
+bool set_colour_range(PartViewField& field, bool from_zero) {
+    std::vector<float> v;
+    v.reserve(field.values.size());
+    for (float x : field.values)
+        if (std::isfinite(x)) v.push_back(x);
+    if (v.empty()) return false;
+    const auto [least, most] = std::minmax_element(v.begin(), v.end());
+    field.lo = from_zero ? std::min(0.0, static_cast<double>(*least)) : static_cast<double>(*least);
+    const double largest = *most;
+    const std::size_t k = static_cast<std::size_t>(0.99 * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    field.hi = v[k] > field.lo ? static_cast<double>(v[k]) : largest;
+    if (!(field.hi > field.lo)) field.hi = field.lo + 1.0;  // one value everywhere: any bar shows it
+    field.clipped = largest > field.hi;
+    return true;
+}
 
 std::string part_view_scripts(const std::string& three_js, const std::string& orbit_controls_js) {
     return std::string("<style>") + kViewStyle + "</style>\n<script>\n" + script_safe(three_js) + "\n</script>\n<script>\n" +
@@ -69,11 +88,14 @@ std::string part_view_html(const PartView& view) {
                                   {"hi", finite_or(f.hi, 1.0)},
                                   {"target", f.target && std::isfinite(*f.target) ? nlohmann::json(*f.target) : nlohmann::json(nullptr)},
                                   {"digits", f.digits},
-                                  {"categorical", f.categorical}});
+                                  {"categorical", f.categorical},
+                                  {"clipped", f.clipped},
+                                  {"grey", f.grey}});
     }
     data["shown"] = view.shown < view.fields.size() ? view.shown : 0;
     data["instances"] = view.instances;
     if (!view.instances.empty()) data["instance"] = array_base64(view.instance);
+    data["offsets"] = view.offsets_mm;
     data["regions"] = nlohmann::json::array();
     for (const PartViewRegion& r : view.regions) data["regions"].push_back({{"name", r.name}, {"forecast", r.forecast}});
     std::string h = "<div class=\"pv\" data-part=\"" + xml_text(view.name) + "\">\n<div class=\"pv-top\"><b>" + xml_text(view.name) +

@@ -23,7 +23,14 @@ struct PartViewField {
     std::optional<double> target;  // marked on the colour bar
     int digits = 3;                // decimals of a value read by a click
     bool categorical = false;      // a region index (-1: none), coloured by category
+    bool clipped = false;          // values above hi exist (drawn in the top colour; the bar says >=)
+    std::string grey;              // what a grey triangle means ("": no value)
 };
+
+// A field's colour bar from its finite values: lo their least (0 when from_zero), hi their 99th
+// percentile (one hot triangle would wash the rest out; clipped says when some lie above).
+// Returns false when no value is finite: the field has nothing to show.
+bool set_colour_range(PartViewField& field, bool from_zero);
 
 struct PartViewRegion {
     std::string name;
@@ -41,8 +48,9 @@ struct PartView {
     // per triangle shown the copy it belongs to. Empty: one part.
     std::vector<std::string> instances;
     std::vector<std::uint32_t> instance;
-    std::size_t shown = 0;  // the field drawn first
-    std::string note;       // under the view: what it shows (e.g. "3,120 of 500,480 triangles")
+    std::vector<float> offsets_mm;  // mm, per copy: its shift along x
+    std::size_t shown = 0;          // the field drawn first
+    std::string note;               // under the view: what it shows (e.g. "3,120 of 500,480 triangles")
 };
 
 // The scripts every view of a page needs, once, before the first view: the library's sources as

@@ -8,7 +8,9 @@
 // triangle), region (int32 per triangle shown, -1: none), fields [{name, label, unit, values
 // (float32 per triangle shown; NaN: none), lo, hi, target|null, digits, categorical}],
 // regions [{name, forecast}], shown (the field drawn first), instances (names of copies shown side
-// by side, a sweep's variants) with instance (uint32 per triangle shown: its copy).
+// by side, a sweep's variants) with instance (uint32 per triangle shown: its copy) and offsets (mm,
+// each copy's shift along x: a picked point is given in the part's own frame). A field may have
+// clipped (values above hi: its bar says >=) and grey (what its grey triangles are).
 //
 // A test hook: report.html#pick=V:T[:C] picks triangle T (the part's numbering; of copy C) of view V once the
 // page is drawn, as a click on it would (the camera moved just outside it, looking at it along its
@@ -29,8 +31,11 @@ inline constexpr const char* kPartViewJs = R"JS(
   // viridis, 9 stops
   var ramp = [[0.267,0.005,0.329],[0.283,0.141,0.458],[0.254,0.265,0.530],[0.207,0.372,0.553],[0.164,0.471,0.558],
               [0.128,0.567,0.551],[0.135,0.659,0.518],[0.267,0.749,0.441],[0.478,0.821,0.318],[0.741,0.873,0.150],[0.993,0.906,0.144]];
-  var categories = [[0.12,0.47,0.71],[1.0,0.5,0.05],[0.17,0.63,0.17],[0.84,0.15,0.16],[0.58,0.4,0.74],[0.55,0.34,0.29],
-                    [0.89,0.47,0.76],[0.5,0.5,0.5],[0.74,0.74,0.13],[0.09,0.75,0.81]];
+  // tab20: twenty distinguishable colours (a gear's teeth are 20 regions)
+  var categories = [[0.12,0.47,0.71],[0.68,0.78,0.91],[1.0,0.5,0.05],[1.0,0.73,0.47],[0.17,0.63,0.17],[0.6,0.87,0.54],
+                    [0.84,0.15,0.16],[1.0,0.6,0.59],[0.58,0.4,0.74],[0.77,0.69,0.84],[0.55,0.34,0.29],[0.77,0.61,0.58],
+                    [0.89,0.47,0.76],[0.97,0.71,0.82],[0.5,0.5,0.5],[0.78,0.78,0.78],[0.74,0.74,0.13],[0.86,0.86,0.55],
+                    [0.09,0.75,0.81],[0.62,0.85,0.9]];
   var none = [0.62, 0.62, 0.62];
   function colour(field, x) {
     if (!isFinite(x)) return none;
@@ -80,8 +85,12 @@ inline constexpr const char* kPartViewJs = R"JS(
     var mesh = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({vertexColors: THREE.VertexColors, side: THREE.DoubleSide}));
     scene.add(mesh);
     var sphere = geometry.boundingSphere;
-    var camera = new THREE.PerspectiveCamera(35, canvas.clientWidth / canvas.clientHeight, sphere.radius * 0.001, sphere.radius * 20);
-    camera.position.copy(sphere.center).add((data.instances.length ? new THREE.Vector3(0.1, 0.75, 1.0) : new THREE.Vector3(1.2, 0.9, 1.6)).normalize().multiplyScalar(sphere.radius * 3.0));
+    var aspect = canvas.clientWidth / canvas.clientHeight, fov = 35;  // degrees, vertical
+    var camera = new THREE.PerspectiveCamera(fov, aspect, sphere.radius * 0.001, sphere.radius * 20);
+    // Far enough for the bounding sphere to fit the narrower of the two fields of view.
+    var half = Math.min(fov / 2, Math.atan(Math.tan(fov * Math.PI / 360) * aspect) * 180 / Math.PI) * Math.PI / 180;
+    var distance = 1.05 * sphere.radius / Math.sin(half);
+    camera.position.copy(sphere.center).add((data.instances.length ? new THREE.Vector3(0.1, 0.75, 1.0) : new THREE.Vector3(1.2, 0.9, 1.6)).normalize().multiplyScalar(distance));
     camera.lookAt(sphere.center);
     scene.add(new THREE.AmbientLight(0xffffff, 0.45));
     var light = new THREE.DirectionalLight(0xffffff, 0.65);
@@ -114,8 +123,9 @@ inline constexpr const char* kPartViewJs = R"JS(
           mark = '<span class="pv-target" style="left:' + at + '%" title="target"></span>';
         }
         legend = '<span class="pv-lo">' + text(field, field.lo) + '</span><span class="pv-ramp" style="background:linear-gradient(to right,' +
-                 stops + ')">' + mark + '</span><span class="pv-hi">' + text(field, field.hi) + '</span>' +
-                 (field.target !== null ? ' <span class="pv-note">| target ' + text(field, field.target) + '</span>' : '');
+                 stops + ')">' + mark + '</span><span class="pv-hi">' + (field.clipped ? '&ge; ' : '') + text(field, field.hi) + '</span>' +
+                 (field.target !== null ? ' <span class="pv-note">| target ' + text(field, field.target) + '</span>' : '') +
+                 ' <span class="pv-note">| grey: ' + (field.grey || 'no value') + '</span>';
       }
       bar.innerHTML = legend;
       draw();
@@ -126,20 +136,23 @@ inline constexpr const char* kPartViewJs = R"JS(
     function show(hit) {
       if (!hit) { info.textContent = 'Nothing there: click on the part.'; info.removeAttribute('data-triangle'); return; }
       var t = hit.faceIndex, r = -1, rows = [];
-      var p = hit.point;
+      var p = hit.point.clone();
+      if (instance) p.x -= data.offsets[instance[t]];  // the copies sit side by side: back to the part's frame
       data.fields.forEach(function (f) {
         if (f.categorical) { r = f.array[t]; return; }
         rows.push('<b>' + f.label + '</b>: ' + text(f, f.array[t]));
       });
       var region = r >= 0 ? data.regions[Math.round(r)] : null;
       var copy = instance ? data.instances[instance[t]] : '';
-      info.innerHTML = (copy ? 'Variant <b>' + copy + '</b>: t' : 'T') + 'riangle ' + source[t] + ' at (' + p.x.toFixed(2) + ', ' + p.y.toFixed(2) + ', ' + p.z.toFixed(2) + ') mm' +
+      info.innerHTML = (copy ? 'Variant <b>' + copy + '</b>: t' : 'T') + 'riangle ' + source[t] + ' at (' + p.x.toFixed(2) + ', ' + p.y.toFixed(2) + ', ' + p.z.toFixed(2) + ') mm in the part\'s frame' +
         (region ? ', region <b>' + region.name + '</b>' + (region.forecast ? ' (to the target: ' + region.forecast + ')' : '') : '') +
         '<br>' + rows.join('; ');
       info.setAttribute('data-triangle', source[t]);
       info.setAttribute('data-instance', copy);
+      info.setAttribute('data-point', JSON.stringify([p.x, p.y, p.z]));
       info.setAttribute('data-region', region ? region.name : '');
       info.setAttribute('data-values', JSON.stringify(data.fields.map(function (f) { return f.array[t]; })));
+      info.setAttribute('data-fields', JSON.stringify(data.fields.map(function (f) { return f.name; })));
     }
     function pick(ndc) {
       raycaster.setFromCamera(ndc, camera);

@@ -350,9 +350,10 @@ std::string analysis_report(const SceneDescription& scene, const std::vector<Com
     if (!x.views.empty() || !x.view_note.empty()) {
         r << "\n## The parts in 3D\n\n";
         if (!x.views.empty())
-            r << "report.html shows each part in 3D: choose the field it is coloured by (coverage, with the target marked on the colour "
-                 "bar; the impact density and the mean normal speed, smoothed as in the tables; the time its region takes to the target; "
-                 "the region), drag to turn it, and click on it to read the values there.\n\n";
+            r << "report.html shows each part in 3D, in its own frame: choose what colours it (of coverage, raw and smoothed, with the "
+                 "target marked on the colour bar; the impact density and the mean normal speed, smoothed as in the tables; the time its "
+                 "region takes to the target; the region: those the part has; grey where a field has no value, e.g. coverage out of "
+                 "reach or excluded), drag to turn it, and click on it to read the values there.\n\n";
         for (const std::string& part : x.views) r << part_view_marker(part) << "\n";
         if (!x.view_note.empty()) r << (x.views.empty() ? "" : "\n") << x.view_note << "\n";
     }

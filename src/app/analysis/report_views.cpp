@@ -25,19 +25,11 @@ std::optional<std::string> read_text(const fs::path& path) {
     return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-}  // namespace
+// Whether a part gets a view: a mesh, and coverage or smoothed maps (a material without a yield
+// stress has no coverage, but its impacts still have a density and a speed).
+bool shows(const ComponentAnalysis& c) { return c.mesh && c.mesh->triangle_count() > 0 && (c.coverage || !c.smoothed.empty()); }
 
-double colour_bar_top(const std::vector<float>& values) {
-    std::vector<float> v;
-    v.reserve(values.size());
-    for (float x : values)
-        if (std::isfinite(x)) v.push_back(x);
-    if (v.empty()) return 1.0;
-    const std::size_t k = static_cast<std::size_t>(0.99 * static_cast<double>(v.size() - 1));
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-    const double top = v[k];
-    return top > 0.0 ? top : std::max(1.0, static_cast<double>(*std::max_element(v.begin(), v.end())));
-}
+}  // namespace
 
 std::optional<std::string> view_scripts(const std::string& library_dir) {
     const fs::path dir(library_dir);
@@ -49,7 +41,8 @@ std::optional<std::string> view_scripts(const std::string& library_dir) {
 
 std::string no_view_library_note(const std::string& library_dir) {
     return "No 3D view in report.html: it inlines three.js from Debian's libjs-three, not found in " + library_dir +
-           " (`apt-get install libjs-three`, then make the report again).";
+           " (`apt-get install libjs-three`, or set PEENSIM_THREE_JS to a folder holding three.min.js and "
+           "examples/js/controls/OrbitControls.js; then `peensim analyze` the run, or the sweep's command, again).";
 }
 
 PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) {
@@ -77,41 +70,37 @@ PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) 
         }
         return values;
     };
-    if (c.coverage) {
-        PartViewField f{"coverage",
-                        "coverage (%)",
-                        "%",
-                        per_shown([&](std::size_t t) { return 100.0 * c.coverage->shown_triangle_coverage(t); }),
-                        0.0,
-                        100.0,
-                        100.0 * window.target_coverage,
-                        1,
-                        false};
+    // A field is offered when it has a value somewhere; the coverage bars run 0-100 % with the
+    // target marked, the others over their values (the region's time from the earliest).
+    const auto add = [&v](PartViewField f, bool fixed_range, bool from_zero) {
+        if (fixed_range ? std::none_of(f.values.begin(), f.values.end(), [](float x) { return std::isfinite(x); })
+                        : !set_colour_range(f, from_zero))
+            return;
         v.fields.push_back(std::move(f));
+    };
+    const std::optional<double> target = 100.0 * window.target_coverage;
+    const std::string not_counted = "not counted (out of the shot's reach, or excluded)";
+    if (c.coverage) {
+        // Only where coverage counts: an excluded bore is not an unpeened one.
+        const auto counted = [&](std::size_t t) { return c.coverage->peened_share(t) > 0.0; };
+        add({"coverage", "coverage (%)", "%",
+             per_shown([&](std::size_t t) { return counted(t) ? 100.0 * c.coverage->shown_triangle_coverage(t) : std::nan(""); }), 0.0,
+             100.0, target, 1, false, false, not_counted},
+            true, true);
+        if (!c.smoothed.empty())
+            add({"coverage_smoothed", "coverage (%, smoothed)", "%",
+                 per_shown([&](std::size_t t) { return counted(t) ? 100.0 * c.smoothed[t].coverage() : std::nan(""); }), 0.0, 100.0, target,
+                 1, false, false, not_counted},
+                true, true);
     }
     if (!c.smoothed.empty()) {
-        PartViewField density{"impacts_per_mm2_s_smoothed",
-                              "impact density (impacts/mm2/s, smoothed)",
-                              "/mm2/s",
-                              per_shown([&](std::size_t t) { return c.smoothed[t].impacts_per_m2() / 1e6 / duration; }),
-                              0.0,
-                              1.0,
-                              std::nullopt,
-                              4,
-                              false};
-        density.hi = colour_bar_top(density.values);
-        v.fields.push_back(std::move(density));
-        PartViewField speed{"mean_vn_mps_smoothed",
-                            "mean normal speed (m/s, smoothed)",
-                            "m/s",
-                            per_shown([&](std::size_t t) { return c.smoothed[t].mean_normal_speed(); }),
-                            0.0,
-                            1.0,
-                            std::nullopt,
-                            3,
-                            false};
-        speed.hi = colour_bar_top(speed.values);
-        v.fields.push_back(std::move(speed));
+        add({"impacts_per_mm2_s_smoothed", "impact density (impacts/mm2/s, smoothed)", "/mm2/s",
+             per_shown([&](std::size_t t) { return c.smoothed[t].impacts_per_m2() / 1e6 / duration; }), 0.0, 1.0, std::nullopt, 4},
+            false, true);
+        add({"mean_vn_mps_smoothed", "mean normal speed (m/s, smoothed)", "m/s",
+             per_shown([&](std::size_t t) { return c.smoothed[t].mean_normal_speed(); }), 0.0, 1.0, std::nullopt, 3, false, false,
+             "no impact within the smoothing radius"},
+            false, true);
     }
     if (!c.regions.empty()) {
         for (std::size_t r = 0; r < c.regions.size(); ++r)
@@ -124,28 +113,18 @@ PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) 
             const bool timed = f.status == AreaForecast::Status::forecast || f.status == AreaForecast::Status::reached;
             return timed ? f.time_s : std::nan("");
         };
-        PartViewField time{"region_time_to_target_s",
-                           "time to the target of its region (s, forecast)",
-                           "s",
-                           per_shown(region_time),
-                           0.0,
-                           1.0,
-                           std::nullopt,
-                           0,
-                           false};
-        double top = 0.0;
-        for (float x : time.values)
-            if (std::isfinite(x)) top = std::max(top, static_cast<double>(x));
-        time.hi = top > 0.0 ? top : 1.0;
-        if (c.coverage) v.fields.push_back(std::move(time));
+        add({"region_time_to_target_s", "time to the target of its region (s, forecast)", "s", per_shown(region_time), 0.0, 1.0,
+             std::nullopt, 0, false, false, "no forecast for its region (too short to say, excluded, or no region)"},
+            false, false);
         v.fields.push_back({"region", "region", "",
                             per_shown([&](std::size_t t) { return static_cast<double>(c.regions.dominant_region(t)); }), 0.0, 1.0,
-                            std::nullopt, 0, true});
+                            std::nullopt, 0, true, false, "in no region"});
     }
     // Far below the target the coverage field is one colour (a 5 s run of a part that needs 20
     // minutes): draw where the impacts land first, the coverage one choice away.
     const bool low = c.coverage && c.coverage->coverage() < 0.5 * window.target_coverage;
-    if (low && v.fields.size() > 1 && v.fields[1].name == "impacts_per_mm2_s_smoothed") v.shown = 1;
+    for (std::size_t k = 0; k < v.fields.size(); ++k)
+        if ((low || !c.coverage) && v.fields[k].name == "impacts_per_mm2_s_smoothed") v.shown = k;
     return v;
 }
 
@@ -153,7 +132,7 @@ std::map<std::string, std::string> report_views(const std::vector<ComponentAnaly
                                                 const std::string& library_dir, ReportContext& context) {
     std::map<std::string, std::string> blocks;
     bool any = false;
-    for (const ComponentAnalysis& c : parts) any = any || (c.coverage && c.mesh && c.mesh->triangle_count() > 0);
+    for (const ComponentAnalysis& c : parts) any = any || shows(c);
     if (!any) return blocks;
     const std::optional<std::string> scripts = view_scripts(library_dir);
     if (!scripts) {
@@ -161,7 +140,7 @@ std::map<std::string, std::string> report_views(const std::vector<ComponentAnaly
         return blocks;
     }
     for (const ComponentAnalysis& c : parts) {
-        if (!c.coverage || !c.mesh || c.mesh->triangle_count() == 0) continue;
+        if (!shows(c)) continue;
         std::string html = blocks.empty() ? *scripts : std::string();
         html += part_view_html(part_view_of(c, window));
         blocks[part_view_marker(c.name)] = std::move(html);

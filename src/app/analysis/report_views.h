@@ -22,7 +22,7 @@ inline constexpr std::size_t kViewMaxTriangles = 200'000;
 // The view of one part (window: what the analysis took, for the rates and the target).
 PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window);
 
-// The 3D views of the parts with a coverage map, keyed by their report.md marker lines
+// The 3D views of the parts with a coverage map or smoothed maps, keyed by their report.md marker lines
 // (part_view_marker), the first carrying the scripts; names the parts in context.views, or says in
 // context.view_note why there are none. `library_dir`: where three.min.js and
 // examples/js/controls/OrbitControls.js are (Debian's /usr/share/javascript/three).
@@ -37,9 +37,5 @@ std::optional<std::string> view_scripts(const std::string& library_dir);
 
 // The sentence a report gives for views it could not draw: what to install.
 std::string no_view_library_note(const std::string& library_dir);
-
-// A colour bar's top: the 99th percentile of the finite values (one hot triangle would wash the
-// rest out), or their largest when that is 0, or 1 when there is none.
-double colour_bar_top(const std::vector<float>& values);
 
 }  // namespace peensim

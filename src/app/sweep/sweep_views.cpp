@@ -23,7 +23,7 @@ struct Column {
     const char* csv;
     double scale;
 };
-constexpr Column kColumns[] = {{"coverage", 100.0}, {"impacts_per_mm2_s_smoothed", 1.0}, {"mean_vn_mps_smoothed", 1.0}};
+constexpr Column kColumns[] = {{"coverage", 100.0}, {"impacts_per_mm2_s_smoothed", 1.0}, {"mean_vn_mps_smoothed", 1.0}, {"peened", 1.0}};
 
 }  // namespace
 
@@ -52,7 +52,7 @@ std::map<std::string, std::string> sweep_views(const SweepPlan& plan, const std:
     PartView v;
     v.name = component;
     constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
-    std::vector<std::vector<float>> values(std::size(kColumns) + 1);  // the columns, then the region
+    std::vector<std::vector<float>> values(std::size(kColumns) + 1);  // the columns (the last only read), then the region
     double x_mm = 0.0;                                                // mm, where the next variant's left end goes
     std::vector<std::string> skipped;
     for (std::size_t k = 0; k < plan.variants.size(); ++k) {
@@ -90,6 +90,7 @@ std::map<std::string, std::string> sweep_views(const SweepPlan& plan, const std:
             v.positions_mm.push_back(static_cast<float>(p.y() * 1e3));
             v.positions_mm.push_back(static_cast<float>(p.z() * 1e3));
         }
+        v.offsets_mm.push_back(static_cast<float>(x_mm - lo));
         x_mm += 1.25 * std::max(hi - lo, 1.0);
         const auto copy = static_cast<std::uint32_t>(v.instances.size());
         v.instances.push_back(plan.variants[k].name);
@@ -100,6 +101,9 @@ std::map<std::string, std::string> sweep_views(const SweepPlan& plan, const std:
             v.instance.push_back(copy);
             for (std::size_t c = 0; c < std::size(kColumns); ++c)
                 values[c].push_back(counts[c][t] > 0 ? static_cast<float>(sums[c][t] / counts[c][t]) : kNone);
+            // Coverage only where it counts (the "peened" share): an excluded bore is not an unpeened one.
+            if (!(values[3].back() > 0.0f)) values[0].back() = kNone;
+            values[3].pop_back();
             float r = -1.0f;
             if (t < region.size() && !region[t].empty()) {
                 auto it = std::find_if(v.regions.begin(), v.regions.end(), [&](const PartViewRegion& x) { return x.name == region[t]; });
@@ -109,20 +113,40 @@ std::map<std::string, std::string> sweep_views(const SweepPlan& plan, const std:
             values.back().push_back(r);
         }
     }
-    v.fields.push_back({"coverage", "coverage (%)", "%", std::move(values[0]), 0.0, 100.0, 100.0 * target, 1, false});
-    v.fields.push_back({"impacts_per_mm2_s_smoothed", "impact density (impacts/mm2/s, smoothed)", "/mm2/s", std::move(values[1]), 0.0, 1.0,
-                        std::nullopt, 4, false});
-    v.fields.push_back(
-        {"mean_vn_mps_smoothed", "mean normal speed (m/s, smoothed)", "m/s", std::move(values[2]), 0.0, 1.0, std::nullopt, 3, false});
-    v.fields[1].hi = colour_bar_top(v.fields[1].values);
-    v.fields[2].hi = colour_bar_top(v.fields[2].values);
-    if (!v.regions.empty()) v.fields.push_back({"region", "region", "", std::move(values[3]), 0.0, 1.0, std::nullopt, 0, true});
+    v.fields.push_back({"coverage", "coverage (%)", "%", std::move(values[0]), 0.0, 100.0, 100.0 * target, 1, false, false,
+                        "not counted (out of the shot's reach, or excluded)"});
+    PartViewField density{"impacts_per_mm2_s_smoothed",
+                          "impact density (impacts/mm2/s, smoothed)",
+                          "/mm2/s",
+                          std::move(values[1]),
+                          0.0,
+                          1.0,
+                          std::nullopt,
+                          4};
+    PartViewField speed{"mean_vn_mps_smoothed",
+                        "mean normal speed (m/s, smoothed)",
+                        "m/s",
+                        std::move(values[2]),
+                        0.0,
+                        1.0,
+                        std::nullopt,
+                        3,
+                        false,
+                        false,
+                        "no impact within the smoothing radius"};
+    // One colour bar for all the variants: their values together.
+    if (set_colour_range(density, true)) v.fields.push_back(std::move(density));
+    if (set_colour_range(speed, true)) v.fields.push_back(std::move(speed));
+    if (!v.regions.empty())
+        v.fields.push_back({"region", "region", "", std::move(values[4]), 0.0, 1.0, std::nullopt, 0, true, false, "in no region"});
     // Far below the target the coverage is one colour: draw the impact density first.
     double covered = 0.0;
     std::size_t finite = 0;
     for (float x : v.fields[0].values)
         if (std::isfinite(x)) covered += x, ++finite;
-    if (finite > 0 && covered / static_cast<double>(finite) < 50.0 * target) v.shown = 1;
+    if (finite > 0 && covered / static_cast<double>(finite) < 50.0 * target)
+        for (std::size_t k = 0; k < v.fields.size(); ++k)
+            if (v.fields[k].name == "impacts_per_mm2_s_smoothed") v.shown = k;
     std::string names;
     for (const std::string& n : v.instances) names += (names.empty() ? "" : ", ") + n;
     v.note = "Left to right: " + names + ". Per triangle the mean over each variant's analysed runs (seeds)" +
