@@ -161,7 +161,10 @@ RegionSet::RegionSet(const TriangleMesh& mesh, const std::vector<RegionDesc>& re
             const double fraction = static_cast<double>(inside[r]) / samples;
             regions_[r].shares.push_back({static_cast<int>(t), fraction});
             regions_[r].area_m2 += fraction * area;
-            if (inside[r] > best) {
+            // Of equals, the first; but a mask before what it masks (the gear's bore lies in a tooth's
+            // sector too: it is the bore).
+            const bool masks = inside[r] == best && excluded(r) && !excluded(static_cast<std::size_t>(dominant_[t]));
+            if (inside[r] > best || masks) {
                 best = inside[r];
                 dominant_[t] = static_cast<int>(r);
             }

@@ -66,7 +66,8 @@ public:
 
     // The share of triangle t's area in any excluded region (0..1; the union, not a sum).
     double excluded_fraction(std::size_t t) const { return excluded_.empty() ? 0.0 : excluded_[t]; }
-    // The region holding most of triangle t's area (the first of equals), -1 for none.
+    // The region holding most of triangle t's area (the first of equals, an excluded one before the
+    // others: a mask names what it masks), -1 for none.
     int dominant_region(std::size_t t) const { return dominant_.empty() ? -1 : dominant_[t]; }
 
 private:

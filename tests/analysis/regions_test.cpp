@@ -208,6 +208,12 @@ TEST(AnalysisRegions, ExcludedRegionsAreAUnionNotASum) {
         EXPECT_EQ(r.dominant_region(t), x < 0.0 ? 0 : x < 0.4 ? 1 : 2) << x;
     }
     EXPECT_NEAR(excluded, 1.4 * 2.0, 1e-12);
+    // A mask listed after a region it overlaps names the triangles it masks (the gear's bore in a
+    // tooth's sector): of equal shares, the excluded region.
+    RegionDesc mask = half_space("mask", Vec3::Zero(), -Vec3::UnitX());
+    mask.exclude = true;
+    const RegionSet masked(p, {named("everything"), mask});
+    for (std::size_t t = 0; t < p.triangle_count(); ++t) EXPECT_EQ(masked.dominant_region(t), centroid(p, t).x() < 0.0 ? 1 : 0);
     // Without an excluded region nothing is.
     const RegionSet none(p, {half_space("kept", Vec3::Zero(), Vec3::UnitX())});
     EXPECT_EQ(none.excluded_fraction(3), 0.0);
