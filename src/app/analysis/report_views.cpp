@@ -95,7 +95,8 @@ PartView part_view_of(const ComponentAnalysis& c, const AnalysisWindow& window) 
     }
     if (!c.smoothed.empty()) {
         add({"impacts_per_mm2_s_smoothed", "impact density (impacts/mm2/s, smoothed)", "/mm2/s",
-             per_shown([&](std::size_t t) { return c.smoothed[t].impacts_per_m2() / 1e6 / duration; }), 0.0, 1.0, std::nullopt, 4},
+             per_shown([&](std::size_t t) { return c.smoothed[t].impacts_per_m2() / 1e6 / duration; }), 0.0, 1.0, std::nullopt, 4, false,
+             false, ""},
             false, true);
         add({"mean_vn_mps_smoothed", "mean normal speed (m/s, smoothed)", "m/s",
              per_shown([&](std::size_t t) { return c.smoothed[t].mean_normal_speed(); }), 0.0, 1.0, std::nullopt, 3, false, false,

@@ -122,7 +122,10 @@ std::map<std::string, std::string> sweep_views(const SweepPlan& plan, const std:
                           0.0,
                           1.0,
                           std::nullopt,
-                          4};
+                          4,
+                          false,
+                          false,
+                          ""};
     PartViewField speed{"mean_vn_mps_smoothed",
                         "mean normal speed (m/s, smoothed)",
                         "m/s",
