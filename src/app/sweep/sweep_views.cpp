@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <limits>
 
-#include "app/analysis/analysis_format.h"
 #include "app/analysis/report_views.h"
 #include "common/csv_column.h"
 #include "geometry/vertex_clustering.h"
