@@ -1,5 +1,5 @@
-// The `peensim` command line: run, check, new, analyze, render-impacts, render-regions, sweep, bench, trade, export-fem,
-// almen-fit, generate, schema.
+// The `peensim` command line: run, check, new, analyze, render-impacts, render-regions, sweep, optimise, bench, trade,
+// export-fem, almen-fit, generate, schema.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -11,6 +11,7 @@
 #include "app/check/check_job.h"
 #include "app/fem/export_fem_job.h"
 #include "app/new_scene/new_scene_job.h"
+#include "app/optimise/optimise_job.h"
 #include "app/render_module.h"
 #include "app/run/run_job.h"
 #include "app/sweep/sweep_job.h"
@@ -146,6 +147,27 @@ int main(int argc, char** argv) {
     sweep_cmd->add_option("--set", sweep.overrides, "override a scene field for every run")->allow_extra_args(false);
     sweep_cmd->add_option("--jobs", sweep.jobs, "runs at once (default: every core)")->check(CLI::Range(1, 4096));
     sweep_cmd->add_option("--baseline", sweep.baseline, "the variant the others are compared with (default: the first)");
+
+    OptimiseOptions optimise;
+    auto* optimise_cmd = app.add_subcommand(
+        "optimise",
+        "search a study's process variables for the best setting (Bayesian optimisation over runs), confirm it (DIR/optimise/)");
+    optimise_cmd->alias("optimize");
+    optimise_cmd
+        ->add_option("study", optimise.study_path,
+                     "study file (YAML): the scene, the variables and their bounds, the objective, the budget "
+                     "(see docs/user-guide.md, \"Finding the best process\")")
+        ->required();
+    optimise_cmd
+        ->add_option("-o,--output", optimise.output_dir,
+                     "the optimisation's directory: a run directory per setting and seed, and optimise/")
+        ->required();
+    int optimise_runs = 0;
+    auto* optimise_runs_option =
+        optimise_cmd->add_option("--runs", optimise_runs, "the search's budget of runs (default: the study's, else 10 per variable + 10)")
+            ->check(CLI::Range(2, 5000));
+    optimise_cmd->add_option("--jobs", optimise.jobs, "runs at once (default: every core; under MPI, per rank: 1)")
+        ->check(CLI::Range(1, 4096));
 
     BenchOptions bench;
     auto* bench_cmd = app.add_subcommand(
@@ -307,6 +329,10 @@ int main(int argc, char** argv) {
     if (*sweep_cmd) {
         if (sweep_seeds_option->count() > 0) sweep.seeds = sweep_seeds;
         return sweep_job(sweep, std::cout, std::cerr);
+    }
+    if (*optimise_cmd) {
+        if (optimise_runs_option->count() > 0) optimise.runs = optimise_runs;
+        return optimise_job(optimise, std::cout, std::cerr);
     }
     if (*bench_cmd) return bench_job(bench, std::cout, std::cerr);
     if (*trade_cmd) return trade_job(trade, std::cout, std::cerr);

@@ -209,57 +209,30 @@ std::string unit_of(const std::string& value) {
     return b == std::string::npos ? std::string() : " (" + value.substr(b) + ")";
 }
 
-}  // namespace
+// A variant's figures over its finished runs.
+struct CompareRow {
+    SweepFigure rate, mean_vn, p90_vn, coverage, almen, whole, slowest, everywhere, uniformity, share_below;
+    std::string slowest_region;  // the region slowest in most runs
+    struct Region {
+        SweepFigure rate, coverage, time;
+    };
+    std::map<std::string, Region> regions;
+    std::size_t runs = 0;
+};
 
-SweepFigure mean_with_ci95(const std::vector<double>& values) {
-    const SampleMean s = sample_mean(values);
-    if (s.count == 0) return {};
-    if (s.count < 2) return {s.mean, std::nullopt, ""};
-    return {s.mean, student_t_two_sided_quantile(0.05, static_cast<double>(s.count) - 1.0) * s.standard_error, ""};
-}
-
-SweepDifference compare_figures(const SweepFigure& a, const SweepFigure& b) {
-    SweepDifference d;
-    if (!a.mean || !b.mean) return {std::nullopt, "-"};
-    d.delta = *a.mean - *b.mean;
-    if (!a.ci95 || !b.ci95) {
-        d.verdict = "-";
-        return d;
-    }
-    d.verdict = std::abs(*d.delta) > std::hypot(*a.ci95, *b.ci95) ? "differs" : "within noise";
-    return d;
-}
-
-SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::string& sweep_dir, const std::string& baseline,
-                                          const std::string& title) {
-    SweepCompareResult result;
-    std::size_t base = 0;
-    if (!baseline.empty()) {
-        base = plan.variants.size();
-        for (std::size_t v = 0; v < plan.variants.size(); ++v)
-            if (plan.variants[v].name == baseline) base = v;
-        if (base == plan.variants.size()) throw std::runtime_error("--baseline '" + baseline + "': no such variant");
-    }
+// Every variant's row (the first logged part's, or `component`'s), the regions' names as met, and
+// the target coverage the runs' forecasts aim at.
+std::vector<CompareRow> variant_rows(const SweepPlan& plan, std::string& component, std::vector<std::string>& region_names,
+                                     double& target) {
     // Every finished run, by variant.
     std::vector<std::vector<RunFigures>> runs(plan.variants.size());
     for (const SweepRun& run : plan.runs)
-        if (auto r = read_run(run.dir, result.component)) runs[run.variant].push_back(*r);
+        if (auto r = read_run(run.dir, component)) runs[run.variant].push_back(*r);
 
-    struct Row {
-        SweepFigure rate, mean_vn, p90_vn, coverage, almen, whole, slowest, everywhere, uniformity, share_below;
-        std::string slowest_region;  // the region slowest in most runs
-        struct Region {
-            SweepFigure rate, coverage, time;
-        };
-        std::map<std::string, Region> regions;
-        std::size_t runs = 0;
-    };
-    std::vector<Row> rows(plan.variants.size());
-    std::vector<std::string> region_names;
-    double target = NAN;
+    std::vector<CompareRow> rows(plan.variants.size());
     for (std::size_t v = 0; v < plan.variants.size(); ++v) {
         const std::vector<RunFigures>& rs = runs[v];
-        Row& row = rows[v];
+        CompareRow& row = rows[v];
         row.runs = rs.size();
         if (rs.empty()) continue;
         if (!std::isfinite(target)) target = rs[0].target;
@@ -295,32 +268,93 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
             row.regions[name] = {mean_with_ci95(rate), mean_with_ci95(cov), forecast_figure(with_region, &RunFigures::whole)};
         }
     }
+    return rows;
+}
+
+// comparison.csv's columns: every figure with the half-width of its 95 % interval.
+struct CompareColumn {
+    const char* name;
+    SweepFigure CompareRow::*figure;
+    bool compared;  // with a difference from the baseline and a verdict
+};
+constexpr CompareColumn kCompareColumns[] = {{"impact_rate_per_s", &CompareRow::rate, true},
+                                             {"mean_vn_mps", &CompareRow::mean_vn, false},
+                                             {"p90_vn_mps", &CompareRow::p90_vn, false},
+                                             {"coverage", &CompareRow::coverage, true},
+                                             {"time_to_target_s", &CompareRow::whole, true},
+                                             {"slowest_region_time_to_target_s", &CompareRow::slowest, true},
+                                             {"time_to_target_everywhere_s", &CompareRow::everywhere, true},
+                                             {"uniformity", &CompareRow::uniformity, true},
+                                             {"share_below_target", &CompareRow::share_below, true},
+                                             {"almen_dose_J_per_m2", &CompareRow::almen, false}};
+
+}  // namespace
+
+SweepFigure mean_with_ci95(const std::vector<double>& values) {
+    const SampleMean s = sample_mean(values);
+    if (s.count == 0) return {};
+    if (s.count < 2) return {s.mean, std::nullopt, ""};
+    return {s.mean, student_t_two_sided_quantile(0.05, static_cast<double>(s.count) - 1.0) * s.standard_error, ""};
+}
+
+SweepDifference compare_figures(const SweepFigure& a, const SweepFigure& b) {
+    SweepDifference d;
+    if (!a.mean || !b.mean) return {std::nullopt, "-"};
+    d.delta = *a.mean - *b.mean;
+    if (!a.ci95 || !b.ci95) {
+        d.verdict = "-";
+        return d;
+    }
+    d.verdict = std::abs(*d.delta) > std::hypot(*a.ci95, *b.ci95) ? "differs" : "within noise";
+    return d;
+}
+
+SweepFigures read_sweep_figures(const SweepPlan& plan, const std::string& component) {
+    SweepFigures out;
+    out.component = component;
+    std::vector<std::string> region_names;
+    const std::vector<CompareRow> rows = variant_rows(plan, out.component, region_names, out.target_coverage);
+    for (const CompareRow& r : rows) {
+        SweepVariantFigures v;
+        v.runs = r.runs;
+        v.slowest_region = r.slowest_region;
+        for (const CompareColumn& c : kCompareColumns) v.figures[c.name] = r.*c.figure;
+        for (const auto& [name, g] : r.regions) {
+            const std::string p = "region_" + name;
+            v.figures[p + "_impact_rate_per_s"] = g.rate;
+            v.figures[p + "_coverage"] = g.coverage;
+            v.figures[p + "_time_to_target_s"] = g.time;
+        }
+        out.variants.push_back(std::move(v));
+    }
+    return out;
+}
+
+SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::string& sweep_dir, const std::string& baseline,
+                                          const std::string& title) {
+    SweepCompareResult result;
+    std::size_t base = 0;
+    if (!baseline.empty()) {
+        base = plan.variants.size();
+        for (std::size_t v = 0; v < plan.variants.size(); ++v)
+            if (plan.variants[v].name == baseline) base = v;
+        if (base == plan.variants.size()) throw std::runtime_error("--baseline '" + baseline + "': no such variant");
+    }
+    std::vector<std::string> region_names;
+    double target = NAN;
+    const std::vector<CompareRow> rows = variant_rows(plan, result.component, region_names, target);
     fs::create_directories(sweep_dir);
     const std::string to_target = std::isfinite(target) ? "time to " + fmt(target * 100.0, 4) + " %" : std::string("time to target");
 
-    // comparison.csv: one row per variant; every figure with the half-width of its 95 % interval.
-    struct Column {
-        const char* name;
-        SweepFigure Row::*figure;
-        bool compared;  // with a difference from the baseline and a verdict
-    };
-    const Column columns[] = {{"impact_rate_per_s", &Row::rate, true},
-                              {"mean_vn_mps", &Row::mean_vn, false},
-                              {"p90_vn_mps", &Row::p90_vn, false},
-                              {"coverage", &Row::coverage, true},
-                              {"time_to_target_s", &Row::whole, true},
-                              {"slowest_region_time_to_target_s", &Row::slowest, true},
-                              {"time_to_target_everywhere_s", &Row::everywhere, true},
-                              {"uniformity", &Row::uniformity, true},
-                              {"share_below_target", &Row::share_below, true},
-                              {"almen_dose_J_per_m2", &Row::almen, false}};
+    // comparison.csv: one row per variant.
+    const auto& columns = kCompareColumns;
     std::ostringstream csv;
     csv << "variant";
     for (const SweepAxis& a : plan.axes) csv << "," << a.path;
     csv << ",runs_finished,target_coverage";
-    for (const Column& c : columns) csv << "," << c.name << "," << c.name << "_ci95";
+    for (const CompareColumn& c : columns) csv << "," << c.name << "," << c.name << "_ci95";
     csv << ",slowest_region,why_no_time_to_target,why_no_slowest_region_time,why_no_time_to_target_everywhere";
-    for (const Column& c : columns)
+    for (const CompareColumn& c : columns)
         if (c.compared) csv << ",delta_" << c.name << ",verdict_" << c.name;
     for (const std::string& name : region_names) {
         const std::string p = ",region_" + name;
@@ -329,21 +363,21 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
     }
     csv << "\n";
     for (std::size_t v = 0; v < plan.variants.size(); ++v) {
-        const Row& r = rows[v];
+        const CompareRow& r = rows[v];
         csv << plan.variants[v].name;
         for (const SweepAxis& a : plan.axes) csv << ",\"" << sweep_value(plan.variants[v], a.path) << "\"";
         csv << "," << r.runs << "," << csv_cell(std::isfinite(target) ? std::optional<double>(target) : std::nullopt);
-        for (const Column& c : columns) csv << "," << csv_cell((r.*c.figure).mean) << "," << csv_cell((r.*c.figure).ci95);
+        for (const CompareColumn& c : columns) csv << "," << csv_cell((r.*c.figure).mean) << "," << csv_cell((r.*c.figure).ci95);
         csv << "," << r.slowest_region;
         for (const SweepFigure* f : {&r.whole, &r.slowest, &r.everywhere}) csv << ",\"" << f->missing << "\"";
-        for (const Column& c : columns)
+        for (const CompareColumn& c : columns)
             if (c.compared) {
                 const SweepDifference d = compare_figures(r.*c.figure, rows[base].*c.figure);
                 csv << "," << csv_cell(d.delta) << "," << d.verdict;
             }
         for (const std::string& name : region_names) {
             const auto it = r.regions.find(name);
-            const Row::Region g = it != r.regions.end() ? it->second : Row::Region{};
+            const CompareRow::Region g = it != r.regions.end() ? it->second : CompareRow::Region{};
             for (const SweepFigure* f : {&g.rate, &g.coverage, &g.time}) csv << "," << csv_cell(f->mean) << "," << csv_cell(f->ci95);
         }
         csv << "\n";
@@ -357,7 +391,7 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
     md << plan.variants.size() << " variants x " << plan.seeds << (plan.seeds == 1 ? " seed" : " seeds")
        << "; the logged part compared: " << (result.component.empty() ? std::string("(none finished)") : "`" + result.component + "`")
        << "; baseline `" << plan.variants[base].name << "`.\n\n";
-    const auto verdict = [&](std::size_t v, SweepFigure Row::*f, double scale) {
+    const auto verdict = [&](std::size_t v, SweepFigure CompareRow::*f, double scale) {
         if (v == base) return std::string("baseline");
         const SweepDifference d = compare_figures(rows[v].*f, rows[base].*f);
         return d.delta ? (*d.delta >= 0 ? "+" : "") + fmt(*d.delta * scale, 3) + " (" + d.verdict + ")" : std::string("-");
@@ -369,20 +403,22 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
        << "uniformity | vs baseline | share below target (%) | vs baseline | " << to_target << ", whole part (s) | vs baseline |\n"
        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t v = 0; v < plan.variants.size(); ++v) {
-        const Row& r = rows[v];
+        const CompareRow& r = rows[v];
         md << "| " << plan.variants[v].name << " | " << r.runs << "/" << plan.seeds << " | "
-           << (r.slowest_region.empty() ? "-" : r.slowest_region) << " | " << timed(r.slowest) << " | " << verdict(v, &Row::slowest, 1.0)
-           << " | " << timed(r.everywhere) << " | " << verdict(v, &Row::everywhere, 1.0) << " | " << shown(r.uniformity, 1.0, 3) << " | "
-           << verdict(v, &Row::uniformity, 1.0) << " | " << shown(r.share_below, 100.0, 3) << " | " << verdict(v, &Row::share_below, 100.0)
-           << " | " << timed(r.whole) << " | " << verdict(v, &Row::whole, 1.0) << " |\n";
+           << (r.slowest_region.empty() ? "-" : r.slowest_region) << " | " << timed(r.slowest) << " | "
+           << verdict(v, &CompareRow::slowest, 1.0) << " | " << timed(r.everywhere) << " | " << verdict(v, &CompareRow::everywhere, 1.0)
+           << " | " << shown(r.uniformity, 1.0, 3) << " | " << verdict(v, &CompareRow::uniformity, 1.0) << " | "
+           << shown(r.share_below, 100.0, 3) << " | " << verdict(v, &CompareRow::share_below, 100.0) << " | " << timed(r.whole) << " | "
+           << verdict(v, &CompareRow::whole, 1.0) << " |\n";
     }
     md << "\n## The runs' figures\n\n"
        << "| variant | impacts per s | vs baseline | mean v_n (m/s) | p90 v_n (m/s) | coverage (%) | vs baseline |\n"
        << "|---|---|---|---|---|---|---|\n";
     for (std::size_t v = 0; v < plan.variants.size(); ++v) {
-        const Row& r = rows[v];
-        md << "| " << plan.variants[v].name << " | " << shown(r.rate) << " | " << verdict(v, &Row::rate, 1.0) << " | " << shown(r.mean_vn)
-           << " | " << shown(r.p90_vn) << " | " << shown(r.coverage, 100.0) << " | " << verdict(v, &Row::coverage, 100.0) << " |\n";
+        const CompareRow& r = rows[v];
+        md << "| " << plan.variants[v].name << " | " << shown(r.rate) << " | " << verdict(v, &CompareRow::rate, 1.0) << " | "
+           << shown(r.mean_vn) << " | " << shown(r.p90_vn) << " | " << shown(r.coverage, 100.0) << " | "
+           << verdict(v, &CompareRow::coverage, 100.0) << " |\n";
     }
     md << "\nIntervals are 95 %: "
        << (plan.seeds > 1 ? std::string("Student's t over the seed replicates (process.seed, +1, ...).")
@@ -402,7 +438,7 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
         int points = 0;
         for (std::size_t v = 0; v < plan.variants.size(); ++v) {
             const double x = leading_number(sweep_value(plan.variants[v], plan.axes[a].path));
-            const Row& r = rows[v];
+            const CompareRow& r = rows[v];
             if (!std::isfinite(x) || !r.everywhere.mean) continue;
             data << x << " " << *r.everywhere.mean << " " << r.everywhere.ci95.value_or(0.0) << "\n";
             ++points;

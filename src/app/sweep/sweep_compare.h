@@ -8,6 +8,9 @@
 // within noise); and a plot per varied field.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +36,24 @@ struct SweepDifference {
     std::string verdict;  // "differs", "within noise", "-" (no interval on one side)
 };
 SweepDifference compare_figures(const SweepFigure& a, const SweepFigure& b);
+
+// Every variant's figures as comparison.csv has them, by its column name (the figure's half-width
+// in SweepFigure::ci95): impact_rate_per_s, ..., time_to_target_everywhere_s, ..., and per region
+// region_<name>_impact_rate_per_s, region_<name>_coverage, region_<name>_time_to_target_s.
+struct SweepVariantFigures {
+    std::size_t runs = 0;  // finished runs read
+    std::map<std::string, SweepFigure> figures;
+    std::string slowest_region;  // the region slowest in most runs
+};
+struct SweepFigures {
+    std::string component;                      // the logged part read
+    double target_coverage = NAN;               // the target the runs' forecasts aim at (0..1)
+    std::vector<SweepVariantFigures> variants;  // as plan.variants
+};
+
+// Reads every finished run of `plan` (summary.json, analysis/figures.json) for `component` ("" =
+// the first logged part); writes nothing.
+SweepFigures read_sweep_figures(const SweepPlan& plan, const std::string& component = "");
 
 struct SweepCompareResult {
     std::string component;          // the logged part compared

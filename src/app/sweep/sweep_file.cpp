@@ -8,6 +8,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "app/yaml_nodes.h"
 #include "common/input_error.h"
 #include "scene/schema.h"
 #include "scene/yaml_access.h"
@@ -23,16 +24,6 @@ constexpr std::string_view kSweepKeys[] = {"scene", "seeds", "set", "vary", "var
 constexpr std::string_view kSweepKeysText = "scene, seeds, set, vary, variants, baseline";
 
 bool is_sweep_key(const std::string& key) { return std::find(std::begin(kSweepKeys), std::end(kSweepKeys), key) != std::end(kSweepKeys); }
-
-SourceLocation at(const std::string& path, const YAML::Node& n) { return {path, n.Mark().line + 1, n.Mark().column + 1}; }
-
-// A value as --set reads it: a scalar as written, a list or map in YAML's flow form.
-std::string text_of(const YAML::Node& n) {
-    if (n.IsScalar()) return n.Scalar();
-    YAML::Emitter e;
-    e << YAML::Flow << n;
-    return e.c_str();
-}
 
 }  // namespace
 
@@ -63,11 +54,11 @@ SweepFile read_sweep_file(const std::string& path) {
     const YAML::Node root = parse_yaml(text.str(), path);
     SweepFile f;
     const auto fail = [&](const YAML::Node& n, const std::string& field, const std::string& problem) {
-        throw InputError(at(path, n), field, problem);
+        throw InputError(yaml_location(path, n), field, problem);
     };
     if (!root.IsMap()) throw InputError({path, 1, 1}, "", "expected a sweep file: a map with scene, and vary or variants");
     for (const auto& kv : root) {
-        const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : text_of(kv.first);
+        const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : yaml_text(kv.first);
         if (!is_sweep_key(key)) fail(kv.first, key, "unknown key in a sweep file; expected " + std::string(kSweepKeysText));
     }
     if (!root["scene"])
@@ -80,24 +71,24 @@ SweepFile read_sweep_file(const std::string& path) {
         try {
             f.seeds = seeds.as<int>();
         } catch (const YAML::Exception&) {
-            fail(seeds, "seeds", sweep_seeds_problem(text_of(seeds)));
+            fail(seeds, "seeds", sweep_seeds_problem(yaml_text(seeds)));
         }
-        if (f.seeds < 1 || f.seeds > kMaxSweepSeeds) fail(seeds, "seeds", sweep_seeds_problem(text_of(seeds)));
+        if (f.seeds < 1 || f.seeds > kMaxSweepSeeds) fail(seeds, "seeds", sweep_seeds_problem(yaml_text(seeds)));
     }
     if (const YAML::Node set = root["set"]) {
         if (!set.IsSequence()) fail(set, "set", "expected a list of path=value");
-        f.set_origin = at(path, set);
-        for (const auto& s : set) f.overrides.push_back(text_of(s));
+        f.set_origin = yaml_location(path, set);
+        for (const auto& s : set) f.overrides.push_back(yaml_text(s));
     }
     const YAML::Node vary = root["vary"], variants = root["variants"];
     if (vary && variants) fail(variants, "variants", "give either vary (a grid) or variants (a list), not both");
     if (vary) {
         if (!vary.IsMap()) fail(vary, "vary", "expected a map of path: [values]");
         for (const auto& kv : vary) {
-            SweepAxis axis{kv.first.Scalar(), {}, at(path, kv.first), "vary." + kv.first.Scalar()};
+            SweepAxis axis{kv.first.Scalar(), {}, yaml_location(path, kv.first), "vary." + kv.first.Scalar()};
             if (!kv.second.IsSequence() || kv.second.size() == 0)
                 fail(kv.second, "vary." + axis.path, "expected a list of one or more values");
-            for (const auto& v : kv.second) axis.values.push_back(text_of(v));
+            for (const auto& v : kv.second) axis.values.push_back(yaml_text(v));
             f.axes.push_back(std::move(axis));
         }
     }
@@ -107,17 +98,17 @@ SweepFile read_sweep_file(const std::string& path) {
             const YAML::Node v = variants[k];
             const std::string field = "variants[" + std::to_string(k) + "]";
             if (!v.IsMap() || !v["name"] || !v["name"].IsScalar()) fail(v, field + ".name", "expected each variant's name");
-            SweepVariant variant{v["name"].Scalar(), {}, at(path, v), field};
+            SweepVariant variant{v["name"].Scalar(), {}, yaml_location(path, v), field};
             if (const YAML::Node set = v["set"]) {
                 if (!set.IsMap()) fail(set, field + ".set", "expected a map of path: value");
-                for (const auto& kv : set) variant.set.emplace_back(kv.first.Scalar(), text_of(kv.second));
+                for (const auto& kv : set) variant.set.emplace_back(kv.first.Scalar(), yaml_text(kv.second));
             }
             f.variants.push_back(std::move(variant));
         }
     }
     if (const YAML::Node b = root["baseline"]) {
-        f.baseline = text_of(b);
-        f.baseline_origin = at(path, b);
+        f.baseline = yaml_text(b);
+        f.baseline_origin = yaml_location(path, b);
     }
     return f;
 }

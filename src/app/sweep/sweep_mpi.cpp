@@ -46,6 +46,14 @@ MpiSweep::MpiSweep() {
 
 MpiSweep::~MpiSweep() { MPI_Finalize(); }
 
+std::string MpiSweep::broadcast(const std::string& text) const {
+    long size = rank_ == 0 ? static_cast<long>(text.size()) : 0;
+    MPI_Bcast(&size, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+    std::string got = rank_ == 0 ? text : std::string(static_cast<std::size_t>(size), '\0');
+    if (size > 0) MPI_Bcast(got.data(), static_cast<int>(size), MPI_CHAR, 0, MPI_COMM_WORLD);
+    return got;
+}
+
 void MpiSweep::work(const std::string& executable, const std::string& scene, const SweepPlan& plan, const std::string& logs_dir,
                     const StopRequest& stop) {
     long report[2] = {-1, 0};

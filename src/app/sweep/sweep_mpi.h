@@ -32,6 +32,10 @@ public:
     void work(const std::string& executable, const std::string& scene, const SweepPlan& plan, const std::string& logs_dir,
               const StopRequest& stop);
 
+    // Rank 0's `text` on every rank (the others pass anything): how rank 0 tells the ranks what
+    // to run next when it plans as it goes (an optimisation's rounds).
+    std::string broadcast(const std::string& text) const;
+
 private:
     int rank_ = 0, size_ = 1;
 };

@@ -19,6 +19,8 @@ MpiSweep::~MpiSweep() = default;
 
 void MpiSweep::coordinate(SweepBook&, const std::string&, const std::string&, const SweepPlan&, int, const StopRequest&) {}
 
+std::string MpiSweep::broadcast(const std::string& text) const { return text; }
+
 void MpiSweep::work(const std::string&, const std::string&, const SweepPlan&, const std::string&, const StopRequest&) {}
 
 }  // namespace peensim

@@ -252,4 +252,20 @@ SweepPlan plan_sweep(const std::vector<SweepAxis>& axes, int seeds, std::uint64_
     return plan;
 }
 
+SweepPlan plan_sweep_replicates(const std::vector<SweepVariant>& variants, const std::vector<int>& replicates, std::uint64_t base_seed,
+                                const std::vector<std::string>& overrides, const std::string& output_dir) {
+    SweepPlan plan = plan_sweep_variants(variants, 1, base_seed, overrides, output_dir);
+    plan.runs.clear();
+    int most = 1;
+    for (std::size_t v = 0; v < plan.variants.size(); ++v) {
+        const int count = v < replicates.size() ? replicates[v] : 1;
+        if (count < 1 || count > kMaxSweepSeeds) throw InputError({"--seeds"}, "", sweep_seeds_problem(std::to_string(count)));
+        plan.seeds = count;
+        for (SweepRun& run : runs_of(plan, v, base_seed)) plan.runs.push_back(std::move(run));
+        most = std::max(most, count);
+    }
+    plan.seeds = most;
+    return plan;
+}
+
 }  // namespace peensim

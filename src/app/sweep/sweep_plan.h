@@ -81,6 +81,12 @@ SweepPlan plan_sweep(const std::vector<SweepAxis>& axes, int seeds, std::uint64_
 SweepPlan plan_sweep_variants(const std::vector<SweepVariant>& variants, int seeds, std::uint64_t base_seed,
                               const std::vector<std::string>& overrides, const std::string& output_dir);
 
+// Listed variants each with its own number of replicates (an optimisation's settings: more seeds
+// where an interval needs them), checked as plan_sweep_variants; variant v runs replicates[v]
+// seeds from base_seed (1 where none is given). plan.seeds: the most any variant has.
+SweepPlan plan_sweep_replicates(const std::vector<SweepVariant>& variants, const std::vector<int>& replicates, std::uint64_t base_seed,
+                                const std::vector<std::string>& overrides, const std::string& output_dir);
+
 // A variant that sets process.seed itself: its replicates start there (seed, seed + 1, ...)
 // instead of at the scene's. Throws InputError ("--seeds") past the largest seed.
 void reseed_variant(SweepPlan& plan, std::size_t variant, std::uint64_t seed);

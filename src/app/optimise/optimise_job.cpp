@@ -1,0 +1,334 @@
+#include "app/optimise/optimise_job.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "analysis/student_t.h"
+#include "app/analysis/analysis_format.h"
+#include "app/exit_codes.h"
+#include "app/interrupt.h"
+#include "app/mpi_launch.h"
+#include "app/optimise/bayes_search.h"
+#include "app/optimise/optimise_report.h"
+#include "app/optimise/optimise_settings.h"
+#include "app/optimise/study_file.h"
+#include "app/report_errors.h"
+#include "app/sweep/sweep_checks.h"
+#include "app/sweep/sweep_compare.h"
+#include "app/sweep/sweep_mpi.h"
+#include "app/sweep/sweep_runner.h"
+#include "common/input_error.h"
+#include "output/atomic_file.h"
+#include "scene/scene_parser.h"
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+namespace {
+
+// The confirmation's seeds start this far past the scene's: never a seed the search ran.
+constexpr std::uint64_t kConfirmSeedOffset = 1000;
+
+std::string whole_file(const std::string& path) {
+    std::ifstream in(path);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::string setting_name(std::size_t k) {
+    char name[16];
+    std::snprintf(name, sizeof name, "e%03zu", k);
+    return name;
+}
+
+// Reads the study and the scene as every run reads them, and reads the scene at the start and at
+// each variable's bounds (the others at the start): a path, a unit or a bound the scene refuses is
+// an input error before anything runs, blamed on the variable's line.
+void check_study(const Study& study, std::ostream& out) {
+    std::vector<SweepVariant> variants;
+    StudySetting start{"start", {}, 1, 0, "start"};
+    for (const StudyVariable& v : study.variables) start.values.push_back(v.has_start ? std::optional<double>(v.start) : std::nullopt);
+    for (std::size_t i = 0; i < study.variables.size(); ++i) {
+        const StudyVariable& v = study.variables[i];
+        for (const bool at_max : {false, true}) {
+            StudySetting s = start;
+            s.values[i] = at_max ? v.max : v.min;
+            const std::string field = "variables." + v.name + (at_max ? ".max" : ".min");
+            variants.push_back({"check-" + std::to_string(variants.size()), setting_overrides(study, s), v.origin, field});
+        }
+    }
+    SweepPlan plan = plan_sweep_variants(variants, 1, 0, study.overrides, "");
+    check_sweep_variants(study.scene_path, plan, out);
+}
+
+// The figures of each setting, and the search's points (complete settings only).
+struct MeasuredSettings {
+    SweepFigures figures;
+    std::vector<SearchPoint> points;
+    std::vector<std::size_t> point_setting;  // setting of each point
+};
+
+MeasuredSettings measure_settings(const Study& study, const std::vector<StudySetting>& settings, const SweepPlan& plan) {
+    MeasuredSettings m;
+    m.figures = read_sweep_figures(plan);
+    const ObjectiveScale scale = ObjectiveScale::of(study);
+    for (std::size_t k = 0; k < settings.size(); ++k) {
+        if (!complete(settings[k])) continue;
+        const auto& f = m.figures.variants[k].figures;
+        SearchPoint p;
+        p.u = unit_point(study, settings[k]);
+        const auto it = f.find(study.objective);
+        const SweepFigure o = it != f.end() ? it->second : SweepFigure{};
+        p.y = o.mean && (!scale.log || *o.mean > 0.0) ? scale.to_model(*o.mean) : NAN;
+        p.runs = static_cast<double>(std::max<std::size_t>(1, m.figures.variants[k].runs));
+        // The runs' scatter from their interval: sd = ci95 sqrt(n) / t(0.975, n - 1); on the
+        // model's scale (a log: relative to the mean).
+        if (p.runs >= 2.0 && o.ci95 && std::isfinite(p.y)) {
+            const double sd = *o.ci95 * std::sqrt(p.runs) / student_t_two_sided_quantile(0.05, p.runs - 1.0);
+            const double model_sd = scale.log ? sd / *o.mean : sd;
+            p.scatter = (p.runs - 1.0) * model_sd * model_sd;
+        }
+        for (const StudyConstraint& c : study.constraints) {
+            const auto ct = f.find(c.figure);
+            const double norm = c.limit != 0.0 ? std::abs(c.limit) : 1.0;
+            p.g.push_back(ct == f.end() || !ct->second.mean ? NAN
+                                                            : (c.is_max ? *ct->second.mean - c.limit : c.limit - *ct->second.mean) / norm);
+        }
+        m.points.push_back(std::move(p));
+        m.point_setting.push_back(k);
+    }
+    return m;
+}
+
+// The next round: a replicate of the incumbent while the model's 95 % interval there is wider than
+// the tolerance (its noise shrinks with its runs),
+// then the model's proposals (a proposal that rounds to a setting already run adds a seed to it
+// instead). Nothing added: nothing left worth a run.
+struct SearchRound {
+    std::vector<StudySetting> added;
+    std::vector<std::string> replicated;  // settings given one more seed
+    std::string incumbent;                // "e003: 1231 (1136 to 1335)", the model's best so far
+};
+
+SearchRound next_round(const Study& study, std::vector<StudySetting>& settings, const MeasuredSettings& m, int batch, int runs_left,
+                       int round) {
+    std::vector<StudySetting> added;
+    std::vector<std::string> replicated_names;
+    if (m.points.empty()) return {};
+    const SearchModel model(m.points, study.constraints.size());
+    const std::size_t inc = m.point_setting[model.incumbent(m.points)];
+    int slots = std::min(batch, runs_left);
+    std::vector<bool> replicated(settings.size(), false);
+    const auto replicate = [&](std::size_t k) {
+        if (replicated[k] || settings[k].seeds >= study.max_seeds || slots < 1) return false;
+        ++settings[k].seeds;
+        settings[k].why += settings[k].why.find("+seeds") == std::string::npos ? "+seeds" : "";
+        replicated[k] = true;
+        replicated_names.push_back(settings[k].name);
+        --slots;
+        return true;
+    };
+    const ObjectiveScale scale = ObjectiveScale::of(study);
+    const GpPrediction at_incumbent = model.objective(unit_point(study, settings[inc]));
+    const double sd = std::sqrt(at_incumbent.variance), centre = scale.to_figure(at_incumbent.mean);
+    const double half = 0.5 * std::abs(scale.to_figure(at_incumbent.mean + 1.96 * sd) - scale.to_figure(at_incumbent.mean - 1.96 * sd));
+    if (half > study.tolerance * std::abs(centre)) replicate(inc);
+    const double a = scale.to_figure(at_incumbent.mean - 1.96 * sd), b = scale.to_figure(at_incumbent.mean + 1.96 * sd);
+    std::string incumbent = settings[inc].name + ": " + fmt(centre) + " (" + fmt(std::min(a, b)) + " to " + fmt(std::max(a, b)) + ")";
+    const std::vector<Eigen::VectorXd> proposals =
+        model.propose(m.points, slots, study.seed * 1000003ULL + static_cast<std::uint64_t>(round));
+    for (const Eigen::VectorXd& u : proposals) {
+        if (slots < study.seeds) break;
+        StudySetting s{setting_name(settings.size() + added.size()), {}, study.seeds, round, "search"};
+        for (std::size_t i = 0; i < study.variables.size(); ++i)
+            s.values.push_back(value_of_unit(study.variables[i], u(static_cast<Eigen::Index>(i))));
+        const auto same = std::find_if(settings.begin(), settings.end(), [&](const StudySetting& t) { return t.values == s.values; });
+        if (same != settings.end()) {
+            replicate(static_cast<std::size_t>(same - settings.begin()));
+            continue;
+        }
+        if (std::any_of(added.begin(), added.end(), [&](const StudySetting& t) { return t.values == s.values; })) continue;
+        slots -= s.seeds;
+        added.push_back(std::move(s));
+    }
+    settings.insert(settings.end(), added.begin(), added.end());
+    return {added, replicated_names, incumbent};
+}
+
+int runs_in(const std::vector<StudySetting>& settings) {
+    int n = 0;
+    for (const StudySetting& s : settings) n += s.seeds;
+    return n;
+}
+
+}  // namespace
+
+int optimise_job(const OptimiseOptions& options, std::ostream& out, std::ostream& err) {
+    return report_errors(err, [&] { return run_optimise(options, out, err); });
+}
+
+int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream& err) {
+    if (options.output_dir.empty()) throw InputError({"-o"}, "", "expected the optimisation's output directory (-o DIR)");
+    const Study study = read_study_file(options.study_path);
+    const SceneDescription scene = read_sweep_scene(study.scene_path, {study.overrides, study.set_origin, {}});
+    const std::string dir = options.output_dir, opt_dir = dir + "/optimise";
+    const std::string executable = options.executable.empty() ? this_executable() : options.executable;
+    const StopRequest stop(options.stop_requested,
+                           "peensim optimise: second interrupt, stopping at once (the runs keep their last checkpoints)\n");
+
+    std::optional<MpiSweep> mpi;
+    if (launched_by_mpi()) mpi.emplace();
+    SweepRunner runner{executable, study.scene_path, opt_dir + "/logs", 1, nullptr};
+    if (mpi && mpi->rank() != 0) {
+        // The other ranks: run what rank 0 sends, round after round, until it sends nothing.
+        for (std::string text = mpi->broadcast(""); !text.empty(); text = mpi->broadcast(""))
+            mpi->work(executable, study.scene_path, plan_from_text(text), runner.logs_dir, stop);
+        return kExitOk;
+    }
+    const auto run_plan = [&](const SweepPlan& plan, const std::string& headline) {
+        if (mpi) {
+            mpi->broadcast(plan_text(plan));
+            runner.mpi = &*mpi;
+        }
+        return run_sweep_plan(plan, runner, stop, headline, out, err);
+    };
+    const auto finish_ranks = [&] {
+        if (mpi) mpi->broadcast("");
+    };
+    try {
+        check_study(study, out);
+    } catch (...) {
+        finish_ranks();
+        throw;
+    }
+
+    const int d = static_cast<int>(study.variables.size());
+    const int slots = mpi ? std::max(1, options.jobs) * mpi->size()
+                          : (options.jobs > 0 ? options.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+    runner.jobs = mpi ? std::max(1, options.jobs) : slots;
+    const int budget = options.runs.value_or(study.runs > 0 ? study.runs : 10 * d + 10);
+    const int batch = study.batch > 0 ? study.batch : slots;
+    const int initial = std::clamp(study.initial > 0 ? study.initial : 2 * d + 2, 1, std::max(1, budget / study.seeds - 1));
+    const std::string fingerprint = fingerprint_of(study.text + "\n--\n" + whole_file(study.scene_path));
+
+    // The settings so far: the journal's (a resumed search), else the start and the first design.
+    fs::create_directories(opt_dir);
+    std::vector<StudySetting> settings;
+    const std::string journal = opt_dir + "/journal.json";
+    if (fs::exists(journal)) {
+        std::string found;
+        settings = read_journal(whole_file(journal), found);
+        if (found != fingerprint) {
+            finish_ranks();
+            throw InputError({"-o"}, "",
+                             "'" + dir +
+                                 "' holds the evaluations of another study (or of this one before its study file or scene "
+                                 "changed); expected the same study, or another -o");
+        }
+    } else {
+        // The start runs twice (unless max_seeds is 1): its two runs' scatter tells the model the
+        // spread between seeds from the first round on.
+        StudySetting start{"start", {}, std::min(std::max(2, study.seeds), study.max_seeds), 0, "start"};
+        for (const StudyVariable& v : study.variables) start.values.push_back(v.has_start ? std::optional<double>(v.start) : std::nullopt);
+        settings.push_back(start);
+        for (const Eigen::VectorXd& u : latin_hypercube(initial, d, study.seed)) {
+            StudySetting s{setting_name(settings.size()), {}, study.seeds, 0, "design"};
+            for (int i = 0; i < d; ++i) s.values.push_back(value_of_unit(study.variables[static_cast<std::size_t>(i)], u(i)));
+            settings.push_back(std::move(s));
+        }
+    }
+
+    // The rounds: run what the journal holds, then propose the next round from everything measured.
+    SweepPlan plan;
+    MeasuredSettings measured;
+    int round = 0;
+    for (const StudySetting& s : settings) round = std::max(round, s.round);
+    std::string stopped_because;
+    std::vector<std::size_t> failed;
+    for (;;) {
+        write_file_atomically(journal, journal_text(fingerprint, settings));
+        plan = settings_plan(study, settings, scene.process.seed, dir);
+        const SweepOutcome o =
+            run_plan(plan, "optimise: round " + std::to_string(round) + ", " + std::to_string(settings.size()) + " settings");
+        if (o.stopped) {
+            finish_ranks();
+            err << "optimise: interrupted; " << o.done << "/" << o.total
+                << " runs finished, the others checkpointed: run the same command to go on\n";
+            return kExitInterrupted;
+        }
+        failed = o.failed;
+        measured = measure_settings(study, settings, plan);
+        const int used = runs_in(settings);
+        if (used >= budget) {
+            stopped_because = "the budget of " + std::to_string(budget) + " runs is spent";
+            break;
+        }
+        ++round;
+        const SearchRound next = next_round(study, settings, measured, batch, budget - used, round);
+        if (next.added.empty() && next.replicated.empty()) {
+            stopped_because = "no setting is left where the model expects an improvement worth a run";
+            break;
+        }
+        out << "optimise: best so far " << next.incumbent << "; round " << round << ":";
+        for (const std::string& name : next.replicated) out << " one more seed of " << name << ";";
+        for (const StudySetting& s : next.added) {
+            out << " " << s.name;
+            for (std::size_t i = 0; i < study.variables.size(); ++i)
+                out << " " << study.variables[i].name << "=" << study_value_text(study.variables[i], *s.values[i]);
+            out << ";";
+        }
+        out << "\n";
+    }
+
+    // The winner, and independent runs of it and of the start.
+    OptimiseResult result{study,
+                          scene.name.empty() ? study.scene_path : scene.name,
+                          settings,
+                          measured.figures,
+                          {},
+                          {},
+                          {},
+                          0,
+                          scene.process.seed,
+                          0,
+                          "",
+                          0,
+                          {},
+                          {}};
+    result.model.emplace(measured.points, study.constraints.size());
+    result.points = measured.points;
+    result.point_setting = measured.point_setting;
+    result.best = measured.points.empty() ? 0 : measured.point_setting[result.model->incumbent(measured.points)];
+    result.budget = budget;
+    result.stopped_because = stopped_because;
+    result.failed_runs = failed.size();
+    if (study.confirm > 0) {
+        // Named by the settings: a search resumed with a larger budget may find another winner.
+        std::vector<SweepVariant> variants{{"confirm-start", setting_overrides(study, settings[0]), {study.path}, "start"}};
+        if (result.best != 0)
+            variants.push_back(
+                {"confirm-" + settings[result.best].name, setting_overrides(study, settings[result.best]), {study.path}, "best"});
+        result.confirm_plan = plan_sweep_variants(variants, study.confirm, scene.process.seed + kConfirmSeedOffset, study.overrides, dir);
+        const SweepOutcome o = run_plan(*result.confirm_plan, "optimise: confirming the winner and the start");
+        if (o.stopped) {
+            finish_ranks();
+            err << "optimise: interrupted while confirming; run the same command to go on\n";
+            return kExitInterrupted;
+        }
+        failed.insert(failed.end(), o.failed.begin(), o.failed.end());
+        result.confirmed = read_sweep_figures(*result.confirm_plan, measured.figures.component);
+    }
+    finish_ranks();
+    const OptimiseReportFiles files = write_optimise_report(result, opt_dir);
+    out << "optimise: " << stopped_because << "; the winner is " << settings[result.best].name << "\n" << files.summary;
+    out << "report: " << opt_dir << "/{report.md, report.html, evaluations.csv" << (files.plots ? ", *.png" : "") << "}\n";
+    return failed.empty() ? kExitOk : kExitRuntimeError;
+}
+
+}  // namespace peensim

@@ -1,0 +1,353 @@
+#include "app/optimise/optimise_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "app/analysis/analysis_format.h"
+#include "app/analysis/analysis_plots.h"
+#include "app/analysis/report_views.h"
+#include "app/component_analysis.h"
+#include "app/sweep/sweep_views.h"
+#include "output/atomic_file.h"
+#include "output/markdown_html.h"
+
+namespace peensim {
+
+namespace {
+
+// The model's value of the objective at u: its mean and 95 % interval, as the figure.
+struct ModelPrediction {
+    double mean = NAN, low = NAN, high = NAN;
+    double half_width() const { return 0.5 * (high - low); }
+};
+
+ModelPrediction model_prediction(const OptimiseResult& r, const Eigen::VectorXd& u) {
+    const ObjectiveScale scale = ObjectiveScale::of(r.study);
+    const GpPrediction p = r.model->objective(u);
+    const double sd = std::sqrt(p.variance);
+    const double a = scale.to_figure(p.mean - 1.96 * sd), b = scale.to_figure(p.mean + 1.96 * sd);
+    return {scale.to_figure(p.mean), std::min(a, b), std::max(a, b)};
+}
+
+SweepFigure setting_figure(const SweepVariantFigures& v, const std::string& name) {
+    const auto it = v.figures.find(name);
+    return it != v.figures.end() ? it->second : SweepFigure{};
+}
+
+std::string figure_shown(const SweepFigure& f, int digits = 4) {
+    if (!f.mean) return f.missing.empty() ? std::string("-") : f.missing;
+    return fmt(*f.mean, digits) + (f.ci95 ? " +- " + fmt(*f.ci95, 2) : "");
+}
+
+std::string evaluation_cell(const std::optional<double>& x) {
+    if (!x || !std::isfinite(*x)) return "";
+    std::ostringstream s;
+    s.precision(7);
+    s << *x;
+    return s.str();
+}
+
+// The variable's column name in evaluations.csv: its name and unit ("speed_rpm").
+std::string variable_column(const StudyVariable& v) {
+    std::string unit;
+    for (const char c : v.unit) unit += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    return unit.empty() ? v.name : v.name + "_" + unit;
+}
+
+std::string value_figure_shown(const StudyVariable& v, const std::optional<double>& x) {
+    return x ? study_value_text(v, *x) : std::string("(the scene's)");
+}
+
+// The command that runs the winner again: its first run, byte for byte.
+std::string reproduce_command(const OptimiseResult& r, const SweepPlan& plan) {
+    std::ostringstream c;
+    c << "peensim run " << r.study.scene_path << " -o out/" << r.settings[r.best].name;
+    for (const SweepRun& run : plan.runs)
+        if (run.variant == r.best && run.replicate == 0)
+            for (const std::string& o : run.overrides) c << " --set \"" << o << "\"";
+    return c.str();
+}
+
+}  // namespace
+
+OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::string& dir) {
+    OptimiseReportFiles files;
+    const Study& study = r.study;
+    const ObjectiveScale scale = ObjectiveScale::of(study);
+    const std::string goal = study.maximise ? "maximise" : "minimise";
+    const std::size_t n = r.settings.size();
+    const StudySetting& best = r.settings[r.best];
+    const bool modelled = r.model.has_value() && !r.points.empty() && complete(best);
+    std::vector<double> p_feasible(n, NAN);
+    std::vector<ModelPrediction> predicted(n);
+    if (r.model)
+        for (std::size_t k = 0; k < n; ++k)
+            if (complete(r.settings[k])) {
+                const Eigen::VectorXd u = unit_point(study, r.settings[k]);
+                predicted[k] = model_prediction(r, u);
+                p_feasible[k] = r.model->probability_feasible(u);
+            }
+    int runs_used = 0;
+    for (const StudySetting& s : r.settings) runs_used += s.seeds;
+
+    // evaluations.csv: a row per setting.
+    std::ostringstream csv;
+    csv << "setting,round,why";
+    for (const StudyVariable& v : study.variables) csv << "," << variable_column(v);
+    csv << ",runs,runs_finished," << study.objective << "," << study.objective << "_ci95,predicted_" << study.objective << ",predicted_"
+        << study.objective << "_low,predicted_" << study.objective << "_high";
+    for (const StudyConstraint& c : study.constraints) csv << "," << c.figure << "," << c.figure << "_ci95";
+    csv << ",probability_feasible,why_no_value\n";
+    for (std::size_t k = 0; k < n; ++k) {
+        const StudySetting& s = r.settings[k];
+        const SweepVariantFigures& f = r.figures.variants[k];
+        const SweepFigure o = setting_figure(f, study.objective);
+        csv << s.name << "," << s.round << "," << s.why;
+        for (const auto& x : s.values) csv << "," << evaluation_cell(x);
+        csv << "," << s.seeds << "," << f.runs << "," << evaluation_cell(o.mean) << "," << evaluation_cell(o.ci95) << ","
+            << evaluation_cell(predicted[k].mean) << "," << evaluation_cell(predicted[k].low) << "," << evaluation_cell(predicted[k].high);
+        for (const StudyConstraint& c : study.constraints) {
+            const SweepFigure g = setting_figure(f, c.figure);
+            csv << "," << evaluation_cell(g.mean) << "," << evaluation_cell(g.ci95);
+        }
+        csv << "," << evaluation_cell(p_feasible[k]) << ",\"" << o.missing << "\"\n";
+    }
+    write_file_atomically(dir + "/evaluations.csv", csv.str());
+
+    // The answer.
+    std::ostringstream md, summary;
+    md << "# peensim optimise: " << r.title << "\n\n"
+       << "Study `" << study.path << "`: " << goal << " `" << study.objective << "`";
+    for (const StudyConstraint& c : study.constraints)
+        md << (&c == &study.constraints.front() ? " with " : ", ") << "`" << c.figure << "` " << (c.is_max ? "<= " : ">= ")
+           << fmt(c.limit, 6);
+    md << " over " << study.variables.size() << (study.variables.size() == 1 ? " variable" : " variables") << "; " << n << " settings, "
+       << runs_used << " runs of the search (budget " << r.budget << "), stopped because " << r.stopped_because << ".\n\n";
+    md << "## The winner: `" << best.name << "`\n\n| variable | start | winner | searched |\n|---|---|---|---|\n";
+    for (std::size_t i = 0; i < study.variables.size(); ++i) {
+        const StudyVariable& v = study.variables[i];
+        md << "| " << v.name << " | " << value_figure_shown(v, r.settings[0].values[i]) << " | " << value_figure_shown(v, best.values[i])
+           << " | " << study_value_text(v, v.min) << " to " << study_value_text(v, v.max) << (v.log_scale ? ", log scale" : "")
+           << (v.integer ? ", whole" : "") << " |\n";
+        summary << "  " << v.name << " = " << value_figure_shown(v, best.values[i]) << " (start "
+                << value_figure_shown(v, r.settings[0].values[i]) << ")\n";
+    }
+    const SweepFigure measured_best = setting_figure(r.figures.variants[r.best], study.objective);
+    md << "\n| `" << study.objective << "` | value | 95 % interval | from |\n|---|---|---|---|\n";
+    if (modelled) {
+        const ModelPrediction& p = predicted[r.best];
+        md << "| winner, predicted | " << fmt(p.mean) << " | " << fmt(p.low) << " to " << fmt(p.high) << " | the model over all "
+           << r.points.size() << " settings |\n";
+        summary << "  " << study.objective << ": predicted " << fmt(p.mean) << " [" << fmt(p.low) << ", " << fmt(p.high) << "]";
+    }
+    md << "| winner, its search runs | " << figure_shown(measured_best) << " | | " << best.seeds << (best.seeds == 1 ? " run" : " runs")
+       << " |\n";
+    const SweepFigure measured_start = setting_figure(r.figures.variants[0], study.objective);
+    md << "| start, its search runs | " << figure_shown(measured_start) << " | | " << r.settings[0].seeds
+       << (r.settings[0].seeds == 1 ? " run" : " runs") << " |\n";
+    if (r.confirmed) {
+        const SweepFigure cs = setting_figure(r.confirmed->variants[0], study.objective);
+        const SweepFigure cb = r.best == 0 ? cs : setting_figure(r.confirmed->variants[1], study.objective);
+        const std::size_t confirm_runs = r.confirmed->variants[0].runs;
+        md << "| winner, confirmed | " << figure_shown(cb) << " | | " << confirm_runs << " new runs (seeds never used in the search) |\n"
+           << "| start, confirmed | " << figure_shown(cs) << " | | " << confirm_runs << " new runs |\n\n";
+        summary << "; confirmed " << figure_shown(cb) << " (" << confirm_runs << " new runs)\n  start, confirmed: " << figure_shown(cs)
+                << "\n";
+        if (r.best == 0) {
+            md << "The start is the winner: no setting searched did better.\n";
+        } else {
+            const SweepDifference d = compare_figures(cb, cs);
+            if (d.delta && cs.mean) {
+                const double better = study.maximise ? *d.delta : -*d.delta;
+                md << "**Against the start:** " << (better >= 0 ? "better by " : "worse by ") << fmt(std::abs(*d.delta)) << " ("
+                   << fmt(100.0 * std::abs(*d.delta) / std::abs(*cs.mean), 3) << " %), " << d.verdict
+                   << " (the difference against the two confirmed intervals combined).\n";
+                summary << "  against the start: " << (better >= 0 ? "better by " : "worse by ")
+                        << fmt(100.0 * std::abs(*d.delta) / std::abs(*cs.mean), 3) << " % (" << d.verdict << ")\n";
+            }
+        }
+        if (modelled && cb.mean) {
+            const ModelPrediction& p = predicted[r.best];
+            const double gap = std::abs(*cb.mean - p.mean), allowed = std::hypot(cb.ci95.value_or(0.0), p.half_width());
+            md << "\n**The winner's prediction " << (gap <= allowed ? "holds" : "does not hold") << ":** the confirmed " << fmt(*cb.mean)
+               << " is " << fmt(gap) << " from the predicted " << fmt(p.mean) << " against their intervals combined, " << fmt(allowed)
+               << ".\n";
+            summary << "  the winner's prediction " << (gap <= allowed ? "holds" : "does not hold") << " (" << fmt(gap) << " off, allowed "
+                    << fmt(allowed) << ")\n";
+        }
+        // The predicted improvement over the start (the model's difference, with the covariance of
+        // the two predictions) against the confirmed one.
+        if (modelled && r.best != 0 && complete(r.settings[0]) && cb.mean && cs.mean) {
+            const Eigen::VectorXd ub = unit_point(study, best), us = unit_point(study, r.settings[0]);
+            const GaussianProcess& gp = r.model->objective_model();
+            const GpPrediction pb = gp.predict(ub), ps = gp.predict(us);
+            const double fb = scale.to_figure(pb.mean), fs = scale.to_figure(ps.mean);
+            const double gb = scale.log ? scale.sign * fb : scale.sign,
+                         gs = scale.log ? scale.sign * fs : scale.sign;  // d figure / d model
+            const double var = std::max(0.0, gb * gb * pb.variance + gs * gs * ps.variance - 2.0 * gb * gs * gp.covariance(ub, us));
+            const double predicted_change = fb - fs, predicted_half = 1.96 * std::sqrt(var);
+            const double confirmed_change = *cb.mean - *cs.mean, confirmed_half = std::hypot(cb.ci95.value_or(0.0), cs.ci95.value_or(0.0));
+            const bool holds = std::abs(confirmed_change - predicted_change) <= std::hypot(predicted_half, confirmed_half);
+            md << "\n**The predicted improvement " << (holds ? "holds" : "does not hold") << ":** the model predicted the winner "
+               << fmt(predicted_change) << " +- " << fmt(predicted_half, 3) << " from the start (" << fmt(100.0 * predicted_change / fs, 3)
+               << " %); the confirmation runs measured " << fmt(confirmed_change) << " +- " << fmt(confirmed_half, 3) << " ("
+               << fmt(100.0 * confirmed_change / *cs.mean, 3) << " %).\n";
+            summary << "  predicted change from the start " << fmt(predicted_change) << " +- " << fmt(predicted_half, 3) << ", confirmed "
+                    << fmt(confirmed_change) << " +- " << fmt(confirmed_half, 3) << ": " << (holds ? "holds" : "does not hold") << "\n";
+        }
+    } else {
+        md << "\nNo confirmation runs (`confirm: 0`).\n";
+    }
+    md << "\nThe model's intervals are of what runs of this length give, from seed to seed. The times are forecasts: what a run "
+          "carried on to the target would measure has its own interval besides, which each run's analysis gives (a setting's one "
+          "run above shows it: its `analysis/report.md`, \"How long to peen\").\n";
+    for (const StudyConstraint& c : study.constraints) {
+        const SweepFigure g = setting_figure(r.figures.variants[r.best], c.figure);
+        md << "\nConstraint `" << c.figure << "` " << (c.is_max ? "<= " : ">= ") << fmt(c.limit, 6) << ": the winner's " << figure_shown(g)
+           << ", holding with probability " << fmt(p_feasible[r.best], 3) << " in the model.\n";
+    }
+    md << "\n**To run the winner again** (its first search run, byte for byte):\n\n    "
+       << reproduce_command(r, settings_plan(study, r.settings, r.base_seed, "")) << "\n";
+
+    // A plot per variable: the model along it through the winner, and the runs.
+    md << "\n## The trade-offs\n\nEach plot: the model's `" << study.objective << "` along one variable, the others at the winner's values "
+       << "(line, with its 95 % band), and every setting's own runs (points, their 95 % interval; they differ in the other "
+          "variables too, so they scatter about the line). The winner is circled.\n";
+    std::string plot_note;
+    if (modelled)
+        for (std::size_t i = 0; i < study.variables.size(); ++i) {
+            const StudyVariable& v = study.variables[i];
+            std::ostringstream band, pts;
+            Eigen::VectorXd u = unit_point(study, best);
+            for (int k = 0; k <= 100; ++k) {
+                u(static_cast<Eigen::Index>(i)) = k / 100.0;
+                const double x = v.log_scale ? v.min * std::pow(v.max / v.min, k / 100.0) : v.min + (v.max - v.min) * k / 100.0;
+                const ModelPrediction p = model_prediction(r, u);
+                band << x << " " << p.low << " " << p.high << " " << p.mean << "\n";
+            }
+            for (std::size_t k = 0; k < n; ++k) {
+                const SweepFigure o = setting_figure(r.figures.variants[k], study.objective);
+                if (r.settings[k].values[i] && o.mean)
+                    pts << *r.settings[k].values[i] << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
+            }
+            const SweepFigure o = measured_best;
+            std::ostringstream gp;
+            gp << "set terminal pngcairo size " << kPlotWidthPx << "," << kPlotHeightPx << "\nset output out\n"
+               << "set title " << gnuplot_string(gnuplot_text(r.title + ": " + study.objective + " against " + v.name)) << "\n"
+               << "set xlabel " << gnuplot_string(gnuplot_text(v.name + (v.unit.empty() ? "" : " (" + v.unit + ")"))) << "\n"
+               << "set ylabel " << gnuplot_string(gnuplot_text(study.objective)) << "\nset grid\nset key top right\n"
+               << (v.log_scale ? "set logscale x\n" : "") << "$band << EOD\n"
+               << band.str() << "EOD\n$pts << EOD\n"
+               << pts.str() << "EOD\n"
+               << "plot $band using 1:2:3 with filledcurves fc rgb '#cfe2f3' title 'model, 95 %', $band using 1:4 with lines lw 2 lc rgb "
+                  "'#1f77b4' title 'model', $pts using 1:2:3 with yerrorbars pt 7 lc rgb '#444444' title 'runs'";
+            if (o.mean)
+                gp << ", '-' using 1:2 with points pt 6 ps 3 lw 2 lc rgb '#d62728' title 'winner'\n"
+                   << *best.values[i] << " " << *o.mean << "\ne\n";
+            else
+                gp << "\n";
+            const std::string stem = "objective_vs_" + variable_column(v);
+            const std::string note = plot_with_gnuplot(dir, stem, gp.str());
+            if (note.empty()) {
+                files.plots = true;
+                md << "\n![" << study.objective << " against " << v.name << "](" << stem << ".png)\n";
+            } else {
+                plot_note = note;
+            }
+        }
+    // The search's progress: each setting's value in the order run, and the best so far.
+    {
+        std::ostringstream pts, best_so_far;
+        double running = NAN;
+        for (std::size_t k = 0; k < n; ++k) {
+            const SweepFigure o = setting_figure(r.figures.variants[k], study.objective);
+            if (!o.mean) continue;
+            pts << k << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
+            if (!std::isfinite(running) || (study.maximise ? *o.mean > running : *o.mean < running)) running = *o.mean;
+            best_so_far << k << " " << running << "\n";
+        }
+        if (!pts.str().empty()) {
+            std::ostringstream gp;
+            gp << "set terminal pngcairo size " << kPlotWidthPx << "," << kPlotHeightPx << "\nset output out\n"
+               << "set title " << gnuplot_string(gnuplot_text(r.title + ": the search")) << "\n"
+               << "set xlabel 'setting (in the order run; 0 = the start)'\nset ylabel " << gnuplot_string(gnuplot_text(study.objective))
+               << "\nset grid\nset key top right\n$pts << EOD\n"
+               << pts.str() << "EOD\n$best << EOD\n"
+               << best_so_far.str() << "EOD\n"
+               << "plot $pts using 1:2:3 with yerrorbars pt 7 lc rgb '#444444' title 'each setting', $best using 1:2 with steps lw 2 lc "
+                  "rgb "
+                  "'#d62728' title 'best measured so far'\n";
+            const std::string note = plot_with_gnuplot(dir, "search_progress", gp.str());
+            if (note.empty()) {
+                files.plots = true;
+                md << "\n![the search's progress](search_progress.png)\n";
+            } else {
+                plot_note = note;
+            }
+        }
+    }
+    if (!plot_note.empty()) md << "\nPlots: " << plot_note << ".\n";
+
+    // Every evaluation.
+    md << "\n## Every setting\n\n| setting | round | why |";
+    for (const StudyVariable& v : study.variables) md << " " << v.name << " |";
+    md << " runs | `" << study.objective << "` | predicted (95 %) |";
+    for (const StudyConstraint& c : study.constraints) md << " `" << c.figure << "` |";
+    md << "\n|---|---|---|";
+    for (std::size_t i = 0; i < study.variables.size() + 3 + study.constraints.size(); ++i) md << "---|";
+    md << "\n";
+    for (std::size_t k = 0; k < n; ++k) {
+        const StudySetting& s = r.settings[k];
+        md << "| " << (k == r.best ? "**" + s.name + "**" : s.name) << " | " << s.round << " | " << s.why << " |";
+        for (std::size_t i = 0; i < study.variables.size(); ++i) md << " " << value_figure_shown(study.variables[i], s.values[i]) << " |";
+        md << " " << r.figures.variants[k].runs << "/" << s.seeds << " | "
+           << figure_shown(setting_figure(r.figures.variants[k], study.objective)) << " | "
+           << (std::isfinite(predicted[k].mean)
+                   ? fmt(predicted[k].mean) + " (" + fmt(predicted[k].low) + " to " + fmt(predicted[k].high) + ")"
+                   : "-")
+           << " |";
+        for (const StudyConstraint& c : study.constraints)
+            md << " " << figure_shown(setting_figure(r.figures.variants[k], c.figure)) << " |";
+        md << "\n";
+    }
+    md << "\nHow it searched: Bayesian optimisation. A Gaussian-process model (Matern 5/2, a length scale per variable, the spread "
+          "between seeds fitted with the rest, a setting's noise that spread divided by its runs; "
+       << (scale.log ? "the time on a log scale" : "the figure as it is")
+       << ") is fitted to every setting run; each round runs the settings of highest expected improvement over the model's best "
+          "setting"
+       << (study.constraints.empty() ? "" : ", times the model's probability that every constraint holds")
+       << ", several at once (each next one chosen as if the earlier had measured the model's mean). The winner is the run setting "
+          "with the best predicted value; while the model's 95 % interval there is wider than "
+       << fmt(100.0 * study.tolerance, 3)
+       << " % of its value, a round gives it one more seed. A setting without a value (a run too short to forecast, or failed) "
+          "counts as the worst measured. Intervals are 95 %; a setting's own: Student's t over its seeds, or with one seed the "
+          "run's own forecast interval (which also counts the forecast's extrapolation, so it is wider than the spread between seeds "
+          "the model fits). Each setting is an ordinary run directory, `"
+       << "<setting>/s<k>/`, the confirmation runs `confirm-start/` and `confirm-<winner>/`; every figure: `evaluations.csv`.\n";
+    if (r.failed_runs > 0) md << "\n" << r.failed_runs << " runs failed twice: their logs are in `optimise/logs/`.\n";
+
+    // The start and the winner side by side in 3D.
+    std::map<std::string, std::string> views;
+    if (r.confirm_plan) {
+        const char* three_js_dir = std::getenv("PEENSIM_THREE_JS");
+        std::string note;
+        views = sweep_views(*r.confirm_plan, r.figures.component,
+                            std::isfinite(r.figures.target_coverage) ? r.figures.target_coverage : kFullCoverage,
+                            three_js_dir ? three_js_dir : kThreeJsDir, note);
+        md << "\n## The start and the winner in 3D\n\n";
+        if (!views.empty())
+            md << "report.html shows the start (left) and the winner (right) side by side, each the mean of its confirmation runs, on "
+                  "one colour bar per field: drag to turn them, click on one to read its values there.\n\n"
+               << kSweepViewMarker << "\n";
+        else
+            md << note << "\n";
+    }
+    write_file_atomically(dir + "/report.md", md.str());
+    write_file_atomically(dir + "/report.html", markdown_to_html(md.str(), "peensim optimise: " + r.title, image_files_in(dir), views));
+    files.summary = summary.str();
+    return files;
+}
+
+}  // namespace peensim

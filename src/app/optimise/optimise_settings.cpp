@@ -1,0 +1,136 @@
+#include "app/optimise/optimise_settings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace peensim {
+
+bool complete(const StudySetting& s) {
+    for (const auto& v : s.values)
+        if (!v) return false;
+    return true;
+}
+
+double unit_of_value(const StudyVariable& v, double value) {
+    const double u = v.log_scale ? std::log(value / v.min) / std::log(v.max / v.min) : (value - v.min) / (v.max - v.min);
+    return std::clamp(u, 0.0, 1.0);
+}
+
+double value_of_unit(const StudyVariable& v, double u) {
+    u = std::clamp(u, 0.0, 1.0);
+    double x = v.log_scale ? v.min * std::pow(v.max / v.min, u) : v.min + u * (v.max - v.min);
+    if (v.integer) x = std::clamp(std::round(x), std::ceil(v.min), std::floor(v.max));
+    return std::stod(study_value_text(v, x));  // as the runs read it
+}
+
+Eigen::VectorXd unit_point(const Study& study, const StudySetting& s) {
+    Eigen::VectorXd u(static_cast<Eigen::Index>(study.variables.size()));
+    for (std::size_t i = 0; i < study.variables.size(); ++i)
+        u(static_cast<Eigen::Index>(i)) = unit_of_value(study.variables[i], *s.values[i]);
+    return u;
+}
+
+std::vector<std::pair<std::string, std::string>> setting_overrides(const Study& study, const StudySetting& s) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (std::size_t i = 0; i < study.variables.size(); ++i) {
+        if (!s.values[i]) continue;
+        const StudyVariable& v = study.variables[i];
+        const std::string value = study_value_text(v, *s.values[i]);
+        for (const auto& [path, pattern] : v.set) {
+            std::string text = pattern;
+            for (std::size_t at = text.find("{}"); at != std::string::npos; at = text.find("{}", at + value.size()))
+                text.replace(at, 2, value);
+            out.emplace_back(path, text);
+        }
+    }
+    return out;
+}
+
+SweepPlan settings_plan(const Study& study, const std::vector<StudySetting>& settings, std::uint64_t base_seed,
+                        const std::string& output_dir) {
+    std::vector<SweepVariant> variants;
+    std::vector<int> replicates;
+    for (const StudySetting& s : settings) {
+        SweepVariant v{s.name, setting_overrides(study, s), {study.path}, "setting " + s.name};
+        variants.push_back(std::move(v));
+        replicates.push_back(s.seeds);
+    }
+    return plan_sweep_replicates(variants, replicates, base_seed, study.overrides, output_dir);
+}
+
+std::string journal_text(const std::string& fingerprint, const std::vector<StudySetting>& settings) {
+    nlohmann::json j;
+    j["study_fingerprint"] = fingerprint;
+    j["settings"] = nlohmann::json::array();
+    for (const StudySetting& s : settings) {
+        nlohmann::json values = nlohmann::json::array();
+        for (const auto& v : s.values) values.push_back(v ? nlohmann::json(*v) : nlohmann::json(nullptr));
+        j["settings"].push_back({{"name", s.name}, {"values", values}, {"seeds", s.seeds}, {"round", s.round}, {"why", s.why}});
+    }
+    return j.dump(1) + "\n";
+}
+
+std::vector<StudySetting> read_journal(const std::string& text, std::string& fingerprint) {
+    const auto j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("settings")) throw std::runtime_error("not an optimisation journal");
+    fingerprint = j.value("study_fingerprint", "");
+    std::vector<StudySetting> out;
+    for (const auto& s : j["settings"]) {
+        StudySetting x;
+        x.name = s.value("name", "");
+        for (const auto& v : s.value("values", nlohmann::json::array()))
+            x.values.push_back(v.is_number() ? std::optional<double>(v.get<double>()) : std::nullopt);
+        x.seeds = s.value("seeds", 1);
+        x.round = s.value("round", 0);
+        x.why = s.value("why", "");
+        out.push_back(std::move(x));
+    }
+    return out;
+}
+
+std::string plan_text(const SweepPlan& plan) {
+    nlohmann::json j;
+    j["variants"] = nlohmann::json::array();
+    for (const SweepVariant& v : plan.variants) j["variants"].push_back(v.name);
+    j["runs"] = nlohmann::json::array();
+    for (const SweepRun& r : plan.runs)
+        j["runs"].push_back(
+            {{"variant", r.variant}, {"replicate", r.replicate}, {"seed", r.seed}, {"dir", r.dir}, {"overrides", r.overrides}});
+    return j.dump();
+}
+
+SweepPlan plan_from_text(const std::string& text) {
+    const auto j = nlohmann::json::parse(text);
+    SweepPlan plan;
+    plan.grid = false;
+    for (const auto& v : j["variants"]) plan.variants.push_back({v.get<std::string>(), {}, {}, ""});
+    for (const auto& r : j["runs"]) {
+        SweepRun run;
+        run.variant = r["variant"].get<std::size_t>();
+        run.replicate = r["replicate"].get<int>();
+        run.seed = r["seed"].get<std::uint64_t>();
+        run.dir = r["dir"].get<std::string>();
+        run.overrides = r["overrides"].get<std::vector<std::string>>();
+        plan.runs.push_back(std::move(run));
+    }
+    return plan;
+}
+
+ObjectiveScale ObjectiveScale::of(const Study& study) {
+    const std::string& f = study.objective;
+    return {f.size() > 2 && f.compare(f.size() - 2, 2, "_s") == 0, study.maximise ? -1.0 : 1.0};
+}
+
+std::string fingerprint_of(const std::string& text) {
+    std::uint64_t h = 1469598103934665603ULL;
+    for (const unsigned char c : text) h = (h ^ c) * 1099511628211ULL;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return hex;
+}
+
+}  // namespace peensim

@@ -1,0 +1,67 @@
+// The settings an optimisation evaluates (a value per study variable), how they map to the unit
+// cube the search works in and to the scene's overrides, and the journal that makes a search
+// resumable: every setting in the order it was proposed, with its replicates, written before its
+// runs start (DIR/optimise/journal.json).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "app/optimise/study_file.h"
+#include "app/sweep/sweep_plan.h"
+
+namespace peensim {
+
+struct StudySetting {
+    std::string name;                           // its runs' directory: "start", "e001", ...
+    std::vector<std::optional<double>> values;  // per variable, in its unit; none: the scene's own (the start only)
+    int seeds = 1;                              // its replicates so far
+    int round = 0;                              // when it was proposed (0: the first design)
+    std::string why;                            // "start", "design", "search", or "replicate" rounds added seeds
+};
+
+// Whether every variable has a value (the start may leave some to the scene).
+bool complete(const StudySetting& s);
+
+// A value to [0, 1] and back (log scale, whole numbers), and the value as written and read back
+// (6 significant digits): what the runs are given is what the model is fitted on.
+double unit_of_value(const StudyVariable& v, double value);
+double value_of_unit(const StudyVariable& v, double u);
+Eigen::VectorXd unit_point(const Study& study, const StudySetting& s);  // complete settings only
+
+// The scene overrides a setting gives its runs: each variable's fields with its value.
+std::vector<std::pair<std::string, std::string>> setting_overrides(const Study& study, const StudySetting& s);
+
+// The plan of the settings' runs in `output_dir` (a directory per setting, s<k> per replicate,
+// process.seed from base_seed), checked as a sweep's.
+SweepPlan settings_plan(const Study& study, const std::vector<StudySetting>& settings, std::uint64_t base_seed,
+                        const std::string& output_dir);
+
+// The journal: the study's fingerprint (its text, its scene's) and the settings.
+std::string journal_text(const std::string& fingerprint, const std::vector<StudySetting>& settings);
+// Throws std::runtime_error for a journal it cannot read.
+std::vector<StudySetting> read_journal(const std::string& text, std::string& fingerprint);
+
+// A SweepPlan's runs as text and back: what rank 0 of an MPI job tells the other ranks to run.
+std::string plan_text(const SweepPlan& plan);
+SweepPlan plan_from_text(const std::string& text);
+
+// The objective as the search models it, minimised: a time (a figure in s, always positive) on a log
+// scale, since times vary by factors and their noise grows with them; a maximised figure negated.
+struct ObjectiveScale {
+    bool log = false;
+    double sign = 1.0;
+    static ObjectiveScale of(const Study& study);
+    double to_model(double figure) const { return sign * (log ? std::log(figure) : figure); }
+    double to_figure(double model) const { return log ? std::exp(sign * model) : sign * model; }
+};
+
+// FNV-1a, 64 bits, as 16 hex digits: a fingerprint stable across builds.
+std::string fingerprint_of(const std::string& text);
+
+}  // namespace peensim
