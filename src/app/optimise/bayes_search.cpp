@@ -106,7 +106,7 @@ std::size_t SearchModel::incumbent(const std::vector<SearchPoint>& points) const
     for (std::size_t i = 0; i < points.size(); ++i) {
         const double p = probability_feasible(points[i].u);
         if (p > best_p) best_p = p, most_feasible = i;
-        if (p < 0.5 || !std::isfinite(points[i].y)) continue;
+        if (p < kWinnerConfidence || !std::isfinite(points[i].y)) continue;
         const double m = objective_.predict(points[i].u).mean;
         if (m < best_mean) best_mean = m, best = i;
     }

@@ -37,7 +37,10 @@ public:
     const GaussianProcess& objective_model() const { return objective_; }
 
     // The evaluated setting the model thinks best: the lowest predicted objective among those whose
-    // constraints hold with probability >= 1/2 (none: the most probably feasible). Index into points.
+    // constraints hold with probability >= kWinnerConfidence (none: the most probably feasible).
+    // Index into points. A winner at a constraint's edge with even odds would break it in every
+    // other run of the process: a sign-off asks for more.
+    static constexpr double kWinnerConfidence = 0.95;
     std::size_t incumbent(const std::vector<SearchPoint>& points) const;
 
     // `count` settings to evaluate next (the expected improvement over the incumbent's predicted

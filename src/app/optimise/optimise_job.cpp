@@ -69,24 +69,22 @@ void check_study(const Study& study, std::ostream& out) {
 
 // The figures of each setting, and the search's points (complete settings only).
 struct MeasuredSettings {
-    SweepFigures figures;
+    SettingFigures figures;
     std::vector<SearchPoint> points;
     std::vector<std::size_t> point_setting;  // setting of each point
 };
 
 MeasuredSettings measure_settings(const Study& study, const std::vector<StudySetting>& settings, const SweepPlan& plan) {
     MeasuredSettings m;
-    m.figures = read_sweep_figures(plan);
+    m.figures = read_setting_figures(study, plan);
     const ObjectiveScale scale = ObjectiveScale::of(study);
     for (std::size_t k = 0; k < settings.size(); ++k) {
         if (!complete(settings[k])) continue;
-        const auto& f = m.figures.variants[k].figures;
         SearchPoint p;
         p.u = unit_point(study, settings[k]);
-        const auto it = f.find(study.objective);
-        const SweepFigure o = it != f.end() ? it->second : SweepFigure{};
+        const SweepFigure o = m.figures.at(k, study.objective_component, study.objective);
         p.y = o.mean && (!scale.log || *o.mean > 0.0) ? scale.to_model(*o.mean) : NAN;
-        p.runs = static_cast<double>(std::max<std::size_t>(1, m.figures.variants[k].runs));
+        p.runs = static_cast<double>(std::max<std::size_t>(1, m.figures.runs(k)));
         // The runs' scatter from their interval: sd = ci95 sqrt(n) / t(0.975, n - 1); on the
         // model's scale (a log: relative to the mean).
         if (p.runs >= 2.0 && o.ci95 && std::isfinite(p.y)) {
@@ -95,10 +93,9 @@ MeasuredSettings measure_settings(const Study& study, const std::vector<StudySet
             p.scatter = (p.runs - 1.0) * model_sd * model_sd;
         }
         for (const StudyConstraint& c : study.constraints) {
-            const auto ct = f.find(c.figure);
+            const SweepFigure g = m.figures.at(k, c.component, c.figure);
             const double norm = c.limit != 0.0 ? std::abs(c.limit) : 1.0;
-            p.g.push_back(ct == f.end() || !ct->second.mean ? NAN
-                                                            : (c.is_max ? *ct->second.mean - c.limit : c.limit - *ct->second.mean) / norm);
+            p.g.push_back(!g.mean ? NAN : (c.is_max ? *g.mean - c.limit : c.limit - *g.mean) / norm);
         }
         m.points.push_back(std::move(p));
         m.point_setting.push_back(k);
@@ -202,6 +199,21 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
         if (mpi) mpi->broadcast("");
     };
     try {
+        // A component the objective or a constraint names must be one the runs log.
+        std::vector<std::string> logged = scene.output.logged_components;
+        if (logged.empty())
+            for (const ComponentDesc& c : scene.components)
+                if (logged_by_default(c.role)) logged.push_back(c.name);
+        const auto check_logged = [&](const std::string& name, const SourceLocation& where, const std::string& field) {
+            if (name.empty() || std::find(logged.begin(), logged.end(), name) != logged.end()) return;
+            std::string names;
+            for (const std::string& l : logged) names += (names.empty() ? "" : ", ") + l;
+            throw InputError(where, field,
+                             "no run logs a component named '" + name + "'; expected one of the scene's logged components (" + names + ")");
+        };
+        check_logged(study.objective_component, study.objective_origin, "objective.component");
+        for (std::size_t c = 0; c < study.constraints.size(); ++c)
+            check_logged(study.constraints[c].component, study.constraints[c].origin, "constraints[" + std::to_string(c) + "].component");
         check_study(study, out);
     } catch (...) {
         finish_ranks();
@@ -322,7 +334,7 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
             return kExitInterrupted;
         }
         failed.insert(failed.end(), o.failed.begin(), o.failed.end());
-        result.confirmed = read_sweep_figures(*result.confirm_plan, measured.figures.component);
+        result.confirmed = read_setting_figures(study, *result.confirm_plan);
     }
     finish_ranks();
     const OptimiseReportFiles files = write_optimise_report(result, opt_dir);

@@ -31,11 +31,6 @@ ModelPrediction model_prediction(const OptimiseResult& r, const Eigen::VectorXd&
     return {scale.to_figure(p.mean), std::min(a, b), std::max(a, b)};
 }
 
-SweepFigure setting_figure(const SweepVariantFigures& v, const std::string& name) {
-    const auto it = v.figures.find(name);
-    return it != v.figures.end() ? it->second : SweepFigure{};
-}
-
 std::string figure_shown(const SweepFigure& f, int digits = 4) {
     if (!f.mean) return f.missing.empty() ? std::string("-") : f.missing;
     return fmt(*f.mean, digits) + (f.ci95 ? " +- " + fmt(*f.ci95, 2) : "");
@@ -102,14 +97,13 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     csv << ",probability_feasible,why_no_value\n";
     for (std::size_t k = 0; k < n; ++k) {
         const StudySetting& s = r.settings[k];
-        const SweepVariantFigures& f = r.figures.variants[k];
-        const SweepFigure o = setting_figure(f, study.objective);
+        const SweepFigure o = r.figures.at(k, study.objective_component, study.objective);
         csv << s.name << "," << s.round << "," << s.why;
         for (const auto& x : s.values) csv << "," << evaluation_cell(x);
-        csv << "," << s.seeds << "," << f.runs << "," << evaluation_cell(o.mean) << "," << evaluation_cell(o.ci95) << ","
+        csv << "," << s.seeds << "," << r.figures.runs(k) << "," << evaluation_cell(o.mean) << "," << evaluation_cell(o.ci95) << ","
             << evaluation_cell(predicted[k].mean) << "," << evaluation_cell(predicted[k].low) << "," << evaluation_cell(predicted[k].high);
         for (const StudyConstraint& c : study.constraints) {
-            const SweepFigure g = setting_figure(f, c.figure);
+            const SweepFigure g = r.figures.at(k, c.component, c.figure);
             csv << "," << evaluation_cell(g.mean) << "," << evaluation_cell(g.ci95);
         }
         csv << "," << evaluation_cell(p_feasible[k]) << ",\"" << o.missing << "\"\n";
@@ -134,7 +128,7 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         summary << "  " << v.name << " = " << value_figure_shown(v, best.values[i]) << " (start "
                 << value_figure_shown(v, r.settings[0].values[i]) << ")\n";
     }
-    const SweepFigure measured_best = setting_figure(r.figures.variants[r.best], study.objective);
+    const SweepFigure measured_best = r.figures.at(r.best, study.objective_component, study.objective);
     md << "\n| `" << study.objective << "` | value | 95 % interval | from |\n|---|---|---|---|\n";
     if (modelled) {
         const ModelPrediction& p = predicted[r.best];
@@ -144,17 +138,24 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     }
     md << "| winner, its search runs | " << figure_shown(measured_best) << " | | " << best.seeds << (best.seeds == 1 ? " run" : " runs")
        << " |\n";
-    const SweepFigure measured_start = setting_figure(r.figures.variants[0], study.objective);
+    const SweepFigure measured_start = r.figures.at(0, study.objective_component, study.objective);
     md << "| start, its search runs | " << figure_shown(measured_start) << " | | " << r.settings[0].seeds
        << (r.settings[0].seeds == 1 ? " run" : " runs") << " |\n";
     if (r.confirmed) {
-        const SweepFigure cs = setting_figure(r.confirmed->variants[0], study.objective);
-        const SweepFigure cb = r.best == 0 ? cs : setting_figure(r.confirmed->variants[1], study.objective);
-        const std::size_t confirm_runs = r.confirmed->variants[0].runs;
+        const SweepFigure cs = r.confirmed->at(0, study.objective_component, study.objective);
+        const SweepFigure cb = r.best == 0 ? cs : r.confirmed->at(1, study.objective_component, study.objective);
+        const std::size_t confirm_runs = r.confirmed->runs(0);
         md << "| winner, confirmed | " << figure_shown(cb) << " | | " << confirm_runs << " new runs (seeds never used in the search) |\n"
            << "| start, confirmed | " << figure_shown(cs) << " | | " << confirm_runs << " new runs |\n\n";
         summary << "; confirmed " << figure_shown(cb) << " (" << confirm_runs << " new runs)\n  start, confirmed: " << figure_shown(cs)
                 << "\n";
+        // The constraints the start breaks (its confirmed means): then it is no rival.
+        std::string start_breaks;
+        for (const StudyConstraint& c : study.constraints) {
+            const SweepFigure g = r.confirmed->at(0, c.component, c.figure);
+            if (g.mean && (c.is_max ? *g.mean > c.limit : *g.mean < c.limit))
+                start_breaks += (start_breaks.empty() ? "`" : ", `") + c.figure + (c.is_max ? "` <= " : "` >= ") + fmt(c.limit, 6);
+        }
         if (r.best == 0) {
             md << "The start is the winner: no setting searched did better.\n";
         } else {
@@ -163,7 +164,8 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
                 const double better = study.maximise ? *d.delta : -*d.delta;
                 md << "**Against the start:** " << (better >= 0 ? "better by " : "worse by ") << fmt(std::abs(*d.delta)) << " ("
                    << fmt(100.0 * std::abs(*d.delta) / std::abs(*cs.mean), 3) << " %), " << d.verdict
-                   << " (the difference against the two confirmed intervals combined).\n";
+                   << " (the difference against the two confirmed intervals combined)"
+                   << (start_breaks.empty() ? std::string() : "; but the start breaks " + start_breaks + ", the winner does not") << ".\n";
                 summary << "  against the start: " << (better >= 0 ? "better by " : "worse by ")
                         << fmt(100.0 * std::abs(*d.delta) / std::abs(*cs.mean), 3) << " % (" << d.verdict << ")\n";
             }
@@ -203,10 +205,30 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     md << "\nThe model's intervals are of what runs of this length give, from seed to seed. The times are forecasts: what a run "
           "carried on to the target would measure has its own interval besides, which each run's analysis gives (a setting's one "
           "run above shows it: its `analysis/report.md`, \"How long to peen\").\n";
-    for (const StudyConstraint& c : study.constraints) {
-        const SweepFigure g = setting_figure(r.figures.variants[r.best], c.figure);
-        md << "\nConstraint `" << c.figure << "` " << (c.is_max ? "<= " : ">= ") << fmt(c.limit, 6) << ": the winner's " << figure_shown(g)
-           << ", holding with probability " << fmt(p_feasible[r.best], 3) << " in the model.\n";
+    // The constraints at the winner and at the start: measured in the search, confirmed, and the
+    // model's probability that they hold. A start that breaks one is no rival, whatever its time.
+    if (!study.constraints.empty()) {
+        md << "\n| constraint | winner, search runs | winner, confirmed | start, search runs | start, confirmed |\n|---|---|---|---|---|\n";
+        const auto holds = [](const StudyConstraint& c, const SweepFigure& g) {
+            if (!g.mean) return std::string();
+            return std::string((c.is_max ? *g.mean <= c.limit : *g.mean >= c.limit) ? " (holds)" : " (**broken**)");
+        };
+        for (const StudyConstraint& c : study.constraints) {
+            const SweepFigure wb = r.figures.at(r.best, c.component, c.figure), sb = r.figures.at(0, c.component, c.figure);
+            SweepFigure wc, sc;
+            if (r.confirmed) {
+                sc = r.confirmed->at(0, c.component, c.figure);
+                wc = r.best == 0 ? sc : r.confirmed->at(1, c.component, c.figure);
+            }
+            md << "| `" << c.figure << "` " << (c.is_max ? "<= " : ">= ") << fmt(c.limit, 6) << " | " << figure_shown(wb) << holds(c, wb)
+               << " | " << figure_shown(wc) << holds(c, wc) << " | " << figure_shown(sb) << holds(c, sb) << " | " << figure_shown(sc)
+               << holds(c, sc) << " |\n";
+            summary << "  " << c.figure << (c.is_max ? " <= " : " >= ") << fmt(c.limit, 6) << ": winner " << figure_shown(wc.mean ? wc : wb)
+                    << holds(c, wc.mean ? wc : wb) << ", start " << figure_shown(sc.mean ? sc : sb) << holds(c, sc.mean ? sc : sb) << "\n";
+        }
+        md << "\nThe model gives the winner's constraints together a probability of " << fmt(p_feasible[r.best], 3)
+           << " to hold (a winner must reach " << fmt(SearchModel::kWinnerConfidence, 3)
+           << " if any setting does). A start that breaks a constraint is no rival to the winner, however fast it is.\n";
     }
     md << "\n**To run the winner again** (its first search run, byte for byte):\n\n    "
        << reproduce_command(r, settings_plan(study, r.settings, r.base_seed, "")) << "\n";
@@ -214,35 +236,51 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     // A plot per variable: the model along it through the winner, and the runs.
     md << "\n## The trade-offs\n\nEach plot: the model's `" << study.objective << "` along one variable, the others at the winner's values "
        << "(line, with its 95 % band), and every setting's own runs (points, their 95 % interval; they differ in the other "
-          "variables too, so they scatter about the line). The winner is circled.\n";
+          "variables too, so they scatter about the line; hollow orange where they broke a constraint, and the dashed green line, "
+          "right axis, the model's probability that every constraint holds along the line). The winner is circled.\n";
     std::string plot_note;
     if (modelled)
         for (std::size_t i = 0; i < study.variables.size(); ++i) {
             const StudyVariable& v = study.variables[i];
-            std::ostringstream band, pts;
+            std::ostringstream band, kept, broke;
             Eigen::VectorXd u = unit_point(study, best);
             for (int k = 0; k <= 100; ++k) {
                 u(static_cast<Eigen::Index>(i)) = k / 100.0;
                 const double x = v.log_scale ? v.min * std::pow(v.max / v.min, k / 100.0) : v.min + (v.max - v.min) * k / 100.0;
                 const ModelPrediction p = model_prediction(r, u);
-                band << x << " " << p.low << " " << p.high << " " << p.mean << "\n";
+                band << x << " " << p.low << " " << p.high << " " << p.mean << " " << r.model->probability_feasible(u) << "\n";
             }
             for (std::size_t k = 0; k < n; ++k) {
-                const SweepFigure o = setting_figure(r.figures.variants[k], study.objective);
-                if (r.settings[k].values[i] && o.mean)
-                    pts << *r.settings[k].values[i] << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
+                const SweepFigure o = r.figures.at(k, study.objective_component, study.objective);
+                if (!r.settings[k].values[i] || !o.mean) continue;
+                bool holds = true;
+                for (const StudyConstraint& c : study.constraints) {
+                    const SweepFigure g = r.figures.at(k, c.component, c.figure);
+                    holds = holds && (!g.mean || (c.is_max ? *g.mean <= c.limit : *g.mean >= c.limit));
+                }
+                (holds ? kept : broke) << *r.settings[k].values[i] << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
             }
             const SweepFigure o = measured_best;
+            const bool constrained = !study.constraints.empty();
             std::ostringstream gp;
             gp << "set terminal pngcairo size " << kPlotWidthPx << "," << kPlotHeightPx << "\nset output out\n"
                << "set title " << gnuplot_string(gnuplot_text(r.title + ": " + study.objective + " against " + v.name)) << "\n"
                << "set xlabel " << gnuplot_string(gnuplot_text(v.name + (v.unit.empty() ? "" : " (" + v.unit + ")"))) << "\n"
                << "set ylabel " << gnuplot_string(gnuplot_text(study.objective)) << "\nset grid\nset key top right\n"
-               << (v.log_scale ? "set logscale x\n" : "") << "$band << EOD\n"
-               << band.str() << "EOD\n$pts << EOD\n"
-               << pts.str() << "EOD\n"
+               << "set xrange [" << v.min << ":" << v.max << "]\n"
+               << (v.log_scale ? "set logscale x\n" : "")
+               << (constrained ? "set y2range [0:1]\nset y2tics\nset y2label 'probability the constraints hold (model)'\n" : "")
+               << "$band << EOD\n"
+               << band.str() << "EOD\n$kept << EOD\n"
+               << kept.str() << "EOD\n$broke << EOD\n"
+               << broke.str() << "EOD\n"
                << "plot $band using 1:2:3 with filledcurves fc rgb '#cfe2f3' title 'model, 95 %', $band using 1:4 with lines lw 2 lc rgb "
-                  "'#1f77b4' title 'model', $pts using 1:2:3 with yerrorbars pt 7 lc rgb '#444444' title 'runs'";
+                  "'#1f77b4' title 'model'";
+            if (!kept.str().empty())
+                gp << ", $kept using 1:2:3 with yerrorbars pt 7 lc rgb '#444444' title '"
+                   << (constrained ? "runs, constraints held" : "runs") << "'";
+            if (!broke.str().empty()) gp << ", $broke using 1:2:3 with yerrorbars pt 6 lc rgb '#ff7f0e' title 'runs, a constraint broken'";
+            if (constrained) gp << ", $band using 1:5 axes x1y2 with lines dt 2 lw 2 lc rgb '#2ca02c' title 'P(constraints hold)'";
             if (o.mean)
                 gp << ", '-' using 1:2 with points pt 6 ps 3 lw 2 lc rgb '#d62728' title 'winner'\n"
                    << *best.values[i] << " " << *o.mean << "\ne\n";
@@ -262,7 +300,7 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         std::ostringstream pts, best_so_far;
         double running = NAN;
         for (std::size_t k = 0; k < n; ++k) {
-            const SweepFigure o = setting_figure(r.figures.variants[k], study.objective);
+            const SweepFigure o = r.figures.at(k, study.objective_component, study.objective);
             if (!o.mean) continue;
             pts << k << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
             if (!std::isfinite(running) || (study.maximise ? *o.mean > running : *o.mean < running)) running = *o.mean;
@@ -302,14 +340,13 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         const StudySetting& s = r.settings[k];
         md << "| " << (k == r.best ? "**" + s.name + "**" : s.name) << " | " << s.round << " | " << s.why << " |";
         for (std::size_t i = 0; i < study.variables.size(); ++i) md << " " << value_figure_shown(study.variables[i], s.values[i]) << " |";
-        md << " " << r.figures.variants[k].runs << "/" << s.seeds << " | "
-           << figure_shown(setting_figure(r.figures.variants[k], study.objective)) << " | "
+        md << " " << r.figures.runs(k) << "/" << s.seeds << " | "
+           << figure_shown(r.figures.at(k, study.objective_component, study.objective)) << " | "
            << (std::isfinite(predicted[k].mean)
                    ? fmt(predicted[k].mean) + " (" + fmt(predicted[k].low) + " to " + fmt(predicted[k].high) + ")"
                    : "-")
            << " |";
-        for (const StudyConstraint& c : study.constraints)
-            md << " " << figure_shown(setting_figure(r.figures.variants[k], c.figure)) << " |";
+        for (const StudyConstraint& c : study.constraints) md << " " << figure_shown(r.figures.at(k, c.component, c.figure)) << " |";
         md << "\n";
     }
     md << "\nHow it searched: Bayesian optimisation. A Gaussian-process model (Matern 5/2, a length scale per variable, the spread "
@@ -333,8 +370,8 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     if (r.confirm_plan) {
         const char* three_js_dir = std::getenv("PEENSIM_THREE_JS");
         std::string note;
-        views = sweep_views(*r.confirm_plan, r.figures.component,
-                            std::isfinite(r.figures.target_coverage) ? r.figures.target_coverage : kFullCoverage,
+        views = sweep_views(*r.confirm_plan, r.figures.part().component,
+                            std::isfinite(r.figures.part().target_coverage) ? r.figures.part().target_coverage : kFullCoverage,
                             three_js_dir ? three_js_dir : kThreeJsDir, note);
         md << "\n## The start and the winner in 3D\n\n";
         if (!views.empty())

@@ -23,7 +23,7 @@ struct OptimiseResult {
     const Study& study;
     std::string title;                          // the scene's name
     const std::vector<StudySetting>& settings;  // every setting evaluated, settings[0] the start
-    SweepFigures figures;                       // theirs, as settings
+    SettingFigures figures;                     // theirs, as settings
     std::optional<SearchModel> model;           // fitted on every complete setting
     std::vector<SearchPoint> points;
     std::vector<std::size_t> point_setting;
@@ -32,8 +32,8 @@ struct OptimiseResult {
     int budget = 0;
     std::string stopped_because;
     std::size_t failed_runs = 0;
-    std::optional<SweepPlan> confirm_plan;  // the independent runs: confirm-start, confirm-<winner>
-    std::optional<SweepFigures> confirmed;  // their figures
+    std::optional<SweepPlan> confirm_plan;    // the independent runs: confirm-start, confirm-<winner>
+    std::optional<SettingFigures> confirmed;  // their figures
 };
 
 struct OptimiseReportFiles {

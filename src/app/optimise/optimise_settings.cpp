@@ -62,6 +62,36 @@ SweepPlan settings_plan(const Study& study, const std::vector<StudySetting>& set
     return plan_sweep_replicates(variants, replicates, base_seed, study.overrides, output_dir);
 }
 
+SweepFigure SettingFigures::at(std::size_t setting, const std::string& component, const std::string& figure) const {
+    const auto c = by_component.find(component);
+    if (c == by_component.end() || setting >= c->second.variants.size()) return {};
+    const auto& figures = c->second.variants[setting].figures;
+    const auto it = figures.find(figure);
+    return it != figures.end() ? it->second : SweepFigure{};
+}
+
+std::size_t SettingFigures::runs(std::size_t setting) const { return setting < part().variants.size() ? part().variants[setting].runs : 0; }
+
+SettingFigures read_setting_figures(const Study& study, const SweepPlan& plan) {
+    SettingFigures f;
+    f.by_component[""] = read_sweep_figures(plan);
+    const auto add = [&](const std::string& component, const SourceLocation& where, const std::string& field) {
+        if (component.empty() || f.by_component.count(component) > 0) return;
+        SweepFigures figures = read_sweep_figures(plan, component);
+        const bool logged =
+            std::any_of(figures.variants.begin(), figures.variants.end(), [](const SweepVariantFigures& v) { return v.runs > 0; });
+        const bool any_run =
+            std::any_of(f.part().variants.begin(), f.part().variants.end(), [](const SweepVariantFigures& v) { return v.runs > 0; });
+        if (!logged && any_run)
+            throw InputError(where, field, "no run logs a component named '" + component + "'; expected one of the scene's output.log");
+        f.by_component[component] = std::move(figures);
+    };
+    add(study.objective_component, study.objective_origin, "objective.component");
+    for (std::size_t c = 0; c < study.constraints.size(); ++c)
+        add(study.constraints[c].component, study.constraints[c].origin, "constraints[" + std::to_string(c) + "].component");
+    return f;
+}
+
 std::string journal_text(const std::string& fingerprint, const std::vector<StudySetting>& settings) {
     nlohmann::json j;
     j["study_fingerprint"] = fingerprint;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include <Eigen/Dense>
 
 #include "app/optimise/study_file.h"
+#include "app/sweep/sweep_compare.h"
 #include "app/sweep/sweep_plan.h"
 
 namespace peensim {
@@ -41,6 +43,17 @@ std::vector<std::pair<std::string, std::string>> setting_overrides(const Study& 
 // process.seed from base_seed), checked as a sweep's.
 SweepPlan settings_plan(const Study& study, const std::vector<StudySetting>& settings, std::uint64_t base_seed,
                         const std::string& output_dir);
+
+// The figures a study names, per setting of a plan: those of the first logged component (the part)
+// and of any other component the objective or a constraint names (an Almen strip).
+struct SettingFigures {
+    std::map<std::string, SweepFigures> by_component;  // "" = the first logged
+    SweepFigure at(std::size_t setting, const std::string& component, const std::string& figure) const;
+    std::size_t runs(std::size_t setting) const;  // finished runs read
+    const SweepFigures& part() const { return by_component.at(""); }
+};
+// Throws InputError (at the study's line) for a component no run logs.
+SettingFigures read_setting_figures(const Study& study, const SweepPlan& plan);
 
 // The journal: the study's fingerprint (its text, its scene's) and the settings.
 std::string journal_text(const std::string& fingerprint, const std::vector<StudySetting>& settings);

@@ -34,7 +34,8 @@ constexpr std::string_view kFigures[] = {"impact_rate_per_s",
                                          "time_to_target_everywhere_s",
                                          "uniformity",
                                          "share_below_target",
-                                         "almen_dose_J_per_m2"};
+                                         "almen_dose_J_per_m2",
+                                         "almen_predicted_intensity_m"};
 constexpr std::string_view kRegionFigureEnds[] = {"_impact_rate_per_s", "_coverage", "_time_to_target_s"};
 
 // The search's bounds: a study is a handful of variables and at most a few thousand runs.
@@ -242,8 +243,12 @@ Study read_study_file(const std::string& path) {
         // A YAML::Node assigned to aliases the node it held (yaml-cpp): the figure's node is picked, not reassigned.
         if (o.IsMap()) {
             for (const auto& e : o)
-                if (e.first.Scalar() != "figure" && e.first.Scalar() != "goal")
-                    fail(e.first, "objective." + e.first.Scalar(), "unknown key of the objective; expected figure, goal");
+                if (e.first.Scalar() != "figure" && e.first.Scalar() != "goal" && e.first.Scalar() != "component")
+                    fail(e.first, "objective." + e.first.Scalar(), "unknown key of the objective; expected figure, goal, component");
+            if (const YAML::Node c = o["component"]) {
+                if (!c.IsScalar()) fail(c, "objective.component", "expected the name of a logged component");
+                s.objective_component = c.Scalar();
+            }
             if (!o["figure"]) fail(o, "objective.figure", "expected the figure to optimise, one of " + figures_text());
             if (const YAML::Node g = o["goal"]) {
                 if (!g.IsScalar() || (g.Scalar() != "minimise" && g.Scalar() != "maximise"))
@@ -264,11 +269,16 @@ Study read_study_file(const std::string& path) {
             if (!c.IsMap() || !c["figure"] || !c["figure"].IsScalar() || !is_study_figure(c["figure"].Scalar()))
                 fail(c, field + ".figure", "expected {figure, max} or {figure, min} with a figure of " + figures_text());
             for (const auto& e : c)
-                if (e.first.Scalar() != "figure" && e.first.Scalar() != "max" && e.first.Scalar() != "min")
-                    fail(e.first, field + "." + e.first.Scalar(), "unknown key of a constraint; expected figure and max or min");
+                if (e.first.Scalar() != "figure" && e.first.Scalar() != "max" && e.first.Scalar() != "min" &&
+                    e.first.Scalar() != "component")
+                    fail(e.first, field + "." + e.first.Scalar(), "unknown key of a constraint; expected figure, max or min, component");
             const YAML::Node limit = c["max"] ? c["max"] : c["min"];
             if (!limit || (c["max"] && c["min"])) fail(c, field, "expected one limit: max or min (two sides: two constraints)");
-            StudyConstraint sc{c["figure"].Scalar(), static_cast<bool>(c["max"]), 0.0, yaml_location(path, c)};
+            StudyConstraint sc{c["figure"].Scalar(), "", static_cast<bool>(c["max"]), 0.0, yaml_location(path, c)};
+            if (const YAML::Node component = c["component"]) {
+                if (!component.IsScalar()) fail(component, field + ".component", "expected the name of a logged component");
+                sc.component = component.Scalar();
+            }
             std::string unit;
             if (!limit.IsScalar() || !number_and_unit(limit.Scalar(), sc.limit, unit) || !unit.empty())
                 fail(limit, field + (sc.is_max ? ".max" : ".min"),

@@ -11,7 +11,7 @@
 //       start: 42 mm
 //       set: {components[gear].translation: "[0, 0, {}]", components[axle].translation: "[0, 0, {}]"}
 //   objective: time_to_target_everywhere_s     # or {figure: uniformity, goal: maximise}
-//   constraints: [{figure: almen_dose_J_per_m2, max: 40}]
+//   constraints: [{figure: almen_predicted_intensity_m, component: almen, max: 0.25 mm}]
 //   runs: 24                                   # the search's budget (start and first design included)
 //
 // Figures are the columns of a sweep's comparison.csv (sweep_compare.h), per region too.
@@ -42,7 +42,8 @@ struct StudyVariable {
 
 struct StudyConstraint {
     std::string figure;
-    bool is_max = true;  // figure <= limit (false: figure >= limit)
+    std::string component;  // the logged component whose figure it is ("" = the first logged: the part)
+    bool is_max = true;     // figure <= limit (false: figure >= limit)
     double limit = 0.0;
     SourceLocation origin;
 };
@@ -55,6 +56,7 @@ struct Study {
     SourceLocation set_origin;
     std::vector<StudyVariable> variables;
     std::string objective = "time_to_target_everywhere_s";
+    std::string objective_component;  // "" = the first logged component (the part); an Almen strip's name for its intensity
     bool maximise = false;
     SourceLocation objective_origin;
     std::vector<StudyConstraint> constraints;

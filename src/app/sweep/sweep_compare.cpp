@@ -38,7 +38,7 @@ struct RunForecast {
 
 // What one finished run gives the comparison.
 struct RunFigures {
-    double rate = NAN, mean_vn = NAN, p90_vn = NAN, coverage = NAN, almen = NAN, share_below = NAN;
+    double rate = NAN, mean_vn = NAN, p90_vn = NAN, coverage = NAN, almen = NAN, almen_intensity = NAN, share_below = NAN;
     double uniformity = NAN, uniformity_half_width = NAN;
     RunForecast whole, everywhere, slowest;  // slowest: the slowest named region's
     std::string slowest_region;
@@ -119,6 +119,7 @@ std::optional<RunFigures> read_run(const std::string& dir, std::string& componen
         r.uniformity_half_width = std::max(high - r.uniformity, r.uniformity - low);
     }
     r.almen = value_or_nan(*c, "almen_dose_J_per_m2");
+    r.almen_intensity = value_or_nan(*c, "almen_predicted_intensity_m");
     r.batch_rate = numbers(*c, "batch_impact_rate_per_s");
     r.batch_vn = numbers(*c, "batch_mean_vn_mps");
     for (const auto& s : summary.value("normal_speed", nlohmann::json::array()))
@@ -211,7 +212,7 @@ std::string unit_of(const std::string& value) {
 
 // A variant's figures over its finished runs.
 struct CompareRow {
-    SweepFigure rate, mean_vn, p90_vn, coverage, almen, whole, slowest, everywhere, uniformity, share_below;
+    SweepFigure rate, mean_vn, p90_vn, coverage, almen, almen_intensity, whole, slowest, everywhere, uniformity, share_below;
     std::string slowest_region;  // the region slowest in most runs
     struct Region {
         SweepFigure rate, coverage, time;
@@ -241,6 +242,7 @@ std::vector<CompareRow> variant_rows(const SweepPlan& plan, std::string& compone
         row.p90_vn = figure(rs, &RunFigures::p90_vn);
         row.coverage = figure(rs, &RunFigures::coverage);
         row.almen = figure(rs, &RunFigures::almen);
+        row.almen_intensity = figure(rs, &RunFigures::almen_intensity);
         row.share_below = figure(rs, &RunFigures::share_below);
         const double u_half = rs[0].uniformity_half_width;
         row.uniformity =
@@ -286,7 +288,8 @@ constexpr CompareColumn kCompareColumns[] = {{"impact_rate_per_s", &CompareRow::
                                              {"time_to_target_everywhere_s", &CompareRow::everywhere, true},
                                              {"uniformity", &CompareRow::uniformity, true},
                                              {"share_below_target", &CompareRow::share_below, true},
-                                             {"almen_dose_J_per_m2", &CompareRow::almen, false}};
+                                             {"almen_dose_J_per_m2", &CompareRow::almen, false},
+                                             {"almen_predicted_intensity_m", &CompareRow::almen_intensity, false}};
 
 }  // namespace
 

@@ -40,12 +40,14 @@ sets = dict(args[i + 1].split("=", 1) for i, a in enumerate(args) if a == "--set
 rpm = float(sets.get("components[gear].motion.speed", "30 rpm").split()[0])
 height = float(sets.get("components[gear].translation", "[0, 0, 42 mm]").strip("[]").split(",")[2].split()[0])
 seed = sets.get("process.seed", "1")
+if rpm > float(os.environ.get("FAKE_FAIL_ABOVE_RPM", "1e9")):
+    sys.exit(1)
 noise = random.Random("%s %r %r" % (seed, rpm, height)).gauss(0.0, 1.0)
 t = 1000.0 * (1.0 + (rpm - 70.0) ** 2 / 2000.0 + (height - 40.0) ** 2 / 50.0) * (1.0 + 0.03 * noise)
 os.makedirs(out + "/analysis", exist_ok=True)
 json.dump({"finished": True, "normal_speed": []}, open(out + "/summary.json", "w"))
 json.dump({"target_coverage": 0.98, "components": [{"component": "gear", "impact_rate_per_s": 1000.0, "mean_vn_mps": 2.0,
-           "coverage": 0.1, "almen_dose_J_per_m2": 10.0 + rpm / 5.0,
+           "coverage": 0.1, "almen_dose_J_per_m2": 10.0 + rpm / 5.0, "almen_predicted_intensity_m": 1e-4 * (1.0 + rpm / 100.0),
            "time_to_target_everywhere": {"status": "forecast", "time_s": t, "low_s": 0.8 * t, "high_s": 1.25 * t}}]},
           open(out + "/analysis/figures.json", "w"))
 )";
@@ -168,19 +170,51 @@ TEST(OptimiseJob, FindsConfirmsAndResumesTheOptimumOfAKnownProcess) {
     EXPECT_NE(other_err.str().find("holds the evaluations of another study"), std::string::npos) << other_err.str();
 }
 
-// At most 22 J/m2 of Almen dose (10 + rpm / 5: at most 60 rpm): the winner sits at the boundary.
+// A window: an intensity (a component named, as an Almen strip's would be) at least 0.15 mm (1e-4 m
+// x (1 + rpm / 100): at least 50 rpm), the Almen dose at most 22 J/m2 (10 + rpm / 5: at most 60
+// rpm). The optimum (70 rpm) is outside: the winner sits at the window's edge, 60 rpm.
 TEST(OptimiseJob, AConstraintsBoundaryIsTheWinner) {
     TempDir dir;
-    std::ofstream(dir.path / "study.yaml") << study_text("constraints: [{figure: almen_dose_J_per_m2, max: 22}]\nconfirm: 0\n");
+    std::ofstream(dir.path / "study.yaml") << study_text(
+        "constraints: [{figure: almen_dose_J_per_m2, max: 22}, {figure: almen_predicted_intensity_m, component: gear, min: 1.5e-4}]\n"
+        "confirm: 0\n");
     std::ostringstream out, err;
     ASSERT_EQ(optimise_job(options(dir.path / "study.yaml", dir.path / "o", fake_run(dir.path)), out, err), kExitOk) << err.str();
     const std::vector<std::string> w = winner_row(dir.path / "o");
     ASSERT_GE(w.size(), 12u);
     const double rpm = std::stod(w[3]);
     EXPECT_LE(10.0 + rpm / 5.0, 22.0 + 1e-9);
-    EXPECT_GT(rpm, 50.0);
+    EXPECT_GT(rpm, 55.0);
     EXPECT_NEAR(std::stod(w[4]), 40.0, 1.5);
-    EXPECT_NE(read_file(dir.path / "o" / "optimise" / "report.md").find("Constraint `almen_dose_J_per_m2` <= 22"), std::string::npos);
+    const std::string report = read_file(dir.path / "o" / "optimise" / "report.md");
+    EXPECT_NE(report.find("| `almen_dose_J_per_m2` <= 22 | "), std::string::npos) << report;
+    EXPECT_NE(report.find("| `almen_predicted_intensity_m` >= 0.00015 | "), std::string::npos) << report;
+    // A component no run logs is an input error at the constraint's line, before anything runs.
+    std::ofstream(dir.path / "study.yaml") << study_text("constraints: [{figure: coverage, component: strip, min: 0.5}]\nconfirm: 0\n");
+    std::ostringstream bad, bad_err;
+    EXPECT_EQ(optimise_job(options(dir.path / "study.yaml", dir.path / "bad", fake_run(dir.path)), bad, bad_err), kExitInputError);
+    EXPECT_NE(bad_err.str().find("study.yaml:13:15: constraints[0].component: no run logs a component named 'strip'; expected one of the "
+                                 "scene's logged components (gear)"),
+              std::string::npos)
+        << bad_err.str();
+    EXPECT_FALSE(fs::exists(dir.path / "bad" / "start"));
+}
+
+// Runs that fail (every one above 100 rpm): retried once, then counted as the worst measured; the
+// search goes on around them, the report says so, and the command ends with exit 1.
+TEST(OptimiseJob, FailedRunsCountAsTheWorstAndTheSearchGoesOn) {
+    TempDir dir;
+    std::ofstream(dir.path / "study.yaml") << study_text("confirm: 1\n");
+    ::setenv("FAKE_FAIL_ABOVE_RPM", "100", 1);
+    std::ostringstream out, err;
+    const int code = optimise_job(options(dir.path / "study.yaml", dir.path / "o", fake_run(dir.path)), out, err);
+    ::unsetenv("FAKE_FAIL_ABOVE_RPM");
+    EXPECT_EQ(code, kExitRuntimeError) << err.str();
+    const std::vector<std::string> w = winner_row(dir.path / "o");
+    ASSERT_GE(w.size(), 5u) << out.str();
+    EXPECT_NEAR(std::stod(w[3]), 70.0, 20.0);
+    EXPECT_NE(read_file(dir.path / "o" / "optimise" / "report.md").find("runs failed twice"), std::string::npos);
+    EXPECT_NE(err.str().find("failed"), std::string::npos) << err.str();
 }
 
 // The claim of the predicted interval at the winner: over 12 searches (their own search seeds), the
