@@ -49,6 +49,8 @@ set(PEENSIM_SLOW_GTESTS
   HostileInputs3.ExportFemRegionCentreIsOnTheRegionsSurface
   HostileInputs3.ResumingAFinishedRunSaysItIsFinishedAndWhere
   JetStream.AnalyzeReportsTheJetOfANozzleScene
+  OptimiseJob.ThePredictedIntervalAtTheWinnerHoldsTheTruth
+  OptimiseMpi.RanksRunTheSameSearchAsOneProcess
   ParaviewAnalysis.CoverageSeriesFollowsTheCoverageCurve
   ParaviewAnalysis.CoverageSeriesSpansTheAnalysedWindow
   ParaviewScript.ParaViewOpensTheRunPosedAtATimeAndRendersAFrame
@@ -88,6 +90,7 @@ set(PEENSIM_SLOW_GTESTS
 )
 set(PEENSIM_SLOW_OTHER_TESTS
   ExtremesMatrix.QuickSubset
+  Python.test_optimise
   Python.test_readme_example
   Python.test_run
   Python.test_scene

@@ -12,6 +12,7 @@
 
 #include "app/analysis/analyze_job.h"
 #include "app/check/check_job.h"
+#include "app/optimise/optimise_job.h"
 #include "app/run/run_job.h"
 #include "app/sweep/sweep_job.h"
 #include "app/sweep/sweep_plan.h"
@@ -185,6 +186,29 @@ int sweep(const std::string& scene_path, const std::string& output_dir, const st
     return code;
 }
 
+int optimise(const std::string& study_path, const std::string& output_dir, std::optional<int> runs, int jobs, const std::string& executable,
+             bool verbose) {
+    PythonStop stop;
+    OptimiseOptions o;
+    o.study_path = study_path;
+    o.output_dir = output_dir;
+    o.runs = runs;
+    o.jobs = jobs;
+    o.executable = executable;
+    o.stop_requested = [&stop] { return stop(); };
+    int code = 0;
+    {
+        PythonStream out(verbose ? sys_stream("stdout") : py::none());
+        PythonStream err(sys_stream("stderr"));
+        {
+            py::gil_scoped_release release;
+            code = run_optimise(o, out, err);
+        }
+    }
+    stop.raise_pending();
+    return code;
+}
+
 }  // namespace
 
 void bind_jobs(py::module_& m) {
@@ -223,6 +247,8 @@ void bind_jobs(py::module_& m) {
     m.def("sweep", &sweep, py::arg("scene_path"), py::arg("output_dir"), py::arg("vary"), py::arg("overrides"), py::arg("seeds"),
           py::arg("jobs"), py::arg("baseline"), py::arg("executable"), py::arg("verbose"),
           "Runs a sweep as `peensim sweep` does; returns its exit code (0, 1 a run failed, 130 stopped).");
+    m.def("optimise", &optimise, py::arg("study_path"), py::arg("output_dir"), py::arg("runs"), py::arg("jobs"), py::arg("executable"),
+          py::arg("verbose"), "Runs an optimisation as `peensim optimise` does; returns its exit code (0, 1 a run failed, 130 stopped).");
 }
 
 }  // namespace peensim::python

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/check/check_job.h"
+#include "app/optimise/study_file.h"
 #include "app/run/run_job.h"
 #include "app/sweep/sweep_file.h"
 #include "app/sweep/sweep_plan.h"
@@ -160,6 +161,16 @@ TEST(Readme, ExampleCommandsAreValidScenesAndOverrides) {
                 made[scene] = (scratch.path / scene).string();
                 continue;
             }
+            if (words.size() >= 3 && words[1] == "optimise") {  // its study file reads, and names a scene that exists
+                try {
+                    const peensim::Study study = peensim::read_study_file(source + "/" + words[2]);
+                    EXPECT_TRUE(std::filesystem::exists(study.scene_path)) << doc << ":" << n + 1 << ": " << command;
+                } catch (const std::exception& e) {
+                    ADD_FAILURE() << doc << ":" << n + 1 << ": " << command << "\n" << e.what();
+                }
+                ++checked;
+                continue;
+            }
             if (words.size() < 2 || (words[1] != "run" && words[1] != "check" && words[1] != "bench" && words[1] != "sweep")) continue;
             std::vector<std::string> scenes, overrides, varied;
             for (std::size_t k = 2; k < words.size(); ++k) {
@@ -260,7 +271,7 @@ TEST(Readme, SummaryKeysHealthCountersAndAlmenFiguresAreTheProgramsOwn) {
 }
 
 // Every YAML block of the documents (```yaml in README.md and docs/*.md) parses; a sweep file among
-// them is read by the sweep's own reader with its scene found (the README's variants example once
+// them is read by the sweep's own reader with its scene found, a study file by the optimiser's (the README's variants example once
 // was not YAML at all), and a block that is a scene's section parses with the scene's key names.
 TEST(Readme, EveryYamlBlockParsesAndSweepFilesAreReadable) {
     const std::string source = PEENSIM_SOURCE_DIR;
@@ -289,7 +300,7 @@ TEST(Readme, EveryYamlBlockParsesAndSweepFilesAreReadable) {
     }
     ASSERT_GE(blocks.size(), 5u);
     peensim::testing::TempDir dir;
-    int sweeps = 0;
+    int sweeps = 0, studies = 0;
     for (const Block& block : blocks) {
         const std::string& yaml = block.text;
         const std::string where = block.doc + ":" + std::to_string(block.first);
@@ -309,6 +320,16 @@ TEST(Readme, EveryYamlBlockParsesAndSweepFilesAreReadable) {
         std::error_code exists;  // the link is made once
         std::filesystem::create_directory_symlink(source + "/scenes", dir.path / "scenes", exists);
         std::ofstream(path) << yaml;
+        if (node["variables"]) {  // a study file (`peensim optimise`): read by its reader, its scene found
+            try {
+                const peensim::Study study = peensim::read_study_file(path.string());
+                EXPECT_TRUE(std::filesystem::exists(study.scene_path)) << where << ": " << study.scene_path;
+                ++studies;
+            } catch (const std::exception& e) {
+                ADD_FAILURE() << where << ": not a study file: " << e.what();
+            }
+            continue;
+        }
         try {
             const peensim::SweepFile f = peensim::read_sweep_file(path.string());
             EXPECT_TRUE(!f.axes.empty() || !f.variants.empty()) << where;
@@ -319,4 +340,5 @@ TEST(Readme, EveryYamlBlockParsesAndSweepFilesAreReadable) {
         }
     }
     EXPECT_EQ(sweeps, 2);
+    EXPECT_GE(studies, 1);
 }

@@ -67,6 +67,28 @@ void check_study(const Study& study, std::ostream& out) {
     check_sweep_variants(study.scene_path, plan, out);
 }
 
+// What decides which settings a search runs: everything but its budget and its confirmation (a
+// larger budget goes on from the journal; more confirmation runs add to the end), comments and
+// layout. A journal written under another identity is another study's.
+std::string study_identity(const Study& study, int batch) {
+    std::ostringstream s;
+    s.precision(17);
+    s << study.scene_path << "\n";
+    for (const std::string& o : study.overrides) s << "set " << o << "\n";
+    for (const StudyVariable& v : study.variables) {
+        s << "variable " << v.name << " " << v.min << " " << v.max << " " << v.unit << " " << v.has_start << " " << v.start << " "
+          << v.log_scale << " " << v.integer;
+        for (const auto& [path, pattern] : v.set) s << " " << path << "=" << pattern;
+        s << "\n";
+    }
+    s << "objective " << study.objective << " " << study.objective_component << " " << study.maximise << "\n";
+    for (const StudyConstraint& c : study.constraints)
+        s << "constraint " << c.figure << " " << c.component << " " << c.is_max << " " << c.limit << "\n";
+    s << study.initial << " " << study.seeds << " " << study.max_seeds << " " << study.tolerance << " " << batch << " " << study.seed
+      << "\n";
+    return s.str();
+}
+
 // The figures of each setting, and the search's points (complete settings only).
 struct MeasuredSettings {
     SettingFigures figures;
@@ -195,10 +217,18 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
         }
         return run_sweep_plan(plan, runner, stop, headline, out, err);
     };
-    const auto finish_ranks = [&] {
-        if (mpi) mpi->broadcast("");
-    };
-    try {
+    // The other ranks wait for rank 0's next round: told "no more" once, also when rank 0 leaves
+    // by an error (else they would wait for ever).
+    struct RanksRelease {
+        std::optional<MpiSweep>& mpi;
+        bool done = false;
+        void operator()() {
+            if (mpi && !done) mpi->broadcast("");
+            done = true;
+        }
+        ~RanksRelease() { (*this)(); }
+    } finish_ranks{mpi};
+    {
         // A component the objective or a constraint names must be one the runs log.
         std::vector<std::string> logged = scene.output.logged_components;
         if (logged.empty())
@@ -215,9 +245,6 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
         for (std::size_t c = 0; c < study.constraints.size(); ++c)
             check_logged(study.constraints[c].component, study.constraints[c].origin, "constraints[" + std::to_string(c) + "].component");
         check_study(study, out);
-    } catch (...) {
-        finish_ranks();
-        throw;
     }
 
     const int d = static_cast<int>(study.variables.size());
@@ -226,8 +253,9 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     runner.jobs = mpi ? std::max(1, options.jobs) : slots;
     const int budget = options.runs.value_or(study.runs > 0 ? study.runs : 10 * d + 10);
     const int batch = study.batch > 0 ? study.batch : slots;
-    const int initial = std::clamp(study.initial > 0 ? study.initial : 2 * d + 2, 1, std::max(1, budget / study.seeds - 1));
-    const std::string fingerprint = fingerprint_of(study.text + "\n--\n" + whole_file(study.scene_path));
+    const int start_seeds = std::min(std::max(2, study.seeds), study.max_seeds);
+    const int initial = std::clamp(study.initial > 0 ? study.initial : 2 * d + 2, 1, std::max(1, (budget - start_seeds) / study.seeds));
+    const std::string fingerprint = fingerprint_of(study_identity(study, batch) + "\n--\n" + whole_file(study.scene_path));
 
     // The settings so far: the journal's (a resumed search), else the start and the first design.
     fs::create_directories(opt_dir);
@@ -236,17 +264,15 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     if (fs::exists(journal)) {
         std::string found;
         settings = read_journal(whole_file(journal), found);
-        if (found != fingerprint) {
-            finish_ranks();
+        if (found != fingerprint)
             throw InputError({"-o"}, "",
                              "'" + dir +
-                                 "' holds the evaluations of another study (or of this one before its study file or scene "
-                                 "changed); expected the same study, or another -o");
-        }
+                                 "' holds the evaluations of another study (or of this one before its variables, objective, constraints, "
+                                 "design keys or scene changed); expected the same study, or another -o");
     } else {
         // The start runs twice (unless max_seeds is 1): its two runs' scatter tells the model the
         // spread between seeds from the first round on.
-        StudySetting start{"start", {}, std::min(std::max(2, study.seeds), study.max_seeds), 0, "start"};
+        StudySetting start{"start", {}, start_seeds, 0, "start"};
         for (const StudyVariable& v : study.variables) start.values.push_back(v.has_start ? std::optional<double>(v.start) : std::nullopt);
         settings.push_back(start);
         for (const Eigen::VectorXd& u : latin_hypercube(initial, d, study.seed)) {
@@ -339,7 +365,7 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     finish_ranks();
     const OptimiseReportFiles files = write_optimise_report(result, opt_dir);
     out << "optimise: " << stopped_because << "; the winner is " << settings[result.best].name << "\n" << files.summary;
-    out << "report: " << opt_dir << "/{report.md, report.html, evaluations.csv" << (files.plots ? ", *.png" : "") << "}\n";
+    out << "report: " << opt_dir << "/{report.md, report.html, evaluations.csv, winner.json" << (files.plots ? ", *.png" : "") << "}\n";
     return failed.empty() ? kExitOk : kExitRuntimeError;
 }
 

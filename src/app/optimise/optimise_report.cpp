@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "app/analysis/analysis_format.h"
 #include "app/analysis/analysis_plots.h"
 #include "app/analysis/report_views.h"
@@ -53,6 +55,14 @@ std::string variable_column(const StudyVariable& v) {
 
 std::string value_figure_shown(const StudyVariable& v, const std::optional<double>& x) {
     return x ? study_value_text(v, *x) : std::string("(the scene's)");
+}
+
+nlohmann::ordered_json json_figure(const SweepFigure& f) {
+    nlohmann::ordered_json j;
+    j["mean"] = f.mean && std::isfinite(*f.mean) ? nlohmann::ordered_json(*f.mean) : nlohmann::ordered_json(nullptr);
+    j["ci95"] = f.ci95 && std::isfinite(*f.ci95) ? nlohmann::ordered_json(*f.ci95) : nlohmann::ordered_json(nullptr);
+    if (!f.missing.empty()) j["why_none"] = f.missing;
+    return j;
 }
 
 // The command that runs the winner again: its first run, byte for byte.
@@ -128,8 +138,23 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         summary << "  " << v.name << " = " << value_figure_shown(v, best.values[i]) << " (start "
                 << value_figure_shown(v, r.settings[0].values[i]) << ")\n";
     }
+    // winner.json: the answer for programs (the Python API's Optimisation.winner).
+    nlohmann::ordered_json winner;
+    winner["setting"] = best.name;
+    winner["objective"] = study.objective;
+    winner["goal"] = goal;
+    winner["values"] = nlohmann::ordered_json::object();
+    for (std::size_t i = 0; i < study.variables.size(); ++i)
+        winner["values"][study.variables[i].name] = best.values[i]
+                                                        ? nlohmann::ordered_json(study_value_text(study.variables[i], *best.values[i]))
+                                                        : nlohmann::ordered_json(nullptr);
+    winner["set"] = nlohmann::ordered_json::array();
+    for (const auto& [path, value] : setting_overrides(study, best)) winner["set"].push_back(path + "=" + value);
     const SweepFigure measured_best = r.figures.at(r.best, study.objective_component, study.objective);
     md << "\n| `" << study.objective << "` | value | 95 % interval | from |\n|---|---|---|---|\n";
+    if (modelled)
+        winner["predicted"] = {{"mean", predicted[r.best].mean}, {"low", predicted[r.best].low}, {"high", predicted[r.best].high}};
+    winner["search_runs"] = json_figure(r.figures.at(r.best, study.objective_component, study.objective));
     if (modelled) {
         const ModelPrediction& p = predicted[r.best];
         md << "| winner, predicted | " << fmt(p.mean) << " | " << fmt(p.low) << " to " << fmt(p.high) << " | the model over all "
@@ -145,6 +170,8 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         const SweepFigure cs = r.confirmed->at(0, study.objective_component, study.objective);
         const SweepFigure cb = r.best == 0 ? cs : r.confirmed->at(1, study.objective_component, study.objective);
         const std::size_t confirm_runs = r.confirmed->runs(0);
+        winner["confirmed"] = json_figure(cb);
+        winner["start_confirmed"] = json_figure(cs);
         md << "| winner, confirmed | " << figure_shown(cb) << " | | " << confirm_runs << " new runs (seeds never used in the search) |\n"
            << "| start, confirmed | " << figure_shown(cs) << " | | " << confirm_runs << " new runs |\n\n";
         summary << "; confirmed " << figure_shown(cb) << " (" << confirm_runs << " new runs)\n  start, confirmed: " << figure_shown(cs)
@@ -176,6 +203,7 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
             md << "\n**The winner's prediction " << (gap <= allowed ? "holds" : "does not hold") << ":** the confirmed " << fmt(*cb.mean)
                << " is " << fmt(gap) << " from the predicted " << fmt(p.mean) << " against their intervals combined, " << fmt(allowed)
                << ".\n";
+            winner["prediction_holds"] = gap <= allowed;
             summary << "  the winner's prediction " << (gap <= allowed ? "holds" : "does not hold") << " (" << fmt(gap) << " off, allowed "
                     << fmt(allowed) << ")\n";
         }
@@ -192,6 +220,11 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
             const double predicted_change = fb - fs, predicted_half = 1.96 * std::sqrt(var);
             const double confirmed_change = *cb.mean - *cs.mean, confirmed_half = std::hypot(cb.ci95.value_or(0.0), cs.ci95.value_or(0.0));
             const bool holds = std::abs(confirmed_change - predicted_change) <= std::hypot(predicted_half, confirmed_half);
+            winner["change_from_start"] = {{"predicted", predicted_change},
+                                           {"predicted_ci95", predicted_half},
+                                           {"confirmed", confirmed_change},
+                                           {"confirmed_ci95", confirmed_half},
+                                           {"holds", holds}};
             md << "\n**The predicted improvement " << (holds ? "holds" : "does not hold") << ":** the model predicted the winner "
                << fmt(predicted_change) << " +- " << fmt(predicted_half, 3) << " from the start (" << fmt(100.0 * predicted_change / fs, 3)
                << " %); the confirmation runs measured " << fmt(confirmed_change) << " +- " << fmt(confirmed_half, 3) << " ("
@@ -383,6 +416,9 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     }
     write_file_atomically(dir + "/report.md", md.str());
     write_file_atomically(dir + "/report.html", markdown_to_html(md.str(), "peensim optimise: " + r.title, image_files_in(dir), views));
+    winner["probability_constraints_hold"] =
+        std::isfinite(p_feasible[r.best]) ? nlohmann::ordered_json(p_feasible[r.best]) : nlohmann::ordered_json(nullptr);
+    write_file_atomically(dir + "/winner.json", winner.dump(1) + "\n");
     files.summary = summary.str();
     return files;
 }

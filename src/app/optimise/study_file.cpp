@@ -96,10 +96,9 @@ Study read_study_file(const std::string& path) {
     text << in.rdbuf();
     Study s;
     s.path = path;
-    s.text = text.str();
     YAML::Node root;
     try {
-        root = parse_yaml(s.text, path);
+        root = parse_yaml(text.str(), path);
     } catch (const InputError& e) {
         // The usual slip: a scene path with [ ] inside { } (YAML's flow map reads [ as a list).
         if (e.problem().find("flow") == std::string::npos) throw;

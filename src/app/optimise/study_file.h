@@ -50,7 +50,6 @@ struct StudyConstraint {
 
 struct Study {
     std::string path;        // the study file
-    std::string text;        // its bytes (what a resumed optimisation must find unchanged)
     std::string scene_path;  // resolved against the study file's directory
     std::vector<std::string> overrides;
     SourceLocation set_origin;
@@ -66,7 +65,7 @@ struct Study {
     int max_seeds = 4;        // replicates of one setting at most
     double tolerance = 0.05;  // the winner's interval half-width, as a share of its value, below which it needs no more seeds
     int batch = 0;            // settings per round (0: the runs that go at once)
-    int confirm = 3;          // independent runs of the winner and the start at the end
+    int confirm = 5;          // independent runs of the winner and the start at the end
     std::uint64_t seed = 1;   // the search's own random stream
 };
 

@@ -18,8 +18,8 @@ import warnings
 
 from . import _native
 
-__all__ = ["Scene", "CheckReport", "Run", "Sweep", "InputError", "HealthError", "RunProgress",
-           "run", "analyze", "sweep", "print_progress"]
+__all__ = ["Scene", "CheckReport", "Run", "Sweep", "Optimisation", "InputError", "HealthError", "RunProgress",
+           "run", "analyze", "sweep", "optimise", "print_progress"]
 __version__ = _native.version
 
 # A scene's bad input: a ValueError with .file, .line, .column (None when unknown), .field, .problem.
@@ -437,3 +437,101 @@ def sweep(scene, output_dir, vary=None, *, seeds=None, jobs=0, set=None, baselin
         warnings.warn(f"{output_dir}: some runs failed twice (see {output_dir}/sweep/logs/); the others are compared",
                       RuntimeWarning, stacklevel=2)
     return Sweep(output_dir)
+
+
+class Optimisation:
+    """An optimisation directory (`peensim optimise`): every setting's runs, the winner, the report."""
+
+    def __init__(self, directory):
+        self.dir = os.fspath(directory)
+        if not os.path.isfile(os.path.join(self.dir, "optimise", "journal.json")):
+            raise FileNotFoundError(f"{self.dir}: not a peensim optimisation directory (no optimise/journal.json)")
+
+    def __repr__(self):
+        return f"Optimisation({self.dir!r})"
+
+    @property
+    def winner(self):
+        """optimise/winner.json as a dict: the winning setting's name, its values, its --set overrides,
+        the objective predicted (mean, low, high), measured in its search runs and confirmed by new
+        runs (mean, ci95), the start's confirmed value, and the change from the start, predicted and
+        confirmed, with whether the prediction holds."""
+        with open(os.path.join(self.dir, "optimise", "winner.json"), encoding="utf-8") as f:
+            return json.load(f)
+
+    @property
+    def evaluations(self):
+        """optimise/evaluations.csv as a dict of NumPy arrays: a row per setting, in the order run."""
+        return _native.read_csv(os.path.join(self.dir, "optimise", "evaluations.csv"))
+
+    @property
+    def report(self):
+        """optimise/report.md as text."""
+        with open(os.path.join(self.dir, "optimise", "report.md"), encoding="utf-8") as f:
+            return f.read()
+
+    @property
+    def report_html(self):
+        """The path of optimise/report.html: the report with its plots and the start and the winner
+        side by side in one 3D view, one file that opens offline."""
+        return os.path.join(self.dir, "optimise", "report.html")
+
+    def runs(self, setting):
+        """[Run of replicate 0, 1, ...] of a setting ("start", "e007", "confirm-start", ...)."""
+        base = os.path.join(self.dir, setting)
+        found = sorted((d for d in os.listdir(base) if d.startswith("s") and d[1:].isdigit()), key=lambda d: int(d[1:])) \
+            if os.path.isdir(base) else []
+        return [Run(os.path.join(base, d)) for d in found]
+
+
+def optimise(study, output_dir, *, runs=None, jobs=0, verbose=True):
+    """Searches a study's process variables for the best setting as `peensim optimise` does
+    (Bayesian optimisation over ordinary runs, several at once; resumable: the same call goes on
+    where it stopped) and confirms the winner with new runs; returns the Optimisation.
+
+    study: a study file's path, or a dict as its YAML would read ({"scene": path or Scene,
+    "variables": {name: {"path": ..., "min": "15 rpm", "max": "120 rpm"}}, "objective": ...,
+    "constraints": [...], "runs": 24, ...}: docs/user-guide.md, "Finding the best process"); a
+    Scene's overrides join the study's `set`, and a Scene built in memory is written to
+    output_dir/optimise/scene.yaml. runs: the search's budget (default the study's). jobs: runs at
+    once (0: every core). Ctrl-C stops the runs at their checkpoints and raises KeyboardInterrupt.
+    A run that fails twice is reported with a RuntimeWarning; the search goes on without it.
+    """
+    output_dir = os.fspath(output_dir)
+    if isinstance(study, dict):
+        study = dict(study)
+        folder = os.path.join(output_dir, "optimise")
+        os.makedirs(folder, exist_ok=True)
+        scene = study.get("scene")
+        if isinstance(scene, Scene):
+            if scene.in_memory:
+                scene_path = os.path.join(folder, "scene.yaml")
+                text = scene.resolved_yaml()
+                if _read_text(scene_path) != text:
+                    with open(scene_path + ".tmp", "w", encoding="utf-8") as f:
+                        f.write(text)
+                    os.replace(scene_path + ".tmp", scene_path)
+                study["scene"] = os.path.abspath(scene_path)
+            else:
+                study["scene"] = os.path.abspath(scene._path)
+                study["set"] = list(scene.overrides) + list(study.get("set") or [])
+        elif scene is not None:
+            study["scene"] = os.path.abspath(os.fspath(scene))
+        # JSON is YAML: the study file the command reads, kept beside the results (errors name its lines).
+        path = os.path.join(folder, "study.yaml")
+        text = json.dumps(study, indent=1) + "\n"
+        if _read_text(path) != text:
+            with open(path + ".tmp", "w", encoding="utf-8") as f:
+                f.write(text)
+            os.replace(path + ".tmp", path)
+        study_path = path
+    else:
+        study_path = os.fspath(study)
+    executable = os.environ.get("PEENSIM_EXECUTABLE", _native.executable)
+    code = _native.optimise(study_path, output_dir, runs, jobs, executable, verbose)
+    if code == _STOPPED:
+        raise KeyboardInterrupt(f"{output_dir}: the optimisation stopped; its runs checkpointed: the same call goes on")
+    if code != 0:
+        warnings.warn(f"{output_dir}: some runs failed twice (see {output_dir}/optimise/logs/); the search went on without them",
+                      RuntimeWarning, stacklevel=2)
+    return Optimisation(output_dir)
