@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <exception>
+#include <functional>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -159,10 +160,28 @@ std::optional<long long> sweep_seeds(const py::object& seeds) {
     throw InputError({"--seeds"}, "", sweep_seeds_problem(py::str(py::repr(seeds))));
 }
 
+// A job that can take long, as Python calls it: its messages to sys.stdout (if verbose) and
+// sys.stderr line by line, the GIL released while it works, Ctrl-C passed to it as a stop request
+// and raised once it has stopped.
+template <class Job>
+int run_from_python(bool verbose, Job&& job) {
+    PythonStop stop;
+    int code = 0;
+    {
+        PythonStream out(verbose ? sys_stream("stdout") : py::none());
+        PythonStream err(sys_stream("stderr"));
+        {
+            py::gil_scoped_release release;
+            code = job([&stop] { return stop(); }, out, err);
+        }
+    }
+    stop.raise_pending();
+    return code;
+}
+
 int sweep(const std::string& scene_path, const std::string& output_dir, const std::vector<std::string>& vary,
           const std::vector<std::string>& overrides, const py::object& seeds, int jobs, const std::string& baseline,
           const std::string& executable, bool verbose) {
-    PythonStop stop;
     SweepOptions o;
     o.scene_path = scene_path;
     o.output_dir = output_dir;
@@ -172,41 +191,24 @@ int sweep(const std::string& scene_path, const std::string& output_dir, const st
     o.jobs = jobs;
     o.baseline = baseline;
     o.executable = executable;
-    o.stop_requested = [&stop] { return stop(); };
-    int code = 0;
-    {
-        PythonStream out(verbose ? sys_stream("stdout") : py::none());
-        PythonStream err(sys_stream("stderr"));
-        {
-            py::gil_scoped_release release;
-            code = run_sweep(o, out, err);
-        }
-    }
-    stop.raise_pending();
-    return code;
+    return run_from_python(verbose, [&](std::function<bool()> stop, std::ostream& out, std::ostream& err) {
+        o.stop_requested = std::move(stop);
+        return run_sweep(o, out, err);
+    });
 }
 
 int optimise(const std::string& study_path, const std::string& output_dir, std::optional<int> runs, int jobs, const std::string& executable,
              bool verbose) {
-    PythonStop stop;
     OptimiseOptions o;
     o.study_path = study_path;
     o.output_dir = output_dir;
     o.runs = runs;
     o.jobs = jobs;
     o.executable = executable;
-    o.stop_requested = [&stop] { return stop(); };
-    int code = 0;
-    {
-        PythonStream out(verbose ? sys_stream("stdout") : py::none());
-        PythonStream err(sys_stream("stderr"));
-        {
-            py::gil_scoped_release release;
-            code = run_optimise(o, out, err);
-        }
-    }
-    stop.raise_pending();
-    return code;
+    return run_from_python(verbose, [&](std::function<bool()> stop, std::ostream& out, std::ostream& err) {
+        o.stop_requested = std::move(stop);
+        return run_optimise(o, out, err);
+    });
 }
 
 }  // namespace

@@ -471,8 +471,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     read_summary_figures(dir, context);
     draw_least_covered(*model, parts, adir, context);
     context.pngs = write_analysis_plots(adir.string(), names, window.target_coverage, context.plot_note);
-    const char* three_js_dir = std::getenv("PEENSIM_THREE_JS");  // elsewhere than Debian puts libjs-three
-    const std::map<std::string, std::string> views = report_views(parts, window, three_js_dir ? three_js_dir : kThreeJsDir, context);
+    const std::map<std::string, std::string> views = report_views(parts, window, three_js_library_dir(), context);
     if (!context.view_note.empty()) out << "analysis: " << context.view_note << "\n";
     const std::string report = analysis_report(scene, parts, context);
     write_file_atomically((adir / "report.md").string(), report);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <string>
@@ -30,6 +31,12 @@ std::map<std::string, std::string> report_views(const std::vector<ComponentAnaly
                                                 const std::string& library_dir, ReportContext& context);
 
 inline constexpr const char* kThreeJsDir = "/usr/share/javascript/three";
+
+// Where the pages' three.js is: PEENSIM_THREE_JS if set, else Debian's (kThreeJsDir).
+inline std::string three_js_library_dir() {
+    const char* dir = std::getenv("PEENSIM_THREE_JS");
+    return dir != nullptr ? dir : kThreeJsDir;
+}
 
 // The scripts a page of views needs (part_view_scripts), from library_dir; empty when its files
 // are not there.

@@ -81,9 +81,9 @@ SearchModel::SearchModel(const std::vector<SearchPoint>& points, std::size_t con
     }
     if (!objective.u.empty()) objective_ = fit_on(objective, d);
     for (std::size_t c = 0; c < constraints; ++c) {
-        Observed g;  // a constraint's runs: their mean only
+        Observed g;
         for (const SearchPoint& p : points)
-            if (c < p.g.size() && std::isfinite(p.g[c])) g.add(p.u, p.g[c], p.runs, 0.0);
+            if (c < p.g.size() && std::isfinite(p.g[c])) g.add(p.u, p.g[c], p.runs, c < p.g_scatter.size() ? p.g_scatter[c] : 0.0);
         constraint_fitted_.push_back(!g.u.empty());
         constraints_.push_back(g.u.empty() ? objective_ : fit_on(g, d));
     }
@@ -106,7 +106,8 @@ std::size_t SearchModel::incumbent(const std::vector<SearchPoint>& points) const
     for (std::size_t i = 0; i < points.size(); ++i) {
         const double p = probability_feasible(points[i].u);
         if (p > best_p) best_p = p, most_feasible = i;
-        if (p < kWinnerConfidence || !std::isfinite(points[i].y)) continue;
+        const bool measured_feasible = std::none_of(points[i].g.begin(), points[i].g.end(), [](double g) { return g > 0.0; });
+        if (p < kWinnerConfidence || !measured_feasible || !std::isfinite(points[i].y)) continue;
         const double m = objective_.predict(points[i].u).mean;
         if (m < best_mean) best_mean = m, best = i;
     }

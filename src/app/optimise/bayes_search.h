@@ -22,8 +22,9 @@ struct SearchPoint {
     double y = 0.0;        // the objective there (to minimise): the mean of its runs; NaN: the evaluation gave none
     double runs = 1.0;     // the runs y averages (its noise: the model's noise of one run / runs)
     double scatter = 0.0;  // the sum of squares of those runs' values about y (runs - 1 degrees of freedom)
-    // Each constraint as g <= 0 (scaled: (value - max) / |max|, (min - value) / |min|); NaN: not measured.
-    std::vector<double> g;
+    // Each constraint as g <= 0 (scaled: (value - max) / |max|, (min - value) / |min|), the mean of
+    // the same runs; NaN: not measured. g_scatter: their sum of squares about it, as `scatter`.
+    std::vector<double> g, g_scatter;
 };
 
 class SearchModel {
@@ -37,7 +38,8 @@ public:
     const GaussianProcess& objective_model() const { return objective_; }
 
     // The evaluated setting the model thinks best: the lowest predicted objective among those whose
-    // constraints hold with probability >= kWinnerConfidence (none: the most probably feasible).
+    // own runs meet every constraint (on their mean) and whose constraints hold with probability >=
+    // kWinnerConfidence in the model (none: the most probably feasible).
     // Index into points. A winner at a constraint's edge with even odds would break it in every
     // other run of the process: a sign-off asks for more.
     static constexpr double kWinnerConfidence = 0.95;

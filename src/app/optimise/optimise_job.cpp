@@ -96,6 +96,13 @@ struct MeasuredSettings {
     std::vector<std::size_t> point_setting;  // setting of each point
 };
 
+// The standard deviation of a figure's runs from its Student's t interval over them: ci95 sqrt(n) /
+// t(0.975, n - 1); 0 for one run (its interval is the run's own forecast's, not a spread of runs).
+double runs_sd(const SweepFigure& f, double runs) {
+    if (runs < 2.0 || !f.ci95 || !std::isfinite(*f.ci95)) return 0.0;
+    return *f.ci95 * std::sqrt(runs) / student_t_two_sided_quantile(0.05, runs - 1.0);
+}
+
 MeasuredSettings measure_settings(const Study& study, const std::vector<StudySetting>& settings, const SweepPlan& plan) {
     MeasuredSettings m;
     m.figures = read_setting_figures(study, plan);
@@ -107,10 +114,9 @@ MeasuredSettings measure_settings(const Study& study, const std::vector<StudySet
         const SweepFigure o = m.figures.at(k, study.objective_component, study.objective);
         p.y = o.mean && (!scale.log || *o.mean > 0.0) ? scale.to_model(*o.mean) : NAN;
         p.runs = static_cast<double>(std::max<std::size_t>(1, m.figures.runs(k)));
-        // The runs' scatter from their interval: sd = ci95 sqrt(n) / t(0.975, n - 1); on the
-        // model's scale (a log: relative to the mean).
-        if (p.runs >= 2.0 && o.ci95 && std::isfinite(p.y)) {
-            const double sd = *o.ci95 * std::sqrt(p.runs) / student_t_two_sided_quantile(0.05, p.runs - 1.0);
+        // The runs' scatter, on the model's scale (a log: relative to the mean).
+        if (std::isfinite(p.y)) {
+            const double sd = runs_sd(o, p.runs);
             const double model_sd = scale.log ? sd / *o.mean : sd;
             p.scatter = (p.runs - 1.0) * model_sd * model_sd;
         }
@@ -118,6 +124,8 @@ MeasuredSettings measure_settings(const Study& study, const std::vector<StudySet
             const SweepFigure g = m.figures.at(k, c.component, c.figure);
             const double norm = c.limit != 0.0 ? std::abs(c.limit) : 1.0;
             p.g.push_back(!g.mean ? NAN : (c.is_max ? *g.mean - c.limit : c.limit - *g.mean) / norm);
+            const double sd = runs_sd(g, p.runs) / norm;
+            p.g_scatter.push_back((p.runs - 1.0) * sd * sd);
         }
         m.points.push_back(std::move(p));
         m.point_setting.push_back(k);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -195,6 +194,26 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
                    << (start_breaks.empty() ? std::string() : "; but the start breaks " + start_breaks + ", the winner does not") << ".\n";
                 summary << "  against the start: " << (better >= 0 ? "better by " : "worse by ")
                         << fmt(100.0 * std::abs(*d.delta) / std::abs(*cs.mean), 3) << " % (" << d.verdict << ")\n";
+                // The verdict a sign-off reads first: what the confirmation runs can and cannot say.
+                std::string verdict;
+                if (!start_breaks.empty())
+                    verdict = "the winner meets the constraints the start breaks (" + start_breaks + ")" +
+                              (d.verdict == "differs" ? std::string(better >= 0 ? ", and is better too." : ", at this cost in the objective.")
+                                                      : ", at no cost in the objective the confirmation runs can see.");
+                else if (d.verdict == "differs" && better >= 0)
+                    verdict = "the winner is better than the start, confirmed by runs the search never saw.";
+                else if (d.verdict == "differs")
+                    verdict = "the confirmation runs find the winner worse than the start: keep the start (the model was misled; more "
+                              "`seeds` or longer runs give it less noise to be misled by).";
+                else
+                    verdict = "the confirmation runs cannot tell the winner from the start (their 95 % intervals: +- " +
+                              fmt(100.0 * cb.ci95.value_or(NAN) / std::abs(*cb.mean), 2) + " % and +- " +
+                              fmt(100.0 * cs.ci95.value_or(NAN) / std::abs(*cs.mean), 2) +
+                              " %): within these bounds the variables move the objective less than that. More `confirm` runs narrow "
+                              "it.";
+                md << "\n**Verdict:** " << verdict << "\n";
+                summary << "  verdict: " << verdict << "\n";
+                winner["verdict"] = verdict;
             }
         }
         if (modelled && cb.mean) {
@@ -401,11 +420,10 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     // The start and the winner side by side in 3D.
     std::map<std::string, std::string> views;
     if (r.confirm_plan) {
-        const char* three_js_dir = std::getenv("PEENSIM_THREE_JS");
         std::string note;
         views = sweep_views(*r.confirm_plan, r.figures.part().component,
                             std::isfinite(r.figures.part().target_coverage) ? r.figures.part().target_coverage : kFullCoverage,
-                            three_js_dir ? three_js_dir : kThreeJsDir, note);
+                            three_js_library_dir(), note);
         md << "\n## The start and the winner in 3D\n\n";
         if (!views.empty())
             md << "report.html shows the start (left) and the winner (right) side by side, each the mean of its confirmation runs, on "

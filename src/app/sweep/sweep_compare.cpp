@@ -469,10 +469,9 @@ SweepCompareResult write_sweep_comparison(const SweepPlan& plan, const std::stri
     }
     if (!result.plot_note.empty()) md << "\nPlots: " << result.plot_note << ".\n";
     // The variants side by side in 3D: in report.html, which is report.md with its plots inside.
-    const char* three_js_dir = std::getenv("PEENSIM_THREE_JS");
     std::string view_note;
-    const std::map<std::string, std::string> views = sweep_views(plan, result.component, std::isfinite(target) ? target : kFullCoverage,
-                                                                 three_js_dir ? three_js_dir : kThreeJsDir, view_note);
+    const std::map<std::string, std::string> views =
+        sweep_views(plan, result.component, std::isfinite(target) ? target : kFullCoverage, three_js_library_dir(), view_note);
     md << "\n## The variants in 3D\n\n";
     if (!views.empty())
         md << "report.html shows the variants side by side in one 3D view, on one colour bar per field (coverage with the target "

@@ -174,6 +174,15 @@ def _read_text(path):
         return f.read()
 
 
+def _write_if_changed(path, text):
+    """Writes `text` to `path` (whole, by rename) unless it holds it already: a resumed job finds
+    its file unchanged, mtime and all."""
+    if _read_text(path) != text:
+        with open(path + ".tmp", "w", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(path + ".tmp", path)
+
+
 def _json(path):
     with open(path, encoding="utf-8") as f:
         return json.load(f)
@@ -417,13 +426,8 @@ def sweep(scene, output_dir, vary=None, *, seeds=None, jobs=0, set=None, baselin
     if isinstance(scene, Scene) and scene.in_memory:
         # The runs are processes that read a file: the resolved scene (absolute mesh paths) is it.
         os.makedirs(os.path.join(output_dir, "sweep"), exist_ok=True)
-        path = os.path.join(output_dir, "sweep", "scene.yaml")
-        text = scene.resolved_yaml()
-        if _read_text(path) != text:
-            with open(path + ".tmp", "w", encoding="utf-8") as f:
-                f.write(text)
-            os.replace(path + ".tmp", path)
-        scene_path = path
+        scene_path = os.path.join(output_dir, "sweep", "scene.yaml")
+        _write_if_changed(scene_path, scene.resolved_yaml())
     else:
         scene = _as_scene(scene)
         scene_path = scene._path
@@ -506,11 +510,7 @@ def optimise(study, output_dir, *, runs=None, jobs=0, verbose=True):
         if isinstance(scene, Scene):
             if scene.in_memory:
                 scene_path = os.path.join(folder, "scene.yaml")
-                text = scene.resolved_yaml()
-                if _read_text(scene_path) != text:
-                    with open(scene_path + ".tmp", "w", encoding="utf-8") as f:
-                        f.write(text)
-                    os.replace(scene_path + ".tmp", scene_path)
+                _write_if_changed(scene_path, scene.resolved_yaml())
                 study["scene"] = os.path.abspath(scene_path)
             else:
                 study["scene"] = os.path.abspath(scene._path)
@@ -518,13 +518,8 @@ def optimise(study, output_dir, *, runs=None, jobs=0, verbose=True):
         elif scene is not None:
             study["scene"] = os.path.abspath(os.fspath(scene))
         # JSON is YAML: the study file the command reads, kept beside the results (errors name its lines).
-        path = os.path.join(folder, "study.yaml")
-        text = json.dumps(study, indent=1) + "\n"
-        if _read_text(path) != text:
-            with open(path + ".tmp", "w", encoding="utf-8") as f:
-                f.write(text)
-            os.replace(path + ".tmp", path)
-        study_path = path
+        study_path = os.path.join(folder, "study.yaml")
+        _write_if_changed(study_path, json.dumps(study, indent=1) + "\n")
     else:
         study_path = os.fspath(study)
     executable = os.environ.get("PEENSIM_EXECUTABLE", _native.executable)

@@ -21,6 +21,7 @@
 #include "app/optimise/optimise_job.h"
 #include "support/child_process.h"
 #include "support/files.h"
+#include "support/mpirun_environment.h"
 #include "support/shipped_scenes.h"
 #include "support/temp_dir.h"
 
@@ -301,13 +302,7 @@ TEST(OptimiseMpi, RanksRunTheSameSearchAsOneProcess) {
     OptimiseOptions local = options(dir.path / "study.yaml", dir.path / "local", PEENSIM_BINARY);
     local.jobs = 1;
     ASSERT_EQ(optimise_job(local, out, err), kExitOk) << err.str() << out.str();
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-#if defined(__SANITIZE_ADDRESS__)
-    ::setenv("OMPI_MCA_mca_base_component_disable_dlclose", "1", 1);
-    const char* asan = std::getenv("ASAN_OPTIONS");
-    ::setenv("ASAN_OPTIONS", (std::string(asan != nullptr ? asan : "") + ":fast_unwind_on_malloc=0").c_str(), 1);
-#endif
+    mpirun_environment();
     ChildProcess mpi({mpirun, "-n", "2", "--oversubscribe", PEENSIM_BINARY, "optimise", (dir.path / "study.yaml").string(), "-o",
                       (dir.path / "mpi").string()},
                      (dir.path / "mpi.out").string(), (dir.path / "mpi.err").string());
@@ -318,6 +313,13 @@ TEST(OptimiseMpi, RanksRunTheSameSearchAsOneProcess) {
     EXPECT_EQ(read_file(dir.path / "mpi" / "optimise" / "journal.json"), read_file(dir.path / "local" / "optimise" / "journal.json"));
     EXPECT_EQ(read_file(dir.path / "mpi" / "e001" / "s0" / "impacts.csv"), read_file(dir.path / "local" / "e001" / "s0" / "impacts.csv"));
     EXPECT_EQ(winner_row(dir.path / "mpi"), winner_row(dir.path / "local"));
+    // The report's 3D view: the start and the winner side by side (their confirmation runs).
+    const std::string md = read_file(dir.path / "local" / "optimise" / "report.md");
+    EXPECT_NE(md.find("## The start and the winner in 3D"), std::string::npos) << md;
+    const std::string html = read_file(dir.path / "local" / "optimise" / "report.html");
+    EXPECT_EQ(html.find("<!-- 3D view: variants -->"), std::string::npos) << "the marker is replaced by the view";
+    EXPECT_NE(html.find("<div class=\"pv\" data-part=\"rod\">"), std::string::npos);
+    EXPECT_NE(html.find("confirm-start"), std::string::npos);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "app/run/replica_result_codec.h"
 #include "output/impact_csv_writer.h"
 #include "support/files.h"
+#include "support/mpirun_environment.h"
 #include "support/run_in_process.h"
 #include "support/shell_command.h"
 #include "support/temp_dir.h"
@@ -26,20 +27,6 @@ namespace replica_ranks_cases {
 namespace fs = std::filesystem;
 
 const std::string kMpirun = "/usr/bin/mpirun";
-
-// mpirun as root (this machine's CI), and under the sanitizers as the MPI sweep's test has it
-// (tests/app/sweep/sweep_test.cpp): Open MPI's allocations left at exit are told apart from ours by
-// the suppressions, which need its plugins loaded and whole stacks.
-void mpirun_environment() {
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-#if defined(__SANITIZE_ADDRESS__)
-    ::setenv("OMPI_MCA_mca_base_component_disable_dlclose", "1", 1);
-    if (const char* asan = std::getenv("ASAN_OPTIONS");
-        asan == nullptr || std::string(asan).find("fast_unwind_on_malloc") == std::string::npos)
-        ::setenv("ASAN_OPTIONS", (std::string(asan != nullptr ? asan : "") + ":fast_unwind_on_malloc=0").c_str(), 1);
-#endif
-}
 
 // `mpirun -n ranks peensim run rod.yaml --replicas replicas` of 4 s into dir, with `extra` options.
 ShellResult run_over_ranks(const fs::path& dir, int ranks, int replicas, const std::string& extra = "") {

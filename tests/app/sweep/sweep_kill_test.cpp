@@ -18,6 +18,7 @@
 #include "app/run/run_job.h"
 #include "support/child_process.h"
 #include "support/files.h"
+#include "support/mpirun_environment.h"
 #include "support/shipped_scenes.h"
 #include "support/temp_dir.h"
 
@@ -158,8 +159,7 @@ int rank_one_of(int mpirun) {
 TEST(SweepKill, AnMpiRankKilledTakesItsRunWithItAndTheRerunResumesAtOnce) {
     const std::string mpirun = "/usr/bin/mpirun";
     ASSERT_TRUE(fs::exists(mpirun)) << "mpirun not found: .ci/install-deps installs openmpi-bin";
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+    mpirun_environment();
     TempDir dir;
     const fs::path out = dir.path / "out";
     std::vector<std::string> args{mpirun, "-n", "2", "--oversubscribe"};

@@ -24,6 +24,7 @@
 #include "common/input_error.h"
 #include "support/child_process.h"
 #include "support/files.h"
+#include "support/mpirun_environment.h"
 #include "support/shipped_scenes.h"
 #include "support/temp_dir.h"
 
@@ -355,17 +356,7 @@ TEST(SweepMpi, RanksShareTheRunsAndEachRunIsTheLocalOne) {
     TempDir dir;
     std::ostringstream out, err;
     ASSERT_EQ(sweep_job(rod_sweep(dir.path / "local", 1), out, err), kExitOk) << err.str();
-    // Open MPI refuses root unless told; this machine's CI runs as root.
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
-    ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-#if defined(__SANITIZE_ADDRESS__)
-    // Under the sanitizers (the asan preset), Open MPI's own allocations left at exit are told
-    // apart from ours by the suppressions (tests/lsan-suppressions.txt), which need whole stacks:
-    // its plugins stay loaded to be named, and the unwinder does not stop at their frames.
-    ::setenv("OMPI_MCA_mca_base_component_disable_dlclose", "1", 1);
-    const char* asan = std::getenv("ASAN_OPTIONS");
-    ::setenv("ASAN_OPTIONS", (std::string(asan != nullptr ? asan : "") + ":fast_unwind_on_malloc=0").c_str(), 1);
-#endif
+    mpirun_environment();
     ChildProcess mpi({mpirun, "-n", "2", "--oversubscribe", PEENSIM_BINARY, "sweep", kRod, "-o", (dir.path / "mpi").string(), "--vary",
                       "shot.count=64,128", "--set", "process.duration=20 ms"},
                      (dir.path / "mpi.out").string(), (dir.path / "mpi.err").string());
