@@ -197,14 +197,16 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
                 // The verdict a sign-off reads first: what the confirmation runs can and cannot say.
                 std::string verdict;
                 if (!start_breaks.empty())
-                    verdict = "the winner meets the constraints the start breaks (" + start_breaks + ")" +
-                              (d.verdict == "differs" ? std::string(better >= 0 ? ", and is better too." : ", at this cost in the objective.")
-                                                      : ", at no cost in the objective the confirmation runs can see.");
+                    verdict =
+                        "the winner meets the constraints the start breaks (" + start_breaks + ")" +
+                        (d.verdict == "differs" ? std::string(better >= 0 ? ", and is better too." : ", at this cost in the objective.")
+                                                : ", at no cost in the objective the confirmation runs can see.");
                 else if (d.verdict == "differs" && better >= 0)
                     verdict = "the winner is better than the start, confirmed by runs the search never saw.";
                 else if (d.verdict == "differs")
-                    verdict = "the confirmation runs find the winner worse than the start: keep the start (the model was misled; more "
-                              "`seeds` or longer runs give it less noise to be misled by).";
+                    verdict =
+                        "the confirmation runs find the winner worse than the start: keep the start (the model was misled; more "
+                        "`seeds` or longer runs give it less noise to be misled by).";
                 else
                     verdict = "the confirmation runs cannot tell the winner from the start (their 95 % intervals: +- " +
                               fmt(100.0 * cb.ci95.value_or(NAN) / std::abs(*cb.mean), 2) + " % and +- " +
