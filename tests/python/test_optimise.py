@@ -23,7 +23,7 @@ class OptimiseTest(TempDirTest):
         d = {"scene": peensim.Scene(scene("rod.yaml")).set(ROD_SHORT),
              "variables": {"count": {"path": "shot.count", "min": 32, "max": 160, "integer": True, "start": 64}},
              "objective": {"figure": "impact_rate_per_s", "goal": "maximise"},
-             "runs": 6, "initial": 3, "confirm": 1}
+             "runs": 6, "initial": 3, "confirm": 2}
         d.update(extra)
         return d
 
@@ -42,7 +42,7 @@ class OptimiseTest(TempDirTest):
         best = winner["setting"]
         self.assertIn(best, table["setting"].tolist())
         self.assertTrue(all(r.finished for r in result.runs(best)))
-        self.assertEqual(len(result.runs("confirm-start")), 1)
+        self.assertEqual(len(result.runs("confirm-start")), 2)
         self.assertIn("## The winner: `" + best + "`", result.report)
         self.assertTrue(os.path.isfile(result.report_html))
         # The study the command read, kept beside the results; the Scene's overrides joined its set.

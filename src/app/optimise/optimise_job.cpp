@@ -73,19 +73,21 @@ void check_study(const Study& study, std::ostream& out) {
 std::string study_identity(const Study& study, int batch) {
     std::ostringstream s;
     s.precision(17);
-    s << study.scene_path << "\n";
+    s << "scene " << study.scene_path << "\n";
     for (const std::string& o : study.overrides) s << "set " << o << "\n";
     for (const StudyVariable& v : study.variables) {
-        s << "variable " << v.name << " " << v.min << " " << v.max << " " << v.unit << " " << v.has_start << " " << v.start << " "
-          << v.log_scale << " " << v.integer;
-        for (const auto& [path, pattern] : v.set) s << " " << path << "=" << pattern;
+        s << "variable " << v.name << ": " << v.min << " to " << v.max << " " << v.unit << ", start " << v.start
+          << (v.log_scale ? ", log" : "") << (v.integer ? ", whole" : "");
+        for (const auto& [path, pattern] : v.set) s << ", " << path << "=" << pattern;
         s << "\n";
     }
-    s << "objective " << study.objective << " " << study.objective_component << " " << study.maximise << "\n";
+    s << "objective " << (study.maximise ? "maximise " : "minimise ") << study.objective
+      << (study.objective_component.empty() ? "" : " of " + study.objective_component) << "\n";
     for (const StudyConstraint& c : study.constraints)
-        s << "constraint " << c.figure << " " << c.component << " " << c.is_max << " " << c.limit << "\n";
-    s << study.initial << " " << study.seeds << " " << study.max_seeds << " " << study.tolerance << " " << batch << " " << study.seed
-      << "\n";
+        s << "constraint " << c.figure << (c.component.empty() ? "" : " of " + c.component) << (c.is_max ? " <= " : " >= ") << c.limit
+          << "\n";
+    s << "design: initial " << study.initial << ", seeds " << study.seeds << ", max_seeds " << study.max_seeds << ", tolerance "
+      << study.tolerance << ", batch " << batch << ", seed " << study.seed << "\n";
     return s.str();
 }
 
@@ -95,6 +97,20 @@ struct MeasuredSettings {
     std::vector<SearchPoint> points;
     std::vector<std::size_t> point_setting;  // setting of each point
 };
+
+// What a journal's identity and this study's differ in, for the message: the first line of the
+// study's identity that differs ("variable speed ..."), or the scene file.
+std::string what_differs(const JournalIdentity& journal, const JournalIdentity& now) {
+    std::istringstream a(journal.study), b(now.study);
+    for (std::string was, is;;) {
+        const bool more_was = static_cast<bool>(std::getline(a, was)), more_is = static_cast<bool>(std::getline(b, is));
+        if (!more_was && !more_is) break;
+        if (was != is)
+            return "its settings came from '" + (more_was ? was : std::string("(nothing)")) + "', this study has '" +
+                   (more_is ? is : std::string("(nothing)")) + "'";
+    }
+    return journal.scene_fingerprint != now.scene_fingerprint ? "its scene file has changed since" : "it is not this study's";
+}
 
 // The standard deviation of a figure's runs from its Student's t interval over them: ci95 sqrt(n) /
 // t(0.975, n - 1); 0 for one run (its interval is the run's own forecast's, not a spread of runs).
@@ -167,7 +183,8 @@ SearchRound next_round(const Study& study, std::vector<StudySetting>& settings, 
     const double half = 0.5 * std::abs(scale.to_figure(at_incumbent.mean + 1.96 * sd) - scale.to_figure(at_incumbent.mean - 1.96 * sd));
     if (half > study.tolerance * std::abs(centre)) replicate(inc);
     const double a = scale.to_figure(at_incumbent.mean - 1.96 * sd), b = scale.to_figure(at_incumbent.mean + 1.96 * sd);
-    std::string incumbent = settings[inc].name + ": " + fmt(centre) + " (" + fmt(std::min(a, b)) + " to " + fmt(std::max(a, b)) + ")";
+    std::string incumbent =
+        settings[inc].name + ": " + fmt(centre, 6) + " (" + fmt(std::min(a, b), 6) + " to " + fmt(std::max(a, b), 6) + ")";
     const std::vector<Eigen::VectorXd> proposals =
         model.propose(m.points, slots, study.seed * 1000003ULL + static_cast<std::uint64_t>(round));
     for (const Eigen::VectorXd& u : proposals) {
@@ -202,8 +219,9 @@ int optimise_job(const OptimiseOptions& options, std::ostream& out, std::ostream
 
 int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream& err) {
     if (options.output_dir.empty()) throw InputError({"-o"}, "", "expected the optimisation's output directory (-o DIR)");
-    const Study study = read_study_file(options.study_path);
+    Study study = read_study_file(options.study_path);
     const SceneDescription scene = read_sweep_scene(study.scene_path, {study.overrides, study.set_origin, {}});
+    fill_starts(study, scene);
     const std::string dir = options.output_dir, opt_dir = dir + "/optimise";
     const std::string executable = options.executable.empty() ? this_executable() : options.executable;
     const StopRequest stop(options.stop_requested,
@@ -262,21 +280,32 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     const int budget = options.runs.value_or(study.runs > 0 ? study.runs : 10 * d + 10);
     const int batch = study.batch > 0 ? study.batch : slots;
     const int start_seeds = std::min(std::max(2, study.seeds), study.max_seeds);
-    const int initial = std::clamp(study.initial > 0 ? study.initial : 2 * d + 2, 1, std::max(1, (budget - start_seeds) / study.seeds));
-    const std::string fingerprint = fingerprint_of(study_identity(study, batch) + "\n--\n" + whole_file(study.scene_path));
+    if (budget < start_seeds + study.seeds)
+        throw InputError(options.runs ? SourceLocation{"--runs"} : study.runs_origin, options.runs ? "" : "runs",
+                         "expected a budget of at least " + std::to_string(start_seeds + study.seeds) + " runs (the start's " +
+                             std::to_string(start_seeds) + " and one setting's " + std::to_string(study.seeds) + "), got " +
+                             std::to_string(budget));
+    const int wanted = study.initial > 0 ? study.initial : 2 * d + 2;
+    const int initial = std::clamp(wanted, 1, (budget - start_seeds) / study.seeds);
+    if (initial < wanted)
+        out << "optimise: note: a budget of " << budget << " runs holds " << initial << " of the first design's " << wanted
+            << " settings (the start takes " << start_seeds << ")\n";
+    if (start_seeds + initial * study.seeds >= budget)
+        out << "optimise: note: the budget of " << budget << " runs is spent by the start and the first design: no setting will be chosen "
+            << "by the model (give runs: more than " << start_seeds + initial * study.seeds << ")\n";
+    const JournalIdentity identity{study_identity(study, batch), fingerprint_of(whole_file(study.scene_path))};
 
     // The settings so far: the journal's (a resumed search), else the start and the first design.
     fs::create_directories(opt_dir);
     std::vector<StudySetting> settings;
     const std::string journal = opt_dir + "/journal.json";
     if (fs::exists(journal)) {
-        std::string found;
+        JournalIdentity found;
         settings = read_journal(whole_file(journal), found);
-        if (found != fingerprint)
+        if (!(found == identity))
             throw InputError({"-o"}, "",
-                             "'" + dir +
-                                 "' holds the evaluations of another study (or of this one before its variables, objective, constraints, "
-                                 "design keys or scene changed); expected the same study, or another -o");
+                             "'" + dir + "' holds the evaluations of another study: " + what_differs(found, identity) +
+                                 "; expected the same study, or another -o");
     } else {
         // The start runs twice (unless max_seeds is 1): its two runs' scatter tells the model the
         // spread between seeds from the first round on.
@@ -286,7 +315,12 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
         for (const Eigen::VectorXd& u : latin_hypercube(initial, d, study.seed)) {
             StudySetting s{setting_name(settings.size()), {}, study.seeds, 0, "design"};
             for (int i = 0; i < d; ++i) s.values.push_back(value_of_unit(study.variables[static_cast<std::size_t>(i)], u(i)));
-            settings.push_back(std::move(s));
+            // Whole numbers over a narrow range round two strata onto one value: one setting, more seeds.
+            const auto same = std::find_if(settings.begin(), settings.end(), [&](const StudySetting& t) { return t.values == s.values; });
+            if (same == settings.end())
+                settings.push_back(std::move(s));
+            else if (same->seeds + study.seeds <= study.max_seeds)
+                same->seeds += study.seeds;
         }
     }
 
@@ -298,7 +332,7 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     std::string stopped_because;
     std::vector<std::size_t> failed;
     for (;;) {
-        write_file_atomically(journal, journal_text(fingerprint, settings));
+        write_file_atomically(journal, journal_text(identity, settings));
         plan = settings_plan(study, settings, scene.process.seed, dir);
         const SweepOutcome o =
             run_plan(plan, "optimise: round " + std::to_string(round) + ", " + std::to_string(settings.size()) + " settings");
@@ -310,6 +344,17 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
         }
         failed = o.failed;
         measured = measure_settings(study, settings, plan);
+        if (std::none_of(measured.points.begin(), measured.points.end(), [](const SearchPoint& p) { return std::isfinite(p.y); })) {
+            // Nothing to model: say why, from the runs, rather than search blind.
+            std::string why;
+            for (std::size_t k = 0; k < settings.size() && why.empty(); ++k)
+                why = measured.figures.at(k, study.objective_component, study.objective).missing;
+            err << "optimise: no setting gave a value of " << study.objective << " ("
+                << (why.empty() ? std::string("the runs' figures.json hold none") : why)
+                << "); expected a figure these runs give (see a run's analysis/report.md, e.g. " << dir
+                << "/start/s0/); the runs are kept\n";
+            return kExitRuntimeError;
+        }
         const int used = runs_in(settings);
         if (used >= budget) {
             stopped_because = "the budget of " + std::to_string(budget) + " runs is spent";
@@ -329,7 +374,7 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
                 out << " " << study.variables[i].name << "=" << study_value_text(study.variables[i], *s.values[i]);
             out << ";";
         }
-        out << "\n";
+        out << std::endl;  // a line as it comes, also into a log file
     }
 
     // The winner, and independent runs of it and of the start.

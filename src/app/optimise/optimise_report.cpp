@@ -67,7 +67,7 @@ nlohmann::ordered_json json_figure(const SweepFigure& f) {
 // The command that runs the winner again: its first run, byte for byte.
 std::string reproduce_command(const OptimiseResult& r, const SweepPlan& plan) {
     std::ostringstream c;
-    c << "peensim run " << r.study.scene_path << " -o out/" << r.settings[r.best].name;
+    c << "peensim run " << r.study.scene_path << " -o out/" << r.settings[r.best].name << "-again";
     for (const SweepRun& run : plan.runs)
         if (run.variant == r.best && run.replicate == 0)
             for (const std::string& o : run.overrides) c << " --set \"" << o << "\"";
@@ -97,13 +97,31 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     for (const StudySetting& s : r.settings) runs_used += s.seeds;
 
     // evaluations.csv: a row per setting.
+    // Whether a setting's own runs meet every constraint (on their mean; a figure not measured counts as met).
+    const auto measured_holds = [&](std::size_t k) {
+        for (const StudyConstraint& c : study.constraints) {
+            const SweepFigure g = r.figures.at(k, c.component, c.figure);
+            if (g.mean && (c.is_max ? *g.mean > c.limit : *g.mean < c.limit)) return false;
+        }
+        return true;
+    };
+    // The constraints' figures, each once (a window is two constraints on one figure).
+    std::vector<std::pair<std::string, std::string>> constraint_figures;  // (component, figure)
+    for (const StudyConstraint& c : study.constraints)
+        if (std::find(constraint_figures.begin(), constraint_figures.end(), std::make_pair(c.component, c.figure)) ==
+            constraint_figures.end())
+            constraint_figures.emplace_back(c.component, c.figure);
+
     std::ostringstream csv;
     csv << "setting,round,why";
     for (const StudyVariable& v : study.variables) csv << "," << variable_column(v);
     csv << ",runs,runs_finished," << study.objective << "," << study.objective << "_ci95,predicted_" << study.objective << ",predicted_"
         << study.objective << "_low,predicted_" << study.objective << "_high";
-    for (const StudyConstraint& c : study.constraints) csv << "," << c.figure << "," << c.figure << "_ci95";
-    csv << ",probability_feasible,why_no_value\n";
+    for (const auto& [component, figure] : constraint_figures) {
+        const std::string name = component.empty() ? figure : component + "_" + figure;
+        csv << "," << name << "," << name << "_ci95";
+    }
+    csv << ",constraints_met,probability_feasible,why_no_value\n";
     for (std::size_t k = 0; k < n; ++k) {
         const StudySetting& s = r.settings[k];
         const SweepFigure o = r.figures.at(k, study.objective_component, study.objective);
@@ -111,11 +129,12 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         for (const auto& x : s.values) csv << "," << evaluation_cell(x);
         csv << "," << s.seeds << "," << r.figures.runs(k) << "," << evaluation_cell(o.mean) << "," << evaluation_cell(o.ci95) << ","
             << evaluation_cell(predicted[k].mean) << "," << evaluation_cell(predicted[k].low) << "," << evaluation_cell(predicted[k].high);
-        for (const StudyConstraint& c : study.constraints) {
-            const SweepFigure g = r.figures.at(k, c.component, c.figure);
+        for (const auto& [component, figure] : constraint_figures) {
+            const SweepFigure g = r.figures.at(k, component, figure);
             csv << "," << evaluation_cell(g.mean) << "," << evaluation_cell(g.ci95);
         }
-        csv << "," << evaluation_cell(p_feasible[k]) << ",\"" << o.missing << "\"\n";
+        csv << "," << (measured_holds(k) ? "yes" : "no") << "," << evaluation_cell(p_feasible[k]) << ",\""
+            << (o.missing.empty() && !o.mean ? std::string("the runs give no value") : o.missing) << "\"\n";
     }
     write_file_atomically(dir + "/evaluations.csv", csv.str());
 
@@ -156,9 +175,9 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
     winner["search_runs"] = json_figure(r.figures.at(r.best, study.objective_component, study.objective));
     if (modelled) {
         const ModelPrediction& p = predicted[r.best];
-        md << "| winner, predicted | " << fmt(p.mean) << " | " << fmt(p.low) << " to " << fmt(p.high) << " | the model over all "
+        md << "| winner, predicted | " << fmt(p.mean, 6) << " | " << fmt(p.low, 6) << " to " << fmt(p.high, 6) << " | the model over all "
            << r.points.size() << " settings |\n";
-        summary << "  " << study.objective << ": predicted " << fmt(p.mean) << " [" << fmt(p.low) << ", " << fmt(p.high) << "]";
+        summary << "  " << study.objective << ": predicted " << fmt(p.mean, 6) << " [" << fmt(p.low, 6) << ", " << fmt(p.high, 6) << "]";
     }
     md << "| winner, its search runs | " << figure_shown(measured_best) << " | | " << best.seeds << (best.seeds == 1 ? " run" : " runs")
        << " |\n";
@@ -307,12 +326,7 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
             for (std::size_t k = 0; k < n; ++k) {
                 const SweepFigure o = r.figures.at(k, study.objective_component, study.objective);
                 if (!r.settings[k].values[i] || !o.mean) continue;
-                bool holds = true;
-                for (const StudyConstraint& c : study.constraints) {
-                    const SweepFigure g = r.figures.at(k, c.component, c.figure);
-                    holds = holds && (!g.mean || (c.is_max ? *g.mean <= c.limit : *g.mean >= c.limit));
-                }
-                (holds ? kept : broke) << *r.settings[k].values[i] << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
+                (measured_holds(k) ? kept : broke) << *r.settings[k].values[i] << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
             }
             const SweepFigure o = measured_best;
             const bool constrained = !study.constraints.empty();
@@ -320,7 +334,7 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
             gp << "set terminal pngcairo size " << kPlotWidthPx << "," << kPlotHeightPx << "\nset output out\n"
                << "set title " << gnuplot_string(gnuplot_text(r.title + ": " + study.objective + " against " + v.name)) << "\n"
                << "set xlabel " << gnuplot_string(gnuplot_text(v.name + (v.unit.empty() ? "" : " (" + v.unit + ")"))) << "\n"
-               << "set ylabel " << gnuplot_string(gnuplot_text(study.objective)) << "\nset grid\nset key top right\n"
+               << "set ylabel " << gnuplot_string(gnuplot_text(study.objective)) << "\nset grid\nset key below\n"
                << "set xrange [" << v.min << ":" << v.max << "]\n"
                << (v.log_scale ? "set logscale x\n" : "")
                << (constrained ? "set y2range [0:1]\nset y2tics\nset y2label 'probability the constraints hold (model)'\n" : "")
@@ -351,26 +365,31 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         }
     // The search's progress: each setting's value in the order run, and the best so far.
     {
-        std::ostringstream pts, best_so_far;
+        std::ostringstream pts, broke, best_so_far;
         double running = NAN;
         for (std::size_t k = 0; k < n; ++k) {
             const SweepFigure o = r.figures.at(k, study.objective_component, study.objective);
             if (!o.mean) continue;
-            pts << k << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
-            if (!std::isfinite(running) || (study.maximise ? *o.mean > running : *o.mean < running)) running = *o.mean;
-            best_so_far << k << " " << running << "\n";
+            const bool holds = measured_holds(k);  // a setting that broke a constraint is no "best"
+            (holds ? pts : broke) << k << " " << *o.mean << " " << o.ci95.value_or(0.0) << "\n";
+            if (holds && (!std::isfinite(running) || (study.maximise ? *o.mean > running : *o.mean < running))) running = *o.mean;
+            if (std::isfinite(running)) best_so_far << k << " " << running << "\n";
         }
-        if (!pts.str().empty()) {
+        if (!pts.str().empty() || !broke.str().empty()) {
             std::ostringstream gp;
             gp << "set terminal pngcairo size " << kPlotWidthPx << "," << kPlotHeightPx << "\nset output out\n"
                << "set title " << gnuplot_string(gnuplot_text(r.title + ": the search")) << "\n"
                << "set xlabel 'setting (in the order run; 0 = the start)'\nset ylabel " << gnuplot_string(gnuplot_text(study.objective))
-               << "\nset grid\nset key top right\n$pts << EOD\n"
-               << pts.str() << "EOD\n$best << EOD\n"
-               << best_so_far.str() << "EOD\n"
-               << "plot $pts using 1:2:3 with yerrorbars pt 7 lc rgb '#444444' title 'each setting', $best using 1:2 with steps lw 2 lc "
-                  "rgb "
-                  "'#d62728' title 'best measured so far'\n";
+               << "\nset grid\nset key below\n$pts << EOD\n"
+               << pts.str() << "EOD\n$broke << EOD\n"
+               << broke.str() << "EOD\n$best << EOD\n"
+               << best_so_far.str() << "EOD\nplot 1/0 notitle";
+            if (!pts.str().empty())
+                gp << ", $pts using 1:2:3 with yerrorbars pt 7 lc rgb '#444444' title '"
+                   << (study.constraints.empty() ? "each setting" : "each setting, constraints met") << "'";
+            if (!broke.str().empty()) gp << ", $broke using 1:2:3 with yerrorbars pt 6 lc rgb '#ff7f0e' title 'a constraint broken'";
+            if (!best_so_far.str().empty()) gp << ", $best using 1:2 with steps lw 2 lc rgb '#d62728' title 'best measured so far'";
+            gp << "\n";
             const std::string note = plot_with_gnuplot(dir, "search_progress", gp.str());
             if (note.empty()) {
                 files.plots = true;
@@ -397,7 +416,7 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         md << " " << r.figures.runs(k) << "/" << s.seeds << " | "
            << figure_shown(r.figures.at(k, study.objective_component, study.objective)) << " | "
            << (std::isfinite(predicted[k].mean)
-                   ? fmt(predicted[k].mean) + " (" + fmt(predicted[k].low) + " to " + fmt(predicted[k].high) + ")"
+                   ? fmt(predicted[k].mean, 6) + " (" + fmt(predicted[k].low, 6) + " to " + fmt(predicted[k].high, 6) + ")"
                    : "-")
            << " |";
         for (const StudyConstraint& c : study.constraints) md << " " << figure_shown(r.figures.at(k, c.component, c.figure)) << " |";

@@ -5,9 +5,57 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <yaml-cpp/yaml.h>
 #include <nlohmann/json.hpp>
 
+#include "common/fnv_hash.h"
+#include "common/input_error.h"
+#include "common/units.h"
+#include "scene/overrides.h"
+#include "scene/resolved_writer.h"
+#include "scene/schema.h"
+#include "scene/yaml_load.h"
+
 namespace peensim {
+
+namespace {
+
+// A scene field's value as the scene has it (after the study's `set`; its default if the file
+// leaves it out), in `unit`: the resolved scene's SI number over what one `unit` is in SI. Nothing
+// for a path that does not lead to a number.
+std::optional<double> scene_value(const SceneDescription& scene, const std::string& path, const std::string& unit) {
+    const SchemaEntry* entry = override_schema_entry(path);
+    if (entry == nullptr) return std::nullopt;
+    YAML::Node node = load_yaml(resolved_scene_yaml(scene));
+    std::size_t at = 0;
+    while (at < path.size() && node) {
+        std::size_t end = at;
+        for (int depth = 0; end < path.size() && (depth > 0 || path[end] != '.'); ++end)
+            depth += path[end] == '[' ? 1 : path[end] == ']' ? -1 : 0;
+        const std::string segment = path.substr(at, end - at);
+        const std::size_t bracket = segment.find('[');
+        node = YAML::Node(node[segment.substr(0, bracket)]);
+        if (bracket != std::string::npos) {
+            const std::string selector = segment.substr(bracket + 1, segment.size() - bracket - 2);
+            YAML::Node item;
+            for (std::size_t k = 0; node.IsSequence() && k < node.size(); ++k)
+                if ((node[k]["name"] && node[k]["name"].Scalar() == selector) || std::to_string(k) == selector) item = node[k];
+            node = item;
+        }
+        at = end + 1;
+    }
+    double si = 0.0;
+    if (!node || !node.IsScalar() || !parse_plain_number(node.Scalar(), si)) return std::nullopt;
+    try {
+        const double one = unit.empty() ? parse_quantity("1", entry->dimension, entry->plain_number_unit)
+                                        : parse_quantity("1 " + unit, entry->dimension, entry->plain_number_unit);
+        return one > 0.0 ? std::optional<double>(si / one) : std::nullopt;
+    } catch (const std::exception&) {
+        return std::nullopt;  // a unit the field does not take: the bounds' check says so
+    }
+}
+
+}  // namespace
 
 bool complete(const StudySetting& s) {
     for (const auto& v : s.values)
@@ -92,9 +140,10 @@ SettingFigures read_setting_figures(const Study& study, const SweepPlan& plan) {
     return f;
 }
 
-std::string journal_text(const std::string& fingerprint, const std::vector<StudySetting>& settings) {
+std::string journal_text(const JournalIdentity& identity, const std::vector<StudySetting>& settings) {
     nlohmann::json j;
-    j["study_fingerprint"] = fingerprint;
+    j["study"] = identity.study;
+    j["scene_fingerprint"] = identity.scene_fingerprint;
     j["settings"] = nlohmann::json::array();
     for (const StudySetting& s : settings) {
         nlohmann::json values = nlohmann::json::array();
@@ -104,10 +153,11 @@ std::string journal_text(const std::string& fingerprint, const std::vector<Study
     return j.dump(1) + "\n";
 }
 
-std::vector<StudySetting> read_journal(const std::string& text, std::string& fingerprint) {
+std::vector<StudySetting> read_journal(const std::string& text, JournalIdentity& identity) {
     const auto j = nlohmann::json::parse(text, nullptr, false);
     if (j.is_discarded() || !j.is_object() || !j.contains("settings")) throw std::runtime_error("not an optimisation journal");
-    fingerprint = j.value("study_fingerprint", "");
+    identity.study = j.value("study", "");
+    identity.scene_fingerprint = j.value("scene_fingerprint", "");
     std::vector<StudySetting> out;
     for (const auto& s : j["settings"]) {
         StudySetting x;
@@ -156,11 +206,34 @@ ObjectiveScale ObjectiveScale::of(const Study& study) {
 }
 
 std::string fingerprint_of(const std::string& text) {
-    std::uint64_t h = 1469598103934665603ULL;
-    for (const unsigned char c : text) h = (h ^ c) * 1099511628211ULL;
     char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(text)));
     return hex;
+}
+
+void fill_starts(Study& study, const SceneDescription& scene) {
+    for (StudyVariable& v : study.variables) {
+        if (v.has_start) continue;
+        const bool one_field = v.set.size() == 1 && v.set.front().second == "{}";
+        if (one_field && override_schema_entry(v.set.front().first) == nullptr)
+            throw InputError(
+                v.origin, "variables." + v.name + ".path",
+                "'" + v.set.front().first + "' is no scene field; expected a path as --set takes it, e.g. components[gear].motion.speed");
+        const std::optional<double> value = one_field ? scene_value(scene, v.set.front().first, v.unit) : std::nullopt;
+        if (!value)
+            throw InputError(v.origin, "variables." + v.name + ".start",
+                             one_field
+                                 ? "the scene gives " + v.set.front().first + " no number to start from; expected start: (a value in " +
+                                       (v.unit.empty() ? std::string("plain numbers") : v.unit) + ")"
+                                 : "a variable that sets several fields has no one scene value to start from; expected start:");
+        const double x = std::stod(study_value_text(v, *value));
+        if (x < v.min || x > v.max)
+            throw InputError(v.origin, "variables." + v.name + ".start",
+                             "the scene's own value, " + study_value_text(v, x) +
+                                 ", is outside min and max; expected a start within them " + "(give start:, or widen the bounds)");
+        v.has_start = true;
+        v.start = x;
+    }
 }
 
 }  // namespace peensim

@@ -16,6 +16,7 @@
 #include "app/optimise/study_file.h"
 #include "app/sweep/sweep_compare.h"
 #include "app/sweep/sweep_plan.h"
+#include "scene/scene_description.h"
 
 namespace peensim {
 
@@ -39,6 +40,12 @@ Eigen::VectorXd unit_point(const Study& study, const StudySetting& s);  // compl
 // The scene overrides a setting gives its runs: each variable's fields with its value.
 std::vector<std::pair<std::string, std::string>> setting_overrides(const Study& study, const StudySetting& s);
 
+// Each variable without a `start` starts at the scene's own value (a `path` variable's: the
+// resolved scene's, in the variable's unit); that value must lie within the bounds, as a written
+// start must. A variable that writes several fields through templates has no one value to read:
+// it needs `start`. Throws InputError at the variable's line.
+void fill_starts(Study& study, const SceneDescription& scene);
+
 // The plan of the settings' runs in `output_dir` (a directory per setting, s<k> per replicate,
 // process.seed from base_seed), checked as a sweep's.
 SweepPlan settings_plan(const Study& study, const std::vector<StudySetting>& settings, std::uint64_t base_seed,
@@ -55,10 +62,18 @@ struct SettingFigures {
 // Throws InputError (at the study's line) for a component no run logs.
 SettingFigures read_setting_figures(const Study& study, const SweepPlan& plan);
 
-// The journal: the study's fingerprint (its text, its scene's) and the settings.
-std::string journal_text(const std::string& fingerprint, const std::vector<StudySetting>& settings);
-// Throws std::runtime_error for a journal it cannot read.
-std::vector<StudySetting> read_journal(const std::string& text, std::string& fingerprint);
+// What the journal holds to know its study again: what decides which settings a search runs (a
+// line per key: the scene, set, each variable, the objective, each constraint, the design keys;
+// not `runs` or `confirm`, not comments or layout), and the scene file's fingerprint.
+struct JournalIdentity {
+    std::string study;
+    std::string scene_fingerprint;
+    bool operator==(const JournalIdentity&) const = default;
+};
+
+// The journal: its identity and the settings. Throws std::runtime_error for one it cannot read.
+std::string journal_text(const JournalIdentity& identity, const std::vector<StudySetting>& settings);
+std::vector<StudySetting> read_journal(const std::string& text, JournalIdentity& identity);
 
 // A SweepPlan's runs as text and back: what rank 0 of an MPI job tells the other ranks to run.
 std::string plan_text(const SweepPlan& plan);
@@ -74,7 +89,7 @@ struct ObjectiveScale {
     double to_figure(double model) const { return log ? std::exp(sign * model) : sign * model; }
 };
 
-// FNV-1a, 64 bits, as 16 hex digits: a fingerprint stable across builds.
+// FNV-1a, 64 bits (common/fnv_hash.h), as 16 hex digits: a fingerprint stable across builds.
 std::string fingerprint_of(const std::string& text);
 
 }  // namespace peensim

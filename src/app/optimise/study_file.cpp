@@ -119,6 +119,8 @@ Study read_study_file(const std::string& path) {
         throw InputError({path, 1, 1}, "scene", "missing the scene file: expected `scene:` with its path (relative to this study file)");
     if (!scene.IsScalar()) fail(scene, "scene", "expected the scene file's path");
     s.scene_path = (fs::path(path).parent_path() / scene.Scalar()).lexically_normal().string();
+    if (std::error_code ec; !fs::is_regular_file(s.scene_path, ec))
+        fail(scene, "scene", "no scene file at '" + s.scene_path + "'; expected a scene file's path, relative to this study file");
     if (const YAML::Node set = root["set"]) {
         if (!set.IsSequence()) fail(set, "set", "expected a list of path=value");
         s.set_origin = yaml_location(path, set);
@@ -143,11 +145,13 @@ Study read_study_file(const std::string& path) {
         into = static_cast<int>(v);
     };
     whole("runs", 2, kMaxRuns, s.runs);
+    s.runs_origin = root["runs"] ? yaml_location(path, root["runs"]) : SourceLocation{path, 1, 1};
     whole("initial", 2, kMaxRuns, s.initial);
     whole("seeds", 1, kMaxSweepSeeds, s.seeds);
     whole("max_seeds", 1, kMaxSweepSeeds, s.max_seeds);
     whole("batch", 1, 4096, s.batch);
     whole("confirm", 0, kMaxSweepSeeds, s.confirm);
+    if (s.confirm == 1) fail(root["confirm"], "confirm", "expected 0 (none) or 2 and more: one run has no interval to compare with");
     int seed = 1;
     whole("seed", 0, 2147483647, seed);
     s.seed = static_cast<std::uint64_t>(seed);
@@ -175,6 +179,11 @@ Study read_study_file(const std::string& path) {
         v.name = kv.first.Scalar();
         v.origin = yaml_location(path, kv.first);
         const std::string field = "variables." + v.name;
+        for (const StudyVariable& other : s.variables)
+            if (other.name == v.name)
+                fail(kv.first, field,
+                     "a second variable named '" + v.name + "' (the first at line " + std::to_string(other.origin.line) +
+                         "); expected each name once");
         const YAML::Node n = kv.second;
         if (!n.IsMap()) fail(n, field, "expected a map: {path, min, max}");
         for (const auto& e : n) {
@@ -234,6 +243,14 @@ Study read_study_file(const std::string& path) {
             if (v.integer && std::floor(v.max) < std::ceil(v.min) + 1.0)
                 fail(in, field + ".integer", "expected at least two whole numbers between min and max");
         }
+        // One field, one variable: two would write it in turn, the last one winning.
+        for (const StudyVariable& other : s.variables)
+            for (const auto& [p1, t1] : other.set)
+                for (const auto& [p2, t2] : v.set)
+                    if (p1 == p2)
+                        fail(kv.first, field,
+                             "sets " + p2 + " as variables." + other.name + " does (line " + std::to_string(other.origin.line) +
+                                 "); expected each field set by one variable");
         s.variables.push_back(std::move(v));
     }
 

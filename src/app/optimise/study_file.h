@@ -59,14 +59,15 @@ struct Study {
     bool maximise = false;
     SourceLocation objective_origin;
     std::vector<StudyConstraint> constraints;
-    int runs = 0;             // the search's budget of runs (0: not given; the default is the job's)
-    int initial = 0;          // settings of the first design (0: 2 d + 2)
-    int seeds = 1;            // replicates of a new setting
-    int max_seeds = 4;        // replicates of one setting at most
-    double tolerance = 0.05;  // the winner's interval half-width, as a share of its value, below which it needs no more seeds
-    int batch = 0;            // settings per round (0: the runs that go at once)
-    int confirm = 5;          // independent runs of the winner and the start at the end
-    std::uint64_t seed = 1;   // the search's own random stream
+    int runs = 0;                // the search's budget of runs (0: not given; the default is the job's)
+    SourceLocation runs_origin;  // the `runs` key (the file's start when not given)
+    int initial = 0;             // settings of the first design (0: 2 d + 2)
+    int seeds = 1;               // replicates of a new setting
+    int max_seeds = 4;           // replicates of one setting at most
+    double tolerance = 0.05;     // the winner's interval half-width, as a share of its value, below which it needs no more seeds
+    int batch = 0;               // settings per round (0: the runs that go at once)
+    int confirm = 5;             // independent runs of the winner and the start at the end
+    std::uint64_t seed = 1;      // the search's own random stream
 };
 
 // The figures a study may name: comparison.csv's, and region_<name>_{impact_rate_per_s, coverage,

@@ -205,7 +205,7 @@ TEST(OptimiseJob, AConstraintsBoundaryIsTheWinner) {
 // search goes on around them, the report says so, and the command ends with exit 1.
 TEST(OptimiseJob, FailedRunsCountAsTheWorstAndTheSearchGoesOn) {
     TempDir dir;
-    std::ofstream(dir.path / "study.yaml") << study_text("confirm: 1\n");
+    std::ofstream(dir.path / "study.yaml") << study_text("confirm: 2\n");
     ::setenv("FAKE_FAIL_ABOVE_RPM", "100", 1);
     std::ostringstream out, err;
     const int code = optimise_job(options(dir.path / "study.yaml", dir.path / "o", fake_run(dir.path)), out, err);
@@ -216,6 +216,35 @@ TEST(OptimiseJob, FailedRunsCountAsTheWorstAndTheSearchGoesOn) {
     EXPECT_NEAR(std::stod(w[3]), 70.0, 20.0);
     EXPECT_NE(read_file(dir.path / "o" / "optimise" / "report.md").find("runs failed twice"), std::string::npos);
     EXPECT_NE(err.str().find("failed"), std::string::npos) << err.str();
+}
+
+// A variable without `start` starts at the scene's own value (the gear's 30 rpm), and the start's
+// runs are in the model; whole numbers over a narrow range (1 to 3 mm) put two strata of the first
+// design on one value: one setting with more seeds, not an error.
+TEST(OptimiseJob, TheStartIsTheScenesOwnValueAndADesignOnFewWholeValuesMerges) {
+    TempDir dir;
+    const std::string scene = "scene: " + std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml\n";
+    std::ofstream(dir.path / "study.yaml")
+        << scene << "variables:\n  speed: {path: \"components[gear].motion.speed\", min: 15 rpm, max: 120 rpm}\n"
+        << "  size: {path: shot.diameter, min: 1 mm, max: 3 mm, integer: true}\nruns: 12\ninitial: 6\nconfirm: 0\n";
+    std::ostringstream out, err;
+    ASSERT_EQ(optimise_job(options(dir.path / "study.yaml", dir.path / "o", fake_run(dir.path)), out, err), kExitOk) << err.str();
+    const std::string journal = read_file(dir.path / "o" / "optimise" / "journal.json");
+    EXPECT_NE(journal.find("\"values\": [\n    30.0,\n    2.0\n   ]"), std::string::npos) << journal;  // the scene's 30 rpm, 2 mm
+    const std::string csv = read_file(dir.path / "o" / "optimise" / "evaluations.csv");
+    EXPECT_NE(csv.find("start,0,start,30,2,2,2,"), std::string::npos) << csv;
+    EXPECT_NE(read_file(dir.path / "o" / "optimise" / "report.md").find("the model over all "), std::string::npos);
+}
+
+// An objective no run gives (the stand-in writes no uniformity): exit 1 saying so, no winner made up.
+TEST(OptimiseJob, AnObjectiveNoRunGivesEndsTheSearchSayingSo) {
+    TempDir dir;
+    std::ofstream(dir.path / "study.yaml") << study_text("objective: {figure: uniformity, goal: maximise}\n");
+    std::ostringstream out, err;
+    EXPECT_EQ(optimise_job(options(dir.path / "study.yaml", dir.path / "o", fake_run(dir.path)), out, err), kExitRuntimeError);
+    EXPECT_NE(err.str().find("optimise: no setting gave a value of uniformity"), std::string::npos) << err.str();
+    EXPECT_FALSE(fs::exists(dir.path / "o" / "optimise" / "winner.json"));
+    EXPECT_EQ(out.str().find("round 1"), std::string::npos) << out.str();
 }
 
 // The claim of the predicted interval at the winner: over 12 searches (their own search seeds), the
@@ -274,9 +303,22 @@ TEST(OptimiseJob, BadStudiesAreInputErrorsNamingTheLineAndField) {
         {scene + speed + "seeds: 3\nmax_seeds: 2\n", "max_seeds: expected at least `seeds` (3)"},
         // A path the scene does not have, and a bound the scene refuses: blamed on the variable's line.
         {scene + "variables:\n  speed: {path: \"components[gear].motion.sped\", min: 15 rpm, max: 120 rpm}\n",
-         "study.yaml:3:3: variables.speed.min: "},
+         "study.yaml:3:3: variables.speed.path: 'components[gear].motion.sped' is no scene field"},
         {scene + "variables:\n  size: {path: shot.diameter, min: -1 mm, max: 2 mm}\n", "study.yaml:3:3: variables.size.min: "},
         {scene + "variables:\n  speed: {path: components[gear].motion.speed, min: 15 rpm, max: 120 rpm}\n", "study.yaml:3:"},
+        {scene + speed + "  speed: {path: shot.count, min: 10, max: 100}\n",
+         "study.yaml:4:3: variables.speed: a second variable named 'speed'"},
+        {scene + speed + "  rpm: {path: \"components[gear].motion.speed\", min: 10 rpm, max: 20 rpm}\n",
+         "study.yaml:4:3: variables.rpm: sets components[gear].motion.speed as variables.speed does (line 3)"},
+        {scene + speed + "confirm: 1\n", "study.yaml:4:10: confirm: expected 0 (none) or 2 and more"},
+        {"scene: nothere.yaml\n" + speed, "study.yaml:1:8: scene: no scene file at"},
+        {scene + speed + "runs: 2\n",
+         "study.yaml:4:7: runs: expected a budget of at least 3 runs (the start's 2 and one setting's 1), got 2"},
+        // The start from the scene (30 rpm) outside the bounds; a template variable without a start.
+        {scene + "variables:\n  speed: {path: \"components[gear].motion.speed\", min: 40 rpm, max: 120 rpm}\n",
+         "study.yaml:3:3: variables.speed.start: the scene's own value, 30 rpm, is outside min and max"},
+        {scene + "variables:\n  h: {min: 30 mm, max: 50 mm, set: {\"components[gear].translation\": \"[0, 0, {}]\"}}\n",
+         "variables.h.start: a variable that sets several fields has no one scene value to start from; expected start:"},
     };
     for (const auto& c : cases) {
         std::ofstream(dir.path / "study.yaml") << c.text;
@@ -297,7 +339,7 @@ TEST(OptimiseMpi, RanksRunTheSameSearchAsOneProcess) {
     std::ofstream(dir.path / "study.yaml")
         << "scene: " << kRod << "\nset: [\"process.duration=20 ms\"]\n"
         << "variables:\n  count: {path: shot.count, min: 32, max: 160, integer: true, start: 64}\n"
-        << "objective: {figure: impact_rate_per_s, goal: maximise}\nruns: 6\ninitial: 3\nbatch: 2\nconfirm: 1\n";
+        << "objective: {figure: impact_rate_per_s, goal: maximise}\nruns: 6\ninitial: 3\nbatch: 2\nconfirm: 2\n";
     std::ostringstream out, err;
     OptimiseOptions local = options(dir.path / "study.yaml", dir.path / "local", PEENSIM_BINARY);
     local.jobs = 1;
