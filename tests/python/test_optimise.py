@@ -65,7 +65,7 @@ class OptimiseTest(TempDirTest):
     def test_a_study_file_is_read_as_the_command_line_reads_it(self):
         with open(self.path("study.yaml"), "w", encoding="utf-8") as f:
             f.write(f"scene: {scene('rod.yaml')}\nset: [\"process.duration=20 ms\"]\n"
-                    "variables:\n  count: {path: shot.count, min: 32, max: 160, integer: true}\n"
+                    "variables:\n  count: {path: shot.count, min: 32, max: 160, integer: true, start: 64}\n"
                     "objective: {figure: impact_rate_per_s, goal: maximise}\nruns: 4\ninitial: 2\nconfirm: 0\n")
         result, _ = self.optimise(self.path("study.yaml"), self.path("file"), runs=5, jobs=2)
         self.assertEqual(int(result.evaluations["runs"].sum()), 5)
