@@ -54,7 +54,6 @@ public:
     // Of the means, and of the runs' scatter about them (the model's noise of one run).
     double log_marginal_likelihood() const { return log_likelihood_; }
     const GpHyperparameters& hyperparameters() const { return h_; }
-    int observations() const { return static_cast<int>(d_.x.rows()); }
 
 private:
     GaussianProcess(Data data, const GpHyperparameters& h, double y_mean, double y_scale);

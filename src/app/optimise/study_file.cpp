@@ -72,16 +72,6 @@ bool is_study_figure(const std::string& name) {
     return false;
 }
 
-bool is_study_file(const std::string& path) {
-    YAML::Node root;
-    try {
-        root = load_yaml_file(path);
-    } catch (const std::exception&) {
-        return false;
-    }
-    return root.IsMap() && root["variables"];
-}
-
 std::string study_value_text(const StudyVariable& v, double value) {
     std::ostringstream s;
     s.precision(6);

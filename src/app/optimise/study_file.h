@@ -74,9 +74,6 @@ struct Study {
 // time_to_target_s}.
 bool is_study_figure(const std::string& name);
 
-// A YAML file whose top level is a map with `variables`: a study.
-bool is_study_file(const std::string& path);
-
 // Throws InputError (file, line, field, what was expected) for anything a search cannot use.
 Study read_study_file(const std::string& path);
 
