@@ -125,6 +125,7 @@ RegionSet::RegionSet(const TriangleMesh& mesh, const std::vector<RegionDesc>& re
     const double h = share_spacing(mesh);
     const std::size_t n_reg = regions_.size();
     std::vector<std::uint32_t> inside(n_reg);  // samples of the current triangle in each region
+    std::vector<char> maybe_in(n_reg);         // the current triangle may hold some of the region
     excluded_.assign(n_tri, 0.0);
     dominant_.assign(n_tri, -1);
     candidate_start_.assign(n_tri + 1, 0);
@@ -151,12 +152,33 @@ RegionSet::RegionSet(const TriangleMesh& mesh, const std::vector<RegionDesc>& re
             }
             in_excluded += excluded ? 1u : 0u;
         });
+        // A region none of whose samples lie in it is still a candidate if a corner does. Entry by
+        // entry, as the samples: a `sectors` entry's other conditions and its corners' angles once
+        // for all its sectors (a gear's teeth: not once per tooth).
+        for (std::size_t e = 0, r = 0; e < entries_.size(); r += static_cast<std::size_t>(entry_regions(entries_[e])), ++e) {
+            const RegionDesc& entry = entries_[e];
+            const std::size_t end = r + static_cast<std::size_t>(entry_regions(entry));
+            bool corner_holds[3] = {false, false, false};
+            double corner_angle[3] = {0.0, 0.0, 0.0};
+            bool looked = false;
+            for (std::size_t q = r; q < end; ++q) {
+                maybe_in[q] = inside[q] > 0;
+                if (maybe_in[q]) continue;
+                if (!looked) {
+                    looked = true;
+                    for (int k = 0; k < 3; ++k) {
+                        corner_holds[k] = holds_apart_from_sectors(entry, mesh.corner(t, k), t);
+                        if (corner_holds[k] && entry.sectors) corner_angle[k] = axis_angle(entry.sectors->frame, mesh.corner(t, k));
+                    }
+                }
+                for (int k = 0; k < 3 && !maybe_in[q]; ++k)
+                    maybe_in[q] = corner_holds[k] && (!entry.sectors || in_sector_of(*entry.sectors, regions_[q].sector, corner_angle[k]));
+            }
+        }
         const double area = areas_[t];
         std::uint32_t best = 0;
         for (std::size_t r = 0; r < n_reg; ++r) {
-            bool candidate = inside[r] > 0;
-            for (int k = 0; k < 3 && !candidate; ++k) candidate = holds(regions_[r], mesh.corner(t, k), t);
-            if (candidate) candidates_.push_back(static_cast<std::uint32_t>(r));
+            if (maybe_in[r]) candidates_.push_back(static_cast<std::uint32_t>(r));
             if (inside[r] == 0) continue;
             const double fraction = static_cast<double>(inside[r]) / samples;
             regions_[r].shares.push_back({static_cast<int>(t), fraction});

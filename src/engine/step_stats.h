@@ -2,9 +2,10 @@
 #pragma once
 
 #include <array>
-#include <chrono>
 #include <cstdint>
 #include <string_view>
+
+#include "common/cycle_clock.h"
 
 namespace peensim {
 
@@ -116,18 +117,19 @@ static_assert(sizeof(StepStats) ==
                   sizeof(std::array<double, static_cast<int>(Stage::count)>) + StepStats::kCounters * sizeof(std::uint64_t),
               "a StepStats counter is missing from each_counter (and kCounters)");
 
-// Adds the wall time of its scope to one stage.
+// Adds the wall time of its scope to one stage (read on the cycle clock: a scope may be a single
+// prediction).
 class StageTimer {
 public:
-    StageTimer(StepStats& stats, Stage stage) : stats_(stats), stage_(stage), start_(std::chrono::steady_clock::now()) {}
-    ~StageTimer() { stats_[stage_] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+    StageTimer(StepStats& stats, Stage stage) : stats_(stats), stage_(stage), start_(cycle_count()) {}
+    ~StageTimer() { stats_[stage_] += static_cast<double>(cycle_count() - start_) * seconds_per_cycle(); }
     StageTimer(const StageTimer&) = delete;
     StageTimer& operator=(const StageTimer&) = delete;
 
 private:
     StepStats& stats_;
     Stage stage_;
-    std::chrono::steady_clock::time_point start_;
+    std::uint64_t start_;  // cycle_count() ticks
 };
 
 }  // namespace peensim

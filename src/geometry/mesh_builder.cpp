@@ -35,6 +35,14 @@ int MeshBuilder::vertex(const Vec3& position_m) {
     return it->second;
 }
 
+void MeshBuilder::reserve(std::size_t triangles) {
+    mesh_.triangles.reserve(mesh_.triangles.size() + triangles);
+    mesh_.source_facet.reserve(mesh_.source_facet.size() + triangles);
+    mesh_.group_of_triangle.reserve(mesh_.group_of_triangle.size() + triangles);
+    vertex_of_position_.reserve(vertex_of_position_.size() + triangles / 2 + 3);
+    mesh_.vertices.reserve(mesh_.vertices.size() + triangles / 2 + 3);
+}
+
 int MeshBuilder::group(const std::string& name) {
     for (std::size_t g = 0; g < mesh_.group_names.size(); ++g) {
         if (mesh_.group_names[g] == name) return static_cast<int>(g);

@@ -18,6 +18,10 @@ public:
     // Index of the vertex at exactly `position_m` (m), adding it if it is new.
     int vertex(const Vec3& position_m);
 
+    // Room for `triangles` more triangles and their vertices (a closed mesh has about half as many
+    // vertices as triangles): the vertex map is not rehashed as it grows.
+    void reserve(std::size_t triangles);
+
     // Index of the group with this name, adding it if it is new.
     int group(const std::string& name);
 

@@ -91,10 +91,7 @@ EdgeReport edge_report(const TriangleMesh& mesh) {
     return report;
 }
 
-bool is_closed(const TriangleMesh& mesh) {
-    const EdgeReport report = edge_report(mesh);
-    return mesh.triangle_count() > 0 && report.boundary_edges == 0 && report.non_manifold_edges == 0;
-}
+bool is_closed(const TriangleMesh& mesh) { return edge_report(mesh).closed(); }
 
 Bounds bounds(const TriangleMesh& mesh) {
     Bounds box;

@@ -30,6 +30,8 @@ struct EdgeReport {
     std::size_t boundary_edges = 0;      // used by exactly one triangle (a hole or an open rim)
     std::size_t non_manifold_edges = 0;  // used by three or more triangles
     std::size_t misoriented_edges = 0;   // used by two triangles that run it in the same direction
+    // Watertight (is_closed): edges, each shared by exactly two triangles.
+    bool closed() const { return edges > 0 && boundary_edges == 0 && non_manifold_edges == 0; }
 };
 EdgeReport edge_report(const TriangleMesh& mesh);
 

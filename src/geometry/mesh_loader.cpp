@@ -113,6 +113,9 @@ TriangleMesh load_mesh(const std::string& path, const MeshFileOptions& options) 
     if (scene->mRootNode != nullptr) collect_placements(scene->mRootNode, aiMatrix4x4(), placements);
 
     MeshBuilder builder;
+    std::size_t faces = 0;
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) faces += scene->mMeshes[m]->mNumFaces;
+    builder.reserve(faces);
     int facet = 0;
     std::vector<int> corners;
     for (unsigned m = 0; m < scene->mNumMeshes; ++m) {

@@ -60,8 +60,15 @@ bool segment_crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
 bool edges_cross_faces(const Component& a, const Vec3& oa, const Component& b, const Vec3& ob, Vec3& at) {
     const Pose pa = a.kinematics.pose(SimTime{}), pb = b.kinematics.pose(SimTime{});
     std::vector<int> near;
+    // b's faces lie within its world bounds: a triangle of a wholly outside them (by more than a
+    // touch) has no edge that can cross one, and is not looked up in b's BVH (on a 500k-triangle
+    // gear beside its axle, most are not).
+    const Vec3 b_lo = b.world_lo + ob - Vec3::Constant(kTouch), b_hi = b.world_hi + ob + Vec3::Constant(kTouch);
     for (std::size_t t = 0; t < a.mesh->triangle_count(); ++t) {
         const std::array<Vec3, 3> w = world_triangle(a, pa, t, oa);
+        if ((w[0].cwiseMax(w[1]).cwiseMax(w[2]).array() < b_lo.array()).any() ||
+            (w[0].cwiseMin(w[1]).cwiseMin(w[2]).array() > b_hi.array()).any())
+            continue;
         for (int k = 0; k < 3; ++k) {
             // In b's frame, so b's BVH finds the faces near the edge.
             const Vec3 p = pb.to_component(w[static_cast<std::size_t>(k)] - ob),
@@ -152,6 +159,7 @@ std::vector<std::pair<int, int>> boundary_edges(const TriangleMesh& mesh) {
 // diameter, and inside the chamber's cavity.
 bool exposed_opening(const Model& m, std::size_t ci, ShotCavity& cavity, Vec3& at, std::size_t& edges) {
     const Component& c = m.components[ci];
+    if (c.edges.boundary_edges == 0) return false;  // closed: no opening (and no map of its edges)
     const std::vector<std::pair<int, int>> open = boundary_edges(*c.mesh);
     edges = open.size();
     if (open.empty()) return false;
@@ -317,7 +325,7 @@ AssemblyReport check_assembly(const Model& m, ShotCavity* cavity) {
         facts.hi = c.world_hi;
         rest_and_swept_bounds(c, facts);
         facts.triangles = c.mesh->triangle_count();
-        facts.closed = is_closed(*c.mesh);
+        facts.closed = c.edges.closed();
         if (c.mesh->dropped_degenerate_facets > 0)
             add(report, m, i, false, ".mesh",
                 std::to_string(c.mesh->dropped_degenerate_facets) + " facets of zero area dropped (" +

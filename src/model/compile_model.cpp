@@ -353,11 +353,10 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         c.logged = logged.empty() ? logged_by_default(desc.role) : std::find(logged.begin(), logged.end(), desc.name) != logged.end();
         component_bounds(c);
         check_extent(c, desc, i);
-        if (desc.role == ComponentRole::part || desc.role == ComponentRole::fixture || desc.role == ComponentRole::almen) {
-            const EdgeReport edges = edge_report(*c.mesh);
-            c.solid = edges.boundary_edges == 0 && edges.non_manifold_edges == 0 && edges.misoriented_edges == 0 &&
+        c.edges = edge_report(*c.mesh);
+        if (desc.role == ComponentRole::part || desc.role == ComponentRole::fixture || desc.role == ComponentRole::almen)
+            c.solid = c.edges.boundary_edges == 0 && c.edges.non_manifold_edges == 0 && c.edges.misoriented_edges == 0 &&
                       enclosed_volume(*c.mesh) > 0.0;
-        }
         // The first sonotrode is the one the shot are placed on.
         if (desc.role == ComponentRole::sonotrode && model->sonotrode < 0) model->sonotrode = static_cast<int>(i);
         model->components.push_back(std::move(c));

@@ -12,6 +12,7 @@
 #include "collision/mesh_collider.h"
 #include "contact/contact_law.h"
 #include "contact/law_registry.h"
+#include "geometry/mesh_checks.h"
 #include "geometry/triangle_mesh.h"
 #include "kernels/flight_model.h"
 #include "model/kinematics.h"
@@ -37,6 +38,9 @@ struct Component {
     // wound, normals outward: a centre on the inner side of its nearest facet is inside the solid,
     // and is put back out through that facet, never pushed further in.
     bool solid = false;
+    // Its mesh's edges, counted once when the model is compiled (the assembly checks ask again; a
+    // 500k-triangle part's count is a sort of 1.5 M words).
+    EdgeReport edges;
 };
 
 // One size of the shot (a scene gives one, or a mix: shot.sizes). A shot's size is its index

@@ -40,7 +40,7 @@ std::vector<AssemblyIssue> source_issues(const Model& m) {
         const SourceOutline o = m.sources[s]->outline();
         const Vec3 start = 0.5 * (o.start_lo_m + o.start_hi_m);  // the middle of where its shot start
         for (const Component& c : m.components) {
-            if (c.role == ComponentRole::chamber || !is_closed(*c.mesh)) continue;
+            if (c.role == ComponentRole::chamber || !c.edges.closed()) continue;
             const Inside inside = inside_component(c, start);
             if (inside == Inside::no) continue;
             out.push_back({true, m.description.sources[s].where, "sources[" + std::to_string(s) + "]",

@@ -40,6 +40,7 @@
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
 #include "output/markdown_html.h"
+#include "scene/resolved_writer.h"
 #include "scene/scene_parser.h"
 #include "scene/scene_sections.h"
 #include "scene/shot_mix.h"
@@ -380,7 +381,8 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     AnalysisWindow window = window_of(options, duration, scene);
 
     // The model: the logged components' meshes, and which of their facets the shot can reach.
-    const std::shared_ptr<const Model> model = compile_model(scene);
+    const std::shared_ptr<const Model> model =
+        options.model && options.model->resolved_scene_yaml == resolved_scene_yaml(scene) ? options.model : compile_model(scene);
     whole_turns(window, logged_turn_s(*model, scene));
     std::unique_ptr<ShotCavity> cavity;
     if (model->sonotrode >= 0) {

@@ -385,7 +385,9 @@ private:
             for (const LostShot& l : r.lost)
                 err_ << "replica " << r.window.replica << " (its own time): " << describe_loss(*model_, l) << "\n";
         if (options_.analyze) {
-            const int code = analyze_job(dir_, out_, err_);
+            AnalyzeOptions analysis;
+            analysis.model = model_;
+            const int code = analyze_job(dir_, out_, err_, analysis);
             if (code != kExitOk) {
                 err_ << "error: the run finished (its outputs are complete) but its analysis failed; fix the cause above and run "
                         "'peensim analyze "

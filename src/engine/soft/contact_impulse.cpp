@@ -124,6 +124,10 @@ NodePath::NodePath(const contact::SoftPair& pair, const ContactPath& path, doubl
     }
     f0_m_ = f0_ * inv_m, f1_m_ = f1_ * inv_m, f2_m_ = f2_ * inv_m;
     reach_s_ = h_max_s;
+    // at(0) is d0 to the bit wherever the terms it multiplies by 0 are finite (as they are but in
+    // a state already gone wrong): the half steps then read the node's overlap instead of
+    // evaluating it, up to three times each.
+    node_overlap_exact_ = std::isfinite(r_ + A_ + c3_ + c4_ + f0_m_ + f1_m_ + f2_m_ + g_scale_ + phi1_0_ + phi2_0_);
 }
 
 void NodePath::phis(double x, double& phi1, double& phi2) const {
@@ -225,6 +229,7 @@ HalfStepImpulse NodePath::half_step(double h_s) const {
     const double H = std::abs(h_s);
     const double sign = h_s < 0.0 ? -1.0 : 1.0;
     const auto overlap = [&](double s) {
+        if (s == 0.0 && node_overlap_exact_) return d0_;
         double d, r;
         at(sign * s, d, r);
         return d;

@@ -94,6 +94,7 @@ private:
     double phi1_0_ = 0.0, phi2_0_ = 0.0;           // N m, N m2: the force integrated once and twice in x, at d0
     double g_scale_ = 0.0, dg_scale_ = 0.0;        // 1/(m2/s2 kg), 1/(m/s kg)
     double f0_m_ = 0.0, f1_m_ = 0.0, f2_m_ = 0.0;  // the same over m*
+    bool node_overlap_exact_ = false;              // at(0) is d0_ to the bit
 };
 
 // NodePath(pair, path, |h|).half_step(h).

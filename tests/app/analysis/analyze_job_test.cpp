@@ -14,7 +14,10 @@
 #include "analysis/impact_log_reader.h"
 #include "app/analysis/analyze_job.h"
 #include "app/run/run_job.h"
+#include "model/model.h"
+#include "scene/scene_parser.h"
 #include "support/csv_columns.h"
+#include "support/files.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -121,6 +124,31 @@ TEST(AnalyzeJob, AnInterruptedRunIsAnalysedWithANote) {
     const std::string text((std::istreambuf_iterator<char>(report)), {});
     EXPECT_NE(text.find("partial"), std::string::npos);
     EXPECT_NE(text.find("left out"), std::string::npos);
+}
+
+// A run hands its own model to its analysis (the meshes are not loaded, nor the BVHs built, twice):
+// the tables are byte for byte those a later `peensim analyze` writes from the directory alone,
+// and a model of another scene is never taken for the directory's.
+TEST(AnalyzeJob, ARunsOwnAnalysisEqualsALaterOneAndNoOtherModelIsUsed) {
+    TempDir dir;
+    std::ostringstream out, err;
+    RunOptions o = rod_run(dir.path, 0.1);
+    o.analyze = true;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    const fs::path a = dir.path / "analysis";
+    const std::vector<std::string> tables = {"rod_triangles.csv", "rod_coverage.csv", "rod_histograms.csv", "figures.json"};
+    std::map<std::string, std::string> by_run;
+    for (const std::string& t : tables) by_run[t] = peensim::testing::read_file(a / t);
+    ASSERT_GT(by_run["rod_triangles.csv"].size(), 1000u);
+    const auto expect_tables_as_by_run = [&](const std::string& how) {
+        for (const std::string& t : tables) EXPECT_EQ(peensim::testing::read_file(a / t), by_run[t]) << how << ": " << t;
+    };
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    expect_tables_as_by_run("a later analyze");
+    AnalyzeOptions other;
+    other.model = compile_model(parse_scene_file(std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml"));
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err, other), kExitOk) << err.str();
+    expect_tables_as_by_run("given the gear's model");
 }
 
 TEST(AnalyzeJob, NoPartAndNotARunAreClearErrors) {
