@@ -7,10 +7,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "common/flat_key_map.h"
 #include "common/vec.h"
 
 namespace peensim {
@@ -38,17 +38,19 @@ inline std::uint64_t cube_key_of(const Vec3& p, double inverse_side) {
     return cube_key(c[0], c[1], c[2]);
 }
 
+// A cube's run [first, end) of ids.
+using CubeRuns = FlatKeyMap<std::pair<std::uint32_t, std::uint32_t>>;
+
 // Ids sorted by their cube keys -> the map from a key to its run [first, end) in `ids`: every id
 // of a cube in one look-up.
 template <class Id>
-void index_by_cube(std::vector<std::pair<std::uint64_t, Id>>& keyed,
-                   std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>>& grid, std::vector<Id>& ids) {
+void index_by_cube(std::vector<std::pair<std::uint64_t, Id>>& keyed, CubeRuns& grid, std::vector<Id>& ids) {
     std::sort(keyed.begin(), keyed.end());
     ids.resize(keyed.size());
     for (std::size_t i = 0; i < keyed.size(); ++i) {
         ids[i] = keyed[i].second;
-        auto [it, added] = grid.try_emplace(keyed[i].first, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i));
-        it->second.second = static_cast<std::uint32_t>(i + 1);
+        const auto [run, added] = grid.try_emplace(keyed[i].first, {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i)});
+        run->second = static_cast<std::uint32_t>(i + 1);
     }
 }
 

@@ -75,7 +75,7 @@ EdgeLines::EdgeLines(const TriangleMesh& mesh, std::span<const ForecastImpact> a
         for (std::int64_t z = lo[2]; z <= hi[2] && !near_triangle_[t]; ++z)
             for (std::int64_t y = lo[1]; y <= hi[1] && !near_triangle_[t]; ++y)
                 for (std::int64_t x = lo[0]; x <= hi[0] && !near_triangle_[t]; ++x)
-                    if (grid_.count(cube_key(x, y, z, -1)) != 0) near_triangle_[t] = true;
+                    if (grid_.contains(cube_key(x, y, z, -1))) near_triangle_[t] = true;
     }
 }
 

@@ -10,7 +10,6 @@
 #include <array>
 #include <cstdint>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "analysis/coverage_forecast.h"
@@ -60,8 +59,8 @@ public:
     };
     Cube cube_at(const Vec3& x) const {
         if (lines.empty()) return {};
-        const auto it = grid_.find(cube_key_of(x, inverse_side_));
-        return it == grid_.end() ? Cube{} : Cube{it->second.first, it->second.second};
+        const auto* run = grid_.find(cube_key_of(x, inverse_side_));
+        return run == nullptr ? Cube{} : Cube{run->first, run->second};
     }
     double inverse_side() const { return inverse_side_; }  // 1/m
 
@@ -94,7 +93,7 @@ public:
 
 private:
     double inverse_side_ = 0.0;
-    std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> grid_;
+    CubeRuns grid_;
     std::vector<std::int32_t> grid_lines_;
     std::vector<bool> near_triangle_;
 };
