@@ -141,40 +141,51 @@ double reachable_fraction(const Model& m, std::size_t ci, ShotCavity& cavity) {
     return static_cast<double>(reachable) / kReachSamples;
 }
 
-// Boundary edges (used by one triangle) of a mesh, as vertex index pairs.
-std::vector<std::pair<int, int>> boundary_edges(const TriangleMesh& mesh) {
-    std::map<std::pair<int, int>, int> uses;
-    for (const auto& t : mesh.triangles)
+// A boundary edge (used by one triangle) of a mesh: its vertices and that triangle.
+struct BoundaryEdge {
+    int a = 0, b = 0;
+    std::size_t triangle = 0;
+};
+
+std::vector<BoundaryEdge> boundary_edges(const TriangleMesh& mesh) {
+    std::map<std::pair<int, int>, std::pair<int, std::size_t>> uses;  // edge -> (uses, a triangle)
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
         for (int k = 0; k < 3; ++k) {
-            const int a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
-            ++uses[{std::min(a, b), std::max(a, b)}];
+            const int a = mesh.triangles[t][static_cast<std::size_t>(k)], b = mesh.triangles[t][static_cast<std::size_t>((k + 1) % 3)];
+            auto& [n, triangle] = uses[{std::min(a, b), std::max(a, b)}];
+            ++n;
+            triangle = t;
         }
-    std::vector<std::pair<int, int>> out;
-    for (const auto& [edge, n] : uses)
-        if (n == 1) out.push_back(edge);
+    std::vector<BoundaryEdge> out;
+    for (const auto& [edge, use] : uses)
+        if (use.first == 1) out.push_back({edge.first, edge.second, use.second});
     return out;
 }
 
 // A point of an opening of c with room for a shot beside it: no other component within a shot
-// diameter, and inside the chamber's cavity.
+// diameter of the edge, and a shot centre in the chamber's cavity clear of every surface next to
+// it (off its triangle either way, or over the opening). The edge's own point lies on the surface,
+// where the cavity cannot say which side it is on: a hole in a shaft's wall was never found so.
 bool exposed_opening(const Model& m, std::size_t ci, ShotCavity& cavity, Vec3& at, std::size_t& edges) {
     const Component& c = m.components[ci];
     if (c.edges.boundary_edges == 0) return false;  // closed: no opening (and no map of its edges)
-    const std::vector<std::pair<int, int>> open = boundary_edges(*c.mesh);
+    const std::vector<BoundaryEdge> open = boundary_edges(*c.mesh);
     edges = open.size();
     if (open.empty()) return false;
     const Pose pose = c.kinematics.pose(SimTime{});
     const double R = m.min_shot_radius_m, D = 2.0 * R;  // the smallest shot of a mix passes the narrowest gaps
-    for (const auto& [a, b] : open) {
-        const Vec3 p = pose.to_world(c.mesh->vertices[static_cast<std::size_t>(a)]);
-        const Vec3 q = pose.to_world(c.mesh->vertices[static_cast<std::size_t>(b)]);
+    for (const BoundaryEdge& e : open) {
+        const Vec3 p = pose.to_world(c.mesh->vertices[static_cast<std::size_t>(e.a)]);
+        const Vec3 q = pose.to_world(c.mesh->vertices[static_cast<std::size_t>(e.b)]);
+        const Vec3 normal = pose.rotation * triangle_normal(*c.mesh, e.triangle);
+        const Vec3 over = normal.cross(q - p).normalized();  // in the triangle's plane, across the edge
         const int n = std::clamp(static_cast<int>(std::ceil((q - p).norm() / R)), 1, kMaxSubdivision);
         for (int k = 0; k <= n; ++k) {
             const Vec3 x = p + (q - p) * (double(k) / n);
             bool sealed = false;
             for (std::size_t j = 0; j < m.components.size() && !sealed; ++j)
                 if (j != ci && distance_to(m.components[j], x, D) < D) sealed = true;
-            if (sealed || !cavity.contains(x)) continue;
+            if (sealed || !(shot_fits_beside(m, &cavity, c, x, normal, R) || shot_fits_beside(m, &cavity, c, x, over, R))) continue;
             at = x;
             return true;
         }

@@ -11,6 +11,7 @@
 #include "app/check/check_job.h"
 #include "app/run/run_job.h"
 #include "geometry/box_mesh.h"
+#include "geometry/mesh_checks.h"
 #include "geometry/stl_writer.h"
 #include "model/assembly_checks.h"
 #include "model/shot_cavity.h"
@@ -142,6 +143,30 @@ TEST(AssemblyChecks, APartWithAMissingCapIsAnError) {
     write_binary_stl(box_open(open, BoxFace::plus_z, Facing::outward), (fs::path(scene.directory()) / "part.stl").string(), 1e-3, "part");
     const Checked c = check(scene);
     EXPECT_NE(c.text.find("components[2].mesh: part 'part': the mesh is open (4 boundary edges) and shot can reach an opening"),
+              std::string::npos)
+        << c.text;
+}
+
+// A hole in a side wall, not a cap: the opening's own points lie on the surface, where the cavity
+// cannot tell its side; the shot centres beside it can (this one was passed as sound).
+TEST(AssemblyChecks, APartWithAHoleInItsSideIsAnError) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 10e-3)));
+    BoxSpec spec;
+    spec.size_m = Vec3(4e-3, 4e-3, 4e-3);
+    spec.center_m = Vec3(0.0, 0.0, 10e-3);
+    TriangleMesh holed = box(spec);
+    for (std::size_t t = 0; t < holed.triangle_count(); ++t) {
+        if (!(triangle_normal(holed, t).x() > 0.5)) continue;  // the first triangle of the +x face
+        holed.triangles.erase(holed.triangles.begin() + static_cast<std::ptrdiff_t>(t));
+        if (holed.source_facet.size() > t) holed.source_facet.erase(holed.source_facet.begin() + static_cast<std::ptrdiff_t>(t));
+        if (holed.group_of_triangle.size() > t)
+            holed.group_of_triangle.erase(holed.group_of_triangle.begin() + static_cast<std::ptrdiff_t>(t));
+        break;
+    }
+    ASSERT_EQ(holed.triangle_count(), 11u);
+    write_binary_stl(holed, (fs::path(scene.directory()) / "part.stl").string(), 1e-3, "part");
+    const Checked c = check(scene);
+    EXPECT_NE(c.text.find("components[2].mesh: part 'part': the mesh is open (3 boundary edges) and shot can reach an opening near"),
               std::string::npos)
         << c.text;
 }

@@ -109,7 +109,7 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, c
         if (c.coverage) {
             const Everywhere e = everywhere(c);
             o["time_to_target_everywhere"] = forecast_json(e.time);
-            const std::string slowest = slowest_area_name(c, e.least_covered);
+            const std::string slowest = slowest_area_name(c, e.slowest);
             o["slowest_region"] = slowest.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(slowest);
             o["uniformity"] = {
                 {"value", json_number(e.uniformity)}, {"low", json_number(e.uniformity_low)}, {"high", json_number(e.uniformity_high)}};

@@ -171,7 +171,7 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
         } else if (e.counted == 0) {
             r << "- **Everywhere:** every region is excluded or out of reach.\n";
         } else {
-            const std::string least = slowest_area_name(c, e.least_covered);
+            const std::string least = slowest_area_name(c, e.slowest);
             r << "- **Everywhere** (every region at " << goal << "): " << forecast_sentence(e.time, analysed, x);
             if (!least.empty()) r << " The last region there: **" << least << "**.";
             if (const double excess = c.forecast.summary.everywhere_chance_excess_s;
@@ -195,8 +195,8 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
                     r << " (about " << duration_text(t.time_s * *x.wall_per_simulated_s) << " of simulation at this run's pace)";
                 r << ":\n\n      " << until_command(x, target, 1.5 * t.high_s) << "\n";
             }
-            for (const auto& [name, png] : x.least_covered_pngs)
-                if (name == c.name) r << "\n![" << c.name << ": the least-covered region, " << least << "](" << png << ")\n";
+            for (const auto& [name, png] : x.slowest_region_pngs)
+                if (name == c.name) r << "\n![" << c.name << ": the slowest region, " << least << "](" << png << ")\n";
         }
         r << unreachable_section(c, x);
     }

@@ -21,8 +21,8 @@ struct ReportContext {
     bool truncated = false;         // the log ended inside a row
     std::vector<std::string> pngs;  // plots written (paths)
     std::string plot_note;          // why plots are missing, or ""
-    // Per logged component (by name): the picture of its least-covered region, or why there is none.
-    std::vector<std::pair<std::string, std::string>> least_covered_pngs;
+    // Per logged component (by name): the picture of its slowest region, or why there is none.
+    std::vector<std::pair<std::string, std::string>> slowest_region_pngs;
     std::vector<std::pair<std::string, std::string>> unreachable_pngs;  // the area out of the shot's reach
     std::string picture_note;
     // From the run's summary.json, when it has them: shot-shot collisions, each nozzle's eps, and

@@ -258,25 +258,25 @@ void finish_forecast(ComponentAnalysis& a, const AnalysisWindow& window) {
     }
 }
 
-// Each part's least-covered region drawn highlighted (render module), for the report: the picture's
-// file name per part, or a note on why there is none.
-void draw_least_covered(const Model& model, const std::vector<ComponentAnalysis>& parts, const fs::path& adir, ReportContext& context) {
+// Each part's slowest region (the last to reach the target, by the forecast) drawn highlighted
+// (render module), for the report: the picture's file name per part, or a note on why there is none.
+void draw_slowest_region(const Model& model, const std::vector<ComponentAnalysis>& parts, const fs::path& adir, ReportContext& context) {
     for (const ComponentAnalysis& a : parts) {
         if (!a.coverage || a.regions.empty()) continue;
         const Everywhere e = everywhere(a);
-        if (e.least_covered < 0) continue;
-        const auto r = static_cast<std::size_t>(e.least_covered);
+        if (e.slowest < 0) continue;
+        const auto r = static_cast<std::size_t>(e.slowest);
         std::vector<double> weight(a.mesh->triangle_count(), 0.0);
         for (const RegionShare& s : a.regions.shares(r)) weight[static_cast<std::size_t>(s.triangle)] = s.fraction;
-        const std::string png = a.name + "_least_covered.png";
-        const std::string title = a.name + ": the least-covered region, " + a.regions.name(r) + ", at " +
+        const std::string png = a.name + "_slowest_region.png";
+        const std::string title = a.name + ": the slowest region, " + a.regions.name(r) + ", now at " +
                                   fmt(100.0 * a.coverage->region_coverage(r), 3) + " % (dark: out of the shot's reach)";
         try {
             render_module().draw_region_highlight(model, a.index, weight, a.reach, a.regions.name(r), title, (adir / png).string(), 1200,
                                                   900);
-            context.least_covered_pngs.emplace_back(a.name, png);
+            context.slowest_region_pngs.emplace_back(a.name, png);
         } catch (const std::exception& x) {
-            context.picture_note = std::string("no picture of the least-covered region: ") + x.what();
+            context.picture_note = std::string("no picture of the slowest region: ") + x.what();
         }
     }
     for (const ComponentAnalysis& a : parts) {
@@ -471,7 +471,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     context.finished = finished;
     context.truncated = stream.truncated();
     read_summary_figures(dir, context);
-    draw_least_covered(*model, parts, adir, context);
+    draw_slowest_region(*model, parts, adir, context);
     context.pngs = write_analysis_plots(adir.string(), names, window.target_coverage, context.plot_note);
     const std::map<std::string, std::string> views = report_views(parts, window, three_js_library_dir(), context);
     if (!context.view_note.empty()) out << "analysis: " << context.view_note << "\n";

@@ -60,7 +60,7 @@ Everywhere everywhere(const ComponentAnalysis& c) {
         e.coverage_min = e.counted == 1 ? now : std::min(e.coverage_min, now);
     }
     if (area > 0.0) e.coverage_mean = covered / area;
-    e.least_covered = c.forecast.slowest_region;
+    e.slowest = c.forecast.slowest_region;
     e.time = c.forecast.everywhere;
     const AreaForecast& whole = c.forecast.whole;
     if (e.counted > 0 && known(whole) && known(e.time) && e.time.time_s > 0.0) {

@@ -23,8 +23,8 @@ PeenedAreas peened_areas(const ComponentAnalysis& c);
 double share_below(const ComponentAnalysis& c, double target);
 
 struct Everywhere {
-    int least_covered = -1;  // the counted region that reaches the target last (CoverageForecast::kRestOfPart; -1: none)
-    AreaForecast time;       // when every counted region has reached it (the forecast's `everywhere`)
+    int slowest = -1;   // the counted region that reaches the target last (CoverageForecast::kRestOfPart; -1: none)
+    AreaForecast time;  // when every counted region has reached it (the forecast's `everywhere`)
     // The peened area's time to the target over everywhere's (1: the slowest region is no slower
     // than the part as a whole; NaN unless both are known), with its range from the two intervals.
     double uniformity = 0.0;

@@ -146,8 +146,8 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
         const bool timed = whole.status == AreaForecast::Status::forecast && e.time.status == AreaForecast::Status::forecast;
         if (timed && std::isfinite(e.uniformity) && e.uniformity_high < 0.95 && desc != nullptr) {
             ++changes;
-            r << "- **Even out " << c.name << "'s peening.** Its slowest area, " << slowest_area_name(c, e.least_covered) << ", reaches "
-              << goal << " at " << fmt(e.time.time_s, 4) << " s, the part as a whole at " << fmt(whole.time_s, 4) << " s (uniformity "
+            r << "- **Even out " << c.name << "'s peening.** Its slowest area, " << slowest_area_name(c, e.slowest) << ", reaches " << goal
+              << " at " << fmt(e.time.time_s, 4) << " s, the part as a whole at " << fmt(whole.time_s, 4) << " s (uniformity "
               << fmt(e.uniformity, 3) << ", " << fmt(e.uniformity_low, 3) << "-" << fmt(e.uniformity_high, 3)
               << "): peened like the average, it would be done " << fmt(100.0 * (1.0 - e.uniformity), 2) << " % sooner. ";
             if (desc->rotation_motion) {

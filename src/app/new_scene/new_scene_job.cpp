@@ -185,6 +185,8 @@ int run_new_scene(const NewSceneOptions& o, std::ostream& out) {
     }
 
     // The part and the design around it.
+    if (std::error_code missing; !fs::exists(o.part_path, missing))
+        throw InputError({o.part_path}, "PART", "no such file (looked for " + fs::absolute(o.part_path).string() + ")");
     const TriangleMesh mesh = load_mesh(o.part_path, unit_m);
     const PartEnvelope envelope = part_envelope(mesh, request.turning_axis);
     const double largest = envelope.size_m.maxCoeff();

@@ -240,7 +240,7 @@ TEST(AnalysisReport, TheDecisionsAgreeWithTheRegionsAndTheFigures) {
     cmd << "peensim run " << (dir.path / "scene.resolved.yaml").string() << " -o " << dir.path.string()
         << "-until --until-coverage \"98 %\" --set \"process.duration=";
     EXPECT_NE(report.find(cmd.str()), std::string::npos) << report;
-    EXPECT_NE(report.find("![gear: the least-covered region, " + slowest + "](gear_least_covered.png)"), std::string::npos);
+    EXPECT_NE(report.find("![gear: the slowest region, " + slowest + "](gear_slowest_region.png)"), std::string::npos);
     EXPECT_NE(report.find("| bore (excluded) |"), std::string::npos);
     EXPECT_NE(report.find("### gear: out of the shot's reach"), std::string::npos) << report;
     EXPECT_NE(report.find("![gear: out of the shot's reach, highlighted](gear_out_of_reach.png)"), std::string::npos) << report;
@@ -256,7 +256,7 @@ TEST(AnalysisReport, TheDecisionsAgreeWithTheRegionsAndTheFigures) {
     // The HTML page carries the pictures inside it.
     const std::string html = read_file(dir.path / "analysis" / "report.html");
     EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
-    const std::string png = read_file(dir.path / "analysis" / "gear_least_covered.png");
+    const std::string png = read_file(dir.path / "analysis" / "gear_slowest_region.png");
     ASSERT_GT(png.size(), 1000u);
     EXPECT_NE(html.find("<img src=\"data:image/png;base64," + base64(png) + "\""), std::string::npos);
     EXPECT_NE(html.find("<h2>gear: how long to peen to 98 %</h2>"), std::string::npos);

@@ -323,7 +323,7 @@ TEST(NewScene, TheDurationHoldsItsWholeTurnsWhateverTheSpeed) {
 
 TEST(NewScene, EveryBadOptionIsAnInputErrorNamingIt) {
     testing::TempDir dir;
-    const auto refused = [&](const char* option, auto&& change) {
+    const auto refused = [&](const std::string& option, auto&& change) {
         NewSceneOptions o = options(kBracket, dir.path / "x.yaml");
         change(o);
         const NewResult r = run_new(o);
@@ -340,7 +340,8 @@ TEST(NewScene, EveryBadOptionIsAnInputErrorNamingIt) {
     refused("--shot-diameter", [](NewSceneOptions& o) { o.shot_diameter = "-1 mm"; });
     refused("--shot-diameter", [](NewSceneOptions& o) { o.shot_diameter = "2 kg"; });
     refused("-o", [&](NewSceneOptions& o) { o.scene_path = (dir.path / "x.txt").string(); });
-    refused("mesh", [&](NewSceneOptions& o) { o.part_path = (dir.path / "missing.stl").string(); });
+    refused("PART: no such file (looked for " + (dir.path / "missing.stl").string() + ")",
+            [&](NewSceneOptions& o) { o.part_path = (dir.path / "missing.stl").string(); });
 }
 
 }  // namespace
