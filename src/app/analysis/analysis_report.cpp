@@ -72,7 +72,9 @@ std::string forecast_sentence(const AreaForecast& f, double analysed_s, const Re
               << ". ";
             if (std::isfinite(f.run_for_s)) {
                 r << "A run of about " << fmt(std::ceil(f.run_for_s), 6) << " s gives a number";
-                if (x.wall_per_simulated_s) r << " (about " << duration_text(f.run_for_s * *x.wall_per_simulated_s) << " to simulate here)";
+                if (x.wall_per_simulated_s)
+                    r << " (about " << duration_text(f.run_for_s * *x.wall_per_simulated_s)
+                      << " of wall time to simulate here, the analysis not counted)";
                 r << ".";
             } else {
                 r << "Some of it has had no impact near it yet: run longer.";
@@ -192,7 +194,8 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
                 r << "\n  To peen every region to " << goal << ", peen " << fmt(std::ceil(t.high_s), 8)
                   << " s (the interval's upper end). To see it rather than forecast it, run until every region reaches it";
                 if (x.wall_per_simulated_s)
-                    r << " (about " << duration_text(t.time_s * *x.wall_per_simulated_s) << " of simulation at this run's pace)";
+                    r << " (about " << duration_text(t.time_s * *x.wall_per_simulated_s)
+                      << " of wall time at this run's pace, the analysis not counted)";
                 r << ":\n\n      " << until_command(x, target, 1.5 * t.high_s) << "\n";
             }
             for (const auto& [name, png] : x.slowest_region_pngs)

@@ -52,10 +52,14 @@ std::string vary_spec(const std::string& path, const std::vector<std::string>& v
     return spec;
 }
 
-// A sweep of this run's scene, as long as this window, two seeds.
+// A sweep of this run's scene, two seeds, as long as this window: or a whole turn of the rotating
+// part where the window is shorter (the report says that is too short to say anything; so would
+// the sweep's runs).
 std::string sweep_command(const ReportContext& x, const std::string& suffix, const std::string& vary) {
+    const AnalysisWindow& w = x.window;
+    const double duration_s = w.shorter_than_a_turn() ? std::ceil((w.from_s + w.turn_s) * 1000.0) / 1000.0 : w.to_s;
     return "peensim sweep " + (x.run_dir / "scene.resolved.yaml").string() + " -o " + x.run_dir.string() + "-" + suffix + " --vary \"" +
-           vary + "\" --seeds 2 --set \"process.duration=" + fmt(x.window.to_s, 6) + " s\"";
+           vary + "\" --seeds 2 --set \"process.duration=" + fmt(duration_s, 8) + " s\"";
 }
 
 }  // namespace
