@@ -10,7 +10,9 @@
 #include "analysis/regions.h"
 #include "app/analysis/analysis_format.h"
 #include "app/report_errors.h"
+#include "collision/mesh_collider.h"
 #include "geometry/mesh_checks.h"
+#include "kernels/trajectory.h"
 #include "model/facet_reach.h"
 #include "model/model.h"
 #include "model/shot_cavity.h"
@@ -40,16 +42,25 @@ constexpr std::array<render::Rgba8, 12> kPalette{{
     {253, 220, 120, 255},
 }};
 constexpr render::Rgba8 kHighlightColour{235, 70, 40, 255};
+// A region's name is drawn in a view only if its surface there faces the camera within ~75 deg.
+constexpr double kLabelFacingCos = 0.25;
 
-// Where a region's name goes: on the surface (the centroid of its triangles nearest the centroid
-// of its area), and which way that surface faces (its area-weighted normal): the name is shown in a
-// view only when the region faces the camera.
+// Where a region's name may go: the centres of its triangles (world), nearest the centroid of its
+// area first, each with its facing (world, unit). A view names the region at the first of them that
+// faces the camera and that the part does not hide: a region seen from the back, or in part behind
+// another piece of the part, is still named where the view shows it, and never where it does not.
 struct PlacedLabel {
-    Vec3 point_m;  // world
-    Vec3 normal;   // world, unit
+    struct Spot {
+        Vec3 point_m;  // world
+        Vec3 normal;   // world, unit
+    };
+    std::vector<Spot> spots;
     std::string text;
     render::Rgba8 colour;
 };
+
+// Spots a view tries before it gives up on naming a region (each costs a ray through the part's BVH).
+constexpr std::size_t kLabelSpots = 48;
 
 Vec3 centroid(const TriangleMesh& mesh, std::size_t t) { return (mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) / 3.0; }
 
@@ -57,24 +68,43 @@ Vec3 centroid(const TriangleMesh& mesh, std::size_t t) { return (mesh.corner(t, 
 std::optional<PlacedLabel> place_label(const Component& part, const std::vector<RegionShare>& shares, std::string text,
                                        render::Rgba8 colour) {
     const TriangleMesh& mesh = *part.mesh;
-    Vec3 sum = Vec3::Zero(), normal = Vec3::Zero();
+    Vec3 sum = Vec3::Zero();
     double area = 0.0;
     for (const RegionShare& s : shares) {
         const auto t = static_cast<std::size_t>(s.triangle);
         const double a = s.fraction * triangle_area(mesh, t);
         sum += a * centroid(mesh, t);
-        normal += a * triangle_normal(mesh, t);
         area += a;
     }
     if (!(area > 0.0)) return std::nullopt;
     const Vec3 c = sum / area;
-    std::size_t best = static_cast<std::size_t>(shares.front().triangle);
+    std::vector<std::pair<double, std::size_t>> nearest;  // (squared distance to c, triangle)
     for (const RegionShare& s : shares)
-        if ((centroid(mesh, static_cast<std::size_t>(s.triangle)) - c).squaredNorm() < (centroid(mesh, best) - c).squaredNorm())
-            best = static_cast<std::size_t>(s.triangle);
+        if (s.fraction > 0.0)
+            nearest.emplace_back((centroid(mesh, static_cast<std::size_t>(s.triangle)) - c).squaredNorm(),
+                                 static_cast<std::size_t>(s.triangle));
+    const std::size_t kept = std::min(nearest.size(), kLabelSpots);
+    std::partial_sort(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(kept), nearest.end());
     const Pose pose = part.kinematics.pose(SimTime{});
-    const Vec3 n = normal.norm() > 0.0 ? Vec3(pose.rotation * normal.normalized()) : Vec3::Zero();
-    return PlacedLabel{pose.to_world(centroid(mesh, best)), n, std::move(text), colour};
+    PlacedLabel label{{}, std::move(text), colour};
+    for (std::size_t k = 0; k < kept; ++k) {
+        const std::size_t t = nearest[k].second;
+        label.spots.push_back({pose.to_world(centroid(mesh, t)), pose.rotation * triangle_normal(mesh, t)});
+    }
+    return label;
+}
+
+// Whether the part itself hides `point_m` (world, on its surface) from the eye at `eye_m` (world):
+// a region may face the camera and still lie behind another piece of the part (a bracket's inner
+// corner), and its name drawn there names nothing the view shows. A thin ray (a sphere of a
+// millionth of the distance) swept from the eye to 2 % short of the point, where its own surface is.
+bool hidden_by_the_part(const Component& part, const Vec3& eye_m, const Vec3& point_m) {
+    const Pose pose = part.kinematics.pose(SimTime{});
+    const Vec3 from = pose.to_component(eye_m), to = pose.to_component(point_m);
+    const Trajectory ray{from, to - from, Vec3::Zero(), 0.0};
+    MeshCollider::Hit hit;
+    MeshCollider::SweepCounters counters;
+    return part.collider->first_hit(ray, 1e-6 * (to - from).norm(), 0.0, 0.98, hit, counters) != ToiStatus::miss;
 }
 
 // Draws component ci alone in its triangle colours from the four map views, tiled 2 x 2 into `image`.
@@ -99,12 +129,16 @@ void draw_four_views(const Model& model, std::size_t ci, const std::vector<rende
     for (std::size_t v = 0; v < views.size(); ++v) {
         const render::Camera camera = render::Camera::framing_points(points, static_cast<double>(tile_w) / tile_h, views[v].direction);
         placed.clear();
-        for (const PlacedLabel& l : labels) {
-            if (!(l.normal.dot(camera.position_m - l.point_m) > 0.0)) continue;  // faces away
-            const auto px = camera.project_to_pixel(l.point_m, tile_w, tile_h);
-            if (!px || px->x() < 0.0 || px->y() < 0.0 || px->x() >= tile_w || px->y() >= tile_h) continue;
-            placed.push_back({static_cast<float>(px->x()), static_cast<float>(px->y()), l.text, l.colour});
-        }
+        for (const PlacedLabel& l : labels)
+            for (const PlacedLabel::Spot& spot : l.spots) {
+                // Faces away, or so nearly edge-on (beyond ~75 deg) that the view shows a sliver of it.
+                if (!(spot.normal.dot((camera.position_m - spot.point_m).normalized()) > kLabelFacingCos)) continue;
+                const auto px = camera.project_to_pixel(spot.point_m, tile_w, tile_h);
+                if (!px || px->x() < 0.0 || px->y() < 0.0 || px->x() >= tile_w || px->y() >= tile_h) continue;
+                if (hidden_by_the_part(model.components[ci], camera.position_m, spot.point_m)) continue;
+                placed.push_back({static_cast<float>(px->x()), static_cast<float>(px->y()), l.text, l.colour});
+                break;
+            }
         std::vector<std::string> text = title;
         text.push_back(views[v].name);
         renderer.render(camera, {.text = text, .labels = placed}, tile);
