@@ -40,6 +40,9 @@ const ComponentDesc* described(const SceneDescription& scene, const std::string&
     return nullptr;
 }
 
+// A uniformity (the part's time over everywhere's) whose interval reaches this counts as even.
+constexpr double kEvenUniformity = 0.95;
+
 // "path=a,b,c" with each value once: a sweep refuses a value given twice (two that round alike).
 std::string vary_spec(const std::string& path, const std::vector<std::string>& values) {
     std::string spec = path + "=";
@@ -148,12 +151,16 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
         const Everywhere e = everywhere(c);
         const AreaForecast& whole = c.forecast.whole;
         const bool timed = whole.status == AreaForecast::Status::forecast && e.time.status == AreaForecast::Status::forecast;
-        if (timed && std::isfinite(e.uniformity) && e.uniformity_high < 0.95 && desc != nullptr) {
+        // Its slowest area against the part as a whole, as both entries below say it.
+        const auto slowest_against_whole = [&] {
+            return "Its slowest area, " + slowest_area_name(c, e.slowest) + ", reaches " + goal + " at " + fmt(e.time.time_s, 4) +
+                   " s, the part as a whole at " + fmt(whole.time_s, 4) + " s (uniformity " + fmt(e.uniformity, 3) + ", " +
+                   fmt(e.uniformity_low, 3) + "-" + fmt(e.uniformity_high, 3) + ")";
+        };
+        if (timed && std::isfinite(e.uniformity) && e.uniformity_high < kEvenUniformity && desc != nullptr) {
             ++changes;
-            r << "- **Even out " << c.name << "'s peening.** Its slowest area, " << slowest_area_name(c, e.slowest) << ", reaches " << goal
-              << " at " << fmt(e.time.time_s, 4) << " s, the part as a whole at " << fmt(whole.time_s, 4) << " s (uniformity "
-              << fmt(e.uniformity, 3) << ", " << fmt(e.uniformity_low, 3) << "-" << fmt(e.uniformity_high, 3)
-              << "): peened like the average, it would be done " << fmt(100.0 * (1.0 - e.uniformity), 2) << " % sooner. ";
+            r << "- **Even out " << c.name << "'s peening.** " << slowest_against_whole() << ": peened like the average, it would be done "
+              << fmt(100.0 * (1.0 - e.uniformity), 2) << " % sooner. ";
             if (desc->rotation_motion) {
                 const double rpm = std::abs(desc->rotation_motion->speed_rad_per_s) * 60.0 / (2.0 * std::numbers::pi);
                 r << "It turns at " << fmt(rpm, 4) << " rpm; how the speed changes that, with 2 seeds:\n\n      "
@@ -172,13 +179,11 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
                   << sweep_command(x, "turning", "components[" + c.name + "].motion=" + turning + "15 rpm}," + turning + "30 rpm}")
                   << "\n\n";
             }
-        } else if (timed && std::isfinite(e.uniformity) && e.uniformity < 0.95 && desc != nullptr) {
+        } else if (timed && std::isfinite(e.uniformity) && e.uniformity < kEvenUniformity && desc != nullptr) {
             // Uneven by the estimate, but its interval reaches even: say so rather than nothing.
             ++changes;
-            r << "- **" << c.name << " may peen unevenly, but this run cannot tell.** Its slowest area, " << slowest_area_name(c, e.slowest)
-              << ", reaches " << goal << " at " << fmt(e.time.time_s, 4) << " s, the part as a whole at " << fmt(whole.time_s, 4)
-              << " s (uniformity " << fmt(e.uniformity, 3) << ", " << fmt(e.uniformity_low, 3) << "-" << fmt(e.uniformity_high, 3)
-              << "): the interval reaches 0.95, which counts as even here. A longer run narrows it (its counting noise goes as one "
+            r << "- **" << c.name << " may peen unevenly, but this run cannot tell.** " << slowest_against_whole()
+              << ": the interval reaches 0.95, which counts as even here. A longer run narrows it (its counting noise goes as one "
                  "over the square root of the run's length: four times as long, about half as wide).\n";
         }
         // The area out of reach: the shot that would reach it.
