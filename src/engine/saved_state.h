@@ -29,8 +29,8 @@ enum class Extent : unsigned char {
 };
 
 // The format version: the latest `since` below (and in checkpoint_fields). 10 declared the fields
-// once and saves the health counters by name.
-inline constexpr std::uint32_t kSavedStateVersion = 10;
+// once and saves the health counters by name; 11 added a run until coverage's replicas.
+inline constexpr std::uint32_t kSavedStateVersion = 11;
 
 template <class Shots, class Fields>
 void shot_fields(Shots& s, Fields& f) {

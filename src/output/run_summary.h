@@ -114,6 +114,10 @@ struct RunSummary {
         double pilot_s = 0.0;    // s, replica 0's time when the warm-up was measured
         double warm_up_s = 0.0;  // s, the start-up transient MSER-5 found
         double turn_s = 0.0;     // s, the part's turn the windows are shifted by whole numbers of (0: none)
+        // Until coverage (replica_rounds.h): the replicas' slots after replica 0's first (0: one
+        // window a replica), and how many replicas ran them.
+        double round_s = 0.0;  // s
+        int replica_count = 0;
         struct Window {
             int replica = 0;
             std::uint64_t seed = 0;

@@ -45,10 +45,12 @@ std::string summary_to_json(const RunSummary& s) {
                                {"end_s", w.end_s},
                                {"own_start_s", w.own_start_s},
                                {"logged_impacts", w.logged_impacts}});
-        j["replicas"] = {{"pilot_s", s.replicas->pilot_s},
-                         {"warm_up_s", s.replicas->warm_up_s},
-                         {"turn_s", s.replicas->turn_s},
-                         {"windows", std::move(windows)}};
+        j["replicas"] = {{"pilot_s", s.replicas->pilot_s}, {"warm_up_s", s.replicas->warm_up_s}, {"turn_s", s.replicas->turn_s}};
+        if (s.replicas->round_s > 0.0) {  // until coverage: in rounds
+            j["replicas"]["replicas"] = s.replicas->replica_count;
+            j["replicas"]["round_s"] = s.replicas->round_s;
+        }
+        j["replicas"]["windows"] = std::move(windows);
     }
 
     auto impacts = nlohmann::ordered_json::array();

@@ -93,7 +93,11 @@ std::string summary_to_text(const RunSummary& s) {
                 : printf_string("%.4g %% reached in %d of %zu areas; not yet: %s%s", target, reached, s.until_coverage->areas.size(),
                                 missing.c_str(), reached + 1 < static_cast<int>(s.until_coverage->areas.size()) ? ", ..." : ""));
     }
-    if (s.replicas)
+    if (s.replicas && s.replicas->round_s > 0.0)
+        rows.emplace_back("replicas", printf_string("%d in rounds of %.4g s (%zu slots logged), each warmed up %.4g s (measured at %.4g s)",
+                                                    s.replicas->replica_count, s.replicas->round_s, s.replicas->windows.size(),
+                                                    s.replicas->warm_up_s, s.replicas->pilot_s));
+    else if (s.replicas)
         rows.emplace_back(
             "replicas",
             printf_string("%zu, each warmed up %.4g s (measured at %.4g s) then run for its window of %.4g s", s.replicas->windows.size(),

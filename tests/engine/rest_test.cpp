@@ -15,7 +15,7 @@
 namespace peensim::testing {
 namespace {
 
-constexpr double kG = 9.81;  // m/s2
+constexpr double kRestG = 9.81;  // m/s2
 
 TEST(EngineRest, ShotSettleOnStillSonotrodeWithoutSinkingOrJitter) {
     // 20 shot of 2 mm placed 1 % of R above the plate: they touch down within a few steps with an
@@ -70,7 +70,7 @@ TEST(EngineRest, SlidingShotSlowsDownByCoulombFriction) {
     run_through_loop(sim, {.after_step = [&](const Simulation&, const std::vector<ImpactRecord>&) {
                          const double t = sim.state().time.seconds();
                          const Vec3 v = sim.state().shots.velocity(0);
-                         const double expected = v0 - f * kG * t;
+                         const double expected = v0 - f * kRestG * t;
                          if (expected > 0.0) {
                              // Speed v0 - f g t after every step: the per-step slowdown f g dt adds up to f g t
                              // (exact sums but for roundings of ~1e-17 m/s per step; asserted 1e-12 m/s).
@@ -90,11 +90,11 @@ TEST(EngineRest, SlidingShotSlowsDownByCoulombFriction) {
                      }});
     ASSERT_GT(sliding_steps, 10);
     const double deceleration = (v_a - v_b) / (t_b - t_a);
-    std::cout << "[ friction ] " << sliding_steps << " sliding steps; deceleration " << deceleration << " m/s2 (f g = " << f * kG
+    std::cout << "[ friction ] " << sliding_steps << " sliding steps; deceleration " << deceleration << " m/s2 (f g = " << f * kRestG
               << "), worst speed deviation " << worst << " m/s\n";
     // Measured deceleration f g within 1e-9 relative (differences of speeds exact to ~1e-16 m/s
     // over 0.1 s).
-    EXPECT_NEAR(deceleration, f * kG, 1e-9 * f * kG);
+    EXPECT_NEAR(deceleration, f * kRestG, 1e-9 * f * kRestG);
     EXPECT_EQ(sim.state().health.serious(), 0u);
 }
 

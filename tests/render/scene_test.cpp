@@ -15,7 +15,7 @@
 namespace peensim::render {
 namespace {
 
-constexpr int kW = 160, kH = 120;
+constexpr int kSceneW = 160, kSceneH = 120;
 constexpr Rgba kBlack{0.0f, 0.0f, 0.0f, 1.0f};
 
 // A camera at -y looking at the origin along +y, z up: a box's -y face looks straight at it.
@@ -61,25 +61,25 @@ protected:
         options.background = kBlack;
         return options;
     }
-    OffscreenContext context{ContextOptions{kW, kH, 0}};
+    OffscreenContext context{ContextOptions{kSceneW, kSceneH, 0}};
     RgbaImage image;
 };
 
 TEST_F(RenderScene, BoxFrameHasTheRequestedSizeAndShowsThePartColour) {
     Renderer renderer(context, no_text());
     renderer.add_mesh(unit_box(), {.colour = {0.2f, 0.8f, 0.3f, 1.0f}});
-    const Camera camera = Camera::framing(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5), double(kW) / kH);
+    const Camera camera = Camera::framing(Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5), double(kSceneW) / kSceneH);
     renderer.render(camera, {}, image);
 
-    ASSERT_EQ(image.width, kW);
-    ASSERT_EQ(image.height, kH);
-    ASSERT_EQ(image.pixels.size(), std::size_t{kW} * kH * 4);
+    ASSERT_EQ(image.width, kSceneW);
+    ASSERT_EQ(image.height, kSceneH);
+    ASSERT_EQ(image.pixels.size(), std::size_t{kSceneW} * kSceneH * 4);
     std::size_t lit = 0;
-    for (int y = 0; y < kH; ++y) {
-        for (int x = 0; x < kW; ++x) lit += image.at(x, y) == Rgba8{0, 0, 0, 255} ? 0 : 1;
+    for (int y = 0; y < kSceneH; ++y) {
+        for (int x = 0; x < kSceneW; ++x) lit += image.at(x, y) == Rgba8{0, 0, 0, 255} ? 0 : 1;
     }
-    EXPECT_GT(lit, std::size_t{kW} * kH / 10) << "the frame is (nearly) blank";
-    EXPECT_LT(lit, std::size_t{kW} * kH) << "the box fills the whole frame: framing is off";
+    EXPECT_GT(lit, std::size_t{kSceneW} * kSceneH / 10) << "the frame is (nearly) blank";
+    EXPECT_LT(lit, std::size_t{kSceneW} * kSceneH) << "the box fills the whole frame: framing is off";
 
     const Rgba8 centre = pixel_at(image, camera, Vec3::Zero());
     EXPECT_GT(centre.g, centre.r + 60) << int(centre.r) << "," << int(centre.g) << "," << int(centre.b);
@@ -109,15 +109,15 @@ TEST_F(RenderScene, SphereAppearsWhereItsCentreProjectsWithItsSize) {
     renderer.render(camera, {.spheres = {&set, 1}}, image);
 
     const Vec3 centre(x[0], y[0], z[0]);
-    const Vec2 c = *camera.project_to_pixel(centre, kW, kH);
+    const Vec2 c = *camera.project_to_pixel(centre, kSceneW, kSceneH);
     EXPECT_TRUE(reddish(image.at(int(c.x()), int(c.y()))));
     // Its width on the row through the centre is the projected diameter (to a pixel or two).
     const int row = static_cast<int>(c.y());
-    int first = kW, last = -1;
-    for (int px = 0; px < kW; ++px) {
+    int first = kSceneW, last = -1;
+    for (int px = 0; px < kSceneW; ++px) {
         if (image.at(px, row).r > 40) first = std::min(first, px), last = std::max(last, px);
     }
-    const double edge_x = camera.project_to_pixel(centre + Vec3(radius, 0.0, 0.0), kW, kH)->x();
+    const double edge_x = camera.project_to_pixel(centre + Vec3(radius, 0.0, 0.0), kSceneW, kSceneH)->x();
     const double expected_diameter = 2.0 * (edge_x - c.x());
     EXPECT_NEAR(last - first + 1, expected_diameter, 2.5);
     EXPECT_EQ(image.at(int(c.x()), int(c.y() - expected_diameter)), (Rgba8{0, 0, 0, 255}));
@@ -232,7 +232,7 @@ TEST_F(RenderScene, MultisamplingSmoothsEdges) {
         return partial;
     };
     EXPECT_EQ(count_partial(context), 0);
-    OffscreenContext smooth(ContextOptions{kW, kH, 4});
+    OffscreenContext smooth(ContextOptions{kSceneW, kSceneH, 4});
     EXPECT_GT(count_partial(smooth), 20);
 }
 
@@ -248,13 +248,13 @@ TEST_F(RenderScene, TextAndColourBarDrawOnlyInTheirCorners) {
     const ColourBar bar{ColourMap::viridis(), 0.0, 3.5, "normal speed (m/s)"};
     renderer.render(camera, {.text = lines, .colour_bar = &bar}, image);
     int text_pixels = 0, changed_elsewhere = 0, bar_min = 0, bar_max = 0;
-    for (int y = 0; y < kH; ++y) {
-        for (int x = 0; x < kW; ++x) {
+    for (int y = 0; y < kSceneH; ++y) {
+        for (int x = 0; x < kSceneW; ++x) {
             const Rgba8 c = image.at(x, y);
             if (c == plain.at(x, y)) continue;
-            if (x < kW / 2 && y < kH / 2) {
+            if (x < kSceneW / 2 && y < kSceneH / 2) {
                 text_pixels += c.r > 200 && c.g > 200 && c.b > 200;
-            } else if (x < kW / 2) {
+            } else if (x < kSceneW / 2) {
                 ++changed_elsewhere;
             }
             bar_min += near(c, Rgba8{0x44, 0x01, 0x54, 255}, 6);

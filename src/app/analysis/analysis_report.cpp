@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <thread>
 
 #include "analysis/region_stats.h"
 #include "app/analysis/almen_analysis.h"
@@ -115,10 +116,12 @@ std::string region_tables(const std::vector<ComponentAnalysis>& parts, const Ana
     return r.str();
 }
 
-// The command that peens until the target is reached everywhere (brute force), capped.
-std::string until_command(const ReportContext& x, double target, double cap_s) {
+// The command that peens until the target is reached everywhere (brute force), capped; on a
+// machine of several cores, as that many replicas in rounds (design.md, "Until coverage: rounds").
+std::string until_command(const ReportContext& x, double target, double cap_s, unsigned cores) {
     return "peensim run " + (x.run_dir / "scene.resolved.yaml").string() + " -o " + x.run_dir.string() + "-until --until-coverage \"" +
-           fmt(100.0 * target, 4) + " %\" --set \"process.duration=" + fmt(std::ceil(cap_s), 8) + " s\" --no-render";
+           fmt(100.0 * target, 4) + " %\" --set \"process.duration=" + fmt(std::ceil(cap_s), 8) + " s\" --no-render" +
+           (cores > 1 ? " --replicas " + std::to_string(cores) : std::string());
 }
 
 // The decision a chamber designer needs for each part with coverage: is it reached, where not,
@@ -193,10 +196,12 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
             if (t.status == AreaForecast::Status::forecast) {
                 r << "\n  To peen every region to " << goal << ", peen " << fmt(std::ceil(t.high_s), 8)
                   << " s (the interval's upper end). To see it rather than forecast it, run until every region reaches it";
+                const unsigned cores = std::thread::hardware_concurrency();
                 if (x.wall_per_simulated_s)
                     r << " (about " << duration_text(t.time_s * *x.wall_per_simulated_s)
                       << " of wall time at this run's pace, the analysis not counted)";
-                r << ":\n\n      " << until_command(x, target, 1.5 * t.high_s) << "\n";
+                if (cores > 1) r << ", as " << cores << " replicas, one a core of this machine";
+                r << ":\n\n      " << until_command(x, target, 1.5 * t.high_s, cores) << "\n";
             }
             for (const auto& [name, png] : x.slowest_region_pngs)
                 if (name == c.name) r << "\n![" << c.name << ": the slowest region, " << least << "](" << png << ")\n";

@@ -347,12 +347,14 @@ void read_summary_figures(const fs::path& dir, ReportContext& context) {
             context.flow_rate_eps.emplace_back(e.value("source", ""), e.value("eps", 0.0));
         context.overrides = j.value("overrides", std::vector<std::string>{});
         if (const auto r = j.find("replicas"); r != j.end() && r->is_object() && r->contains("windows")) {
+            // A replica's logged time, whether one window or its slots of a run in rounds: each
+            // replica started from rest once.
+            std::map<int, double> logged_s;
+            for (const auto& w : (*r)["windows"]) logged_s[w.value("replica", 0)] += w.value("end_s", 0.0) - w.value("start_s", 0.0);
             ReportContext::Replicas replicas;
+            replicas.windows = logged_s.size();
             replicas.shortest_window_s = std::numeric_limits<double>::infinity();
-            for (const auto& w : (*r)["windows"]) {
-                ++replicas.windows;
-                replicas.shortest_window_s = std::min(replicas.shortest_window_s, w.value("end_s", 0.0) - w.value("start_s", 0.0));
-            }
+            for (const auto& [replica, seconds] : logged_s) replicas.shortest_window_s = std::min(replicas.shortest_window_s, seconds);
             if (replicas.windows > 1) context.replicas = replicas;
         }
         const double wall = j.value("wall_time_s", 0.0), simulated = j.value("simulated_time_s", 0.0);

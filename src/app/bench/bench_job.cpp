@@ -226,13 +226,15 @@ public:
             shots_.push_back(place_shots(*model_, cavity, rng));
         }
         pilot_ = std::make_unique<ReplicaPilot>(
-            *model_, replicas,
-            [this](const ReplicaPlan& plan) {
-                sim_.end_at(plan.windows.front().run_to_s);
-                dir_ = fs::temp_directory_path() / ("peensim-bench-replicas-" + std::to_string(::getpid()));
-                runs_ = std::make_unique<ReplicaRuns>(model_, std::vector<ReplicaWindow>(plan.windows.begin() + 1, plan.windows.end()),
-                                                      std::move(shots_), dir_.string(), slots_);
-            },
+            first_pilot_s(model_->duration_s, replicas), last_pilot_s(model_->duration_s, replicas),
+            plan_windows_then(*model_, replicas,
+                              [this](const ReplicaPlan& plan) {
+                                  sim_.end_at(plan.windows.front().run_to_s);
+                                  dir_ = fs::temp_directory_path() / ("peensim-bench-replicas-" + std::to_string(::getpid()));
+                                  runs_ = std::make_unique<ReplicaRuns>(
+                                      model_, std::vector<ReplicaWindow>(plan.windows.begin() + 1, plan.windows.end()), std::move(shots_),
+                                      dir_.string(), slots_);
+                              }),
             [this](const std::string& why) { note_ = why; });
     }
     ~BenchReplicas() {

@@ -172,6 +172,12 @@ void check_resumable(const std::string& path, const Checkpoint& c, const Model& 
             throw damaged(path, "shot " + std::to_string(i) + ": active but outside the assembly");
     }
     if (c.wall_time_s < 0.0) throw damaged(path, "a negative wall time");
+    if (!(c.log_shift_s >= 0.0) || c.log_shift_s > model.duration_s - t)
+        throw damaged(path, "expected a log shift in [0, " + std::to_string(model.duration_s - t) + "] s");
+    const std::size_t entries = model.components.size() + 1;  // shot-shot, then each component
+    if ((!c.replica_impacts.empty() && c.replica_impacts.size() != entries) ||
+        (!c.replica_slow_contacts.empty() && c.replica_slow_contacts.size() != entries))
+        throw damaged(path, "the other replicas' counts for the wrong number of components");
 }
 
 }  // namespace peensim

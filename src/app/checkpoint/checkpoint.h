@@ -23,6 +23,12 @@ struct Checkpoint {
     std::uint64_t csv_rows = 0;
     std::vector<SpeedHistogram> normal_speeds;  // per logged component, in component order
     double wall_time_s = 0.0;                   // s, wall time spent before this checkpoint
+    // A run until coverage as replicas (app/run/replica_rounds.h), which resumes as replica 0 alone:
+    // the time added to its impacts (its slot's place in the run), and the other replicas' impacts
+    // and slow contacts in the slots logged (summary entries: shot-shot, then each component).
+    double log_shift_s = 0.0;  // s
+    std::vector<std::uint64_t> replica_impacts;
+    std::vector<std::uint64_t> replica_slow_contacts;
 };
 
 // Every field's name and the format version that added it, in file order (checkpoint_fields.h).

@@ -16,6 +16,9 @@ void checkpoint_fields(C& c, Fields& f) {
     f.value("csv_rows", c.csv_rows, 1);
     f.records("normal_speeds", c.normal_speeds, 1, Extent::logged_components, [](auto& h, auto& g) { g.value("histogram", h, 1); });
     f.value("wall_time_s", c.wall_time_s, 1);
+    f.value("log_shift_s", c.log_shift_s, 11);
+    f.array("replica_impacts", c.replica_impacts, 11, Extent::free);
+    f.array("replica_slow_contacts", c.replica_slow_contacts, 11, Extent::free);
 }
 
 }  // namespace peensim

@@ -83,14 +83,15 @@ CoverageWatch::CoverageWatch(const Model& model, const std::string& resume_log) 
         for (auto block = stream.next_block(); !block.empty(); block = stream.next_block())
             for (const IndexedImpact& i : block)
                 if (i.component >= 0)
-                    add(static_cast<std::size_t>(i.component), i.row.point_m, i.row.vn_in_m_per_s, i.row.shot_diameter_m, i.row.time_s);
+                    add_dent(static_cast<std::size_t>(i.component), i.row.point_m, i.row.vn_in_m_per_s, i.row.shot_diameter_m,
+                             i.row.time_s);
     }
     setup_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 CoverageWatch::~CoverageWatch() = default;
 
-void CoverageWatch::add(std::size_t component, const Vec3& point_m, double vn, double shot_diameter_m, double time_s) {
+void CoverageWatch::add_dent(std::size_t component, const Vec3& point_m, double vn, double shot_diameter_m, double time_s) {
     const int p = part_of_component_[component];
     if (p < 0) return;
     Part& part = *parts_[static_cast<std::size_t>(p)];
@@ -99,9 +100,9 @@ void CoverageWatch::add(std::size_t component, const Vec3& point_m, double vn, d
     part.coverage->add_dent(point_m, dent_diameter(D, shot.density_kg_per_m3, vn, part.yield_stress_pa), time_s);
 }
 
-void CoverageWatch::after_step(const Simulation&, const std::vector<ImpactRecord>& impacts) {
+void CoverageWatch::add(std::span<const ImpactRecord> impacts) {
     for (const ImpactRecord& r : impacts)
-        add(static_cast<std::size_t>(r.component), r.point_m, r.vn_in_m_per_s, r.shot_diameter_m, r.time_s);
+        add_dent(static_cast<std::size_t>(r.component), r.point_m, r.vn_in_m_per_s, r.shot_diameter_m, r.time_s);
 }
 
 bool CoverageWatch::done() const {

@@ -1,18 +1,19 @@
-// `peensim run --until-coverage` (scene `process.until_coverage`): a listener of the run loop that
-// keeps the coverage of the logged parts as the analysis counts it (app/analysis/coverage_setup.h), dent by
-// dent as the impacts come, and ends the run at the first restart point after every watched area
-// reached the target. Brute force instead of a forecast: the reference every forecast is checked
-// against, and the answer for whoever can afford the simulation. A resumed run rebuilds the
-// coverage from its impact log up to the checkpoint.
+// `peensim run --until-coverage` (scene `process.until_coverage`): keeps the coverage of the logged
+// parts as the analysis counts it (app/analysis/coverage_setup.h), dent by dent as the run logs its
+// impacts (in the log's time order, whichever replica made them), and says when every watched area
+// reached the target: the run ends at the first restart point after that. Brute force instead of a forecast: the reference every forecast
+// is checked against, and the answer for whoever can afford the simulation. A resumed run rebuilds the coverage from its impact log up to
+// the checkpoint.
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "analysis/coverage_progress.h"
 #include "analysis/regions.h"
-#include "engine/run_loop.h"
+#include "engine/impact_record.h"
 #include "model/model.h"
 
 namespace peensim {
@@ -24,15 +25,16 @@ struct WatchedArea {
     double coverage = 0.0;      // 0..1, now
 };
 
-class CoverageWatch final : public RunListener {
+class CoverageWatch final {
 public:
     // model: the run's (its description's process.until_coverage set); resume_log: the partial
     // impact log of a resumed run ("" for a fresh one), read up to its end.
     CoverageWatch(const Model& model, const std::string& resume_log);
-    ~CoverageWatch() override;
+    ~CoverageWatch();
 
-    void after_step(const Simulation& sim, const std::vector<ImpactRecord>& impacts) override;
-    bool done() const override;
+    // The dents of impacts logged now, at their times in the log.
+    void add(std::span<const ImpactRecord> impacts);
+    bool done() const;
 
     double target() const { return target_; }
     std::vector<WatchedArea> areas() const;
@@ -40,7 +42,7 @@ public:
 
 private:
     struct Part;
-    void add(std::size_t component, const Vec3& point_m, double vn_m_per_s, double shot_diameter_m, double time_s);
+    void add_dent(std::size_t component, const Vec3& point_m, double vn_m_per_s, double shot_diameter_m, double time_s);
 
     const Model& model_;
     double target_ = 0.98;

@@ -8,8 +8,6 @@ namespace peensim {
 std::optional<std::string> replica_refusal(const Model& model) {
     if (!model.sources.empty())
         return "the scene has shot sources: its load changes over the run, so the run is not the same at every time";
-    if (model.description.process.until_coverage)
-        return "the scene runs until coverage (process.until_coverage): its end is not known beforehand";
     if (model.description.output.shot_positions_s)
         return "the scene writes shot snapshots (output.shot_positions): those are of one trajectory";
     double omega = 0.0;

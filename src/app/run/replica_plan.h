@@ -18,8 +18,9 @@
 // Shares are sized so that all replicas end together (equal speed per simulated second).
 //
 // Not stationary, so refused: shot sources (the load changes), a law with an impact history
-// (the surface hardens over the whole run), a run until coverage or with shot snapshots, parts
-// turning at different speeds (no common turn to shift by).
+// (the surface hardens over the whole run), a run with shot snapshots (of one trajectory), parts
+// turning at different speeds (no common turn to shift by). A run until coverage, whose end is
+// not known beforehand, runs its replicas in rounds (app/run/replica_rounds.h).
 #pragma once
 
 #include <cstdint>

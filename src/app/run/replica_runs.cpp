@@ -15,9 +15,6 @@ namespace peensim {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// The summary's impact and slow-contact counts, in its entries' order (shot-shot, then each component).
 std::vector<std::uint64_t> impact_counts(const SimulationState& state) {
     std::vector<std::uint64_t> out{state.shot_shot_impacts};
     out.insert(out.end(), state.impacts_per_component.begin(), state.impacts_per_component.end());
@@ -29,6 +26,22 @@ std::vector<std::uint64_t> slow_counts(const SimulationState& state) {
     out.insert(out.end(), state.slow_contacts_per_component.begin(), state.slow_contacts_per_component.end());
     return out;
 }
+
+void replay_spill(const std::string& path, const std::function<void(std::span<const ImpactRecord>)>& sink) {
+    {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw std::runtime_error("cannot read " + path);
+        std::vector<ImpactRecord> batch(4096);
+        while (in) {
+            in.read(reinterpret_cast<char*>(batch.data()), static_cast<std::streamsize>(batch.size() * sizeof(ImpactRecord)));
+            const auto n = static_cast<std::size_t>(in.gcount()) / sizeof(ImpactRecord);
+            if (n > 0) sink(std::span<const ImpactRecord>(batch.data(), n));
+        }
+    }
+    fs::remove(path);
+}
+
+namespace {
 
 // One replica's listener: pauses exactly at its window's start (the event schemes stop there) to
 // take the counts, then spills the window's impacts, moved to their place in the run.
@@ -125,18 +138,7 @@ ReplicaRunner::ReplicaRunner(std::vector<ReplicaWindow> windows, std::string run
 }
 
 void ReplicaRunner::replay(std::size_t k, const std::function<void(std::span<const ImpactRecord>)>& sink) const {
-    const fs::path path = fs::path(dir_) / replica_spill_name(windows_.at(k).replica);
-    {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw std::runtime_error("cannot read " + path.string());
-        std::vector<ImpactRecord> batch(4096);
-        while (in) {
-            in.read(reinterpret_cast<char*>(batch.data()), static_cast<std::streamsize>(batch.size() * sizeof(ImpactRecord)));
-            const auto n = static_cast<std::size_t>(in.gcount()) / sizeof(ImpactRecord);
-            if (n > 0) sink(std::span<const ImpactRecord>(batch.data(), n));
-        }
-    }
-    fs::remove(path);
+    replay_spill((fs::path(dir_) / replica_spill_name(windows_.at(k).replica)).string(), sink);
 }
 
 void ReplicaRunner::discard() const {

@@ -48,6 +48,14 @@ std::vector<int> logged_slots(const Model& model);
 // Replica r's spill, relative to the run's directory.
 std::string replica_spill_name(int replica);
 
+// The summary's impact and slow-contact counts of a state, in its entries' order (shot-shot, then
+// each component).
+std::vector<std::uint64_t> impact_counts(const SimulationState& state);
+std::vector<std::uint64_t> slow_counts(const SimulationState& state);
+
+// Hands a spill's impacts to `sink` in order, a batch at a time, then removes it.
+void replay_spill(const std::string& path, const std::function<void(std::span<const ImpactRecord>)>& sink);
+
 // Runs replica `window` of `model` from `shots` on this thread, from its own t = 0 to its window's
 // end, spilling the window's impacts to replica_spill_name() in `run_dir`; stop() -> true ends it
 // at its next step. slots: the logged slot of each component (-1: not logged).

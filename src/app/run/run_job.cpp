@@ -27,7 +27,9 @@
 #include "app/run/loss_report.h"
 #include "app/run/replica_pilot.h"
 #include "app/run/replica_ranks.h"
+#include "app/run/replica_rounds.h"
 #include "app/run/replica_runs.h"
+#include "app/run/round_runs.h"
 #include "app/run/summary_builder.h"
 #include "common/input_error.h"
 #include "common/random.h"
@@ -65,9 +67,14 @@ public:
     int run() {
         const SceneDescription scene = parse_scene(options_.scene_path, options_.scene_text, options_.overrides);
         model_ = compile_model(scene);
-        if (options_.replicas > 1 && !options_.resume)
+        if (options_.replicas > 1 && !options_.resume) {
             if (const std::optional<std::string> why = replica_refusal(*model_))
                 throw InputError(scene.process.where, "--replicas", *why + "; expected --replicas 1 for this scene");
+            if (options_.replica_ranks && scene.process.until_coverage)
+                throw InputError(scene.process.where, "--replicas",
+                                 "a run until coverage runs its replicas in rounds on the threads of one process, not yet over MPI "
+                                 "ranks; expected 'peensim run --replicas K' without mpirun for this scene");
+        }
         // Before anything is written; a fresh run places its shot in the cavity the check built.
         SetupCheck setup = check_setup(*model_, options_.strict, err_);
         dir_ = run_output_directory(options_, scene);
@@ -166,6 +173,11 @@ private:
                 ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows, model_->has_size_mix()));
             speeds_ = std::move(c.normal_speeds);
             wall_before_ = c.wall_time_s;
+            // A run until coverage as replicas goes on as replica 0 alone, its slot where it was.
+            shift_s_ = c.log_shift_s;
+            others_impacts_ = std::move(c.replica_impacts);
+            others_slow_ = std::move(c.replica_slow_contacts);
+            sim_->end_at(model_->duration_s - shift_s_);
             // The summary of the session that was interrupted describes a time this run goes past:
             // removed, so that nothing (analyze) reads it as this run's if this session is killed.
             // A finished or interrupted session writes its own.
@@ -215,25 +227,19 @@ private:
             void call_back(Clock::time_point now) {
                 next_callback =
                     now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kProgressCallbackInterval_s));
-                job.options_.on_progress(
-                    RunProgress{job.sim_->state().time.seconds(), job.model_->duration_s, job.logged_impacts_, job.wall_time()});
+                job.options_.on_progress(RunProgress{job.run_time_s(), job.model_->duration_s, job.logged_impacts_, job.wall_time()});
             }
             double pause_at_s() const override {
-                return job.recorder_ ? job.recorder_->next_frame_s() : std::numeric_limits<double>::infinity();
+                const double frame_s = job.recorder_ ? job.recorder_->next_frame_s() : std::numeric_limits<double>::infinity();
+                return std::min(frame_s, job.own_slot_end_s_);
             }
             void after_step(const Simulation& sim, const std::vector<ImpactRecord>& all) override {
                 // A replica's window ends at its end; time stepping's last step may go past it.
-                const std::vector<ImpactRecord>& impacts = job.replicas_ ? job.before_end(all) : all;
-                if (!impacts.empty()) {
-                    const auto t = Clock::now();
-                    job.writer_->write(impacts);
-                    for (const ImpactRecord& r : impacts)
-                        job.speeds_[static_cast<std::size_t>(job.slots_[static_cast<std::size_t>(r.component)])].add(r.vn_in_m_per_s);
-                    job.logged_impacts_ += impacts.size();
-                    job.output_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
-                }
-                if (job.recorder_) job.recorder_->after_step(sim.state(), impacts, job.logged_impacts_);
-                progress.update(sim.state().time.seconds(), sim.end_s(), job.logged_impacts_);
+                const std::vector<ImpactRecord>& own = job.replicas_ ? job.before_end(all) : all;
+                job.log_own(own);
+                if (job.recorder_) job.recorder_->after_step(sim.state(), own, job.logged_impacts_);
+                if (job.rounds_ && !job.log_closed_ && !(sim.state().time.seconds() < job.own_slot_end_s_)) job.end_round();
+                progress.update(job.run_time_s(), job.shift_s_ + sim.end_s(), job.logged_impacts_);
                 if (job.options_.on_progress) {
                     const auto now = Clock::now();
                     if (now >= next_callback) call_back(now);
@@ -243,6 +249,7 @@ private:
             void at_restart_point(const Simulation&) override {
                 if (cadence.due()) job.checkpoint();
             }
+            bool done() const override { return job.coverage_watch_ && job.coverage_watch_->done(); }
             // The bar's last line, and the caller's last progress, whichever way the run ends.
             void at_finish(const Simulation&) override { end(); }
             void at_interrupt(const Simulation&) override { end(); }
@@ -253,11 +260,17 @@ private:
         } listener(*this, options_.progress && isatty(STDERR_FILENO));
         started_ = Clock::now();
         RunLoop run(*sim_);
-        if (coverage_watch_) run.add(*coverage_watch_);  // first: the others see a step after its dents count
         std::unique_ptr<ReplicaPilot> pilot;
         if (replicas_wanted_) {
+            // Until coverage the end is not known: the replicas run in rounds (replica_rounds.h).
+            const bool rounds = model_->description.process.until_coverage.has_value();
+            const double duration_s = model_->duration_s;
             pilot = std::make_unique<ReplicaPilot>(
-                *model_, options_.replicas, [this](const ReplicaPlan& plan) { start_replicas(plan); },
+                rounds ? first_round_pilot_s(duration_s, options_.replicas) : first_pilot_s(duration_s, options_.replicas),
+                last_pilot_s(duration_s, options_.replicas),
+                rounds ? std::function<std::optional<std::string>(const PilotReading&)>(
+                             [this](const PilotReading& r) { return start_rounds(r); })
+                       : plan_windows_then(*model_, options_.replicas, [this](const ReplicaPlan& plan) { start_replicas(plan); }),
                 [this](const std::string& why) {
                     err_ << "note: --replicas " << options_.replicas << ": the run goes on as one replica: " << why << "\n";
                     replica_shots_.clear();
@@ -284,6 +297,109 @@ private:
         else
             replicas_ = std::make_unique<ReplicaRuns>(model_, std::move(others), std::move(replica_shots_), dir_, slots_);
         replica_shots_.clear();
+    }
+
+    // Until coverage: the pilot measured the warm-up and the rate; the rounds start (replica 0 is in
+    // its first slot, [0, A)).
+    std::optional<std::string> start_rounds(const PilotReading& reading) {
+        std::optional<RoundPlan> plan =
+            plan_rounds(options_.replicas, reading.pilot_s, reading.warm_up_s, reading.impacts, turn_period_s(*model_), model_->seed);
+        if (!plan) return "the pilot found no impacts to plan rounds from";
+        if (!(plan->first_s < model_->duration_s)) {
+            std::ostringstream why;
+            why << "the run's duration (" << model_->duration_s << " s, its longest) ends within replica 0's first slot (" << plan->first_s
+                << " s: the pilot, the warm-up and a round of " << plan->round_s << " s)";
+            return why.str();
+        }
+        rounds_ = std::move(plan);
+        own_slot_end_s_ = rounds_->first_s;
+        round_runs_ = std::make_unique<RoundRuns>(model_, *rounds_, std::move(replica_shots_), dir_, slots_);
+        replica_shots_.clear();
+        return std::nullopt;
+    }
+
+    // s, the run's time now: replica 0's own, moved to its slot's place in the run.
+    double run_time_s() const { return sim_->state().time.seconds() + shift_s_; }
+
+    // Replica 0's impacts of a step into the log: at their place in the run, and in rounds only
+    // those of its current slot (the rest are the next slot's, logged after the other replicas').
+    void log_own(const std::vector<ImpactRecord>& own) {
+        if (log_closed_ || own.empty()) return;
+        if (!rounds_ && shift_s_ == 0.0) return log(own);
+        moved_.clear();
+        for (const ImpactRecord& r : own) {
+            if (rounds_ && !(r.time_s < own_slot_end_s_)) {
+                carry_.push_back(r);
+                continue;
+            }
+            moved_.push_back(r);
+            moved_.back().time_s += shift_s_;
+        }
+        log(moved_);
+    }
+
+    // Impacts at their place in the run, in time order: their dents to the coverage, then to
+    // impacts.csv and the speed histograms.
+    void log(std::span<const ImpactRecord> impacts) {
+        if (impacts.empty()) return;
+        if (coverage_watch_) coverage_watch_->add(impacts);
+        const auto t = Clock::now();
+        writer_->write(impacts);
+        for (const ImpactRecord& r : impacts)
+            speeds_[static_cast<std::size_t>(slots_[static_cast<std::size_t>(r.component)])].add(r.vn_in_m_per_s);
+        logged_impacts_ += impacts.size();
+        output_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
+    }
+
+    // Replica 0 ended its slot of this round: the others' slots of the round follow it in the log,
+    // in replica order, unless the target was reached in it; the run ends in the slot where the
+    // target is reached (or the duration), else the next round starts.
+    void end_round() {
+        const ReplicaWindow own = rounds_->slot(round_, 0);
+        const double own_end_s = std::min(own.window_end_s(), model_->duration_s);
+        add_round_window(own, own_end_s, logged_impacts_ - slot_logged_from_);
+        if (coverage_watch_ && coverage_watch_->done()) return close_log(own_end_s);
+        const std::vector<SlotResult> others = round_runs_->wait_round(round_);
+        for (const SlotResult& slot : others) {
+            const std::uint64_t before = logged_impacts_;
+            replay_spill(slot.spill, [this](std::span<const ImpactRecord> batch) { log(batch); });
+            add_round_window(slot.window, slot.window.window_end_s(), logged_impacts_ - before);
+            if (others_impacts_.empty()) others_impacts_.assign(slot.impacts_at_end.size(), 0);
+            if (others_slow_.empty()) others_slow_.assign(slot.slow_contacts_at_end.size(), 0);
+            for (std::size_t i = 0; i < others_impacts_.size(); ++i)
+                others_impacts_[i] += slot.impacts_at_end.at(i) - slot.impacts_at_start.at(i);
+            for (std::size_t i = 0; i < others_slow_.size(); ++i)
+                others_slow_[i] += slot.slow_contacts_at_end.at(i) - slot.slow_contacts_at_start.at(i);
+            if ((coverage_watch_ && coverage_watch_->done()) || !(slot.window.window_end_s() < model_->duration_s))
+                return close_log(slot.window.window_end_s());
+        }
+        if (static_cast<int>(others.size()) + 1 < rounds_->replicas()) return close_log(log_end_s_);  // one reached the duration
+        ++round_;
+        const ReplicaWindow next = rounds_->slot(round_, 0);
+        if (!(next.window_start_s() < model_->duration_s)) return close_log(log_end_s_);
+        shift_s_ = next.shift_s;
+        own_slot_end_s_ = next.run_to_s;
+        sim_->end_at(model_->duration_s - shift_s_);
+        slot_logged_from_ = logged_impacts_;
+        round_runs_->go(round_);
+        std::vector<ImpactRecord> carried;
+        carried.swap(carry_);
+        log_own(carried);
+    }
+
+    // A slot of the run's log, for the summary.
+    void add_round_window(const ReplicaWindow& w, double end_s, std::uint64_t logged) {
+        round_windows_.push_back({w.replica, w.seed, w.window_start_s(), end_s, w.log_from_s, logged});
+        log_end_s_ = end_s;
+    }
+
+    // The log ends at end_s (run time): replica 0 stops now, the other replicas' later work is dropped.
+    void close_log(double end_s) {
+        log_closed_ = true;
+        log_end_s_ = end_s;
+        carry_.clear();
+        sim_->end_at(sim_->state().time.seconds());
+        round_runs_->stop();
     }
 
     // The impacts of a step before replica 0's end (a copy only when some are past it).
@@ -330,6 +446,9 @@ private:
         c.csv_rows = writer_->rows_written();
         c.normal_speeds = speeds_;
         c.wall_time_s = wall_time();
+        c.log_shift_s = shift_s_;
+        c.replica_impacts = others_impacts_;
+        c.replica_slow_contacts = others_slow_;
         save_checkpoint(checkpoint_path(), c);
     }
 
@@ -346,17 +465,30 @@ private:
         for (StageTime& st : s.stage_times)
             if (st.stage == "record_impacts") st.seconds += output_seconds_;
         if (finished && plan_) merge_replica_summaries(s, *plan_, replica_results_, own_logged_impacts_);
+        // Replica 0 moved into the run, and the other replicas' logged slots (until coverage).
+        s.simulated_time_s = rounds_ && log_closed_ ? log_end_s_ : s.simulated_time_s + shift_s_;
+        add_slot_counts(s, others_impacts_, others_slow_);
+        if (finished && rounds_) merge_round_summaries(s, *rounds_, round_windows_, round_results_);
         return s;
     }
 
     int interrupted() {
         if (replicas_) drop_replicas();
+        if (round_runs_) {
+            round_runs_->stop();
+            try {
+                round_runs_->finish();
+            } catch (const std::exception&) {}  // of no use now either way
+            round_runs_->discard();
+            err_ << "note: the other replicas' work since their last logged round is dropped; --resume continues this run as "
+                    "one replica\n";
+        }
         if (recorder_) recorder_->flush();  // the frames drawn so far are complete files
         if (shot_series_) shot_series_->flush();
         checkpoint();
         write_summary((fs::path(dir_) / "summary.json").string(), summary(false));
         write_paraview_assembly(*model_, dir_);
-        err_ << "interrupted at t = " << sim_->state().time.seconds() << " s of " << model_->duration_s << " s; outputs in " << dir_
+        err_ << "interrupted at t = " << run_time_s() << " s of " << model_->duration_s << " s; outputs in " << dir_
              << " are consistent up to that time.\n"
              << "resume with: " << resume_command() << "\n";
         return kExitInterrupted;
@@ -364,6 +496,12 @@ private:
 
     int complete() {
         if (replicas_) gather_replicas();
+        if (round_runs_) {
+            // A run that ended in replica 0's slot closes its log here.
+            if (!log_closed_) add_round_window(rounds_->slot(round_, 0), run_time_s(), logged_impacts_ - slot_logged_from_);
+            round_results_ = round_runs_->finish();
+            round_runs_->discard();
+        }
         writer_->finish();
         // The ParaView files before the checkpoint goes: a full disk here still leaves a run to resume.
         const std::string series = shot_series_ ? shot_series_->finish(sim_->state()) : "";
@@ -384,6 +522,8 @@ private:
         for (const ReplicaResult& r : replica_results_)
             for (const LostShot& l : r.lost)
                 err_ << "replica " << r.window.replica << " (its own time): " << describe_loss(*model_, l) << "\n";
+        for (const RoundReplicaResult& r : round_results_)
+            for (const LostShot& l : r.lost) err_ << "replica " << r.replica << " (its own time): " << describe_loss(*model_, l) << "\n";
         if (options_.analyze) {
             AnalyzeOptions analysis;
             analysis.model = model_;
@@ -397,6 +537,7 @@ private:
         }
         std::uint64_t serious = sim_->state().health.serious();
         for (const ReplicaResult& r : replica_results_) serious += r.health.serious();
+        for (const RoundReplicaResult& r : round_results_) serious += r.health.serious();
         if (options_.strict && serious > 0) {
             err_ << "error: --strict: the run had numerical trouble (see health counters in summary.json)\n";
             return kExitHealthFailure;
@@ -425,6 +566,23 @@ private:
     std::vector<ReplicaResult> replica_results_;
     std::uint64_t own_logged_impacts_ = 0;  // replica 0's share of logged_impacts_
     std::vector<ImpactRecord> kept_;        // before_end()'s scratch
+    // Until coverage as replicas (replica_rounds.h): the rounds, the other replicas' runs, and
+    // replica 0's current slot.
+    std::optional<RoundPlan> rounds_;
+    std::unique_ptr<RoundRuns> round_runs_;
+    std::vector<RoundReplicaResult> round_results_;
+    std::vector<RunSummary::Replicas::Window> round_windows_;  // the slots logged, in time order
+    int round_ = 0;
+    double own_slot_end_s_ = std::numeric_limits<double>::infinity();  // s, replica 0's own time its slot ends
+    std::uint64_t slot_logged_from_ = 0;                               // logged impacts when replica 0's slot began
+    std::vector<ImpactRecord> carry_;                                  // replica 0's impacts past its slot's end, for its next
+    std::vector<ImpactRecord> moved_;                                  // log_own()'s scratch
+    bool log_closed_ = false;                                          // the log ended (the target or the duration reached in a round)
+    double log_end_s_ = 0.0;                                           // s, run time: the end of the last slot logged
+    // s, added to replica 0's times in the log (its slot's place in the run; a resumed run's too).
+    double shift_s_ = 0.0;
+    // The other replicas' counts in their logged slots (summary entries: shot-shot, then each component).
+    std::vector<std::uint64_t> others_impacts_, others_slow_;
     std::uint64_t logged_impacts_ = 0;
     double wall_before_ = 0.0;     // s, wall time of earlier sessions of a resumed run
     double output_seconds_ = 0.0;  // s, spent writing impacts

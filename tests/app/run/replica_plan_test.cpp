@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "app/run/replica_plan.h"
+#include "app/run/replica_rounds.h"
 #include "model/model.h"
 #include "scene/scene_parser.h"
 
@@ -60,6 +62,49 @@ TEST(ReplicaPlan, NoPlanWhenThereIsNothingToShare) {
     EXPECT_FALSE(plan_replicas(10.0, 2, 0.5, 0.0, 0.0, 1).has_value());  // no measured warm-up
 }
 
+// Until coverage: rounds of one slot a replica, laid end to end in replica order. K = 3, a pilot
+// of 2 s holding 4000 impacts (2000 /s), a warm-up of 0.3 s, a turn of 1.5 s: a round is
+// kRoundImpacts at that rate, rounded up to whole turns.
+TEST(ReplicaPlan, RoundsTileTheRunKeepEachReplicasClockAndShiftByWholeTurns) {
+    const double turn = 1.5;
+    const auto plan = plan_rounds(3, 2.0, 0.3, 4000, turn, 7);
+    ASSERT_TRUE(plan.has_value());
+    const double wanted = static_cast<double>(kRoundImpacts) / 2000.0;
+    EXPECT_DOUBLE_EQ(plan->round_s, std::ceil(wanted / turn) * turn);
+    EXPECT_DOUBLE_EQ(plan->first_s, 2.0 + 0.3 + plan->round_s);
+    EXPECT_EQ(plan->seeds[0], 7u);
+    double run_s = 0.0;                  // where the next slot must begin
+    std::vector<double> own_s(3, -1.0);  // each replica's own time its last slot ended
+    for (int round = 0; round < 5; ++round)
+        for (int k = 0; k < 3; ++k) {
+            const ReplicaWindow w = plan->slot(round, k);
+            EXPECT_EQ(w.replica, k);
+            EXPECT_EQ(w.seed, replica_seed(7, k));
+            EXPECT_NEAR(w.window_start_s(), run_s, 1e-12 * (1.0 + run_s)) << round << " " << k;
+            if (round > 0 || k > 0) EXPECT_NEAR(w.run_to_s - w.log_from_s, plan->round_s, 1e-12) << round << " " << k;
+            if (own_s[static_cast<std::size_t>(k)] >= 0.0)  // on from where its last slot ended
+                EXPECT_NEAR(w.log_from_s, own_s[static_cast<std::size_t>(k)], 1e-12 * (1.0 + run_s)) << round << " " << k;
+            else if (k > 0)  // its first: past the warm-up
+                EXPECT_GE(w.log_from_s, 0.3) << k;
+            const double turns = w.shift_s / turn;  // the part's angle kept
+            EXPECT_NEAR(turns, std::round(turns), 1e-9) << round << " " << k;
+            EXPECT_GE(w.shift_s, 0.0);
+            own_s[static_cast<std::size_t>(k)] = w.run_to_s;
+            run_s = w.window_end_s();
+        }
+    // Nothing turns: the round is the rate's; nothing to plan without replicas, warm-up or impacts.
+    const auto still = plan_rounds(2, 1.0, 0.1, 1000, 0.0, 1);
+    ASSERT_TRUE(still.has_value());
+    EXPECT_DOUBLE_EQ(still->round_s, static_cast<double>(kRoundImpacts) / 1000.0);
+    EXPECT_DOUBLE_EQ(still->first_from_s[1], 0.1);
+    EXPECT_FALSE(plan_rounds(1, 1.0, 0.1, 1000, 0.0, 1).has_value());
+    EXPECT_FALSE(plan_rounds(2, 1.0, 0.0, 1000, 0.0, 1).has_value());
+    EXPECT_FALSE(plan_rounds(2, 1.0, 0.1, 0, 0.0, 1).has_value());
+    // Its duration only caps a run until coverage: the pilot starts at 1 s at most.
+    EXPECT_DOUBLE_EQ(first_round_pilot_s(4000.0, 2), 1.0);
+    EXPECT_DOUBLE_EQ(first_round_pilot_s(64.0, 2), 0.5);
+}
+
 TEST(ReplicaPlan, ThePilotDoublesFromAFractionOfTheShare) {
     EXPECT_DOUBLE_EQ(first_pilot_s(64.0, 2), 0.5);
     EXPECT_DOUBLE_EQ(last_pilot_s(64.0, 2), 16.0);
@@ -82,9 +127,8 @@ TEST(ReplicaPlan, ScenesThatAreNotSteadyAreRefusedWithTheReason) {
         {"contacts.shot-TA6V={law: impact-history, restitution_by_hits: [0.4, 0.5, 0.56], influence_distance: 0.58 mm, f: 0.3}"}));
     ASSERT_TRUE(history.has_value());
     EXPECT_NE(history->find("impact history"), std::string::npos) << *history;
-    const auto until = replica_refusal(*model_of("gear.yaml", {"process.until_coverage=98%"}));
-    ASSERT_TRUE(until.has_value());
-    EXPECT_NE(until->find("until_coverage"), std::string::npos) << *until;
+    // A run until coverage is steady too: its replicas run in rounds (replica_rounds.h).
+    EXPECT_FALSE(replica_refusal(*model_of("gear.yaml", {"process.until_coverage=98%"})).has_value());
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // A run's replicas over MPI ranks (app/run/replica_ranks.h): `mpirun -n K peensim run --replicas K`
-// gives the bytes of the same replicas on threads, refuses a rank count other than K with exit 2,
-// and an interrupted rank 0 stops the others and resumes as one replica; the result and the plan
-// travel between ranks as bytes that come back the same.
+// gives the bytes of the same replicas on threads, refuses a rank count other than K and a run
+// until coverage (its rounds run on threads only) with exit 2, and an interrupted rank 0 stops the
+// others and resumes as one replica; the result and the plan travel between ranks as bytes that
+// come back the same.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -73,6 +74,18 @@ TEST(ReplicaRanks, ARankCountOtherThanTheReplicasExitsTwoSayingBoth) {
     const ShellResult r = run_over_ranks(dir.path / "out", 2, 3);
     EXPECT_EQ(exit_code(r), kExitInputError) << r.output;
     EXPECT_NE(r.output.find("--replicas 3 in an MPI job of 2 ranks: expected --replicas 2"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir.path / "out" / kImpactCsvFileName));
+}
+
+// A run until coverage runs its replicas in rounds on threads only: over ranks it exits 2 before
+// anything is written, saying what to do instead, and no rank is left waiting.
+TEST(ReplicaRanks, ARunUntilCoverageIsRefusedOverRanksSayingToUseThreads) {
+    ASSERT_TRUE(fs::exists(kMpirun)) << "mpirun not found: .ci/install-deps installs openmpi-bin";
+    TempDir dir;
+    const ShellResult r = run_over_ranks(dir.path / "out", 2, 2, "--until-coverage 20%");
+    EXPECT_EQ(exit_code(r), kExitInputError) << r.output;
+    EXPECT_NE(r.output.find("--replicas"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("without mpirun"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir.path / "out" / kImpactCsvFileName));
 }
 
