@@ -69,7 +69,8 @@ const std::vector<std::string>& run_output_names() {
                                                 "animation.mp4",
                                                 "frames",
                                                 "paraview",
-                                                "analysis",
+                                                kAnalysisDirName,
+                                                kAnalysisPartialDirName,
                                                 "replicas"};  // a replicas run's spills (app/run/replica_runs.h)
     return names;
 }

@@ -26,6 +26,11 @@ private:
 };
 
 inline constexpr const char* kRunLockFileName = ".peensim.lock";
+// The analysis is written into analysis.partial/ and replaces analysis/ when it is complete, so
+// that analysis/ holds one analysis's files, whole: none of an earlier analysis left beside
+// them (a picture it drew and this one does not), none half written.
+inline constexpr const char* kAnalysisDirName = "analysis";
+inline constexpr const char* kAnalysisPartialDirName = "analysis.partial";
 
 // The outputs a run writes into its directory (files and folders).
 const std::vector<std::string>& run_output_names();

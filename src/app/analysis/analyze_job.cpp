@@ -40,6 +40,7 @@
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
 #include "output/markdown_html.h"
+#include "output/run_directory.h"
 #include "scene/resolved_writer.h"
 #include "scene/scene_parser.h"
 #include "scene/scene_sections.h"
@@ -404,7 +405,8 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     if (parts.empty())
         throw std::runtime_error(output_dir + ": the run logged no component (output.log is empty and the scene has no part)");
 
-    const fs::path adir = dir / "analysis";
+    const fs::path adir = dir / kAnalysisPartialDirName;  // analysis/ once complete (run_directory.h)
+    fs::remove_all(adir);
     fs::create_directories(adir);
     for (ComponentAnalysis& a : parts)
         a.points = std::make_unique<ImpactPointsVtpWriter>((adir / (a.name + "_impacts.vtp")).string(), impact_point_field_layouts());
@@ -484,8 +486,11 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
                           markdown_to_html(report, "peensim analysis: " + (scene.name.empty() ? output_dir : scene.name),
                                            image_files_in(adir.string()), views));
     write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, window));
-    write_paraview_script(dir, scene, fastest_start_speed_m_per_s(model->sources), parts, duration, window);
-    out << analysis_summary_table(parts, window) << "analysis: " << adir.string()
+    write_paraview_script(dir, adir, scene, fastest_start_speed_m_per_s(model->sources), parts, duration, window);
+    const fs::path done = dir / kAnalysisDirName;
+    fs::remove_all(done);
+    fs::rename(adir, done);
+    out << analysis_summary_table(parts, window) << "analysis: " << done.string()
         << "/{report.md, report.html, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp, *_coverage_series.pvd"
         << (context.pngs.empty() ? "" : ", *.png") << ", " << kParaviewScriptFileName << "}\n";
     for (const ComponentAnalysis& a : parts) out << smoothing_note(a) << '\n';

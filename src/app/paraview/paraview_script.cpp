@@ -8,6 +8,7 @@
 #include "app/paraview/paraview_assembly.h"
 #include "app/paraview/paraview_shot_series.h"
 #include "output/atomic_file.h"
+#include "output/run_directory.h"
 
 namespace fs = std::filesystem;
 
@@ -387,9 +388,9 @@ Vec3 impacts_seen_from(const SceneDescription& scene, const std::vector<Componen
 
 }  // namespace
 
-void write_paraview_script(const fs::path& run_dir, const SceneDescription& scene, double fastest_source_m_per_s,
+void write_paraview_script(const fs::path& run_dir, const fs::path& write_dir, const SceneDescription& scene, double fastest_source_m_per_s,
                            const std::vector<ComponentAnalysis>& parts, double run_duration_s, const AnalysisWindow& window) {
-    const fs::path analysis = fs::absolute(run_dir / "analysis");
+    const fs::path analysis = fs::absolute(run_dir / kAnalysisDirName);
     const Vec3& g = scene.process.gravity_m_per_s2;
     const Vec3 up = g.norm() > 0.0 ? Vec3(-g.normalized()) : Vec3(Vec3::UnitZ());
     const Vec3 from = impacts_seen_from(scene, parts);
@@ -419,7 +420,7 @@ void write_paraview_script(const fs::path& run_dir, const SceneDescription& scen
                                "import json\n\n"
                                "RUN = json.loads(r\"\"\"" +
                                run.dump(1) + "\"\"\")\n" + kScriptBody;
-    write_file_atomically((analysis / kParaviewScriptFileName).string(), script);
+    write_file_atomically((write_dir / kParaviewScriptFileName).string(), script);
 }
 
 }  // namespace peensim

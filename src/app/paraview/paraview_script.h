@@ -25,7 +25,9 @@ inline constexpr const char* kParaviewScriptFileName = "open_in_paraview.py";
 // Writes DIR/analysis/open_in_paraview.py for the logged components `parts` (atomically).
 // run_duration_s: the run's simulated time (s), the poses' time range; window: what the analysis
 // took of it (the impact fields' rates are per its length).
-void write_paraview_script(const std::filesystem::path& run_dir, const SceneDescription& scene, double fastest_source_m_per_s,
-                           const std::vector<ComponentAnalysis>& parts, double run_duration_s, const AnalysisWindow& window);
+// Written into write_dir (the analysis being written), for the run's analysis/ folder once complete.
+void write_paraview_script(const std::filesystem::path& run_dir, const std::filesystem::path& write_dir, const SceneDescription& scene,
+                           double fastest_source_m_per_s, const std::vector<ComponentAnalysis>& parts, double run_duration_s,
+                           const AnalysisWindow& window);
 
 }  // namespace peensim

@@ -15,6 +15,7 @@
 #include "app/analysis/analyze_job.h"
 #include "app/run/run_job.h"
 #include "model/model.h"
+#include "output/atomic_file.h"
 #include "scene/scene_parser.h"
 #include "support/csv_columns.h"
 #include "support/files.h"
@@ -75,6 +76,28 @@ TEST(AnalyzeJob, CountsAddUpAndCoverageOnlyGrows) {
 }
 
 // figures.json: the report's figures as data, agreeing with the log they come from.
+// analysis/ holds one analysis: a file an earlier one wrote (a picture under an old name) is gone
+// after the next, and neither the page nor the folder mention it; the analysis is written beside
+// and replaces the folder whole, so nothing half written is left either.
+TEST(AnalyzeJob, AnotherAnalysisReplacesTheFolderWholeLeavingNothingOfTheEarlierOne) {
+    TempDir dir;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(rod_run(dir.path, 0.1), out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    const fs::path a = dir.path / "analysis";
+    write_file_atomically((a / "rod_least_covered.png").string(), "an earlier analysis's picture");
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    EXPECT_FALSE(fs::exists(a / "rod_least_covered.png"));
+    EXPECT_TRUE(fs::exists(a / "report.md"));
+    EXPECT_TRUE(fs::exists(a / "figures.json"));
+    EXPECT_FALSE(fs::exists(dir.path / "analysis.partial"));
+    EXPECT_EQ(read_file(a / "report.html").find("least_covered"), std::string::npos);
+    // The ParaView script points at the folder, not at where it was written.
+    const std::string script = read_file(a / "open_in_paraview.py");
+    EXPECT_NE(script.find(fs::absolute(a).string()), std::string::npos);
+    EXPECT_EQ(script.find("analysis.partial"), std::string::npos);
+}
+
 TEST(AnalyzeJob, FiguresJsonAgreesWithTheLog) {
     TempDir dir;
     std::ostringstream out, err;
