@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdarg>
 #include <cstdio>
+#include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -93,11 +95,25 @@ std::string summary_to_text(const RunSummary& s) {
                 : printf_string("%.4g %% reached in %d of %zu areas; not yet: %s%s", target, reached, s.until_coverage->areas.size(),
                                 missing.c_str(), reached + 1 < static_cast<int>(s.until_coverage->areas.size()) ? ", ..." : ""));
     }
-    if (s.replicas && s.replicas->round_s > 0.0)
-        rows.emplace_back("replicas", printf_string("%d in rounds of %.4g s (%zu slots logged), each warmed up %.4g s (measured at %.4g s)",
-                                                    s.replicas->replica_count, s.replicas->round_s, s.replicas->windows.size(),
-                                                    s.replicas->warm_up_s, s.replicas->pilot_s));
-    else if (s.replicas)
+    if (s.replicas && s.replicas->round_s > 0.0) {
+        // The others log from the warm-up on, rounded up to the part's angle at their first slot.
+        double from_s = std::numeric_limits<double>::infinity(), to_s = 0.0;
+        std::vector<bool> seen(static_cast<std::size_t>(std::max(1, s.replicas->replica_count)), false);
+        for (const auto& w : s.replicas->windows) {
+            const auto k = static_cast<std::size_t>(w.replica);
+            if (w.replica <= 0 || k >= seen.size() || seen[k]) continue;
+            seen[k] = true;
+            from_s = std::min(from_s, w.own_start_s);
+            to_s = std::max(to_s, w.own_start_s);
+        }
+        std::string others = printf_string("a warm-up of %.4g s measured at %.4g s", s.replicas->warm_up_s, s.replicas->pilot_s);
+        if (std::isfinite(from_s))
+            others += from_s == to_s ? printf_string("; the others log from their own %.4g s on", from_s)
+                                     : printf_string("; the others log from their own %.4g-%.4g s on", from_s, to_s);
+        rows.emplace_back("replicas", printf_string("%d in rounds of %.4g s (%zu slots logged), ", s.replicas->replica_count,
+                                                    s.replicas->round_s, s.replicas->windows.size()) +
+                                          others);
+    } else if (s.replicas)
         rows.emplace_back(
             "replicas",
             printf_string("%zu, each warmed up %.4g s (measured at %.4g s) then run for its window of %.4g s", s.replicas->windows.size(),

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "common/shell_quote.h"
 #include "output/atomic_file.h"
 
 namespace fs = std::filesystem;
@@ -43,13 +44,6 @@ std::string find_gnuplot() {
         if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
     }
     return "";
-}
-
-// `s` as one word for /bin/sh.
-std::string shell_quoted(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
 }
 
 // `s` as a gnuplot single-quoted string (where '' stands for one quote).

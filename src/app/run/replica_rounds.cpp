@@ -26,6 +26,15 @@ ReplicaWindow RoundPlan::slot(int round, int replica) const {
     return w;
 }
 
+double RoundPlan::slot_start_s(int round, int replica) const {
+    if (round == 0 && replica == 0) return 0.0;
+    return first_s + static_cast<double>(round * replicas() + replica - 1) * round_s;
+}
+
+double RoundPlan::slot_end_s(int round, int replica) const {
+    return replica + 1 < replicas() ? slot_start_s(round, replica + 1) : slot_start_s(round + 1, 0);
+}
+
 std::optional<RoundPlan> plan_rounds(int replicas, double pilot_s, double warm_up_s, std::uint64_t pilot_impacts, double turn_s,
                                      std::uint64_t seed) {
     if (replicas < 2 || !(pilot_s > 0.0) || !(warm_up_s > 0.0) || pilot_impacts == 0) return std::nullopt;
@@ -46,6 +55,6 @@ std::optional<RoundPlan> plan_rounds(int replicas, double pilot_s, double warm_u
     return p;
 }
 
-double first_round_pilot_s(double duration_s, int replicas) { return std::min(first_pilot_s(duration_s, replicas), 1.0); }
+double first_round_pilot_s(double duration_s, int replicas) { return std::min(1.0, last_pilot_s(duration_s, replicas)); }
 
 }  // namespace peensim

@@ -38,6 +38,10 @@ struct RoundPlan {
     int replicas() const { return static_cast<int>(seeds.size()); }
     // Slot (round, replica): its own time [log_from_s, run_to_s), moved by shift_s into the run.
     ReplicaWindow slot(int round, int replica) const;
+    // Its place in the run, [start, end): one formula for both, so that a slot begins exactly
+    // where the one before it ended (its own times moved by shift_s agree to rounding).
+    double slot_start_s(int round, int replica) const;
+    double slot_end_s(int round, int replica) const;
 };
 
 // The rounds of `replicas` replicas, the warm-up measured at pilot_s among `pilot_impacts`
@@ -45,8 +49,9 @@ struct RoundPlan {
 std::optional<RoundPlan> plan_rounds(int replicas, double pilot_s, double warm_up_s, std::uint64_t pilot_impacts, double turn_s,
                                      std::uint64_t seed);
 
-// A run until coverage only caps its duration: its pilot starts at the lesser of the usual
-// first pilot time and 1 s of peening (then doubles as usual).
+// A run until coverage only caps its duration: its pilot starts at 1 s of peening (then doubles
+// as usual), so that the same seed and K give the same run whatever the cap (the cap only needs
+// to leave the pilot time to settle: 2 K s and more, or less when the cap is shorter).
 double first_round_pilot_s(double duration_s, int replicas);
 
 }  // namespace peensim

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <span>
+#include <thread>
 
 #include "app/analysis/analyze_job.h"
 #include "app/check/setup_checks.h"
@@ -33,6 +34,7 @@
 #include "app/run/summary_builder.h"
 #include "common/input_error.h"
 #include "common/random.h"
+#include "common/shell_quote.h"
 #include "engine/run_loop.h"
 #include "engine/simulation.h"
 #include "model/assembly_checks.h"
@@ -68,6 +70,10 @@ public:
         const SceneDescription scene = parse_scene(options_.scene_path, options_.scene_text, options_.overrides);
         model_ = compile_model(scene);
         if (options_.replicas > 1 && !options_.resume) {
+            if (const unsigned cores = std::thread::hardware_concurrency();
+                cores > 0 && static_cast<unsigned>(options_.replicas) > cores && !options_.replica_ranks)
+                err_ << "note: --replicas " << options_.replicas << " on a machine of " << cores
+                     << " cores: the replicas share them (the same results as on " << options_.replicas << " cores, not faster)\n";
             if (const std::optional<std::string> why = replica_refusal(*model_))
                 throw InputError(scene.process.where, "--replicas", *why + "; expected --replicas 1 for this scene");
             if (options_.replica_ranks && scene.process.until_coverage)
@@ -128,8 +134,10 @@ private:
 
     std::string resume_command() const {
         if (options_.scene_text) return "the same run with resume into " + dir_;  // a scene in memory (Python): no command to give
-        return "peensim run " + options_.scene_path + " -o " + dir_ + " --resume" +
-               (options_.overrides.empty() ? "" : " (and the same --set options)");
+        // Every --set, and every option that is one (--until-coverage): the scene must be the same.
+        std::string command = "peensim run " + shell_quoted(options_.scene_path) + " -o " + shell_quoted(dir_) + " --resume";
+        for (const std::string& o : options_.overrides) command += " --set " + shell_quoted(o);
+        return command;
     }
 
     // What a second Ctrl-C prints as it ends the process without waiting for a checkpoint.
@@ -150,7 +158,8 @@ private:
         }
         const bool finished = j.is_object() && j.value("finished", false) && fs::exists(fs::path(dir_) / kImpactCsvFileName);
         if (!finished)
-            throw std::runtime_error(checkpoint_path() + ": no checkpoint to resume from (the run in " + dir_ + " did not write one)");
+            throw std::runtime_error(checkpoint_path() + ": no checkpoint to resume from (the run in " + dir_ +
+                                     " did not write one: it ended before its first); run it again without --resume");
         if (j.value("scene_hash", std::string()) != scene_hash_text(*model_))
             throw InputError({summary.string(), 0, 0}, "scene_hash",
                              "the run in " + dir_ +
@@ -356,22 +365,22 @@ private:
     // target is reached (or the duration), else the next round starts.
     void end_round() {
         const ReplicaWindow own = rounds_->slot(round_, 0);
-        const double own_end_s = std::min(own.window_end_s(), model_->duration_s);
-        add_round_window(own, own_end_s, logged_impacts_ - slot_logged_from_);
+        const double own_end_s = std::min(rounds_->slot_start_s(round_, 1), model_->duration_s);  // where the next begins
+        add_round_window(round_, own, own_end_s, logged_impacts_ - slot_logged_from_);
         if (coverage_watch_ && coverage_watch_->done()) return close_log(own_end_s);
         const std::vector<SlotResult> others = round_runs_->wait_round(round_);
         for (const SlotResult& slot : others) {
             const std::uint64_t before = logged_impacts_;
             replay_spill(slot.spill, [this](std::span<const ImpactRecord> batch) { log(batch); });
-            add_round_window(slot.window, slot.window.window_end_s(), logged_impacts_ - before);
+            const double end_s = std::min(rounds_->slot_end_s(round_, slot.window.replica), model_->duration_s);
+            add_round_window(round_, slot.window, end_s, logged_impacts_ - before);
             if (others_impacts_.empty()) others_impacts_.assign(slot.impacts_at_end.size(), 0);
             if (others_slow_.empty()) others_slow_.assign(slot.slow_contacts_at_end.size(), 0);
             for (std::size_t i = 0; i < others_impacts_.size(); ++i)
                 others_impacts_[i] += slot.impacts_at_end.at(i) - slot.impacts_at_start.at(i);
             for (std::size_t i = 0; i < others_slow_.size(); ++i)
                 others_slow_[i] += slot.slow_contacts_at_end.at(i) - slot.slow_contacts_at_start.at(i);
-            if ((coverage_watch_ && coverage_watch_->done()) || !(slot.window.window_end_s() < model_->duration_s))
-                return close_log(slot.window.window_end_s());
+            if ((coverage_watch_ && coverage_watch_->done()) || !(end_s < model_->duration_s)) return close_log(end_s);
         }
         if (static_cast<int>(others.size()) + 1 < rounds_->replicas()) return close_log(log_end_s_);  // one reached the duration
         ++round_;
@@ -388,8 +397,9 @@ private:
     }
 
     // A slot of the run's log, for the summary.
-    void add_round_window(const ReplicaWindow& w, double end_s, std::uint64_t logged) {
-        round_windows_.push_back({w.replica, w.seed, w.window_start_s(), end_s, w.log_from_s, logged});
+    // round: the slot's (its start is the plan's, exactly where the last one ended).
+    void add_round_window(int round, const ReplicaWindow& w, double end_s, std::uint64_t logged) {
+        round_windows_.push_back({w.replica, w.seed, rounds_->slot_start_s(round, w.replica), end_s, w.log_from_s, logged});
         log_end_s_ = end_s;
     }
 
@@ -498,7 +508,7 @@ private:
         if (replicas_) gather_replicas();
         if (round_runs_) {
             // A run that ended in replica 0's slot closes its log here.
-            if (!log_closed_) add_round_window(rounds_->slot(round_, 0), run_time_s(), logged_impacts_ - slot_logged_from_);
+            if (!log_closed_) add_round_window(round_, rounds_->slot(round_, 0), run_time_s(), logged_impacts_ - slot_logged_from_);
             round_results_ = round_runs_->finish();
             round_runs_->discard();
         }

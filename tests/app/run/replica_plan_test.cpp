@@ -81,6 +81,9 @@ TEST(ReplicaPlan, RoundsTileTheRunKeepEachReplicasClockAndShiftByWholeTurns) {
             EXPECT_EQ(w.replica, k);
             EXPECT_EQ(w.seed, replica_seed(7, k));
             EXPECT_NEAR(w.window_start_s(), run_s, 1e-12 * (1.0 + run_s)) << round << " " << k;
+            // The slot's place, exactly where the last one ended.
+            if (round > 0 || k > 0) EXPECT_EQ(plan->slot_start_s(round, k), run_s) << round << " " << k;
+            EXPECT_NEAR(plan->slot_end_s(round, k), w.window_end_s(), 1e-12 * (1.0 + run_s)) << round << " " << k;
             if (round > 0 || k > 0) EXPECT_NEAR(w.run_to_s - w.log_from_s, plan->round_s, 1e-12) << round << " " << k;
             if (own_s[static_cast<std::size_t>(k)] >= 0.0)  // on from where its last slot ended
                 EXPECT_NEAR(w.log_from_s, own_s[static_cast<std::size_t>(k)], 1e-12 * (1.0 + run_s)) << round << " " << k;
@@ -90,7 +93,7 @@ TEST(ReplicaPlan, RoundsTileTheRunKeepEachReplicasClockAndShiftByWholeTurns) {
             EXPECT_NEAR(turns, std::round(turns), 1e-9) << round << " " << k;
             EXPECT_GE(w.shift_s, 0.0);
             own_s[static_cast<std::size_t>(k)] = w.run_to_s;
-            run_s = w.window_end_s();
+            run_s = plan->slot_end_s(round, k);
         }
     // Nothing turns: the round is the rate's; nothing to plan without replicas, warm-up or impacts.
     const auto still = plan_rounds(2, 1.0, 0.1, 1000, 0.0, 1);
@@ -102,7 +105,8 @@ TEST(ReplicaPlan, RoundsTileTheRunKeepEachReplicasClockAndShiftByWholeTurns) {
     EXPECT_FALSE(plan_rounds(2, 1.0, 0.1, 0, 0.0, 1).has_value());
     // Its duration only caps a run until coverage: the pilot starts at 1 s at most.
     EXPECT_DOUBLE_EQ(first_round_pilot_s(4000.0, 2), 1.0);
-    EXPECT_DOUBLE_EQ(first_round_pilot_s(64.0, 2), 0.5);
+    EXPECT_DOUBLE_EQ(first_round_pilot_s(64.0, 2), 1.0);
+    EXPECT_DOUBLE_EQ(first_round_pilot_s(2.0, 2), 0.5);  // a cap too short for 1 s: its last pilot
 }
 
 TEST(ReplicaPlan, ThePilotDoublesFromAFractionOfTheShare) {
