@@ -200,7 +200,7 @@ std::string verdict_sections(const std::vector<ComponentAnalysis>& parts, const 
                 if (x.wall_per_simulated_s)
                     r << " (about " << duration_text(t.time_s * *x.wall_per_simulated_s)
                       << " of wall time at this run's pace, the analysis not counted)";
-                if (cores > 1) r << ", as " << cores << " replicas, one a core of this machine";
+                if (cores > 1) r << "; the command runs it as " << cores << " replicas, one a core of this machine, which share that time";
                 r << ":\n\n      " << until_command(x, target, 1.5 * t.high_s, cores) << "\n";
             }
             for (const auto& [name, png] : x.slowest_region_pngs)
