@@ -182,6 +182,16 @@ std::vector<ReplicaResult> ReplicaRuns::wait() {
     return results_;
 }
 
+void add_replica_work(RunSummary& s, const RunSummary& replica) {
+    for (std::size_t i = 0; i < s.health_counters.size() && i < replica.health_counters.size(); ++i)
+        s.health_counters[i].count += replica.health_counters[i].count;
+    for (std::size_t i = 0; i < s.stage_times.size() && i < replica.stage_times.size(); ++i)
+        s.stage_times[i].seconds += replica.stage_times[i].seconds;
+    s.steps += replica.steps;
+    s.shot_steps += replica.shot_steps;
+    s.shot_lost += replica.shot_lost;
+}
+
 void merge_replica_summaries(RunSummary& s, const ReplicaPlan& plan, const std::vector<ReplicaResult>& results,
                              std::uint64_t own_logged_impacts) {
     RunSummary::Replicas info;
@@ -196,13 +206,7 @@ void merge_replica_summaries(RunSummary& s, const ReplicaPlan& plan, const std::
             s.impacts_per_component[i].count += c.impacts_per_component[i].count - r.impacts_at_window_start.at(i);
         for (std::size_t i = 0; i < s.slow_contacts_per_component.size() && i < c.slow_contacts_per_component.size(); ++i)
             s.slow_contacts_per_component[i].count += c.slow_contacts_per_component[i].count - r.slow_contacts_at_window_start.at(i);
-        for (std::size_t i = 0; i < s.health_counters.size() && i < c.health_counters.size(); ++i)
-            s.health_counters[i].count += c.health_counters[i].count;
-        for (std::size_t i = 0; i < s.stage_times.size() && i < c.stage_times.size(); ++i)
-            s.stage_times[i].seconds += c.stage_times[i].seconds;
-        s.steps += c.steps;
-        s.shot_steps += c.shot_steps;
-        s.shot_lost += c.shot_lost;
+        add_replica_work(s, c);
         const ReplicaWindow& w = r.window;
         info.windows.push_back({w.replica, w.seed, w.window_start_s(), w.window_end_s(), w.log_from_s, r.logged_impacts});
     }

@@ -110,6 +110,10 @@ private:
     std::atomic<bool> stop_{false};
 };
 
+// Adds what another replica ran to the run's summary `s`: its health counters, stage times, steps
+// and lost shot (all of its run, the warm-up too: the run's costs and its trouble).
+void add_replica_work(RunSummary& s, const RunSummary& replica);
+
 // Adds the replicas' windows to the run's summary `s` (replica 0's, with the merged speeds): their
 // impacts and slow contacts within their windows, their steps, health counters and stage times,
 // the state at the run's end (the last replica's), and the plan.

@@ -225,16 +225,7 @@ void add_slot_counts(RunSummary& s, const std::vector<std::uint64_t>& impacts, c
 
 void merge_round_summaries(RunSummary& s, const RoundPlan& plan, std::vector<RunSummary::Replicas::Window> slots,
                            const std::vector<RoundReplicaResult>& results) {
-    for (const RoundReplicaResult& r : results) {
-        const RunSummary& c = r.summary;
-        for (std::size_t i = 0; i < s.health_counters.size() && i < c.health_counters.size(); ++i)
-            s.health_counters[i].count += c.health_counters[i].count;
-        for (std::size_t i = 0; i < s.stage_times.size() && i < c.stage_times.size(); ++i)
-            s.stage_times[i].seconds += c.stage_times[i].seconds;
-        s.steps += c.steps;
-        s.shot_steps += c.shot_steps;
-        s.shot_lost += c.shot_lost;
-    }
+    for (const RoundReplicaResult& r : results) add_replica_work(s, r.summary);
     RunSummary::Replicas info;
     info.pilot_s = plan.pilot_s;
     info.warm_up_s = plan.warm_up_s;
