@@ -105,6 +105,20 @@ TEST(CheckpointResumeChecks, StatesThatCannotBeResumedAreRefused) {
     c = good;
     c.state.shots.resize(15);
     EXPECT_NE(resume_error(c, *model).find("expected 16 shot, got 15"), std::string::npos);
+    // A run until coverage as replicas (app/run/replica_rounds.h): its log's shift within the run,
+    // the other replicas' counts one per summary entry (shot-shot, then each component).
+    c = good;
+    c.log_shift_s = 0.06;  // past the duration (0.05 s)
+    EXPECT_NE(resume_error(c, *model).find("expected a log shift in [0, "), std::string::npos) << resume_error(c, *model);
+    c.log_shift_s = nan;
+    EXPECT_NE(resume_error(c, *model).find("log_shift_s"), std::string::npos) << resume_error(c, *model);
+    c = good;
+    c.log_shift_s = 0.01;
+    c.replica_impacts.assign(model->components.size() + 1, 7);
+    c.replica_slow_contacts.assign(model->components.size() + 1, 1);
+    EXPECT_EQ(resume_error(c, *model), "(accepted)");
+    c.replica_impacts.pop_back();
+    EXPECT_NE(resume_error(c, *model).find("the other replicas' counts for the wrong number of components"), std::string::npos);
     // Every list's length and every number, by the field's name (app/checkpoint/field_checks.h).
     c = good;
     c.state.shots.wy.pop_back();
