@@ -31,7 +31,6 @@ public:
 
     void begin(const ReplicaWindow& w, int round, const std::string& run_dir) {
         slot_ = SlotResult{};
-        slot_.round = round;
         slot_.window = w;
         slot_.spill = (fs::path(run_dir) / slot_spill_name(w.replica, round)).string();
         slot_.impacts_at_start = last_impacts_;  // a later slot starts where the last ended

@@ -29,7 +29,6 @@ namespace peensim {
 
 // One replica's slot of one round, as it ran.
 struct SlotResult {
-    int round = 0;
     ReplicaWindow window;  // its own time [log_from_s, run_to_s) (its end at the run's duration, if that comes first)
     std::string spill;     // its impacts' file
     std::uint64_t logged_impacts = 0;
