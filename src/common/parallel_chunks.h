@@ -26,17 +26,30 @@ inline unsigned analysis_threads() {
     return wanted > 0 ? wanted : std::max(1u, std::thread::hardware_concurrency());
 }
 
+// Work done ahead on a thread of its own (the analysis's geometry while a run steps) can be
+// abandoned: that thread points chunk_cancel at a flag, and once it is set every for_each_chunk
+// it calls starts no more chunks and throws ChunksCancelled.
+struct ChunksCancelled : std::exception {
+    const char* what() const noexcept override { return "cancelled"; }
+};
+inline thread_local const std::atomic<bool>* chunk_cancel = nullptr;
+inline void throw_if_chunks_cancelled() {
+    if (chunk_cancel != nullptr && chunk_cancel->load(std::memory_order_relaxed)) throw ChunksCancelled();
+}
+
 // Calls f(chunk) once for every chunk in 0 .. chunks - 1, on up to `threads` threads (this one
 // among them), each chunk on one thread, in no particular order; returns when all are done and
 // rethrows the first exception one threw (the chunks not yet started are skipped).
 template <class F>
 void for_each_chunk(std::size_t chunks, F&& f, unsigned threads = analysis_threads()) {
+    const std::atomic<bool>* const cancel = chunk_cancel;  // the caller's: the helpers have their own
     std::atomic<std::size_t> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
     const auto work = [&] {
         for (std::size_t c = next++; c < chunks; c = next++) {
             try {
+                if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) throw ChunksCancelled();
                 f(c);
             } catch (...) {
                 const std::lock_guard<std::mutex> lock(failure_mutex);

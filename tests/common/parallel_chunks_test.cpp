@@ -1,9 +1,10 @@
 // Work in a fixed number of chunks on any number of threads: every chunk once, the chunks' ranges
-// tile the items, a failure reaches the caller.
+// tile the items, a failure reaches the caller, a cancelled thread starts no more.
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "common/parallel_chunks.h"
@@ -43,6 +44,41 @@ TEST(ParallelChunks, AFailureInAChunkReachesTheCaller) {
                      },
                      2),
                  std::runtime_error);
+}
+
+// Work abandoned on its own thread: once its flag is set no more chunks start, on that thread and
+// on its helpers, and the call throws ChunksCancelled; the calls of other threads go on.
+TEST(ParallelChunks, ACancelledThreadStartsNoMoreChunks) {
+    std::atomic<bool> cancel{false};
+    std::atomic<int> ran{0};
+    chunk_cancel = &cancel;
+    // One thread takes the chunks in order: 0 to 3 run, then the flag stops the rest.
+    EXPECT_THROW(for_each_chunk(
+                     16,
+                     [&](std::size_t c) {
+                         ++ran;
+                         if (c == 3) cancel = true;
+                     },
+                     1),
+                 ChunksCancelled);
+    EXPECT_EQ(ran.load(), 4);
+    ran = 0;
+    EXPECT_THROW(for_each_chunk(
+                     8, [&](std::size_t) { ++ran; }, 4),
+                 ChunksCancelled);
+    EXPECT_EQ(ran.load(), 0);
+    EXPECT_THROW(throw_if_chunks_cancelled(), ChunksCancelled);
+    // Another thread never pointed its flag anywhere.
+    std::thread([&] {
+        for_each_chunk(
+            8, [&](std::size_t) { ++ran; }, 2);
+        throw_if_chunks_cancelled();
+    }).join();
+    EXPECT_EQ(ran.load(), 8);
+    chunk_cancel = nullptr;
+    for_each_chunk(
+        8, [&](std::size_t) { ++ran; }, 2);
+    EXPECT_EQ(ran.load(), 16);
 }
 
 TEST(ParallelChunks, TheThreadCountCanBeSetAndReset) {

@@ -21,7 +21,7 @@
 #include "app/analysis/analysis_plots.h"
 #include "app/analysis/analysis_report.h"
 #include "app/analysis/analysis_tables.h"
-#include "app/analysis/coverage_setup.h"
+#include "app/analysis/coverage_geometry.h"
 #include "app/analysis/coverage_verdict.h"
 #include "app/analysis/map_smoothing.h"
 #include "app/analysis/report_views.h"
@@ -31,12 +31,9 @@
 #include "app/paraview/paraview_script.h"
 #include "app/render_module.h"
 #include "app/report_errors.h"
-#include "common/random.h"
 #include "contact/dent.h"
 #include "geometry/mesh_checks.h"
-#include "model/facet_reach.h"
 #include "model/model.h"
-#include "model/shot_cavity.h"
 #include "output/atomic_file.h"
 #include "output/impact_csv_writer.h"
 #include "output/markdown_html.h"
@@ -123,8 +120,9 @@ double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& 
 }
 
 // The analysis of component ci (c its description) as the log starts streaming.
-ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* cavity, const ComponentDesc& c, const SceneDescription& scene,
+ComponentAnalysis analysis_of(CoverageGeometry& geometry, std::size_t ci, const ComponentDesc& c, const SceneDescription& scene,
                               double shot_mass, double target) {
+    const Model& model = *geometry.model();
     ComponentAnalysis a;
     a.name = c.name;
     a.index = ci;
@@ -136,7 +134,7 @@ ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* ca
     a.region_histograms.assign(a.regions.size(), ImpactHistograms{});
     a.region_curves.assign(a.regions.size(), {});
     // Coverage counts only the samples a shot can reach, outside excluded regions.
-    a.coverage = part_coverage(model, ci, cavity, scene, a.regions, target);
+    a.coverage = part_coverage(geometry, ci, target);
     if (a.coverage) {
         a.yield_stress_pa = part_yield_stress(scene, ci);
         const CoverageMap& map = a.coverage->map();
@@ -145,8 +143,7 @@ ComponentAnalysis analysis_of(const Model& model, std::size_t ci, ShotCavity* ca
             const std::int64_t n = map.samples_of_triangle(t);
             a.reach[t] = n > 0 ? static_cast<double>(a.coverage->classes().reachable_samples(t)) / static_cast<double>(n) : 0.0;
         }
-        a.unreachable =
-            find_unreachable_area(map, a.coverage->classes(), a.regions, reach_test(model, ci, cavity), model.min_shot_radius_m);
+        a.unreachable = geometry.part(ci)->unreachable;
     }
     const MaterialDesc* m = find_material(scene.materials, c.material);
     if (c.almen)
@@ -384,21 +381,21 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     AnalysisWindow window = window_of(options, duration, scene);
 
     // The model: the logged components' meshes, and which of their facets the shot can reach.
-    const std::shared_ptr<const Model> model =
-        options.model && options.model->resolved_scene_yaml == resolved_scene_yaml(scene) ? options.model : compile_model(scene);
+    // The run's own, with the coverage geometry it computed while it stepped, when it is of this
+    // scene; else compiled afresh, the geometry computed here.
+    const bool own_model = options.model && options.model->resolved_scene_yaml == resolved_scene_yaml(scene);
+    const std::shared_ptr<const Model> model = own_model ? options.model : compile_model(scene);
+    std::shared_ptr<CoverageGeometry> geometry = own_model && options.geometry && options.geometry->model() == model
+                                                     ? options.geometry
+                                                     : std::make_shared<CoverageGeometry>(model, nullptr, false);
     whole_turns(window, logged_turn_s(*model, scene));
-    std::unique_ptr<ShotCavity> cavity;
-    if (model->sonotrode >= 0) {
-        Random rng(model->seed);
-        cavity = std::make_unique<ShotCavity>(*model, rng);
-    }
     std::vector<ComponentAnalysis> parts;
     std::vector<std::string> names;
     const double shot_mass = mean_shot_mass_kg(scene.shot);  // each impact brings its own (accumulate)
     for (std::size_t ci = 0; ci < scene.components.size(); ++ci) {
         const ComponentDesc& c = scene.components[ci];
         if (!is_logged(scene, c)) continue;
-        parts.push_back(analysis_of(*model, ci, cavity.get(), c, scene, shot_mass, window.target_coverage));
+        parts.push_back(analysis_of(*geometry, ci, c, scene, shot_mass, window.target_coverage));
         start_smoothing(parts.back(), scene, c, dir, options.smoothing_radius, std::min(1.0, window.length_s() / duration));
         names.push_back(c.name);
     }

@@ -6,12 +6,10 @@
 #include <limits>
 
 #include "analysis/impact_stream.h"
-#include "app/analysis/coverage_setup.h"
+#include "app/analysis/coverage_geometry.h"
 #include "common/float_limits.h"
 #include "common/input_error.h"
-#include "common/random.h"
 #include "contact/dent.h"
-#include "model/shot_cavity.h"
 
 namespace peensim {
 
@@ -29,17 +27,12 @@ struct CoverageWatch::Part {
     }
 };
 
-CoverageWatch::CoverageWatch(const Model& model, const std::string& resume_log) : model_(model) {
+CoverageWatch::CoverageWatch(CoverageGeometry& geometry, const std::string& resume_log) : model_(*geometry.model()) {
+    const Model& model = model_;
     const auto start = std::chrono::steady_clock::now();
     const SceneDescription& scene = model.description;
     target_ = scene.process.until_coverage.value_or(0.98);
     part_of_component_.assign(model.components.size(), -1);
-    // The shot's cavity as the analysis builds it, so that reach (and so coverage) is the analysis'.
-    std::unique_ptr<ShotCavity> cavity;
-    if (model.sonotrode >= 0) {
-        Random rng(model.seed);
-        cavity = std::make_unique<ShotCavity>(model, rng);
-    }
     const std::vector<std::string>& of = scene.process.until_coverage_of;
     for (std::size_t ci = 0; ci < model.components.size(); ++ci) {
         const Component& c = model.components[ci];
@@ -62,7 +55,7 @@ CoverageWatch::CoverageWatch(const Model& model, const std::string& resume_log) 
             }
             if (part->watched.empty()) continue;
         }
-        part->coverage = part_coverage(model, ci, cavity.get(), scene, part->regions, target_);
+        part->coverage = part_coverage(geometry, ci, target_);  // as the analysis counts it
         part->yield_stress_pa = part_yield_stress(scene, ci);
         // A region without peened area (excluded, or out of reach) can never be reached: not waited for.
         std::erase_if(part->watched, [&](int a) {

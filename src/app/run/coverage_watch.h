@@ -1,5 +1,5 @@
 // `peensim run --until-coverage` (scene `process.until_coverage`): keeps the coverage of the logged
-// parts as the analysis counts it (app/analysis/coverage_setup.h), dent by dent as the run logs its
+// parts as the analysis counts it (app/analysis/coverage_geometry.h), dent by dent as the run logs its
 // impacts (in the log's time order, whichever replica made them), and says when every watched area
 // reached the target: the run ends at the first restart point after that. Brute force instead of a forecast: the reference every forecast
 // is checked against, and the answer for whoever can afford the simulation. A resumed run rebuilds the coverage from its impact log up to
@@ -13,6 +13,7 @@
 
 #include "analysis/coverage_progress.h"
 #include "analysis/regions.h"
+#include "app/analysis/coverage_geometry.h"
 #include "engine/impact_record.h"
 #include "model/model.h"
 
@@ -27,9 +28,10 @@ struct WatchedArea {
 
 class CoverageWatch final {
 public:
-    // model: the run's (its description's process.until_coverage set); resume_log: the partial
-    // impact log of a resumed run ("" for a fresh one), read up to its end.
-    CoverageWatch(const Model& model, const std::string& resume_log);
+    // geometry: the run's (its model's description has process.until_coverage set), whose parts'
+    // coverage it counts; resume_log: the partial impact log of a resumed run ("" for a fresh
+    // one), read up to its end.
+    CoverageWatch(CoverageGeometry& geometry, const std::string& resume_log);
     ~CoverageWatch();
 
     // The dents of impacts logged now, at their times in the log.

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "app/analysis/analyze_job.h"
+#include "app/analysis/coverage_geometry.h"
 #include "app/check/setup_checks.h"
 #include "app/checkpoint/checkpoint.h"
 #include "app/checkpoint/checkpoint_cadence.h"
@@ -103,7 +104,7 @@ public:
         if (model_->description.process.until_coverage) {
             // Coverage from the dents logged so far (a resumed run's), then as they come.
             coverage_watch_ = std::make_unique<CoverageWatch>(
-                *model_, options_.resume ? (fs::path(dir_) / kImpactCsvPartialFileName).string() : std::string());
+                *coverage_geometry_, options_.resume ? (fs::path(dir_) / kImpactCsvPartialFileName).string() : std::string());
             if (coverage_watch_->done()) {
                 err_ << "note: the coverage target was reached before this resumed run's checkpoint\n";
             }
@@ -171,8 +172,9 @@ private:
     }
 
     void start(SetupCheck& setup) {
-        // The cavity (up to ~8 M cells) is only for placing the shot: freed once they are placed.
-        const std::unique_ptr<ShotCavity> cavity = std::move(setup.cavity);
+        // The cavity (up to ~8 M cells) places the shot, then goes to the coverage geometry (freed
+        // once that is computed), or is freed once they are placed.
+        std::unique_ptr<ShotCavity> cavity = std::move(setup.cavity);
         const std::size_t logged = static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), [](int s) { return s >= 0; }));
         if (options_.resume) {
             Checkpoint c = load_checkpoint(checkpoint_path());
@@ -209,6 +211,10 @@ private:
             speeds_.assign(logged, SpeedHistogram());
         }
         logged_impacts_ = writer_->rows_written();
+        // What the coverage watch and the analysis need of the parts' geometry, computed on a
+        // thread of its own while the run steps (coverage_geometry.h).
+        if (options_.analyze || model_->description.process.until_coverage)
+            coverage_geometry_ = std::make_shared<CoverageGeometry>(model_, std::move(cavity), true);
     }
 
     // The animation, when the scene asks for one (or --render) and --no-render does not forbid it.
@@ -537,6 +543,7 @@ private:
         if (options_.analyze) {
             AnalyzeOptions analysis;
             analysis.model = model_;
+            analysis.geometry = coverage_geometry_;
             const int code = analyze_job(dir_, out_, err_, analysis);
             if (code != kExitOk) {
                 err_ << "error: the run finished (its outputs are complete) but its analysis failed; fix the cause above and run "
@@ -564,9 +571,10 @@ private:
     std::vector<int> slots_;
     std::unique_ptr<Simulation> sim_;
     std::unique_ptr<ImpactCsvWriter> writer_;
-    std::unique_ptr<FrameSink> recorder_;              // only when rendering (the module is loaded then)
-    std::unique_ptr<ShotSeriesRecorder> shot_series_;  // only when the scene asks (output.shot_positions)
-    std::unique_ptr<CoverageWatch> coverage_watch_;    // only when running until coverage
+    std::unique_ptr<FrameSink> recorder_;                  // only when rendering (the module is loaded then)
+    std::unique_ptr<ShotSeriesRecorder> shot_series_;      // only when the scene asks (output.shot_positions)
+    std::shared_ptr<CoverageGeometry> coverage_geometry_;  // when the run analyses itself or runs until coverage
+    std::unique_ptr<CoverageWatch> coverage_watch_;        // only when running until coverage
     std::vector<SpeedHistogram> speeds_;
     // --replicas (fresh run): the other replicas' loads until the pilot plans them, then their runs.
     std::vector<InitialShots> replica_shots_;

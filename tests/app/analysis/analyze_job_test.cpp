@@ -13,6 +13,7 @@
 
 #include "analysis/impact_log_reader.h"
 #include "app/analysis/analyze_job.h"
+#include "app/analysis/coverage_geometry.h"
 #include "app/run/run_job.h"
 #include "model/model.h"
 #include "output/atomic_file.h"
@@ -149,7 +150,8 @@ TEST(AnalyzeJob, AnInterruptedRunIsAnalysedWithANote) {
     EXPECT_NE(text.find("left out"), std::string::npos);
 }
 
-// A run hands its own model to its analysis (the meshes are not loaded, nor the BVHs built, twice):
+// A run hands its own model to its analysis (the meshes are not loaded, nor the BVHs built, twice),
+// and the coverage geometry it computed on a thread of its own while it stepped:
 // the tables are byte for byte those a later `peensim analyze` writes from the directory alone,
 // and a model of another scene is never taken for the directory's.
 TEST(AnalyzeJob, ARunsOwnAnalysisEqualsALaterOneAndNoOtherModelIsUsed) {
@@ -170,8 +172,9 @@ TEST(AnalyzeJob, ARunsOwnAnalysisEqualsALaterOneAndNoOtherModelIsUsed) {
     expect_tables_as_by_run("a later analyze");
     AnalyzeOptions other;
     other.model = compile_model(parse_scene_file(std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml"));
+    other.geometry = std::make_shared<CoverageGeometry>(other.model, nullptr, false);
     ASSERT_EQ(analyze_job(dir.path.string(), out, err, other), kExitOk) << err.str();
-    expect_tables_as_by_run("given the gear's model");
+    expect_tables_as_by_run("given the gear's model and its coverage geometry");
 }
 
 TEST(AnalyzeJob, NoPartAndNotARunAreClearErrors) {

@@ -1,0 +1,104 @@
+#include "app/analysis/coverage_geometry.h"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <utility>
+
+#include "analysis/coverage_progress.h"
+#include "analysis/part_coverage.h"
+#include "analysis/regions.h"
+#include "common/parallel_chunks.h"
+#include "common/random.h"
+#include "model/facet_reach.h"
+#include "scene/shot_mix.h"
+
+namespace peensim {
+
+double part_yield_stress(const SceneDescription& scene, std::size_t ci) {
+    for (const MaterialDesc& m : scene.materials)
+        if (m.name == scene.components[ci].material) return m.yield_stress_pa.value_or(0.0);
+    return 0.0;
+}
+
+CoverageGeometry::CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, bool background)
+    : model_(std::move(model)), cavity_(std::move(cavity)) {
+    parts_.resize(model_->components.size());
+    if (!background) return;
+    thread_ = std::thread([this] {
+        // Only on cores the run leaves idle: the run's pace (its wall time per simulated second,
+        // which the report extrapolates) stays its own. The helpers of its passes inherit this.
+        const sched_param idle{};
+        pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
+        chunk_cancel = &cancel_;
+        std::exception_ptr failure;
+        try {
+            compute();
+        } catch (const ChunksCancelled&) {
+        } catch (...) {
+            failure = std::current_exception();
+        }
+        const std::lock_guard<std::mutex> lock(mutex_);
+        failure_ = failure;
+        done_ = true;
+        done_changed_.notify_all();
+    });
+}
+
+CoverageGeometry::~CoverageGeometry() {
+    cancel_ = true;
+    if (thread_.joinable()) thread_.join();
+}
+
+void CoverageGeometry::compute() {
+    const Model& model = *model_;
+    const SceneDescription& scene = model.description;
+    if (!cavity_ && model.sonotrode >= 0) {
+        Random rng(model.seed);
+        cavity_ = std::make_unique<ShotCavity>(model, rng);
+    }
+    for (std::size_t ci = 0; ci < scene.components.size(); ++ci) {
+        throw_if_chunks_cancelled();
+        const double yield = part_yield_stress(scene, ci);
+        if (!is_logged(scene, scene.components[ci]) || !(yield > 0.0)) continue;
+        const TriangleMesh& mesh = *model.components[ci].mesh;
+        auto part = std::make_unique<PartCoverageGeometry>();
+        part->map =
+            part_coverage_map(mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot), scene.shot.density_kg_per_m3, yield);
+        const RegionSet regions(mesh, scene.components[ci].regions);
+        const ReachTest reach = reach_test(model, ci, cavity_.get());
+        const double R = model.min_shot_radius_m;  // the smallest shot of a mix reaches furthest
+        part->classes = SampleClasses(*part->map, mesh, regions, reach, R, R / kReachProbesPerRadius);
+        throw_if_chunks_cancelled();
+        part->unreachable = find_unreachable_area(*part->map, part->classes, regions, reach, R);
+        parts_[ci] = std::move(part);
+    }
+    cavity_.reset();  // up to ~8 M cells, of no more use
+}
+
+void CoverageGeometry::wait() {
+    if (!thread_.joinable()) {
+        // Computed here, once.
+        if (!done_) {
+            compute();
+            done_ = true;
+        }
+        return;
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_changed_.wait(lock, [this] { return done_; });
+    if (failure_) std::rethrow_exception(failure_);
+}
+
+const PartCoverageGeometry* CoverageGeometry::part(std::size_t ci) {
+    wait();
+    return ci < parts_.size() ? parts_[ci].get() : nullptr;
+}
+
+std::unique_ptr<CoverageProgress> part_coverage(CoverageGeometry& geometry, std::size_t ci, double target) {
+    const PartCoverageGeometry* part = geometry.part(ci);
+    if (part == nullptr) return nullptr;
+    return std::make_unique<CoverageProgress>(std::make_unique<CoverageMap>(*part->map), part->classes, target);
+}
+
+}  // namespace peensim
