@@ -20,6 +20,7 @@
 #include "analysis/surface_cells.h"
 #include "analysis/surface_kernel.h"
 #include "common/float_limits.h"
+#include "common/parallel_chunks.h"
 #include "geometry/mesh_checks.h"
 
 namespace peensim {
@@ -161,12 +162,14 @@ public:
     // from the batches in use but `left_out` (-1: none); +inf: never; 0: already.
     double span_to(std::size_t a, double remaining_m2, int left_out) const {
         const std::vector<AreaTerm>& terms = terms_[a];
-        moments_.resize(terms.size());
+        // Scratch of its own on every thread (the areas' spans are found on every core).
+        thread_local std::vector<std::array<double, kSeriesTerms>> moments;
+        moments.resize(terms.size());
         double never = 0.0, now = 0.0;  // m2: uncovered with no impact within h; uncovered now
         for (std::size_t k = 0; k < terms.size(); ++k) {
-            moments_[k] = term_moments(terms[k], left_out);
+            moments[k] = term_moments(terms[k], left_out);
             now += terms[k].m2;
-            if (!(moments_[k][0] > 0.0)) never += terms[k].m2;
+            if (!(moments[k][0] > 0.0)) never += terms[k].m2;
         }
         if (now <= remaining_m2) return 0.0;
         if (never >= remaining_m2) return kInf;
@@ -175,7 +178,7 @@ public:
             double u = 0.0;
             slope = 0.0;
             for (std::size_t k = 0; k < terms.size(); ++k) {
-                const auto& m = moments_[k];
+                const auto& m = moments[k];
                 const double kept = terms[k].m2 * exp_of_minus(series(m, s));
                 u += kept;
                 slope -= kept * series_slope(m, s);
@@ -432,39 +435,33 @@ private:
     std::size_t uncovered_cells_ = 0;
     CubeRuns grid_;
     std::vector<std::uint32_t> grid_cells_;
-    mutable std::vector<std::array<double, kSeriesTerms>> moments_;  // scratch of span_to
 };
 
-// The surface's cells for each kernel radius h, from as few binnings of the samples as may be
-// (surface_cells.h): the cells of side h / kForecastCellsPerRadius are made of whole fine cells,
-// binned for the first h and again for an h whose cells they do not make up exactly (the 2 h of
-// the smoothing bias never bins again).
+// The surface's cells for each kernel radius h: the samples binned at side h / kForecastCellsPerRadius
+// for each h tried, and the cells of 2 h (the smoothing bias) joined 2 x 2 x 2 from those of h (the
+// cubes nest exactly), without another pass over the samples. (Binning at an eighth of that side,
+// to make up later radii from the same fine cells, paid only for 2 h: the radii come from a
+// formula, no later one was a whole multiple of the fine side, and every pass walked 8^3 times the
+// cells.)
 class CellsForRadius {
 public:
     CellsForRadius(const CoverageProgress& progress, const TriangleMesh& mesh, const EdgeLines& edges, const ReachBoundary& boundary)
         : progress_(progress), mesh_(mesh), edges_(edges), boundary_(boundary) {}
 
-    SurfaceCells at(double radius_m) {
+    // Valid until the next call.
+    const SurfaceCells& at(double radius_m) {
         const double side = radius_m / kForecastCellsPerRadius;
-        const auto whole = [&] { return fine_ ? static_cast<int>(std::floor(side / fine_->side)) : 0; };
-        if (whole() < 1 || fine_->side * whole() != side) {
-            // Fine cells of at least kSamplesPerFineCell sample spacings (finer would only cost),
-            // a power of two to a cell so that they make up 2 h's exactly.
-            int split = kFineCellsPerCell;
-            while (split > 1 && side / split < kSamplesPerFineCell * progress_.map().spacing()) split /= 2;
-            fine_.emplace(progress_, mesh_, edges_, boundary_, side / split);
-        }
-        return fine_->coarsened(whole());
+        if (binned_ && binned_->side == side) return *binned_;
+        if (binned_ && 2.0 * binned_->side == side) return joined_.emplace(binned_->coarsened(2));
+        return binned_.emplace(progress_, mesh_, edges_, boundary_, side);
     }
 
 private:
-    static constexpr int kFineCellsPerCell = 8;
-    static constexpr double kSamplesPerFineCell = 4.0;
     const CoverageProgress& progress_;
     const TriangleMesh& mesh_;
     const EdgeLines& edges_;
     const ReachBoundary& boundary_;
-    std::optional<SurfaceCells> fine_;
+    std::optional<SurfaceCells> binned_, joined_;
 };
 
 // Which batches the rates come from: all but the first when that is a start-up transient (its
@@ -690,12 +687,12 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
                                    areas_of_class, areas);
             const double quantile = student_t_two_sided_quantile(0.05, std::max(1.0, used_count - 1.0));
             const double left_out_window = rate_window * (used_count - 1) / std::max(1, used_count);
-            std::vector<std::vector<double>> replicate(areas);  // per area: tau of each replicate (s)
-            for (std::size_t a = 0; a < areas; ++a) {
-                if (!pending(a) || !std::isfinite(spans[a])) continue;
+            std::vector<std::vector<double>> replicate(areas);  // per area: tau of each replicate (s), an area a chunk
+            for_each_chunk(areas, [&](std::size_t a) {
+                if (!pending(a) || !std::isfinite(spans[a])) return;
                 for (int b = 0; b < batches; ++b)
                     if (used[static_cast<std::size_t>(b)]) replicate[a].push_back(field.span_to(a, remaining(a), b) * left_out_window);
-            }
+            });
             // The run's own noise about each forecast (see "The run's own noise"), as a standard
             // deviation of the crossing time (s).
             std::vector<double> process_sd(areas, 0.0);

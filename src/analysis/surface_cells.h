@@ -4,12 +4,11 @@
 // line with impacts, and those near the reach boundary, grouped apart by their distance to it.
 //
 // Why coarsened. Binning walks every coverage sample (51 million on the shipped gear), and near
-// edge lines and the reach boundary each one is placed by its distance: seconds a binning. The
-// forecast asks for cells of side h / 4 for each kernel radius h it tries, and for 2 h. So the
-// samples are binned once into fine cells, and each radius's cells are made of whole fine cells:
-// coarsened(m) joins m x m x m of them (the cubes nest exactly), which costs a pass over the fine
-// cells only. Every sum is the same as binning the samples directly at side m x side, up to the
-// order of the additions.
+// edge lines and the reach boundary each one is placed by its distance: a quarter of a second a
+// binning. The forecast asks for cells of side h / 4 for each kernel radius h it tries, and for
+// 2 h: coarsened(2) joins 2 x 2 x 2 cells of h's (the cubes nest exactly), which costs a pass over
+// the cells only. Every sum is the same as binning the samples directly at side 2 x side, up to
+// the order of the additions.
 // Pure computation: no file I/O.
 #pragma once
 

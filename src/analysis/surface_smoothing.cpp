@@ -7,6 +7,7 @@
 #include "analysis/coverage_map.h"
 #include "analysis/row_runs.h"
 #include "analysis/surface_kernel.h"
+#include "common/parallel_chunks.h"
 
 namespace peensim {
 
@@ -288,11 +289,16 @@ SmoothedSums SurfaceSmoothing::at(const Vec3& x, const Vec3& n) const {
 }
 
 std::vector<SmoothedSums> SurfaceSmoothing::at_triangles() const {
+    // Each triangle's own sums: on every core, the same on any number.
     std::vector<SmoothedSums> sums(triangle_normal_.size());
-    for (std::size_t t = 0; t < sums.size(); ++t) {
-        const Vec3 centroid = (mesh_->corner(t, 0) + mesh_->corner(t, 1) + mesh_->corner(t, 2)) / 3.0;
-        sums[t] = at(centroid, triangle_normal_[t]);
-    }
+    constexpr std::size_t kChunks = 64;
+    for_each_chunk(kChunks, [&](std::size_t c) {
+        const auto [begin, end] = chunk_range(sums.size(), kChunks, c);
+        for (std::size_t t = begin; t < end; ++t) {
+            const Vec3 centroid = (mesh_->corner(t, 0) + mesh_->corner(t, 1) + mesh_->corner(t, 2)) / 3.0;
+            sums[t] = at(centroid, triangle_normal_[t]);
+        }
+    });
     return sums;
 }
 

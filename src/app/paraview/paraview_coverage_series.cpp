@@ -38,6 +38,7 @@ void CoverageSeries::before(double time_s) {
 void CoverageSeries::finish() {
     if (steps_ <= 0) return;
     while (next_ <= steps_) write_step(next_++);
+    wait_for_writer();
     for (const ComponentAnalysis& a : parts_) {
         if (!a.coverage) continue;
         std::vector<TimeStepFile> files;
@@ -49,16 +50,31 @@ void CoverageSeries::finish() {
 void CoverageSeries::write_step(int j) {
     for (const ComponentAnalysis& a : parts_) {
         if (!a.coverage) continue;
-        const TriangleMesh& mesh = *a.mesh;
-        PolyDataLayout layout{mesh.vertices.size(),  PolyDataLayout::Cells::triangles,
-                              mesh.triangle_count(), {},
-                              {{"coverage"}},        {{"time_s", std::vector<double>{step_time(j)}}}};
-        PolyDataWriter out((dir_ / step_file(a, j)).string(), std::move(layout));
-        out.add_points(mesh.vertices);
-        for (const auto& tri : mesh.triangles) out.add_triangle(tri);
-        for (std::size_t t = 0; t < mesh.triangle_count(); ++t) out.add(a.coverage->shown_triangle_coverage(t));
-        out.finish();
+        // The coverage now, written on the writer's thread while the log streams on (a step of a
+        // 500k-triangle part is ~20 MB); one step in flight at a time.
+        std::vector<double> coverage(a.mesh->triangle_count());
+        for (std::size_t t = 0; t < coverage.size(); ++t) coverage[t] = a.coverage->shown_triangle_coverage(t);
+        wait_for_writer();
+        writing_ = std::async(std::launch::async, [this, &a, j, coverage = std::move(coverage)] {
+            const TriangleMesh& mesh = *a.mesh;
+            PolyDataLayout layout{mesh.vertices.size(),  PolyDataLayout::Cells::triangles,
+                                  mesh.triangle_count(), {},
+                                  {{"coverage"}},        {{"time_s", std::vector<double>{step_time(j)}}}};
+            PolyDataWriter out((dir_ / step_file(a, j)).string(), std::move(layout));
+            out.add_points(mesh.vertices);
+            for (const auto& tri : mesh.triangles) out.add_triangle(tri);
+            for (const double c : coverage) out.add(c);
+            out.finish();
+        });
     }
+}
+
+void CoverageSeries::wait_for_writer() {
+    if (writing_.valid()) writing_.get();
+}
+
+CoverageSeries::~CoverageSeries() {
+    if (writing_.valid()) writing_.wait();  // an analysis that failed: its writer is done before parts_ go
 }
 
 }  // namespace peensim

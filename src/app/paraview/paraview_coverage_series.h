@@ -14,6 +14,7 @@
 #pragma once
 
 #include <filesystem>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ public:
     // window: the simulated time analysed (s); steps: N (0: no series).
     CoverageSeries(const std::filesystem::path& analysis_dir, const std::vector<ComponentAnalysis>& parts, const AnalysisWindow& window,
                    int steps);
+    ~CoverageSeries();
+    CoverageSeries(const CoverageSeries&) = delete;
+    CoverageSeries& operator=(const CoverageSeries&) = delete;
 
     // Before the impact at time_s is added: writes every step whose time is not after it.
     void before(double time_s);
@@ -36,12 +40,14 @@ public:
 private:
     double step_time(int j) const { return j == steps_ ? to_s_ : from_s_ + (to_s_ - from_s_) * j / steps_; }
     void write_step(int j);
+    void wait_for_writer();  // rethrows what the last step's writing threw
 
     std::filesystem::path dir_;
     const std::vector<ComponentAnalysis>& parts_;
     double from_s_, to_s_;
     int steps_;
     int next_ = 0;
+    std::future<void> writing_;  // the last step's file
 };
 
 }  // namespace peensim
