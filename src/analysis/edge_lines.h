@@ -63,6 +63,11 @@ public:
         return run == nullptr ? Cube{} : Cube{run->first, run->second};
     }
     double inverse_side() const { return inverse_side_; }  // 1/m
+    // f(key) for the key (cube_key) of every cube of the grid that lists a line, in no order.
+    template <class F>
+    void for_each_cube(F&& f) const {
+        grid_.for_each([&](std::uint64_t key, const auto&) { f(key); });
+    }
 
     // The (at most) two nearest lines of `cube` (the one holding x) whose largest dent reaches x;
     // returns how many.

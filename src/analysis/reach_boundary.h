@@ -66,6 +66,12 @@ public:
     // voxel by voxel only in those cubes.
     bool sources_near(const Vec3& x) const { return !source_cubes_.empty() && source_cubes_.contains(cube_key_of(x, inverse_reach_)); }
 
+    // f(key) for the key (cube_key, side reach_m) of every cube sources_near is true in, in no order.
+    template <class F>
+    void for_each_source_cube(F&& f) const {
+        source_cubes_.for_each([&](std::uint64_t key, std::uint8_t) { f(key); });
+    }
+
     double reach_m() const { return reach_m_; }
     double inverse_side() const { return inverse_side_; }  // 1/m, of the voxels
 

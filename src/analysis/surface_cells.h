@@ -22,6 +22,7 @@
 #include "analysis/coverage_progress.h"
 #include "analysis/edge_lines.h"
 #include "analysis/reach_boundary.h"
+#include "common/flat_key_map.h"
 #include "common/vec.h"
 #include "geometry/triangle_mesh.h"
 
@@ -76,8 +77,10 @@ struct SurfaceCells {
 
 private:
     // The samples of the triangles [first_triangle, end_triangle) only.
+    // near_cells: per cube of side side_m (cube_key, no facing), whether a cube of side reach that
+    // meets it lists an edge line (1) or holds a boundary source (2).
     SurfaceCells(const CoverageProgress& progress, const TriangleMesh& mesh, const EdgeLines& edges, const ReachBoundary& boundary,
-                 double side_m, std::size_t first_triangle, std::size_t end_triangle);
+                 double side_m, const FlatKeyMap<std::uint8_t>& near_cells, std::size_t first_triangle, std::size_t end_triangle);
 };
 
 }  // namespace peensim

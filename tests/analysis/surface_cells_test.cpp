@@ -1,6 +1,7 @@
 // The coverage forecast's cells (surface_cells.h): fine cells joined m x m x m hold what binning
-// the samples at m times their side holds (the forecast bins once and joins for every radius), and
-// the binning gives the same bytes on any number of threads.
+// the samples at m times their side holds (the forecast joins h's cells for 2 h), for cells finer
+// and far coarser than the edge lines' and the boundary's cubes, and the binning gives the same
+// bytes on any number of threads.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -124,6 +125,26 @@ TEST(SurfaceCells, FineCellsJoinedHoldWhatBinningAtTheirSideHolds) {
     EXPECT_GT(direct.reach_groups.size(), 10u);
     EXPECT_GT(direct.edge_groups.size(), 100u);
     const double area = 6 * 0.02 * 0.02;  // m2, the scale of every area sum (and x 0.01 m of the moments: looser)
+    expect_same_sums(joined.cells, direct.cells, area, "cells");
+    expect_same_sums(joined.uncovered, direct.uncovered, area, "uncovered");
+    expect_same_sums(joined.reach_groups, direct.reach_groups, area, "reach groups");
+    expect_same_sums(joined.edge_groups, direct.edge_groups, area, "edge groups");
+}
+
+// Cells smaller than the cubes of side reach that list the edge lines and the boundary's sources,
+// and cells 40 times larger (a short run's forecast: few impacts, a kernel centimetres wide): each
+// cell that such a cube meets is cut cube by cube, wherever the cubes fall in it.
+TEST(SurfaceCells, CellsFinerOrFarCoarserThanTheReachHoldTheSame) {
+    const PeenedCube p;
+    const EdgeLines edges(p.cube, p.impacts, kReach);
+    const ReachBoundary boundary(*p.progress, p.cube, kReach);
+    const double fine = 0.1e-3;  // m, below kReach
+    ASSERT_LT(fine, kReach);
+    const Contents joined = contents_of(SurfaceCells(*p.progress, p.cube, edges, boundary, fine).coarsened(50));
+    const Contents direct = contents_of(SurfaceCells(*p.progress, p.cube, edges, boundary, 50.0 * fine));
+    EXPECT_GT(direct.reach_groups.size(), 10u);
+    EXPECT_GT(direct.edge_groups.size(), 100u);
+    const double area = 6 * 0.02 * 0.02;  // m2
     expect_same_sums(joined.cells, direct.cells, area, "cells");
     expect_same_sums(joined.uncovered, direct.uncovered, area, "uncovered");
     expect_same_sums(joined.reach_groups, direct.reach_groups, area, "reach groups");
