@@ -1,7 +1,6 @@
 #include "app/run/coverage_watch.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -29,7 +28,6 @@ struct CoverageWatch::Part {
 
 CoverageWatch::CoverageWatch(CoverageGeometry& geometry, const std::string& resume_log) : model_(*geometry.model()) {
     const Model& model = model_;
-    const auto start = std::chrono::steady_clock::now();
     const SceneDescription& scene = model.description;
     target_ = scene.process.until_coverage.value_or(0.98);
     part_of_component_.assign(model.components.size(), -1);
@@ -79,7 +77,6 @@ CoverageWatch::CoverageWatch(CoverageGeometry& geometry, const std::string& resu
                     add_dent(static_cast<std::size_t>(i.component), i.row.point_m, i.row.vn_in_m_per_s, i.row.shot_diameter_m,
                              i.row.time_s);
     }
-    setup_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 CoverageWatch::~CoverageWatch() = default;

@@ -40,7 +40,6 @@ public:
 
     double target() const { return target_; }
     std::vector<WatchedArea> areas() const;
-    double setup_seconds() const { return setup_s_; }  // s of wall time to build the coverage maps
 
 private:
     struct Part;
@@ -50,7 +49,6 @@ private:
     double target_ = 0.98;
     std::vector<std::unique_ptr<Part>> parts_;
     std::vector<int> part_of_component_;  // per component: index into parts_ (-1: not watched)
-    double setup_s_ = 0.0;
 };
 
 }  // namespace peensim
