@@ -21,7 +21,11 @@ inline std::atomic<unsigned>& analysis_threads_wanted() {
     return wanted;
 }
 inline void set_analysis_threads(unsigned threads) { analysis_threads_wanted() = threads; }  // 0: one per core
+// Work done ahead beside a run (the analysis's geometry while it steps) takes only the cores the
+// run leaves: its thread sets this, and its calls use that many threads (0: as above).
+inline thread_local unsigned chunk_threads_here = 0;
 inline unsigned analysis_threads() {
+    if (chunk_threads_here > 0) return chunk_threads_here;
     const unsigned wanted = analysis_threads_wanted();
     return wanted > 0 ? wanted : std::max(1u, std::thread::hardware_concurrency());
 }

@@ -84,6 +84,11 @@ TEST(ParallelChunks, ACancelledThreadStartsNoMoreChunks) {
 TEST(ParallelChunks, TheThreadCountCanBeSetAndReset) {
     set_analysis_threads(3);
     EXPECT_EQ(analysis_threads(), 3u);
+    chunk_threads_here = 5;  // this thread's own: work done ahead beside a run
+    EXPECT_EQ(analysis_threads(), 5u);
+    std::thread([] { EXPECT_EQ(analysis_threads(), 3u); }).join();
+    chunk_threads_here = 0;
+    EXPECT_EQ(analysis_threads(), 3u);
     set_analysis_threads(0);
     EXPECT_GE(analysis_threads(), 1u);
 }

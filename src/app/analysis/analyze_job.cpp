@@ -387,7 +387,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     const std::shared_ptr<const Model> model = own_model ? options.model : compile_model(scene);
     std::shared_ptr<CoverageGeometry> geometry = own_model && options.geometry && options.geometry->model() == model
                                                      ? options.geometry
-                                                     : std::make_shared<CoverageGeometry>(model, nullptr, false);
+                                                     : std::make_shared<CoverageGeometry>(model, nullptr, 0);
     whole_turns(window, logged_turn_s(*model, scene));
     std::vector<ComponentAnalysis> parts;
     std::vector<std::string> names;

@@ -1,8 +1,5 @@
 #include "app/analysis/coverage_geometry.h"
 
-#include <pthread.h>
-#include <sched.h>
-
 #include <utility>
 
 #include "analysis/coverage_progress.h"
@@ -21,15 +18,17 @@ double part_yield_stress(const SceneDescription& scene, std::size_t ci) {
     return 0.0;
 }
 
-CoverageGeometry::CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, bool background)
+CoverageGeometry::CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads)
     : model_(std::move(model)), cavity_(std::move(cavity)) {
     parts_.resize(model_->components.size());
-    if (!background) return;
-    thread_ = std::thread([this] {
-        // Only on cores the run leaves idle: the run's pace (its wall time per simulated second,
-        // which the report extrapolates) stays its own. The helpers of its passes inherit this.
-        const sched_param idle{};
-        pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
+    if (background_threads == 0) return;
+    thread_ = std::thread([this, background_threads] {
+        // On the cores the run leaves idle only, at the run's own priority: the run's pace (its
+        // wall time per simulated second, which the report extrapolates) stays its own, and a run
+        // stopped while other processes keep the cores busy is not kept waiting for it. (At
+        // SCHED_IDLE it took no time from the run, but a killed sweep's run waited seconds for a
+        // starved thread to reach the end of its chunk.)
+        chunk_threads_here = background_threads;
         chunk_cancel = &cancel_;
         std::exception_ptr failure;
         try {

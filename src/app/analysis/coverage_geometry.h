@@ -2,7 +2,7 @@
 // sample's reach and regions (sample classes), and the area out of the shot's reach. They depend
 // on the assembly and the shot alone, and on the shipped gear cost about as much as its 5 s of
 // stepping (a reach probe is a distance query to every component), so a run computes them once,
-// on a thread of its own while it steps, and hands them to its coverage watch and its analysis;
+// on the cores it leaves idle while it steps, and hands them to its coverage watch and its analysis;
 // before, each of those built the shot's cavity and probed the reach again after the run.
 //
 // The same figures whoever computes them, on any number of threads: the cavity is the one shot
@@ -42,10 +42,9 @@ struct PartCoverageGeometry {
 class CoverageGeometry {
 public:
     // The logged parts of `model`. cavity: the shot placement's (null: built here when the model
-    // has a sonotrode). background: computed from now on a thread of its own, scheduled only on
-    // cores nothing else wants (SCHED_IDLE; its passes on every core), else when first asked
-    // for, on this one.
-    CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, bool background);
+    // has a sonotrode). background_threads: computed from now on a thread of its own, its passes
+    // on that many threads (the cores a run leaves idle); 0: when first asked for, on this one.
+    CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads);
     // Stops the thread between chunks of its work (an interrupted run does not wait for it) and
     // joins it.
     ~CoverageGeometry();

@@ -213,8 +213,12 @@ private:
         logged_impacts_ = writer_->rows_written();
         // What the coverage watch and the analysis need of the parts' geometry, computed on a
         // thread of its own while the run steps (coverage_geometry.h).
-        if (options_.analyze || model_->description.process.until_coverage)
-            coverage_geometry_ = std::make_shared<CoverageGeometry>(model_, std::move(cavity), true);
+        if (options_.analyze || model_->description.process.until_coverage) {
+            // On the cores the run's own threads (its replicas') leave, if any; else when asked.
+            const unsigned cores = std::thread::hardware_concurrency();
+            const auto busy = static_cast<unsigned>(options_.replicas > 1 && !options_.replica_ranks ? options_.replicas : 1);
+            coverage_geometry_ = std::make_shared<CoverageGeometry>(model_, std::move(cavity), cores > busy ? cores - busy : 0);
+        }
     }
 
     // The animation, when the scene asks for one (or --render) and --no-render does not forbid it.

@@ -172,7 +172,7 @@ TEST(AnalyzeJob, ARunsOwnAnalysisEqualsALaterOneAndNoOtherModelIsUsed) {
     expect_tables_as_by_run("a later analyze");
     AnalyzeOptions other;
     other.model = compile_model(parse_scene_file(std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml"));
-    other.geometry = std::make_shared<CoverageGeometry>(other.model, nullptr, false);
+    other.geometry = std::make_shared<CoverageGeometry>(other.model, nullptr, 0);
     ASSERT_EQ(analyze_job(dir.path.string(), out, err, other), kExitOk) << err.str();
     expect_tables_as_by_run("given the gear's model and its coverage geometry");
 }

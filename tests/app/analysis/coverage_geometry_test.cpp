@@ -19,8 +19,8 @@ std::shared_ptr<const Model> shipped_gear() {
 
 TEST(CoverageGeometry, OnItsOwnThreadItEqualsTheOneComputedWhenAsked) {
     const std::shared_ptr<const Model> model = shipped_gear();
-    CoverageGeometry ahead(model, nullptr, true);
-    CoverageGeometry asked(model, nullptr, false);
+    CoverageGeometry ahead(model, nullptr, 2);
+    CoverageGeometry asked(model, nullptr, 0);
     std::size_t parts = 0;
     for (std::size_t ci = 0; ci < model->components.size(); ++ci) {
         const PartCoverageGeometry* a = ahead.part(ci);
@@ -65,7 +65,7 @@ TEST(CoverageGeometry, DestroyedBeforeItIsDoneItStopsAndLeavesNoThread) {
     const std::shared_ptr<const Model> model = shipped_gear();
     const std::size_t before = threads_now();
     for (int k = 0; k < 3; ++k) {
-        CoverageGeometry ahead(model, nullptr, true);
+        CoverageGeometry ahead(model, nullptr, 2);
         EXPECT_GT(threads_now(), before);
     }
     EXPECT_EQ(threads_now(), before);
