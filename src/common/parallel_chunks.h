@@ -22,10 +22,13 @@ inline std::atomic<unsigned>& analysis_threads_wanted() {
 }
 inline void set_analysis_threads(unsigned threads) { analysis_threads_wanted() = threads; }  // 0: one per core
 // Work done ahead beside a run (the analysis's geometry while it steps) takes only the cores the
-// run leaves: its thread sets this, and its calls use that many threads (0: as above).
-inline thread_local unsigned chunk_threads_here = 0;
+// run leaves: its thread points this at its own count, and its calls use that many threads (0: as
+// above). The count may grow while a call runs (once the run is done and waits for that work), and
+// the call then takes on more threads at its next chunk.
+inline thread_local const std::atomic<unsigned>* chunk_threads_here = nullptr;
 inline unsigned analysis_threads() {
-    if (chunk_threads_here > 0) return chunk_threads_here;
+    if (chunk_threads_here != nullptr)
+        if (const unsigned here = chunk_threads_here->load(std::memory_order_relaxed); here > 0) return here;
     const unsigned wanted = analysis_threads_wanted();
     return wanted > 0 ? wanted : std::max(1u, std::thread::hardware_concurrency());
 }
@@ -43,30 +46,38 @@ inline void throw_if_chunks_cancelled() {
 
 // Calls f(chunk) once for every chunk in 0 .. chunks - 1, on up to `threads` threads (this one
 // among them), each chunk on one thread, in no particular order; returns when all are done and
-// rethrows the first exception one threw (the chunks not yet started are skipped).
+// rethrows the first exception one threw (the chunks not yet started are skipped). threads 0:
+// analysis_threads(), asked again after each chunk this thread runs, so that a call begun on the
+// cores a run left idle takes on the others when the run gives them up.
 template <class F>
-void for_each_chunk(std::size_t chunks, F&& f, unsigned threads = analysis_threads()) {
+void for_each_chunk(std::size_t chunks, F&& f, unsigned threads = 0) {
     const std::atomic<bool>* const cancel = chunk_cancel;  // the caller's: the helpers have their own
     std::atomic<std::size_t> next{0};
     std::exception_ptr failure;
     std::mutex failure_mutex;
-    const auto work = [&] {
-        for (std::size_t c = next++; c < chunks; c = next++) {
-            try {
-                if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) throw ChunksCancelled();
-                f(c);
-            } catch (...) {
-                const std::lock_guard<std::mutex> lock(failure_mutex);
-                if (!failure) failure = std::current_exception();
-                next = chunks;  // start no more
-            }
+    const auto run = [&](std::size_t c) {
+        try {
+            if (cancel != nullptr && cancel->load(std::memory_order_relaxed)) throw ChunksCancelled();
+            f(c);
+        } catch (...) {
+            const std::lock_guard<std::mutex> lock(failure_mutex);
+            if (!failure) failure = std::current_exception();
+            next = chunks;  // start no more
         }
     };
+    const auto work = [&] {
+        for (std::size_t c = next++; c < chunks; c = next++) run(c);
+    };
     std::vector<std::thread> helpers;
-    const std::size_t extra = std::min<std::size_t>(threads, chunks) > 1 ? std::min<std::size_t>(threads, chunks) - 1 : 0;
-    helpers.reserve(extra);
-    for (std::size_t i = 0; i < extra; ++i) helpers.emplace_back(work);
-    work();
+    const auto hire = [&] {
+        const std::size_t wanted = std::min<std::size_t>(threads > 0 ? threads : analysis_threads(), chunks);
+        while (helpers.size() + 1 < wanted && next < chunks) helpers.emplace_back(work);
+    };
+    hire();
+    for (std::size_t c = next++; c < chunks; c = next++) {
+        run(c);
+        if (threads == 0) hire();
+    }
     for (std::thread& h : helpers) h.join();
     if (failure) std::rethrow_exception(failure);
 }

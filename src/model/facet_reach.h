@@ -29,7 +29,10 @@ std::vector<double> reachable_fractions(const Model& model, std::size_t ci, Shot
 
 // The reach of component ci's surface in the assembly at t = 0 as a test of (point, triangle, shot
 // radius): point (m) and triangle in the component's own frame, shot radius in m. The model and
-// the cavity must outlive it.
+// the cavity must outlive it. It answers as shot_fits_beside, but a point near the last one the
+// calling thread asked about on the same triangle may take that one's answer without a distance
+// query, when the shot centre's clearance there leaves room (exactly: the distance moves no more
+// than the centre). Safe from several threads at once.
 std::function<bool(const Vec3& point_m, std::size_t triangle, double shot_radius_m)> reach_test(const Model& model, std::size_t ci,
                                                                                                 ShotCavity* cavity);
 

@@ -13,6 +13,7 @@
 #include "analysis/regions.h"
 #include "analysis/sample_classes.h"
 #include "common/input_error.h"
+#include "common/parallel_chunks.h"
 #include "geometry/box_mesh.h"
 #include "geometry/cylinder_mesh.h"
 #include "geometry/mesh_builder.h"
@@ -97,6 +98,44 @@ void expect_twenty_equal_teeth(const TriangleMesh& gear, double area_tolerance) 
 TEST(AnalysisRegions, ShippedGearTeethTileTheGearWithEqualTeeth) {
     // assets/gear.stl stores float32 coordinates (relative rounding ~6e-8 each).
     expect_twenty_equal_teeth(load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/gear.stl", 1e-3), 1e-6);
+}
+
+// The shares are tallied on every core, chunk by chunk of triangles, and joined in triangle order:
+// the same set, to the bit, on one thread and on several (teeth, a bore mask and a facing entry
+// that overlap them, so that candidates found by a corner only and masks both occur).
+TEST(AnalysisRegions, TheSameSetToTheBitOnOneThreadAndOnSeveral) {
+    const TriangleMesh gear = load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/gear.stl", 1e-3);
+    RegionDesc bore = named("bore");
+    bore.distance_to_axis = AxisDistanceCondition{Vec3::Zero(), Vec3::UnitY(), 0.0, 0.00501};
+    bore.exclude = true;
+    RegionDesc up = named("up");
+    up.facing = FacingCondition{Vec3::UnitY(), 30 * deg};
+    const std::vector<RegionDesc> entries = {gear_teeth(), bore, up};
+    set_analysis_threads(1);
+    const RegionSet one(gear, entries);
+    set_analysis_threads(3);
+    const RegionSet three(gear, entries);
+    set_analysis_threads(0);
+    ASSERT_EQ(one.size(), three.size());
+    std::vector<std::uint32_t> a, b;
+    for (std::size_t r = 0; r < one.size(); ++r) {
+        EXPECT_EQ(one.area_m2(r), three.area_m2(r)) << one.name(r);
+        ASSERT_EQ(one.shares(r).size(), three.shares(r).size()) << one.name(r);
+        for (std::size_t k = 0; k < one.shares(r).size(); ++k) {
+            EXPECT_EQ(one.shares(r)[k].triangle, three.shares(r)[k].triangle);
+            EXPECT_EQ(one.shares(r)[k].fraction, three.shares(r)[k].fraction);
+        }
+    }
+    for (std::size_t t = 0; t < gear.triangle_count(); ++t) {
+        EXPECT_EQ(one.excluded_fraction(t), three.excluded_fraction(t)) << t;
+        EXPECT_EQ(one.dominant_region(t), three.dominant_region(t)) << t;
+        const Vec3 c = centroid(gear, t);
+        one.regions_at(c, t, a);
+        three.regions_at(c, t, b);
+        EXPECT_EQ(a, b) << t;
+    }
+    EXPECT_GT(one.area_m2(20), 0.0);  // the bore is there
+    EXPECT_GT(one.area_m2(21), 0.0);  // and the faces facing up
 }
 
 TEST(AnalysisRegions, GeneratedGearTeethAreEqualToRoundOff) {

@@ -1,8 +1,13 @@
 // Work in a fixed number of chunks on any number of threads: every chunk once, the chunks' ranges
-// tile the items, a failure reaches the caller, a cancelled thread starts no more.
+// tile the items, a failure reaches the caller, a cancelled thread starts no more,
+// a call takes on the threads its count gains.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -84,13 +89,51 @@ TEST(ParallelChunks, ACancelledThreadStartsNoMoreChunks) {
 TEST(ParallelChunks, TheThreadCountCanBeSetAndReset) {
     set_analysis_threads(3);
     EXPECT_EQ(analysis_threads(), 3u);
-    chunk_threads_here = 5;  // this thread's own: work done ahead beside a run
+    std::atomic<unsigned> here{5};
+    chunk_threads_here = &here;  // this thread's own: work done ahead beside a run
     EXPECT_EQ(analysis_threads(), 5u);
     std::thread([] { EXPECT_EQ(analysis_threads(), 3u); }).join();
-    chunk_threads_here = 0;
+    here = 0;  // the run gave its cores up: the default again
+    EXPECT_EQ(analysis_threads(), 3u);
+    chunk_threads_here = nullptr;
     EXPECT_EQ(analysis_threads(), 3u);
     set_analysis_threads(0);
     EXPECT_GE(analysis_threads(), 1u);
+}
+
+// A call begun on one thread takes on more at its next chunk once its count grows (the run it
+// worked beside is done), and still runs each chunk once.
+TEST(ParallelChunks, ACallTakesOnTheThreadsItsCountGainsWhileItRuns) {
+    std::atomic<unsigned> here{1};
+    chunk_threads_here = &here;
+    std::mutex mutex;
+    std::set<std::thread::id> threads;
+    std::vector<int> ran(24, 0);
+    for_each_chunk(ran.size(), [&](std::size_t c) {
+        if (c == 0) here = 3;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        const std::lock_guard<std::mutex> lock(mutex);
+        threads.insert(std::this_thread::get_id());
+        ++ran[c];
+    });
+    chunk_threads_here = nullptr;
+    EXPECT_EQ(std::count(ran.begin(), ran.end(), 1), 24);
+    EXPECT_GE(threads.size(), 2u);
+    EXPECT_LE(threads.size(), 3u);
+    // An explicit count stays what it is.
+    here = 1;
+    chunk_threads_here = &here;
+    threads.clear();
+    for_each_chunk(
+        8,
+        [&](std::size_t c) {
+            if (c == 0) here = 4;
+            const std::lock_guard<std::mutex> lock(mutex);
+            threads.insert(std::this_thread::get_id());
+        },
+        1);
+    chunk_threads_here = nullptr;
+    EXPECT_EQ(threads.size(), 1u);
 }
 
 }  // namespace

@@ -19,16 +19,16 @@ double part_yield_stress(const SceneDescription& scene, std::size_t ci) {
 }
 
 CoverageGeometry::CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads)
-    : model_(std::move(model)), cavity_(std::move(cavity)) {
+    : model_(std::move(model)), cavity_(std::move(cavity)), threads_(background_threads) {
     parts_.resize(model_->components.size());
     if (background_threads == 0) return;
-    thread_ = std::thread([this, background_threads] {
+    thread_ = std::thread([this] {
         // On the cores the run leaves idle only, at the run's own priority: the run's pace (its
         // wall time per simulated second, which the report extrapolates) stays its own, and a run
         // stopped while other processes keep the cores busy is not kept waiting for it. (At
         // SCHED_IDLE it took no time from the run, but a killed sweep's run waited seconds for a
         // starved thread to reach the end of its chunk.)
-        chunk_threads_here = background_threads;
+        chunk_threads_here = &threads_;
         chunk_cancel = &cancel_;
         std::exception_ptr failure;
         try {
@@ -84,6 +84,7 @@ void CoverageGeometry::wait() {
         }
         return;
     }
+    threads_ = 0;  // the waiting thread's core is free: the passes take it at their next chunk
     std::unique_lock<std::mutex> lock(mutex_);
     done_changed_.wait(lock, [this] { return done_; });
     if (failure_) std::rethrow_exception(failure_);

@@ -51,8 +51,9 @@ public:
     CoverageGeometry(const CoverageGeometry&) = delete;
     CoverageGeometry& operator=(const CoverageGeometry&) = delete;
 
-    // Component ci's (nullptr when it is not logged or has no yield stress). Waits for the thread;
-    // rethrows what the computation threw.
+    // Component ci's (nullptr when it is not logged or has no yield stress). Waits for the thread,
+    // which from then on uses every core (whoever waits has given up its own); rethrows what the
+    // computation threw.
     const PartCoverageGeometry* part(std::size_t ci);
 
     const std::shared_ptr<const Model>& model() const { return model_; }
@@ -65,6 +66,7 @@ private:
     std::unique_ptr<ShotCavity> cavity_;  // freed once the parts are computed
     std::vector<std::unique_ptr<PartCoverageGeometry>> parts_;
     std::atomic<bool> cancel_{false};
+    std::atomic<unsigned> threads_;  // of the thread's passes (0: every core)
     std::mutex mutex_;
     std::condition_variable done_changed_;
     bool done_ = false;
