@@ -109,8 +109,8 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
     std::vector<Voxels> parts(kBoundaryChunks);
     for_each_chunk(kBoundaryChunks, [&](std::size_t c) {
         Voxels& part = parts[c];
-        const auto voxel_of = [&](const Vec3& p, bool reachable, const Vec3& n) -> Voxel& {
-            const std::uint64_t k = key(p, reachable);
+        // The number in this chunk of the voxel of key k, added (p its first sample) if new.
+        const auto voxel_at = [&](std::uint64_t k, const Vec3& p, bool reachable, const Vec3& n) -> std::uint32_t {
             const auto [index, added] = part.index.try_emplace(k, static_cast<std::uint32_t>(part.voxels.size()));
             if (added) {
                 Voxel v;
@@ -120,7 +120,10 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
                 part.voxels.push_back(v);
                 part.keys.push_back(k);
             }
-            return part.voxels[*index];
+            return *index;
+        };
+        const auto voxel_of = [&](const Vec3& p, bool reachable, const Vec3& n) -> Voxel& {
+            return part.voxels[voxel_at(key(p, reachable), p, reachable, n)];
         };
         const auto [begin, end] = chunk_range(triangles, kBoundaryChunks, c);
         map.for_each_sample_row(
@@ -150,12 +153,22 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
                                               v.point += (mean - v.point) * (static_cast<double>(part_run) / static_cast<double>(v.count));
                                               return;
                                           }
+                                          // Sample by sample; the voxels' map is asked only when
+                                          // the key changes (a reachable voxel met again is left as
+                                          // it is; a source's number is kept for its mean).
+                                          std::uint64_t reachable_key = FlatKeyMap<std::uint32_t>::kEmpty;
+                                          std::uint64_t source_key = FlatKeyMap<std::uint32_t>::kEmpty;
+                                          std::uint32_t source = 0;
                                           for (std::int64_t j = i + k; j < i + k + part_run; ++j) {
                                               const Vec3 x = first + static_cast<double>(j) * step;
                                               if (classes.info(classes.class_of(t, index + j)).reachable) {
-                                                  if (reachable_here) voxel_of(x, true, n);
+                                                  if (!reachable_here) continue;
+                                                  const std::uint64_t here = key(x, true);
+                                                  if (here != reachable_key) voxel_at(here, x, true, n), reachable_key = here;
                                               } else if (sources_here) {
-                                                  Voxel& v = voxel_of(x, false, n);
+                                                  const std::uint64_t here = key(x, false);
+                                                  if (here != source_key) source = voxel_at(here, x, false, n), source_key = here;
+                                                  Voxel& v = part.voxels[source];
                                                   v.point += (x - v.point) / static_cast<double>(++v.count);
                                               }
                                           }

@@ -165,7 +165,7 @@ void write_jet_csv(const fs::path& path, const ComponentAnalysis& c) {
 
 }  // namespace
 
-void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, const AnalysisWindow& window) {
+void write_triangle_tables(const fs::path& dir, const ComponentAnalysis& c, const AnalysisWindow& window) {
     const double duration = window.length_s();
     // The two per-triangle files, the largest (a 500k-triangle part: a second each), side by side.
     std::future<void> vtp =
@@ -177,6 +177,10 @@ void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, con
         throw;
     }
     vtp.get();
+}
+
+void write_component_tables(const fs::path& dir, const ComponentAnalysis& c, const AnalysisWindow& window) {
+    const double duration = window.length_s();
     write_histograms_csv(dir / (c.name + "_histograms.csv"), c);
     if (c.coverage) write_curve_csv(dir / (c.name + "_coverage.csv"), c, window);
     if (!c.regions.empty()) write_regions_csv(dir / (c.name + "_regions.csv"), c, duration);

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <map>
 #include <memory>
@@ -461,8 +462,20 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
 
     for (ComponentAnalysis& a : parts) {
         a.points->finish();
-        finish_forecast(a, window);
-        finish_smoothing(a);
+        // The smoothed maps and their per-triangle files need nothing of the forecast: they are
+        // made beside it, on the core its serial steps leave idle (all of them only read the
+        // coverage; the forecast writes only its own members).
+        auto maps = std::async(std::launch::async, [&a, &adir, &window] {
+            finish_smoothing(a);
+            write_triangle_tables(adir, a, window);
+        });
+        try {
+            finish_forecast(a, window);
+        } catch (...) {
+            maps.wait();  // it reads a: done before the error leaves
+            throw;
+        }
+        maps.get();
         write_component_tables(adir, a, window);
     }
     ReportContext context;
@@ -472,8 +485,13 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     context.finished = finished;
     context.truncated = stream.truncated();
     read_summary_figures(dir, context);
+    // The plots (gnuplot's processes) are drawn while the render module draws the slowest regions.
+    std::string plot_note;
+    auto plots =
+        std::async(std::launch::async, [&] { return write_analysis_plots(adir.string(), names, window.target_coverage, plot_note); });
     draw_slowest_region(*model, parts, adir, context);
-    context.pngs = write_analysis_plots(adir.string(), names, window.target_coverage, context.plot_note);
+    context.pngs = plots.get();
+    context.plot_note = plot_note;
     const std::map<std::string, std::string> views = report_views(parts, window, three_js_library_dir(), context);
     if (!context.view_note.empty()) out << "analysis: " << context.view_note << "\n";
     const std::string report = analysis_report(scene, parts, context);
