@@ -234,6 +234,25 @@ RegionSet::RegionSet(const TriangleMesh& mesh, const std::vector<RegionDesc>& re
     if (std::none_of(entries_.begin(), entries_.end(), [](const RegionDesc& r) { return r.exclude; })) excluded_.clear();
 }
 
+RegionSet::RegionSet(const RegionSet& other)
+    : mesh_(other.mesh_),
+      entries_(other.entries_),
+      group_of_entry_(other.group_of_entry_),
+      normals_(other.normals_),
+      areas_(other.areas_),
+      regions_(other.regions_),
+      candidate_start_(other.candidate_start_),
+      candidates_(other.candidates_),
+      excluded_(other.excluded_),
+      dominant_(other.dominant_) {
+    for (Selected& s : regions_) s.entry = entries_.data() + (s.entry - other.entries_.data());
+}
+
+RegionSet& RegionSet::operator=(const RegionSet& other) {
+    if (this != &other) *this = RegionSet(other);
+    return *this;
+}
+
 std::vector<int> RegionSet::triangles(std::size_t r) const {
     std::vector<int> out;
     out.reserve(regions_[r].shares.size());

@@ -38,11 +38,13 @@ public:
     // scene file) for a `group` the mesh does not have.
     RegionSet(const TriangleMesh& mesh, const std::vector<RegionDesc>& regions);
     RegionSet() = default;
-    // Its regions point into its own copy of the entries: moved, never copied.
+    // Its regions point into its own copy of the entries: a move keeps them (the vector's buffer
+    // moves with it), a copy points its regions at its own copy. (A copy is far cheaper than the
+    // tally: the check, the coverage geometry and the analysis share one set.)
     RegionSet(RegionSet&&) = default;
     RegionSet& operator=(RegionSet&&) = default;
-    RegionSet(const RegionSet&) = delete;
-    RegionSet& operator=(const RegionSet&) = delete;
+    RegionSet(const RegionSet& other);
+    RegionSet& operator=(const RegionSet& other);
 
     std::size_t size() const { return regions_.size(); }
     bool empty() const { return regions_.empty(); }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <string>
 
@@ -136,6 +137,37 @@ TEST(AnalysisRegions, TheSameSetToTheBitOnOneThreadAndOnSeveral) {
     }
     EXPECT_GT(one.area_m2(20), 0.0);  // the bore is there
     EXPECT_GT(one.area_m2(21), 0.0);  // and the faces facing up
+}
+
+// A copy (the setup check's set, handed to the coverage geometry and the analysis) is the same
+// set and stands alone: its regions read its own entries once the original is gone.
+TEST(AnalysisRegions, ACopyIsTheSameSetAndOutlivesItsOriginal) {
+    const TriangleMesh gear = load_mesh(std::string(PEENSIM_SOURCE_DIR) + "/assets/gear.stl", 1e-3);
+    RegionDesc bore = named("bore");
+    bore.distance_to_axis = AxisDistanceCondition{Vec3::Zero(), Vec3::UnitY(), 0.0, 0.00501};
+    bore.exclude = true;
+    auto original = std::make_unique<RegionSet>(gear, std::vector<RegionDesc>{gear_teeth(), bore});
+    const RegionSet reference(gear, {gear_teeth(), bore});
+    RegionSet copy(*original);
+    RegionSet assigned;
+    assigned = *original;
+    original.reset();
+    for (const RegionSet* set : {&copy, &assigned}) {
+        ASSERT_EQ(set->size(), reference.size());
+        for (std::size_t r = 0; r < reference.size(); ++r) {
+            EXPECT_EQ(set->name(r), reference.name(r));
+            EXPECT_EQ(set->entry(r).name, reference.entry(r).name);
+            EXPECT_EQ(set->excluded(r), reference.excluded(r));
+            EXPECT_EQ(set->area_m2(r), reference.area_m2(r));
+        }
+        std::vector<std::uint32_t> a, b;
+        for (std::size_t t = 0; t < gear.triangle_count(); t += 7) {
+            const Vec3 c = centroid(gear, t);
+            set->regions_at(c, t, a);
+            reference.regions_at(c, t, b);
+            EXPECT_EQ(a, b) << t;
+        }
+    }
 }
 
 TEST(AnalysisRegions, GeneratedGearTeethAreEqualToRoundOff) {

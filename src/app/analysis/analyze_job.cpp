@@ -130,7 +130,9 @@ ComponentAnalysis analysis_of(CoverageGeometry& geometry, std::size_t ci, const 
     a.role = c.role;
     a.mesh = model.components[ci].mesh;
     a.fields = std::make_unique<TriangleFields>(*a.mesh, shot_mass);
-    a.regions = RegionSet(*a.mesh, c.regions);
+    // The geometry's (the setup check's) when it has the part, else tallied here.
+    const PartCoverageGeometry* part = geometry.part(ci);
+    a.regions = part != nullptr ? part->regions : RegionSet(*a.mesh, c.regions);
     a.region_tallies.assign(a.regions.size(), RegionTally{});
     a.region_histograms.assign(a.regions.size(), ImpactHistograms{});
     a.region_curves.assign(a.regions.size(), {});
@@ -144,7 +146,7 @@ ComponentAnalysis analysis_of(CoverageGeometry& geometry, std::size_t ci, const 
             const std::int64_t n = map.samples_of_triangle(t);
             a.reach[t] = n > 0 ? static_cast<double>(a.coverage->classes().reachable_samples(t)) / static_cast<double>(n) : 0.0;
         }
-        a.unreachable = geometry.part(ci)->unreachable;
+        a.unreachable = part->unreachable;
     }
     const MaterialDesc* m = find_material(scene.materials, c.material);
     if (c.almen)

@@ -18,8 +18,9 @@ double part_yield_stress(const SceneDescription& scene, std::size_t ci) {
     return 0.0;
 }
 
-CoverageGeometry::CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads)
-    : model_(std::move(model)), cavity_(std::move(cavity)), threads_(background_threads) {
+CoverageGeometry::CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads,
+                                   std::vector<std::optional<RegionSet>> regions)
+    : model_(std::move(model)), cavity_(std::move(cavity)), given_regions_(std::move(regions)), threads_(background_threads) {
     parts_.resize(model_->components.size());
     if (background_threads == 0) return;
     thread_ = std::thread([this] {
@@ -64,7 +65,11 @@ void CoverageGeometry::compute() {
         auto part = std::make_unique<PartCoverageGeometry>();
         part->map =
             part_coverage_map(mesh, smallest_diameter_m(scene.shot), largest_diameter_m(scene.shot), scene.shot.density_kg_per_m3, yield);
-        const RegionSet regions(mesh, scene.components[ci].regions);
+        if (ci < given_regions_.size() && given_regions_[ci])
+            part->regions = std::move(*given_regions_[ci]);
+        else
+            part->regions = RegionSet(mesh, scene.components[ci].regions);
+        const RegionSet& regions = part->regions;
         const ReachTest reach = reach_test(model, ci, cavity_.get());
         const double R = model.min_shot_radius_m;  // the smallest shot of a mix reaches furthest
         part->classes = SampleClasses(*part->map, mesh, regions, reach, R, R / kReachProbesPerRadius);
@@ -73,6 +78,7 @@ void CoverageGeometry::compute() {
         parts_[ci] = std::move(part);
     }
     cavity_.reset();  // up to ~8 M cells, of no more use
+    given_regions_.clear();
 }
 
 void CoverageGeometry::wait() {

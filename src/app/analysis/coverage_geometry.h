@@ -16,11 +16,13 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
 #include "analysis/coverage_map.h"
 #include "analysis/coverage_progress.h"
+#include "analysis/regions.h"
 #include "analysis/sample_classes.h"
 #include "analysis/unreachable_area.h"
 #include "model/model.h"
@@ -34,6 +36,7 @@ double part_yield_stress(const SceneDescription& scene, std::size_t ci);
 
 // One logged part's: absent (map null) when its material has no yield stress (no dents).
 struct PartCoverageGeometry {
+    RegionSet regions;  // the scene's regions of the part
     std::unique_ptr<CoverageMap> map;
     SampleClasses classes;
     UnreachableFindings unreachable;
@@ -44,7 +47,10 @@ public:
     // The logged parts of `model`. cavity: the shot placement's (null: built here when the model
     // has a sonotrode). background_threads: computed from now on a thread of its own, its passes
     // on that many threads (the cores a run leaves idle); 0: when first asked for, on this one.
-    CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads);
+    // regions: per component, the region sets the setup check built of these meshes (those not
+    // given are built here).
+    CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads,
+                     std::vector<std::optional<RegionSet>> regions = {});
     // Stops the thread between chunks of its work (an interrupted run does not wait for it) and
     // joins it.
     ~CoverageGeometry();
@@ -64,6 +70,7 @@ private:
 
     std::shared_ptr<const Model> model_;
     std::unique_ptr<ShotCavity> cavity_;  // freed once the parts are computed
+    std::vector<std::optional<RegionSet>> given_regions_;
     std::vector<std::unique_ptr<PartCoverageGeometry>> parts_;
     std::atomic<bool> cancel_{false};
     std::atomic<unsigned> threads_;  // of the thread's passes (0: every core)

@@ -6,17 +6,26 @@
 
 namespace peensim {
 
-std::vector<AssemblyIssue> region_issues(const Model& model) {
-    std::vector<AssemblyIssue> out;
+std::vector<std::optional<RegionSet>> component_regions(const Model& model) {
+    std::vector<std::optional<RegionSet>> out(model.components.size());
     for (std::size_t i = 0; i < model.components.size(); ++i) {
         const ComponentDesc& desc = model.description.components[i];
         if (desc.regions.empty()) continue;
-        RegionSet regions;
         try {
-            regions = RegionSet(*model.components[i].mesh, desc.regions);
+            out[i].emplace(*model.components[i].mesh, desc.regions);
         } catch (const InputError& e) {  // a group the mesh does not have: said with the component's path
             throw InputError(e.where(), component_field(i) + "." + e.field(), e.problem());
         }
+    }
+    return out;
+}
+
+std::vector<AssemblyIssue> region_issues(const Model& model, const std::vector<std::optional<RegionSet>>& sets) {
+    std::vector<AssemblyIssue> out;
+    for (std::size_t i = 0; i < sets.size(); ++i) {
+        if (!sets[i]) continue;
+        const RegionSet& regions = *sets[i];
+        const ComponentDesc& desc = model.description.components[i];
         for (std::size_t r = 0; r < regions.size(); ++r) {
             if (regions.area_m2(r) > 0.0) continue;
             out.push_back({false, regions.entry(r).where, component_field(i) + ".regions[" + regions.name(r) + "]",

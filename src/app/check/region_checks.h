@@ -5,13 +5,19 @@
 // it from an empty row of the report.
 #pragma once
 
+#include <optional>
 #include <vector>
 
+#include "analysis/regions.h"
 #include "model/assembly_checks.h"
 #include "model/model.h"
 
 namespace peensim {
 
-std::vector<AssemblyIssue> region_issues(const Model& model);
+// Per component, its region set (none for a component without regions). Throws InputError for a
+// `group` its mesh does not have, with the component's path.
+std::vector<std::optional<RegionSet>> component_regions(const Model& model);
+
+std::vector<AssemblyIssue> region_issues(const Model& model, const std::vector<std::optional<RegionSet>>& regions);
 
 }  // namespace peensim

@@ -25,9 +25,10 @@ std::size_t report_setup_issues(const std::vector<AssemblyIssue>& issues, bool s
 }
 
 SetupCheck check_setup(const Model& model, bool strict, std::ostream& err, std::vector<AssemblyIssue>* found) {
-    SetupCheck s{Random(model.seed), nullptr, {}, 0};
+    SetupCheck s{Random(model.seed), nullptr, {}, 0, {}};
     s.warnings = report_setup_issues(plausibility_issues(model), strict, err);
-    s.warnings += report_setup_issues(region_issues(model), strict, err);
+    s.regions = component_regions(model);
+    s.warnings += report_setup_issues(region_issues(model, s.regions), strict, err);
     s.warnings += report_setup_issues(source_issues(model), strict, err);
     if (model.sonotrode >= 0) s.cavity = std::make_unique<ShotCavity>(model, s.rng);
     s.assembly = check_assembly(model, s.cavity.get());

@@ -7,8 +7,10 @@
 
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include "analysis/regions.h"
 #include "common/random.h"
 #include "model/assembly_checks.h"
 #include "model/model.h"
@@ -21,6 +23,7 @@ struct SetupCheck {
     std::unique_ptr<ShotCavity> cavity;  // null without a sonotrode (a scene fed by sources)
     AssemblyReport assembly;
     std::size_t warnings = 0;
+    std::vector<std::optional<RegionSet>> regions;  // per component (none without regions): the coverage geometry takes them
 };
 
 // found: if given, receives the assembly's issues before any is thrown (the check picture marks them).

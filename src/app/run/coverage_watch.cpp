@@ -38,7 +38,8 @@ CoverageWatch::CoverageWatch(CoverageGeometry& geometry, const std::string& resu
         auto part = std::make_unique<Part>();
         part->name = c.name;
         part->component = ci;
-        part->regions = RegionSet(*c.mesh, scene.components[ci].regions);
+        const PartCoverageGeometry* shared = geometry.part(ci);
+        part->regions = shared != nullptr ? shared->regions : RegionSet(*c.mesh, scene.components[ci].regions);
         // Every counted region (or the peened area without regions), unless names are given.
         if (of.empty()) {
             for (std::size_t r = 0; r < part->regions.size(); ++r)

@@ -217,7 +217,8 @@ private:
             // On the cores the run's own threads (its replicas') leave, if any; else when asked.
             const unsigned cores = std::thread::hardware_concurrency();
             const auto busy = static_cast<unsigned>(options_.replicas > 1 && !options_.replica_ranks ? options_.replicas : 1);
-            coverage_geometry_ = std::make_shared<CoverageGeometry>(model_, std::move(cavity), cores > busy ? cores - busy : 0);
+            coverage_geometry_ =
+                std::make_shared<CoverageGeometry>(model_, std::move(cavity), cores > busy ? cores - busy : 0, std::move(setup.regions));
         }
     }
 
