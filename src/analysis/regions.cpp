@@ -123,9 +123,9 @@ RegionSet::RegionSet(const TriangleMesh& mesh, const std::vector<RegionDesc>& re
     }
 
     // Every triangle's samples against every region: the shares, the excluded union, the
-    // candidates. Chunks of triangles on every core (on a 500k-triangle part, or a gear's 20
-    // sectors, a fifth of a second on one), each tallying its own triangles; then the tallies are
-    // joined in triangle order, so that the areas sum as one pass over the triangles sums them.
+    // candidates. Chunks of triangles on every core (on one, 0.15 s for the shipped gear's 20 teeth
+    // and bore, 0.45 s on its 500k-triangle version), each tallying its own triangles; then the
+    // tallies are joined in triangle order, so that the areas sum as one pass over them sums them.
     const double h = share_spacing(mesh);
     const std::size_t n_reg = regions_.size();
     struct Tally {
