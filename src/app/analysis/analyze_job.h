@@ -28,10 +28,10 @@ struct AnalyzeOptions {
     // The run's own model, when the run analyses itself: its meshes loaded, BVHs built and checks
     // done once, not again (on a 500k-triangle part about 1.5 s). Used only if the directory's
     // scene.resolved.yaml resolves to the same text; else the scene is compiled afresh.
-    std::shared_ptr<const Model> model;
+    std::shared_ptr<const Model> model{};
     // The run's coverage geometry of that model (coverage_geometry.h), computed while it stepped:
     // used with the model.
-    std::shared_ptr<CoverageGeometry> geometry;
+    std::shared_ptr<CoverageGeometry> geometry{};
 };
 
 int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options = {});

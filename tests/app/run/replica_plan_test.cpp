@@ -82,13 +82,18 @@ TEST(ReplicaPlan, RoundsTileTheRunKeepEachReplicasClockAndShiftByWholeTurns) {
             EXPECT_EQ(w.seed, replica_seed(7, k));
             EXPECT_NEAR(w.window_start_s(), run_s, 1e-12 * (1.0 + run_s)) << round << " " << k;
             // The slot's place, exactly where the last one ended.
-            if (round > 0 || k > 0) EXPECT_EQ(plan->slot_start_s(round, k), run_s) << round << " " << k;
+            if (round > 0 || k > 0) {
+                EXPECT_EQ(plan->slot_start_s(round, k), run_s) << round << " " << k;
+            }
             EXPECT_NEAR(plan->slot_end_s(round, k), w.window_end_s(), 1e-12 * (1.0 + run_s)) << round << " " << k;
-            if (round > 0 || k > 0) EXPECT_NEAR(w.run_to_s - w.log_from_s, plan->round_s, 1e-12) << round << " " << k;
-            if (own_s[static_cast<std::size_t>(k)] >= 0.0)  // on from where its last slot ended
+            if (round > 0 || k > 0) {
+                EXPECT_NEAR(w.run_to_s - w.log_from_s, plan->round_s, 1e-12) << round << " " << k;
+            }
+            if (own_s[static_cast<std::size_t>(k)] >= 0.0) {  // on from where its last slot ended
                 EXPECT_NEAR(w.log_from_s, own_s[static_cast<std::size_t>(k)], 1e-12 * (1.0 + run_s)) << round << " " << k;
-            else if (k > 0)  // its first: past the warm-up
+            } else if (k > 0) {  // its first: past the warm-up
                 EXPECT_GE(w.log_from_s, 0.3) << k;
+            }
             const double turns = w.shift_s / turn;  // the part's angle kept
             EXPECT_NEAR(turns, std::round(turns), 1e-9) << round << " " << k;
             EXPECT_GE(w.shift_s, 0.0);

@@ -67,7 +67,9 @@ void expect_one_log_of_slots(const fs::path& dir, const nlohmann::json& s) {
     std::uint64_t logged = 0;
     for (std::size_t i = 0; i < slots.size(); ++i) {
         logged += slots[i]["logged_impacts"].get<std::uint64_t>();
-        if (i > 0) EXPECT_EQ(slots[i]["start_s"].get<double>(), slots[i - 1]["end_s"].get<double>()) << i;
+        if (i > 0) {
+            EXPECT_EQ(slots[i]["start_s"].get<double>(), slots[i - 1]["end_s"].get<double>()) << i;
+        }
     }
     EXPECT_EQ(slots.back()["end_s"].get<double>(), s["simulated_time_s"].get<double>());
     const std::vector<double> t = times_in_log(dir / kImpactCsvFileName);
