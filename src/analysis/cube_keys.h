@@ -21,6 +21,13 @@ inline std::uint64_t cube_key(std::int64_t x, std::int64_t y, std::int64_t z, in
     return axis(x) | axis(y) << 20 | axis(z) << 40 | static_cast<std::uint64_t>(facing + 1) << 60;
 }
 
+// Coordinate k (0: x, 1: y, 2: z) of a cube_key's cube, for cubes within 2^19 of the origin (the
+// key keeps 20 bits, two's complement).
+inline std::int64_t cube_axis(std::uint64_t key, int k) {
+    const auto v = static_cast<std::int64_t>(key >> (20 * k) & 0xFFFFF);
+    return v >= 0x80000 ? v - 0x100000 : v;
+}
+
 // floor(x) as an integer, for finite x within the range of int64 (std::floor is a library call
 // on the baseline x86-64 instruction set, and the forecast bins tens of millions of samples).
 inline std::int64_t floor_to_int(double x) {

@@ -86,10 +86,10 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
     const auto next_to = [](const CubeSet& cubes) {
         CubeSet near;
         cubes.for_each([&](std::uint64_t key, std::uint8_t) {
-            const auto axis = [&](int k) { return static_cast<std::int64_t>(key >> (20 * k) & 0xFFFFF); };
+            const std::int64_t x = cube_axis(key, 0), y = cube_axis(key, 1), z = cube_axis(key, 2);
             for (std::int64_t dz = -1; dz <= 1; ++dz)
                 for (std::int64_t dy = -1; dy <= 1; ++dy)
-                    for (std::int64_t dx = -1; dx <= 1; ++dx) near.try_emplace(cube_key(axis(0) + dx, axis(1) + dy, axis(2) + dz), 1);
+                    for (std::int64_t dx = -1; dx <= 1; ++dx) near.try_emplace(cube_key(x + dx, y + dy, z + dz), 1);
         });
         return near;
     };

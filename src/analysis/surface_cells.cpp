@@ -53,12 +53,6 @@ std::vector<ReachGroup> reach_groups_of(const ReachSums& sums) {
 
 constexpr std::uint8_t kNearLines = 1, kNearSources = 2;
 
-// A cube coordinate of cube_key (20 bits, two's complement) as a number.
-std::int64_t cube_axis(std::uint64_t key, int k) {
-    const auto v = static_cast<std::int64_t>(key >> (20 * k) & 0xFFFFF);
-    return v >= 0x80000 ? v - 0x100000 : v;
-}
-
 // The cells of side `side` (m) met by a cube of side reach (m) that lists an edge line (kNearLines)
 // or holds a boundary source (kNearSources): only in those are a row's runs cut cube by cube. From
 // the cubes of side reach, each marking the cells it meets (widened by a hair against rounding):

@@ -14,15 +14,22 @@ namespace {
 
 constexpr double kClearanceFactor = 1.05;  // -, the probe centre's distance from the surface in shot radii
 
+// shot_fits_beside with `clear(centre, k)` deciding whether a shot centred at `centre` on side k
+// (0: along n, 1: against it) touches no component.
+template <class Clear>
+bool fits_beside(ShotCavity* cavity, const Component& c, const Vec3& x, const Vec3& n, double R, Clear&& clear) {
+    for (int k = 0; k < 2; ++k) {
+        if (k == 1 && c.solid) break;  // a solid's outside is the side its normals point to
+        const Vec3 centre = x + (k == 0 ? 1.0 : -1.0) * kClearanceFactor * R * n;
+        if ((cavity == nullptr || cavity->contains(centre)) && clear(centre, k)) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 bool shot_fits_beside(const Model& model, ShotCavity* cavity, const Component& c, const Vec3& x, const Vec3& n, double R) {
-    for (double side : {1.0, -1.0}) {
-        if (side < 0.0 && c.solid) break;  // a solid's outside is the side its normals point to
-        const Vec3 centre = x + side * kClearanceFactor * R * n;
-        if ((cavity == nullptr || cavity->contains(centre)) && clear_of_meshes(model, centre, R)) return true;
-    }
-    return false;
+    return fits_beside(cavity, c, x, n, R, [&](const Vec3& centre, int) { return clear_of_meshes(model, centre, R); });
 }
 
 std::vector<double> reachable_fractions(const Model& model, std::size_t ci, ShotCavity* cavity) {
@@ -115,13 +122,8 @@ std::function<bool(const Vec3&, std::size_t, double)> reach_test(const Model& mo
         thread_local ReachMemo memo;
         if (memo.test != id || memo.radius_m != R) memo = ReachMemo{id, R, {}};
         // As shot_fits_beside, with the anchors.
-        const Vec3 x = pose.to_world(p), n = pose.rotation * triangle_normal(*c.mesh, t);
-        for (int k = 0; k < 2; ++k) {
-            if (k == 1 && c.solid) break;  // a solid's outside is the side its normals point to
-            const Vec3 centre = x + (k == 0 ? 1.0 : -1.0) * kClearanceFactor * R * n;
-            if ((cavity == nullptr || cavity->contains(centre)) && clear_of_meshes_near(model, c, centre, R, memo.side[k])) return true;
-        }
-        return false;
+        return fits_beside(cavity, c, pose.to_world(p), pose.rotation * triangle_normal(*c.mesh, t), R,
+                           [&](const Vec3& centre, int k) { return clear_of_meshes_near(model, c, centre, R, memo.side[k]); });
     };
 }
 
