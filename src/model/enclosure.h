@@ -10,12 +10,17 @@
 // cells its surface touches. Shot are placed only in the cavity above the sonotrode.
 // Cells are half a shot radius (the requested size), coarser where that would take more than ~8 M
 // cells (small shot in a large assembly: 0.3 mm shot in the rod chamber took 356 M cells, 3.5 s
-// and 0.5 GB); a coarse grid reports only gaps of at least two cells. A shot centre hugging a wall
-// then lies in a cell the wall touches, which says nothing of its side: such a point is read from
-// the nearest free cell it sees along a straight path clear of every surface (checked exactly, by
-// the caller's clearance function), so the answer for a given point does not depend on the grid.
+// and 0.5 GB). In a coarse grid (cells wider than a shot) a gap a few shot wide may lie all in
+// cells the walls touch: the 15 mm gap over a 1 m cube under the chamber's lid (cells of 6.5 mm),
+// whose top face then read as out of every shot's reach (16.7 % of the part), or the 20 mm gap
+// under a 1.5 m cube over the sonotrode, read as a leak at the very point probed. So there a touched cell whose centre is clear of every
+// surface by a shot radius is free too, and two neighbours of which one is such a cell are joined only where the straight path between
+// their centres is clear by a shot radius (checked exactly). A shot centre hugging a wall then lies in a cell the wall touches, which says
+// nothing of its side: such a point is read from the nearest free cell it sees along a straight path clear of every surface (checked
+// exactly, by the caller's clearance function), so the answer for a given point does not depend on the grid.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -38,6 +43,9 @@ public:
 
     // True if p (world, m) is in free space enclosed by the assembly.
     bool inside(const Vec3& p) const;
+    // True if the grid can read p (world, m): a free cell holds it or it sees one (probe_cell). A
+    // point it cannot read (in a pocket finer than the cells) is neither inside nor outside.
+    bool reads(const Vec3& p) const;
 
     // The enclosed region p (world, m) lies in (a number >= 0, the same for every point of the
     // region), or -1 if p is not inside. A region is numbered (flood-filled) when first asked for.
@@ -47,9 +55,12 @@ public:
     bool in_region(const Vec3& p, int number) const;
 
     double cell_size() const { return grid_.cell_size(); }
+    // How many touched cells of a coarse grid are free at their centre (0 in a fine grid).
+    std::size_t free_centres() const { return free_centres_; }
 
     // A point (world, m) on a path of free cells from p to the outside, just outside the box
-    // [lo, hi] (typically the chamber's bounds): where the shot would leave. False if p is enclosed.
+    // [lo, hi] (typically the chamber's bounds): where the shot would leave. False if p is
+    // enclosed, or if the grid cannot read it (reads()).
     bool escape_point(const Vec3& p, const Vec3& lo, const Vec3& hi, Vec3& where) const;
 
 private:
@@ -59,11 +70,26 @@ private:
                static_cast<std::size_t>(i);
     }
     bool passable(int i, int j, int k) const { return grid_.level(i, j, k) >= passable_level_; }
-    // The free cell (level > 0) p is read from: its own, or the nearest free one within two cells
-    // that a straight path clear of every surface joins to it. False if none (or p off the grid).
+    // Free: untouched by any surface (level > 0), or touched with its centre clear (a coarse grid).
+    bool free_cell(int i, int j, int k) const {
+        return grid_.level(i, j, k) > 0 || (!centre_clearance_.empty() && centre_clearance_[index(i, j, k)] >= free_clearance_);
+    }
+    // Whether a shot centre passes between the centres of the face neighbours a and b, both free:
+    // always between untouched cells (as in a fine grid); else where the straight path is clear
+    // by a shot radius.
+    bool joined(const std::array<int, 3>& a, const std::array<int, 3>& b) const;
+    // Whether the straight path between the centres of the face neighbours a and b is clear of
+    // every surface by a shot radius (a Lipschitz bound from their centres' clearance, else traced).
+    bool passes(const std::array<int, 3>& a, const std::array<int, 3>& b) const;
+    // m, a lower bound of the clearance of cell (i, j, k)'s centre (an untouched cell's: half its diagonal).
+    double centre_clearance(int i, int j, int k) const;
+    // The free cell p is read from: its own, or the nearest free one within two cells that a
+    // straight path clear of every surface joins to it. False if none (or p off the grid).
     bool probe_cell(const Vec3& p, int& i, int& j, int& k) const;
-    bool segment_clear(const Vec3& a, const Vec3& b) const;
-    bool inside_cell(int i, int j, int k) const { return grid_.level(i, j, k) > 0 && label_[index(i, j, k)] != kOutside; }
+    // Whether every point of the segment ab lies farther than r (m) from every surface (r = 0:
+    // clear of them), by sphere tracing.
+    bool segment_clear(const Vec3& a, const Vec3& b, double r = 0.0) const;
+    bool inside_cell(int i, int j, int k) const { return free_cell(i, j, k) && label_[index(i, j, k)] != kOutside; }
 
     // Per cell: kOutside, kUnnumbered (inside, or a surface cell), or a region's number + kFirstRegion.
     static constexpr unsigned char kUnnumbered = 0, kOutside = 1, kFirstRegion = 2;
@@ -72,7 +98,13 @@ private:
 
     DistanceGate grid_;
     Clearance clearance_;
+    double shot_radius_ = 0.0;  // m
     int passable_level_ = 3;
+    // A coarse grid's touched cells: their centre's clearance (m, float, rounded down; -1 where
+    // unknown); empty in a fine grid, where no touched cell's centre can hold a shot.
+    std::vector<float> centre_clearance_;
+    float free_clearance_ = 0.0f;  // m, a centre at least this clear holds a shot
+    std::size_t free_centres_ = 0;
     std::vector<unsigned char> label_;
     unsigned char next_region_ = kFirstRegion;
 };

@@ -76,7 +76,7 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
     const double R = model.max_shot_radius_m;  // where a shot of any size of the mix fits (as placement)
     const SourceLocation sono_where = scene.components[static_cast<std::size_t>(model.sonotrode)].where;
     std::vector<int> scratch;
-    int roofed = 0;
+    int roofed = 0, unread = 0;
     std::vector<Vec3> covered_face;  // face points under a roof where no shot of radius R fits
     for (int k = 0; k < 256 && roofed < 64; ++k) {
         const Vec3 face = faces.sample(rng);
@@ -84,6 +84,12 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
         // Only points where a shot fits (a point hugging a wall may sit in a cell the walls mark).
         if (!clear_of_meshes(model, p, R) || !has_roof(model, p, up, scratch)) {
             if (covered_face.size() < 64 && has_roof(model, face + up * (kProbeClearance * R), up, scratch)) covered_face.push_back(face);
+            continue;
+        }
+        // A point in a pocket finer than the grid proves nothing either way (the grid cannot
+        // tell whether it leaks): only points it reads count.
+        if (!enclosure.reads(p)) {
+            ++unread;
             continue;
         }
         ++roofed;
@@ -126,6 +132,13 @@ void require_closed_chamber(const Model& model, const Enclosure& enclosure, cons
         s << "the shot (" << 2e3 * R << " mm) does not fit anywhere over the sonotrode's upper face: the widest room there fits a shot of "
           << 2e3 * widest << " mm, under the parts and the chamber (expected shot smaller than the gaps over the sonotrode)";
         throw InputError(scene.shot.where, scene.shot.sizes_given ? "shot.sizes" : "shot.diameter", s.str());
+    }
+    if (roofed == 0 && unread > 0) {
+        std::ostringstream s;
+        s.precision(3);
+        s << "the room over the sonotrode is everywhere narrower than the closed-chamber check resolves (cells of "
+          << 1e3 * enclosure.cell_size() << " mm for this assembly's size; expected gaps over the sonotrode at least a cell wide)";
+        throw InputError(sono_where, "components", s.str());
     }
     if (roofed == 0)
         throw InputError(sono_where, "components", "expected a chamber above the sonotrode, found nothing above its upper face");
