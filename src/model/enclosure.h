@@ -13,11 +13,13 @@
 // and 0.5 GB). In a coarse grid (cells wider than a shot) a gap a few shot wide may lie all in
 // cells the walls touch: the 15 mm gap over a 1 m cube under the chamber's lid (cells of 6.5 mm),
 // whose top face then read as out of every shot's reach (16.7 % of the part), or the 20 mm gap
-// under a 1.5 m cube over the sonotrode, read as a leak at the very point probed. So there a touched cell whose centre is clear of every
-// surface by a shot radius is free too, and two neighbours of which one is such a cell are joined only where the straight path between
-// their centres is clear by a shot radius (checked exactly). A shot centre hugging a wall then lies in a cell the wall touches, which says
-// nothing of its side: such a point is read from the nearest free cell it sees along a straight path clear of every surface (checked
-// exactly, by the caller's clearance function), so the answer for a given point does not depend on the grid.
+// under a 1.5 m cube over the sonotrode, read as a leak at the very point probed. So there a
+// touched cell whose centre is clear of every surface by a shot radius is free too, and two
+// neighbours of which one is such a cell are joined only where the straight path between their
+// centres is clear by a shot radius (checked exactly). A shot centre hugging a wall then lies in a
+// cell the wall touches, which says nothing of its side: such a point is read from the nearest
+// free cell it sees along a straight path clear of every surface (checked exactly, by the caller's
+// clearance function), so the answer for a given point does not depend on the grid.
 #pragma once
 
 #include <array>

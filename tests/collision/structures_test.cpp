@@ -216,29 +216,35 @@ void append(TriangleMesh& to, const TriangleMesh& from) {
     for (const auto& t : from.triangles) to.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
 }
 
-// A closed 40 x 30 x 30 mm chamber (inward faces) around a closed 10 mm cube, optionally with
-// the chamber's lid left out.
-Assembly chamber_with_cube(bool open_lid) {
+// A closed 40 x 30 x 30 mm chamber, or one without its lid (inward faces), around a closed box.
+Assembly chamber_around(const BoxSpec& solid, bool open_lid) {
     BoxSpec chamber;
     chamber.size_m = Vec3(0.04, 0.03, 0.03);
     chamber.center_m = Vec3(0, 0, 0.015);
+    Assembly a;
+    // A closed chamber's normals may face either way here.
+    a.mesh = open_lid ? box_open(chamber, BoxFace::plus_z, Facing::inward) : box(chamber);
+    append(a.mesh, box(solid));
+    return a;
+}
+
+// The chamber around a closed 10 mm cube.
+Assembly chamber_with_cube(bool open_lid) {
     BoxSpec cube;
     cube.size_m = Vec3(0.01, 0.01, 0.01);
     cube.center_m = Vec3(0, 0, 0.015);
-    Assembly a;
-    if (open_lid) {
-        a.mesh = box_open(chamber, BoxFace::plus_z, Facing::inward);
-    } else {
-        a.mesh = box(chamber);  // a closed box; which way its normals face does not matter here
-    }
-    append(a.mesh, box(cube));
-    return a;
+    return chamber_around(cube, open_lid);
+}
+
+// The enclosure of an assembly for shot of radius R (m), cells of cell_m (m).
+Enclosure enclosure_of(const Assembly& a, double cell_m, double R) {
+    return Enclosure(a.mesh, cell_m, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
 }
 
 TEST(Enclosure, TheCavityIsOneRegionTheCubesInsideAnotherTheOutsideNone) {
     const Assembly a = chamber_with_cube(false);
     const double R = 1e-3;
-    Enclosure e(a.mesh, 0.5 * R, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
+    Enclosure e = enclosure_of(a, 0.5 * R, R);
     const Vec3 cavity_1(-0.015, 0.0, 0.005), cavity_2(0.015, 0.01, 0.025), in_cube(0, 0, 0.015), outside(0.05, 0, 0.015);
     EXPECT_TRUE(e.inside(cavity_1));
     EXPECT_TRUE(e.inside(cavity_2));
@@ -257,7 +263,7 @@ TEST(Enclosure, TheCavityIsOneRegionTheCubesInsideAnotherTheOutsideNone) {
 TEST(Enclosure, AChamberWithoutItsLidEnclosesOnlyTheCube) {
     const Assembly a = chamber_with_cube(true);
     const double R = 1e-3;
-    Enclosure e(a.mesh, 0.5 * R, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
+    Enclosure e = enclosure_of(a, 0.5 * R, R);
     EXPECT_FALSE(e.inside(Vec3(-0.015, 0.0, 0.005)));
     EXPECT_EQ(e.region(Vec3(-0.015, 0.0, 0.005)), -1);
     Vec3 where;
@@ -271,22 +277,16 @@ TEST(Enclosure, AChamberWithoutItsLidEnclosesOnlyTheCube) {
 // cell of the 3 mm gap lies within half a diagonal (1.73 mm) of the floor or the plate, so the
 // walls touch it; shot of radius 0.5 mm still pass there.
 Assembly chamber_with_plate(bool open_lid) {
-    BoxSpec chamber;
-    chamber.size_m = Vec3(0.04, 0.03, 0.03);
-    chamber.center_m = Vec3(0, 0, 0.015);
     BoxSpec plate;
     plate.size_m = Vec3(0.02, 0.016, 0.004);
     plate.center_m = Vec3(0, 0, 0.005);  // its bottom at z = 3 mm
-    Assembly a;
-    a.mesh = open_lid ? box_open(chamber, BoxFace::plus_z, Facing::inward) : box(chamber);
-    append(a.mesh, box(plate));
-    return a;
+    return chamber_around(plate, open_lid);
 }
 
 TEST(Enclosure, ACoarseGridStillJoinsAGapAFewShotWideToTheCavity) {
     const Assembly a = chamber_with_plate(false);
     const double R = 0.5e-3;
-    Enclosure e(a.mesh, 4.0 * R, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
+    Enclosure e = enclosure_of(a, 4.0 * R, R);
     ASSERT_GT(0.5 * std::sqrt(3.0) * e.cell_size(), R) << "the grid must be coarse for this test";
     EXPECT_GT(e.free_centres(), 0u);
     const int cavity = e.region(Vec3(-0.015, 0.0, 0.02));
@@ -313,7 +313,7 @@ TEST(Enclosure, ACoarseGridReadsAPointBesideAPartFromItsOwnSide) {
     // point reads from the cavity, whichever side of the face its cell's centre falls.
     const Assembly a = chamber_with_plate(false);
     const double R = 0.5e-3;
-    Enclosure e(a.mesh, 8.0 * R, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
+    Enclosure e = enclosure_of(a, 8.0 * R, R);
     const int cavity = e.region(Vec3(-0.015, 0.0, 0.02));
     ASSERT_GE(cavity, 0);
     Random rng(7);
@@ -329,7 +329,7 @@ TEST(Enclosure, ACoarseGridReadsAPointBesideAPartFromItsOwnSide) {
 TEST(Enclosure, ACoarseGridFindsTheLeakThroughTheGapAndTheOpenLid) {
     const Assembly a = chamber_with_plate(true);
     const double R = 0.5e-3;
-    Enclosure e(a.mesh, 4.0 * R, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
+    Enclosure e = enclosure_of(a, 4.0 * R, R);
     const Vec3 under(0.0, 0.0, 0.0015);
     EXPECT_TRUE(e.reads(under));
     EXPECT_FALSE(e.inside(under));
@@ -352,7 +352,7 @@ TEST(Enclosure, APointTheGridCannotReadIsNeitherInsideNorALeak) {
     plate.center_m.z() += 0.001 + 0.0002;
     append(a.mesh, box(plate));
     const double R = 1e-3;
-    Enclosure e(a.mesh, 0.5 * R, R, [&a](const Vec3& p, double within) { return a.clearance(p, within); });
+    Enclosure e = enclosure_of(a, 0.5 * R, R);
     EXPECT_EQ(e.free_centres(), 0u);  // a fine grid: no touched cell's centre holds a shot
     const Vec3 in_the_slot(0.012, 0.0, 0.0151);
     EXPECT_FALSE(e.reads(in_the_slot));
