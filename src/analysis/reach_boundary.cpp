@@ -138,40 +138,42 @@ ReachBoundary::ReachBoundary(const CoverageProgress& progress, const TriangleMes
                     const bool reachable_here = near_triangle_[t] && next_to_unreachable.contains(cube);
                     const bool sources_here = !all_reachable && next_to_reachable.contains(cube);
                     if (!reachable_here && !sources_here) return;
-                    // The voxels nest in the cubes (the sources' in the reachable ones): the run's voxel runs.
+                    if (mixed) {
+                        // Sample by sample (a run of one voxel of the sources holds a sample or
+                        // two: cutting the cube's run into them cost more than the samples); the
+                        // voxels' map is asked only when the key changes (a reachable voxel met
+                        // again is left as it is; a source's number is kept for its mean).
+                        std::uint64_t reachable_key = FlatKeyMap<std::uint32_t>::kEmpty;
+                        std::uint64_t source_key = FlatKeyMap<std::uint32_t>::kEmpty;
+                        std::uint32_t source = 0;
+                        for (std::int64_t j = i; j < i + run; ++j) {
+                            const Vec3 x = first + static_cast<double>(j) * step;
+                            if (classes.info(classes.class_of(t, index + j)).reachable) {
+                                if (!reachable_here) continue;
+                                const std::uint64_t here = key(x, true);
+                                if (here != reachable_key) voxel_at(here, x, true, n), reachable_key = here;
+                            } else if (sources_here) {
+                                const std::uint64_t here = key(x, false);
+                                if (here != source_key) source = voxel_at(here, x, false, n), source_key = here;
+                                Voxel& v = part.voxels[source];
+                                v.point += (x - v.point) / static_cast<double>(++v.count);
+                            }
+                        }
+                        return;
+                    }
+                    // One class: the voxels nest in the cubes (the sources' in the reachable
+                    // ones), each voxel's run at once.
                     for_each_cube_run(p, step, run, Vec3::Zero(), (all_reachable ? 1.0 : kSourceVoxelsPerVoxel) * inverse_side_,
                                       [&](std::int64_t k, std::int64_t part_run) {
                                           const Vec3 q = p + static_cast<double>(k) * step;
-                                          if (!mixed) {  // one class: the part at once
-                                              if (all_reachable) {
-                                                  voxel_of(q, true, n);
-                                                  return;
-                                              }
-                                              Voxel& v = voxel_of(q, false, n);
-                                              const Vec3 mean = q + 0.5 * static_cast<double>(part_run - 1) * step;
-                                              v.count += static_cast<std::uint32_t>(part_run);
-                                              v.point += (mean - v.point) * (static_cast<double>(part_run) / static_cast<double>(v.count));
+                                          if (all_reachable) {
+                                              voxel_of(q, true, n);
                                               return;
                                           }
-                                          // Sample by sample; the voxels' map is asked only when
-                                          // the key changes (a reachable voxel met again is left as
-                                          // it is; a source's number is kept for its mean).
-                                          std::uint64_t reachable_key = FlatKeyMap<std::uint32_t>::kEmpty;
-                                          std::uint64_t source_key = FlatKeyMap<std::uint32_t>::kEmpty;
-                                          std::uint32_t source = 0;
-                                          for (std::int64_t j = i + k; j < i + k + part_run; ++j) {
-                                              const Vec3 x = first + static_cast<double>(j) * step;
-                                              if (classes.info(classes.class_of(t, index + j)).reachable) {
-                                                  if (!reachable_here) continue;
-                                                  const std::uint64_t here = key(x, true);
-                                                  if (here != reachable_key) voxel_at(here, x, true, n), reachable_key = here;
-                                              } else if (sources_here) {
-                                                  const std::uint64_t here = key(x, false);
-                                                  if (here != source_key) source = voxel_at(here, x, false, n), source_key = here;
-                                                  Voxel& v = part.voxels[source];
-                                                  v.point += (x - v.point) / static_cast<double>(++v.count);
-                                              }
-                                          }
+                                          Voxel& v = voxel_of(q, false, n);
+                                          const Vec3 mean = q + 0.5 * static_cast<double>(part_run - 1) * step;
+                                          v.count += static_cast<std::uint32_t>(part_run);
+                                          v.point += (mean - v.point) * (static_cast<double>(part_run) / static_cast<double>(v.count));
                                       });
                 });
             });
