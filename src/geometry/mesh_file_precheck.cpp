@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/input_error.h"
+#include "geometry/ascii_stl_check.h"
 
 namespace peensim {
 
@@ -149,15 +150,21 @@ void precheck_ply(const std::string& path, std::ifstream& in, std::uint64_t file
     }
 }
 
-void precheck_binary_stl(const std::string& path, std::ifstream& in, std::uint64_t file_bytes) {
+void precheck_stl(const std::string& path, std::ifstream& in, std::uint64_t file_bytes) {
     // 80-byte header, a 32-bit facet count, 50 bytes per facet. An ASCII STL starts with "solid"
     // and has no count; a binary one may too (in its free header), so it is told by its length.
+    // An ASCII one is checked line by line (geometry/ascii_stl_check.h).
     char header[84];
     if (!in.read(header, sizeof(header))) return;
     std::uint32_t count = 0;
     std::memcpy(&count, header + 80, sizeof(count));
     const bool looks_ascii = std::strncmp(header, "solid", 5) == 0 && 84 + 50ull * count != file_bytes;
-    if (looks_ascii) return;
+    if (looks_ascii) {
+        in.clear();
+        in.seekg(0);
+        check_ascii_stl(path, in);
+        return;
+    }
     if (84 + 50ull * count > file_bytes)
         refuse(path, "the binary STL declares " + std::to_string(count) + " facets, but the file (" + std::to_string(file_bytes) +
                          " bytes) holds at most " + std::to_string((file_bytes - 84) / 50) + ": a damaged or truncated file");
@@ -184,7 +191,13 @@ void precheck_mesh_file(const std::string& path) {
         precheck_ply(path, in, size);
         return;
     }
-    if (ext == ".stl" && size >= 84) precheck_binary_stl(path, in, size);
+    if (ext == ".stl" && size >= 84)
+        precheck_stl(path, in, size);
+    else if (ext == ".stl" && std::strncmp(magic, "soli", 4) == 0)
+        check_ascii_stl(path, in);  // too short to be binary
+    else if (ext == ".stl")
+        refuse(path, "not an STL file: " + std::to_string(size) +
+                         " bytes are too few for a binary STL (84 at least) and it does not start with 'solid' as an ASCII STL does");
 }
 
 }  // namespace peensim

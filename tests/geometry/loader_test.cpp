@@ -132,10 +132,14 @@ TEST_F(GeometryLoader, MissingGarbageAndEmptyFilesAreInputErrors) {
     EXPECT_NE(error_of(missing).find("nowhere.stl"), std::string::npos);
 
     const std::string garbage = write_text("garbage.stl", "this is not a mesh\n");
-    EXPECT_NE(error_of(garbage).find("cannot read mesh file"), std::string::npos);
+    EXPECT_NE(error_of(garbage).find("not an STL file: 19 bytes are too few for a binary STL"), std::string::npos) << error_of(garbage);
 
     const std::string empty = write_text("empty.stl", "");
-    EXPECT_NE(error_of(empty).find("cannot read mesh file"), std::string::npos);
+    EXPECT_NE(error_of(empty).find("not an STL file: 0 bytes"), std::string::npos) << error_of(empty);
+
+    // Long enough for a binary STL, not ASCII: its "count" is read from bytes 80-83.
+    const std::string long_garbage = write_text("long-garbage.stl", std::string(100, 'x') + "\n");
+    EXPECT_NE(error_of(long_garbage).find("the binary STL declares"), std::string::npos) << error_of(long_garbage);
 
     const std::string no_facets = write_text("nothing.stl", "solid nothing\nendsolid nothing\n");
     EXPECT_NE(error_of(no_facets).find("no triangles"), std::string::npos);

@@ -1,0 +1,94 @@
+// check_ascii_stl: an ASCII STL that breaks its grammar is refused at its line and column with
+// what was expected; the forms writers really emit (any case, "+" signs, CRLF, blank lines, a
+// facet without its normal, several solids) pass.
+#include "geometry/ascii_stl_check.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+
+#include "common/input_error.h"
+
+namespace peensim {
+namespace {
+
+const std::string kFacet =
+    "  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n    endloop\n  endfacet\n";
+
+// The error check_ascii_stl throws on `text`, or a failure if it throws none.
+InputError refusal_of(const std::string& text) {
+    std::istringstream in(text);
+    try {
+        check_ascii_stl("part.stl", in);
+    } catch (const InputError& e) {
+        return e;
+    }
+    ADD_FAILURE() << "accepted:\n" << text;
+    return InputError({}, "", "");
+}
+
+void expect_refused_at(const std::string& text, int line, int column, const std::string& phrase) {
+    const InputError e = refusal_of(text);
+    EXPECT_EQ(e.where().file, "part.stl");
+    EXPECT_EQ(e.where().line, line) << e.what();
+    EXPECT_EQ(e.where().column, column) << e.what();
+    EXPECT_EQ(e.field(), "mesh");
+    EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+}
+
+TEST(AsciiStlCheck, TheFormsWritersEmitPass) {
+    const std::string text =
+        "SOLID Part 1 (from a CAD tool)\r\n\r\n"
+        "FACET NORMAL +0.0 -0 1E+0\r\nOUTER LOOP\r\nVERTEX +1.5e-3 0 0\r\nVERTEX 1 0 0\r\nVERTEX 0 1 0\r\nENDLOOP\r\nENDFACET\r\n"
+        "endsolid\r\n"
+        "solid second\n  facet\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n"
+        "    endloop\n  endfacet\n" +
+        kFacet + "endsolid second\n";
+    std::istringstream in(text);
+    EXPECT_NO_THROW(check_ascii_stl("part.stl", in));
+}
+
+TEST(AsciiStlCheck, ANumberWithAWordAfterItIsRefusedNotReadAsItsDigits) {
+    // The reader took "2x" for 2: a part silently of other coordinates.
+    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 2x\n", 5, 18,
+                      "expected a finite number in 'vertex', got '2x'");
+    expect_refused_at("solid s\n  facet normal 0 0 nan\n", 2, 20, "expected a finite number in 'facet normal', got 'nan'");
+    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1e400 0 0\n", 4, 14,
+                      "expected a finite number in 'vertex', got '1e400'");
+}
+
+TEST(AsciiStlCheck, AVertexOfOtherThanThreeNumbersIsRefused) {
+    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1 0\n", 4, 7,
+                      "expected 'vertex' followed by three numbers, got '      vertex 1 0'");
+    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1,0,0\n", 4, 7, "three numbers");
+    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1 0 0 7\n", 4, 7, "three numbers");
+}
+
+TEST(AsciiStlCheck, AFacetOfOtherThanThreeVerticesIsRefused) {
+    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n    endloop\n", 6, 5,
+                      "a facet of 2 vertices");
+    expect_refused_at(
+        "solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n"
+        "      vertex 1 1 0\n",
+        7, 7, "a facet of more than three vertices");
+}
+
+TEST(AsciiStlCheck, AKeywordOutOfPlaceIsRefusedWithWhatWasExpected) {
+    expect_refused_at("solid s\n  facet normal 0 0 1\n    vertex 0 0 0\n", 3, 5, "expected 'outer loop'");
+    expect_refused_at("solid s\n" + kFacet + "  endloop\n", 9, 3, "expected 'facet normal X Y Z' or 'endsolid'");
+    expect_refused_at(
+        "solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n"
+        "    endloop\n  endloop\n",
+        8, 3, "expected 'endfacet'");
+    expect_refused_at("  facet normal 0 0 1\n", 1, 3, "expected 'solid'");
+    expect_refused_at("solid s\n  facet norml 0 0 1\n", 2, 9, "expected 'facet normal X Y Z'");
+}
+
+TEST(AsciiStlCheck, AFileThatEndsInsideASolidIsTruncated) {
+    expect_refused_at("solid s\n" + kFacet, 8, 0, "the file ends inside a solid (no 'endsolid' after line 8)");
+    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n", 4, 0, "a truncated file");
+}
+
+}  // namespace
+}  // namespace peensim
