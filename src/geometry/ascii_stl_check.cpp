@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/input_error.h"
+#include "geometry/text_words.h"
 
 namespace peensim {
 
@@ -16,35 +17,9 @@ namespace {
 // Where the grammar is: what the next keyword line may be.
 enum class Expect { solid, facet_or_endsolid, outer_loop, vertex, endloop, endfacet };
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
-
 bool same_word(std::string_view word, std::string_view keyword) {
     return word.size() == keyword.size() && std::equal(word.begin(), word.end(), keyword.begin(),
                                                        [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
-}
-
-struct Word {
-    std::string_view text;
-    int column = 0;  // 1-based
-};
-
-// The line's words (no allocation past the vector's first growth).
-void split(std::string_view line, std::vector<Word>& words) {
-    words.clear();
-    for (std::size_t i = 0; i < line.size();) {
-        while (i < line.size() && is_blank(line[i])) ++i;
-        const std::size_t start = i;
-        while (i < line.size() && !is_blank(line[i])) ++i;
-        if (i > start) words.push_back({line.substr(start, i - start), static_cast<int>(start) + 1});
-    }
-}
-
-// Whether the whole word is a finite decimal number ("+" allowed in front, as writers emit it).
-bool is_number(std::string_view word) {
-    if (!word.empty() && word.front() == '+') word.remove_prefix(1);
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-    return error == std::errc() && end == word.data() + word.size() && std::isfinite(value);
 }
 
 }  // namespace
@@ -57,19 +32,19 @@ void check_ascii_stl(const std::string& path, std::istream& in) {
     Expect expect = Expect::solid;
     int vertices = 0;  // of the facet open
     std::string line;
-    std::vector<Word> words;
+    std::vector<TextWord> words;
     const auto numbers_after = [&](std::size_t first, const char* what) {
         if (words.size() != first + 3)
             refuse(words.front().column, std::string("expected '") + what + "' followed by three numbers, got '" + line + "'");
         for (std::size_t k = first; k < words.size(); ++k)
-            if (!is_number(words[k].text))
+            if (!is_finite_number(words[k].text))
                 refuse(words[k].column,
                        std::string("expected a finite number in '") + what + "', got '" + std::string(words[k].text) + "'");
     };
     while (std::getline(in, line)) {
         ++line_number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
-        split(line, words);
+        split_words(line, words);
         if (words.empty()) continue;
         const std::string_view key = words.front().text;
         const int column = words.front().column;

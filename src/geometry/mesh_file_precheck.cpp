@@ -10,6 +10,7 @@
 
 #include "common/input_error.h"
 #include "geometry/ascii_stl_check.h"
+#include "geometry/obj_check.h"
 
 namespace peensim {
 
@@ -189,6 +190,10 @@ void precheck_mesh_file(const std::string& path) {
         if (std::strncmp(magic, "ply", 3) != 0 || (magic[3] != '\n' && magic[3] != '\r'))
             refuse(path, "not a PLY file: its first line is not 'ply'");
         precheck_ply(path, in, size);
+        return;
+    }
+    if (ext == ".obj") {
+        check_obj(path, in);
         return;
     }
     if (ext == ".stl" && size >= 84)

@@ -10,8 +10,8 @@
 namespace peensim {
 
 // Throws InputError (file = path, field "mesh") if the file declares more elements than its
-// size can hold, or if it is an ASCII STL that breaks its grammar (at the line). Other formats
-// without declared counts (OBJ, ...) pass unchecked.
+// size can hold, or if it is an ASCII STL or an OBJ file that breaks its grammar (at the line:
+// geometry/ascii_stl_check.h, geometry/obj_check.h). Other formats pass unchecked.
 void precheck_mesh_file(const std::string& path);
 
 }  // namespace peensim

@@ -28,6 +28,7 @@ const BadMesh catalogue[] = {
     {"ply_ascii_list_too_long.ply", "PLY line 16: a list of '2000000000' values in element 'face' with 3 values left on the line"},
     {"stl_count_beyond_file.stl", "the binary STL declares 100000 facets, but the file (134 bytes) holds at most 1"},
     // Found by a tester: the reader read "2x" as 2, a part silently of other coordinates.
+    {"obj_number_with_a_word.obj", "obj_number_with_a_word.obj:3:8: mesh: OBJ: expected a finite number in 'v', got '2x'"},
     {"stl_ascii_number_with_a_word.stl",
      "stl_ascii_number_with_a_word.stl:5:18: mesh: ASCII STL: expected a finite number in 'vertex', got '2x'"},
 };
