@@ -279,7 +279,20 @@ int main(int argc, char** argv) {
     if (*run_cmd) {
         if (stop_after > 0) run.stop_after_steps = stop_after;
         if (!scheme.empty()) run.overrides.push_back("accuracy.scheme=" + scheme);
-        if (!until_coverage.empty()) run.overrides.push_back("process.until_coverage=" + until_coverage);
+        if (!until_coverage.empty()) {
+            // Checked here, so that a bad value is named as the option the user gave (the scene
+            // field it sets would be reported as a --set).
+            try {
+                const double c = parse_option_quantity("--until-coverage", until_coverage, Dimension::dimensionless);
+                if (!(c > 0.0 && c <= 1.0))
+                    throw InputError({"--until-coverage"}, "",
+                                     "expected a coverage above 0 and at most 100 % (e.g. 98 % or 0.98), got '" + until_coverage + "'");
+            } catch (const InputError& e) {
+                std::cerr << "error: " << e.what() << "\n";
+                return kExitInputError;
+            }
+            run.overrides.push_back("process.until_coverage=" + until_coverage);
+        }
         std::ostream null_stream(nullptr);
         run.progress = !quiet;
         run.analyze = !no_analyze;

@@ -100,9 +100,16 @@ TEST(UntilCoverage, BadTargetsAndAreasExitTwoNamingThem) {
         const auto code = p.wait_exit(60.0);
         return std::make_pair(code.value_or(-1), read_file(dir.path / (name + ".err")));
     };
+    // Named as the option given (it was reported as a --set of the scene field it sets).
     auto [code1, err1] = run({"--until-coverage", "150 %"}, "over");
     EXPECT_EQ(code1, 2) << err1;
-    EXPECT_NE(err1.find("until_coverage"), std::string::npos) << err1;
+    EXPECT_NE(err1.find("error: --until-coverage: expected a coverage above 0 and at most 100 %"), std::string::npos) << err1;
+    EXPECT_EQ(err1.find("--set"), std::string::npos) << err1;
+    auto [code0, err0] = run({"--until-coverage", "0%"}, "zero");
+    EXPECT_EQ(code0, 2) << err0;
+    EXPECT_NE(err0.find("error: --until-coverage: expected a coverage above 0 and at most 100 % (e.g. 98 % or 0.98), got '0%'"),
+              std::string::npos)
+        << err0;
     auto [code2, err2] = run({"--until-coverage", "90 %", "--set", "process.until_coverage_of=[rod/tip]"}, "region");
     EXPECT_EQ(code2, 2) << err2;
     EXPECT_NE(err2.find("rod/tip"), std::string::npos) << err2;
