@@ -16,6 +16,8 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <IGESControl_Reader.hxx>
+#include <IGESData_GlobalSection.hxx>
+#include <IGESData_IGESModel.hxx>
 #include <IMeshTools_Parameters.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -106,7 +108,8 @@ private:
 
 struct ReadShape {
     TopoDS_Shape shape;
-    double unit_m = 1e-3;  // m per length unit of `shape` (OpenCASCADE's session unit)
+    double unit_m = 1e-3;       // m per length unit of `shape` (OpenCASCADE's session unit)
+    std::string declared_unit;  // the file's own length unit as it names it, "" if it names none
 };
 
 // The file's shapes, converted by OpenCASCADE from the file's unit into its session unit.
@@ -123,11 +126,24 @@ ReadShape read_shape(const std::string& path, const MessagesKept& messages) {
         IGESControl_Reader reader;
         ReadShape read = read_with(reader, path, "IGES", messages);
         read.unit_m = UnitsMethods::GetCasCadeLengthUnit() * 1e-3;  // mm per session unit
+        if (const Handle(IGESData_IGESModel) model = reader.IGESModel(); !model.IsNull()) {
+            const Handle(TCollection_HAsciiString) name = model->GlobalSection().UnitName();
+            if (!name.IsNull()) read.declared_unit = name->ToCString();
+        }
         return read;
     }
     STEPControl_Reader reader;
     ReadShape read = read_with(reader, path, "STEP", messages);
     read.unit_m = reader.SystemLengthUnit() * 1e-3;  // mm per session unit
+    TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+    reader.FileUnits(lengths, angles, solid_angles);
+    // One name per unit the file declares; most declare one (an assembly of parts in other units
+    // lists each, and OpenCASCADE converts each part from its own).
+    for (int i = 1; i <= lengths.Length(); ++i) {
+        const std::string name = lengths.Value(i).ToCString();
+        if (read.declared_unit.find(name) != std::string::npos) continue;
+        read.declared_unit += (read.declared_unit.empty() ? "" : ", ") + name;
+    }
     return read;
 }
 
@@ -292,7 +308,9 @@ TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessella
     try {
         const ReadShape read = read_shape(path, messages);
         if (!(read.unit_m > 0.0) || !std::isfinite(read.unit_m)) fail(path, "OpenCASCADE's session length unit is not a length");
-        return tessellate(path, read, tessellation);
+        TriangleMesh mesh = tessellate(path, read, tessellation);
+        mesh.declared_unit = read.declared_unit;
+        return mesh;
     } catch (const Standard_Failure& e) {
         fail(path, std::string("OpenCASCADE failed on the file: ") + e.GetMessageString() + messages.quoted());
     }

@@ -18,6 +18,7 @@ struct TriangleMesh {
     std::vector<std::string> group_names;       // named solids / sub-meshes of the file ("" if unnamed)
     std::vector<int> group_of_triangle;         // per triangle: index into group_names
     std::size_t dropped_degenerate_facets = 0;  // facets of the file dropped by the loader: zero area after welding
+    std::string declared_unit;                  // a STEP or IGES file's own length unit as it names it ("MM", "INCH"); "" for mesh files
 
     std::size_t triangle_count() const { return triangles.size(); }
     const Vec3& corner(std::size_t t, int k) const { return vertices[static_cast<std::size_t>(triangles[t][static_cast<std::size_t>(k)])]; }

@@ -235,8 +235,10 @@ TEST_F(CadReaderFiles, InchFileGivesTheSameMeshInMetres) {
     EXPECT_LT(farthest, 1e-12);
     EXPECT_NEAR(enclosed_volume(in), enclosed_volume(mm), 1e-9 * enclosed_volume(mm));
     EXPECT_NEAR(surface_area(in), surface_area(mm), 1e-9 * surface_area(mm));
-    // mesh_unit does not apply to a CAD file: the file's unit wins.
+    // mesh_unit does not apply to a CAD file: the file's unit wins, and is named as the file names it.
     EXPECT_EQ(load_mesh(path("rod-in.step"), 1e-3).vertices, in.vertices);
+    EXPECT_EQ(in.declared_unit, "INCH");
+    EXPECT_EQ(mm.declared_unit, "millimetre");  // OpenCASCADE names an SI unit in lower case
 }
 
 TEST_F(CadReaderFiles, DrilledBlockFromStepAndIgesIsClosedOutwardWithTheHoleWithinTheBound) {
@@ -261,6 +263,7 @@ TEST_F(CadReaderFiles, DrilledBlockFromStepAndIgesIsClosedOutwardWithTheHoleWith
         EXPECT_EQ(facets.size(), 7u);  // 6 planes (2 with a hole) and the hole
         // Loose IGES surfaces are sewn, and the closed shell made a solid.
         EXPECT_EQ(mesh.group_names, std::vector<std::string>{"solid1"});
+        EXPECT_EQ(mesh.declared_unit, name == "block.step" ? "millimetre" : name == "block-solid.igs" ? "INCH" : "MM");
     }
 }
 

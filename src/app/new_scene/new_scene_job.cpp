@@ -128,7 +128,7 @@ int run_new_scene(const NewSceneOptions& o, std::ostream& out) {
         throw option_error("--unit",
                            "expected mm, cm, m, um or in (the part file's length unit; STL has none of its own), got '" + unit + "'");
     const double unit_m = parse_quantity("1 " + unit, Dimension::length);
-    const std::string unit_said = cad ? "the file's unit" : unit == "in" ? "inches" : unit;
+    std::string unit_said = cad ? "the file's unit" : unit == "in" ? "inches" : unit;  // a CAD file's named once read
     const PartMaterial* material = find_part_material(o.material);
     if (!material) throw option_error("--material", "expected one of " + part_material_options() + ", got '" + o.material + "'");
     NewSceneRequest request;
@@ -188,6 +188,7 @@ int run_new_scene(const NewSceneOptions& o, std::ostream& out) {
     if (std::error_code missing; !fs::exists(o.part_path, missing))
         throw InputError({o.part_path}, "PART", "no such file (looked for " + fs::absolute(o.part_path).string() + ")");
     const TriangleMesh mesh = load_mesh(o.part_path, unit_m);
+    if (cad) unit_said = mesh.declared_unit.empty() ? "the file's unit (it names none)" : "the file's unit, " + mesh.declared_unit;
     const PartEnvelope envelope = part_envelope(mesh, request.turning_axis);
     const double largest = envelope.size_m.maxCoeff();
     const std::string size_text = mm_one_decimal(envelope.size_m.x()) + " x " + mm_one_decimal(envelope.size_m.y()) + " x " +

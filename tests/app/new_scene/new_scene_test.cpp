@@ -287,7 +287,7 @@ TEST(NewScene, AStepPartIsReadInItsOwnUnit) {
     const fs::path step = kSource / "tests" / "app" / "new_scene" / "rod.step";
     const NewResult r = run_new(options(step, dir.path / "rod.yaml"));
     ASSERT_EQ(r.code, kExitOk) << r.err;
-    EXPECT_NE(r.out.find("read in the file's unit"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("read in the file's unit, millimetre)"), std::string::npos) << r.out;  // the unit the file declares
     std::ifstream in(dir.path / "rod.yaml");
     const std::string yaml((std::istreambuf_iterator<char>(in)), {});
     EXPECT_EQ(yaml.find("mesh_unit: mm\n    # Centred"), std::string::npos) << "no mesh_unit for the STEP part";
