@@ -118,16 +118,19 @@ std::vector<AssemblyIssue> plausibility_issues(const Model& m) {
         const double size = (chi - clo).maxCoeff();  // m, in the component's own frame (not swept)
         const std::string unit_now = short_number(desc.mesh_unit_m) + " m per file unit";
         const std::string field = component_field(i) + ".mesh_unit";
-        if (size > 2.0) {
+        if (size > kLargestPlausibleMesh_m) {
             const double mm = size / desc.mesh_unit_m * 1e-3;
             warn(desc.where, field,
                  "'" + c.name + "' is " + short_number(size) + " m across (" + unit_now + "): implausible for a peening chamber" +
-                     (mm <= 2.0 && mm >= 1e-3 ? "; in mm it would be " + short_number(mm * 1e3) + " mm (mesh_unit: mm)" : std::string()));
-        } else if (size < 1e-3) {
+                     (mm <= kLargestPlausibleMesh_m && mm >= kSmallestPlausibleMesh_m
+                          ? "; in mm it would be " + short_number(mm * 1e3) + " mm (mesh_unit: mm)"
+                          : std::string()));
+        } else if (size < kSmallestPlausibleMesh_m) {
             const double in_mm = size / desc.mesh_unit_m * 1e-3;
             warn(desc.where, field,
                  "'" + c.name + "' is " + short_number(size * 1e3) + " mm across (" + unit_now + "): implausibly small" +
-                     (in_mm >= 1e-3 ? "; in mm it would be " + short_number(in_mm * 1e3) + " mm (mesh_unit: mm)" : std::string()));
+                     (in_mm >= kSmallestPlausibleMesh_m ? "; in mm it would be " + short_number(in_mm * 1e3) + " mm (mesh_unit: mm)"
+                                                        : std::string()));
         } else if ((c.role == ComponentRole::part || c.role == ComponentRole::fixture) && size < chamber.maxCoeff() / 20.0 &&
                    size * 25.4 <= chamber.maxCoeff() && desc.mesh_unit_m == 1e-3) {
             warn(desc.where, field,

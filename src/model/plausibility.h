@@ -21,6 +21,8 @@
 
 namespace peensim {
 
+inline constexpr double kLargestPlausibleMesh_m = 2.0;         // m across: a larger part or chamber is a unit slip (or no USP chamber)
+inline constexpr double kSmallestPlausibleMesh_m = 1e-3;       // m across
 inline constexpr double kPlausibleRimSpeed_m_per_s = 100.0;    // m/s
 inline constexpr double kLargestRimSpeed_m_per_s = 1000.0;     // m/s: sources[].speed's limit too
 inline constexpr double kPlausibleStartSpeed_m_per_s = 100.0;  // m/s

@@ -21,6 +21,7 @@
 #include "geometry/part_envelope.h"
 #include "geometry/stepped_chamber_mesh.h"
 #include "geometry/stl_writer.h"
+#include "model/plausibility.h"
 #include "output/atomic_file.h"
 
 namespace peensim {
@@ -30,11 +31,11 @@ namespace fs = std::filesystem;
 namespace {
 
 // A part under 5 shot across (or 1 mm) is a unit mistake (an inch file read in mm) or shot far too large.
-constexpr double kSmallestPartM = 1e-3;  // m
+constexpr double kSmallestPartM = kSmallestPlausibleMesh_m;  // m
 constexpr double kSmallestPartShots = 5.0;
-constexpr double kLargestPartM = 2.0;   // m: no USP chamber holds a part larger than this
-constexpr double kFastestRpm = 3000.0;  // rev/min: beyond any USP fixture
-constexpr int kSegments = 128;          // around the chamber and the sonotrode, as the gear case's
+constexpr double kLargestPartM = kLargestPlausibleMesh_m;  // m: no USP chamber holds a part larger than this
+constexpr double kFastestRpm = 3000.0;                     // rev/min: beyond any USP fixture
+constexpr int kSegments = 128;                             // around the chamber and the sonotrode, as the gear case's
 
 InputError option_error(const std::string& option, const std::string& problem) { return InputError({"peensim new"}, option, problem); }
 
@@ -203,6 +204,17 @@ int run_new_scene(const NewSceneOptions& o, std::ostream& out) {
                              mm_one_decimal(request.shot_diameter_m) +
                              " mm across: is its unit right (--unit in, cm, m), or the shot too large (--shot-diameter)?");
     const SceneDesign design = design_scene(envelope, request);
+    // The chamber around the part must itself be plausible: a scene that `peensim check` warns on
+    // as a unit slip is no ready scene (a 1.5 m part made a 2.15 m chamber).
+    const double chamber_m = std::max(2.0 * std::max(design.upper_radius_m, design.lower_radius_m), design.lid_z_m - design.bottom_z_m);
+    if (chamber_m > kLargestPlausibleMesh_m)
+        throw InputError({o.part_path}, "--unit",
+                         "read in " + unit_said + " the part is " + size_text + ", and the chamber around it would be " +
+                             mm_one_decimal(chamber_m) + " mm across, beyond the " + mm_one_decimal(kLargestPlausibleMesh_m) +
+                             " mm `peensim check` takes for a unit slip; is its unit right (--unit mm, cm, m, um, in)? A part this large "
+                             "(over about " +
+                             mm_one_decimal(largest * kLargestPlausibleMesh_m / chamber_m) +
+                             " mm here) is peened in sections or by a moving sonotrode: write its scene by hand");
     const ProposedRegions regions = propose_regions(mesh, envelope, request.turning_axis);
 
     // The chamber and the sonotrode (mm files, as the shipped ones).

@@ -15,6 +15,7 @@
 #include "app/exit_codes.h"
 #include "app/new_scene/new_scene_job.h"
 #include "app/new_scene/scene_design.h"
+#include "geometry/box_mesh.h"
 #include "geometry/mesh_loader.h"
 #include "geometry/stl_writer.h"
 #include "scene/scene_parser.h"
@@ -319,6 +320,27 @@ TEST(NewScene, TheDurationHoldsItsWholeTurnsWhateverTheSpeed) {
         EXPECT_EQ(std::floor(d.duration_s / turn_s * (1.0 + 1e-12)), d.turns) << rpm << " rpm: " << d.duration_s << " s";
         EXPECT_LT(d.duration_s - d.turns * turn_s, 1e-3) << rpm;  // at most a millisecond past the last turn
     }
+}
+
+// A part whose chamber would be past the size `peensim check` takes for a unit slip is refused,
+// not written with a scene its own check warns on (a 1.5 m box made a 2.15 m chamber); a 1 m
+// one gets its scene.
+TEST(NewScene, APartWhoseChamberWouldBeImplausibleIsRefused) {
+    testing::TempDir dir;
+    const auto box_of = [&](double side_mm) {
+        const fs::path part = dir.path / ("box-" + std::to_string(static_cast<int>(side_mm)) + ".stl");
+        write_binary_stl(box(BoxSpec{Vec3(side_mm, side_mm, 100.0) * 1e-3, Vec3::Zero(), Eigen::Vector3i::Ones()}), part.string(), 1e-3);
+        return part;
+    };
+    const NewResult large = run_new(options(box_of(1500.0), dir.path / "large.yaml"));
+    EXPECT_EQ(large.code, kExitInputError) << large.out;
+    EXPECT_NE(large.err.find("the chamber around it would be 2151.3 mm across, beyond the 2000.0 mm `peensim check` takes for a unit slip"),
+              std::string::npos)
+        << large.err;
+    EXPECT_FALSE(fs::exists(dir.path / "large.yaml"));
+    const NewResult metre = run_new(options(box_of(1000.0), dir.path / "metre.yaml"));
+    EXPECT_EQ(metre.code, kExitOk) << metre.err;
+    EXPECT_NE(metre.out.find("chamber    1444.2 mm across"), std::string::npos) << metre.out;
 }
 
 TEST(NewScene, EveryBadOptionIsAnInputErrorNamingIt) {
