@@ -4,8 +4,11 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <ostream>
+#include <span>
 
 #include "analysis/regions.h"
 #include "app/analysis/analysis_format.h"
@@ -16,6 +19,7 @@
 #include "model/facet_reach.h"
 #include "model/model.h"
 #include "model/shot_cavity.h"
+#include "render/close_up.h"
 #include "render/png_io.h"
 #include "render/render_impacts_job.h"
 #include "render/render_view.h"
@@ -107,9 +111,11 @@ bool hidden_by_the_part(const Component& part, const Vec3& eye_m, const Vec3& po
     return part.collider->first_hit(ray, 1e-6 * (to - from).norm(), 0.0, 0.98, hit, counters) != ToiStatus::miss;
 }
 
-// Draws component ci alone in its triangle colours from the four map views, tiled 2 x 2 into `image`.
+// Draws component ci alone in its triangle colours from the four map views, tiled 2 x 2 into `image`
+// (the last replaced by `close_up` when given).
 void draw_four_views(const Model& model, std::size_t ci, const std::vector<render::Rgba8>& colours, const std::vector<PlacedLabel>& labels,
-                     const std::vector<std::string>& title, int width_px, int height_px, render::RgbaImage& image) {
+                     const std::vector<std::string>& title, int width_px, int height_px, render::RgbaImage& image,
+                     const std::optional<CloseUp>& close_up = std::nullopt) {
     const int tile_w = width_px / 2, tile_h = height_px / 2;
     render::OffscreenContext context({.width = tile_w, .height = tile_h});
     render::Renderer renderer(context);
@@ -127,7 +133,16 @@ void draw_four_views(const Model& model, std::size_t ci, const std::vector<rende
     std::vector<render::Label> placed;
     const std::span<const MapView> views = map_views();
     for (std::size_t v = 0; v < views.size(); ++v) {
-        const render::Camera camera = render::Camera::framing_points(points, static_cast<double>(tile_w) / tile_h, views[v].direction);
+        const bool close = close_up && v + 1 == views.size();
+        render::Camera camera =
+            close ? render::Camera::framing_points(close_up->points_m, static_cast<double>(tile_w) / tile_h, close_up->direction)
+                  : render::Camera::framing_points(points, static_cast<double>(tile_w) / tile_h, views[v].direction);
+        if (close) {
+            // The whole part in the depth range: the camera may stand inside its bounds.
+            Vec3 lo = points.front(), hi = lo;
+            for (const Vec3& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+            camera.fit_depth_range(lo, hi);
+        }
         placed.clear();
         for (const PlacedLabel& l : labels)
             for (const PlacedLabel::Spot& spot : l.spots) {
@@ -140,7 +155,7 @@ void draw_four_views(const Model& model, std::size_t ci, const std::vector<rende
                 break;
             }
         std::vector<std::string> text = title;
-        text.push_back(views[v].name);
+        text.push_back(close ? close_up->name : views[v].name);
         renderer.render(camera, {.text = text, .labels = placed}, tile);
         render::blit(tile, image, static_cast<int>(v % 2) * tile_w, static_cast<int>(v / 2) * tile_h);
     }
@@ -249,7 +264,7 @@ void draw_region_highlight(const Model& model, std::size_t ci, std::span<const d
     if (!shares.empty())
         if (auto l = place_label(part, shares, label, render::Rgba8{255, 255, 255, 255})) labels.push_back(std::move(*l));
     render::RgbaImage image;
-    draw_four_views(model, ci, colours, labels, {title}, width_px, height_px, image);
+    draw_four_views(model, ci, colours, labels, {title}, width_px, height_px, image, close_up_of(part, weight, label));
     render::write_png(png_path, image);
 }
 

@@ -1,7 +1,8 @@
 // Pictures of regions: `peensim render-regions` (every region of the logged components in its own
 // colour, named where it faces the camera, with the facets no shot can reach in dark grey, so a
 // region definition is checked by eye before or after a run), and the analysis' picture of one
-// region (the slowest one, highlighted). Four views tiled, as the impact maps.
+// region (the slowest one, highlighted). Four views tiled, as the impact maps; a small highlighted
+// area takes the last for its close-up (render/close_up.h).
 #pragma once
 
 #include <iosfwd>
