@@ -48,7 +48,6 @@ DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double 
 
     // Mark cells a triangle may touch.
     const double half_diagonal = 0.5 * std::sqrt(3.0) * cell_;
-    std::vector<std::size_t> frontier;
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
         const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
         const Vec3 lo = (a.cwiseMin(b).cwiseMin(c) - origin_) * inv_cell_ - Vec3::Constant(0.5);
@@ -65,34 +64,60 @@ DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double 
                     const Vec3 centre = origin_ + cell_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
                     if ((closest_point_on_triangle(centre, a, b, c).point - centre).squaredNorm() <= half_diagonal * half_diagonal) {
                         cell = 0;
-                        frontier.push_back(index(i, j, k));
                     }
                 }
     }
 
-    // Breadth-first Chebyshev distance transform from the marked cells, up to `levels`.
-    std::vector<std::size_t> next;
-    for (int level = 1; level < levels && !frontier.empty(); ++level) {
-        next.clear();
-        for (std::size_t id : frontier) {
-            const std::size_t i = id % nx, j = (id / nx) % ny, k = id / (nx * ny);
-            for (int dk = -1; dk <= 1; ++dk)
-                for (int dj = -1; dj <= 1; ++dj)
-                    for (int di = -1; di <= 1; ++di) {
-                        const long ii = static_cast<long>(i) + di, jj = static_cast<long>(j) + dj, kk = static_cast<long>(k) + dk;
-                        if (ii < 0 || jj < 0 || kk < 0 || ii >= nx_ || jj >= ny_ || kk >= nz_) continue;
-                        std::uint8_t& cell =
-                            cells_[index(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj), static_cast<std::size_t>(kk))];
-                        if (cell > level) {
-                            cell = static_cast<std::uint8_t>(level);
-                            next.push_back(index(static_cast<std::size_t>(ii), static_cast<std::size_t>(jj), static_cast<std::size_t>(kk)));
-                        }
-                    }
-        }
-        frontier.swap(next);
-    }
+    chebyshev_transform(levels);
     bound_of_level_.resize(static_cast<std::size_t>(levels) + 1);
     for (int level = 0; level <= levels; ++level) bound_of_level_[static_cast<std::size_t>(level)] = std::max(0, level - 1) * cell_;
+}
+
+void DistanceGate::chebyshev_transform(int levels) {
+    // Each cell's Chebyshev distance (in cells) to the nearest marked one (0), capped at `levels`:
+    // the minimum over marked m of max(|di|, |dj|, |dk|) is taken one axis at a time (max and min
+    // nest), as rows of x, so every pass walks the grid in memory order. (A breadth-first pass over
+    // 26 neighbours gave the same levels at a cache miss a neighbour: 30 % of the gear's setup.)
+    const auto L = static_cast<std::uint8_t>(levels);
+    const std::size_t nx = static_cast<std::size_t>(nx_), ny = static_cast<std::size_t>(ny_), nz = static_cast<std::size_t>(nz_);
+    const auto up = [L](std::uint8_t d) { return d >= L ? L : static_cast<std::uint8_t>(d + 1); };
+    // x: the distance to the nearest marked cell of the row, both ways (a marked cell is 0, the
+    // others hold L).
+    for (std::size_t row = 0; row < ny * nz; ++row) {
+        std::uint8_t* c = cells_.data() + row * nx;
+        std::uint8_t d = L;
+        for (std::size_t i = 0; i < nx; ++i) c[i] = d = c[i] == 0 ? 0 : up(d);
+        d = L;
+        for (std::size_t i = nx; i-- > 0;) {
+            d = c[i] == 0 ? 0 : up(d);
+            c[i] = std::min(c[i], d);
+        }
+    }
+    // y, then z: out(row) = min over |d| < L of max(|d|, in(row d rows away)), row by row of x,
+    // from a copy of the grid before the pass.
+    std::vector<std::uint8_t> in;
+    const auto along = [&](bool z_axis) {
+        in = cells_;
+        const std::size_t count = z_axis ? nz : ny, stride = z_axis ? nx * ny : nx;  // rows along the axis, cells between
+        for (std::size_t k = 0; k < nz; ++k)
+            for (std::size_t j = 0; j < ny; ++j) {
+                const std::size_t at = z_axis ? k : j, row = (k * ny + j) * nx;
+                std::uint8_t* out = cells_.data() + row;
+                for (std::size_t d = 1; d < L; ++d) {
+                    const auto dd = static_cast<std::uint8_t>(d);
+                    if (d <= at) {
+                        const std::uint8_t* src = in.data() + row - d * stride;
+                        for (std::size_t i = 0; i < nx; ++i) out[i] = std::min(out[i], std::max(dd, src[i]));
+                    }
+                    if (at + d < count) {
+                        const std::uint8_t* src = in.data() + row + d * stride;
+                        for (std::size_t i = 0; i < nx; ++i) out[i] = std::min(out[i], std::max(dd, src[i]));
+                    }
+                }
+            }
+    };
+    along(false);
+    along(true);
 }
 
 double DistanceGate::outside_bound(const Vec3& p) const {

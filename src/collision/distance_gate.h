@@ -5,8 +5,8 @@
 //
 // How: cells that any triangle may touch are marked (cell centre within half a cell diagonal of
 // the triangle: a superset of the cells the triangle crosses, so the bound stays conservative);
-// a 26-neighbour breadth-first pass stores the Chebyshev cell distance k to the nearest marked
-// cell. Two cells k apart are at least (k - 1) cells apart along some axis, so
+// a separable distance transform (axis by axis) stores the Chebyshev cell distance k to the nearest
+// marked cell. Two cells k apart are at least (k - 1) cells apart along some axis, so
 // distance >= (k - 1) * cell_size.
 #pragma once
 
@@ -76,6 +76,9 @@ public:
 
 private:
     double outside_bound(const Vec3& p) const;
+    // cells_: 0 where marked, `levels` elsewhere -> the Chebyshev distance in cells to the nearest
+    // marked cell, capped at `levels`.
+    void chebyshev_transform(int levels);
 
     Vec3 origin_;            // m, corner of cell (0,0,0)
     double cell_ = 0.0;      // m

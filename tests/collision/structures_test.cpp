@@ -184,6 +184,41 @@ TEST(DistanceGate, ALowerBoundOfTheDistanceAndATightOne) {
     EXPECT_GT(resolved, 1000);
 }
 
+// Each cell's level is its Chebyshev distance in cells to the nearest cell a triangle touches
+// (level 0), capped at the level past the reach: checked against every pair of cells, on a slanted
+// triangle and a small box (marked cells in rows, columns and diagonals, and grid edges near them).
+TEST(DistanceGate, EachLevelIsTheChebyshevDistanceToTheNearestTouchedCell) {
+    TriangleMesh mesh = box(BoxSpec{Vec3(2e-3, 1e-3, 1.5e-3), Vec3(1e-3, 0.0, 0.0), Eigen::Vector3i::Ones()});
+    const int base = static_cast<int>(mesh.vertices.size());
+    mesh.vertices.insert(mesh.vertices.end(), {Vec3(-3e-3, -2e-3, -1e-3), Vec3(-1e-3, 2e-3, 0.5e-3), Vec3(-2.5e-3, 1e-3, 2e-3)});
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.source_facet.push_back(static_cast<int>(mesh.source_facet.size()));
+    mesh.group_of_triangle.push_back(0);
+    const double cell = 0.25e-3, reach = 1.6e-3;  // m: levels 2 + reach / cell = 9 (8.4, ceiled)
+    const DistanceGate gate(mesh, cell, reach);
+    std::vector<std::array<int, 3>> touched;
+    int top = 0;
+    for (int k = 0; k < gate.nz(); ++k)
+        for (int j = 0; j < gate.ny(); ++j)
+            for (int i = 0; i < gate.nx(); ++i) {
+                if (gate.level(i, j, k) == 0) touched.push_back({i, j, k});
+                top = std::max(top, gate.level(i, j, k));
+            }
+    ASSERT_GT(touched.size(), 100u);
+    EXPECT_EQ(top, 9);  // the cap: cells farther than that keep it
+    int checked = 0;
+    for (int k = 0; k < gate.nz(); ++k)
+        for (int j = 0; j < gate.ny(); ++j)
+            for (int i = 0; i < gate.nx(); ++i) {
+                int nearest = top;
+                for (const auto& t : touched)
+                    nearest = std::min(nearest, std::max({std::abs(i - t[0]), std::abs(j - t[1]), std::abs(k - t[2])}));
+                ASSERT_EQ(gate.level(i, j, k), nearest) << "cell (" << i << ", " << j << ", " << k << ")";
+                ++checked;
+            }
+    EXPECT_GT(checked, 10000);
+}
+
 // A grid past its cap (a plate 100 m across under 0.3 mm shot went to 4e10 cells) threw "grid too
 // large" (exit 1). Now its cells coarsen until it fits, and the gate is still a lower bound: here
 // a 1 m plate 1 mm thick against a cap of 1e6 cells.
