@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/input_error.h"
+#include "support/mesh_error.h"
 
 namespace peensim {
 namespace {
@@ -16,25 +17,9 @@ namespace {
 const std::string kFacet =
     "  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n    endloop\n  endfacet\n";
 
-// The error check_ascii_stl throws on `text`, or a failure if it throws none.
-InputError refusal_of(const std::string& text) {
-    std::istringstream in(text);
-    try {
-        check_ascii_stl("part.stl", in);
-    } catch (const InputError& e) {
-        return e;
-    }
-    ADD_FAILURE() << "accepted:\n" << text;
-    return InputError({}, "", "");
-}
-
 void expect_refused_at(const std::string& text, int line, int column, const std::string& phrase) {
-    const InputError e = refusal_of(text);
-    EXPECT_EQ(e.where().file, "part.stl");
-    EXPECT_EQ(e.where().line, line) << e.what();
-    EXPECT_EQ(e.where().column, column) << e.what();
-    EXPECT_EQ(e.field(), "mesh");
-    EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    testing::expect_text_mesh_refused_at([](const std::string& file, std::istream& in) { check_ascii_stl(file, in); }, text, line, column,
+                                         phrase);
 }
 
 TEST(AsciiStlCheck, TheFormsWritersEmitPass) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/input_error.h"
+#include "support/mesh_error.h"
 
 namespace peensim {
 namespace {
@@ -16,17 +17,8 @@ namespace {
 const std::string kTetrahedron = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
 
 void expect_refused_at(const std::string& text, int line, int column, const std::string& phrase) {
-    std::istringstream in(text);
-    try {
-        check_obj("part.obj", in);
-        ADD_FAILURE() << "accepted:\n" << text;
-    } catch (const InputError& e) {
-        EXPECT_EQ(e.where().file, "part.obj");
-        EXPECT_EQ(e.where().line, line) << e.what();
-        EXPECT_EQ(e.where().column, column) << e.what();
-        EXPECT_EQ(e.field(), "mesh");
-        EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
-    }
+    testing::expect_text_mesh_refused_at([](const std::string& file, std::istream& in) { check_obj(file, in); }, text, line, column,
+                                         phrase);
 }
 
 TEST(ObjCheck, TheFormsWritersEmitPass) {
