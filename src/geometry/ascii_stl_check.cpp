@@ -33,13 +33,15 @@ void check_ascii_stl(const std::string& path, std::istream& in) {
     int vertices = 0;  // of the facet open
     std::string line;
     std::vector<TextWord> words;
-    const auto numbers_after = [&](std::size_t first, const char* what) {
+    // A facet's normal may be any number: the reader ignores it (the winding decides), and writers
+    // give a degenerate facet "nan" ones. A vertex's must be finite.
+    const auto numbers_after = [&](std::size_t first, const char* what, bool finite) {
         if (words.size() != first + 3)
             refuse(words.front().column, std::string("expected '") + what + "' followed by three numbers, got '" + line + "'");
         for (std::size_t k = first; k < words.size(); ++k)
-            if (!is_finite_number(words[k].text))
-                refuse(words[k].column,
-                       std::string("expected a finite number in '") + what + "', got '" + std::string(words[k].text) + "'");
+            if (!(finite ? is_finite_number(words[k].text) : is_number(words[k].text)))
+                refuse(words[k].column, std::string("expected a ") + (finite ? "finite " : "") + "number in '" + what + "', got '" +
+                                            std::string(words[k].text) + "'");
     };
     while (std::getline(in, line)) {
         ++line_number;
@@ -60,7 +62,7 @@ void check_ascii_stl(const std::string& path, std::istream& in) {
                     if (words.size() > 1) {
                         if (!same_word(words[1].text, "normal"))
                             refuse(words[1].column, "expected 'facet normal X Y Z', got '" + line + "'");
-                        numbers_after(2, "facet normal");
+                        numbers_after(2, "facet normal", false);
                     }
                     expect = Expect::outer_loop;
                 } else {
@@ -79,7 +81,7 @@ void check_ascii_stl(const std::string& path, std::istream& in) {
                            "a facet of " + std::to_string(vertices) + " vertices: expected three 'vertex X Y Z' lines before 'endloop'");
                 }
                 if (!same_word(key, "vertex")) refuse(column, "expected 'vertex X Y Z', got '" + line + "'");
-                numbers_after(1, "vertex");
+                numbers_after(1, "vertex", true);
                 if (++vertices == 3) expect = Expect::endloop;
                 break;
             case Expect::endloop:

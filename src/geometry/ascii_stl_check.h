@@ -11,7 +11,8 @@
 //       endloop
 //     endfacet
 //   endsolid [name]
-// (solids may follow one another). Numbers are whole decimal words and finite.
+// (solids may follow one another). Numbers are whole decimal words; a vertex's finite (a normal
+// may be "nan": writers give one to a degenerate facet, and the reader ignores normals).
 #pragma once
 
 #include <istream>

@@ -27,13 +27,22 @@ inline void split_words(std::string_view line, std::vector<TextWord>& words) {
     }
 }
 
-// Whether the whole word is a finite decimal number ("+" allowed in front, as writers emit it):
-// not "2x", which a reader taking the digits at its front reads as 2.
-inline bool is_finite_number(std::string_view word) {
+// Whether the whole word is a decimal number ("+" allowed in front, as writers emit it; "nan" and
+// "inf" are numbers here): not "2x", which a reader taking the digits at its front reads as 2.
+inline bool is_number(std::string_view word) {
     if (!word.empty() && word.front() == '+') word.remove_prefix(1);
     double value = 0.0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-    return error == std::errc() && end == word.data() + word.size() && std::isfinite(value);
+    return error == std::errc() && end == word.data() + word.size();
+}
+
+// The same, and finite.
+inline bool is_finite_number(std::string_view word) {
+    if (!is_number(word)) return false;
+    if (word.front() == '+') word.remove_prefix(1);
+    double value = 0.0;
+    std::from_chars(word.data(), word.data() + word.size(), value);
+    return std::isfinite(value);
 }
 
 }  // namespace peensim

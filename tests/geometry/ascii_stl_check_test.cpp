@@ -1,6 +1,6 @@
 // check_ascii_stl: an ASCII STL that breaks its grammar is refused at its line and column with
 // what was expected; the forms writers really emit (any case, "+" signs, CRLF, blank lines, a
-// facet without its normal, several solids) pass.
+// facet without its normal or with a "nan" one, several solids) pass.
 #include "geometry/ascii_stl_check.h"
 
 #include <gtest/gtest.h>
@@ -27,6 +27,9 @@ TEST(AsciiStlCheck, TheFormsWritersEmitPass) {
         "SOLID Part 1 (from a CAD tool)\r\n\r\n"
         "FACET NORMAL +0.0 -0 1E+0\r\nOUTER LOOP\r\nVERTEX +1.5e-3 0 0\r\nVERTEX 1 0 0\r\nVERTEX 0 1 0\r\nENDLOOP\r\nENDFACET\r\n"
         "endsolid\r\n"
+        // A degenerate facet's normal as some writers give it (the reader ignores normals).
+        "solid degenerate\nfacet normal -nan nan -nan\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 2 0 0\nendloop\nendfacet\n"
+        "endsolid degenerate\n"
         "solid second\n  facet\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n"
         "    endloop\n  endfacet\n" +
         kFacet + "endsolid second\n";
@@ -38,7 +41,7 @@ TEST(AsciiStlCheck, ANumberWithAWordAfterItIsRefusedNotReadAsItsDigits) {
     // The reader took "2x" for 2: a part silently of other coordinates.
     expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 2x\n", 5, 18,
                       "expected a finite number in 'vertex', got '2x'");
-    expect_refused_at("solid s\n  facet normal 0 0 nan\n", 2, 20, "expected a finite number in 'facet normal', got 'nan'");
+    expect_refused_at("solid s\n  facet normal 0 0 1n\n", 2, 20, "expected a number in 'facet normal', got '1n'");
     expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1e400 0 0\n", 4, 14,
                       "expected a finite number in 'vertex', got '1e400'");
 }
