@@ -56,22 +56,24 @@ void check_obj(const std::string& path, std::istream& in) {
         split_words(text, words);
         if (words.empty() || words.front().text.front() == '#') continue;
         const std::string_view key = words.front().text;
-        const auto numbers = [&](std::size_t least, std::size_t most, const char* what) {
+        // A vertex's numbers must be finite; a normal's or a texture coordinate's may be any number
+        // ("nan" from a writer's degenerate face): the reader uses neither.
+        const auto numbers = [&](std::size_t least, std::size_t most, const char* what, bool finite) {
             const std::size_t n = words.size() - 1;
             if (n < least || n > most)
                 refuse(words.front().column, std::string("expected '") + std::string(key) + "' with " + what + ", got '" + text + "'");
             for (std::size_t k = 1; k < words.size(); ++k)
-                if (!is_finite_number(words[k].text))
-                    refuse(words[k].column,
-                           "expected a finite number in '" + std::string(key) + "', got '" + std::string(words[k].text) + "'");
+                if (!(finite ? is_finite_number(words[k].text) : is_number(words[k].text)))
+                    refuse(words[k].column, std::string("expected a ") + (finite ? "finite " : "") + "number in '" + std::string(key) +
+                                                "', got '" + std::string(words[k].text) + "'");
         };
         if (key == "v") {
-            numbers(3, 7, "3 to 7 numbers (x y z [w] or x y z r g b)");
+            numbers(3, 7, "3 to 7 numbers (x y z [w] or x y z r g b)", true);
             ++vertices;
         } else if (key == "vn") {
-            numbers(3, 3, "3 numbers");
+            numbers(3, 3, "3 numbers", false);
         } else if (key == "vt") {
-            numbers(1, 3, "1 to 3 numbers");
+            numbers(1, 3, "1 to 3 numbers", false);
         } else if (key == "f" || key == "l" || key == "p") {
             const std::size_t least = key == "f" ? 3 : key == "l" ? 2 : 1;
             if (words.size() - 1 < least)

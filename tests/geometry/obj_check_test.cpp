@@ -22,9 +22,10 @@ void expect_refused_at(const std::string& text, int line, int column, const std:
 }
 
 TEST(ObjCheck, TheFormsWritersEmitPass) {
-    const std::string text = "# exported\r\nmtllib part.mtl\r\no part\r\nf 1 2 3\r\n" + kTetrahedron +
-                             "v 1 1 1 1.0\nv 1 1 0 0.5 0.5 0.5\nvt 0.5\nvt 0.5 0.5\nvn 0 0 +1\ng alpha beta\nusemtl steel\ns 1\n"
-                             "f 1/1 2/2 3/2\nf 1//1 2//1 4//1\nf 1/1/1 3/2/1 4/1/1\nf -6 -5 \\\n -3\nl 1 2 3\np 5\n";
+    const std::string text =
+        "# exported\r\nmtllib part.mtl\r\no part\r\nf 1 2 3\r\n" + kTetrahedron +
+        "v 1 1 1 1.0\nv 1 1 0 0.5 0.5 0.5\nvt 0.5\nvt 0.5 0.5\nvn 0 0 +1\nvn nan -nan nan\ng alpha beta\nusemtl steel\ns 1\n"
+        "f 1/1 2/2 3/2\nf 1//1 2//1 4//1\nf 1/1/1 3/2/1 4/1/1\nf -6 -5 \\\n -3\nl 1 2 3\np 5\n";
     std::istringstream in(text);
     EXPECT_NO_THROW(check_obj("part.obj", in));
 }
@@ -34,7 +35,8 @@ TEST(ObjCheck, ANumberWithAWordAfterItIsRefusedNotReadAsItsDigits) {
     // of range", with no line).
     expect_refused_at("v 0 0 0\nv 10 0 0\nv 0 10 2x\n", 3, 8, "expected a finite number in 'v', got '2x'");
     expect_refused_at("v 0 0 0\nv 10 0 garbage\n", 2, 8, "expected a finite number in 'v', got 'garbage'");
-    expect_refused_at("vn 0 0 inf\n", 1, 8, "expected a finite number in 'vn', got 'inf'");
+    expect_refused_at("vn 0 0 1n\n", 1, 8, "expected a number in 'vn', got '1n'");
+    expect_refused_at("v 0 0 inf\n", 1, 7, "expected a finite number in 'v', got 'inf'");
 }
 
 TEST(ObjCheck, AVertexOfTooFewOrTooManyNumbersIsRefused) {
