@@ -31,6 +31,7 @@
 #include <TopoDS_Compound.hxx>
 #include <UnitsMethods.hxx>
 
+#include <algorithm>
 #include <array>
 #include <utility>
 #include <vector>
@@ -139,10 +140,12 @@ ReadShape read_shape(const std::string& path, const MessagesKept& messages) {
     reader.FileUnits(lengths, angles, solid_angles);
     // One name per unit the file declares; most declare one (an assembly of parts in other units
     // lists each, and OpenCASCADE converts each part from its own).
+    std::vector<std::string> names;
     for (int i = 1; i <= lengths.Length(); ++i) {
         const std::string name = lengths.Value(i).ToCString();
-        if (read.declared_unit.find(name) != std::string::npos) continue;
-        read.declared_unit += (read.declared_unit.empty() ? "" : ", ") + name;
+        if (std::find(names.begin(), names.end(), name) != names.end()) continue;
+        read.declared_unit += (names.empty() ? "" : ", ") + name;
+        names.push_back(name);
     }
     return read;
 }

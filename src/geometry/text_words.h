@@ -28,21 +28,22 @@ inline void split_words(std::string_view line, std::vector<TextWord>& words) {
 }
 
 // Whether the whole word is a decimal number ("+" allowed in front, as writers emit it; "nan" and
-// "inf" are numbers here): not "2x", which a reader taking the digits at its front reads as 2.
-inline bool is_number(std::string_view word) {
+// "inf" are numbers here), its value in `value`: not "2x", which a reader taking the digits at its
+// front reads as 2.
+inline bool read_number(std::string_view word, double& value) {
     if (!word.empty() && word.front() == '+') word.remove_prefix(1);
-    double value = 0.0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
     return error == std::errc() && end == word.data() + word.size();
 }
 
-// The same, and finite.
-inline bool is_finite_number(std::string_view word) {
-    if (!is_number(word)) return false;
-    if (word.front() == '+') word.remove_prefix(1);
+inline bool is_number(std::string_view word) {
     double value = 0.0;
-    std::from_chars(word.data(), word.data() + word.size(), value);
-    return std::isfinite(value);
+    return read_number(word, value);
+}
+
+inline bool is_finite_number(std::string_view word) {
+    double value = 0.0;
+    return read_number(word, value) && std::isfinite(value);
 }
 
 }  // namespace peensim
