@@ -1,10 +1,8 @@
 #include "app/run/replica_ranks.h"
 
-#include <chrono>
 #include <filesystem>
 #include <ostream>
 #include <stdexcept>
-#include <thread>
 
 #include <mpi.h>
 
@@ -12,7 +10,9 @@
 #include "app/exit_codes.h"
 #include "app/interrupt.h"
 #include "app/report_errors.h"
+#include "app/run/rank_messages.h"
 #include "app/run/replica_result_codec.h"
+#include "app/run/round_ranks.h"
 #include "common/random.h"
 #include "model/model.h"
 #include "model/shot_placement.h"
@@ -23,51 +23,6 @@ namespace peensim {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr int kTagPlan = 11;    // rank 0 -> rank k: the plan's bytes (no windows: none, end)
-constexpr int kTagResult = 12;  // rank k -> rank 0: 'R' and its result's bytes, or 'E' and why it failed
-constexpr int kTagStop = 13;    // rank 0 -> rank k: stop at the next step (the run was interrupted)
-constexpr int kTagBye = 14;     // rank 0 -> rank k: its result is in; end
-
-bool plan_sent = false;  // rank 0: the plan, or "none", went out (once per job)
-
-// Waiting ranks poll, so that they leave their core to the ranks that work.
-void pause_briefly() { std::this_thread::sleep_for(std::chrono::milliseconds(2)); }
-
-bool waiting(int source, int tag) {
-    int flag = 0;
-    MPI_Iprobe(source, tag, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
-    return flag != 0;
-}
-
-void send_bytes(const std::string& bytes, int to, int tag) {
-    MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD);
-}
-
-std::string receive_bytes(int from, int tag) {
-    while (!waiting(from, tag)) pause_briefly();
-    MPI_Status status;
-    MPI_Probe(from, tag, MPI_COMM_WORLD, &status);
-    int size = 0;
-    MPI_Get_count(&status, MPI_BYTE, &size);
-    std::string bytes(static_cast<std::size_t>(size), '\0');
-    MPI_Recv(bytes.data(), size, MPI_BYTE, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    return bytes;
-}
-
-void send_int(int value, int to, int tag) { MPI_Send(&value, 1, MPI_INT, to, tag, MPI_COMM_WORLD); }
-
-int receive_int(int from, int tag) {
-    int value = 0;
-    MPI_Recv(&value, 1, MPI_INT, from, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    return value;
-}
-
-int ranks() {
-    int size = 1;
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    return size;
-}
 
 // Rank k: its replica, quietly; whatever happens it answers rank 0's plan and ends on its word.
 int run_replica_rank(const RunOptions& options, int rank) {
@@ -94,20 +49,23 @@ int run_replica_rank(const RunOptions& options, int rank) {
     } catch (const std::exception& e) {
         failure = e.what();  // rank 0 reads the same scene and says what is wrong with it
     }
-    const ReplicaPlan plan = decode_replica_plan(receive_bytes(0, kTagPlan));
-    if (plan.windows.empty()) return kExitOk;  // rank 0 goes on alone, or stopped before a plan
+    const std::string plan_bytes = receive_bytes(0, kTagPlan);
+    const bool rounds = is_round_plan(plan_bytes);
+    const ReplicaPlan plan = rounds ? ReplicaPlan{} : decode_replica_plan(plan_bytes);
+    if (!rounds && plan.windows.empty()) return kExitOk;  // rank 0 goes on alone, or stopped before a plan
     // Rank 0 made the spills' folder before it sent the plan: a rank that cannot see it would spill
     // where rank 0 never reads.
     if (failure.empty() && !fs::is_directory(fs::path(dir) / kReplicaSpillDirectory))
         failure = "cannot see the run's directory " + dir + " as rank 0 made it (no " + std::string(kReplicaSpillDirectory) +
                   "/ in it): every rank must see the run's directory, on a shared file system and from the same working directory";
+    if (rounds) return run_round_rank(RoundRank{model, shots, dir, slots, failure, plan_bytes, rank});
     std::string answer;
     if (failure.empty()) {
         try {
             bool told_to_stop = false;
             std::uint64_t steps = 0;
             const ReplicaResult result = run_replica(model, plan.windows.at(static_cast<std::size_t>(rank)), shots, dir, slots, [&] {
-                if (!told_to_stop && ++steps % 64 == 0 && waiting(0, kTagStop)) {
+                if (!told_to_stop && ++steps % 64 == 0 && message_waiting(0, kTagStop)) {
                     receive_int(0, kTagStop);
                     told_to_stop = true;
                 }
@@ -123,8 +81,8 @@ int run_replica_rank(const RunOptions& options, int rank) {
     // Until rank 0 says the result is in, a stop it sent may still be on its way: taken, so that
     // every message is matched before MPI_Finalize.
     for (;;) {
-        if (waiting(0, kTagStop)) receive_int(0, kTagStop);
-        if (waiting(0, kTagBye)) {
+        if (message_waiting(0, kTagStop)) receive_int(0, kTagStop);
+        if (message_waiting(0, kTagBye)) {
             receive_int(0, kTagBye);
             return kExitOk;
         }
@@ -141,7 +99,7 @@ int run_replicas_over_mpi(const RunOptions& options, std::ostream& out, std::ost
     } finalize;
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    const int size = ranks();
+    const int size = rank_count();
     if (size != options.replicas) {
         if (rank == 0)
             err << "error: --replicas " << options.replicas << " in an MPI job of " << size << " ranks: expected --replicas " << size
@@ -158,14 +116,14 @@ int run_replicas_over_mpi(const RunOptions& options, std::ostream& out, std::ost
 
 ReplicaRanks::ReplicaRanks(std::vector<ReplicaWindow> windows, std::string run_dir)
     : ReplicaRunner(std::move(windows), std::move(run_dir)) {
-    if (static_cast<int>(windows_.size()) + 1 != ranks()) throw std::invalid_argument("ReplicaRanks: one window a rank but rank 0");
-    if (plan_sent) throw std::logic_error("ReplicaRanks: the plan went out already");
+    if (static_cast<int>(windows_.size()) + 1 != rank_count()) throw std::invalid_argument("ReplicaRanks: one window a rank but rank 0");
+    if (plan_went_out()) throw std::logic_error("ReplicaRanks: the plan went out already");
     ReplicaPlan plan;
     plan.windows.push_back({});  // replica 0's: rank 0's own, not read by the others
     plan.windows.insert(plan.windows.end(), windows_.begin(), windows_.end());
     const std::string bytes = encode_replica_plan(plan);
     for (std::size_t k = 0; k < windows_.size(); ++k) send_bytes(bytes, static_cast<int>(k) + 1, kTagPlan);
-    plan_sent = true;
+    mark_plan_sent();
 }
 
 ReplicaRanks::~ReplicaRanks() {
@@ -202,7 +160,7 @@ std::vector<ReplicaResult> ReplicaRanks::wait() {
 }
 
 void release_replica_ranks() {
-    if (plan_sent) return;
+    if (plan_went_out()) return;
     int initialized = 0;
     MPI_Initialized(&initialized);
     if (!initialized) return;  // not a run over MPI ranks
@@ -210,8 +168,8 @@ void release_replica_ranks() {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     if (rank != 0) return;
     const std::string none = encode_replica_plan(ReplicaPlan{});
-    for (int k = 1; k < ranks(); ++k) send_bytes(none, k, kTagPlan);
-    plan_sent = true;
+    for (int k = 1; k < rank_count(); ++k) send_bytes(none, k, kTagPlan);
+    mark_plan_sent();
 }
 
 }  // namespace peensim

@@ -1,5 +1,6 @@
 #include "app/run/replica_result_codec.h"
 
+#include <cstring>
 #include <type_traits>
 
 #include "common/byte_stream.h"
@@ -8,8 +9,11 @@ namespace peensim {
 
 namespace {
 
-constexpr std::uint32_t kResultMagic = 0x52505231;  // "RPR1"
-constexpr std::uint32_t kPlanMagic = 0x504c4e31;    // "PLN1"
+constexpr std::uint32_t kResultMagic = 0x52505231;       // "RPR1"
+constexpr std::uint32_t kPlanMagic = 0x504c4e31;         // "PLN1"
+constexpr std::uint32_t kRoundPlanMagic = 0x524e4431;    // "RND1"
+constexpr std::uint32_t kSlotMagic = 0x534c5431;         // "SLT1"
+constexpr std::uint32_t kRoundResultMagic = 0x52524531;  // "RRE1"
 
 static_assert(std::is_trivially_copyable_v<HealthCounters>);
 
@@ -95,13 +99,8 @@ std::vector<NamedCount> get_counts(ByteReader& r) {
     return v;
 }
 
-}  // namespace
-
-std::string encode_replica_result(const ReplicaResult& x) {
-    ByteWriter w;
-    w.put(kResultMagic);
-    put_window(w, x.window);
-    const RunSummary& s = x.summary;
+// What the run's summary merges from a replica's own: its counts, health, stage times and steps.
+void put_summary(ByteWriter& w, const RunSummary& s) {
     put_counts(w, s.impacts_per_component);
     put_counts(w, s.slow_contacts_per_component);
     put_counts(w, s.health_counters);
@@ -116,23 +115,10 @@ std::string encode_replica_result(const ReplicaResult& x) {
     w.put(s.shots_in_flight);
     w.put(s.shots_at_rest);
     w.put(s.finished);
-    w.put_vector(x.impacts_at_window_start);
-    w.put_vector(x.slow_contacts_at_window_start);
-    w.put<std::uint64_t>(x.speeds.size());
-    for (const SpeedHistogram& h : x.speeds) w.put_string(h.serialize());
-    w.put(x.logged_impacts);
-    put_lost(w, x.lost);
-    w.put(x.health);
-    w.put(x.wall_s);
-    return w.bytes();
 }
 
-ReplicaResult decode_replica_result(std::string_view bytes) {
-    ByteReader r(bytes, "a replica's result");
-    if (r.get<std::uint32_t>() != kResultMagic) r.fail("not a replica's result");
-    ReplicaResult x;
-    x.window = get_window(r);
-    RunSummary& s = x.summary;
+RunSummary get_summary(ByteReader& r) {
+    RunSummary s;
     s.impacts_per_component = get_counts(r);
     s.slow_contacts_per_component = get_counts(r);
     s.health_counters = get_counts(r);
@@ -149,6 +135,33 @@ ReplicaResult decode_replica_result(std::string_view bytes) {
     s.shots_in_flight = r.get<std::uint64_t>();
     s.shots_at_rest = r.get<std::uint64_t>();
     s.finished = r.get<bool>();
+    return s;
+}
+
+}  // namespace
+
+std::string encode_replica_result(const ReplicaResult& x) {
+    ByteWriter w;
+    w.put(kResultMagic);
+    put_window(w, x.window);
+    put_summary(w, x.summary);
+    w.put_vector(x.impacts_at_window_start);
+    w.put_vector(x.slow_contacts_at_window_start);
+    w.put<std::uint64_t>(x.speeds.size());
+    for (const SpeedHistogram& h : x.speeds) w.put_string(h.serialize());
+    w.put(x.logged_impacts);
+    put_lost(w, x.lost);
+    w.put(x.health);
+    w.put(x.wall_s);
+    return w.bytes();
+}
+
+ReplicaResult decode_replica_result(std::string_view bytes) {
+    ByteReader r(bytes, "a replica's result");
+    if (r.get<std::uint32_t>() != kResultMagic) r.fail("not a replica's result");
+    ReplicaResult x;
+    x.window = get_window(r);
+    x.summary = get_summary(r);
     x.impacts_at_window_start = r.get_vector<std::uint64_t>();
     x.slow_contacts_at_window_start = r.get_vector<std::uint64_t>();
     const auto histograms = r.get<std::uint64_t>();
@@ -185,6 +198,96 @@ ReplicaPlan decode_replica_plan(std::string_view bytes) {
     for (std::uint64_t k = 0; k < n; ++k) plan.windows.push_back(get_window(r));
     if (!r.at_end()) r.fail("bytes after its end");
     return plan;
+}
+
+std::string encode_round_plan(const RoundPlan& plan) {
+    ByteWriter w;
+    w.put(kRoundPlanMagic);
+    w.put(plan.pilot_s);
+    w.put(plan.warm_up_s);
+    w.put(plan.turn_s);
+    w.put(plan.first_s);
+    w.put(plan.round_s);
+    w.put_vector(plan.seeds);
+    w.put_vector(plan.first_from_s);
+    return w.bytes();
+}
+
+bool is_round_plan(std::string_view bytes) {
+    std::uint32_t magic = 0;
+    if (bytes.size() < sizeof(magic)) return false;
+    std::memcpy(&magic, bytes.data(), sizeof(magic));
+    return magic == kRoundPlanMagic;
+}
+
+RoundPlan decode_round_plan(std::string_view bytes) {
+    ByteReader r(bytes, "the rounds' plan");
+    if (r.get<std::uint32_t>() != kRoundPlanMagic) r.fail("not a rounds' plan");
+    RoundPlan plan;
+    plan.pilot_s = r.get<double>();
+    plan.warm_up_s = r.get<double>();
+    plan.turn_s = r.get<double>();
+    plan.first_s = r.get<double>();
+    plan.round_s = r.get<double>();
+    plan.seeds = r.get_vector<std::uint64_t>();
+    plan.first_from_s = r.get_vector<double>();
+    if (plan.first_from_s.size() != plan.seeds.size()) r.fail("a start per replica");
+    if (!r.at_end()) r.fail("bytes after its end");
+    return plan;
+}
+
+std::string encode_slot_result(const SlotResult& x) {
+    ByteWriter w;
+    w.put(kSlotMagic);
+    put_window(w, x.window);
+    w.put_string(x.spill);
+    w.put(x.logged_impacts);
+    w.put_vector(x.impacts_at_start);
+    w.put_vector(x.slow_contacts_at_start);
+    w.put_vector(x.impacts_at_end);
+    w.put_vector(x.slow_contacts_at_end);
+    return w.bytes();
+}
+
+SlotResult decode_slot_result(std::string_view bytes) {
+    ByteReader r(bytes, "a replica's slot");
+    if (r.get<std::uint32_t>() != kSlotMagic) r.fail("not a replica's slot");
+    SlotResult x;
+    x.window = get_window(r);
+    x.spill = r.get_string();
+    x.logged_impacts = r.get<std::uint64_t>();
+    x.impacts_at_start = r.get_vector<std::uint64_t>();
+    x.slow_contacts_at_start = r.get_vector<std::uint64_t>();
+    x.impacts_at_end = r.get_vector<std::uint64_t>();
+    x.slow_contacts_at_end = r.get_vector<std::uint64_t>();
+    if (!r.at_end()) r.fail("bytes after its end");
+    return x;
+}
+
+std::string encode_round_replica_result(const RoundReplicaResult& x) {
+    ByteWriter w;
+    w.put(kRoundResultMagic);
+    w.put(x.replica);
+    w.put(x.seed);
+    w.put(x.first_from_s);
+    put_summary(w, x.summary);
+    put_lost(w, x.lost);
+    w.put(x.health);
+    return w.bytes();
+}
+
+RoundReplicaResult decode_round_replica_result(std::string_view bytes) {
+    ByteReader r(bytes, "a replica's rounds");
+    if (r.get<std::uint32_t>() != kRoundResultMagic) r.fail("not a replica's rounds");
+    RoundReplicaResult x;
+    x.replica = r.get<int>();
+    x.seed = r.get<std::uint64_t>();
+    x.first_from_s = r.get<double>();
+    x.summary = get_summary(r);
+    x.lost = get_lost(r);
+    x.health = r.get<HealthCounters>();
+    if (!r.at_end()) r.fail("bytes after its end");
+    return x;
 }
 
 }  // namespace peensim

@@ -101,7 +101,11 @@ struct RoundRuns::Worker {
 
 RoundRuns::RoundRuns(std::shared_ptr<const Model> model, RoundPlan plan, std::vector<InitialShots> shots, std::string run_dir,
                      std::vector<int> slots)
-    : model_(std::move(model)), plan_(std::move(plan)), shots_(std::move(shots)), dir_(std::move(run_dir)), slots_(std::move(slots)) {
+    : RoundRunner(std::move(run_dir)),
+      model_(std::move(model)),
+      plan_(std::move(plan)),
+      shots_(std::move(shots)),
+      slots_(std::move(slots)) {
     if (shots_.size() + 1 != static_cast<std::size_t>(plan_.replicas()))
         throw std::invalid_argument("RoundRuns: one placement per replica but the run's own");
     fs::create_directories(fs::path(dir_) / kReplicaSpillDirectory);
@@ -141,37 +145,46 @@ void RoundRuns::publish(std::size_t i, std::optional<SlotResult> slot, bool ende
     changed_.notify_all();
 }
 
-void RoundRuns::run_one(std::size_t i) {
-    const int k = static_cast<int>(i) + 1;
-    Worker& w = *workers_[i];
+RoundReplicaResult run_round_replica(std::shared_ptr<const Model> model, const RoundPlan& plan, int replica, const InitialShots& shots,
+                                     const std::string& run_dir, const std::vector<int>& slots, const std::function<bool(int)>& may_run,
+                                     const std::function<void(SlotResult)>& publish, const std::function<bool()>& stop) {
     const auto started = std::chrono::steady_clock::now();
+    RoundReplicaResult result;
+    result.replica = replica;
+    result.seed = plan.seeds.at(static_cast<std::size_t>(replica));
+    result.first_from_s = plan.first_from_s.at(static_cast<std::size_t>(replica));
+    Simulation sim(model, shots);
+    SlotListener listener;
+    RunLoop loop(sim);
+    loop.add(listener);
+    bool finished = true;
+    for (int round = 0; may_run(round); ++round) {
+        ReplicaWindow slot = plan.slot(round, replica);
+        const double cap_s = model->duration_s - slot.shift_s;  // s, its own time at the run's duration
+        if (!(slot.log_from_s < cap_s)) break;
+        slot.run_to_s = std::min(slot.run_to_s, cap_s);
+        listener.begin(slot, round, run_dir);
+        sim.end_at(slot.run_to_s);
+        finished = loop.run([&](std::uint64_t) { return stop(); });
+        SlotResult done = listener.end(sim);
+        if (!finished) break;  // stopped within the slot: not a whole one
+        publish(std::move(done));
+    }
+    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    std::size_t logged = 0;
+    for (const int s : slots) logged += s >= 0 ? 1 : 0;
+    result.summary = build_summary(sim, "", std::vector<SpeedHistogram>(logged), wall_s, finished);
+    result.lost = sim.state().lost;
+    result.health = sim.state().health;
+    return result;
+}
+
+void RoundRuns::run_one(std::size_t i) {
+    Worker& w = *workers_[i];
     try {
-        w.result.replica = k;
-        w.result.seed = plan_.seeds.at(static_cast<std::size_t>(k));
-        w.result.first_from_s = plan_.first_from_s.at(static_cast<std::size_t>(k));
-        Simulation sim(model_, shots_[i]);
-        SlotListener listener;
-        RunLoop loop(sim);
-        loop.add(listener);
-        bool finished = true;
-        for (int round = 0; may_run(round); ++round) {
-            ReplicaWindow slot = plan_.slot(round, k);
-            const double cap_s = model_->duration_s - slot.shift_s;  // s, its own time at the run's duration
-            if (!(slot.log_from_s < cap_s)) break;
-            slot.run_to_s = std::min(slot.run_to_s, cap_s);
-            listener.begin(slot, round, dir_);
-            sim.end_at(slot.run_to_s);
-            finished = loop.run([this](std::uint64_t) { return stop_.load(std::memory_order_relaxed); });
-            SlotResult done = listener.end(sim);
-            if (!finished) break;  // stopped within the slot: not a whole one
-            publish(i, std::move(done), false);
-        }
-        const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        std::size_t logged = 0;
-        for (const int s : slots_) logged += s >= 0 ? 1 : 0;
-        w.result.summary = build_summary(sim, "", std::vector<SpeedHistogram>(logged), wall_s, finished);
-        w.result.lost = sim.state().lost;
-        w.result.health = sim.state().health;
+        w.result = run_round_replica(
+            model_, plan_, static_cast<int>(i) + 1, shots_[i], dir_, slots_, [this](int round) { return may_run(round); },
+            [this, i](SlotResult slot) { publish(i, std::move(slot), false); }, [this] { return stop_.load(std::memory_order_relaxed); });
     } catch (...) {
         const std::lock_guard<std::mutex> lock(mutex_);
         w.failure = std::current_exception();
@@ -211,7 +224,7 @@ std::vector<RoundReplicaResult> RoundRuns::finish() {
     return out;
 }
 
-void RoundRuns::discard() const {
+void RoundRunner::discard() const {
     std::error_code ignored;
     fs::remove_all(fs::path(dir_) / kReplicaSpillDirectory, ignored);
 }

@@ -1,8 +1,8 @@
-// The other replicas of a run until coverage (app/run/replica_rounds.h), each on a thread: a
-// Simulation of the shared, immutable model from its own shot placement, run slot by slot. Each
-// slot's impacts, moved to their place in the run, are spilled to a file of their own in the run's
-// directory; after each slot the replica waits until the run lets it go on (the run has logged
-// the round and not yet reached its target) or stops it.
+// The other replicas of a run until coverage (app/run/replica_rounds.h): each a Simulation of the
+// scene from its own shot placement, run slot by slot, on a thread (RoundRuns) or an MPI rank
+// (app/run/round_ranks.h). Each slot's impacts, moved to their place in the run, are spilled to a
+// file of their own in the run's directory; after each slot the replica waits until the run lets
+// it go on (the run has logged the round and not yet reached its target) or stops it.
 #pragma once
 
 #include <atomic>
@@ -48,28 +48,53 @@ struct RoundReplicaResult {
     HealthCounters health;
 };
 
-class RoundRuns {
+// Replica k's (>= 1) whole run until coverage on this thread: a Simulation of `model` from `shots`,
+// slot by slot. Before round r it asks may_run(r) (false: it stops); each whole slot goes to
+// `publish`; stop() -> true ends it at its next step (the slot it is in is then not published).
+// Its spills go to `run_dir`; slots: the logged slot of each component (-1: not logged).
+RoundReplicaResult run_round_replica(std::shared_ptr<const Model> model, const RoundPlan& plan, int replica, const InitialShots& shots,
+                                     const std::string& run_dir, const std::vector<int>& slots, const std::function<bool(int)>& may_run,
+                                     const std::function<void(SlotResult)>& publish, const std::function<bool()>& stop);
+
+// The other replicas of a run until coverage, wherever they run: threads of this process
+// (RoundRuns) or the other ranks of an MPI job (app/run/round_ranks.h). Their spills are in the
+// run's directory.
+class RoundRunner {
+public:
+    virtual ~RoundRunner() = default;
+    // Waits until every other replica has ended its slot of `round` (or stopped); their slots of
+    // that round in replica order, up to the first that has none (a replica that reached the
+    // run's duration). Rethrows the first failure.
+    virtual std::vector<SlotResult> wait_round(int round) = 0;
+    // Lets them run round `round`.
+    virtual void go(int round) = 0;
+    // Asks every replica to stop at its next step, or not to start another slot.
+    virtual void stop() = 0;
+    // Stops them and waits for their ends; each one's result. Rethrows the first failure.
+    virtual std::vector<RoundReplicaResult> finish() = 0;
+    // Removes the spills' folder.
+    void discard() const;
+
+protected:
+    explicit RoundRunner(std::string run_dir) : dir_(std::move(run_dir)) {}
+    std::string dir_;
+};
+
+// The other replicas on threads of this process, sharing the immutable model.
+class RoundRuns final : public RoundRunner {
 public:
     // shots: the placement of replicas 1..K-1; slots: the logged slot of each component (-1: not
     // logged). They start round 0 at once.
     RoundRuns(std::shared_ptr<const Model> model, RoundPlan plan, std::vector<InitialShots> shots, std::string run_dir,
               std::vector<int> slots);
-    ~RoundRuns();  // stops and joins whatever still runs
+    ~RoundRuns() override;  // stops and joins whatever still runs
     RoundRuns(const RoundRuns&) = delete;
     RoundRuns& operator=(const RoundRuns&) = delete;
 
-    // Waits until every other replica has ended its slot of `round` (or stopped); their slots of
-    // that round in replica order, up to the first that has none (a replica that reached the
-    // run's duration). Rethrows the first failure.
-    std::vector<SlotResult> wait_round(int round);
-    // Lets them run round `round`.
-    void go(int round);
-    // Asks every replica to stop at its next step, or not to start another slot.
-    void stop();
-    // Stops and joins them; each one's result. Rethrows the first failure.
-    std::vector<RoundReplicaResult> finish();
-    // Removes the spills' folder.
-    void discard() const;
+    std::vector<SlotResult> wait_round(int round) override;
+    void go(int round) override;
+    void stop() override;
+    std::vector<RoundReplicaResult> finish() override;
 
 private:
     struct Worker;
@@ -80,7 +105,6 @@ private:
     std::shared_ptr<const Model> model_;
     RoundPlan plan_;
     std::vector<InitialShots> shots_;
-    std::string dir_;
     std::vector<int> slots_;
     std::mutex mutex_;
     std::condition_variable changed_;

@@ -31,6 +31,7 @@
 #include "app/run/replica_ranks.h"
 #include "app/run/replica_rounds.h"
 #include "app/run/replica_runs.h"
+#include "app/run/round_ranks.h"
 #include "app/run/round_runs.h"
 #include "app/run/summary_builder.h"
 #include "common/input_error.h"
@@ -77,10 +78,6 @@ public:
                      << " cores: the replicas share them (the same results as on " << options_.replicas << " cores, not faster)\n";
             if (const std::optional<std::string> why = replica_refusal(*model_))
                 throw InputError(scene.process.where, "--replicas", *why + "; expected --replicas 1 for this scene");
-            if (options_.replica_ranks && scene.process.until_coverage)
-                throw InputError(scene.process.where, "--replicas",
-                                 "a run until coverage runs its replicas in rounds on the threads of one process, not yet over MPI "
-                                 "ranks; expected 'peensim run --replicas K' without mpirun for this scene");
         }
         // Before anything is written; a fresh run places its shot in the cavity the check built.
         SetupCheck setup = check_setup(*model_, options_.strict, err_);
@@ -333,7 +330,10 @@ private:
         }
         rounds_ = std::move(plan);
         own_slot_end_s_ = rounds_->first_s;
-        round_runs_ = std::make_unique<RoundRuns>(model_, *rounds_, std::move(replica_shots_), dir_, slots_);
+        if (options_.replica_ranks)
+            round_runs_ = std::make_unique<RoundRanks>(*rounds_, dir_);
+        else
+            round_runs_ = std::make_unique<RoundRuns>(model_, *rounds_, std::move(replica_shots_), dir_, slots_);
         replica_shots_.clear();
         return std::nullopt;
     }
@@ -592,7 +592,7 @@ private:
     // Until coverage as replicas (replica_rounds.h): the rounds, the other replicas' runs, and
     // replica 0's current slot.
     std::optional<RoundPlan> rounds_;
-    std::unique_ptr<RoundRuns> round_runs_;
+    std::unique_ptr<RoundRunner> round_runs_;
     std::vector<RoundReplicaResult> round_results_;
     std::vector<RunSummary::Replicas::Window> round_windows_;  // the slots logged, in time order
     int round_ = 0;
