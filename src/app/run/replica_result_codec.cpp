@@ -99,6 +99,13 @@ std::vector<NamedCount> get_counts(ByteReader& r) {
     return v;
 }
 
+// A reader of bytes that must begin with `magic`; what: what they hold ("a replica's slot").
+ByteReader reader_of(std::string_view bytes, const std::string& what, std::uint32_t magic) {
+    ByteReader r(bytes, what);
+    if (r.get<std::uint32_t>() != magic) r.fail("not " + what);
+    return r;
+}
+
 // What the run's summary merges from a replica's own: its counts, health, stage times and steps.
 void put_summary(ByteWriter& w, const RunSummary& s) {
     put_counts(w, s.impacts_per_component);
@@ -157,8 +164,7 @@ std::string encode_replica_result(const ReplicaResult& x) {
 }
 
 ReplicaResult decode_replica_result(std::string_view bytes) {
-    ByteReader r(bytes, "a replica's result");
-    if (r.get<std::uint32_t>() != kResultMagic) r.fail("not a replica's result");
+    ByteReader r = reader_of(bytes, "a replica's result", kResultMagic);
     ReplicaResult x;
     x.window = get_window(r);
     x.summary = get_summary(r);
@@ -187,8 +193,7 @@ std::string encode_replica_plan(const ReplicaPlan& plan) {
 }
 
 ReplicaPlan decode_replica_plan(std::string_view bytes) {
-    ByteReader r(bytes, "the replicas' plan");
-    if (r.get<std::uint32_t>() != kPlanMagic) r.fail("not a replicas' plan");
+    ByteReader r = reader_of(bytes, "the replicas' plan", kPlanMagic);
     ReplicaPlan plan;
     plan.pilot_s = r.get<double>();
     plan.warm_up_s = r.get<double>();
@@ -221,8 +226,7 @@ bool is_round_plan(std::string_view bytes) {
 }
 
 RoundPlan decode_round_plan(std::string_view bytes) {
-    ByteReader r(bytes, "the rounds' plan");
-    if (r.get<std::uint32_t>() != kRoundPlanMagic) r.fail("not a rounds' plan");
+    ByteReader r = reader_of(bytes, "the rounds' plan", kRoundPlanMagic);
     RoundPlan plan;
     plan.pilot_s = r.get<double>();
     plan.warm_up_s = r.get<double>();
@@ -250,8 +254,7 @@ std::string encode_slot_result(const SlotResult& x) {
 }
 
 SlotResult decode_slot_result(std::string_view bytes) {
-    ByteReader r(bytes, "a replica's slot");
-    if (r.get<std::uint32_t>() != kSlotMagic) r.fail("not a replica's slot");
+    ByteReader r = reader_of(bytes, "a replica's slot", kSlotMagic);
     SlotResult x;
     x.window = get_window(r);
     x.spill = r.get_string();
@@ -277,8 +280,7 @@ std::string encode_round_replica_result(const RoundReplicaResult& x) {
 }
 
 RoundReplicaResult decode_round_replica_result(std::string_view bytes) {
-    ByteReader r(bytes, "a replica's rounds");
-    if (r.get<std::uint32_t>() != kRoundResultMagic) r.fail("not a replica's rounds");
+    ByteReader r = reader_of(bytes, "a replica's rounds", kRoundResultMagic);
     RoundReplicaResult x;
     x.replica = r.get<int>();
     x.seed = r.get<std::uint64_t>();
