@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "collision/occupied_cells.h"
 #include "kernels/closest_point.h"
 #include "kernels/swept_sphere_box.h"
 
@@ -46,6 +47,9 @@ struct MeshCollider::Impl {
     Vec3 quantization_step = Vec3::Zero();
     std::unique_ptr<btTriangleIndexVertexArray> arrays;
     std::unique_ptr<btBvhTriangleMeshShape> shape;
+    // The cells a triangle may meet: a search window whose bounds meet none is a miss without the
+    // BVH walk (the open cavity of a chamber, where the walk cannot end at the root).
+    std::unique_ptr<OccupiedCells> cells;
 };
 
 MeshCollider::MeshCollider(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
@@ -80,6 +84,7 @@ MeshCollider::MeshCollider(const TriangleMesh& mesh) : impl_(std::make_unique<Im
     const btVector3 o = bvh->unQuantize(zero), o1 = bvh->unQuantize(one);
     impl_->quantization_origin = Vec3(o.x(), o.y(), o.z()) / kBulletScale;
     impl_->quantization_step = Vec3(o1.x() - o.x(), o1.y() - o.y(), o1.z() - o.z()) / kBulletScale;
+    impl_->cells = std::make_unique<OccupiedCells>(mesh);
 }
 
 MeshCollider::~MeshCollider() = default;
@@ -182,6 +187,12 @@ ToiStatus MeshCollider::first_hit(const Trajectory& path, double radius, double 
     auto vertex = [&](int i) { return Vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]); };
 
     SweptSphere swept(path, radius, t_begin, t_end);
+    // No triangle within the sweep's reach (its centre's bounds grown by the radius and the pad,
+    // the box every node's span is first tested against): nothing to walk.
+    if (!impl_->cells->any_in(swept.reach_lo(), swept.reach_hi())) {
+        ++counters.windows_gated;
+        return ToiStatus::miss;
+    }
     ToiStatus status = ToiStatus::miss;
     double best = t_end;
     double top_speed = path.max_speed(t_begin, t_end);  // m/s, over [t_begin, best]
@@ -353,7 +364,7 @@ std::size_t MeshCollider::memory_bytes() const {
     btOptimizedBvh* bvh = impl_->shape->getOptimizedBvh();
     const std::size_t nodes = bvh ? static_cast<std::size_t>(bvh->getQuantizedNodeArray().size()) : 0;
     return 2 * impl_->vertices.size() * sizeof(btScalar) + impl_->indices.size() * sizeof(int) +
-           impl_->planes.size() * sizeof(Impl::Plane) + nodes * sizeof(btQuantizedBvhNode);
+           impl_->planes.size() * sizeof(Impl::Plane) + nodes * sizeof(btQuantizedBvhNode) + impl_->cells->memory_bytes();
 }
 
 }  // namespace peensim

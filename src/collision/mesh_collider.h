@@ -51,7 +51,8 @@ public:
     // reached gets the exact sphere_triangle_toi, searched only while the sphere is within reach
     // of its box. The result is what that test over all triangles would give: `overlapping` if
     // any triangle is overlapped at t_begin, else the earliest impact (ties: any of the equally
-    // early triangles). Allocates nothing; thread-safe (const, no shared scratch).
+    // early triangles). A sweep whose reach meets no cell a triangle may meet (OccupiedCells) is a
+    // miss without the walk. Allocates nothing; thread-safe (const, no shared scratch).
     struct Hit {
         int triangle = -1;        // index into the mesh's triangles
         TriangleContact contact;  // time (s), point (m, mesh frame), normal, feature
@@ -61,6 +62,7 @@ public:
         std::uint64_t nodes_visited = 0;   // BVH nodes taken from the queue (inner nodes and leaves)
         std::uint64_t leaves_visited = 0;  // triangles given the exact time-of-impact test
         std::uint64_t heap_overflows = 0;  // subtrees walked depth-first because the queue was full
+        std::uint64_t windows_gated = 0;   // sweeps whose reach meets no cell a triangle may meet (no walk)
     };
     // queue_capacity: entries of the time-ordered queue (at most kFirstHitQueueCapacity); when full,
     // a subtree is walked depth-first instead, with the same answer (tests shrink it to exercise that).

@@ -36,6 +36,7 @@ struct StepStats {
     std::uint64_t bvh_hits = 0;            // queries that found a triangle within reach
     std::uint64_t triangles_returned = 0;  // triangles the BVH returned
     std::uint64_t triangle_tests = 0;      // exact closest-point tests (after the plane test)
+    std::uint64_t bvh_sweeps_gated = 0;    // event scheme: BVH sweeps answered by the occupied cells (no walk)
     std::uint64_t touch_searches = 0;      // touch-time searches (quadratic or sampled)
     // Event-driven scheme (zero for time stepping).
     std::uint64_t events = 0;            // events taken from the queue
@@ -79,7 +80,7 @@ struct StepStats {
     double& operator[](Stage s) { return seconds[static_cast<std::size_t>(s)]; }
     double operator[](Stage s) const { return seconds[static_cast<std::size_t>(s)]; }
 
-    static constexpr std::size_t kCounters = 25;
+    static constexpr std::size_t kCounters = 26;
 
 private:
     template <class Self, class Visit>
@@ -91,6 +92,7 @@ private:
         visit("bvh_hits", self.bvh_hits);
         visit("triangles_returned", self.triangles_returned);
         visit("triangle_tests", self.triangle_tests);
+        visit("bvh_sweeps_gated", self.bvh_sweeps_gated);
         visit("touch_searches", self.touch_searches);
         visit("events", self.events);
         visit("stale_events", self.stale_events);

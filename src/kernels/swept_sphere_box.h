@@ -34,6 +34,11 @@ public:
     // pad) of it.
     bool slab_span(const Vec3& n, double lo, double hi, TimeSpan& out) const;
 
+    // The centre's bounds over the sweep grown by the radius and the pad (m): nothing outside
+    // this box is within reach; span() tests every box against it first.
+    const Vec3& reach_lo() const { return reach_lo_; }
+    const Vec3& reach_hi() const { return reach_hi_; }
+
     // Added to the radius on every side (m): 1e-6 R plus rounding of the coordinates.
     double pad() const { return pad_; }
 

@@ -173,6 +173,7 @@ bool WallPredictor::static_contact(int c, const Trajectory& path, double R, doub
     const ToiStatus st = comp.collider->first_hit(local, R, t, t_end, hit, counters);
     stats.bvh_queries += 1;
     stats.triangle_tests += counters.leaves_visited;
+    stats.bvh_sweeps_gated += counters.windows_gated;
     if (st == ToiStatus::miss) return false;
     out.time = st == ToiStatus::overlapping ? t : hit.contact.time;
     out.point = rest.to_world(hit.contact.point);
