@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "kernels/closest_point.h"
+#include "collision/cells_near_triangles.h"
 
 namespace peensim {
 
@@ -44,29 +44,11 @@ DistanceGate::DistanceGate(const TriangleMesh& mesh, double cell_size_m, double 
     }
     const std::size_t nx = static_cast<std::size_t>(nx_), ny = static_cast<std::size_t>(ny_), nz = static_cast<std::size_t>(nz_);
     cells_.assign(nx * ny * nz, static_cast<std::uint8_t>(levels));
-    auto index = [&](std::size_t i, std::size_t j, std::size_t k) { return (k * ny + j) * nx + i; };
 
-    // Mark cells a triangle may touch.
-    const double half_diagonal = 0.5 * std::sqrt(3.0) * cell_;
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-        const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
-        const Vec3 lo = (a.cwiseMin(b).cwiseMin(c) - origin_) * inv_cell_ - Vec3::Constant(0.5);
-        const Vec3 hi = (a.cwiseMax(b).cwiseMax(c) - origin_) * inv_cell_ + Vec3::Constant(0.5);
-        const auto clampi = [](double v, int n) { return static_cast<std::size_t>(std::clamp(static_cast<int>(std::floor(v)), 0, n - 1)); };
-        const std::size_t i0 = clampi(lo.x(), nx_), i1 = clampi(hi.x(), nx_);
-        const std::size_t j0 = clampi(lo.y(), ny_), j1 = clampi(hi.y(), ny_);
-        const std::size_t k0 = clampi(lo.z(), nz_), k1 = clampi(hi.z(), nz_);
-        for (std::size_t k = k0; k <= k1; ++k)
-            for (std::size_t j = j0; j <= j1; ++j)
-                for (std::size_t i = i0; i <= i1; ++i) {
-                    std::uint8_t& cell = cells_[index(i, j, k)];
-                    if (cell == 0) continue;
-                    const Vec3 centre = origin_ + cell_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
-                    if ((closest_point_on_triangle(centre, a, b, c).point - centre).squaredNorm() <= half_diagonal * half_diagonal) {
-                        cell = 0;
-                    }
-                }
-    }
+    // Mark cells a triangle may touch (0; the others hold `levels`).
+    const std::size_t cells_along[3] = {nx, ny, nz};
+    mark_cells_near_triangles(
+        mesh, origin_, cell_, cells_along, 0.0, [&](std::size_t id) { return cells_[id] == 0; }, [&](std::size_t id) { cells_[id] = 0; });
 
     chebyshev_transform(levels);
     bound_of_level_.resize(static_cast<std::size_t>(levels) + 1);

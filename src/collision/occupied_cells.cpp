@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/closest_point.h"
+#include "collision/cells_near_triangles.h"
 
 namespace peensim {
 
@@ -41,29 +41,12 @@ OccupiedCells::OccupiedCells(const TriangleMesh& mesh, double max_cells) {
     ny_ = static_cast<std::size_t>(n.y());
     nz_ = static_cast<std::size_t>(n.z());
 
-    // Mark the cells whose centre lies within half a diagonal of a triangle: every cell the
-    // triangle meets (and a few it only passes near).
+    // Every cell a triangle meets (cells_near_triangles.h), with slack for rounding.
     std::vector<std::uint8_t> marks(nx_ * ny_ * nz_, 0);
-    const double reach = 0.5 * std::sqrt(3.0) * cell_ * (1.0 + kCellSlack);
-    const auto first = [&](double v, std::size_t count) {
-        return static_cast<std::size_t>(std::clamp(std::floor(v), 0.0, static_cast<double>(count - 1)));
-    };
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-        const Vec3 &a = mesh.corner(t, 0), &b = mesh.corner(t, 1), &c = mesh.corner(t, 2);
-        const Vec3 tlo = (a.cwiseMin(b).cwiseMin(c) - origin_) * inv_cell_ - Vec3::Constant(0.5 + kCellSlack);
-        const Vec3 thi = (a.cwiseMax(b).cwiseMax(c) - origin_) * inv_cell_ + Vec3::Constant(0.5 + kCellSlack);
-        const std::size_t i0 = first(tlo.x(), nx_), i1 = first(thi.x(), nx_);
-        const std::size_t j0 = first(tlo.y(), ny_), j1 = first(thi.y(), ny_);
-        const std::size_t k0 = first(tlo.z(), nz_), k1 = first(thi.z(), nz_);
-        for (std::size_t k = k0; k <= k1; ++k)
-            for (std::size_t j = j0; j <= j1; ++j)
-                for (std::size_t i = i0; i <= i1; ++i) {
-                    std::uint8_t& m = marks[(k * ny_ + j) * nx_ + i];
-                    if (m != 0) continue;
-                    const Vec3 centre = origin_ + cell_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
-                    if ((closest_point_on_triangle(centre, a, b, c).point - centre).squaredNorm() <= reach * reach) m = 1;
-                }
-    }
+    const std::size_t cells_along[3] = {nx_, ny_, nz_};
+    mark_cells_near_triangles(
+        mesh, origin_, cell_, cells_along, kCellSlack, [&](std::size_t id) { return marks[id] != 0; },
+        [&](std::size_t id) { marks[id] = 1; });
 
     // The summed-volume table, plane by plane.
     const std::size_t sx = nx_ + 1, sy = ny_ + 1;
