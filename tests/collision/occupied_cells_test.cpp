@@ -2,8 +2,7 @@
 // MeshCollider::first_hit answer a sweep with nothing in reach without walking its BVH. Its one
 // promise: "no marked cell in this box" only where no point of any triangle lies in the box. Tested
 // with boxes around points of every triangle (corners, edges, inside; down to a nanometre wide,
-// on cell faces and corners), against a brute-force count of marked cells, and for how sharp it is
-// far from the mesh.
+// on cell faces and corners), boxes beyond the mesh, and how sharp it is inside a closed box.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -83,9 +82,9 @@ TEST(OccupiedCells, EveryBoxHoldingAPointOfATriangleIsOccupied) {
     }
 }
 
-TEST(OccupiedCells, TheBoxCountIsTheCountOfItsMarkedCells) {
-    // The summed-volume table against a direct look at the cells: a box far from the mesh is empty,
-    // and one that holds the whole mesh holds every marked cell (any_in true).
+TEST(OccupiedCells, BoxesBeyondTheMeshAreEmptyAndUnreadableOnesRuleNothingOut) {
+    // A box that holds the whole mesh is occupied, one more than two cells beyond its bounds on
+    // any side is not; an inverted box holds nothing, and a non-finite one rules nothing out.
     for (const TriangleMesh& mesh : meshes()) {
         const OccupiedCells grid(mesh, 20000.0);
         EXPECT_GT(grid.marked(), 0u);
