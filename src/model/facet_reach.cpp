@@ -55,22 +55,40 @@ std::vector<double> reachable_fractions(const Model& model, std::size_t ci, Shot
 
 namespace {
 
-// What reach_test keeps of its last distance query per side of the surface, on one thread: the
-// shot centre queried, its answer, and how far (m) a centre may lie from it and
-// still have that answer. The distance to the meshes changes by at most as much as the centre
-// moves, so a centre within |clearance - R| of the queried one is clear of them, or not, as it
-// was: in a cell of probes that disagree, the samples away from where the answer flips take it
-// without a query of their own. On the shipped gear the queries fall from 1.35 M to ~0.65 M (most
-// of the 0.95 M sample tests), and sorting its samples takes ~25 % less time.
+// What reach_test keeps of its recent distance queries, on one thread: each shot centre queried,
+// its answer, and how far (m) a centre may lie from it and still have that answer. The distance
+// to the meshes changes by at most as much as the centre moves, so a centre within
+// |clearance - R| of a queried one is clear of them, or not, as it was, whichever triangle or side
+// of the surface it was probed for. Probes come in turn, each thread on triangles of its own, and
+// a probe's neighbours were mostly probed a few queries before: the corners a triangle shares with
+// the last few (on a fine mesh, nearly the same centre each time), and in a cell of probes that
+// disagree, the samples away from where the answer flips. The shipped gear's 1.31 M tests asked
+// 0.66 M queries keeping only the last answer per side, and 0.39 M keeping the last 8; the
+// 500k-triangle gear's 2.26 M tests, 1.51 M and 0.50 M (docs/design.md, "Setup and analysis").
 struct ReachAnchor {
     Vec3 centre = Vec3::Zero();  // m, world
     double holds_within_m = -1.0;
     bool clear = false;
 };
 struct ReachMemo {
-    std::uint64_t test = 0;  // which reach_test's
+    static constexpr int kAnchors = 8;  // more answer few more: 16 took 1.05 M of the fine gear's queries, 8 took 1.00 M
+    std::uint64_t test = 0;             // which reach_test's
     double radius_m = 0.0;
-    ReachAnchor side[2];  // along the normal, against it
+    ReachAnchor recent[kAnchors];
+    int next = 0;  // the slot the next query's anchor takes (the oldest)
+
+    // The answer of an anchor that holds at `centre`, newest first: 1 clear, 0 not, -1 none holds.
+    int answer_at(const Vec3& centre) const {
+        for (int k = 1; k <= kAnchors; ++k) {
+            const ReachAnchor& a = recent[(next - k + kAnchors) % kAnchors];
+            if (a.holds_within_m > 0.0 && (centre - a.centre).squaredNorm() < a.holds_within_m * a.holds_within_m) return a.clear ? 1 : 0;
+        }
+        return -1;
+    }
+    void keep(const ReachAnchor& a) {
+        recent[next] = a;
+        next = (next + 1) % kAnchors;
+    }
 };
 
 // Rounding of the distances (~1e-18 m at a part's size) is far below this margin, which is far
@@ -82,9 +100,11 @@ constexpr double kAnchorSlack_m = 1e-9;
 constexpr double kAnchorReachFactor = 3.0;
 
 // Whether a shot of radius R centred at `centre` (world, m) touches no component at t = 0: the
-// answer of clear_of_meshes (shot_cavity.h), from the anchor when the centre lies within its reach.
-bool clear_of_meshes_near(const Model& model, const Component& own, const Vec3& centre, double R, ReachAnchor& anchor) {
-    if (anchor.holds_within_m > 0.0 && (centre - anchor.centre).norm() < anchor.holds_within_m) return anchor.clear;
+// answer of clear_of_meshes (shot_cavity.h), from a recent anchor when the centre lies within its
+// reach; a query's own anchor joins the recent ones.
+bool clear_of_meshes_near(const Model& model, const Component& own, const Vec3& centre, double R, ReachMemo& memo) {
+    if (const int known = memo.answer_at(centre); known >= 0) return known == 1;
+    ReachAnchor anchor;
     const SimTime t0;
     double nearest = kAnchorReachFactor * R;  // m: no component nearer so far
     // The probed part first: its own surface, about 1.05 R away, bounds the other queries at once.
@@ -102,11 +122,11 @@ bool clear_of_meshes_near(const Model& model, const Component& own, const Vec3& 
         nearest = std::min(nearest, closest.distance);
         return false;
     };
-    if (blocks(own)) return false;
-    for (const Component& c : model.components)
-        if (&c != &own && blocks(c)) return false;
-    anchor = {centre, nearest - R - kAnchorSlack_m, true};
-    return true;
+    const bool blocked = blocks(own) || std::any_of(model.components.begin(), model.components.end(),
+                                                    [&](const Component& c) { return &c != &own && blocks(c); });
+    if (!blocked) anchor = {centre, nearest - R - kAnchorSlack_m, true};
+    memo.keep(anchor);
+    return !blocked;
 }
 
 }  // namespace
@@ -120,10 +140,14 @@ std::function<bool(const Vec3&, std::size_t, double)> reach_test(const Model& mo
         // This thread's anchors, kept from triangle to triangle (an anchor holds for any centre
         // near it, and the triangles come in turn, each thread on triangles of its own).
         thread_local ReachMemo memo;
-        if (memo.test != id || memo.radius_m != R) memo = ReachMemo{id, R, {}};
+        if (memo.test != id || memo.radius_m != R) {
+            memo = ReachMemo{};
+            memo.test = id;
+            memo.radius_m = R;
+        }
         // As shot_fits_beside, with the anchors.
         return fits_beside(cavity, c, pose.to_world(p), pose.rotation * triangle_normal(*c.mesh, t), R,
-                           [&](const Vec3& centre, int k) { return clear_of_meshes_near(model, c, centre, R, memo.side[k]); });
+                           [&](const Vec3& centre, int) { return clear_of_meshes_near(model, c, centre, R, memo); });
     };
 }
 

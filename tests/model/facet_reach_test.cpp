@@ -1,7 +1,8 @@
-// The reach test the coverage samples are sorted by: a point takes the answer of the last distance
+// The reach test the coverage samples are sorted by: a point takes the answer of a recent distance
 // query near it when the shot centre's clearance leaves room (facet_reach.cpp's anchors), and that
 // answer is always the one the plain test (shot_fits_beside) gives, on a solid part, on an open
-// chamber wall (both sides), and whatever order the points come in.
+// chamber wall (both sides), whatever order the points come in, and at the corners of neighbouring
+// triangles (which share anchors across triangles of other normals).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -77,6 +78,11 @@ TEST(FacetReach, TheAnchoredTestAnswersAsThePlainOneEverywhere) {
     EXPECT_LT(g.reached, g.points);
     EXPECT_GT(g.mixed_triangles, 10);
     EXPECT_GT(w.reached, 0);
+    // Every triangle in turn, its corners only (a fine mesh's probes): the corners it shares with
+    // the last few triangles take their anchors, probed along another normal.
+    const ReachTally corners = compare(*model, cavity, gear, 1, 1);
+    EXPECT_GT(corners.reached, corners.points / 4);
+    EXPECT_LT(corners.reached, corners.points);
 }
 
 }  // namespace
