@@ -23,6 +23,7 @@
 
 #include "analysis/coverage_map.h"
 #include "analysis/regions.h"
+#include "common/byte_stream.h"
 #include "geometry/triangle_mesh.h"
 
 namespace peensim {
@@ -49,6 +50,13 @@ public:
     SampleClasses(const CoverageMap& map, const TriangleMesh& mesh, const RegionSet& regions, const ReachTest& reach, double shot_radius_m,
                   double probe_spacing_m);
     SampleClasses() = default;
+
+    // Every figure as bytes and back (sample_classes_bytes.cpp): a sweep's runs of one assembly and
+    // shot share the classes (app/analysis/coverage_geometry_cache.h). read_bytes throws
+    // std::runtime_error (the reader's) on bytes that are not a whole set of `triangles` triangles
+    // and `regions` regions.
+    void write_bytes(ByteWriter& out) const;
+    static SampleClasses read_bytes(ByteReader& in, std::size_t triangles, std::size_t regions);
 
     std::size_t size() const { return classes_.size(); }
     const SampleClass& info(std::uint16_t k) const { return classes_[k]; }

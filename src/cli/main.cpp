@@ -78,6 +78,10 @@ int main(int argc, char** argv) {
                      "its share of the duration, logged one after another (a steady process: no sources, no impact-history "
                      "law); under mpirun -n K, one replica a rank")
         ->check(CLI::Range(1, 1024));
+    const std::string cache_help =
+        "a folder of the parts' coverage geometry (reach and regions of every sample) to reuse when an earlier run had the same "
+        "assembly and shot, and to keep it in otherwise (a sweep gives its runs one)";
+    run_cmd->add_option("--geometry-cache", run.geometry_cache_dir, cache_help);
 
     std::string check_scene;
     std::vector<std::string> check_overrides;
@@ -104,6 +108,7 @@ int main(int argc, char** argv) {
     analyze_cmd->add_option("--smoothing-radius", analyze.smoothing_radius,
                             "radius of the surface the maps' fields are smoothed over, e.g. \"1.5 mm\" (default: the scene's "
                             "output.smoothing_radius, else from the dent size and the impact density)");
+    analyze_cmd->add_option("--geometry-cache", analyze.geometry_cache_dir, cache_help);
 
     RenderRegionsOptions render_regions;
     auto* render_regions_cmd = app.add_subcommand(

@@ -379,4 +379,6 @@ std::uint64_t scene_hash(const SceneDescription& s) {
     return fnv1a64(scene_yaml(simulated, OutputSettings::hashed));
 }
 
+std::string resolved_region_text(const RegionDesc& region) { return region_text(region); }
+
 }  // namespace peensim

@@ -17,4 +17,8 @@ std::string resolved_scene_yaml(const SceneDescription& scene);
 // how they were written.
 std::uint64_t scene_hash(const SceneDescription& scene);
 
+// One region entry as the resolved scene writes it (a flow map on one line, SI values, angles in
+// rad): the same text for the same entry, bit for bit.
+std::string resolved_region_text(const RegionDesc& region);
+
 }  // namespace peensim

@@ -388,9 +388,10 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     // scene; else compiled afresh, the geometry computed here.
     const bool own_model = options.model && options.model->resolved_scene_yaml == resolved_scene_yaml(scene);
     const std::shared_ptr<const Model> model = own_model ? options.model : compile_model(scene);
-    std::shared_ptr<CoverageGeometry> geometry = own_model && options.geometry && options.geometry->model() == model
-                                                     ? options.geometry
-                                                     : std::make_shared<CoverageGeometry>(model, nullptr, 0);
+    std::shared_ptr<CoverageGeometry> geometry =
+        own_model && options.geometry && options.geometry->model() == model
+            ? options.geometry
+            : std::make_shared<CoverageGeometry>(model, nullptr, 0, std::vector<std::optional<RegionSet>>{}, options.geometry_cache_dir);
     whole_turns(window, logged_turn_s(*model, scene));
     std::vector<ComponentAnalysis> parts;
     std::vector<std::string> names;
@@ -514,6 +515,10 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
         << "/{report.md, report.html, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp, *_coverage_series.pvd"
         << (context.pngs.empty() ? "" : ", *.png") << ", " << kParaviewScriptFileName << "}\n";
     for (const ComponentAnalysis& a : parts) out << smoothing_note(a) << '\n';
+    // On the messages' stream: a sweep's runs are quiet, and their logs say which computed it.
+    for (const ComponentAnalysis& a : parts)
+        if (const PartCoverageGeometry* part = geometry->part(a.index); part != nullptr && !part->cache_note.empty())
+            err << "note: " << a.name << "'s coverage geometry " << part->cache_note << '\n';
 }
 
 }  // namespace peensim

@@ -32,6 +32,9 @@ struct AnalyzeOptions {
     // The run's coverage geometry of that model (coverage_geometry.h), computed while it stepped:
     // used with the model.
     std::shared_ptr<CoverageGeometry> geometry{};
+    // A folder of coverage geometries to reuse and keep (coverage_geometry_cache.h): a sweep's
+    // runs share one. "": computed here, kept nowhere.
+    std::string geometry_cache_dir{};
 };
 
 int analyze_job(const std::string& output_dir, std::ostream& out, std::ostream& err, const AnalyzeOptions& options = {});

@@ -5,6 +5,7 @@
 #include "analysis/coverage_progress.h"
 #include "analysis/part_coverage.h"
 #include "analysis/regions.h"
+#include "app/analysis/coverage_geometry_cache.h"
 #include "common/parallel_chunks.h"
 #include "common/random.h"
 #include "model/facet_reach.h"
@@ -19,8 +20,12 @@ double part_yield_stress(const SceneDescription& scene, std::size_t ci) {
 }
 
 CoverageGeometry::CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads,
-                                   std::vector<std::optional<RegionSet>> regions)
-    : model_(std::move(model)), cavity_(std::move(cavity)), given_regions_(std::move(regions)), threads_(background_threads) {
+                                   std::vector<std::optional<RegionSet>> regions, std::string cache_dir)
+    : model_(std::move(model)),
+      cavity_(std::move(cavity)),
+      given_regions_(std::move(regions)),
+      cache_dir_(std::move(cache_dir)),
+      threads_(background_threads) {
     parts_.resize(model_->components.size());
     if (background_threads == 0) return;
     thread_ = std::thread([this] {
@@ -53,10 +58,14 @@ CoverageGeometry::~CoverageGeometry() {
 void CoverageGeometry::compute() {
     const Model& model = *model_;
     const SceneDescription& scene = model.description;
-    if (!cavity_ && model.sonotrode >= 0) {
-        Random rng(model.seed);
-        cavity_ = std::make_unique<ShotCavity>(model, rng);
-    }
+    // Built when a part is computed here (none when the cache holds every part).
+    const auto cavity = [&]() -> ShotCavity* {
+        if (!cavity_ && model.sonotrode >= 0) {
+            Random rng(model.seed);
+            cavity_ = std::make_unique<ShotCavity>(model, rng);
+        }
+        return cavity_.get();
+    };
     for (std::size_t ci = 0; ci < scene.components.size(); ++ci) {
         throw_if_chunks_cancelled();
         const double yield = part_yield_stress(scene, ci);
@@ -70,11 +79,46 @@ void CoverageGeometry::compute() {
         else
             part->regions = RegionSet(mesh, scene.components[ci].regions);
         const RegionSet& regions = part->regions;
-        const ReachTest reach = reach_test(model, ci, cavity_.get());
+        std::uint64_t key = 0;
+        std::optional<CoverageGeometryLock> lock;
+        bool cached = !cache_dir_.empty();
+        if (cached) {
+            try {
+                key = coverage_geometry_key(model, ci, yield);
+            } catch (const std::exception& e) {  // the binary cannot be read: no key, no cache
+                part->cache_note = std::string("not kept: ") + e.what();
+                cached = false;
+            }
+        }
+        if (cached) {
+            std::string why;
+            // Read it if an earlier run kept it; else wait for a run computing it now, and read it
+            // then; else compute it here, the others waiting.
+            bool found = load_coverage_geometry(cache_dir_, key, mesh, regions, part->classes, part->unreachable, why);
+            if (!found) {
+                lock.emplace(cache_dir_, key, [] { throw_if_chunks_cancelled(); });
+                found = load_coverage_geometry(cache_dir_, key, mesh, regions, part->classes, part->unreachable, why);
+            }
+            if (found) {
+                part->cache_note = "reused from " + coverage_geometry_file(cache_dir_, key);
+                parts_[ci] = std::move(part);
+                continue;
+            }
+            if (!why.empty()) part->cache_note = "computed again (" + why + "); ";
+        }
+        const ReachTest reach = reach_test(model, ci, cavity());
         const double R = model.min_shot_radius_m;  // the smallest shot of a mix reaches furthest
         part->classes = SampleClasses(*part->map, mesh, regions, reach, R, R / kReachProbesPerRadius);
         throw_if_chunks_cancelled();
         part->unreachable = find_unreachable_area(*part->map, part->classes, regions, reach, R);
+        if (cached) {
+            try {
+                store_coverage_geometry(cache_dir_, key, part->classes, part->unreachable);
+                part->cache_note += "kept in " + coverage_geometry_file(cache_dir_, key);
+            } catch (const std::exception& e) {
+                part->cache_note += std::string("not kept: ") + e.what();
+            }
+        }
         parts_[ci] = std::move(part);
     }
     cavity_.reset();  // up to ~8 M cells, of no more use

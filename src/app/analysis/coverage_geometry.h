@@ -17,6 +17,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct PartCoverageGeometry {
     std::unique_ptr<CoverageMap> map;
     SampleClasses classes;
     UnreachableFindings unreachable;
+    // How a cache folder served it (coverage_geometry_cache.h), for the run's messages: "" without
+    // one; else "reused from FILE", "kept in FILE", or why it could be neither.
+    std::string cache_note;
 };
 
 class CoverageGeometry {
@@ -48,9 +52,11 @@ public:
     // has a sonotrode). background_threads: computed from now on a thread of its own, its passes
     // on that many threads (the cores a run leaves idle); 0: when first asked for, on this one.
     // regions: per component, the region sets the setup check built of these meshes (those not
-    // given are built here).
+    // given are built here). cache_dir: a folder the runs of a sweep share (coverage_geometry_cache.h):
+    // each part's sample classes and area out of reach are read from there when an earlier run
+    // computed them for the same assembly and shot, else computed and kept there ("": neither).
     CoverageGeometry(std::shared_ptr<const Model> model, std::unique_ptr<ShotCavity> cavity, unsigned background_threads,
-                     std::vector<std::optional<RegionSet>> regions = {});
+                     std::vector<std::optional<RegionSet>> regions = {}, std::string cache_dir = {});
     // Stops the thread between chunks of its work (an interrupted run does not wait for it) and
     // joins it.
     ~CoverageGeometry();
@@ -71,6 +77,7 @@ private:
     std::shared_ptr<const Model> model_;
     std::unique_ptr<ShotCavity> cavity_;  // freed once the parts are computed
     std::vector<std::optional<RegionSet>> given_regions_;
+    std::string cache_dir_;
     std::vector<std::unique_ptr<PartCoverageGeometry>> parts_;
     std::atomic<bool> cancel_{false};
     std::atomic<unsigned> threads_;  // of the thread's passes (0: every core)

@@ -214,8 +214,8 @@ private:
             // On the cores the run's own threads (its replicas') leave, if any; else when asked.
             const unsigned cores = std::thread::hardware_concurrency();
             const auto busy = static_cast<unsigned>(options_.replicas > 1 && !options_.replica_ranks ? options_.replicas : 1);
-            coverage_geometry_ =
-                std::make_shared<CoverageGeometry>(model_, std::move(cavity), cores > busy ? cores - busy : 0, std::move(setup.regions));
+            coverage_geometry_ = std::make_shared<CoverageGeometry>(model_, std::move(cavity), cores > busy ? cores - busy : 0,
+                                                                    std::move(setup.regions), options_.geometry_cache_dir);
         }
     }
 
@@ -549,6 +549,7 @@ private:
             AnalyzeOptions analysis;
             analysis.model = model_;
             analysis.geometry = coverage_geometry_;
+            analysis.geometry_cache_dir = options_.geometry_cache_dir;
             const int code = analyze_job(dir_, out_, err_, analysis);
             if (code != kExitOk) {
                 err_ << "error: the run finished (its outputs are complete) but its analysis failed; fix the cause above and run "

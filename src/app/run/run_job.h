@@ -48,6 +48,9 @@ struct RunOptions {
     // Called about every kProgressCallbackInterval_s of wall time and once at the end (finished or
     // stopped), on the run's thread.
     std::function<void(const RunProgress&)> on_progress;
+    // A folder of coverage geometries to reuse and keep (app/analysis/coverage_geometry_cache.h):
+    // the runs of a sweep share one. "": computed by the run, kept nowhere.
+    std::string geometry_cache_dir;
 };
 
 inline constexpr double kProgressCallbackInterval_s = 0.25;  // s of wall time between on_progress calls

@@ -98,9 +98,34 @@ void SweepBook::outcome(std::size_t k, int code) {
     }
 }
 
+std::string sweep_geometry_cache(const std::string& logs_dir) { return (fs::path(logs_dir).parent_path() / "geometry-cache").string(); }
+
+GeometryCacheUse sweep_geometry_cache_use(const std::string& logs_dir) {
+    GeometryCacheUse use;
+    std::error_code ignored;
+    for (const fs::directory_entry& e : fs::directory_iterator(logs_dir, ignored)) {
+        std::ifstream log(e.path());
+        for (std::string line; std::getline(log, line);) {
+            if (line.rfind("note: ", 0) != 0) continue;
+            if (line.find("'s coverage geometry reused from ") != std::string::npos) ++use.reused;
+            if (line.find("'s coverage geometry kept in ") != std::string::npos) ++use.computed;
+        }
+    }
+    return use;
+}
+
 pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log,
                       unsigned threads) {
-    std::vector<std::string> args{executable, "run", scene, "-o", run.dir, "--quiet", "--threads", std::to_string(threads)};
+    std::vector<std::string> args{executable,
+                                  "run",
+                                  scene,
+                                  "-o",
+                                  run.dir,
+                                  "--quiet",
+                                  "--threads",
+                                  std::to_string(threads),
+                                  "--geometry-cache",
+                                  sweep_geometry_cache(fs::path(log).parent_path().string())};
     if (fs::exists(run.dir + "/checkpoint.bin")) args.push_back("--resume");
     for (const std::string& o : run.overrides) args.insert(args.end(), {"--set", o});
     std::vector<char*> argv;

@@ -49,13 +49,25 @@ private:
     std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
 };
 
-// Starts `executable run scene -o <run dir> --quiet --threads N [--resume] --set ...` (resuming
-// from the run's checkpoint if it has one; N: the cores its analysis uses, its share of those the
-// sweep runs on), stdin from /dev/null, stdout and stderr appended to `log`, in a process group of
+// Starts `executable run scene -o <run dir> --quiet --threads N --geometry-cache C [--resume] --set
+// ...` (resuming from the run's checkpoint if it has one; N: the cores its analysis uses, its share
+// of those the sweep runs on; C: sweep_geometry_cache of the logs' folder, which the runs of one
+// sweep share), stdin from /dev/null, stdout and stderr appended to `log`, in a process group of
 // its own. It dies with the thread that started it (SIGKILL, PR_SET_PDEATHSIG): a sweep or MPI rank
 // killed outright leaves no run behind holding its directory.
 pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log,
                       unsigned threads);
+
+// The folder a sweep's runs keep the parts' coverage geometry in for each other
+// (app/analysis/coverage_geometry_cache.h): geometry-cache/ beside logs_dir.
+std::string sweep_geometry_cache(const std::string& logs_dir);
+
+// How often the runs whose messages are in logs_dir reused a part's coverage geometry from the
+// sweep's cache, and how often they computed it (their "note: <part>'s coverage geometry ..." lines).
+struct GeometryCacheUse {
+    std::size_t reused = 0, computed = 0;
+};
+GeometryCacheUse sweep_geometry_cache_use(const std::string& logs_dir);
 
 // Where run `run`'s messages go: logs_dir/<variant>.s<k>.log.
 std::string sweep_run_log(const SweepPlan& plan, const std::string& logs_dir, std::size_t run);

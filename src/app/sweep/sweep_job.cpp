@@ -7,6 +7,7 @@
 #include "app/interrupt.h"
 #include "app/report_errors.h"
 #include "app/run/run_job.h"
+#include "app/sweep/sweep_book.h"
 #include "app/sweep/sweep_checks.h"
 #include "app/sweep/sweep_compare.h"
 #include "app/sweep/sweep_file.h"
@@ -33,6 +34,9 @@ int finish(const SweepOutcome& outcome, const SweepPlan& plan, const std::string
     const SweepCompareResult compared = write_sweep_comparison(plan, sweep_dir, o.baseline, scene.name.empty() ? o.scene_path : scene.name);
     out << "comparison: " << sweep_dir << "/{comparison.csv, report.md, report.html" << (compared.pngs.empty() ? "" : ", *.png") << "}\n";
     if (!compared.plot_note.empty()) out << "plots: " << compared.plot_note << "\n";
+    if (const GeometryCacheUse use = sweep_geometry_cache_use(sweep_dir + "/logs"); use.reused + use.computed > 0)
+        out << "geometry: the runs computed the parts' coverage geometry " << use.computed << " time" << (use.computed == 1 ? "" : "s")
+            << " and reused it " << use.reused << " time" << (use.reused == 1 ? "" : "s") << " (" << sweep_dir << "/geometry-cache)\n";
     return outcome.failed.empty() ? kExitOk : kExitRuntimeError;
 }
 

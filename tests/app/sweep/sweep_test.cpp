@@ -272,6 +272,17 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
     EXPECT_EQ(read_file(dir.path / "two" / "count-128" / "s0" / "impacts.csv"), log);
     EXPECT_EQ(read_file(dir.path / "one" / "count-64" / "s0" / "impacts.csv"),
               read_file(dir.path / "two" / "count-64" / "s0" / "impacts.csv"));
+    // One after the other, the second run read the rod's coverage geometry the first kept
+    // (coverage_geometry_cache.h): its analysis is the one of the run alone, which computed it.
+    EXPECT_NE(out1.str().find("geometry: the runs computed the parts' coverage geometry 1 time and reused it 1 time (" +
+                              (dir.path / "one" / "sweep" / "geometry-cache").string() + ")"),
+              std::string::npos)
+        << out1.str();
+    EXPECT_NE(read_file(dir.path / "one" / "sweep" / "logs" / "count-128.s0.log").find("note: rod's coverage geometry reused from "),
+              std::string::npos);
+    for (const char* table : {"rod_triangles.csv", "rod_coverage.csv", "figures.json"})
+        EXPECT_EQ(read_file(dir.path / "one" / "count-128" / "s0" / "analysis" / table), read_file(dir.path / "alone" / "analysis" / table))
+            << table;
     // The comparison: one row per variant, the run's own figures.
     const std::string csv = read_file(dir.path / "one" / "sweep" / "comparison.csv");
     EXPECT_EQ(csv.rfind("variant,shot.count,runs_finished,target_coverage,impact_rate_per_s,impact_rate_per_s_ci95,mean_vn_mps,", 0), 0u)
