@@ -100,7 +100,7 @@ std::vector<std::string> logged_components(const std::string& scene_path) {
 
 int run(const std::string& path, const std::optional<std::string>& text, const std::vector<std::string>& overrides,
         const std::string& output_dir, bool resume, bool strict, bool analyze, std::optional<bool> render, bool verbose,
-        const py::object& progress, int replicas) {
+        const py::object& progress, int replicas, const std::string& geometry_cache) {
     PythonStop stop;
     RunOptions o;
     o.scene_path = path;
@@ -114,6 +114,7 @@ int run(const std::string& path, const std::optional<std::string>& text, const s
     o.render = render;
     if (replicas < 1) throw py::value_error("replicas: expected 1 or more, got " + std::to_string(replicas));
     o.replicas = replicas;
+    o.geometry_cache_dir = geometry_cache;
     o.stop_requested = [&stop] { return stop(); };
     if (!progress.is_none()) {
         o.on_progress = [&](const RunProgress& p) {
@@ -140,11 +141,13 @@ int run(const std::string& path, const std::optional<std::string>& text, const s
 }
 
 void analyze(const std::string& dir, bool verbose, double from_s, std::optional<double> to_s, double min_speed,
-             std::optional<double> target, const std::string& smoothing_radius) {
+             std::optional<double> target, const std::string& smoothing_radius, const std::string& geometry_cache) {
     PythonStream out(verbose ? sys_stream("stdout") : py::none());
     PythonStream err(sys_stream("stderr"));
     py::gil_scoped_release release;
-    analyze_run(dir, out, err, AnalyzeOptions{from_s, to_s, min_speed, target, smoothing_radius});
+    AnalyzeOptions o{from_s, to_s, min_speed, target, smoothing_radius};
+    o.geometry_cache_dir = geometry_cache;
+    analyze_run(dir, out, err, o);
 }
 
 // sweep(seeds=...) as --seeds: None not given, a whole number checked by the sweep (0 is refused
@@ -243,9 +246,10 @@ void bind_jobs(py::module_& m) {
     m.def("logged_components", &logged_components, py::arg("scene_path"), "The components a scene's run logs, in the scene's order.");
     m.def("run", &run, py::arg("path"), py::arg("text"), py::arg("overrides"), py::arg("output_dir"), py::arg("resume"), py::arg("strict"),
           py::arg("analyze"), py::arg("render"), py::arg("verbose"), py::arg("progress"), py::arg("replicas") = 1,
-          "Runs a scene as `peensim run` does; returns its exit code (0, 3 strict failure, 130 stopped).");
+          py::arg("geometry_cache") = "", "Runs a scene as `peensim run` does; returns its exit code (0, 3 strict failure, 130 stopped).");
     m.def("analyze", &analyze, py::arg("dir"), py::arg("verbose"), py::arg("from_s"), py::arg("to_s"), py::arg("min_speed"),
-          py::arg("target"), py::arg("smoothing_radius"), "Analyses a run directory as `peensim analyze` does.");
+          py::arg("target"), py::arg("smoothing_radius"), py::arg("geometry_cache") = "",
+          "Analyses a run directory as `peensim analyze` does.");
     m.def("sweep", &sweep, py::arg("scene_path"), py::arg("output_dir"), py::arg("vary"), py::arg("overrides"), py::arg("seeds"),
           py::arg("jobs"), py::arg("baseline"), py::arg("executable"), py::arg("verbose"),
           "Runs a sweep as `peensim sweep` does; returns its exit code (0, 1 a run failed, 130 stopped).");

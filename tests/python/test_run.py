@@ -123,6 +123,22 @@ class RunTest(TempDirTest):
         with self.assertRaises(FileNotFoundError):
             peensim.Run(self.path("nothing"))
 
+    def test_runs_share_the_geometry_cache_as_on_the_command_line(self):
+        # Two runs of the rod with one geometry_cache: the first keeps the rod's coverage geometry,
+        # the second reads it back and writes the analysis of the first; run.analyze takes it too.
+        rod = peensim.Scene(scene("rod.yaml")).set("process.duration", "0.1 s")
+        cache = self.path("cache")
+        first = peensim.run(rod, self.path("a"), geometry_cache=cache)
+        entries = [f for f in os.listdir(cache) if f.endswith(".bin")]
+        self.assertEqual(len(entries), 1)
+        stamp = os.stat(os.path.join(cache, entries[0])).st_mtime_ns
+        second = peensim.run(rod, self.path("b"), geometry_cache=cache)
+        self.assertEqual(read_bytes(os.path.join(first.dir, "analysis", "rod_triangles.csv")),
+                         read_bytes(os.path.join(second.dir, "analysis", "rod_triangles.csv")))
+        second.analyze(geometry_cache=cache)
+        self.assertEqual(os.stat(os.path.join(cache, entries[0])).st_mtime_ns, stamp)  # read, never rewritten
+        self.assertEqual([f for f in os.listdir(cache) if f.endswith(".bin")], entries)
+
     def test_verbose_prints_the_summary(self):
         printed = io.StringIO()
         with contextlib.redirect_stdout(printed):

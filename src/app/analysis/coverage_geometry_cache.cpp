@@ -5,6 +5,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -14,6 +15,7 @@
 #include <stdexcept>
 #include <string_view>
 #include <thread>
+#include <vector>
 
 #include "common/byte_stream.h"
 #include "common/fnv_hash.h"
@@ -184,8 +186,40 @@ CoverageGeometryLock::~CoverageGeometryLock() {
     if (fd_ >= 0) ::close(fd_);  // releases the lock
 }
 
+namespace {
+
+// Removes the oldest entries of `dir` but `kept` while they hold more than cap_bytes. Runs that
+// evict at once may remove the same file twice (the second removal finds nothing) or a file
+// another run is about to read (which then computes it again).
+void evict_oldest(const std::string& dir, const std::string& kept, std::uintmax_t cap_bytes) {
+    struct Entry {
+        fs::file_time_type written;
+        std::uintmax_t bytes;
+        fs::path path;
+    };
+    std::vector<Entry> entries;
+    std::uintmax_t total = 0;
+    std::error_code error;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, error)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("coverage-", 0) != 0 || e.path().extension() != ".bin") continue;
+        const std::uintmax_t bytes = e.file_size(error);
+        if (error) continue;
+        total += bytes;
+        if (e.path() != fs::path(kept)) entries.push_back({e.last_write_time(error), bytes, e.path()});
+    }
+    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.written < b.written; });
+    for (const Entry& e : entries) {
+        if (total <= cap_bytes) break;
+        fs::remove(e.path, error);
+        total -= e.bytes;
+    }
+}
+
+}  // namespace
+
 void store_coverage_geometry(const std::string& dir, std::uint64_t key, const SampleClasses& classes,
-                             const UnreachableFindings& unreachable) {
+                             const UnreachableFindings& unreachable, std::uintmax_t cap_bytes) {
     ByteWriter payload;
     classes.write_bytes(payload);
     payload.put(unreachable.shot_diameter_m);
@@ -206,6 +240,7 @@ void store_coverage_geometry(const std::string& dir, std::uint64_t key, const Sa
     const std::string own = path + "." + std::to_string(::getpid());
     write_file_atomically(own, file.bytes(), Durability::process_crash);
     fs::rename(own, path);
+    evict_oldest(dir, path, cap_bytes);
 }
 
 }  // namespace peensim

@@ -52,9 +52,14 @@ private:
     int fd_ = -1;
 };
 
+// At most this many bytes of entries in a folder (1 GiB): a study that varies the shot's size gives
+// each run an entry of its own (22 MB on a 500k-triangle gear), which nothing reads again.
+inline constexpr std::uintmax_t kCoverageGeometryCacheBytes = std::uintmax_t{1} << 30;
+
 // Keeps the entry for `key` (written under a name of this process's, then renamed: runs that store
-// the same entry at once leave one whole file). Throws std::runtime_error if it cannot be written.
+// the same entry at once leave one whole file), then removes the oldest other entries while the
+// folder's entries hold more than cap_bytes. Throws std::runtime_error if it cannot be written.
 void store_coverage_geometry(const std::string& dir, std::uint64_t key, const SampleClasses& classes,
-                             const UnreachableFindings& unreachable);
+                             const UnreachableFindings& unreachable, std::uintmax_t cap_bytes = kCoverageGeometryCacheBytes);
 
 }  // namespace peensim

@@ -296,13 +296,15 @@ class Run:
         region, click to read them), one file that opens offline: webbrowser.open(run.report_html)."""
         return self._analysis_file("report.html")
 
-    def analyze(self, verbose=False, *, from_s=0.0, to_s=None, min_speed=0.0, target=None, smoothing_radius=None):
+    def analyze(self, verbose=False, *, from_s=0.0, to_s=None, min_speed=0.0, target=None, smoothing_radius=None,
+                geometry_cache=None):
         """Analyses the run (as `peensim analyze`): writes analysis/. Returns the run.
         from_s, to_s (s): analyse only the impacts in this window (drop a start-up transient);
         min_speed (m/s): leave out slower impacts; target: the coverage the report measures against
         (a fraction; None: the run's process.until_coverage, else 0.98);
         smoothing_radius: the maps' radius, in m or as text with a unit ("1.5 mm"); None: the
-        scene's output.smoothing_radius, else the analysis' choice."""
+        scene's output.smoothing_radius, else the analysis' choice; geometry_cache: a folder of
+        the parts' coverage geometry to reuse and keep (`--geometry-cache`)."""
         if smoothing_radius is None:
             radius = ""
         elif isinstance(smoothing_radius, str):
@@ -310,12 +312,13 @@ class Run:
         else:
             radius = repr(float(smoothing_radius)) + " m"
         _native.analyze(self.dir, verbose, float(from_s), None if to_s is None else float(to_s), float(min_speed),
-                        None if target is None else float(target), radius)
+                        None if target is None else float(target), radius,
+                        os.fspath(geometry_cache) if geometry_cache else "")
         return self
 
 
 def run(scene, output_dir=None, *, progress=None, resume=False, strict=False, analyze=True, render=None,
-        scheme=None, verbose=False, replicas=1):
+        scheme=None, verbose=False, replicas=1, geometry_cache=None):
     """Runs a scene as `peensim run` does and returns its Run.
 
     scene: a Scene, a scene file's path, or a dict. output_dir: the run directory (default: the
@@ -327,11 +330,14 @@ def run(scene, output_dir=None, *, progress=None, resume=False, strict=False, an
     analysis/ when it finishes. render: True/False records or not the animation (None: as the
     scene says). scheme: "event", "step" or "soft". verbose: print the summary as the command does.
     replicas: the run as that many replicas of the chamber on as many cores (`--replicas`).
+    geometry_cache: a folder of the parts' coverage geometry to reuse and keep, shared by runs of
+    one assembly and shot (`--geometry-cache`).
     """
     scene = _as_scene(scene)
     overrides = scene.overrides + ([f"accuracy.scheme={scheme}"] if scheme else [])
     directory = _native.output_directory(scene._path, scene._text, overrides, os.fspath(output_dir) if output_dir else "")
-    code = _native.run(scene._path, scene._text, overrides, directory, resume, strict, analyze, render, verbose, progress, replicas)
+    code = _native.run(scene._path, scene._text, overrides, directory, resume, strict, analyze, render, verbose, progress, replicas,
+                       os.fspath(geometry_cache) if geometry_cache else "")
     result = Run(directory)
     if code == 3:
         raise HealthError(f"{directory}: the run had numerical trouble: {result.summary['health_counters']}", result)

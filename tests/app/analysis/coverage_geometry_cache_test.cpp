@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -116,6 +117,35 @@ TEST(CoverageGeometryCache, RunsStartedTogetherComputeItOnceTheOthersReadIt) {
     const CoverageGeometryLock held(cache, key, [] {});
     { CoverageGeometry waiting(moved, nullptr, 1, {}, cache); }  // destroyed while it waits: returns
     EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, key)));
+}
+
+// A folder holds at most a cap of entries: past it the oldest go, never the one just kept.
+TEST(CoverageGeometryCache, AFolderPastItsCapDropsItsOldestEntries) {
+    TempDir dir;
+    const std::string cache = (dir.path / "cache").string();
+    const std::shared_ptr<const Model> model = gear_with();
+    CoverageGeometry computed(model, nullptr, 0);
+    const PartCoverageGeometry& part = *computed.part(kGearPart);
+    const std::uintmax_t entry = [&] {
+        store_coverage_geometry(cache, 1, part.classes, part.unreachable);
+        return fs::file_size(coverage_geometry_file(cache, 1));
+    }();
+    // Entries 2 and 3 older than 1, written in that order; room for two.
+    for (std::uint64_t key : {2, 3}) {
+        store_coverage_geometry(cache, key, part.classes, part.unreachable);
+        fs::last_write_time(coverage_geometry_file(cache, key),
+                            fs::last_write_time(coverage_geometry_file(cache, 1)) - std::chrono::hours(4 - static_cast<int>(key)));
+    }
+    store_coverage_geometry(cache, 4, part.classes, part.unreachable, 2 * entry);
+    EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 2)));
+    EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 3)));
+    EXPECT_TRUE(fs::exists(coverage_geometry_file(cache, 1)));
+    EXPECT_TRUE(fs::exists(coverage_geometry_file(cache, 4)));
+    // A cap below one entry keeps the one just written alone.
+    store_coverage_geometry(cache, 5, part.classes, part.unreachable, 1);
+    EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 1)));
+    EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 4)));
+    EXPECT_TRUE(fs::exists(coverage_geometry_file(cache, 5)));
 }
 
 // Overwrites the file at `path` with `bytes`.

@@ -379,6 +379,10 @@ TEST(SweepMpi, RanksShareTheRunsAndEachRunIsTheLocalOne) {
     for (const char* run : {"count-64/s0", "count-128/s0"})
         EXPECT_EQ(read_file(dir.path / "mpi" / run / "impacts.csv"), read_file(dir.path / "local" / run / "impacts.csv")) << run;
     EXPECT_NE(read_file(dir.path / "mpi" / "sweep" / "report.md").find("| count-128 | 1/1 |"), std::string::npos);
+    // The two ranks' runs share the rod's coverage geometry in the sweep's folder: one computes
+    // it, the other waits and reads it.
+    EXPECT_NE(said.find("geometry: the runs computed the parts' coverage geometry 1 time and reused it 1 time"), std::string::npos)
+        << said;
 }
 
 // A sweep file: the variants listed by name, the seeds, the set and the baseline from the file.
