@@ -381,8 +381,7 @@ TEST(SweepMpi, RanksShareTheRunsAndEachRunIsTheLocalOne) {
     EXPECT_NE(read_file(dir.path / "mpi" / "sweep" / "report.md").find("| count-128 | 1/1 |"), std::string::npos);
     // The two ranks' runs share the rod's coverage geometry in the sweep's folder: one computes
     // it, the other waits and reads it.
-    EXPECT_NE(said.find("geometry: the runs computed the parts' coverage geometry 1 time and reused it 1 time"), std::string::npos)
-        << said;
+    EXPECT_NE(said.find("geometry: the runs computed the parts' coverage geometry 1 time and reused it 1 time"), std::string::npos) << said;
 }
 
 // A sweep file: the variants listed by name, the seeds, the set and the baseline from the file.
