@@ -17,6 +17,7 @@
 #include "app/optimise/optimise_settings.h"
 #include "app/optimise/study_file.h"
 #include "app/report_errors.h"
+#include "app/sweep/sweep_book.h"
 #include "app/sweep/sweep_checks.h"
 #include "app/sweep/sweep_compare.h"
 #include "app/sweep/sweep_mpi.h"
@@ -418,7 +419,8 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     finish_ranks();
     const OptimiseReportFiles files = write_optimise_report(result, opt_dir);
     out << "optimise: " << stopped_because << "; the winner is " << settings[result.best].name << "\n" << files.summary;
-    out << "report: " << opt_dir << "/{report.md, report.html, evaluations.csv, winner.json" << (files.plots ? ", *.png" : "") << "}\n";
+    out << "report: " << opt_dir << "/{report.md, report.html, evaluations.csv, winner.json" << (files.plots ? ", *.png" : "") << "}\n"
+        << sweep_geometry_cache_line(opt_dir + "/logs");
     return failed.empty() ? kExitOk : kExitRuntimeError;
 }
 

@@ -100,18 +100,21 @@ void SweepBook::outcome(std::size_t k, int code) {
 
 std::string sweep_geometry_cache(const std::string& logs_dir) { return (fs::path(logs_dir).parent_path() / "geometry-cache").string(); }
 
-GeometryCacheUse sweep_geometry_cache_use(const std::string& logs_dir) {
-    GeometryCacheUse use;
+std::string sweep_geometry_cache_line(const std::string& logs_dir) {
+    std::size_t reused = 0, computed = 0;
     std::error_code ignored;
     for (const fs::directory_entry& e : fs::directory_iterator(logs_dir, ignored)) {
         std::ifstream log(e.path());
         for (std::string line; std::getline(log, line);) {
             if (line.rfind("note: ", 0) != 0) continue;
-            if (line.find("'s coverage geometry reused from ") != std::string::npos) ++use.reused;
-            if (line.find("'s coverage geometry kept in ") != std::string::npos) ++use.computed;
+            if (line.find("'s coverage geometry reused from ") != std::string::npos) ++reused;
+            if (line.find("'s coverage geometry kept in ") != std::string::npos) ++computed;
         }
     }
-    return use;
+    if (reused + computed == 0) return {};
+    const auto times = [](std::size_t n) { return std::to_string(n) + (n == 1 ? " time" : " times"); };
+    return "geometry: the runs computed the parts' coverage geometry " + times(computed) + " and reused it " + times(reused) + " (" +
+           sweep_geometry_cache(logs_dir) + ")\n";
 }
 
 pid_t start_sweep_run(const std::string& executable, const std::string& scene, const SweepRun& run, const std::string& log,

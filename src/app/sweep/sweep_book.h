@@ -62,12 +62,11 @@ pid_t start_sweep_run(const std::string& executable, const std::string& scene, c
 // (app/analysis/coverage_geometry_cache.h): geometry-cache/ beside logs_dir.
 std::string sweep_geometry_cache(const std::string& logs_dir);
 
-// How often the runs whose messages are in logs_dir reused a part's coverage geometry from the
-// sweep's cache, and how often they computed it (their "note: <part>'s coverage geometry ..." lines).
-struct GeometryCacheUse {
-    std::size_t reused = 0, computed = 0;
-};
-GeometryCacheUse sweep_geometry_cache_use(const std::string& logs_dir);
+// How often the runs whose messages are in logs_dir computed a part's coverage geometry and how
+// often they reused it from the cache (their "note: <part>'s coverage geometry ..." lines), as a
+// line for the end of a sweep or an optimisation: "geometry: the runs computed ... (<cache>)\n",
+// or "" when no run used the cache.
+std::string sweep_geometry_cache_line(const std::string& logs_dir);
 
 // Where run `run`'s messages go: logs_dir/<variant>.s<k>.log.
 std::string sweep_run_log(const SweepPlan& plan, const std::string& logs_dir, std::size_t run);

@@ -34,9 +34,7 @@ int finish(const SweepOutcome& outcome, const SweepPlan& plan, const std::string
     const SweepCompareResult compared = write_sweep_comparison(plan, sweep_dir, o.baseline, scene.name.empty() ? o.scene_path : scene.name);
     out << "comparison: " << sweep_dir << "/{comparison.csv, report.md, report.html" << (compared.pngs.empty() ? "" : ", *.png") << "}\n";
     if (!compared.plot_note.empty()) out << "plots: " << compared.plot_note << "\n";
-    if (const GeometryCacheUse use = sweep_geometry_cache_use(sweep_dir + "/logs"); use.reused + use.computed > 0)
-        out << "geometry: the runs computed the parts' coverage geometry " << use.computed << " time" << (use.computed == 1 ? "" : "s")
-            << " and reused it " << use.reused << " time" << (use.reused == 1 ? "" : "s") << " (" << sweep_dir << "/geometry-cache)\n";
+    out << sweep_geometry_cache_line(sweep_dir + "/logs");
     return outcome.failed.empty() ? kExitOk : kExitRuntimeError;
 }
 
