@@ -40,17 +40,20 @@ std::string file_bytes(const std::string& path) {
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// The binary that holds this code (the peensim executable, or the library the Python module
-// loads), hashed once: another build may compute the geometry otherwise.
+// The binaries that hold this code, hashed once: another build may compute the geometry
+// otherwise. The program itself (/proc/self/exe), and the shared library this code is in when it
+// is not the program (the Python module's, loaded by python3), named by an absolute path.
 std::uint64_t this_build_hash() {
     static const std::uint64_t hash = [] {
+        const std::string program = file_bytes("/proc/self/exe");
+        if (program.empty()) throw std::runtime_error("cannot read this program's own binary to key the coverage geometry cache");
+        std::uint64_t h = fnv1a64(program);
         Dl_info info{};
-        std::string bytes;
-        if (::dladdr(reinterpret_cast<const void*>(&this_build_hash), &info) != 0 && info.dli_fname != nullptr && info.dli_fname[0] != '\0')
-            bytes = file_bytes(info.dli_fname);
-        if (bytes.empty()) bytes = file_bytes("/proc/self/exe");
-        if (bytes.empty()) throw std::runtime_error("cannot read this program's own binary to key the coverage geometry cache");
-        return fnv1a64(bytes);
+        std::error_code error;
+        if (::dladdr(reinterpret_cast<const void*>(&this_build_hash), &info) != 0 && info.dli_fname != nullptr &&
+            info.dli_fname[0] == '/' && !fs::equivalent(info.dli_fname, "/proc/self/exe", error))
+            h = fnv1a64(file_bytes(info.dli_fname), h);
+        return h;
     }();
     return hash;
 }
