@@ -8,17 +8,7 @@
 # runs, 2 at once; and the same on the 500k-triangle gear with 2 amplitudes x 2 seeds. Prints the
 # median wall time of each sweep (s) over REPEATS (default 3), the new binary's "geometry:" line,
 # and checks that both sweeps wrote the same comparison.csv and the same analysis tables.
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-base="$1"
-new="$2"
-repeats="${3:-3}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-fine="$work/gear-fine.stl"
-PEENSIM="$new" PEENSIM_ASSETS_DIR="$work" bash "$root/assets/regenerate.sh" --fine > /dev/null
-seconds() { /usr/bin/time -f %e "$@" 2>&1 > /dev/null | tail -1; }
-median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+source "$(dirname "${BASH_SOURCE[0]}")/two_binaries_on_two_gears.sh" "$@"
 echo "# sweep with the geometry cache, $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, medians of $repeats"
 echo "| binary | part | runs | sweep wall s |"
 echo "|---|---|---|---|"

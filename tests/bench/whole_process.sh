@@ -8,18 +8,8 @@
 # its stepping (summary.json's wall_time_s), setup (a run of 1 ms without analysis, less its
 # stepping) and the analysis (whole less setup and stepping), and checks that both binaries
 # wrote the same analysis tables (*_triangles.csv, *_coverage.csv, *_histograms.csv).
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-base="$1"
-new="$2"
-repeats="${3:-3}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-fine="$work/gear-fine.stl"
-PEENSIM="$new" PEENSIM_ASSETS_DIR="$work" bash "$root/assets/regenerate.sh" --fine > /dev/null
-seconds() { /usr/bin/time -f %e "$@" 2>&1 > /dev/null | tail -1; }
+source "$(dirname "${BASH_SOURCE[0]}")/two_binaries_on_two_gears.sh" "$@"
 stepping() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1/summary.json"; }
-median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 echo "# whole process, $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, medians of $repeats"
 echo "| binary | mesh | whole s | setup s | stepping s | analysis s |"
 echo "|---|---|---|---|---|---|"
