@@ -1,5 +1,6 @@
 #include "app/analysis/coverage_geometry.h"
 
+#include <cstdio>
 #include <utility>
 
 #include "analysis/coverage_progress.h"
@@ -99,12 +100,22 @@ void CoverageGeometry::compute() {
                 lock.emplace(cache_dir_, key, [] { throw_if_chunks_cancelled(); });
                 found = load_coverage_geometry(cache_dir_, key, mesh, regions, part->classes, part->unreachable, why);
             }
+            // How long this run waited for another computing it, if at all (the notes say why a
+            // run took longer).
+            char waited[96] = "";
+            if (lock && lock->waited_s() > 0.0)
+                std::snprintf(waited, sizeof waited, " (after %.1f s waiting for the run that computed it)", lock->waited_s());
             if (found) {
-                part->cache_note = "reused from " + coverage_geometry_file(cache_dir_, key);
+                part->cache_note = "reused from " + coverage_geometry_file(cache_dir_, key) + waited;
                 parts_[ci] = std::move(part);
                 continue;
             }
-            if (!why.empty()) part->cache_note = "computed again (" + why + "); ";
+            if (lock && lock->gave_up())
+                std::snprintf(waited, sizeof waited, "another run held it for %.0f s: computed here; ", lock->waited_s());
+            else
+                waited[0] = '\0';
+            part->cache_note = waited;
+            if (!why.empty()) part->cache_note += "computed again (" + why + "); ";
         }
         const ReachTest reach = reach_test(model, ci, cavity());
         const double R = model.min_shot_radius_m;  // the smallest shot of a mix reaches furthest

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -134,16 +135,29 @@ bool load_coverage_geometry(const std::string& dir, std::uint64_t key, const Tri
                             SampleClasses& classes, UnreachableFindings& unreachable, std::string& why) {
     why.clear();
     const std::string path = coverage_geometry_file(dir, key);
-    std::error_code absent;
-    if (!fs::exists(path, absent)) return false;
-    const std::string bytes = file_bytes(path);
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);
+    if (!fs::exists(status)) return false;
+    // Only a regular file is read: a folder or a FIFO under the entry's name would throw or block.
+    if (!fs::is_regular_file(status)) {
+        why = path + ": not a regular file";
+        return false;
+    }
+    std::ifstream file(path, std::ios::binary);
+    if (!file) {
+        why = path + ": cannot be read (" + std::strerror(errno) + ")";
+        return false;
+    }
+    std::string bytes;
     try {
+        bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
         ByteReader in(bytes, path);
         if (in.take(kMagic.size()) != kMagic || in.get<std::uint32_t>() != kLayout) in.fail("not a coverage geometry of this layout");
         if (in.get<std::uint64_t>() != key) in.fail("another key than its name's");
         const auto payload_size = in.get<std::uint64_t>();
         const std::string_view payload = in.take(payload_size);
-        if (in.get<std::uint64_t>() != fnv1a64(payload) || !in.at_end()) in.fail("checksum does not match: not a whole file");
+        if (in.get<std::uint64_t>() != fnv1a64(payload) || !in.at_end())
+            in.fail("its checksum does not match its bytes (altered or cut short)");
         ByteReader p(payload, path);
         SampleClasses c = SampleClasses::read_bytes(p, mesh.triangle_count(), regions.size());
         UnreachableFindings u;
@@ -155,14 +169,18 @@ bool load_coverage_geometry(const std::string& dir, std::uint64_t key, const Tri
             p.fail("not of this part");
         classes = std::move(c);
         unreachable = std::move(u);
+        // Read now: the cap drops the entries read longest ago (a read-only folder keeps its times).
+        fs::last_write_time(path, fs::file_time_type::clock::now(), error);
         return true;
-    } catch (const std::runtime_error& e) {
+    } catch (const std::exception& e) {  // the reader's, or the stream's on a read error
         why = e.what();
         return false;
     }
 }
 
-CoverageGeometryLock::CoverageGeometryLock(const std::string& dir, std::uint64_t key, const std::function<void()>& waiting) {
+CoverageGeometryLock::CoverageGeometryLock(const std::string& dir, std::uint64_t key, const std::function<void()>& waiting,
+                                           double patience_s) {
+    const auto start = std::chrono::steady_clock::now();
     std::error_code ignored;
     fs::create_directories(dir, ignored);
     std::string path = coverage_geometry_file(dir, key);
@@ -181,6 +199,13 @@ CoverageGeometryLock::CoverageGeometryLock(const std::string& dir, std::uint64_t
             ::close(fd_);
             throw;
         }
+        waited_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (waited_s_ >= patience_s) {  // the run holding it is stuck or far slower: go on without it
+            ::close(fd_);
+            fd_ = -1;
+            gave_up_ = true;
+            return;
+        }
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
 }
@@ -191,9 +216,10 @@ CoverageGeometryLock::~CoverageGeometryLock() {
 
 namespace {
 
-// Removes the oldest entries of `dir` but `kept` while they hold more than cap_bytes. Runs that
-// evict at once may remove the same file twice (the second removal finds nothing) or a file
-// another run is about to read (which then computes it again).
+// Removes the entries of `dir` but `kept` read or written longest ago while they hold more than
+// cap_bytes, and the temporaries of runs killed while writing one (an hour old). Runs that evict
+// at once may remove the same file twice (the second removal finds nothing) or a file another run
+// is about to read (which then computes it again).
 void evict_oldest(const std::string& dir, const std::string& kept, std::uintmax_t cap_bytes) {
     struct Entry {
         fs::file_time_type written;
@@ -205,7 +231,13 @@ void evict_oldest(const std::string& dir, const std::string& kept, std::uintmax_
     std::error_code error;
     for (const fs::directory_entry& e : fs::directory_iterator(dir, error)) {
         const std::string name = e.path().filename().string();
-        if (name.rfind("coverage-", 0) != 0 || e.path().extension() != ".bin") continue;
+        if (name.rfind("coverage-", 0) != 0) continue;
+        if (name.find(".bin.") != std::string::npos) {  // coverage-<key>.bin.<pid>[.tmp]: a write in progress, or abandoned
+            const fs::file_time_type written = e.last_write_time(error);
+            if (!error && written < fs::file_time_type::clock::now() - std::chrono::hours(1)) fs::remove(e.path(), error);
+            continue;
+        }
+        if (e.path().extension() != ".bin") continue;
         const std::uintmax_t bytes = e.file_size(error);
         if (error) continue;
         total += bytes;

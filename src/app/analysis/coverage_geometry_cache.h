@@ -40,16 +40,25 @@ bool load_coverage_geometry(const std::string& dir, std::uint64_t key, const Tri
 // lock (flock on <dir>/coverage-<key>.lock, released by the kernel if the process dies): a sweep's
 // runs that start together wait for the first to keep it instead of each computing it. Waits in
 // steps of 20 ms, calling `waiting` between them (which may throw to give up: a run that is
-// stopped). A folder where the lock cannot be made is no reason to wait: then it holds nothing.
+// stopped), for at most patience_s: a run stuck holding it (or far slower) is not waited for
+// longer, and this one computes the entry itself. A folder where the lock cannot be made is no
+// reason to wait: then it holds nothing.
+inline constexpr double kCoverageGeometryPatience_s = 300.0;
 class CoverageGeometryLock {
 public:
-    CoverageGeometryLock(const std::string& dir, std::uint64_t key, const std::function<void()>& waiting);
+    CoverageGeometryLock(const std::string& dir, std::uint64_t key, const std::function<void()>& waiting,
+                         double patience_s = kCoverageGeometryPatience_s);
     ~CoverageGeometryLock();
     CoverageGeometryLock(const CoverageGeometryLock&) = delete;
     CoverageGeometryLock& operator=(const CoverageGeometryLock&) = delete;
 
+    double waited_s() const { return waited_s_; }  // s, for another run's lock
+    bool gave_up() const { return gave_up_; }      // waited patience_s, and holds nothing
+
 private:
     int fd_ = -1;
+    double waited_s_ = 0.0;
+    bool gave_up_ = false;
 };
 
 // At most this many bytes of entries in a folder (1 GiB): a study that varies the shot's size gives
@@ -58,7 +67,7 @@ inline constexpr std::uintmax_t kCoverageGeometryCacheBytes = std::uintmax_t{1} 
 
 // Keeps the entry for `key` (written under a name of this process's, then renamed: runs that store
 // the same entry at once leave one whole file), then removes the oldest other entries while the
-// folder's entries hold more than cap_bytes. Throws std::runtime_error if it cannot be written.
+// folder's entries hold more than cap_bytes (read or written longest ago first). Throws std::runtime_error if it cannot be written.
 void store_coverage_geometry(const std::string& dir, std::uint64_t key, const SampleClasses& classes,
                              const UnreachableFindings& unreachable, std::uintmax_t cap_bytes = kCoverageGeometryCacheBytes);
 

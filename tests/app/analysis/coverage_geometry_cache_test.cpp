@@ -4,6 +4,7 @@
 #include "app/analysis/coverage_geometry_cache.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <chrono>
@@ -52,6 +53,24 @@ std::string note_of(const std::shared_ptr<const Model>& model, const std::string
     if (bytes != nullptr) *bytes = bytes_of(*part);
     return part->cache_note;
 }
+
+// A run does not wait for ever on a run stuck holding the lock: past its patience it goes on.
+TEST(CoverageGeometryCache, ALockHeldPastThePatienceIsGivenUp) {
+    TempDir dir;
+    const CoverageGeometryLock held(dir.path.string(), 7, [] {});
+    EXPECT_FALSE(held.gave_up());
+    EXPECT_EQ(held.waited_s(), 0.0);
+    const CoverageGeometryLock waiting(
+        dir.path.string(), 7, [] {}, 0.1);
+    EXPECT_TRUE(waiting.gave_up());
+    EXPECT_GE(waiting.waited_s(), 0.1);
+    const CoverageGeometryLock other_key(
+        dir.path.string(), 8, [] {}, 0.1);  // another entry's lock is free
+    EXPECT_FALSE(other_key.gave_up());
+}
+
+// Overwrites the file at `path` with `bytes`.
+void write_bytes_to(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes; }
 
 TEST(CoverageGeometryCache, ReadBackItIsTheComputedGeometryToTheByte) {
     TempDir dir;
@@ -136,20 +155,31 @@ TEST(CoverageGeometryCache, AFolderPastItsCapDropsItsOldestEntries) {
         fs::last_write_time(coverage_geometry_file(cache, key),
                             fs::last_write_time(coverage_geometry_file(cache, 1)) - std::chrono::hours(4 - static_cast<int>(key)));
     }
+    // Entry 1 made the oldest, entry 2 read since: of 1, 2 and 3, 1 and 3 were read or written
+    // longest ago.
+    fs::last_write_time(coverage_geometry_file(cache, 1), fs::last_write_time(coverage_geometry_file(cache, 1)) - std::chrono::hours(8));
+    SampleClasses classes;
+    UnreachableFindings unreachable;
+    std::string why;
+    ASSERT_TRUE(load_coverage_geometry(cache, 2, *model->components[kGearPart].mesh, part.regions, classes, unreachable, why)) << why;
     store_coverage_geometry(cache, 4, part.classes, part.unreachable, 2 * entry);
-    EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 2)));
-    EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 3)));
-    EXPECT_TRUE(fs::exists(coverage_geometry_file(cache, 1)));
-    EXPECT_TRUE(fs::exists(coverage_geometry_file(cache, 4)));
-    // A cap below one entry keeps the one just written alone.
-    store_coverage_geometry(cache, 5, part.classes, part.unreachable, 1);
     EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 1)));
+    EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 3)));
+    EXPECT_TRUE(fs::exists(coverage_geometry_file(cache, 2)));
+    EXPECT_TRUE(fs::exists(coverage_geometry_file(cache, 4)));
+    // A cap below one entry keeps the one just written alone; a temporary an hour old (a run
+    // killed while writing) goes too, a fresh one (a run writing now) stays.
+    const std::string stale = coverage_geometry_file(cache, 9) + ".123", fresh = coverage_geometry_file(cache, 9) + ".456";
+    write_bytes_to(stale, "x");
+    write_bytes_to(fresh, "x");
+    fs::last_write_time(stale, fs::last_write_time(stale) - std::chrono::hours(2));
+    store_coverage_geometry(cache, 5, part.classes, part.unreachable, 1);
+    EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 2)));
     EXPECT_FALSE(fs::exists(coverage_geometry_file(cache, 4)));
     EXPECT_TRUE(fs::exists(coverage_geometry_file(cache, 5)));
+    EXPECT_FALSE(fs::exists(stale));
+    EXPECT_TRUE(fs::exists(fresh));
 }
-
-// Overwrites the file at `path` with `bytes`.
-void write_bytes_to(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes; }
 
 TEST(CoverageGeometryCache, ADamagedEntryIsComputedAgainAndReplacedNeverTrusted) {
     TempDir dir;
@@ -173,6 +203,19 @@ TEST(CoverageGeometryCache, ADamagedEntryIsComputedAgainAndReplacedNeverTrusted)
     }
     EXPECT_EQ(note_of(model, cache, &again).rfind("reused from ", 0), 0u);
     EXPECT_EQ(again, computed);
+    // A FIFO under the entry's name (which a read would block on) and a folder (which a read
+    // would throw on) are not read: computed, the FIFO replaced, the folder left and said so.
+    fs::remove(path);
+    ASSERT_EQ(::mkfifo(path.c_str(), 0644), 0);
+    const std::string fifo_note = note_of(model, cache, &again);
+    EXPECT_EQ(fifo_note.rfind("computed again (" + path + ": not a regular file); kept in ", 0), 0u) << fifo_note;
+    EXPECT_EQ(read_file(path), whole);
+    fs::remove(path);
+    fs::create_directory(path);
+    const std::string folder_note = note_of(model, cache, &again);
+    EXPECT_EQ(folder_note.rfind("computed again (" + path + ": not a regular file); not kept: ", 0), 0u) << folder_note;
+    EXPECT_EQ(again, computed);
+    fs::remove(path);
     // A folder it cannot write to: computed, and said so, the run going on.
     const std::string blocked = (dir.path / "a-file").string();
     write_bytes_to(blocked, "x");
