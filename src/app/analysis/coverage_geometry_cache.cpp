@@ -274,7 +274,13 @@ void store_coverage_geometry(const std::string& dir, std::uint64_t key, const Sa
     // temporary file; the rename leaves one whole file either way.
     const std::string own = path + "." + std::to_string(::getpid());
     write_file_atomically(own, file.bytes(), Durability::process_crash);
-    fs::rename(own, path);
+    std::error_code error;
+    fs::rename(own, path, error);
+    if (error) {  // a folder under the entry's name, say: the run goes on without keeping it
+        std::error_code ignored;
+        fs::remove(own, ignored);
+        throw fs::filesystem_error("cannot keep it", own, path, error);
+    }
     evict_oldest(dir, path, cap_bytes);
 }
 

@@ -216,6 +216,8 @@ TEST(CoverageGeometryCache, ADamagedEntryIsComputedAgainAndReplacedNeverTrusted)
     EXPECT_EQ(folder_note.rfind("computed again (" + path + ": not a regular file); not kept: ", 0), 0u) << folder_note;
     EXPECT_EQ(again, computed);
     fs::remove(path);
+    for (const fs::directory_entry& e : fs::directory_iterator(cache))  // its temporary removed
+        EXPECT_EQ(e.path().string().find(".bin."), std::string::npos) << e.path();
     // A folder it cannot write to: computed, and said so, the run going on.
     const std::string blocked = (dir.path / "a-file").string();
     write_bytes_to(blocked, "x");
