@@ -102,19 +102,18 @@ void CoverageGeometry::compute() {
             }
             // How long this run waited for another computing it, if at all (the notes say why a
             // run took longer).
-            char waited[96] = "";
-            if (lock && lock->waited_s() > 0.0)
-                std::snprintf(waited, sizeof waited, " (after %.1f s waiting for the run that computed it)", lock->waited_s());
+            const auto waited = [&lock](const char* format) {
+                char text[96];
+                std::snprintf(text, sizeof text, format, lock->waited_s());
+                return std::string(text);
+            };
             if (found) {
-                part->cache_note = "reused from " + coverage_geometry_file(cache_dir_, key) + waited;
+                part->cache_note = "reused from " + coverage_geometry_file(cache_dir_, key);
+                if (lock && lock->waited_s() > 0.0) part->cache_note += waited(" (after %.1f s waiting for the run that computed it)");
                 parts_[ci] = std::move(part);
                 continue;
             }
-            if (lock && lock->gave_up())
-                std::snprintf(waited, sizeof waited, "another run held it for %.0f s: computed here; ", lock->waited_s());
-            else
-                waited[0] = '\0';
-            part->cache_note = waited;
+            if (lock && lock->gave_up()) part->cache_note = waited("another run held it for %.0f s: computed here; ");
             if (!why.empty()) part->cache_note += "computed again (" + why + "); ";
         }
         const ReachTest reach = reach_test(model, ci, cavity());
