@@ -67,6 +67,12 @@ private:
     // if that comes before what `w` holds.
     static void resume_search_at(WallEvent& w, double t, int component, StepStats& stats);
     const TriangleMesh& collider_mesh(int c, const MeshCollider& collider) const;  // the mesh `collider` was built over
+    // s, >= u: component `comp` (a turning part) cannot touch the shot before this time, from a
+    // sweep of its path in the part's frame (turning_frame_path.h) from u, its radius grown by at
+    // most `allowance` (m: less than the shot's clearance at u, or the sweep gains nothing); past
+    // t_end if it cannot before then. u for any other kind of motion.
+    double clear_until(const Component& comp, const MeshCollider& collider, const Trajectory& path, double R, double u, double t_end,
+                       double allowance) const;
 
     std::shared_ptr<const Model> model_;
     SimTime epoch_;
