@@ -41,6 +41,9 @@ struct AnalysisWindow {
     double turn_s = 0.0;      // s, the logged part's turn (0: nothing logged rotates)
     double asked_to_s = 0.0;  // s, the end asked for (the log's end by default) before whole turns
     bool to_given = false;    // --to was given: kept as asked, warned about if not whole turns
+    // The run peened until every area of every logged part reached a target at least this one
+    // (--until-coverage) and ended there: that end is its answer, kept, part of a turn and all.
+    bool ends_at_target = false;
     double turns() const { return turn_s > 0.0 ? length_s() / turn_s : 0.0; }
     bool shorter_than_a_turn() const { return turn_s > 0.0 && turns() < 1.0 - 1e-9; }
 };

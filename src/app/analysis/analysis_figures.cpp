@@ -44,7 +44,8 @@ std::string analysis_figures_json(const std::vector<ComponentAnalysis>& parts, c
                    {"to_s", window.to_s},
                    {"min_speed_mps", window.min_speed_m_per_s},
                    {"turn_s", json_number(window.turn_s > 0.0 ? window.turn_s : NAN)},  // the rotating part's turn (null: none)
-                   {"asked_to_s", window.asked_to_s}};                                  // before the window was cut to whole turns
+                   {"asked_to_s", window.asked_to_s},                                   // before the window was cut to whole turns
+                   {"ends_at_target", window.ends_at_target}};                          // a run until coverage, kept to its end (not cut)
     j["target_coverage"] = window.target_coverage;
     j["batches"] = kFigureBatches;
     auto components = nlohmann::ordered_json::array();

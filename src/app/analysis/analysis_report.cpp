@@ -311,6 +311,13 @@ std::string turn_sentences(const AnalysisWindow& w) {
              "time to the target here is the part's. Run at least "
           << fmt(w.from_s + w.turn_s, 4)
           << " s (a whole turn): `--set \"process.duration=" << fmt(std::ceil((w.from_s + w.turn_s) * 1000.0) / 1000.0, 8) << " s\"`.\n";
+    } else if (w.ends_at_target) {
+        const double fraction = w.turns() - std::floor(w.turns());
+        if (fraction > 1e-9 && fraction < 1.0 - 1e-9)
+            r << "\nThe run peened until every area reached its target (`--until-coverage`) and ended there, " << fmt(w.turns(), 4)
+              << " turns of the rotating part (" << turn
+              << " each): analysed to that end, the part of the last turn included. Cut back to whole turns, the window would "
+                 "leave out the impacts that reached the target.\n";
     } else if (w.to_s < w.asked_to_s - 1e-9 * w.turn_s) {
         const double whole = std::round(w.turns());
         r << "\nAnalysed over " << fmt(whole, 6) << " whole turn" << (whole == 1.0 ? "" : "s") << " of the rotating part (" << turn

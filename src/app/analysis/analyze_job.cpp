@@ -331,9 +331,27 @@ double logged_turn_s(const Model& model, const SceneDescription& scene) {
 // rest of the last turn would weigh the side that faced the sonotrode in it more than the others.
 void whole_turns(AnalysisWindow& w, double turn_s) {
     w.turn_s = turn_s;
-    if (turn_s <= 0.0 || w.to_given) return;
+    if (turn_s <= 0.0 || w.to_given || w.ends_at_target) return;
     const double turns = std::floor(w.length_s() / turn_s * (1.0 + 1e-12));
     if (turns >= 1.0) w.to_s = std::min(w.to_s, w.from_s + turns * turn_s);
+}
+
+// Whether the run ended where every area of every logged part reached a target of at least
+// `target` (summary.json's until_coverage, watching all of them): its end is then where the answer
+// is, and cutting it back to whole turns would cut the impacts that reached it (the report would
+// forecast what the run had seen).
+bool ended_at_target(const fs::path& dir, const SceneDescription& scene, double target) {
+    if (!scene.process.until_coverage || !scene.process.until_coverage_of.empty()) return false;
+    std::ifstream in(dir / "summary.json");
+    if (!in) return false;
+    try {
+        const auto j = nlohmann::json::parse(in);
+        const auto u = j.find("until_coverage");
+        return j.value("finished", false) && u != j.end() && u->is_object() && u->value("reached", false) &&
+               target <= u->value("target", 0.0);
+    } catch (const std::exception&) {
+        return false;  // an older or damaged summary: analysed as any run
+    }
 }
 
 // What the report takes from the run's summary.json, when it has it.
@@ -392,6 +410,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
         own_model && options.geometry && options.geometry->model() == model
             ? options.geometry
             : std::make_shared<CoverageGeometry>(model, nullptr, 0, std::vector<std::optional<RegionSet>>{}, options.geometry_cache_dir);
+    window.ends_at_target = finished && !window.to_given && ended_at_target(dir, scene, window.target_coverage);
     whole_turns(window, logged_turn_s(*model, scene));
     std::vector<ComponentAnalysis> parts;
     std::vector<std::string> names;

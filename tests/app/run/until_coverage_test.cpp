@@ -5,7 +5,9 @@
 // at its last whole turn, and a window shorter than a turn gives no time, only the run that would.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -154,6 +156,52 @@ TEST(RotatingAnalysis, WholeTurnsAndNoTimeFromLessThanATurn) {
     report = read_file(dir.path / "analysis" / "report.md");
     EXPECT_NE(report.find("**The window is 0.5 of a turn of the rotating part"), std::string::npos) << report;
     EXPECT_NE(report.find("Run at least 2 s (a whole turn)"), std::string::npos) << report;
+}
+
+// A run until coverage of a turning part ends where its target was reached, within a turn (37 rpm:
+// a turn of 1.62 s, never a whole number of them at a restart point of 0.1 s). Its analysis keeps
+// that end: every area reached when the run says, and no advice to run until coverage. Cut back to
+// whole turns (as before), the report forecast the slowest tooth and advised a run to coverage.
+TEST(RotatingAnalysis, ARunUntilCoverageIsAnalysedToItsEndNotCutToWholeTurns) {
+    TempDir dir;
+    RunOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
+    o.output_dir = dir.path.string();
+    o.overrides = {"process.duration=60 s", "process.until_coverage=5 %", "components[gear].motion.speed=37 rpm",
+                   "output.checkpoint_interval=0.1 s"};
+    o.progress = false;
+    o.analyze = false;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    const auto summary = json_of(dir.path / "summary.json");
+    ASSERT_TRUE(summary["until_coverage"]["reached"].get<bool>());
+    const double stopped = summary["simulated_time_s"].get<double>();
+    double last_reached = 0.0;  // s: when the last watched area reached 5 %
+    for (const auto& a : summary["until_coverage"]["areas"]) last_reached = std::max(last_reached, a["reached_at_s"].get<double>());
+    const double turn = 60.0 / 37.0;
+    ASSERT_GT(stopped / turn - std::floor(stopped / turn), 1e-6);  // the run ended within a turn
+
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    const auto figures = json_of(dir.path / "analysis" / "figures.json");
+    EXPECT_EQ(figures["window"]["to_s"].get<double>(), stopped);
+    EXPECT_TRUE(figures["window"]["ends_at_target"].get<bool>());
+    const auto& gear = figures["components"][0];
+    EXPECT_EQ(gear["time_to_target"]["status"], "reached");
+    EXPECT_EQ(gear["time_to_target_everywhere"]["status"], "reached");
+    EXPECT_NEAR(gear["time_to_target_everywhere"]["time_s"].get<double>(), last_reached, 1e-9 * last_reached);
+    const std::string report = read_file(dir.path / "analysis" / "report.md");
+    EXPECT_EQ(report.find("--until-coverage \""), std::string::npos) << report;
+    EXPECT_NE(report.find("The run peened until every area reached its target (`--until-coverage`) and ended there"), std::string::npos)
+        << report;
+
+    // Analysed at a higher target than the run reached, the window is cut to whole turns as any
+    // run's: the forecasts read whole turns.
+    AnalyzeOptions higher;
+    higher.target_coverage = 0.5;
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err, higher), kExitOk) << err.str();
+    const auto cut = json_of(dir.path / "analysis" / "figures.json");
+    EXPECT_FALSE(cut["window"]["ends_at_target"].get<bool>());
+    EXPECT_NEAR(cut["window"]["to_s"].get<double>(), std::floor(stopped / turn) * turn, 1e-9);
 }
 
 }  // namespace
