@@ -2,7 +2,7 @@
 // Uniform impacts give a flat field equal to their density within the noise the class computes;
 // one cluster gives the kernel's shape; a full coverage map smooths to 1; and the shipped gear at
 // its 4960 triangles and a 60x finer tessellation of the same geometry give the same field at the
-// same points.
+// same points; at_triangles() gives each triangle at()'s sums at its centroid, to the bit.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -277,6 +277,27 @@ TEST(SurfaceSmoothing, TheGearAtTwoTessellationsGivesTheSameField) {
     EXPECT_LT(worst_speed, 0.01);
     EXPECT_LT(rms_coverage, 0.005);
     EXPECT_LT(worst_coverage, 0.03);
+
+    // at_triangles() takes a fine mesh's triangles cube by cube over copies of the patches near
+    // each cube (the coarse one's mostly one by one): each triangle's sums are at()'s at its
+    // centroid, to the bit.
+    for (const auto* pair : {&fine, &coarse}) {
+        const TriangleMesh& mesh = *pair;
+        const SurfaceSmoothing& smoothing = pair == &fine ? on_fine : on_coarse;
+        const std::vector<SmoothedSums> all = smoothing.at_triangles();
+        ASSERT_EQ(all.size(), mesh.triangle_count());
+        std::size_t differ = 0;
+        for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+            const SmoothedSums one = smoothing.at((mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) / 3.0, normal_of(mesh, t));
+            const SmoothedSums& a = all[t];
+            differ += a.area_m2 != one.area_m2 || a.impacts != one.impacts || a.impacts_sq != one.impacts_sq ||
+                              a.energy_J != one.energy_J || a.vn_sum_m_per_s != one.vn_sum_m_per_s || a.covered_m2 != one.covered_m2 ||
+                              a.sampled_m2 != one.sampled_m2
+                          ? 1
+                          : 0;
+        }
+        EXPECT_EQ(differ, 0u) << mesh.triangle_count() << " triangles";
+    }
 }
 
 TEST(SurfaceSmoothing, MemoryIsBoundedByTheSurfaceNotTheImpacts) {
