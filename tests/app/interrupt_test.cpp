@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -139,6 +140,10 @@ struct HardRun {
     std::string name, scene, scheme;
     std::vector<std::string> sets;
 };
+
+// gtest's own printer would dump the case's bytes, unset ones among them (valgrind reports them
+// as uninitialised at every start of the test binary).
+void PrintTo(const HardRun& p, std::ostream* os) { *os << p.name << " " << p.scheme; }
 class RunInterruptHard : public ::testing::TestWithParam<HardRun> {};
 
 TEST_P(RunInterruptHard, SigtermStopsWithinASecondWithACheckpoint) {

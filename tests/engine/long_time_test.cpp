@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ struct TubeCase {
     double height_m;      // m, ceiling above the plate
     double late_start_s;  // s, a whole number of periods
 };
+
+// gtest's own printer would dump the case's bytes, unset ones among them (valgrind reports them
+// as uninitialised at every start of the test binary).
+void PrintTo(const TubeCase& c, std::ostream* os) { *os << c.name; }
 
 struct TubeRun {
     double floor_rate = 0.0, floor_speed = 0.0;      // 1/s per shot, m/s
