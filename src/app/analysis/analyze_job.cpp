@@ -410,7 +410,10 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
         own_model && options.geometry && options.geometry->model() == model
             ? options.geometry
             : std::make_shared<CoverageGeometry>(model, nullptr, 0, std::vector<std::optional<RegionSet>>{}, options.geometry_cache_dir);
-    window.ends_at_target = finished && !window.to_given && ended_at_target(dir, scene, window.target_coverage);
+    // The run's coverage is its whole log's: a window that starts later or leaves out slow impacts
+    // counts less of it, and its forecasts read whole turns.
+    window.ends_at_target = finished && !window.to_given && window.from_s == 0.0 && window.min_speed_m_per_s == 0.0 &&
+                            ended_at_target(dir, scene, window.target_coverage);
     whole_turns(window, logged_turn_s(*model, scene));
     std::vector<ComponentAnalysis> parts;
     std::vector<std::string> names;

@@ -202,6 +202,13 @@ TEST(RotatingAnalysis, ARunUntilCoverageIsAnalysedToItsEndNotCutToWholeTurns) {
     const auto cut = json_of(dir.path / "analysis" / "figures.json");
     EXPECT_FALSE(cut["window"]["ends_at_target"].get<bool>());
     EXPECT_NEAR(cut["window"]["to_s"].get<double>(), std::floor(stopped / turn) * turn, 1e-9);
+    // So is a window that starts later (its coverage is not the run's).
+    AnalyzeOptions later;
+    later.from_s = 1.0;
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err, later), kExitOk) << err.str();
+    const auto from = json_of(dir.path / "analysis" / "figures.json");
+    EXPECT_FALSE(from["window"]["ends_at_target"].get<bool>());
+    EXPECT_NEAR(from["window"]["to_s"].get<double>(), 1.0 + std::floor((stopped - 1.0) / turn) * turn, 1e-9);
 }
 
 }  // namespace
