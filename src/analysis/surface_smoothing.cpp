@@ -259,31 +259,44 @@ void SurfaceSmoothing::add_coverage(const CoverageMap& coverage) {
         });
 }
 
+namespace {
+
+// One patch's share of the kernel sums at x (unit normal n): its area and coverage samples at
+// their centroid, its impacts at theirs. at() and at_triangles() both add up through this, so
+// their sums agree to the bit.
+inline void add_patch(SmoothedSums& s, const Vec3& x, const Vec3& n, double r2, double inv_r2, const Vec3& centroid, const Vec3& normal,
+                      double area_m2, double covered_m2, double sampled_m2, double count, const Vec3& point_sum, double energy_J,
+                      double vn_sum) {
+    const double facing = n.dot(normal);
+    if (facing <= 0.0) return;
+    const double d2 = (centroid - x).squaredNorm();
+    if (d2 < r2) {
+        const double w = quartic(d2, inv_r2) * facing;
+        s.area_m2 += w * area_m2;
+        s.covered_m2 += w * covered_m2;
+        s.sampled_m2 += w * sampled_m2;
+    }
+    if (count > 0.0) {
+        const double dq2 = (point_sum / count - x).squaredNorm();
+        if (dq2 >= r2) return;
+        const double w = quartic(dq2, inv_r2) * facing;
+        s.impacts += w * count;
+        s.impacts_sq += w * w * count;
+        s.energy_J += w * energy_J;
+        s.vn_sum_m_per_s += w * vn_sum;
+    }
+}
+
+}  // namespace
+
 SmoothedSums SurfaceSmoothing::at(const Vec3& x, const Vec3& n) const {
     SmoothedSums s;
     if (centroid_.empty() || !(n.squaredNorm() > 0.0)) return s;
     const double r2 = radius_ * radius_, inv_r2 = 1.0 / r2;
     for_each_patch_near(x, [&](std::uint32_t p) {
-        const double facing = n.dot(normal_[p]);
-        if (facing <= 0.0) return;
-        const double d2 = (centroid_[p] - x).squaredNorm();
-        if (d2 < r2) {
-            const double w = quartic(d2, inv_r2) * facing;
-            s.area_m2 += w * area_[p];
-            s.covered_m2 += w * covered_[p];
-            s.sampled_m2 += w * sampled_[p];
-        }
         const ImpactSums& hits = impacts_[p];
-        const double count = hits.count;
-        if (count > 0.0) {
-            const double dq2 = (hits.point_sum / count - x).squaredNorm();
-            if (dq2 >= r2) return;
-            const double w = quartic(dq2, inv_r2) * facing;
-            s.impacts += w * count;
-            s.impacts_sq += w * w * count;
-            s.energy_J += w * hits.energy_J;
-            s.vn_sum_m_per_s += w * hits.vn_sum;
-        }
+        add_patch(s, x, n, r2, inv_r2, centroid_[p], normal_[p], area_[p], covered_[p], sampled_[p], hits.count, hits.point_sum,
+                  hits.energy_J, hits.vn_sum);
     });
     return s;
 }
@@ -392,30 +405,12 @@ std::vector<SmoothedSums> SurfaceSmoothing::at_triangles() const {
                 const std::uint32_t t = order[k].second;
                 const Vec3& x = centroid[t];
                 const Vec3& normal = triangle_normal_[t];
-                SmoothedSums& s = sums[t];
                 if (!(normal.squaredNorm() > 0.0)) continue;  // a degenerate triangle: zero sums, as at()
-                // at()'s loop, over the copies.
-                for (std::size_t j = 0; j < m; ++j) {
-                    const double facing = normal.dot(near.normal[j]);
-                    if (facing <= 0.0) continue;
-                    const double d2 = (near.centroid[j] - x).squaredNorm();
-                    if (d2 < r2) {
-                        const double w = quartic(d2, inv_r2) * facing;
-                        s.area_m2 += w * near.area[j];
-                        s.covered_m2 += w * near.covered[j];
-                        s.sampled_m2 += w * near.sampled[j];
-                    }
-                    const double count = near.count[j];
-                    if (count > 0.0) {
-                        const double dq2 = (near.point_sum[j] / count - x).squaredNorm();  // at()'s expression, to the bit
-                        if (dq2 >= r2) continue;
-                        const double w = quartic(dq2, inv_r2) * facing;
-                        s.impacts += w * count;
-                        s.impacts_sq += w * w * count;
-                        s.energy_J += w * near.energy[j];
-                        s.vn_sum_m_per_s += w * near.vn[j];
-                    }
-                }
+                SmoothedSums s;                               // local: kept in registers, not reloaded past every store
+                for (std::size_t j = 0; j < m; ++j)
+                    add_patch(s, x, normal, r2, inv_r2, near.centroid[j], near.normal[j], near.area[j], near.covered[j], near.sampled[j],
+                              near.count[j], near.point_sum[j], near.energy[j], near.vn[j]);
+                sums[t] = s;
             }
             run = run_end;
         }
