@@ -81,6 +81,7 @@ public:
     void add_point(const Vec3& point_m);
     void add_points(std::span<const Vec3> points_m);
     void add_triangle(const std::array<int, 3>& vertices);
+    void add_triangles(std::span<const std::array<int, 3>> triangles);
     void add(double value);
     void add(std::span<const double> values);
     void add(std::int64_t value);
@@ -93,7 +94,8 @@ public:
 
 private:
     struct Segment;
-    void write_values(VtkType type, const void* data, std::uint64_t count, const char* what);
+    enum class Item { point, triangle, value };  // what the caller hands (the segment it must fit)
+    void write_values(VtkType type, const void* data, std::uint64_t count, Item item);
     void open_next_segment();
 
     std::string path_;

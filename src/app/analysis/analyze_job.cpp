@@ -530,6 +530,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
                                            image_files_in(adir.string()), views));
     write_file_atomically((adir / "figures.json").string(), analysis_figures_json(parts, window));
     write_paraview_script(dir, adir, scene, fastest_start_speed_m_per_s(model->sources), parts, duration, window);
+    coverage_series.wait();
     const fs::path done = dir / kAnalysisDirName;
     fs::remove_all(done);
     fs::rename(adir, done);

@@ -56,7 +56,7 @@ void write_block(const Component& c, const std::string& path) {
     PolyDataWriter out(path, std::move(layout));
     const Pose at_start = c.kinematics.pose(SimTime{});
     for (const Vec3& v : mesh.vertices) out.add_point(at_start.to_world(v));
-    for (const auto& tri : mesh.triangles) out.add_triangle(tri);
+    out.add_triangles(mesh.triangles);
     const auto role = static_cast<std::int32_t>(c.role);
     for (std::uint64_t t = 0; t < n; ++t) out.add(role);
     out.finish();

@@ -34,20 +34,26 @@ public:
 
     // Before the impact at time_s is added: writes every step whose time is not after it.
     void before(double time_s);
-    // After the last impact: writes the steps left (the run's end included) and each part's .pvd.
+    // After the last impact: the steps left (the run's end included) and each part's .pvd, written
+    // on the writer's thread while the analysis goes on (they all show the final coverage).
     void finish();
+    // Until every file is written; rethrows what the writing threw.
+    void wait();
 
 private:
+    using Coverages = std::vector<std::vector<double>>;  // per part (empty: no coverage map), per triangle
     double step_time(int j) const { return j == steps_ ? to_s_ : from_s_ + (to_s_ - from_s_) * j / steps_; }
+    Coverages coverage_now() const;
     void write_step(int j);
-    void wait_for_writer();  // rethrows what the last step's writing threw
+    void write_files(int j, const Coverages& coverage) const;
+    void write_pvds() const;
 
     std::filesystem::path dir_;
     const std::vector<ComponentAnalysis>& parts_;
     double from_s_, to_s_;
     int steps_;
     int next_ = 0;
-    std::future<void> writing_;  // the last step's file
+    std::future<void> writing_;  // the files of the last steps handed to the writer
 };
 
 }  // namespace peensim
