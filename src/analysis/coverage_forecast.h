@@ -130,6 +130,10 @@ struct AreaForecast {
     double noise_high_s = 0.0;  // s, the interval's upper end before the smoothing bias was added
     double bias_s = 0.0;        // s, the smoothing bias allowance (forecast at h minus at 2 h, >= 0)
     double run_for_s = 0.0;     // s, too_short: a window this long would give a number
+    // reached, seen by the run after the window's end: a run until coverage of this area
+    // (process.until_coverage_of) counted its dents to the target at time_s, past the last whole
+    // turn the window ends at; coverage_now is still the window's.
+    bool seen_in_run = false;
 };
 
 // "reached", "forecast", "too_short", "never", "none": as the tables and figures.json name it.

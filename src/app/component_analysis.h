@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "analysis/almen.h"
@@ -44,6 +45,10 @@ struct AnalysisWindow {
     // The run peened until every area of every logged part reached a target at least this one
     // (--until-coverage) and ended there: that end is its answer, kept, part of a turn and all.
     bool ends_at_target = false;
+    // A run until coverage of some areas only (process.until_coverage_of) is still cut to whole
+    // turns, for the other areas' forecasts; the watched areas it saw reach the target after the
+    // cut ("part" or "part/region", s), whose times the analysis takes from it.
+    std::vector<std::pair<std::string, double>> seen_reached_after;
     double turns() const { return turn_s > 0.0 ? length_s() / turn_s : 0.0; }
     bool shorter_than_a_turn() const { return turn_s > 0.0 && turns() < 1.0 - 1e-9; }
 };

@@ -31,6 +31,7 @@ nlohmann::ordered_json forecast_json(const AreaForecast& f) {
     o["high_s"] = json_number(timed ? f.high_s : NAN);  // null: unbounded
     o["smoothing_bias_s"] = json_number(f.status == AreaForecast::Status::forecast ? f.bias_s : NAN);
     o["run_for_s"] = json_number(f.status == AreaForecast::Status::too_short ? f.run_for_s : NAN);
+    if (f.seen_in_run) o["seen_in_run"] = true;  // reached after the window, as the run until coverage counted
     return o;
 }
 

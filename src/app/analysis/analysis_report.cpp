@@ -44,7 +44,8 @@ std::string target_text(double target) { return fmt(100.0 * target, 4) + " %"; }
 
 std::string forecast_cell(const AreaForecast& f) {
     switch (f.status) {
-        case AreaForecast::Status::reached: return "reached at " + fmt(f.time_s) + " s";
+        case AreaForecast::Status::reached:
+            return "reached at " + fmt(f.time_s) + " s" + (f.seen_in_run ? " (the run's; after the window)" : "");
         case AreaForecast::Status::forecast: return fmt(f.time_s) + " s [" + interval_text(f.low_s, f.high_s) + "]";
         case AreaForecast::Status::too_short:
             return "too short to say (run " +
@@ -62,6 +63,12 @@ std::string forecast_sentence(const AreaForecast& f, double analysed_s, const Re
     std::ostringstream r;
     switch (f.status) {
         case AreaForecast::Status::reached:
+            if (f.seen_in_run) {
+                r << "**reached at " << duration_text(f.time_s)
+                  << "**, as the run that watched it counted (`until_coverage_of`), after the " << fmt(analysed_s)
+                  << " s analysed, where it stood at " << percent(f.coverage_now) << ".";
+                break;
+            }
             r << "**reached at " << duration_text(f.time_s) << "** of the " << fmt(analysed_s) << " s analysed.";
             break;
         case AreaForecast::Status::forecast:
@@ -323,7 +330,15 @@ std::string turn_sentences(const AnalysisWindow& w) {
         r << "\nAnalysed over " << fmt(whole, 6) << " whole turn" << (whole == 1.0 ? "" : "s") << " of the rotating part (" << turn
           << " each): to " << fmt(w.to_s) << " s; the last " << fmt(w.asked_to_s - w.to_s, 3)
           << " s, part of a turn, is left out, as it would weigh the side that faced the sonotrode in it more than the others. A run of "
-          << fmt(w.from_s + (whole + 1.0) * w.turn_s, 6) << " s (" << fmt(whole + 1.0, 6) << " turns) uses every impact.\n";
+          << fmt(w.from_s + (whole + 1.0) * w.turn_s, 6) << " s (" << fmt(whole + 1.0, 6) << " turns) uses every impact.";
+        if (!w.seen_reached_after.empty()) {
+            r << " The run peened until the areas it watched reached the target (`until_coverage_of`) and ended there; it counted";
+            for (std::size_t k = 0; k < w.seen_reached_after.size(); ++k)
+                r << (k == 0 ? " " : (k + 1 == w.seen_reached_after.size() ? " and " : ", ")) << w.seen_reached_after[k].first
+                  << " reaching it at " << fmt(w.seen_reached_after[k].second) << " s";
+            r << ", in that part of a turn: those times are the run's, the other areas' forecasts read the whole turns.";
+        }
+        r << "\n";
     } else if (w.to_given) {
         const double fraction = w.turns() - std::floor(w.turns());
         // A part of a turn matters while it is a noticeable share of the window.

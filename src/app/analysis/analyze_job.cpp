@@ -32,6 +32,7 @@
 #include "app/paraview/paraview_script.h"
 #include "app/render_module.h"
 #include "app/report_errors.h"
+#include "common/float_limits.h"
 #include "contact/dent.h"
 #include "geometry/mesh_checks.h"
 #include "model/model.h"
@@ -240,11 +241,31 @@ void sample_coverage(ComponentAnalysis& a, double t) {
     for (std::size_t r = 0; r < a.regions.size(); ++r) a.region_curves[r].push_back({t, a.coverage->region_coverage(r)});
 }
 
+// The watched areas' times from the run (seen_reached_after), in place of the window's forecasts.
+void take_times_from_run(ComponentAnalysis& a, const AnalysisWindow& w) {
+    const auto take = [](AreaForecast& f, double reached_at_s) {
+        if (f.status == AreaForecast::Status::none || f.status == AreaForecast::Status::reached) return;
+        f.status = AreaForecast::Status::reached;
+        f.time_s = f.low_s = f.high_s = f.noise_high_s = reached_at_s;
+        f.bias_s = f.run_for_s = 0.0;
+        f.seen_in_run = true;
+    };
+    for (const auto& [area, reached_at_s] : w.seen_reached_after) {
+        if (area == a.name) {
+            take(a.forecast.whole, reached_at_s);
+            if (a.regions.size() == 0) take(a.forecast.everywhere, reached_at_s);  // without regions, the same area
+        }
+        for (std::size_t r = 0; r < a.regions.size() && r < a.forecast.regions.size(); ++r)
+            if (area == a.name + "/" + a.regions.name(r)) take(a.forecast.regions[r], reached_at_s);
+    }
+}
+
 // Once the log is read: where coverage is heading, for the peened area, every region and everywhere.
 void finish_forecast(ComponentAnalysis& a, const AnalysisWindow& window) {
     if (!a.coverage) return;
     a.forecast = forecast_coverage(*a.coverage, *a.mesh, a.forecast_impacts, window.length_s(), kFigureBatches);
     a.forecast_impacts = {};  // done with them: the memory back before the report
+    take_times_from_run(a, window);
     if (window.shorter_than_a_turn()) {
         // Less than a turn: the sides that have not faced the sonotrode yet have rates of no use,
         // so no time is given, only how long a run would (a turn; coverage reached stays reached).
@@ -336,22 +357,56 @@ void whole_turns(AnalysisWindow& w, double turn_s) {
     if (turns >= 1.0) w.to_s = std::min(w.to_s, w.from_s + turns * turn_s);
 }
 
+// What a run until coverage wrote of its goal in summary.json: the target and, per watched area
+// ("part" or "part/region"), when it reached it (NaN: not yet).
+struct RunGoal {
+    double target = 0.0;
+    bool reached = false;  // every watched area
+    std::vector<std::pair<std::string, double>> areas;
+};
+
+std::optional<RunGoal> run_goal(const fs::path& dir) {
+    std::ifstream in(dir / "summary.json");
+    if (!in) return std::nullopt;
+    try {
+        const auto j = nlohmann::json::parse(in);
+        const auto u = j.find("until_coverage");
+        if (!j.value("finished", false) || u == j.end() || !u->is_object()) return std::nullopt;
+        RunGoal g;
+        g.target = u->value("target", 0.0);
+        g.reached = u->value("reached", false);
+        for (const auto& a : u->value("areas", nlohmann::json::array())) {
+            const auto t = a.find("reached_at_s");
+            g.areas.emplace_back(a.value("area", ""), t != a.end() && t->is_number() ? t->get<double>() : kNaN);
+        }
+        return g;
+    } catch (const std::exception&) {
+        return std::nullopt;  // an older or damaged summary: analysed as any run
+    }
+}
+
 // Whether the run ended where every area of every logged part reached a target of at least
 // `target` (summary.json's until_coverage, watching all of them): its end is then where the answer
 // is, and cutting it back to whole turns would cut the impacts that reached it (the report would
 // forecast what the run had seen).
-bool ended_at_target(const fs::path& dir, const SceneDescription& scene, double target) {
-    if (!scene.process.until_coverage || !scene.process.until_coverage_of.empty()) return false;
-    std::ifstream in(dir / "summary.json");
-    if (!in) return false;
-    try {
-        const auto j = nlohmann::json::parse(in);
-        const auto u = j.find("until_coverage");
-        return j.value("finished", false) && u != j.end() && u->is_object() && u->value("reached", false) &&
-               target <= u->value("target", 0.0);
-    } catch (const std::exception&) {
-        return false;  // an older or damaged summary: analysed as any run
-    }
+bool ended_at_target(const std::optional<RunGoal>& goal, const SceneDescription& scene, double target) {
+    if (!scene.process.until_coverage || !scene.process.until_coverage_of.empty() || !goal) return false;
+    return goal->reached && target <= goal->target;
+}
+
+// The areas a run until coverage of some of them saw reach the analysis' target after the window
+// was cut to whole turns: the run counted their dents to it as the analysis would over the whole
+// log (the same dents on the same samples), so their times are the run's, not a forecast from
+// the shorter window. Only for the whole log (a later start or a speed cut counts other dents) and
+// the run's own target.
+std::vector<std::pair<std::string, double>> seen_reached_after(const std::optional<RunGoal>& goal, const AnalysisWindow& w) {
+    std::vector<std::pair<std::string, double>> seen;
+    if (!goal || w.ends_at_target || w.to_given || w.from_s != 0.0 || w.min_speed_m_per_s != 0.0 ||
+        std::abs(goal->target - w.target_coverage) > 1e-12)
+        return seen;
+    for (const auto& [area, reached_at_s] : goal->areas)
+        if (reached_at_s > w.to_s) seen.emplace_back(area, reached_at_s);  // NaN (not reached): false
+    return seen;
 }
 
 // What the report takes from the run's summary.json, when it has it.
@@ -412,9 +467,11 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
             : std::make_shared<CoverageGeometry>(model, nullptr, 0, std::vector<std::optional<RegionSet>>{}, options.geometry_cache_dir);
     // The run's coverage is its whole log's: a window that starts later or leaves out slow impacts
     // counts less of it, and its forecasts read whole turns.
-    window.ends_at_target = finished && !window.to_given && window.from_s == 0.0 && window.min_speed_m_per_s == 0.0 &&
-                            ended_at_target(dir, scene, window.target_coverage);
+    const std::optional<RunGoal> goal = finished ? run_goal(dir) : std::nullopt;
+    window.ends_at_target =
+        !window.to_given && window.from_s == 0.0 && window.min_speed_m_per_s == 0.0 && ended_at_target(goal, scene, window.target_coverage);
     whole_turns(window, logged_turn_s(*model, scene));
+    window.seen_reached_after = seen_reached_after(goal, window);
     std::vector<ComponentAnalysis> parts;
     std::vector<std::string> names;
     const double shot_mass = mean_shot_mass_kg(scene.shot);  // each impact brings its own (accumulate)

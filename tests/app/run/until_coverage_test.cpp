@@ -11,6 +11,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -18,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/analysis/analysis_format.h"
 #include "app/analysis/analyze_job.h"
 #include "app/run/run_job.h"
 #include "support/child_process.h"
@@ -209,6 +211,68 @@ TEST(RotatingAnalysis, ARunUntilCoverageIsAnalysedToItsEndNotCutToWholeTurns) {
     const auto from = json_of(dir.path / "analysis" / "figures.json");
     EXPECT_FALSE(from["window"]["ends_at_target"].get<bool>());
     EXPECT_NEAR(from["window"]["to_s"].get<double>(), 1.0 + std::floor((stopped - 1.0) / turn) * turn, 1e-9);
+}
+
+// A run until coverage of some areas only (`until_coverage_of`) is still analysed over whole turns,
+// for the forecasts of the areas it did not watch; a watched area that reached the target in the
+// part of a turn left out takes its time from the run (the dents the run counted are those the
+// analysis would count over the whole log: the same time to the bit), not a forecast from the
+// shorter window that contradicts it.
+TEST(RotatingAnalysis, AWatchedAreaReachedAfterTheLastWholeTurnTakesItsTimeFromTheRun) {
+    TempDir dir;
+    RunOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
+    o.output_dir = dir.path.string();
+    o.overrides = {"process.duration=60 s", "process.until_coverage=5 %", "process.until_coverage_of=[gear/tooth-3, gear]",
+                   "components[gear].motion.speed=37 rpm", "output.checkpoint_interval=0.1 s"};
+    o.progress = false;
+    o.analyze = false;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    const auto summary = json_of(dir.path / "summary.json");
+    ASSERT_TRUE(summary["until_coverage"]["reached"].get<bool>());
+    const double stopped = summary["simulated_time_s"].get<double>();
+    std::map<std::string, double> reached_at;  // s, per watched area
+    for (const auto& a : summary["until_coverage"]["areas"]) reached_at[a["area"].get<std::string>()] = a["reached_at_s"].get<double>();
+    const double turn = 60.0 / 37.0, cut_s = std::floor(stopped / turn) * turn;
+    ASSERT_GT(reached_at.at("gear/tooth-3"), cut_s) << "the case needs the tooth reached after the last whole turn";
+
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    const auto figures = json_of(dir.path / "analysis" / "figures.json");
+    EXPECT_FALSE(figures["window"]["ends_at_target"].get<bool>());
+    EXPECT_NEAR(figures["window"]["to_s"].get<double>(), cut_s, 1e-9);
+    const auto region = [](const nlohmann::json& part, const std::string& name) {
+        for (const auto& r : part["regions"])
+            if (r["region"] == name) return r["time_to_target"];
+        return nlohmann::json();
+    };
+    const auto& gear = figures["components"][0];
+    const auto tooth3 = region(gear, "tooth-3");
+    EXPECT_EQ(tooth3["status"], "reached");
+    EXPECT_TRUE(tooth3.value("seen_in_run", false));
+    EXPECT_EQ(tooth3["time_s"].get<double>(), reached_at.at("gear/tooth-3"));
+    EXPECT_LT(tooth3["coverage_now"].get<double>(), 0.05);  // the window's, where it had not
+    // The teeth the run did not watch keep the window's own figures.
+    for (const auto& r : gear["regions"])
+        if (r["region"] != "tooth-3") EXPECT_FALSE(r["time_to_target"].value("seen_in_run", false)) << r["region"];
+    const std::string report = read_file(dir.path / "analysis" / "report.md");
+    EXPECT_NE(report.find("reached at " + fmt(reached_at.at("gear/tooth-3")) + " s (the run's; after the window)"), std::string::npos)
+        << report;
+    EXPECT_NE(report.find("it counted gear/tooth-3 reaching it at"), std::string::npos) << report;
+
+    // The analysis' own count over the whole log (--to its end) gives the run's time to the bit.
+    AnalyzeOptions whole;
+    whole.to_s = stopped;
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err, whole), kExitOk) << err.str();
+    const auto own = region(json_of(dir.path / "analysis" / "figures.json")["components"][0], "tooth-3");
+    EXPECT_EQ(own["status"], "reached");
+    EXPECT_FALSE(own.value("seen_in_run", false));
+    EXPECT_EQ(own["time_s"].get<double>(), reached_at.at("gear/tooth-3"));
+    // At another target than the run's, its times are not the answer: the window's forecasts.
+    AnalyzeOptions other;
+    other.target_coverage = 0.06;
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err, other), kExitOk) << err.str();
+    EXPECT_FALSE(region(json_of(dir.path / "analysis" / "figures.json")["components"][0], "tooth-3").value("seen_in_run", false));
 }
 
 }  // namespace
