@@ -607,6 +607,7 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
     out[rest].coverage_now = progress.rest_coverage();
     out[rest].time_s = progress.rest_reached_at_s();
     counted[rest] = area_m2[rest] > kRestAreaShare * area_m2[0];
+    f.rest_counted = counted[rest];
     for (std::size_t a = 0; a < areas; ++a) {
         AreaForecast& o = out[a];
         if (counted[a] && std::isfinite(o.time_s)) {

@@ -170,6 +170,7 @@ struct CoverageForecast {
     // coverage_now: the lowest area's.
     AreaForecast everywhere;
     static constexpr int kRestOfPart = -2;  // slowest_region: the peened area in no counted region
+    bool rest_counted = false;              // that area counts in everywhere (the regions leave some out)
     int slowest_region = -1;                // the region that reaches the target last (kRestOfPart; -1: none)
 };
 

@@ -91,7 +91,8 @@ std::string summary_to_text(const RunSummary& s) {
         rows.emplace_back(
             "until coverage",
             s.until_coverage->reached
-                ? printf_string("%.4g %% reached everywhere watched (%d areas) at %.6g s, last %s", target, reached, last, slowest.c_str())
+                ? printf_string("%.4g %% reached everywhere watched (%d area%s) at %.6g s, last %s", target, reached,
+                                reached == 1 ? "" : "s", last, slowest.c_str())
                 : printf_string("%.4g %% reached in %d of %zu areas; not yet: %s%s", target, reached, s.until_coverage->areas.size(),
                                 missing.c_str(), reached + 1 < static_cast<int>(s.until_coverage->areas.size()) ? ", ..." : ""));
     }

@@ -55,6 +55,8 @@ void check_until_coverage(const Cursor& process, const SceneDescription& d) {
         fail(process.child("until_coverage"),
              "coverage needs a logged part whose material has a yield_stress (the dents' size, eq. 10); expected one in `output.log`");
     for (const std::string& name : d.process.until_coverage_of) {
+        if (std::count(d.process.until_coverage_of.begin(), d.process.until_coverage_of.end(), name) > 1)
+            fail(process.child("until_coverage_of"), "'" + name + "' is listed twice; expected each area once");
         const std::size_t slash = name.find('/');
         const std::string part = name.substr(0, slash);
         const auto c = std::find_if(d.components.begin(), d.components.end(), [&part](const ComponentDesc& x) { return x.name == part; });
@@ -64,10 +66,15 @@ void check_until_coverage(const Cursor& process, const SceneDescription& d) {
                      "'; expected `part` or `part/region` of a logged part with a yield stress: " + parts);
         if (slash == std::string::npos) continue;
         const std::string region = name.substr(slash + 1);
-        std::string names;
+        std::string names;  // the regions coverage counts: an excluded one is never waited for
         bool found = false;
         for (const RegionDesc& r : c->regions)
             for (const std::string& n : region_names(r)) {
+                if (n == region && r.exclude)
+                    fail(process.child("until_coverage_of"), "region '" + name +
+                                                                 "' is excluded (`exclude: true`): coverage does not count it, so no run "
+                                                                 "can wait for it; expected a region coverage counts");
+                if (r.exclude) continue;
                 found = found || n == region;
                 names += (names.empty() ? "" : ", ") + n;
             }

@@ -127,7 +127,8 @@ std::string region_tables(const std::vector<ComponentAnalysis>& parts, const Ana
 // machine of several cores, as that many replicas in rounds (design.md, "Until coverage: rounds").
 std::string until_command(const ReportContext& x, double target, double cap_s, unsigned cores) {
     return "peensim run " + (x.run_dir / "scene.resolved.yaml").string() + " -o " + x.run_dir.string() + "-until --until-coverage \"" +
-           fmt(100.0 * target, 4) + " %\" --set \"process.duration=" + fmt(std::ceil(cap_s), 8) + " s\" --no-render" +
+           fmt(100.0 * target, 4) + " %\" --set \"process.duration=" + fmt(std::ceil(cap_s), 8) + " s\"" +
+           (x.watches_some_areas ? " --set \"process.until_coverage_of=[]\"" : "") + " --no-render" +
            (cores > 1 ? " --replicas " + std::to_string(cores) : std::string());
 }
 

@@ -31,6 +31,7 @@ struct ReportContext {
     std::vector<std::pair<std::string, double>> flow_rate_eps;
     std::optional<double> wall_per_simulated_s;
     std::vector<std::string> overrides;  // the run's --set options (summary.json): the title says them
+    bool watches_some_areas = false;     // the scene's process.until_coverage_of names areas (a run until every region clears it)
     // A run as replicas (`--replicas K`, summary.json): each window follows a start from rest.
     struct Replicas {
         std::size_t windows = 0;

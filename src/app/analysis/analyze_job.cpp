@@ -258,6 +258,35 @@ void take_times_from_run(ComponentAnalysis& a, const AnalysisWindow& w) {
         for (std::size_t r = 0; r < a.regions.size() && r < a.forecast.regions.size(); ++r)
             if (area == a.name + "/" + a.regions.name(r)) take(a.forecast.regions[r], reached_at_s);
     }
+    // Everywhere is the latest of the counted regions (and of the rest, when they leave some of the
+    // peened area out): reached once every one of them is, and never forecast before a time the
+    // run saw one of them reach the target.
+    AreaForecast& e = a.forecast.everywhere;
+    if (w.seen_reached_after.empty() || a.regions.size() == 0 || e.status == AreaForecast::Status::reached) return;
+    bool all_reached = !a.forecast.rest_counted;
+    int latest = -1;
+    for (std::size_t r = 0; r < a.forecast.regions.size(); ++r) {
+        const AreaForecast& f = a.forecast.regions[r];
+        if (f.status == AreaForecast::Status::none) continue;  // excluded, or no peened area
+        if (f.status != AreaForecast::Status::reached) {
+            all_reached = false;
+            continue;
+        }
+        if (latest < 0 || f.time_s > a.forecast.regions[static_cast<std::size_t>(latest)].time_s) latest = static_cast<int>(r);
+    }
+    if (latest < 0) return;
+    const AreaForecast& last = a.forecast.regions[static_cast<std::size_t>(latest)];
+    if (all_reached) {
+        const double coverage_now = e.coverage_now;  // the window's lowest area's
+        e = last;
+        e.coverage_now = coverage_now;
+        a.forecast.slowest_region = latest;
+    } else if (e.status == AreaForecast::Status::forecast && last.seen_in_run && e.time_s < last.time_s) {
+        e.time_s = last.time_s;
+        e.low_s = std::max(e.low_s, last.time_s);
+        e.high_s = std::max(e.high_s, last.time_s);
+        e.noise_high_s = std::max(e.noise_high_s, last.time_s);
+    }
 }
 
 // Once the log is read: where coverage is heading, for the peened area, every region and everywhere.
@@ -567,6 +596,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     context.finished = finished;
     context.truncated = stream.truncated();
     read_summary_figures(dir, context);
+    context.watches_some_areas = !scene.process.until_coverage_of.empty();
     // The plots (gnuplot's processes) and the report's 3D views (a thinned mesh per part: ~0.5 s of
     // one core on a 500k-triangle part) are made while the render module draws the slowest
     // regions. Each writes its own members of the context.

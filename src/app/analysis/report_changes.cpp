@@ -150,7 +150,9 @@ std::string changes_section(const SceneDescription& scene, const std::vector<Com
         // Uneven peening: what the slowest area costs against the part's average.
         const Everywhere e = everywhere(c);
         const AreaForecast& whole = c.forecast.whole;
-        const bool timed = whole.status == AreaForecast::Status::forecast && e.time.status == AreaForecast::Status::forecast;
+        // A time the run saw (a run until coverage of some areas, seen after the window) counts as a forecast's.
+        const auto timed_area = [](const AreaForecast& f) { return f.status == AreaForecast::Status::forecast || f.seen_in_run; };
+        const bool timed = timed_area(whole) && timed_area(e.time);
         // Its slowest area against the part as a whole, as both entries below say it.
         const auto slowest_against_whole = [&] {
             return "Its slowest area, " + slowest_area_name(c, e.slowest) + ", reaches " + goal + " at " + fmt(e.time.time_s, 4) +

@@ -121,6 +121,28 @@ TEST(UntilCoverage, BadTargetsAndAreasExitTwoNamingThem) {
     EXPECT_EQ(code3, 2) << err3;
     EXPECT_NE(err3.find("chamber"), std::string::npos) << err3;
     EXPECT_FALSE(fs::exists(dir.path / "over" / "impacts.csv"));
+    // An area twice, and a region coverage does not count (the gear's bore, `exclude: true`): refused
+    // before anything is written (the run once started, waited twice for the one, and failed late
+    // on the other, leaving its first files behind).
+    const std::string gear = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
+    const auto run_gear = [&](const std::string& of, const std::string& name) {
+        ChildProcess p({PEENSIM_BINARY, "run", gear, "-o", (dir.path / name).string(), "--no-render", "--quiet", "--until-coverage", "8 %",
+                        "--set", "process.until_coverage_of=" + of},
+                       (dir.path / (name + ".out")).string(), (dir.path / (name + ".err")).string());
+        const auto code = p.wait_exit(60.0);
+        return std::make_pair(code.value_or(-1), read_file(dir.path / (name + ".err")));
+    };
+    auto [code4, err4] = run_gear("[gear/tooth-5, gear/tooth-5]", "twice");
+    EXPECT_EQ(code4, 2) << err4;
+    EXPECT_NE(err4.find("process.until_coverage_of: 'gear/tooth-5' is listed twice; expected each area once"), std::string::npos) << err4;
+    auto [code5, err5] = run_gear("[gear/bore]", "excluded");
+    EXPECT_EQ(code5, 2) << err5;
+    EXPECT_NE(err5.find("process.until_coverage_of: region 'gear/bore' is excluded (`exclude: true`)"), std::string::npos) << err5;
+    auto [code6, err6] = run_gear("[gear/tooth-99]", "unknown");
+    EXPECT_EQ(code6, 2) << err6;
+    EXPECT_NE(err6.find("tooth-19 (from --set"), std::string::npos) << err6;  // the counted regions, the bore not among them
+    EXPECT_EQ(err6.find("bore"), std::string::npos) << err6;
+    for (const char* name : {"twice", "excluded", "unknown"}) EXPECT_FALSE(fs::exists(dir.path / name)) << name;
 }
 
 // The rotating gear turns at 30 rpm (a turn: 2 s). 5 s: analysed over 2 whole turns; 1 s: half a
@@ -259,6 +281,13 @@ TEST(RotatingAnalysis, AWatchedAreaReachedAfterTheLastWholeTurnTakesItsTimeFromT
     EXPECT_NE(report.find("reached at " + fmt(reached_at.at("gear/tooth-3")) + " s (the run's; after the window)"), std::string::npos)
         << report;
     EXPECT_NE(report.find("it counted gear/tooth-3 reaching it at"), std::string::npos) << report;
+    // Everywhere is still a forecast (the teeth not watched), never before a time the run saw.
+    const auto& everywhere = gear["time_to_target_everywhere"];
+    ASSERT_EQ(everywhere["status"], "forecast");
+    EXPECT_GE(everywhere["time_s"].get<double>(), reached_at.at("gear/tooth-3"));
+    // The run to every region it advises watches every region, not the scene's one tooth.
+    EXPECT_NE(report.find("--until-coverage \"5 %\""), std::string::npos) << report;
+    EXPECT_NE(report.find("--set \"process.until_coverage_of=[]\""), std::string::npos) << report;
 
     // The analysis' own count over the whole log (--to its end) gives the run's time to the bit.
     AnalyzeOptions whole;
@@ -273,6 +302,37 @@ TEST(RotatingAnalysis, AWatchedAreaReachedAfterTheLastWholeTurnTakesItsTimeFromT
     other.target_coverage = 0.06;
     ASSERT_EQ(analyze_job(dir.path.string(), out, err, other), kExitOk) << err.str();
     EXPECT_FALSE(region(json_of(dir.path / "analysis" / "figures.json")["components"][0], "tooth-3").value("seen_in_run", false));
+}
+
+// Every region reached the target, the last (tooth-16, watched) in the part of a turn the window
+// leaves out: everywhere is reached then, at that tooth's time, not forecast before it (the case an
+// independent test found: "everywhere 12.04 s, forecast" beside tooth-16 "reached at 12.09 s").
+TEST(RotatingAnalysis, EverywhereIsReachedWhenTheLastRegionIsSeenReachedByTheRun) {
+    TempDir dir;
+    RunOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
+    o.output_dir = dir.path.string();
+    o.overrides = {"process.duration=60 s", "process.until_coverage=8 %", "process.until_coverage_of=[gear/tooth-8, gear/tooth-16]"};
+    o.progress = false;
+    o.analyze = false;
+    std::ostringstream out, err;
+    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
+    const auto figures = json_of(dir.path / "analysis" / "figures.json");
+    const auto& gear = figures["components"][0];
+    double latest = 0.0;
+    std::string last;
+    for (const auto& r : gear["regions"]) {
+        const auto& t = r["time_to_target"];
+        if (t["status"] == "none") continue;  // the bore
+        ASSERT_EQ(t["status"], "reached") << r["region"] << ": the case needs every region reached";
+        if (t["time_s"].get<double>() > latest) latest = t["time_s"].get<double>(), last = r["region"].get<std::string>();
+    }
+    ASSERT_GT(latest, figures["window"]["to_s"].get<double>()) << "the case needs the last region reached after the window";
+    const auto& everywhere = gear["time_to_target_everywhere"];
+    EXPECT_EQ(everywhere["status"], "reached");
+    EXPECT_EQ(everywhere["time_s"].get<double>(), latest);
+    EXPECT_EQ(gear["slowest_region"], last);
 }
 
 }  // namespace
