@@ -33,8 +33,11 @@ TriangleMesh build_box(const BoxSpec& spec, std::optional<BoxFace> open_face, Fa
     }
 
     MeshBuilder builder;
+    // The open face's number, read once (-1: none): GCC merged `open_face && *open_face == face`
+    // into one test that reads the empty optional's payload, which valgrind reports.
+    const int open = open_face.has_value() ? static_cast<int>(open_face.value()) : -1;
     for (int face = 0; face < 6; ++face) {
-        if (open_face && static_cast<int>(*open_face) == face) continue;
+        if (face == open) continue;
         const int normal_axis = face / 2;
         const bool on_max_side = face % 2 == 1;
         // (b, c, normal) is a cyclic, right-handed order: b x c = +normal.
