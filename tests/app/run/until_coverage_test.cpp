@@ -182,22 +182,28 @@ TEST(RotatingAnalysis, WholeTurnsAndNoTimeFromLessThanATurn) {
     EXPECT_NE(report.find("Run at least 2 s (a whole turn)"), std::string::npos) << report;
 }
 
+// The shipped rotating gear run with these overrides (no analysis, no animation): its summary.json.
+nlohmann::json run_rotating_gear(const TempDir& dir, std::vector<std::string> overrides) {
+    RunOptions o;
+    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
+    o.output_dir = dir.path.string();
+    o.overrides = std::move(overrides);
+    o.progress = false;
+    o.analyze = false;
+    std::ostringstream out, err;
+    EXPECT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    return json_of(dir.path / "summary.json");
+}
+
 // A run until coverage of a turning part ends where its target was reached, within a turn (37 rpm:
 // a turn of 1.62 s, never a whole number of them at a restart point of 0.1 s). Its analysis keeps
 // that end: every area reached when the run says, and no advice to run until coverage. Cut back to
 // whole turns (as before), the report forecast the slowest tooth and advised a run to coverage.
 TEST(RotatingAnalysis, ARunUntilCoverageIsAnalysedToItsEndNotCutToWholeTurns) {
     TempDir dir;
-    RunOptions o;
-    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
-    o.output_dir = dir.path.string();
-    o.overrides = {"process.duration=60 s", "process.until_coverage=5 %", "components[gear].motion.speed=37 rpm",
-                   "output.checkpoint_interval=0.1 s"};
-    o.progress = false;
-    o.analyze = false;
     std::ostringstream out, err;
-    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
-    const auto summary = json_of(dir.path / "summary.json");
+    const auto summary = run_rotating_gear(dir, {"process.duration=60 s", "process.until_coverage=5 %",
+                                                 "components[gear].motion.speed=37 rpm", "output.checkpoint_interval=0.1 s"});
     ASSERT_TRUE(summary["until_coverage"]["reached"].get<bool>());
     const double stopped = summary["simulated_time_s"].get<double>();
     double last_reached = 0.0;  // s: when the last watched area reached 5 %
@@ -242,16 +248,10 @@ TEST(RotatingAnalysis, ARunUntilCoverageIsAnalysedToItsEndNotCutToWholeTurns) {
 // shorter window that contradicts it.
 TEST(RotatingAnalysis, AWatchedAreaReachedAfterTheLastWholeTurnTakesItsTimeFromTheRun) {
     TempDir dir;
-    RunOptions o;
-    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
-    o.output_dir = dir.path.string();
-    o.overrides = {"process.duration=60 s", "process.until_coverage=5 %", "process.until_coverage_of=[gear/tooth-3, gear]",
-                   "components[gear].motion.speed=37 rpm", "output.checkpoint_interval=0.1 s"};
-    o.progress = false;
-    o.analyze = false;
     std::ostringstream out, err;
-    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
-    const auto summary = json_of(dir.path / "summary.json");
+    const auto summary =
+        run_rotating_gear(dir, {"process.duration=60 s", "process.until_coverage=5 %", "process.until_coverage_of=[gear/tooth-3, gear]",
+                                "components[gear].motion.speed=37 rpm", "output.checkpoint_interval=0.1 s"});
     ASSERT_TRUE(summary["until_coverage"]["reached"].get<bool>());
     const double stopped = summary["simulated_time_s"].get<double>();
     std::map<std::string, double> reached_at;  // s, per watched area
@@ -309,14 +309,9 @@ TEST(RotatingAnalysis, AWatchedAreaReachedAfterTheLastWholeTurnTakesItsTimeFromT
 // independent test found: "everywhere 12.04 s, forecast" beside tooth-16 "reached at 12.09 s").
 TEST(RotatingAnalysis, EverywhereIsReachedWhenTheLastRegionIsSeenReachedByTheRun) {
     TempDir dir;
-    RunOptions o;
-    o.scene_path = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
-    o.output_dir = dir.path.string();
-    o.overrides = {"process.duration=60 s", "process.until_coverage=8 %", "process.until_coverage_of=[gear/tooth-8, gear/tooth-16]"};
-    o.progress = false;
-    o.analyze = false;
     std::ostringstream out, err;
-    ASSERT_EQ(run_job(o, out, err), kExitOk) << err.str();
+    run_rotating_gear(dir,
+                      {"process.duration=60 s", "process.until_coverage=8 %", "process.until_coverage_of=[gear/tooth-8, gear/tooth-16]"});
     ASSERT_EQ(analyze_job(dir.path.string(), out, err), kExitOk) << err.str();
     const auto figures = json_of(dir.path / "analysis" / "figures.json");
     const auto& gear = figures["components"][0];
