@@ -329,9 +329,10 @@ std::string turn_sentences(const AnalysisWindow& w) {
     } else if (w.to_s < w.asked_to_s - 1e-9 * w.turn_s) {
         const double whole = std::round(w.turns());
         r << "\nAnalysed over " << fmt(whole, 6) << " whole turn" << (whole == 1.0 ? "" : "s") << " of the rotating part (" << turn
-          << " each): to " << fmt(w.to_s) << " s; the last " << fmt(w.asked_to_s - w.to_s, 3)
+          << (whole == 1.0 ? "" : " each") << "): to " << fmt(w.to_s) << " s; the last " << fmt(w.asked_to_s - w.to_s, 3)
           << " s, part of a turn, is left out, as it would weigh the side that faced the sonotrode in it more than the others. A run of "
-          << fmt(w.from_s + (whole + 1.0) * w.turn_s, 6) << " s (" << fmt(whole + 1.0, 6) << " turns) uses every impact.";
+          << fmt(std::ceil((w.from_s + (whole + 1.0) * w.turn_s) * 1000.0) / 1000.0, 8) << " s (" << fmt(whole + 1.0, 6)
+          << " turns) uses every impact.";
         if (!w.seen_reached_after.empty()) {
             r << " The run peened until the areas it watched reached the target (`until_coverage_of`) and ended there; it counted";
             for (std::size_t k = 0; k < w.seen_reached_after.size(); ++k)

@@ -386,6 +386,20 @@ void whole_turns(AnalysisWindow& w, double turn_s) {
     if (turns >= 1.0) w.to_s = std::min(w.to_s, w.from_s + turns * turn_s);
 }
 
+// A folder removed, with everything in it, unless `done` is set (it was renamed into place).
+struct PartialFolder {
+    fs::path path;
+    bool done = false;
+    explicit PartialFolder(fs::path p) : path(std::move(p)) {}
+    PartialFolder(const PartialFolder&) = delete;
+    PartialFolder& operator=(const PartialFolder&) = delete;
+    ~PartialFolder() {
+        if (done) return;
+        std::error_code ignored;  // nothing to do about a folder that cannot go: the next analysis clears it
+        fs::remove_all(path, ignored);
+    }
+};
+
 // What a run until coverage wrote of its goal in summary.json: the target and, per watched area
 // ("part" or "part/region"), when it reached it (NaN: not yet).
 struct RunGoal {
@@ -517,6 +531,9 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     const fs::path adir = dir / kAnalysisPartialDirName;  // analysis/ once complete (run_directory.h)
     fs::remove_all(adir);
     fs::create_directories(adir);
+    // An analysis that fails (a full disk, a damaged log) leaves no half of itself behind; the
+    // threads and writers that use the folder are declared after this and end before it goes.
+    PartialFolder partial{adir};
     for (ComponentAnalysis& a : parts)
         a.points = std::make_unique<ImpactPointsVtpWriter>((adir / (a.name + "_impacts.vtp")).string(), impact_point_field_layouts());
 
@@ -621,6 +638,7 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     const fs::path done = dir / kAnalysisDirName;
     fs::remove_all(done);
     fs::rename(adir, done);
+    partial.done = true;
     out << analysis_summary_table(parts, window) << "analysis: " << done.string()
         << "/{report.md, report.html, *_triangles.csv, *_coverage.csv, *_histograms.csv, *.vtp, *_impacts.vtp, *_coverage_series.pvd"
         << (context.pngs.empty() ? "" : ", *.png") << ", " << kParaviewScriptFileName << "}\n";

@@ -46,7 +46,7 @@ TEST(DiskFull, ARunThatFillsTheDiskResumesToTheUninterruptedBytes) {
 
 // The analysis writes its files beside each other on several threads (the coverage series, the
 // per-triangle tables, the report): one that fails fails the analysis with its file named, and no
-// half-written analysis/ takes the place of a whole one.
+// half-written analysis/ takes the place of a whole one, nor stays beside it.
 TEST(DiskFull, AnAnalysisThatFillsTheDiskFailsNamingItsFileAndLeavesNoAnalysis) {
     TempDir dir;
     const std::string scene = std::string(PEENSIM_SOURCE_DIR) + "/scenes/gear.yaml";
@@ -62,6 +62,7 @@ TEST(DiskFull, AnAnalysisThatFillsTheDiskFailsNamingItsFileAndLeavesNoAnalysis) 
     EXPECT_NE(err.find("File too large"), std::string::npos) << err;
     EXPECT_NE(err.find("analysis.partial/"), std::string::npos) << err;
     EXPECT_FALSE(fs::exists(run / "analysis"));
+    EXPECT_FALSE(fs::exists(run / "analysis.partial"));  // nor half of one
     // With room again, the same command analyses the run whole.
     ASSERT_EQ(exit_code_of(std::string(PEENSIM_BINARY) + " analyze " + run.string() + " > /dev/null"), 0);
     EXPECT_TRUE(fs::exists(run / "analysis" / "gear_coverage_series.pvd"));
