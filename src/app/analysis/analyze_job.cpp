@@ -95,7 +95,18 @@ double simulated_time(const fs::path& dir, const SceneDescription& scene, bool& 
             if (j.contains("simulated_time_s") && j["simulated_time_s"].is_number()) summary_s = j["simulated_time_s"].get<double>();
         } catch (const std::exception&) {}
     }
-    if (finished) return summary_s.value_or(scene.process.duration_s);
+    if (finished) {
+        if (summary_s) return *summary_s;
+        // A finished run ran its duration, unless it ran until coverage and stopped at the target:
+        // without its summary that end is unknown, and its last impact is the nearest bound (the
+        // cap would spread its impacts over time it never simulated).
+        if (!scene.process.until_coverage) return scene.process.duration_s;
+        const std::optional<double> impact_s = last_impact_time(dir / kImpactCsvFileName);
+        if (!impact_s) return scene.process.duration_s;
+        err << "note: " << dir.string() << ": no summary.json, and the run ran until coverage: it may have stopped before its "
+            << fmt(scene.process.duration_s) << " s cap; analysing to its last logged impact, at " << fmt(*impact_s) << " s\n";
+        return *impact_s;
+    }
     std::optional<double> checkpoint_s;
     if (fs::exists(dir / kCheckpointFileName)) {
         try {

@@ -95,6 +95,25 @@ TEST(UntilCoverage, StopsWhenTheAnalysisSaysTheTargetIsReachedAndResumesToTheSam
     EXPECT_EQ(read_file(dir.path / "parts" / "impacts.csv"), read_file(dir.path / "whole" / "impacts.csv"));
 }
 
+// A run until coverage whose summary.json is lost (deleted, or copied without it) stopped at an
+// end only the summary kept: the analysis reads the log to its last impact, not to the scene's
+// cap (which spread the impacts over time never simulated: 2.4 s of this run over 10 s, rates 4x
+// too low).
+TEST(UntilCoverage, WithoutItsSummaryARunIsAnalysedToItsLastImpactNotToTheCap) {
+    TempDir dir;
+    ChildProcess run(until_args(dir.path / "run"), (dir.path / "run.out").string(), (dir.path / "run.err").string());
+    ASSERT_EQ(run.wait_exit(300.0), std::optional<int>(0)) << read_file(dir.path / "run.err");
+    const double stopped = json_of(dir.path / "run" / "summary.json")["simulated_time_s"].get<double>();
+    ASSERT_LT(stopped, 10.0);
+    fs::remove(dir.path / "run" / "summary.json");
+    std::ostringstream out, err;
+    ASSERT_EQ(analyze_job((dir.path / "run").string(), out, err), kExitOk) << err.str();
+    const double to_s = json_of(dir.path / "run" / "analysis" / "figures.json")["window"]["to_s"].get<double>();
+    EXPECT_LE(to_s, stopped);
+    EXPECT_GT(to_s, stopped - 0.1);  // the last impact, within the run's last restart interval
+    EXPECT_NE(err.str().find("no summary.json, and the run ran until coverage"), std::string::npos) << err.str();
+}
+
 TEST(UntilCoverage, BadTargetsAndAreasExitTwoNamingThem) {
     TempDir dir;
     const auto run = [&](std::vector<std::string> extra, const std::string& name) {
