@@ -20,7 +20,7 @@ struct ShotBoxTree::Impl {
 
 ShotBoxTree::ShotBoxTree(int shot_count) : impl_(std::make_unique<Impl>()) {
     impl_->leaf.assign(static_cast<std::size_t>(shot_count), nullptr);
-    impl_->stack.reserve(128);
+    impl_->stack.resize(128);  // the walk's stack, its size (grown as the walk needs)
 }
 
 ShotBoxTree::~ShotBoxTree() = default;
@@ -60,17 +60,23 @@ void ShotBoxTree::overlapping(const Vec3& lo, const Vec3& hi, std::vector<int>& 
     const btDbvtVolume box = volume(lo, hi);
     const btDbvtNode* root = impl_->tree.m_root;
     if (!Intersect(root->volume, box)) return;
+    // The stack is written through a pointer, grown (rarely) before a push could pass its end:
+    // push_back was a call of its own per node.
     std::vector<const btDbvtNode*>& stack = impl_->stack;
-    stack.clear();
-    stack.push_back(root);
-    while (!stack.empty()) {
-        const btDbvtNode* n = stack.back();
-        stack.pop_back();
+    const btDbvtNode** top = stack.data();
+    *top++ = root;
+    while (top != stack.data()) {
+        const btDbvtNode* n = *--top;
         if (n->isinternal()) {
+            if (static_cast<std::size_t>(top - stack.data()) + 2 > stack.size()) {
+                const std::ptrdiff_t used = top - stack.data();
+                stack.resize(2 * stack.size());
+                top = stack.data() + used;
+            }
             const btDbvtNode* a = n->childs[0];
             const btDbvtNode* b = n->childs[1];
-            if (Intersect(a->volume, box)) stack.push_back(a);
-            if (Intersect(b->volume, box)) stack.push_back(b);
+            if (Intersect(a->volume, box)) *top++ = a;
+            if (Intersect(b->volume, box)) *top++ = b;
         } else {
             out.push_back(static_cast<int>(reinterpret_cast<std::intptr_t>(n->data)));
         }
