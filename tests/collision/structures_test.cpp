@@ -108,6 +108,23 @@ TEST(ShotBoxTree, OverlapQueriesAreBruteForces) {
     }
 }
 
+// Boxes inserted in order along a line make a deep, chain-like tree (each joins the last): a query
+// over all of them walks deeper than the walk's first stack holds (128), which grows as it goes.
+TEST(ShotBoxTree, ADeepTreeIsWalkedWhole) {
+    constexpr int n = 2000;
+    ShotBoxTree tree(n);
+    for (int i = 0; i < n; ++i) tree.set(i, Vec3(1e-3 * i, 0, 0), Vec3(1e-3 * i + 5e-4, 1e-3, 1e-3));
+    std::vector<int> found;
+    tree.overlapping(Vec3(-1, -1, -1), Vec3(10, 1, 1), found);
+    ASSERT_EQ(found.size(), static_cast<std::size_t>(n));
+    EXPECT_EQ(std::set<int>(found.begin(), found.end()).size(), static_cast<std::size_t>(n));
+    tree.overlapping(Vec3(0.1004, 0, 0), Vec3(0.2002, 1e-3, 1e-3), found);  // boxes 100 .. 200
+    std::sort(found.begin(), found.end());
+    std::vector<int> expected;
+    for (int i = 100; i <= 200; ++i) expected.push_back(i);
+    EXPECT_EQ(found, expected);
+}
+
 // ---------------------------------------------------------------------------------------------
 // ShotPairFinder
 
