@@ -558,7 +558,7 @@ const char* status_name(AreaForecast::Status s) {
 }
 
 CoverageForecast forecast_coverage(const CoverageProgress& progress, const TriangleMesh& mesh, std::span<const ForecastImpact> impacts,
-                                   double window_s, int batches) {
+                                   double window_s, int batches, const ReachedAfterWindow& later) {
     const SampleClasses& classes = progress.classes();
     const double target = progress.target();
     const std::size_t regions = classes.region_count();
@@ -607,7 +607,14 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
     out[rest].coverage_now = progress.rest_coverage();
     out[rest].time_s = progress.rest_reached_at_s();
     counted[rest] = area_m2[rest] > kRestAreaShare * area_m2[0];
-    f.rest_counted = counted[rest];
+    // Reached after the window, as the caller knows: reached then (without regions the rest is the
+    // peened area itself).
+    const auto reached_later = [&](std::size_t a, double t) {
+        if (counted[a] && !std::isfinite(out[a].time_s) && std::isfinite(t)) out[a].time_s = t, out[a].seen_in_run = true;
+    };
+    reached_later(0, later.whole_s);
+    if (regions == 0) reached_later(rest, later.whole_s);
+    for (std::size_t r = 0; r < regions && r < later.region_s.size(); ++r) reached_later(r + 1, later.region_s[r]);
     for (std::size_t a = 0; a < areas; ++a) {
         AreaForecast& o = out[a];
         if (counted[a] && std::isfinite(o.time_s)) {
@@ -800,9 +807,21 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
         for (std::size_t a : everywhere_areas)
             if (out[a].time_s >= f.everywhere.time_s) {
                 f.everywhere.time_s = out[a].time_s;
+                f.everywhere.seen_in_run = out[a].seen_in_run;
                 f.slowest_region = a == rest ? CoverageForecast::kRestOfPart : static_cast<int>(a) - 1;
             }
         f.everywhere.low_s = f.everywhere.high_s = f.everywhere.noise_high_s = f.everywhere.time_s;
+    } else if (f.everywhere.status == AreaForecast::Status::forecast) {
+        // Never before an area already reached: within the window that holds by itself; one reached
+        // after it (ReachedAfterWindow) may come after the forecasts of those still pending.
+        for (std::size_t a : everywhere_areas) {
+            if (out[a].status != AreaForecast::Status::reached || !(out[a].time_s > f.everywhere.time_s)) continue;
+            f.everywhere.time_s = out[a].time_s;
+            f.everywhere.low_s = std::max(f.everywhere.low_s, out[a].time_s);
+            f.everywhere.high_s = std::max(f.everywhere.high_s, out[a].time_s);
+            f.everywhere.noise_high_s = std::max(f.everywhere.noise_high_s, out[a].time_s);
+            f.slowest_region = a == rest ? CoverageForecast::kRestOfPart : static_cast<int>(a) - 1;
+        }
     }
     f.everywhere.coverage_now = kNaN;
     for (std::size_t a : everywhere_areas)

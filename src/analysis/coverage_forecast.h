@@ -84,6 +84,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -130,9 +131,9 @@ struct AreaForecast {
     double noise_high_s = 0.0;  // s, the interval's upper end before the smoothing bias was added
     double bias_s = 0.0;        // s, the smoothing bias allowance (forecast at h minus at 2 h, >= 0)
     double run_for_s = 0.0;     // s, too_short: a window this long would give a number
-    // reached, seen by the run after the window's end: a run until coverage of this area
-    // (process.until_coverage_of) counted its dents to the target at time_s, past the last whole
-    // turn the window ends at; coverage_now is still the window's.
+    // reached after the window's end, at a time the caller knew (ReachedAfterWindow below: a run
+    // until coverage that counted this area's dents past the last whole turn the window ends at);
+    // coverage_now is still the window's.
     bool seen_in_run = false;
 };
 
@@ -170,14 +171,21 @@ struct CoverageForecast {
     // coverage_now: the lowest area's.
     AreaForecast everywhere;
     static constexpr int kRestOfPart = -2;  // slowest_region: the peened area in no counted region
-    bool rest_counted = false;              // that area counts in everywhere (the regions leave some out)
     int slowest_region = -1;                // the region that reaches the target last (kRestOfPart; -1: none)
+};
+
+// Areas that reached the target after the window's end, when the caller knows it (s since the
+// window opened; NaN: not known): the peened area, and per region (empty: none). Such an area is
+// reached then, not forecast, and everywhere is no earlier.
+struct ReachedAfterWindow {
+    double whole_s = std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> region_s;
 };
 
 // progress: the coverage at the window's end, its dents timed from the window's opening (its target
 // is the forecast's); mesh: the part's (component frame); impacts: those of the window on faces and
 // edges (batches in 0 .. batches - 1); window_s (s): its length.
 CoverageForecast forecast_coverage(const CoverageProgress& progress, const TriangleMesh& mesh, std::span<const ForecastImpact> impacts,
-                                   double window_s, int batches);
+                                   double window_s, int batches, const ReachedAfterWindow& later = {});
 
 }  // namespace peensim

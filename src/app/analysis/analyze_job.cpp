@@ -252,60 +252,25 @@ void sample_coverage(ComponentAnalysis& a, double t) {
     for (std::size_t r = 0; r < a.regions.size(); ++r) a.region_curves[r].push_back({t, a.coverage->region_coverage(r)});
 }
 
-// The watched areas' times from the run (seen_reached_after), in place of the window's forecasts.
-void take_times_from_run(ComponentAnalysis& a, const AnalysisWindow& w) {
-    const auto take = [](AreaForecast& f, double reached_at_s) {
-        if (f.status == AreaForecast::Status::none || f.status == AreaForecast::Status::reached) return;
-        f.status = AreaForecast::Status::reached;
-        f.time_s = f.low_s = f.high_s = f.noise_high_s = reached_at_s;
-        f.bias_s = f.run_for_s = 0.0;
-        f.seen_in_run = true;
-    };
+// The watched areas the run saw reach the target after the window (seen_reached_after), as the
+// forecast takes them: reached then, not forecast.
+ReachedAfterWindow reached_after_window(const ComponentAnalysis& a, const AnalysisWindow& w) {
+    ReachedAfterWindow later;
+    later.region_s.assign(a.regions.size(), kNaN);
     for (const auto& [area, reached_at_s] : w.seen_reached_after) {
-        if (area == a.name) {
-            take(a.forecast.whole, reached_at_s);
-            if (a.regions.size() == 0) take(a.forecast.everywhere, reached_at_s);  // without regions, the same area
-        }
-        for (std::size_t r = 0; r < a.regions.size() && r < a.forecast.regions.size(); ++r)
-            if (area == a.name + "/" + a.regions.name(r)) take(a.forecast.regions[r], reached_at_s);
+        if (area == a.name) later.whole_s = reached_at_s - w.from_s;
+        for (std::size_t r = 0; r < a.regions.size(); ++r)
+            if (area == a.name + "/" + a.regions.name(r)) later.region_s[r] = reached_at_s - w.from_s;
     }
-    // Everywhere is the latest of the counted regions (and of the rest, when they leave some of the
-    // peened area out): reached once every one of them is, and never forecast before a time the
-    // run saw one of them reach the target.
-    AreaForecast& e = a.forecast.everywhere;
-    if (w.seen_reached_after.empty() || a.regions.size() == 0 || e.status == AreaForecast::Status::reached) return;
-    bool all_reached = !a.forecast.rest_counted;
-    int latest = -1;
-    for (std::size_t r = 0; r < a.forecast.regions.size(); ++r) {
-        const AreaForecast& f = a.forecast.regions[r];
-        if (f.status == AreaForecast::Status::none) continue;  // excluded, or no peened area
-        if (f.status != AreaForecast::Status::reached) {
-            all_reached = false;
-            continue;
-        }
-        if (latest < 0 || f.time_s > a.forecast.regions[static_cast<std::size_t>(latest)].time_s) latest = static_cast<int>(r);
-    }
-    if (latest < 0) return;
-    const AreaForecast& last = a.forecast.regions[static_cast<std::size_t>(latest)];
-    if (all_reached) {
-        const double coverage_now = e.coverage_now;  // the window's lowest area's
-        e = last;
-        e.coverage_now = coverage_now;
-        a.forecast.slowest_region = latest;
-    } else if (e.status == AreaForecast::Status::forecast && last.seen_in_run && e.time_s < last.time_s) {
-        e.time_s = last.time_s;
-        e.low_s = std::max(e.low_s, last.time_s);
-        e.high_s = std::max(e.high_s, last.time_s);
-        e.noise_high_s = std::max(e.noise_high_s, last.time_s);
-    }
+    return later;
 }
 
 // Once the log is read: where coverage is heading, for the peened area, every region and everywhere.
 void finish_forecast(ComponentAnalysis& a, const AnalysisWindow& window) {
     if (!a.coverage) return;
-    a.forecast = forecast_coverage(*a.coverage, *a.mesh, a.forecast_impacts, window.length_s(), kFigureBatches);
+    a.forecast =
+        forecast_coverage(*a.coverage, *a.mesh, a.forecast_impacts, window.length_s(), kFigureBatches, reached_after_window(a, window));
     a.forecast_impacts = {};  // done with them: the memory back before the report
-    take_times_from_run(a, window);
     if (window.shorter_than_a_turn()) {
         // Less than a turn: the sides that have not faced the sonotrode yet have rates of no use,
         // so no time is given, only how long a run would (a turn; coverage reached stays reached).
