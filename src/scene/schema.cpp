@@ -38,7 +38,7 @@ const std::array schema_table{
                 "each area reached it (`summary.json`'s `until_coverage`). `peensim run --until-coverage 98%` sets it."},
     SchemaEntry{"process.until_coverage_of", K::name_list, D::dimensionless, false, "",
                 "every counted region of every logged part with a yield stress (a part without regions: its peened area)", {}, "", "", "",
-                "The areas `until_coverage` waits for: `part` (its whole peened area) or `part/region`, each once; not a region marked `exclude` (coverage does not count it)."},
+                "The areas `until_coverage` waits for: `part` (its whole peened area) or `part/region`, each once; not a region marked `exclude` (coverage does not count it). A named region no shot can reach (the reach test of every sample) is not waited for, with a note; when every named area is such, the run exits 2 before its first step and leaves nothing in its directory."},
 
     SchemaEntry{"accuracy", K::map, D::dimensionless, false, "", "", {}, "", "", "",
                 "Speed/accuracy settings."},

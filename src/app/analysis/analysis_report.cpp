@@ -330,10 +330,13 @@ std::string turn_sentences(const AnalysisWindow& w) {
         const double whole = std::round(w.turns());
         r << "\nAnalysed over " << fmt(whole, 6) << " whole turn" << (whole == 1.0 ? "" : "s") << " of the rotating part (" << turn
           << (whole == 1.0 ? "" : " each") << "): to " << fmt(w.to_s) << " s; the last " << fmt(w.asked_to_s - w.to_s, 3)
-          << " s, part of a turn, is left out, as it would weigh the side that faced the sonotrode in it more than the others. A run of "
-          << fmt(std::ceil((w.from_s + (whole + 1.0) * w.turn_s) * 1000.0) / 1000.0, 8) << " s (" << fmt(whole + 1.0, 6)
-          << " turns) uses every impact.";
-        if (!w.seen_reached_after.empty()) {
+          << " s, part of a turn, is left out, as it would weigh the side that faced the sonotrode in it more than the others.";
+        // A run that ended where its watched areas reached the target ends there again whatever its
+        // duration: no longer run to advise.
+        if (w.seen_reached_after.empty())
+            r << " A run of " << fmt(std::ceil((w.from_s + (whole + 1.0) * w.turn_s) * 1000.0) / 1000.0, 8) << " s (" << fmt(whole + 1.0, 6)
+              << " turns) uses every impact.";
+        else {
             r << " The run peened until the areas it watched reached the target (`until_coverage_of`) and ended there; it counted";
             for (std::size_t k = 0; k < w.seen_reached_after.size(); ++k)
                 r << (k == 0 ? " " : (k + 1 == w.seen_reached_after.size() ? " and " : ", ")) << w.seen_reached_after[k].first

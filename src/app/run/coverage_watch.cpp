@@ -56,17 +56,30 @@ CoverageWatch::CoverageWatch(CoverageGeometry& geometry, const std::string& resu
         }
         part->coverage = part_coverage(geometry, ci, target_);  // as the analysis counts it
         part->yield_stress_pa = part_yield_stress(scene, ci);
-        // A region without peened area (excluded, or out of reach) can never be reached: not waited for.
+        // A region without peened area (excluded, or out of reach) can never be reached: not waited
+        // for (one named in until_coverage_of is said so).
         std::erase_if(part->watched, [&](int a) {
-            return a >= 0 && !(part->coverage->classes().region_peened_area_m2(static_cast<std::size_t>(a)) > 0.0);
+            if (a < 0 || part->coverage->classes().region_peened_area_m2(static_cast<std::size_t>(a)) > 0.0) return false;
+            if (!of.empty()) out_of_reach_.push_back(c.name + "/" + part->regions.name(static_cast<std::size_t>(a)));
+            return true;
         });
         part_of_component_[ci] = static_cast<int>(parts_.size());
         parts_.push_back(std::move(part));
     }
-    if (std::none_of(parts_.begin(), parts_.end(), [](const auto& p) { return !p->watched.empty(); }))
+    if (std::none_of(parts_.begin(), parts_.end(), [](const auto& p) { return !p->watched.empty(); })) {
+        if (!out_of_reach_.empty()) {
+            std::string names;
+            for (const std::string& n : out_of_reach_) names += (names.empty() ? "'" : ", '") + n + "'";
+            throw InputError(
+                model.description.process.where, "process.until_coverage_of",
+                names + (out_of_reach_.size() == 1 ? " has" : " have") +
+                    " no surface a shot can reach (the reach test of every coverage sample), so it can never reach the "
+                    "target; expected an area the shot can reach (peensim render-regions draws what they cannot in dark grey)");
+        }
         throw InputError(model.description.process.where, "until_coverage",
                          "no watched area has peened area (every region is excluded or out of the shot's reach): nothing can reach the "
                          "target");
+    }
     if (!resume_log.empty()) {
         // The dents up to the checkpoint, from the log the resumed run goes on writing.
         std::vector<std::string> names;

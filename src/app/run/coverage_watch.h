@@ -40,6 +40,9 @@ public:
 
     double target() const { return target_; }
     std::vector<WatchedArea> areas() const;
+    // The areas process.until_coverage_of names that no shot can reach (no peened area): not
+    // waited for ("part/region"). When every named area is such, the constructor throws instead.
+    const std::vector<std::string>& out_of_reach() const { return out_of_reach_; }
 
 private:
     struct Part;
@@ -49,6 +52,7 @@ private:
     double target_ = 0.98;
     std::vector<std::unique_ptr<Part>> parts_;
     std::vector<int> part_of_component_;  // per component: index into parts_ (-1: not watched)
+    std::vector<std::string> out_of_reach_;
 };
 
 }  // namespace peensim

@@ -82,6 +82,7 @@ public:
         // Before anything is written; a fresh run places its shot in the cavity the check built.
         SetupCheck setup = check_setup(*model_, options_.strict, err_);
         dir_ = run_output_directory(options_, scene);
+        const bool made_dir = !fs::exists(dir_);
         fs::create_directories(dir_);
         lock_ = std::make_unique<RunDirectoryLock>(dir_);
         if (options_.resume && !fs::exists(checkpoint_path())) return already_finished();
@@ -100,8 +101,17 @@ public:
             shot_series_ = std::make_unique<ShotSeriesRecorder>(*model_, dir_, *every, sim_->state());
         if (model_->description.process.until_coverage) {
             // Coverage from the dents logged so far (a resumed run's), then as they come.
-            coverage_watch_ = std::make_unique<CoverageWatch>(
-                *coverage_geometry_, options_.resume ? (fs::path(dir_) / kImpactCsvPartialFileName).string() : std::string());
+            try {
+                coverage_watch_ = std::make_unique<CoverageWatch>(
+                    *coverage_geometry_, options_.resume ? (fs::path(dir_) / kImpactCsvPartialFileName).string() : std::string());
+            } catch (const InputError&) {
+                // Refused before its first step (the watched areas are known only once the reach of
+                // every coverage sample is): a fresh run leaves nothing behind.
+                if (!options_.resume) forget_fresh_run(made_dir);
+                throw;
+            }
+            for (const std::string& name : coverage_watch_->out_of_reach())
+                err_ << "note: until_coverage_of: no shot can reach " << name << ": not waited for\n";
             if (coverage_watch_->done()) {
                 err_ << "note: the coverage target was reached before this resumed run's checkpoint\n";
             }
@@ -129,6 +139,18 @@ public:
 
 private:
     std::string checkpoint_path() const { return (fs::path(dir_) / kCheckpointFileName).string(); }
+
+    // A fresh run refused before its first step: its outputs removed, and its directory if it made it.
+    void forget_fresh_run(bool made_dir) {
+        writer_.reset();
+        coverage_geometry_.reset();
+        clear_previous_outputs(dir_);
+        lock_.reset();
+        if (!made_dir) return;
+        std::error_code ignored;
+        fs::remove(fs::path(dir_) / kRunLockFileName, ignored);
+        fs::remove(dir_, ignored);  // only if empty
+    }
 
     std::string resume_command() const {
         if (options_.scene_text) return "the same run with resume into " + dir_;  // a scene in memory (Python): no command to give

@@ -18,6 +18,7 @@
 #include "output/impact_csv_writer.h"
 #include "support/files.h"
 #include "support/mpirun_environment.h"
+#include "support/replica_slots.h"
 #include "support/run_in_process.h"
 #include "support/shell_command.h"
 #include "support/temp_dir.h"
@@ -124,14 +125,17 @@ TEST(ReplicaRanks, AnInterruptedRankZeroInRoundsStopsTheOthersAndResumesAsOne) {
     TempDir dir;
     const InProcessResult whole = run_until_on_threads(dir.path / "whole", 2, "50%");
     ASSERT_EQ(whole.code, kExitOk) << whole.err;
-    const double second_round_s = summary_of(dir.path / "whole")["replicas"]["windows"][1]["end_s"].get<double>();
-    const ShellResult stopped = run_over_ranks(dir.path / "ranks", 2, 2, until("50%") + " --stop-after-steps 4500");
+    const nlohmann::json ws = summary_of(dir.path / "whole");
+    const double second_round_s = ws["replicas"]["windows"][1]["end_s"].get<double>();
+    const std::uint64_t stop_steps = steps_into_second_slot(ws);
+    const ShellResult stopped =
+        run_over_ranks(dir.path / "ranks", 2, 2, until("50%") + " --stop-after-steps " + std::to_string(stop_steps));
     EXPECT_EQ(exit_code(stopped), kExitInterrupted) << stopped.output;
     EXPECT_NE(stopped.output.find("other replicas' work since their last logged round is dropped"), std::string::npos) << stopped.output;
     EXPECT_FALSE(fs::exists(dir.path / "ranks" / "replicas"));
     ASSERT_GT(summary_of(dir.path / "ranks")["simulated_time_s"].get<double>(), second_round_s)
         << "the stop must come in replica 0's second slot for this test";
-    ASSERT_EQ(run_until_on_threads(dir.path / "threads", 2, "50%", 4500).code, kExitInterrupted);
+    ASSERT_EQ(run_until_on_threads(dir.path / "threads", 2, "50%", stop_steps).code, kExitInterrupted);
     EXPECT_EQ(read_file(dir.path / "ranks" / kImpactCsvPartialFileName), read_file(dir.path / "threads" / kImpactCsvPartialFileName));
     const ShellResult resumed = run_over_ranks(dir.path / "ranks", 2, 2, until("50%") + " --resume");
     ASSERT_EQ(exit_code(resumed), kExitOk) << resumed.output;

@@ -20,6 +20,7 @@
 #include "app/exit_codes.h"
 #include "output/impact_csv_writer.h"
 #include "support/files.h"
+#include "support/replica_slots.h"
 #include "support/run_in_process.h"
 #include "support/temp_dir.h"
 
@@ -127,7 +128,7 @@ TEST(ReplicaRounds, AnInterruptedRunResumesAsReplicaZeroAloneAfterTheLogItHad) {
     const double second_round_s = ws["replicas"]["windows"][1]["end_s"].get<double>();  // replica 1's first slot ends
 
     InProcessRun r = rod_until(dir.path / "run", "50 %", 2);
-    r.stop_after_steps = 4500;  // replica 0 in its second slot (own time ~4.5 s), after replica 1's first
+    r.stop_after_steps = steps_into_second_slot(ws);
     const InProcessResult stopped = run_in_process(r);
     ASSERT_EQ(stopped.code, kExitInterrupted) << stopped.err;
     EXPECT_NE(stopped.err.find("other replicas' work since their last logged round is dropped"), std::string::npos) << stopped.err;
