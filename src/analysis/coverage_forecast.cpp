@@ -679,12 +679,13 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
             const double line_radius = line_radius_for(span, dent_q, radius);
             const KernelField field(cells.at(radius), mesh, impacts, edges, batches, used, radius, line_radius, areas_of_class, areas);
             f.summary.cells = field.uncovered_cells();
+            // Each area's span on every core (the whole part's alone is as long as its regions' together).
+            for_each_chunk(areas, [&](std::size_t a) {
+                if (pending(a)) spans[a] = field.span_to(a, remaining(a), -1);
+            });
             double slowest = 0.0;
-            for (std::size_t a = 0; a < areas; ++a) {
-                if (!pending(a)) continue;
-                spans[a] = field.span_to(a, remaining(a), -1);
-                if (std::isfinite(spans[a])) slowest = std::max(slowest, spans[a]);
-            }
+            for (std::size_t a = 0; a < areas; ++a)
+                if (pending(a) && std::isfinite(spans[a])) slowest = std::max(slowest, spans[a]);
             const bool settled = slowest > 0.0 && std::abs(slowest - span) <= kRadiusSettled * span;
             if (slowest > 0.0) span = slowest;
             if (!settled && round < kRadiusRounds - 1) continue;
@@ -704,12 +705,17 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
             // The run's own noise about each forecast (see "The run's own noise"), as a standard
             // deviation of the crossing time (s).
             std::vector<double> process_sd(areas, 0.0);
-            for (std::size_t a = 0; a < areas; ++a) {
-                if (!pending(a) || !std::isfinite(spans[a])) continue;
+            for_each_chunk(areas, [&](std::size_t a) {
+                if (!pending(a) || !std::isfinite(spans[a])) return;
                 double variance = 0.0, slope = 0.0;
                 field.uncovered_spread(a, spans[a], dent_spread_area, window_s / rate_window, variance, slope);
                 process_sd[a] = slope > 0.0 ? std::sqrt(variance) / slope * rate_window : 0.0;
-            }
+            });
+            // Each area's span at 2 h (the smoothing bias), once.
+            std::vector<double> wide_spans(areas, kNaN);
+            for_each_chunk(areas, [&](std::size_t a) {
+                if (pending(a)) wide_spans[a] = wide.span_to(a, remaining(a), -1);
+            });
             const auto finish = [&](AreaForecast& o, double tau, const std::vector<double>& taus, double wide_tau, double sd_s) {
                 if (!std::isfinite(tau)) {
                     o.status = AreaForecast::Status::never;
@@ -744,7 +750,7 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
             };
             for (std::size_t a = 0; a < areas; ++a) {
                 if (!pending(a)) continue;
-                finish(out[a], spans[a] * rate_window, replicate[a], wide.span_to(a, remaining(a), -1) * rate_window, process_sd[a]);
+                finish(out[a], spans[a] * rate_window, replicate[a], wide_spans[a] * rate_window, process_sd[a]);
             }
             // Everywhere: the slowest counted area, in every replicate, as the latest of the areas'
             // crossings (latest_crossing.h): later than the latest forecast when several are close
@@ -764,7 +770,7 @@ CoverageForecast forecast_coverage(const CoverageProgress& progress, const Trian
                         f.slowest_region = a == rest ? CoverageForecast::kRestOfPart : static_cast<int>(a) - 1;
                     }
                     crossings.push_back({spans[a] * rate_window, process_sd[a], replicate[a]});
-                    wide_taus.push_back(wide.span_to(a, remaining(a), -1) * rate_window);
+                    wide_taus.push_back(wide_spans[a] * rate_window);
                     taus.resize(std::max(taus.size(), replicate[a].size()), -kInf);
                     for (std::size_t k = 0; k < replicate[a].size(); ++k) taus[k] = std::max(taus[k], replicate[a][k]);
                     if (!std::isfinite(spans[a])) taus.assign(taus.size(), kInf);
