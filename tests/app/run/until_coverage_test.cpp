@@ -144,11 +144,21 @@ TEST(UntilCoverage, BadTargetsAndAreasExitTwoNamingThem) {
     // before anything is written (the run once started, waited twice for the one, and failed late
     // on the other, leaving its first files behind).
     const std::string gear = std::string(PEENSIM_SOURCE_DIR) + "/scenes/rotating-gear.yaml";
-    const auto run_gear = [&](const std::string& of, const std::string& name) {
-        ChildProcess p({PEENSIM_BINARY, "run", gear, "-o", (dir.path / name).string(), "--no-render", "--quiet", "--until-coverage", "8 %",
-                        "--set", "process.until_coverage_of=" + of},
-                       (dir.path / (name + ".out")).string(), (dir.path / (name + ".err")).string());
-        const auto code = p.wait_exit(60.0);
+    const auto run_gear = [&](const std::string& of, const std::string& name, const std::vector<std::string>& extra = {}) {
+        std::vector<std::string> args = {PEENSIM_BINARY,
+                                         "run",
+                                         gear,
+                                         "-o",
+                                         (dir.path / name).string(),
+                                         "--no-render",
+                                         "--quiet",
+                                         "--until-coverage",
+                                         "8 %",
+                                         "--set",
+                                         "process.until_coverage_of=" + of};
+        args.insert(args.end(), extra.begin(), extra.end());
+        ChildProcess p(args, (dir.path / (name + ".out")).string(), (dir.path / (name + ".err")).string());
+        const auto code = p.wait_exit(120.0);
         return std::make_pair(code.value_or(-1), read_file(dir.path / (name + ".err")));
     };
     auto [code4, err4] = run_gear("[gear/tooth-5, gear/tooth-5]", "twice");
@@ -166,12 +176,7 @@ TEST(UntilCoverage, BadTargetsAndAreasExitTwoNamingThem) {
     // once the reach of every sample is, after the run's directory was made; the fresh run leaves
     // nothing behind (it once left its scene.resolved.yaml and impacts.csv.partial) and names it.
     const auto run_counted_bore = [&](const std::string& of, const std::string& name) {
-        ChildProcess p(
-            {PEENSIM_BINARY, "run", gear, "-o", (dir.path / name).string(), "--no-render", "--quiet", "--until-coverage", "8 %", "--set",
-             "components[gear].regions[1].exclude=false", "--set", "process.until_coverage_of=" + of, "--set", "process.duration=3 s"},
-            (dir.path / (name + ".out")).string(), (dir.path / (name + ".err")).string());
-        const auto code = p.wait_exit(120.0);
-        return std::make_pair(code.value_or(-1), read_file(dir.path / (name + ".err")));
+        return run_gear(of, name, {"--set", "components[gear].regions[1].exclude=false", "--set", "process.duration=3 s"});
     };
     auto [code7, err7] = run_counted_bore("[gear/bore]", "out-of-reach");
     EXPECT_EQ(code7, 2) << err7;
