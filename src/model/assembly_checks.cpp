@@ -1,12 +1,15 @@
 #include "model/assembly_checks.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <utility>
 
+#include "common/parallel_chunks.h"
 #include "common/random.h"
 #include "geometry/mesh_checks.h"
 #include "model/facet_reach.h"
@@ -23,10 +26,11 @@ std::string mm_text(double m) {
     return s.str();
 }
 
-constexpr double kTouch = 1e-7;      // m: surfaces this close (float STL rounding) touch, they do not cross
-constexpr int kReachSamples = 1500;  // surface points per component for the reach test
-constexpr int kMaxSubdivision = 64;  // per triangle edge, when sampling surfaces for the sweep test
-constexpr int kMaxSweepBins = 4096;  // axial bins of a rotating part's (r, z) profile
+constexpr double kTouch = 1e-7;           // m: surfaces this close (float STL rounding) touch, they do not cross
+constexpr int kReachSamples = 1500;       // surface points per component for the reach test
+constexpr int kMaxSubdivision = 64;       // per triangle edge, when sampling surfaces for the sweep test
+constexpr int kMaxSweepBins = 4096;       // axial bins of a rotating part's (r, z) profile
+constexpr std::size_t kCheckChunks = 32;  // of a mesh's triangles or vertices, each checked on one core
 
 bool is_solid_role(ComponentRole r) { return r == ComponentRole::part || r == ComponentRole::fixture || r == ComponentRole::almen; }
 
@@ -57,33 +61,48 @@ bool segment_crosses(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b,
 }
 
 // An edge of `a` (offset by oa) crossing a face of `b` (offset by ob), world frame at t = 0.
+// The first crossing in a's triangle order, as one pass over them would find it: the triangles in
+// kCheckChunks chunks on every core, the first chunk with a crossing taken (the chunks after one
+// that found a crossing are not begun).
 bool edges_cross_faces(const Component& a, const Vec3& oa, const Component& b, const Vec3& ob, Vec3& at) {
     const Pose pa = a.kinematics.pose(SimTime{}), pb = b.kinematics.pose(SimTime{});
-    std::vector<int> near;
     // b's faces lie within its world bounds: a triangle of a wholly outside them (by more than a
     // touch) has no edge that can cross one, and is not looked up in b's BVH (on a 500k-triangle
     // gear beside its axle, most are not).
     const Vec3 b_lo = b.world_lo + ob - Vec3::Constant(kTouch), b_hi = b.world_hi + ob + Vec3::Constant(kTouch);
-    for (std::size_t t = 0; t < a.mesh->triangle_count(); ++t) {
-        const std::array<Vec3, 3> w = world_triangle(a, pa, t, oa);
-        if ((w[0].cwiseMax(w[1]).cwiseMax(w[2]).array() < b_lo.array()).any() ||
-            (w[0].cwiseMin(w[1]).cwiseMin(w[2]).array() > b_hi.array()).any())
-            continue;
-        for (int k = 0; k < 3; ++k) {
-            // In b's frame, so b's BVH finds the faces near the edge.
-            const Vec3 p = pb.to_component(w[static_cast<std::size_t>(k)] - ob),
-                       q = pb.to_component(w[static_cast<std::size_t>((k + 1) % 3)] - ob);
-            b.collider->triangles_overlapping(p.cwiseMin(q) - Vec3::Constant(kTouch), p.cwiseMax(q) + Vec3::Constant(kTouch), near);
-            for (int f : near) {
-                const auto ft = static_cast<std::size_t>(f);
-                Vec3 x;
-                if (segment_crosses(p, q, b.mesh->corner(ft, 0), b.mesh->corner(ft, 1), b.mesh->corner(ft, 2), x)) {
-                    at = pb.to_world(x) + ob;
-                    return true;
+    std::vector<std::optional<Vec3>> crossing(kCheckChunks);
+    std::atomic<std::size_t> first_found{kCheckChunks};
+    for_each_chunk(kCheckChunks, [&](std::size_t chunk) {
+        if (chunk > first_found.load()) return;
+        std::vector<int> near;
+        const auto [first, end] = chunk_range(a.mesh->triangle_count(), kCheckChunks, chunk);
+        for (std::size_t t = first; t < end; ++t) {
+            const std::array<Vec3, 3> w = world_triangle(a, pa, t, oa);
+            if ((w[0].cwiseMax(w[1]).cwiseMax(w[2]).array() < b_lo.array()).any() ||
+                (w[0].cwiseMin(w[1]).cwiseMin(w[2]).array() > b_hi.array()).any())
+                continue;
+            for (int k = 0; k < 3; ++k) {
+                // In b's frame, so b's BVH finds the faces near the edge.
+                const Vec3 p = pb.to_component(w[static_cast<std::size_t>(k)] - ob),
+                           q = pb.to_component(w[static_cast<std::size_t>((k + 1) % 3)] - ob);
+                b.collider->triangles_overlapping(p.cwiseMin(q) - Vec3::Constant(kTouch), p.cwiseMax(q) + Vec3::Constant(kTouch), near);
+                for (int f : near) {
+                    const auto ft = static_cast<std::size_t>(f);
+                    Vec3 x;
+                    if (segment_crosses(p, q, b.mesh->corner(ft, 0), b.mesh->corner(ft, 1), b.mesh->corner(ft, 2), x)) {
+                        crossing[chunk] = pb.to_world(x) + ob;
+                        for (std::size_t seen = first_found.load(); chunk < seen && !first_found.compare_exchange_weak(seen, chunk);) {}
+                        return;
+                    }
                 }
             }
         }
-    }
+    });
+    for (const std::optional<Vec3>& x : crossing)
+        if (x) {
+            at = *x;
+            return true;
+        }
     return false;
 }
 
@@ -106,15 +125,26 @@ void sample_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double spacing
 
 // Exact nearest distance (m) from p (world) to component c at t = 0 (or `within` if farther).
 // Nearest distance between the vertices of one and the surface of the other, both ways (m).
+// Each vertex's distance is exact whatever bound it was asked within, so the least of them is the
+// same found chunk by chunk on every core. The least so far is shared: each query is bounded by it
+// (a chunk far from `b` bounded by its own least alone searched far more of b's BVH).
 double vertex_clearance(const Component& a, const Component& b, double within) {
-    double best = within;
+    std::atomic<double> best{within};
     for (const auto* pair : {&a, &b}) {
         const Component& from = *pair;
         const Component& to = pair == &a ? b : a;
         const Pose pose = from.kinematics.pose(SimTime{});
-        for (const Vec3& v : from.mesh->vertices) best = std::min(best, distance_to(to, pose.to_world(v), best));
+        const std::vector<Vec3>& vertices = from.mesh->vertices;
+        for_each_chunk(kCheckChunks, [&](std::size_t chunk) {
+            const auto [first, end] = chunk_range(vertices.size(), kCheckChunks, chunk);
+            for (std::size_t v = first; v < end; ++v) {
+                double seen = best.load(std::memory_order_relaxed);
+                const double d = distance_to(to, pose.to_world(vertices[v]), seen);
+                while (d < seen && !best.compare_exchange_weak(seen, d, std::memory_order_relaxed)) {}
+            }
+        });
     }
-    return best;
+    return best.load();
 }
 
 // Fraction of c's surface with room for a shot centre beside it, in the cavity.

@@ -4,12 +4,14 @@
 // plate sonotrode at z = 0, its ceiling at z = 20 mm) with a part placed wrongly.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "app/check/check_job.h"
 #include "app/run/run_job.h"
+#include "common/parallel_chunks.h"
 #include "geometry/box_mesh.h"
 #include "geometry/mesh_checks.h"
 #include "geometry/stl_writer.h"
@@ -110,6 +112,37 @@ TEST(AssemblyChecks, TwoOverlappingPartsAreAnError) {
                                                   "    translation: [1 mm, 1 mm, 0]\n");
     const Checked c = check(scene, path);
     EXPECT_NE(c.text.find("components[2]: part 'part': intersects components[3] (second)"), std::string::npos) << c.text;
+}
+
+// The checks run chunk by chunk on every core: the same clearances to the bit and the same first
+// crossing (in triangle order) as on one thread, for a part beside a second one overlapping it.
+TEST(AssemblyChecks, TheSameReportOnOneThreadAsOnEveryCore) {
+    const TestScene scene(with_box(Vec3(0.0, 0.0, 10e-3)));
+    const std::string path = with_extra_component(scene,
+                                                  "  - name: second\n"
+                                                  "    role: part\n"
+                                                  "    mesh: part.stl\n"
+                                                  "    mesh_unit: mm\n"
+                                                  "    material: copper\n"
+                                                  "    translation: [1 mm, 1 mm, 0]\n");
+    set_analysis_threads(1);
+    const Checked one = check(scene, path);
+    set_analysis_threads(0);
+    const Checked every = check(scene, path);
+    EXPECT_NE(one.text.find(" near ("), std::string::npos) << one.text;
+    EXPECT_EQ(one.text, every.text);
+    ASSERT_EQ(one.report.issues.size(), every.report.issues.size());
+    for (std::size_t k = 0; k < one.report.issues.size(); ++k) EXPECT_EQ(one.report.issues[k].at_m, every.report.issues[k].at_m) << k;
+    ASSERT_EQ(one.report.components.size(), every.report.components.size());
+    const auto same = [](double x, double y) { return (std::isnan(x) && std::isnan(y)) || x == y; };  // NaN: not measured (no part)
+    int parts = 0;
+    for (std::size_t k = 0; k < one.report.components.size(); ++k) {
+        const ComponentFacts &a = one.report.components[k], &b = every.report.components[k];
+        parts += std::isfinite(a.clearance_to_sonotrode_m) ? 1 : 0;
+        EXPECT_TRUE(same(a.clearance_to_sonotrode_m, b.clearance_to_sonotrode_m)) << k;
+        EXPECT_TRUE(same(a.clearance_to_chamber_m, b.clearance_to_chamber_m)) << k;
+    }
+    EXPECT_EQ(parts, 2);
 }
 
 TEST(AssemblyChecks, ARotatingPartSweepingThroughTheSonotrodeIsAnError) {
