@@ -123,7 +123,6 @@ void sample_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double spacing
         for (int j = 0; i + j <= n; ++j) visit(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
 }
 
-// Exact nearest distance (m) from p (world) to component c at t = 0 (or `within` if farther).
 // Nearest distance between the vertices of one and the surface of the other, both ways (m).
 // Each vertex's distance is exact whatever bound it was asked within, so the least of them is the
 // same found chunk by chunk on every core. The least so far is shared: each query is bounded by it

@@ -101,15 +101,20 @@ TEST(AssemblyChecks, APartThroughTheLidIsAWarningAndAnErrorWhenStrict) {
     EXPECT_NE(err2.str().find("(an error with --strict)"), std::string::npos) << err2.str();
 }
 
+// The scene with a second part, the same box moved 1 mm sideways: the two overlap.
+std::string with_overlapping_second_part(const TestScene& scene) {
+    return with_extra_component(scene,
+                                "  - name: second\n"
+                                "    role: part\n"
+                                "    mesh: part.stl\n"
+                                "    mesh_unit: mm\n"
+                                "    material: copper\n"
+                                "    translation: [1 mm, 1 mm, 0]\n");
+}
+
 TEST(AssemblyChecks, TwoOverlappingPartsAreAnError) {
     const TestScene scene(with_box(Vec3(0.0, 0.0, 10e-3)));
-    const std::string path = with_extra_component(scene,
-                                                  "  - name: second\n"
-                                                  "    role: part\n"
-                                                  "    mesh: part.stl\n"
-                                                  "    mesh_unit: mm\n"
-                                                  "    material: copper\n"
-                                                  "    translation: [1 mm, 1 mm, 0]\n");
+    const std::string path = with_overlapping_second_part(scene);
     const Checked c = check(scene, path);
     EXPECT_NE(c.text.find("components[2]: part 'part': intersects components[3] (second)"), std::string::npos) << c.text;
 }
@@ -118,13 +123,7 @@ TEST(AssemblyChecks, TwoOverlappingPartsAreAnError) {
 // crossing (in triangle order) as on one thread, for a part beside a second one overlapping it.
 TEST(AssemblyChecks, TheSameReportOnOneThreadAsOnEveryCore) {
     const TestScene scene(with_box(Vec3(0.0, 0.0, 10e-3)));
-    const std::string path = with_extra_component(scene,
-                                                  "  - name: second\n"
-                                                  "    role: part\n"
-                                                  "    mesh: part.stl\n"
-                                                  "    mesh_unit: mm\n"
-                                                  "    material: copper\n"
-                                                  "    translation: [1 mm, 1 mm, 0]\n");
+    const std::string path = with_overlapping_second_part(scene);
     set_analysis_threads(1);
     const Checked one = check(scene, path);
     set_analysis_threads(0);
