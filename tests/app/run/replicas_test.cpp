@@ -92,8 +92,8 @@ TEST(Replicas, OneLogOfTheWindowsInTimeOrderWhoseCountsAddUpAndTheSameBytesTwice
 }
 
 // Every window follows a start from rest: the report says so beside the forecasts, with the
-// shortest window (what their start-up bias is that of), and a run as one trajectory's does not.
-TEST(Replicas, TheReportSaysEachWindowHoldsAStartUp) {
+// shortest window (shorter windows scatter more), and a run as one trajectory's does not.
+TEST(Replicas, TheReportSaysEachWindowFollowsAStartFromRest) {
     TempDir dir;
     const InProcessResult k2 = run_rod(dir.path / "k2", 4.0, 2, 1, true);
     ASSERT_EQ(k2.code, kExitOk) << k2.err;
@@ -104,7 +104,7 @@ TEST(Replicas, TheReportSaysEachWindowHoldsAStartUp) {
                                      windows[1]["end_s"].get<double>() - windows[1]["start_s"].get<double>());
     std::ostringstream expected;
     expected << "**A run as 2 replicas:** each of its windows (the shortest " << std::setprecision(3) << shortest
-             << " s) follows a start from rest";
+             << " s) follows a start from rest, logged from its measured warm-up on.";
     const std::string report = read_file(dir.path / "k2" / "analysis" / "report.md");
     EXPECT_NE(report.find(expected.str()), std::string::npos) << expected.str() << "\n" << report;
 
