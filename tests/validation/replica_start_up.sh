@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# Why replicas' windows must be long: what a chamber's start-up leaves in the first seconds
-# (issue 31; docs/design.md, "Every core for one run: replicas").
+# Whether where replicas' windows start biases the forecasts: what a chamber's start-up leaves in
+# its first seconds (issue 31; docs/design.md, "Every core for one run: replicas").
 #   tests/validation/replica_start_up.sh [--case gear] [--seeds "1 2 3 4 5 6"] [--length S]
-#                                        [--window W] [--starts "0 30 150"] [--out DIR]
+#                                        [--window W] [--starts "0.15 30 150"] [--out DIR]
 #                                        [--build-dir DIR] [--md FILE]
 # Per seed: one run of S s (default 240) from the scene's start at rest, without its analysis.
 # Then, per start a in --starts and per seed s, the window [a, a + W) (default 15 s) of seeds s,
 # s+1, s+2, s+3 (cyclically) laid end to end into one log of 4 W s, analysed as a run of that
-# length (`peensim analyze --to`): windows from the start-up ([0, W)) are what `--replicas 4`
-# logs of a 4 W s run; windows from later are what a chamber in steady state gives. The table: per
+# length (`peensim analyze --to`): windows from the replicas' measured warm-up ([0.15, 0.15 + W)
+# on the shipped gear: summary.json's replicas.warm_up_s) are what `--replicas 4` logs of a 4 W s
+# run; windows from 0 hold the shot's fall from their placement, which no replica logs; windows
+# from later are what a chamber in steady state gives. The table: per
 # start, the forecasts (whole part, everywhere, the slowest region) over the seeds, mean +- its
 # standard error; then the mean normal speed of the impacts per time bin over all the runs, on
 # the whole part and on the slowest region (the forecast reads the dents' sizes, and so the speeds).
@@ -21,7 +23,7 @@ case_name="gear"
 seeds="1 2 3 4 5 6"
 length=240
 window=15
-starts="0 30 150"
+starts="0.15 30 150"
 md=""
 while [[ $# -gt 0 ]]; do
     case "$1" in
