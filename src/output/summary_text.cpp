@@ -93,7 +93,14 @@ std::string summary_to_text(const RunSummary& s) {
             s.until_coverage->reached
                 ? printf_string("%.4g %% reached everywhere watched (%d area%s) at %.6g s, last %s", target, reached,
                                 reached == 1 ? "" : "s", last, slowest.c_str())
-                : printf_string("%.4g %% reached in %d of %zu areas; not yet: %s%s", target, reached, s.until_coverage->areas.size(),
+                : printf_string("%.4g %% reached in %d of %zu areas%s; not yet: %s%s", target, reached, s.until_coverage->areas.size(),
+                                // A finished run that did not reach it stopped at its cap: a scene's
+                                // duration is often a quick look's, which the user may not have meant.
+                                s.finished ? printf_string(" by the cap, process.duration = %.6g s (raise it with --set "
+                                                           "\"process.duration=...\")",
+                                                           s.duration_s)
+                                                 .c_str()
+                                           : "",
                                 missing.c_str(), reached + 1 < static_cast<int>(s.until_coverage->areas.size()) ? ", ..." : ""));
     }
     if (s.replicas && s.replicas->round_s > 0.0) {
