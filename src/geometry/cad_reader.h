@@ -33,7 +33,9 @@
 // are dropped (dropped_degenerate_facets counts the faces that lose all theirs).
 //
 // OpenCASCADE is optional at build time (PEENSIM_HAVE_OCCT); without it every call throws an
-// InputError that says which packages to install.
+// InputError that says which packages to install. With it, the reading itself is in the module
+// libpeensim_cad.so (src/cad/), loaded on the first call: OpenCASCADE's libraries cost every
+// process that links them ~25 ms of start-up, which a run of STL parts must not pay.
 #pragma once
 
 #include <string>
@@ -49,6 +51,13 @@ struct Tessellation {
 
 // Whether this build reads STEP and IGES (it was built with OpenCASCADE).
 bool cad_reading_available();
+
+// What libpeensim_cad.so exports (one C symbol returns it: peensim_cad_module). read: the file's
+// mesh into `mesh`; false with the problem (the InputError's, for the file's field "mesh") when
+// the file cannot be read.
+struct CadModule {
+    bool (*read)(const std::string& path, const Tessellation& tessellation, TriangleMesh& mesh, std::string& problem);
+};
 
 // The tessellated surfaces of every solid and face in the file, in metres.
 // Throws InputError (file = path, field "mesh") if OpenCASCADE is not built in, the file cannot be

@@ -63,5 +63,6 @@ PYBIND11_MODULE(_native, m) {
 
     m.attr("executable") = PEENSIM_EXECUTABLE;
     m.attr("render_module") = PEENSIM_RENDER_MODULE;
+    m.attr("cad_module") = PEENSIM_CAD_MODULE;  // "" in a build without OpenCASCADE
     m.attr("version") = PEENSIM_VERSION;
 }

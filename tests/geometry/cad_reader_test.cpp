@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include "geometry/mesh_checks.h"
 #include "geometry/mesh_loader.h"
 #include "scene/schema_defaults.h"
+#include "support/shell_command.h"
 #include "support/temp_dir.h"
 
 #if PEENSIM_HAVE_OCCT
@@ -336,6 +338,23 @@ TEST_F(CadReaderFiles, SceneWithAStepPartChecksAndRuns) {
     std::stringstream text;
     text << summary.rdbuf();
     EXPECT_NE(text.str().find("\"rod\""), std::string::npos);
+}
+
+// OpenCASCADE's libraries cost every process that links them ~25 ms of start-up: the peensim
+// binary does not link them, and loads them (libpeensim_cad.so) when a scene names a STEP part.
+TEST_F(CadReaderFiles, ThePeensimBinaryLoadsOpenCascadeOnlyForACadPart) {
+    if (std::system("command -v ldd >/dev/null 2>&1") != 0) GTEST_SKIP() << "no ldd";
+    const std::string libs = testing::run_shell(std::string("ldd '") + PEENSIM_BINARY + "'").output;
+    EXPECT_NE(libs.find("libc.so"), std::string::npos) << libs;
+    EXPECT_EQ(libs.find("libTK"), std::string::npos) << libs;
+    // The binary reads one all the same: `new` around a STEP rod, then `check` of that scene.
+    write_step(rod(), path("rod.step"));
+    const std::string binary = std::string("'") + PEENSIM_BINARY + "'";
+    const testing::ShellResult made = testing::run_shell(binary + " new '" + path("rod.step") + "' -o '" + path("rod.yaml") + "' 2>&1");
+    ASSERT_EQ(made.status, 0) << made.output;
+    const testing::ShellResult checked = testing::run_shell(binary + " check '" + path("rod.yaml") + "' 2>&1");
+    EXPECT_EQ(checked.status, 0) << checked.output;
+    EXPECT_NE(checked.output.find("closed"), std::string::npos) << checked.output;
 }
 
 #endif

@@ -29,6 +29,9 @@ RunProgress = _native.RunProgress
 
 # Pictures (render: a scene's animation, Scene.check(picture=...)) come from this build's module.
 os.environ.setdefault("PEENSIM_RENDER_MODULE", _native.render_module)
+# STEP and IGES parts too (a build without OpenCASCADE has none and says what to install).
+if _native.cad_module:
+    os.environ.setdefault("PEENSIM_CAD_MODULE", _native.cad_module)
 
 _STOPPED = 130  # the jobs' exit code of a run stopped at a checkpoint
 

@@ -1,0 +1,48 @@
+#include "common/loadable_module.h"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace peensim {
+
+const void* load_module_entry(const std::string& file, const char* env_var, const char* entry_symbol, const std::string& what) {
+    std::vector<std::string> candidates;
+    if (const char* path = std::getenv(env_var)) candidates.emplace_back(path);
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        candidates.push_back((exe.parent_path() / file).string());
+        candidates.push_back((exe.parent_path().parent_path() / file).string());
+    }
+    candidates.push_back(file);  // the library search path
+    std::string tried;
+    for (const std::string& c : candidates) {
+        const bool is_path = c.find('/') != std::string::npos;
+        if (is_path && !fs::exists(c, ec)) {
+            tried += "\n  " + c + " (no such file)";
+            continue;
+        }
+        void* handle = ::dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            tried += "\n  " + c + ": " + ::dlerror();
+            continue;
+        }
+        using Entry = const void* (*)();
+        const auto entry = reinterpret_cast<Entry>(::dlsym(handle, entry_symbol));
+        if (!entry) {
+            tried += "\n  " + c + ": no symbol " + entry_symbol;
+            continue;
+        }
+        return entry();
+    }
+    throw std::runtime_error(what + " needs " + file + " (built with peensim), not found:" + tried + "\nset " + env_var + " to its path");
+}
+
+}  // namespace peensim

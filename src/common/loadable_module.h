@@ -1,0 +1,16 @@
+// Finding and loading a module of peensim's own (libpeensim_render.so, libpeensim_cad.so): parts
+// whose libraries cost every process that links them (OSMesa's LLVM: ~50 MB resident;
+// OpenCASCADE: ~25 ms of start-up), loaded only by the runs that use them.
+#pragma once
+
+#include <string>
+
+namespace peensim {
+
+// Looks for `file` at $env_var, else next to the executable or one directory up (the tests' place
+// in the build tree), else on the library search path; loads the first that opens (it stays loaded
+// for the life of the process) and returns what its C function `entry_symbol()` returns. Throws
+// std::runtime_error saying that `what` needs it and where it looked.
+const void* load_module_entry(const std::string& file, const char* env_var, const char* entry_symbol, const std::string& what);
+
+}  // namespace peensim
