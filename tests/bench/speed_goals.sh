@@ -25,30 +25,19 @@
 # - dense bed: 3072 shot of 1 mm at A0 80 um, 5 s, the stepping loop per simulated second.
 # - soft scheme: rod-soft (0.5 s) under `peensim bench --schemes soft,event`: the soft scheme's wall time of the loop over
 #   its contacts (impacts on every component and shot-shot).
-set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-base="$1"
-new="$2"
-shift 2
 repeats=3
 liggghts=0
 long=0
-for a in "$@"; do
+for a in "${@:3}"; do
     case "$a" in
         --liggghts) liggghts=1 ;;
         --long) long=1 ;;
         *) repeats="$a" ;;
     esac
 done
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-fine="$work/gear-fine.stl"
-PEENSIM="$new" PEENSIM_ASSETS_DIR="$work" bash "$root/assets/regenerate.sh" --fine > /dev/null
+# root, base, new, the scratch folder $work with the fine gear in it, seconds and median.
+source "$(dirname "${BASH_SOURCE[0]}")/two_binaries_on_two_gears.sh" "$1" "$2" "$repeats"
 
-# The wall time (s) of a command, its output dropped.
-seconds() { /usr/bin/time -f %e "$@" 2>&1 > /dev/null | tail -1; }
-# The median of the numbers on stdin, one a line.
-median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 # The stepping loop's wall time (s) of a run directory.
 stepping() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['wall_time_s'])" "$1/summary.json"; }
 # Records a figure: record NAME WHICH VALUE (one a line in $work/NAME.WHICH).

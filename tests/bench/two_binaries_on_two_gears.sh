@@ -1,5 +1,5 @@
 # Sourced by the benchmarks that compare two peensim binaries on the shipped gear and its
-# 500k-triangle version (whole_process.sh, sweep_geometry_cache.sh): their arguments
+# 500k-triangle version (whole_process.sh, sweep_geometry_cache.sh, speed_goals.sh): their arguments
 # (BASELINE_PEENSIM NEW_PEENSIM [REPEATS]), a scratch folder removed on exit holding the fine
 # gear (made by the new binary's assets/regenerate.sh --fine), and the helpers they time with.
 set -euo pipefail
