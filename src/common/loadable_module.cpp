@@ -14,7 +14,7 @@ namespace peensim {
 
 const void* load_module_entry(const std::string& file, const char* env_var, const char* entry_symbol, const std::string& what) {
     std::vector<std::string> candidates;
-    if (const char* path = std::getenv(env_var)) candidates.emplace_back(path);
+    if (const char* path = std::getenv(env_var); path != nullptr && *path != '\0') candidates.emplace_back(path);  // set, not empty
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) {

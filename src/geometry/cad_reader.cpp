@@ -1,26 +1,199 @@
 #include "geometry/cad_reader.h"
 
-#include <mutex>
-
 #include "common/input_error.h"
+
+#if PEENSIM_HAVE_OCCT
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <stdexcept>
+#include <type_traits>
+#include <vector>
+
 #include "common/loadable_module.h"
+#endif
 
 namespace peensim {
 
 #if PEENSIM_HAVE_OCCT
 
+namespace {
+
+// The child's answer through the pipe: a kind, then the mesh or the message.
+enum class Answer : std::uint8_t { mesh = 0, input_problem = 1, failure = 2 };
+
+// Plain bytes of the mesh's fields, in order, each vector with its length first.
+class Bytes {
+public:
+    template <class T>
+    void put(const T& value) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        const auto* p = reinterpret_cast<const char*>(&value);
+        data_.insert(data_.end(), p, p + sizeof(T));
+    }
+    template <class T>
+    void put_vector(const std::vector<T>& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        put<std::uint64_t>(v.size());
+        const auto* p = reinterpret_cast<const char*>(v.data());
+        data_.insert(data_.end(), p, p + v.size() * sizeof(T));
+    }
+    void put_string(const std::string& s) {
+        put<std::uint64_t>(s.size());
+        data_.insert(data_.end(), s.begin(), s.end());
+    }
+    const std::vector<char>& data() const { return data_; }
+
+private:
+    std::vector<char> data_;
+};
+
+class Reader {
+public:
+    explicit Reader(const std::vector<char>& data) : data_(data) {}
+    template <class T>
+    T get() {
+        T value;
+        take(&value, sizeof(T));
+        return value;
+    }
+    template <class T>
+    std::vector<T> get_vector() {
+        const auto n = get<std::uint64_t>();
+        if (n > (data_.size() - at_) / sizeof(T)) throw std::runtime_error("the STEP/IGES reader's answer is cut short");
+        std::vector<T> v(static_cast<std::size_t>(n));
+        take(v.data(), v.size() * sizeof(T));
+        return v;
+    }
+    std::string get_string() {
+        const std::vector<char> chars = get_vector<char>();
+        return std::string(chars.begin(), chars.end());
+    }
+
+private:
+    void take(void* out, std::size_t n) {
+        if (n > data_.size() - at_) throw std::runtime_error("the STEP/IGES reader's answer is cut short");
+        std::memcpy(out, data_.data() + at_, n);
+        at_ += n;
+    }
+    const std::vector<char>& data_;
+    std::size_t at_ = 0;
+};
+
+std::vector<char> encode(const TriangleMesh& mesh) {
+    Bytes b;
+    b.put(Answer::mesh);
+    std::vector<std::array<double, 3>> vertices;  // m
+    vertices.reserve(mesh.vertices.size());
+    for (const Vec3& v : mesh.vertices) vertices.push_back({v.x(), v.y(), v.z()});
+    b.put_vector(vertices);
+    b.put_vector(mesh.triangles);
+    b.put_vector(mesh.source_facet);
+    b.put<std::uint64_t>(mesh.group_names.size());
+    for (const std::string& name : mesh.group_names) b.put_string(name);
+    b.put_vector(mesh.group_of_triangle);
+    b.put<std::uint64_t>(mesh.dropped_degenerate_facets);
+    b.put_string(mesh.declared_unit);
+    return b.data();
+}
+
+std::vector<char> encode_message(Answer kind, const std::string& message) {
+    Bytes b;
+    b.put(kind);
+    b.put_string(message);
+    return b.data();
+}
+
+// In the child: loads the module, reads the file, writes the answer; never returns.
+[[noreturn]] void read_in_child(int out, const std::string& path, const Tessellation& tessellation) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with the process that waits for it
+    std::vector<char> answer;
+    try {
+        const auto* module = static_cast<const CadModule*>(
+            load_module_entry("libpeensim_cad.so", "PEENSIM_CAD_MODULE", "peensim_cad_module", "reading STEP/IGES"));
+        TriangleMesh mesh;
+        std::string problem;
+        answer = module->read(path, tessellation, mesh, problem) ? encode(mesh) : encode_message(Answer::input_problem, problem);
+    } catch (const std::exception& e) {
+        answer = encode_message(Answer::failure, e.what());
+    } catch (...) {
+        answer = encode_message(Answer::failure, "the STEP/IGES reader failed");
+    }
+    std::size_t written = 0;
+    while (written < answer.size()) {
+        const ssize_t n = ::write(out, answer.data() + written, answer.size() - written);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) ::_exit(1);
+        written += static_cast<std::size_t>(n);
+    }
+    ::_exit(0);  // no destructors, no flushing of the parent's buffers
+}
+
+}  // namespace
+
 bool cad_reading_available() { return true; }
 
+// OpenCASCADE reads in a child process: on some damaged files (an entity that another names
+// deleted, or of a type it does not know) its STEP reader dereferences a null handle and the
+// process dies of SIGSEGV, which no C++ handler catches (OpenCASCADE converts signals into
+// exceptions only when built for it, and Debian's is not). The child dies instead, and the file is
+// an input error. The module is loaded in the child only, so the process that asks never maps
+// OpenCASCADE.
 TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessellation) {
-    static std::once_flag once;
-    static const CadModule* module = nullptr;
-    std::call_once(once, [] {
-        module = static_cast<const CadModule*>(
-            load_module_entry("libpeensim_cad.so", "PEENSIM_CAD_MODULE", "peensim_cad_module", "reading STEP/IGES"));
-    });
+    int pipe_ends[2];
+    if (::pipe(pipe_ends) != 0) throw std::runtime_error("reading " + path + ": cannot make a pipe: " + std::strerror(errno));
+    const pid_t child = ::fork();
+    if (child < 0) {
+        ::close(pipe_ends[0]);
+        ::close(pipe_ends[1]);
+        throw std::runtime_error("reading " + path + ": cannot start the STEP/IGES reader: " + std::strerror(errno));
+    }
+    if (child == 0) {
+        ::close(pipe_ends[0]);
+        read_in_child(pipe_ends[1], path, tessellation);
+    }
+    ::close(pipe_ends[1]);
+    std::vector<char> answer;
+    char buffer[1 << 16];
+    for (;;) {
+        const ssize_t n = ::read(pipe_ends[0], buffer, sizeof buffer);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        answer.insert(answer.end(), buffer, buffer + n);
+    }
+    ::close(pipe_ends[0]);
+    int status = 0;
+    while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {}
+    if (WIFSIGNALED(status)) {
+        const int signal = WTERMSIG(status);
+        throw InputError(SourceLocation{path, 0, 0}, "mesh",
+                         "OpenCASCADE crashed reading the file (signal " + std::to_string(signal) + ", " + ::strsignal(signal) +
+                             "): it is damaged, or holds entities OpenCASCADE cannot read; export it again (STEP AP214 or AP203, "
+                             "or STL)");
+    }
+    if (answer.empty()) throw std::runtime_error("reading " + path + ": the STEP/IGES reader ended without an answer");
+    Reader r(answer);
+    switch (r.get<Answer>()) {
+        case Answer::input_problem: throw InputError(SourceLocation{path, 0, 0}, "mesh", r.get_string());
+        case Answer::failure: throw std::runtime_error(r.get_string());
+        case Answer::mesh: break;
+    }
     TriangleMesh mesh;
-    std::string problem;
-    if (!module->read(path, tessellation, mesh, problem)) throw InputError(SourceLocation{path, 0, 0}, "mesh", problem);
+    for (const std::array<double, 3>& v : r.get_vector<std::array<double, 3>>()) mesh.vertices.emplace_back(v[0], v[1], v[2]);
+    mesh.triangles = r.get_vector<std::array<int, 3>>();
+    mesh.source_facet = r.get_vector<int>();
+    const auto groups = r.get<std::uint64_t>();
+    for (std::uint64_t g = 0; g < groups; ++g) mesh.group_names.push_back(r.get_string());
+    mesh.group_of_triangle = r.get_vector<int>();
+    mesh.dropped_degenerate_facets = static_cast<std::size_t>(r.get<std::uint64_t>());
+    mesh.declared_unit = r.get_string();
     return mesh;
 }
 

@@ -34,8 +34,9 @@
 //
 // OpenCASCADE is optional at build time (PEENSIM_HAVE_OCCT); without it every call throws an
 // InputError that says which packages to install. With it, the reading itself is in the module
-// libpeensim_cad.so (src/cad/), loaded on the first call: OpenCASCADE's libraries cost every
-// process that links them ~25 ms of start-up, which a run of STL parts must not pay.
+// libpeensim_cad.so (src/cad/), which a child process loads for each call (cad_reader.cpp says
+// why): OpenCASCADE's libraries cost every process that links them ~25 ms of start-up, which a
+// run of STL parts must not pay, and on some damaged files its reader dies of SIGSEGV.
 #pragma once
 
 #include <string>

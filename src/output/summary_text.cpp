@@ -75,15 +75,17 @@ std::string summary_to_text(const RunSummary& s) {
                       printf_string("%.6g s of %.6g s (%s)", s.simulated_time_s, s.duration_s, s.finished ? "finished" : "interrupted"));
     rows.emplace_back("wall time", printf_string("%.3f s (%.4g simulated s per wall s)", s.wall_time_s, s.sim_seconds_per_wall_second));
     if (s.until_coverage) {
-        // Until coverage: reached where, when; the slowest area last.
-        double last = 0.0;
+        // Until coverage: reached where, when; the slowest area last, or the least covered one
+        // not there yet (the first of them in the list may be nearly there).
+        double last = 0.0, least = INFINITY;
         std::string slowest, missing;
         int reached = 0;
         for (const auto& a : s.until_coverage->areas) {
             if (std::isfinite(a.reached_at_s)) {
                 ++reached;
                 if (a.reached_at_s >= last) last = a.reached_at_s, slowest = a.name;
-            } else if (missing.empty()) {
+            } else if (a.coverage < least) {
+                least = a.coverage;
                 missing = a.name + printf_string(" at %.4g %%", 100.0 * a.coverage);
             }
         }

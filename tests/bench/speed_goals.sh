@@ -2,7 +2,7 @@
 # The speed goals of issue "every core for one run" (docs/design.md, "Setup and analysis" and
 # "Benchmark"), each row measured with two binaries side by side, runs interleaved, so that the
 # machine's drift (up to 2.5x between days) falls on both alike: the commit the issue starts from
-# (47565d1, the last before the session whose brief first listed it) and this one.
+# (47565d1, the last commit before the session of 2026-11-27, whose brief lists the issue) and this one.
 #   tests/bench/speed_goals.sh BASELINE_PEENSIM NEW_PEENSIM [REPEATS] [--liggghts] [--long]
 # Prints a Markdown table, one row per goal: the baseline's figure, the new one's, their ratio, the
 # goal and whether the new binary meets it (medians of REPEATS, default 3; ~4 min a repeat).
