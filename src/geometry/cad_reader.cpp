@@ -182,7 +182,7 @@ TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessella
     Reader r(answer);
     switch (r.get<Answer>()) {
         case Answer::input_problem: throw InputError(SourceLocation{path, 0, 0}, "mesh", r.get_string());
-        case Answer::failure: throw std::runtime_error(r.get_string());
+        case Answer::failure: throw std::runtime_error(path + ": " + r.get_string());
         case Answer::mesh: break;
     }
     TriangleMesh mesh;
