@@ -145,7 +145,9 @@ bool cad_reading_available() { return true; }
 // process dies of SIGSEGV, which no C++ handler catches (OpenCASCADE converts signals into
 // exceptions only when built for it, and Debian's is not). The child dies instead, and the file is
 // an input error. The module is loaded in the child only, so the process that asks never maps
-// OpenCASCADE.
+// OpenCASCADE. fork() copies only the calling thread: the child runs the loader, the module and
+// write() only, and glibc keeps malloc and the loader usable in it (meshes are loaded before a run
+// starts its threads; a Python caller's threads are not touched by the child).
 TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessellation) {
     int pipe_ends[2];
     if (::pipe(pipe_ends) != 0) throw std::runtime_error("reading " + path + ": cannot make a pipe: " + std::strerror(errno));
