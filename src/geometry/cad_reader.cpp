@@ -14,9 +14,9 @@
 #include <cstring>
 #include <exception>
 #include <stdexcept>
-#include <type_traits>
 #include <vector>
 
+#include "common/byte_stream.h"
 #include "common/loadable_module.h"
 #endif
 
@@ -29,66 +29,9 @@ namespace {
 // The child's answer through the pipe: a kind, then the mesh or the message.
 enum class Answer : std::uint8_t { mesh = 0, input_problem = 1, failure = 2 };
 
-// Plain bytes of the mesh's fields, in order, each vector with its length first.
-class Bytes {
-public:
-    template <class T>
-    void put(const T& value) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        const auto* p = reinterpret_cast<const char*>(&value);
-        data_.insert(data_.end(), p, p + sizeof(T));
-    }
-    template <class T>
-    void put_vector(const std::vector<T>& v) {
-        static_assert(std::is_trivially_copyable_v<T>);
-        put<std::uint64_t>(v.size());
-        const auto* p = reinterpret_cast<const char*>(v.data());
-        data_.insert(data_.end(), p, p + v.size() * sizeof(T));
-    }
-    void put_string(const std::string& s) {
-        put<std::uint64_t>(s.size());
-        data_.insert(data_.end(), s.begin(), s.end());
-    }
-    const std::vector<char>& data() const { return data_; }
-
-private:
-    std::vector<char> data_;
-};
-
-class Reader {
-public:
-    explicit Reader(const std::vector<char>& data) : data_(data) {}
-    template <class T>
-    T get() {
-        T value;
-        take(&value, sizeof(T));
-        return value;
-    }
-    template <class T>
-    std::vector<T> get_vector() {
-        const auto n = get<std::uint64_t>();
-        if (n > (data_.size() - at_) / sizeof(T)) throw std::runtime_error("the STEP/IGES reader's answer is cut short");
-        std::vector<T> v(static_cast<std::size_t>(n));
-        take(v.data(), v.size() * sizeof(T));
-        return v;
-    }
-    std::string get_string() {
-        const std::vector<char> chars = get_vector<char>();
-        return std::string(chars.begin(), chars.end());
-    }
-
-private:
-    void take(void* out, std::size_t n) {
-        if (n > data_.size() - at_) throw std::runtime_error("the STEP/IGES reader's answer is cut short");
-        std::memcpy(out, data_.data() + at_, n);
-        at_ += n;
-    }
-    const std::vector<char>& data_;
-    std::size_t at_ = 0;
-};
-
-std::vector<char> encode(const TriangleMesh& mesh) {
-    Bytes b;
+// The mesh's fields in order (common/byte_stream.h).
+std::string encode(const TriangleMesh& mesh) {
+    ByteWriter b;
     b.put(Answer::mesh);
     std::vector<std::array<double, 3>> vertices;  // m
     vertices.reserve(mesh.vertices.size());
@@ -101,20 +44,20 @@ std::vector<char> encode(const TriangleMesh& mesh) {
     b.put_vector(mesh.group_of_triangle);
     b.put<std::uint64_t>(mesh.dropped_degenerate_facets);
     b.put_string(mesh.declared_unit);
-    return b.data();
+    return b.bytes();
 }
 
-std::vector<char> encode_message(Answer kind, const std::string& message) {
-    Bytes b;
+std::string encode_message(Answer kind, const std::string& message) {
+    ByteWriter b;
     b.put(kind);
     b.put_string(message);
-    return b.data();
+    return b.bytes();
 }
 
 // In the child: loads the module, reads the file, writes the answer; never returns.
 [[noreturn]] void read_in_child(int out, const std::string& path, const Tessellation& tessellation) {
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with the process that waits for it
-    std::vector<char> answer;
+    std::string answer;
     try {
         const auto* module = static_cast<const CadModule*>(
             load_module_entry("libpeensim_cad.so", "PEENSIM_CAD_MODULE", "peensim_cad_module", "reading STEP/IGES"));
@@ -162,13 +105,13 @@ TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessella
         read_in_child(pipe_ends[1], path, tessellation);
     }
     ::close(pipe_ends[1]);
-    std::vector<char> answer;
+    std::string answer;
     char buffer[1 << 16];
     for (;;) {
         const ssize_t n = ::read(pipe_ends[0], buffer, sizeof buffer);
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) break;
-        answer.insert(answer.end(), buffer, buffer + n);
+        answer.append(buffer, static_cast<std::size_t>(n));
     }
     ::close(pipe_ends[0]);
     int status = 0;
@@ -181,7 +124,7 @@ TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessella
                              "or STL)");
     }
     if (answer.empty()) throw std::runtime_error("reading " + path + ": the STEP/IGES reader ended without an answer");
-    Reader r(answer);
+    ByteReader r(answer, "reading " + path + ": the STEP/IGES reader's answer");
     switch (r.get<Answer>()) {
         case Answer::input_problem: throw InputError(SourceLocation{path, 0, 0}, "mesh", r.get_string());
         case Answer::failure: throw std::runtime_error(path + ": " + r.get_string());
