@@ -58,16 +58,25 @@ std::string encode_message(Answer kind, const std::string& message) {
 [[noreturn]] void read_in_child(int out, const std::string& path, const Tessellation& tessellation) {
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with the process that waits for it
     std::string answer;
+    const CadModule* module = nullptr;
     try {
-        const auto* module = static_cast<const CadModule*>(
+        module = static_cast<const CadModule*>(
             load_module_entry("libpeensim_cad.so", "PEENSIM_CAD_MODULE", "peensim_cad_module", "reading STEP/IGES"));
-        TriangleMesh mesh;
-        std::string problem;
-        answer = module->read(path, tessellation, mesh, problem) ? encode(mesh) : encode_message(Answer::input_problem, problem);
     } catch (const std::exception& e) {
-        answer = encode_message(Answer::failure, e.what());
-    } catch (...) {
-        answer = encode_message(Answer::failure, "the STEP/IGES reader failed");
+        // This installation cannot read the part, as a build without OpenCASCADE cannot: the
+        // scene's mesh is refused (exit 2; a sweep does not run it again).
+        answer = encode_message(Answer::input_problem, std::string(e.what()) + "; or export the part as STL");
+    }
+    if (module != nullptr) {
+        try {
+            TriangleMesh mesh;
+            std::string problem;
+            answer = module->read(path, tessellation, mesh, problem) ? encode(mesh) : encode_message(Answer::input_problem, problem);
+        } catch (const std::exception& e) {
+            answer = encode_message(Answer::failure, e.what());
+        } catch (...) {
+            answer = encode_message(Answer::failure, "the STEP/IGES reader failed");
+        }
     }
     std::size_t written = 0;
     while (written < answer.size()) {

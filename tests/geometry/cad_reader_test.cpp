@@ -4,6 +4,8 @@
 // unit, within the volume and area the chordal tolerance allows, finer with a finer tolerance;
 // bad files are InputErrors naming the file; a scene with a STEP part passes `check` and runs.
 // Built without OpenCASCADE, the one test left checks the message that says what to install.
+#include <sys/wait.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -355,6 +357,25 @@ TEST_F(CadReaderFiles, ThePeensimBinaryLoadsOpenCascadeOnlyForACadPart) {
     const testing::ShellResult checked = testing::run_shell(binary + " check '" + path("rod.yaml") + "' 2>&1");
     EXPECT_EQ(checked.status, 0) << checked.output;
     EXPECT_NE(checked.output.find("closed"), std::string::npos) << checked.output;
+}
+
+// An installation without the module (the binary alone, its path pointing nowhere) cannot read the
+// scene's STEP part, as a build without OpenCASCADE cannot: an input error (exit 2) naming the
+// file, what is missing and the way round it.
+TEST_F(CadReaderFiles, WithoutTheCadModuleAStepPartIsRefusedAsInput) {
+    write_step(rod(), path("rod.step"));
+    const std::string binary = std::string("'") + PEENSIM_BINARY + "'";
+    const testing::ShellResult made = testing::run_shell(binary + " new '" + path("rod.step") + "' -o '" + path("rod.yaml") + "' 2>&1");
+    ASSERT_EQ(made.status, 0) << made.output;
+    fs::create_directories(path("alone"));
+    fs::copy_file(PEENSIM_BINARY, path("alone/peensim"));
+    const testing::ShellResult checked = testing::run_shell("PEENSIM_CAD_MODULE='" + path("nowhere.so") + "' '" + path("alone/peensim") +
+                                                            "' check '" + path("rod.yaml") + "' 2>&1");
+    ASSERT_TRUE(WIFEXITED(checked.status)) << checked.output;
+    EXPECT_EQ(WEXITSTATUS(checked.status), kExitInputError) << checked.output;
+    EXPECT_NE(checked.output.find(path("rod.step")), std::string::npos) << checked.output;
+    EXPECT_NE(checked.output.find("reading STEP/IGES needs libpeensim_cad.so"), std::string::npos) << checked.output;
+    EXPECT_NE(checked.output.find("or export the part as STL"), std::string::npos) << checked.output;
 }
 
 #endif

@@ -89,6 +89,11 @@ void SweepBook::outcome(std::size_t k, int code) {
              << std::flush;
     } else if (code == kExitInterrupted && stopped_) {
         // Checkpointed: the next sweep resumes it.
+    } else if (code == kExitInputError) {
+        // Its scene (a file it names) is refused: the same run again would be, for the same reason.
+        err_ << "sweep: " << label_of(k) << " refused its input (exit " << code << ", see " << log_of(k)
+             << "); not run again, the sweep goes on without it\n";
+        failed_.push_back(k);
     } else if (attempts_[k] < 2 && !stopped_) {
         err_ << "sweep: " << label_of(k) << " failed (exit " << code << ", see " << log_of(k) << "); trying it once more\n";
         queue_.push_back(k);

@@ -20,6 +20,7 @@
 #include "scene/scene_parser.h"
 #include "support/csv_columns.h"
 #include "support/files.h"
+#include "support/shell_command.h"
 #include "support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -280,4 +281,24 @@ TEST(AnalyzeJob, AlmenStripReportsDoseAndNeedsCalibration) {
     std::getline(csv2, line);
     std::getline(csv2, line);
     EXPECT_EQ(line, "0,0,0,0,");  // the strip's yield stress gives dents; no predictive calibration
+}
+
+// The report's pictures come from the render module: a peensim without it (a copy of the binary
+// alone, its module path pointing nowhere) still analyses the run, its report saying why the
+// picture of the rod's area out of reach is missing, and exits 0.
+TEST(AnalyzeJob, WithoutTheRenderModuleTheReportSaysWhyAPictureIsMissing) {
+    TempDir dir;
+    fs::create_directories(dir.path / "bin" / "alone");
+    const fs::path binary = dir.path / "bin" / "alone" / "peensim";
+    fs::copy_file(PEENSIM_BINARY, binary);
+    const fs::path out = dir.path / "out";
+    const peensim::testing::ShellResult run = peensim::testing::run_shell(
+        "PEENSIM_RENDER_MODULE='" + (dir.path / "nowhere.so").string() + "' '" + binary.string() + "' run '" + PEENSIM_SOURCE_DIR +
+        "/scenes/rod.yaml' -o '" + out.string() + "' -q --no-render --set process.duration=0.05 2>&1");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const std::string report = peensim::testing::read_file(out / "analysis" / "report.md");
+    EXPECT_NE(report.find("Pictures: no picture of the area out of reach: rendering needs libpeensim_render.so"), std::string::npos)
+        << report;
+    EXPECT_FALSE(fs::exists(out / "analysis" / "rod_out_of_reach.png"));
+    EXPECT_TRUE(fs::exists(out / "analysis" / "figures.json"));
 }

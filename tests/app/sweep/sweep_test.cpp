@@ -324,6 +324,28 @@ TEST(SweepJob, AFailingRunIsRetriedOnceThenReportedAndBadInputsExitTwo) {
     EXPECT_NE(err3.str().find("colour"), std::string::npos) << err3.str();
 }
 
+// A run that refuses its input (exit 2: a mesh this installation cannot read, a directory in use) is
+// not run again: the same run would be refused for the same reason.
+TEST(SweepJob, ARunThatRefusesItsInputIsNotRunAgain) {
+    TempDir dir;
+    const fs::path refusing = dir.path / "refusing.sh";
+    {
+        std::ofstream script(refusing);
+        script << "#!/bin/sh\necho \"error: rod.step: mesh: reading STEP/IGES needs libpeensim_cad.so\" >&2\nexit 2\n";
+    }
+    fs::permissions(refusing, fs::perms::owner_all);
+    SweepOptions o = rod_sweep(dir.path / "refused", 1);
+    o.executable = refusing.string();
+    std::ostringstream out, err;
+    EXPECT_EQ(sweep_job(o, out, err), kExitRuntimeError);
+    EXPECT_NE(err.str().find("count-64/s0 refused its input (exit 2"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("count-128/s0 refused its input (exit 2"), std::string::npos) << err.str();
+    EXPECT_EQ(err.str().find("trying it once more"), std::string::npos) << err.str();
+    const std::string log = read_file(dir.path / "refused" / "sweep" / "logs" / "count-64.s0.log");
+    EXPECT_EQ(log.find("error: rod.step"), log.rfind("error: rod.step")) << log;  // run once
+    EXPECT_NE(read_file(dir.path / "refused" / "sweep" / "report.md").find("| count-64 | 0/1 |"), std::string::npos);
+}
+
 // Ctrl-C stops a sweep with its runs checkpointed (exit 130); the same command goes on, and every
 // run's log is then the uninterrupted sweep's, byte for byte.
 TEST(SweepJob, AnInterruptedSweepGoesOnWhereItStopped) {
