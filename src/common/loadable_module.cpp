@@ -42,7 +42,9 @@ const void* load_module_entry(const std::string& file, const char* env_var, cons
         }
         return entry();
     }
-    throw std::runtime_error(what + " needs " + file + " (built with peensim), not found:" + tried + "\nset " + env_var + " to its path");
+    // "not found" would be wrong for a file that is there but is not the module (each line says why).
+    throw std::runtime_error(what + " needs " + file + " (built with peensim), which none of these is:" + tried + "\nset " + env_var +
+                             " to its path");
 }
 
 }  // namespace peensim

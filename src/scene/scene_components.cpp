@@ -149,6 +149,7 @@ ComponentDesc read_component(const Cursor& c, const std::filesystem::path& scene
     if (!is_valid_name(k.name)) fail(c.child("name"), "invalid name '" + k.name + "'; names use only A-Z a-z 0-9 _ -");
     k.role = role_from(read_choice(c.child("role")));
     k.mesh_path = resolve_mesh(c.child("mesh"), scene_dir);
+    k.mesh_where = location_of(c.child("mesh"));
     read_mesh_unit_and_tessellation(c, k);
     k.translation_m = read_vector(c.child("translation"));
     k.rotation = read_rotation(c.child("rotation"));

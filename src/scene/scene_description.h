@@ -167,6 +167,7 @@ struct ComponentDesc {
     std::string name;
     ComponentRole role = ComponentRole::fixture;
     std::string mesh_path;                        // absolute or relative to the working directory (resolved by the parser)
+    SourceLocation mesh_where;                    // the mesh field's (a file it names that cannot be read is an error there)
     double mesh_unit_m = 0.0;                     // m per mesh-file length unit (mm -> 1e-3); 1 for STEP/IGES (read in m)
     TessellationDesc tessellation;                // STEP/IGES files only (common/cad_file.h); the schema's defaults
     Vec3 translation_m = Vec3::Zero();            // m, placement of the component frame in the world
@@ -334,6 +335,7 @@ struct SinkDesc {
     SinkRegion region = SinkRegion::box;
     Vec3 min_m = Vec3::Zero(), max_m = Vec3::Zero();  // m, world (box)
     std::string mesh_path;                            // mesh: a closed mesh, its file
+    SourceLocation mesh_where;                        // mesh: the mesh field's
     double mesh_unit_m = 0.0;                         // mesh: metres per mesh unit
     Vec3 translation_m = Vec3::Zero();                // mesh: where its frame sits in the world
     SourceLocation where;

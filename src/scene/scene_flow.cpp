@@ -129,6 +129,7 @@ void read_flow(const Cursor& sources, const Cursor& sinks, double duration_s, do
         if (d.region == SinkRegion::mesh) {
             if (!c.child("mesh").present()) fail(c, "missing required key 'mesh' (a mesh sink needs its closed mesh)");
             d.mesh_path = resolve_mesh(c.child("mesh"), scene_dir);
+            d.mesh_where = location_of(c.child("mesh"));
             if (is_cad_file(d.mesh_path) && c.child("mesh_unit").present())  // as for components (scene_components.cpp)
                 fail(c.child("mesh_unit"), "mesh_unit does not apply to a STEP or IGES file: '" + d.mesh_path +
                                                "' states its own length unit, which is used; remove mesh_unit");

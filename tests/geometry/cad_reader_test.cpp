@@ -376,6 +376,23 @@ TEST_F(CadReaderFiles, WithoutTheCadModuleAStepPartIsRefusedAsInput) {
     EXPECT_NE(checked.output.find(path("rod.step")), std::string::npos) << checked.output;
     EXPECT_NE(checked.output.find("reading STEP/IGES needs libpeensim_cad.so"), std::string::npos) << checked.output;
     EXPECT_NE(checked.output.find("or export the part as STL"), std::string::npos) << checked.output;
+    // Where: the line of the part's `mesh:` field, not of its component's entry.
+    std::ifstream scene(path("rod.yaml"));
+    int line = 0, mesh_line = 0;
+    for (std::string text; std::getline(scene, text);) {
+        ++line;
+        if (text.find("mesh:") != std::string::npos && text.find("rod.step") != std::string::npos) mesh_line = line;
+    }
+    ASSERT_GT(mesh_line, 0);
+    EXPECT_NE(checked.output.find("rod.yaml:" + std::to_string(mesh_line) + ":"), std::string::npos) << checked.output;
+    // A part given by --set is an error there.
+    const testing::ShellResult set =
+        testing::run_shell("PEENSIM_CAD_MODULE='" + path("nowhere.so") + "' '" + path("alone/peensim") + "' check '" + path("rod.yaml") +
+                           "' --set 'components[rod].mesh=" + path("rod.step") + "' 2>&1");
+    ASSERT_TRUE(WIFEXITED(set.status)) << set.output;
+    EXPECT_EQ(WEXITSTATUS(set.status), kExitInputError) << set.output;
+    EXPECT_NE(set.output.find("<--set>"), std::string::npos) << set.output;
+    EXPECT_EQ(set.output.find("rod.yaml:"), std::string::npos) << set.output;
 }
 
 #endif

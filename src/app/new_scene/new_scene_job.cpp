@@ -194,24 +194,29 @@ int run_new_scene(const NewSceneOptions& o, std::ostream& out) {
     const double largest = envelope.size_m.maxCoeff();
     const std::string size_text = mm_one_decimal(envelope.size_m.x()) + " x " + mm_one_decimal(envelope.size_m.y()) + " x " +
                                   mm_one_decimal(envelope.size_m.z()) + " mm";
+    // A STEP or IGES file states its own unit (--unit is refused for it): the question is then
+    // whether the file was exported in the unit it names.
+    const char* unit_field = cad ? "PART" : "--unit";
+    const std::string unit_question =
+        cad ? "was the file exported in the unit it names (export it again in mm or m)?" : "is its unit right (--unit mm, cm, m, um, in)?";
     if (largest > kLargestPartM || largest < kSmallestPartM)
-        throw InputError({o.part_path}, "--unit",
-                         "read in " + unit_said + " the part is " + size_text +
-                             ": expected 1 mm to 2 m across; is its unit right (--unit mm, cm, m, um, in)?");
+        throw InputError({o.part_path}, unit_field,
+                         "read in " + unit_said + " the part is " + size_text + ": expected 1 mm to 2 m across; " + unit_question);
     if (largest < kSmallestPartShots * request.shot_diameter_m)
-        throw InputError({o.part_path}, "--unit",
+        throw InputError({o.part_path}, unit_field,
                          "read in " + unit_said + " the part is " + size_text + ", under 5 shot of " +
-                             mm_one_decimal(request.shot_diameter_m) +
-                             " mm across: is its unit right (--unit in, cm, m), or the shot too large (--shot-diameter)?");
+                             mm_one_decimal(request.shot_diameter_m) + " mm across: " + unit_question +
+                             " Or is the shot too large (--shot-diameter)?");
     const SceneDesign design = design_scene(envelope, request);
     // The chamber around the part must itself be plausible: a scene that `peensim check` warns on
     // as a unit slip is no ready scene (a 1.5 m part made a 2.15 m chamber).
     const double chamber_m = std::max(2.0 * std::max(design.upper_radius_m, design.lower_radius_m), design.lid_z_m - design.bottom_z_m);
     if (chamber_m > kLargestPlausibleMesh_m)
-        throw InputError({o.part_path}, "--unit",
+        throw InputError({o.part_path}, unit_field,
                          "read in " + unit_said + " the part is " + size_text + ", and the chamber around it would be " +
                              mm_one_decimal(chamber_m) + " mm across, beyond the " + mm_one_decimal(kLargestPlausibleMesh_m) +
-                             " mm `peensim check` takes for a unit slip; is its unit right (--unit mm, cm, m, um, in)? A part this large "
+                             " mm `peensim check` takes for a unit slip; " + unit_question +
+                             " A part this large "
                              "(over about " +
                              mm_one_decimal(largest * kLargestPlausibleMesh_m / chamber_m) +
                              " mm here) is peened in sections or by a moving sonotrode: write its scene by hand");

@@ -347,6 +347,11 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
         measured = measure_settings(study, settings, plan);
         if (std::none_of(measured.points.begin(), measured.points.end(), [](const SearchPoint& p) { return std::isfinite(p.y); })) {
             // Nothing to model: say why, from the runs, rather than search blind.
+            if (!failed.empty() && failed.size() == plan.runs.size()) {
+                err << "optimise: every run failed (" << failed.size() << " of " << plan.runs.size()
+                    << "): nothing to model; why is in their logs, e.g. " << sweep_run_log(plan, runner.logs_dir, failed.front()) << "\n";
+                return kExitRuntimeError;
+            }
             std::string why;
             for (std::size_t k = 0; k < settings.size() && why.empty(); ++k)
                 why = measured.figures.at(k, study.objective_component, study.objective).missing;

@@ -24,7 +24,7 @@ struct OptimiseOptions {
     std::function<bool()> stop_requested;  // as SweepOptions'
 };
 
-// Exit codes as a sweep's: 0 done, 2 bad input, 1 a run failed twice (the search went on without
+// Exit codes as a sweep's: 0 done, 2 bad input, 1 a run failed for good (the search went on without
 // it), 130 interrupted (run the same command to go on).
 int optimise_job(const OptimiseOptions& options, std::ostream& out, std::ostream& err);
 int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream& err);  // InputError thrown

@@ -436,7 +436,8 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
           "run's own forecast interval (which also counts the forecast's extrapolation, so it is wider than the spread between seeds "
           "the model fits). Each setting is an ordinary run directory, `"
        << "<setting>/s<k>/`, the confirmation runs `confirm-start/` and `confirm-<winner>/`; every figure: `evaluations.csv`.\n";
-    if (r.failed_runs > 0) md << "\n" << r.failed_runs << " runs failed twice: their logs are in `optimise/logs/`.\n";
+    if (r.failed_runs > 0)
+        md << "\n" << r.failed_runs << " runs failed (twice, or once refusing their input): their logs are in `optimise/logs/`.\n";
 
     // The start and the winner side by side in 3D.
     std::map<std::string, std::string> views;

@@ -81,7 +81,9 @@ void SweepBook::outcome(std::size_t k, int code) {
     if (code == kExitOk) {
         ++done_, ++done_here_;
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
-        const std::size_t left = total() - done_;
+        // Runs that failed for good are not to come.
+        const std::size_t ended = done_ + failed_.size();
+        const std::size_t left = total() > ended ? total() - ended : 0;
         const double eta = elapsed / static_cast<double>(done_here_) * static_cast<double>(left) /
                            static_cast<double>(std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(slots_), left)));
         out_ << "sweep: " << done_ << "/" << total() << " done (" << label_of(k) << ", " << sweep_duration_text(elapsed) << " elapsed"

@@ -27,7 +27,7 @@ struct SweepOptions {
     std::function<bool()> stop_requested;
 };
 
-// Exit codes as `run`'s: 0 all runs finished, 2 a bad command line or scene, 1 a run failed twice
+// Exit codes as `run`'s: 0 all runs finished, 2 a bad command line or scene, 1 a run failed for good (twice, or once refusing its input)
 // (the others finished and were compared), 130 interrupted (the runs checkpointed; run the same
 // command again to go on).
 int sweep_job(const SweepOptions& options, std::ostream& out, std::ostream& err);

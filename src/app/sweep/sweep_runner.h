@@ -26,11 +26,12 @@ struct SweepRunner {
 struct SweepOutcome {
     bool stopped = false;  // interrupted: the running runs checkpointed, nothing new started
     std::size_t done = 0, total = 0;
-    std::vector<std::size_t> failed;  // runs that failed twice (indices into plan.runs)
+    std::vector<std::size_t> failed;  // runs that failed for good: twice, or once refusing their input (indices into plan.runs)
 };
 
 // Runs every unfinished run of `plan` (a finished run, summary and analysis written, is never
-// rerun; an interrupted one resumes from its checkpoint; a failed one is retried once). Prints
+// rerun; an interrupted one resumes from its checkpoint; a failed one is retried once, unless it
+// refused its input: exit 2). Prints
 // `headline` (what is about to run: "sweep: 3 variants x 2 seeds") with " = N runs, J at once"
 // (or " over K MPI ranks") and how many finished before, then the progress lines.
 SweepOutcome run_sweep_plan(const SweepPlan& plan, const SweepRunner& runner, const StopRequest& stop, const std::string& headline,

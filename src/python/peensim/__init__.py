@@ -447,7 +447,7 @@ def sweep(scene, output_dir, vary=None, *, seeds=None, jobs=0, set=None, baselin
     if code == _STOPPED:
         raise KeyboardInterrupt(f"{output_dir}: the sweep stopped; its runs checkpointed: the same call goes on")
     if code != 0:
-        warnings.warn(f"{output_dir}: some runs failed twice (see {output_dir}/sweep/logs/); the others are compared",
+        warnings.warn(f"{output_dir}: some runs failed (see {output_dir}/sweep/logs/); the others are compared",
                       RuntimeWarning, stacklevel=2)
     return Sweep(output_dir)
 
@@ -536,6 +536,6 @@ def optimise(study, output_dir, *, runs=None, jobs=0, verbose=True):
     if code == _STOPPED:
         raise KeyboardInterrupt(f"{output_dir}: the optimisation stopped; its runs checkpointed: the same call goes on")
     if code != 0:
-        warnings.warn(f"{output_dir}: some runs failed twice (see {output_dir}/optimise/logs/); the search went on without them",
+        warnings.warn(f"{output_dir}: some runs failed (see {output_dir}/optimise/logs/); the search went on without them",
                       RuntimeWarning, stacklevel=2)
     return Optimisation(output_dir)

@@ -304,6 +304,15 @@ TEST(NewScene, AStepPartIsReadInItsOwnUnit) {
     const NewResult refused = run_new(with_unit);
     EXPECT_EQ(refused.code, kExitInputError);
     EXPECT_NE(refused.err.find("--unit"), std::string::npos) << refused.err;
+
+    // Its size in doubt (under 5 shot of 10 mm): the question is the file's own unit, not --unit,
+    // which it may not take.
+    NewSceneOptions large_shot = options(step, dir.path / "large-shot.yaml");
+    large_shot.shot_diameter = "10 mm";
+    const NewResult doubted = run_new(large_shot);
+    EXPECT_EQ(doubted.code, kExitInputError);
+    EXPECT_NE(doubted.err.find("was the file exported in the unit it names"), std::string::npos) << doubted.err;
+    EXPECT_EQ(doubted.err.find("--unit"), std::string::npos) << doubted.err;
 }
 
 // The duration is written to the millisecond; it must not fall short of its last whole turn (45

@@ -214,7 +214,8 @@ TEST(OptimiseJob, FailedRunsCountAsTheWorstAndTheSearchGoesOn) {
     const std::vector<std::string> w = winner_row(dir.path / "o");
     ASSERT_GE(w.size(), 5u) << out.str();
     EXPECT_NEAR(std::stod(w[3]), 70.0, 20.0);
-    EXPECT_NE(read_file(dir.path / "o" / "optimise" / "report.md").find("runs failed twice"), std::string::npos);
+    EXPECT_NE(read_file(dir.path / "o" / "optimise" / "report.md").find("runs failed (twice, or once refusing their input)"),
+              std::string::npos);
     EXPECT_NE(err.str().find("failed"), std::string::npos) << err.str();
 }
 
@@ -245,6 +246,23 @@ TEST(OptimiseJob, AnObjectiveNoRunGivesEndsTheSearchSayingSo) {
     EXPECT_NE(err.str().find("optimise: no setting gave a value of uniformity"), std::string::npos) << err.str();
     EXPECT_FALSE(fs::exists(dir.path / "o" / "optimise" / "winner.json"));
     EXPECT_EQ(out.str().find("round 1"), std::string::npos) << out.str();
+}
+
+// Runs that all refuse their input (exit 2: here a stand-in that always does) are not run again,
+// and the search ends saying so and where their logs are, not blaming the objective.
+TEST(OptimiseJob, EveryRunRefusedEndsSayingWhereTheirLogsAre) {
+    TempDir dir;
+    std::ofstream(dir.path / "study.yaml") << study_text("runs: 8\ninitial: 4\n");
+    const fs::path refusing = dir.path / "refusing";
+    std::ofstream(refusing) << "#!/bin/sh\necho 'error: gear.step: mesh: reading STEP/IGES needs libpeensim_cad.so' >&2\nexit 2\n";
+    ::chmod(refusing.c_str(), 0755);
+    std::ostringstream out, err;
+    EXPECT_EQ(optimise_job(options(dir.path / "study.yaml", dir.path / "o", refusing.string()), out, err), kExitRuntimeError);
+    EXPECT_NE(err.str().find("optimise: every run failed ("), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find((dir.path / "o" / "optimise" / "logs").string() + "/"), std::string::npos) << err.str();
+    EXPECT_EQ(err.str().find("no setting gave a value"), std::string::npos) << err.str();
+    EXPECT_EQ(err.str().find("trying it once more"), std::string::npos) << err.str();
+    EXPECT_FALSE(fs::exists(dir.path / "o" / "optimise" / "winner.json"));
 }
 
 // The claim of the predicted interval at the winner: over 12 searches (their own search seeds), the
