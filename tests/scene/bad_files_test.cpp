@@ -92,7 +92,7 @@ const BadScene catalogue[] = {
 const BadScene compile_catalogue[] = {
     {"soft_with_impulse_law.yaml", 9, "contacts.default.law",
      "expected a soft-sphere law ('hertz-mindlin', 'linear-spring-dashpot') for shot-shot"},
-    {"sink_mesh_open.yaml", 11, "sinks[0].mesh", "a mesh sink must be a closed mesh"},
+    {"sink_mesh_open.yaml", 13, "sinks[0].mesh", "a mesh sink must be a closed mesh"},  // its mesh: line
     {"air_jet_without_drag.yaml", 9, "sources[0].air_speed",
      "an air jet acts on the shot through drag (or rebound scatter), both off; expected air.drag: sphere"},
     {"soft_with_rebound_scatter.yaml", 5, "air.rebound_scatter",

@@ -13,7 +13,7 @@
 #include <cstdio>
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
+    if (argc != 2 || argv[1][0] == '-') {  // `--help` is a question, not a file to write
         std::fprintf(stderr, "usage: peensim_write_step_rod OUT.step\n");
         return 2;
     }
