@@ -45,10 +45,6 @@ namespace {
     throw InputError(SourceLocation{path, 0, 0}, "mesh", problem);
 }
 
-}  // namespace
-
-namespace {
-
 // Points closer than this share a vertex, as a share of the model's bounding-box diagonal: far
 // above the round-off of placing a node (1e-15 relative), far below the shortest triangle edge
 // BRepMesh makes (a tenth of the chordal tolerance; 1e-9 of a 100 mm part is 0.1 nm).
@@ -115,7 +111,7 @@ ReadShape read_with(Reader& reader, const std::string& path, const char* format,
     if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) fail(path, std::string("cannot read ") + format + " file" + messages.quoted());
     reader.TransferRoots();
     if (reader.NbShapes() == 0) fail(path, std::string(format) + " file holds no shape" + messages.quoted());
-    return {reader.OneShape(), 1e-3};
+    return {reader.OneShape(), 1e-3, {}};
 }
 
 ReadShape read_shape(const std::string& path, const MessagesKept& messages) {

@@ -243,15 +243,13 @@ void add_sinks(Model& model, const SceneDescription& scene) {
             try {
                 mesh = load_mesh(s.mesh_path, s.mesh_unit_m);
             } catch (const InputError& e) {
-                throw InputError(s.mesh_where.file.empty() ? s.where : s.mesh_where, "sinks[" + std::to_string(k) + "].mesh",
-                                 e.problem_at_its_place());
+                throw InputError(s.mesh_where, "sinks[" + std::to_string(k) + "].mesh", e.problem_at_its_place());
             }
             for (Vec3& v : mesh.vertices) v += s.translation_m;
             try {
                 model.sinks.push_back(std::make_shared<const MeshSink>(s.name, std::make_shared<const TriangleMesh>(std::move(mesh))));
             } catch (const std::invalid_argument& e) {
-                throw InputError(s.mesh_where.file.empty() ? s.where : s.mesh_where, "sinks[" + std::to_string(k) + "].mesh",
-                                 std::string(e.what()) + " (" + s.mesh_path + ")");
+                throw InputError(s.mesh_where, "sinks[" + std::to_string(k) + "].mesh", std::string(e.what()) + " (" + s.mesh_path + ")");
             }
         } else if (s.region == SinkRegion::box)
             model.sinks.push_back(std::make_shared<const BoxSink>(s.name, s.min_m, s.max_m, BoxSink::Side::inside));
@@ -353,8 +351,7 @@ std::shared_ptr<const Model> compile_model(const SceneDescription& scene) {
         try {
             c.mesh = std::make_shared<const TriangleMesh>(load_component_mesh(desc));
         } catch (const InputError& e) {
-            throw InputError(desc.mesh_where.file.empty() ? desc.where : desc.mesh_where, component_leaf_field(i, "mesh"),
-                             e.problem_at_its_place());
+            throw InputError(desc.mesh_where, component_leaf_field(i, "mesh"), e.problem_at_its_place());
         }
         colliders.push_back(std::async(std::launch::async, [mesh = c.mesh] { return std::make_shared<const MeshCollider>(*mesh); }));
         c.kinematics = build_kinematics(desc, *c.mesh, up);
