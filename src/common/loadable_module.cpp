@@ -14,14 +14,20 @@ namespace peensim {
 
 const void* load_module_entry(const std::string& file, const char* env_var, const char* entry_symbol, const std::string& what) {
     std::vector<std::string> candidates;
-    if (const char* path = std::getenv(env_var); path != nullptr && *path != '\0') candidates.emplace_back(path);  // set, not empty
     std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        candidates.push_back((exe.parent_path() / file).string());
-        candidates.push_back((exe.parent_path().parent_path() / file).string());
+    // Set (not empty): the one the user chose, alone. Falling back to another module when it does
+    // not load would run a build they did not ask for, without a word.
+    const char* chosen = std::getenv(env_var);
+    if (chosen != nullptr && *chosen != '\0') {
+        candidates.emplace_back(chosen);
+    } else {
+        const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+        if (!ec) {
+            candidates.push_back((exe.parent_path() / file).string());
+            candidates.push_back((exe.parent_path().parent_path() / file).string());
+        }
+        candidates.push_back(file);  // the library search path
     }
-    candidates.push_back(file);  // the library search path
     std::string tried;
     for (const std::string& c : candidates) {
         const bool is_path = c.find('/') != std::string::npos;
@@ -43,6 +49,9 @@ const void* load_module_entry(const std::string& file, const char* env_var, cons
         return entry();
     }
     // "not found" would be wrong for a file that is there but is not the module (each line says why).
+    if (chosen != nullptr && *chosen != '\0')
+        throw std::runtime_error(what + " needs " + file + " (built with peensim), which " + env_var + " does not name:" + tried +
+                                 "\nset " + env_var + " to its path, or unset it (peensim then looks beside itself)");
     throw std::runtime_error(what + " needs " + file + " (built with peensim), which none of these is:" + tried + "\nset " + env_var +
                              " to its path");
 }

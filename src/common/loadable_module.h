@@ -7,10 +7,11 @@
 
 namespace peensim {
 
-// Looks for `file` at $env_var, else next to the executable or one directory up (the tests' place
-// in the build tree), else on the library search path; loads the first that opens (it stays loaded
-// for the life of the process) and returns what its C function `entry_symbol()` returns. Throws
-// std::runtime_error saying that `what` needs it and where it looked.
+// Loads `file` from $env_var when it is set (that one only), else the first that opens of: next to
+// the executable, one directory up (the tests' place in the build tree), the library search path.
+// It stays loaded for the life of the process; returns what its C function `entry_symbol()`
+// returns. Throws std::runtime_error saying that `what` needs it, where it looked and why each
+// place failed.
 const void* load_module_entry(const std::string& file, const char* env_var, const char* entry_symbol, const std::string& what);
 
 }  // namespace peensim

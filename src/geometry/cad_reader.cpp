@@ -54,20 +54,28 @@ std::string encode_message(Answer kind, const std::string& message) {
     return b.bytes();
 }
 
-// In the child: loads the module, reads the file, writes the answer; never returns.
-[[noreturn]] void read_in_child(int out, const std::string& path, const Tessellation& tessellation) {
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with the process that waits for it
-    std::string answer;
-    const CadModule* module = nullptr;
+// In the child: the module, or null with why this installation cannot read any part, as a build
+// without OpenCASCADE cannot (the scene's mesh is refused: exit 2; a sweep does not run it again).
+const CadModule* load_cad_module(std::string& problem) {
     try {
-        module = static_cast<const CadModule*>(
+        return static_cast<const CadModule*>(
             load_module_entry("libpeensim_cad.so", "PEENSIM_CAD_MODULE", "peensim_cad_module", "reading STEP/IGES"));
     } catch (const std::exception& e) {
-        // This installation cannot read the part, as a build without OpenCASCADE cannot: the
-        // scene's mesh is refused (exit 2; a sweep does not run it again).
-        answer = encode_message(Answer::input_problem, std::string(e.what()) + "; or export the part as STL");
+        problem = std::string(e.what()) + "; or export the part as STL";
+        return nullptr;
     }
-    if (module != nullptr) {
+}
+
+// In the child: loads the module, reads the file unless `load_only`, writes the answer; never
+// returns.
+[[noreturn]] void read_in_child(int out, const std::string& path, const Tessellation& tessellation, bool load_only) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // dies with the process that waits for it
+    std::string answer;
+    std::string problem;
+    const CadModule* module = load_cad_module(problem);
+    if (module == nullptr) answer = encode_message(Answer::input_problem, problem);
+    if (module != nullptr && load_only) answer = encode(TriangleMesh{});
+    if (module != nullptr && !load_only) {
         try {
             TriangleMesh mesh;
             std::string problem;
@@ -100,7 +108,11 @@ bool cad_reading_available() { return true; }
 // OpenCASCADE. fork() copies only the calling thread: the child runs the loader, the module and
 // write() only, and glibc keeps malloc and the loader usable in it (meshes are loaded before a run
 // starts its threads; a Python caller's threads are not touched by the child).
-TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessellation) {
+namespace {
+
+// The child's answer to read_in_child(path, tessellation, load_only), or the InputError of a
+// child that died.
+std::string answer_of_child(const std::string& path, const Tessellation& tessellation, bool load_only) {
     int pipe_ends[2];
     if (::pipe(pipe_ends) != 0) throw std::runtime_error("reading " + path + ": cannot make a pipe: " + std::strerror(errno));
     const pid_t child = ::fork();
@@ -111,7 +123,7 @@ TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessella
     }
     if (child == 0) {
         ::close(pipe_ends[0]);
-        read_in_child(pipe_ends[1], path, tessellation);
+        read_in_child(pipe_ends[1], path, tessellation, load_only);
     }
     ::close(pipe_ends[1]);
     std::string answer;
@@ -133,6 +145,20 @@ TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessella
                              "or STL)");
     }
     if (answer.empty()) throw std::runtime_error("reading " + path + ": the STEP/IGES reader ended without an answer");
+    return answer;
+}
+
+}  // namespace
+
+void require_cad_reading(const std::string& path) {
+    // One child per process: whether the module loads does not change while it runs.
+    static const std::string answer = answer_of_child(path, Tessellation{}, true);
+    ByteReader r(answer, "loading the STEP/IGES reader: its answer");
+    if (r.get<Answer>() == Answer::input_problem) throw InputError(SourceLocation{path, 0, 0}, "mesh", r.get_string());
+}
+
+TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessellation) {
+    const std::string answer = answer_of_child(path, tessellation, false);
     ByteReader r(answer, "reading " + path + ": the STEP/IGES reader's answer");
     switch (r.get<Answer>()) {
         case Answer::input_problem: throw InputError(SourceLocation{path, 0, 0}, "mesh", r.get_string());
@@ -155,10 +181,15 @@ TriangleMesh read_cad_mesh(const std::string& path, const Tessellation& tessella
 
 bool cad_reading_available() { return false; }
 
-TriangleMesh read_cad_mesh(const std::string& path, const Tessellation&) {
+void require_cad_reading(const std::string& path) {
     throw InputError(SourceLocation{path, 0, 0}, "mesh",
                      "reading STEP/IGES needs OpenCASCADE, which this build of peensim was built without: apt-get install "
                      "libocct-data-exchange-dev libocct-modeling-algorithms-dev and rebuild (cmake finds it), or export the part as STL");
+}
+
+TriangleMesh read_cad_mesh(const std::string& path, const Tessellation&) {
+    require_cad_reading(path);
+    return {};
 }
 
 #endif

@@ -60,6 +60,12 @@ struct CadModule {
     bool (*read)(const std::string& path, const Tessellation& tessellation, TriangleMesh& mesh, std::string& problem);
 };
 
+// Throws the InputError read_cad_mesh(path, ...) throws when this installation cannot read any
+// STEP or IGES file (built without OpenCASCADE, or its module does not load), without reading
+// `path`: what a sweep checks before it starts its runs. The module is tried once per process (in a
+// child, as for a read).
+void require_cad_reading(const std::string& path);
+
 // The tessellated surfaces of every solid and face in the file, in metres.
 // Throws InputError (file = path, field "mesh") if OpenCASCADE is not built in, the file cannot be
 // read (empty, not STEP/IGES, a syntax error: OpenCASCADE's own message is quoted), holds no face

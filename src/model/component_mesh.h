@@ -12,4 +12,10 @@ namespace peensim {
 // Throws InputError (file = the mesh file, field "mesh") as load_mesh does.
 TriangleMesh load_component_mesh(const ComponentDesc& desc);
 
+// Throws the InputError compile_model throws (at the part's `mesh:` field) for the scene's first
+// STEP or IGES mesh, component's or sink's, when this installation cannot read STEP and IGES at
+// all, without reading any file: a sweep or an optimisation refuses at once what every one of its
+// runs would refuse.
+void check_cad_meshes_readable(const SceneDescription& scene);
+
 }  // namespace peensim

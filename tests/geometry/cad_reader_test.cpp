@@ -395,6 +395,55 @@ TEST_F(CadReaderFiles, WithoutTheCadModuleAStepPartIsRefusedAsInput) {
     EXPECT_EQ(set.output.find("rod.yaml:"), std::string::npos) << set.output;
 }
 
+// A sweep of such a part refuses it before any run starts (every run would refuse it): exit 2 at
+// the part's mesh: line, no run folder; a variant that makes a part STEP is blamed on its line.
+TEST_F(CadReaderFiles, WithoutTheCadModuleASweepOfAStepPartRefusesItBeforeAnyRun) {
+    write_step(rod(), path("rod.step"));
+    const std::string binary = std::string("'") + PEENSIM_BINARY + "'";
+    ASSERT_EQ(testing::run_shell(binary + " new '" + path("rod.step") + "' -o '" + path("rod.yaml") + "' 2>&1").status, 0);
+    fs::create_directories(path("alone"));
+    fs::copy_file(PEENSIM_BINARY, path("alone/peensim"));
+    const std::string alone = "PEENSIM_CAD_MODULE='" + path("nowhere.so") + "' '" + path("alone/peensim") + "' ";
+    const testing::ShellResult swept = testing::run_shell(alone + "sweep '" + path("rod.yaml") + "' -o '" + path("out") +
+                                                          "' --vary shot.count=8,16 --set 'process.duration=1 ms' 2>&1");
+    ASSERT_TRUE(WIFEXITED(swept.status)) << swept.output;
+    EXPECT_EQ(WEXITSTATUS(swept.status), kExitInputError) << swept.output;
+    EXPECT_NE(swept.output.find("reading STEP/IGES needs libpeensim_cad.so"), std::string::npos) << swept.output;
+    EXPECT_NE(swept.output.find("rod.yaml:"), std::string::npos) << swept.output;
+    EXPECT_EQ(swept.output.find("seeds = "), std::string::npos) << swept.output;  // no "2 variants x 1 seeds = 2 runs"
+    EXPECT_FALSE(fs::exists(path("out/count-8"))) << swept.output;
+    // The scene with an STL part (never read: the check reads no mesh), one variant a STEP part.
+    std::ofstream(path("study.yaml")) << "scene: " << path("rod.yaml") << "\n"
+                                      << "set: [\"components[rod].mesh=" << PEENSIM_SOURCE_DIR << "/assets/rod.stl\"]\n"
+                                      << "variants:\n"
+                                      << "  - {name: stl, set: {shot.count: 8}}\n"
+                                      << "  - {name: cad, set: {\"components[rod].mesh\": \"" << path("rod.step") << "\"}}\n";
+    const testing::ShellResult listed = testing::run_shell(alone + "sweep '" + path("study.yaml") + "' -o '" + path("out2") + "' 2>&1");
+    ASSERT_TRUE(WIFEXITED(listed.status)) << listed.output;
+    EXPECT_EQ(WEXITSTATUS(listed.status), kExitInputError) << listed.output;
+    EXPECT_NE(listed.output.find("study.yaml:5:"), std::string::npos) << listed.output;
+    EXPECT_NE(listed.output.find("reading STEP/IGES needs libpeensim_cad.so"), std::string::npos) << listed.output;
+    EXPECT_FALSE(fs::exists(path("out2/stl"))) << listed.output;
+}
+
+// A module path the user set is the only one tried: a wrong one is an error that says so, even
+// where the right module sits beside the binary (before, that one was loaded without a word).
+TEST_F(CadReaderFiles, AWrongCadModulePathIsAnErrorNotAFallBack) {
+    write_step(rod(), path("rod.step"));
+    const std::string binary = std::string("'") + PEENSIM_BINARY + "'";
+    ASSERT_EQ(testing::run_shell(binary + " new '" + path("rod.step") + "' -o '" + path("rod.yaml") + "' 2>&1").status, 0);
+    std::ofstream(path("junk.so")) << "not a module\n";
+    const testing::ShellResult checked =
+        testing::run_shell("PEENSIM_CAD_MODULE='" + path("junk.so") + "' " + binary + " check '" + path("rod.yaml") + "' 2>&1");
+    ASSERT_TRUE(WIFEXITED(checked.status)) << checked.output;
+    EXPECT_EQ(WEXITSTATUS(checked.status), kExitInputError) << checked.output;
+    EXPECT_NE(checked.output.find("which PEENSIM_CAD_MODULE does not name:\n  " + path("junk.so") + ": "), std::string::npos)
+        << checked.output;
+    EXPECT_NE(checked.output.find("or unset it (peensim then looks beside itself)"), std::string::npos) << checked.output;
+    // Unset, the module beside the binary reads the part.
+    EXPECT_EQ(testing::run_shell("env -u PEENSIM_CAD_MODULE " + binary + " check '" + path("rod.yaml") + "' 2>&1").status, 0);
+}
+
 #endif
 
 }  // namespace

@@ -230,7 +230,7 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
 
     std::optional<MpiSweep> mpi;
     if (launched_by_mpi()) mpi.emplace();
-    SweepRunner runner{executable, study.scene_path, opt_dir + "/logs", 1, nullptr};
+    SweepRunner runner{executable, study.scene_path, opt_dir + "/logs", 1, nullptr, "optimise"};
     if (mpi && mpi->rank() != 0) {
         // The other ranks: run what rank 0 sends, round after round, until it sends nothing.
         for (std::string text = mpi->broadcast(""); !text.empty(); text = mpi->broadcast(""))

@@ -44,8 +44,8 @@ std::string sweep_duration_text(double s) {
 
 }  // namespace
 
-SweepBook::SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err)
-    : plan_(plan), logs_(std::move(logs_dir)), slots_(std::max(1, slots)), out_(out), err_(err) {
+SweepBook::SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err, std::string job)
+    : plan_(plan), logs_(std::move(logs_dir)), slots_(std::max(1, slots)), out_(out), err_(err), job_(std::move(job)) {
     for (std::size_t k = 0; k < plan_.runs.size(); ++k) {
         if (finished(plan_.runs[k]))
             ++done_;
@@ -86,23 +86,34 @@ void SweepBook::outcome(std::size_t k, int code) {
         const std::size_t left = total() > ended ? total() - ended : 0;
         const double eta = elapsed / static_cast<double>(done_here_) * static_cast<double>(left) /
                            static_cast<double>(std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(slots_), left)));
-        out_ << "sweep: " << done_ << "/" << total() << " done (" << label_of(k) << ", " << sweep_duration_text(elapsed) << " elapsed"
+        out_ << job_ << ": " << done_ << "/" << total() << " done (" << label_of(k) << ", " << sweep_duration_text(elapsed) << " elapsed"
              << (left > 0 ? ", about " + sweep_duration_text(eta) + " to go" : std::string()) << ")\n"
              << std::flush;
     } else if (code == kExitInterrupted && stopped_) {
         // Checkpointed: the next sweep resumes it.
     } else if (code == kExitInputError) {
         // Its scene (a file it names) is refused: the same run again would be, for the same reason.
-        err_ << "sweep: " << label_of(k) << " refused its input (exit " << code << ", see " << log_of(k)
-             << "); not run again, the sweep goes on without it\n";
-        failed_.push_back(k);
+        err_ << job_ << ": " << label_of(k) << " refused its input (exit " << code << ", see " << log_of(k) << "); not run again, the "
+             << job_ << " goes on without it\n";
+        failed_for_good(k);
     } else if (attempts_[k] < 2 && !stopped_) {
-        err_ << "sweep: " << label_of(k) << " failed (exit " << code << ", see " << log_of(k) << "); trying it once more\n";
+        err_ << job_ << ": " << label_of(k) << " failed (exit " << code << ", see " << log_of(k) << "); trying it once more\n";
         queue_.push_back(k);
     } else {
-        err_ << "sweep: " << label_of(k) << " failed again (exit " << code << ", see " << log_of(k) << "); the sweep goes on without it\n";
-        failed_.push_back(k);
+        err_ << job_ << ": " << label_of(k) << " failed again (exit " << code << ", see " << log_of(k) << "); the " << job_
+             << " goes on without it\n";
+        failed_for_good(k);
     }
+}
+
+void SweepBook::failed_for_good(std::size_t k) {
+    failed_.push_back(k);
+    // Its folders, when it left them empty (a run refused before it wrote anything): the folder of
+    // a variant none of whose runs ran is no result. Removing a folder that holds anything fails,
+    // and is meant to.
+    std::error_code kept;
+    fs::remove(plan_.runs[k].dir, kept);
+    fs::remove(fs::path(plan_.runs[k].dir).parent_path(), kept);
 }
 
 std::string sweep_geometry_cache(const std::string& logs_dir) { return (fs::path(logs_dir).parent_path() / "geometry-cache").string(); }

@@ -20,8 +20,9 @@ namespace peensim {
 class SweepBook {
 public:
     // Queues every run of `plan` that has not finished yet (summary and analysis written); `slots`:
-    // how many run at once (for the time still to go).
-    SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err);
+    // how many run at once (for the time still to go); `job`: what the lines say runs them
+    // ("sweep", "optimise").
+    SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err, std::string job = "sweep");
 
     bool has_queued() const { return !queue_.empty(); }
     std::size_t take();                            // the next run to start: one more attempt of it
@@ -36,11 +37,14 @@ public:
     std::string label_of(std::size_t run) const;  // "<variant>/s<k>"
 
 private:
+    void failed_for_good(std::size_t run);  // not run again; its folders removed if it left them empty
+
     const SweepPlan& plan_;
     std::string logs_;
     int slots_;
     std::ostream& out_;
     std::ostream& err_;
+    std::string job_;
     std::deque<std::size_t> queue_;
     std::map<std::size_t, int> attempts_;
     std::vector<std::size_t> failed_;

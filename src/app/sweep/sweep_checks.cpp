@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "model/component_mesh.h"
 #include "scene/scene_parser.h"
 #include "scene/yaml_access.h"
 
@@ -97,6 +98,9 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, std::o
                 progress.done(++n);
             }
     }
+    // A STEP or IGES part this installation cannot read: every run would refuse it, so nothing
+    // starts (the scene's own part blamed at its mesh: field, a variant's on the variant).
+    check_cad_meshes_readable(read({}));
     CheckProgress progress(out, "the variants", plan.variants.size());
     for (std::size_t k = 0; k < plan.variants.size(); ++k) {
         const SweepVariant& v = plan.variants[k];
@@ -104,7 +108,9 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, std::o
         for (const auto& [path, value] : v.set) settings.push_back(path + "=" + value);
         std::uint64_t seed = 0;
         try {
-            seed = read(settings).process.seed;
+            const SceneDescription variant = read(settings);
+            check_cad_meshes_readable(variant);
+            seed = variant.process.seed;
         } catch (const InputError& e) {
             blame(e, v.origin, v.field, "variant '" + v.name + "'", settings);
         }

@@ -35,7 +35,10 @@ int finish(const SweepOutcome& outcome, const SweepPlan& plan, const std::string
     out << "comparison: " << sweep_dir << "/{comparison.csv, report.md, report.html" << (compared.pngs.empty() ? "" : ", *.png") << "}\n";
     if (!compared.plot_note.empty()) out << "plots: " << compared.plot_note << "\n";
     out << sweep_geometry_cache_line(sweep_dir + "/logs");
-    return outcome.failed.empty() ? kExitOk : kExitRuntimeError;
+    if (outcome.failed.empty()) return kExitOk;
+    err << "sweep: " << outcome.failed.size() << " of " << outcome.total << " runs failed for good (why: their logs in " << sweep_dir
+        << "/logs); the comparison leaves them out\n";
+    return kExitRuntimeError;
 }
 
 }  // namespace
@@ -86,7 +89,7 @@ int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err)
     fs::create_directories(sweep_dir + "/logs");
     const StopRequest stop(o.stop_requested, "peensim sweep: second interrupt, stopping at once (the runs keep their last checkpoints)\n");
 
-    SweepRunner runner{executable, o.scene_path, sweep_dir + "/logs", 1, nullptr};
+    SweepRunner runner{executable, o.scene_path, sweep_dir + "/logs", 1, nullptr, "sweep"};
     const std::string headline = "sweep: " + std::to_string(plan.variants.size()) + " variants x " + std::to_string(plan.seeds) + " seeds";
     if (launched_by_mpi()) {
         // Across the ranks of an MPI job: rank 0 hands the runs out and compares them.

@@ -27,11 +27,13 @@ InputError = _native.InputError
 # What a progress callback receives: time_s, duration_s, fraction, impacts, wall_s, eta_s.
 RunProgress = _native.RunProgress
 
-# Pictures (render: a scene's animation, Scene.check(picture=...)) come from this build's module.
-os.environ.setdefault("PEENSIM_RENDER_MODULE", _native.render_module)
-# STEP and IGES parts too (a build without OpenCASCADE has none and says what to install).
-if _native.cad_module:
-    os.environ.setdefault("PEENSIM_CAD_MODULE", _native.cad_module)
+# Pictures (render: a scene's animation, Scene.check(picture=...)) come from this build's module,
+# and STEP and IGES parts too (a build without OpenCASCADE has none and says what to install). Set
+# only while the build's file is there: a module path that is set is the only one peensim tries.
+for _variable, _module in (("PEENSIM_RENDER_MODULE", _native.render_module), ("PEENSIM_CAD_MODULE", _native.cad_module)):
+    if _module and os.path.isfile(_module):
+        os.environ.setdefault(_variable, _module)
+del _variable, _module
 
 _STOPPED = 130  # the jobs' exit code of a run stopped at a checkpoint
 

@@ -156,7 +156,7 @@ TEST(OptimiseJob, FindsConfirmsAndResumesTheOptimumOfAKnownProcess) {
     std::ostringstream again, again_err;
     ASSERT_EQ(optimise_job(options(dir.path / "study.yaml", dir.path / "o", fake), again, again_err), kExitOk) << again_err.str();
     EXPECT_EQ(read_file(dir.path / "o" / "optimise" / "report.md"), report);
-    EXPECT_EQ(again.str().find("sweep: "), std::string::npos) << again.str();  // no run's progress line: none ran
+    EXPECT_EQ(again.str().find(" done ("), std::string::npos) << again.str();  // no run's progress line: none ran
     // A larger budget goes on from there.
     OptimiseOptions more = options(dir.path / "study.yaml", dir.path / "o", fake);
     more.runs = 28;

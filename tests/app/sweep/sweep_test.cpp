@@ -344,6 +344,13 @@ TEST(SweepJob, ARunThatRefusesItsInputIsNotRunAgain) {
     const std::string log = read_file(dir.path / "refused" / "sweep" / "logs" / "count-64.s0.log");
     EXPECT_EQ(log.find("error: rod.step"), log.rfind("error: rod.step")) << log;  // run once
     EXPECT_NE(read_file(dir.path / "refused" / "sweep" / "report.md").find("| count-64 | 0/1 |"), std::string::npos);
+    // The end says how many failed and where why is; the runs wrote nothing, and left no folder.
+    EXPECT_NE(err.str().find("sweep: 2 of 2 runs failed for good (why: their logs in " +
+                             (dir.path / "refused" / "sweep" / "logs").string() + "); the comparison leaves them out"),
+              std::string::npos)
+        << err.str();
+    EXPECT_FALSE(fs::exists(dir.path / "refused" / "count-64")) << err.str();
+    EXPECT_FALSE(fs::exists(dir.path / "refused" / "count-128")) << err.str();
 }
 
 // Ctrl-C stops a sweep with its runs checkpointed (exit 130); the same command goes on, and every
