@@ -184,6 +184,7 @@ void write_fake_run(const fs::path& dir, double whole_s, double slow_tooth_s, do
     fs::create_directories(dir / "analysis");
     std::ofstream(dir / "summary.json") << R"({"finished": true, "normal_speed": [{"component": "gear", "p90_normal_speed_mps": 3.0}]})";
     const auto forecast = [&](double t) {
+        if (too_short == "never") return std::string(R"({"status": "never"})");  // an area without an impact near it
         if (!too_short.empty()) return std::string(R"({"status": "too_short", "time_s": 100, "run_for_s": )") + too_short + "}";
         return R"({"status": "forecast", "time_s": )" + std::to_string(t) + R"(, "low_s": )" + std::to_string(0.95 * t) +
                R"(, "high_s": )" + std::to_string(1.08 * t) + "}";
@@ -203,12 +204,13 @@ void write_fake_run(const fs::path& dir, double whole_s, double slow_tooth_s, do
 TEST(SweepCompare, TheSlowestRegionEverywhereUniformityAndShareBelowEachWithAVerdict) {
     TempDir dir;
     SweepPlan plan =
-        plan_sweep({parse_sweep_axis("components[gear].motion.speed=0 rpm,30 rpm,60 rpm")}, 2, 1, {}, (dir.path / "s").string());
+        plan_sweep({parse_sweep_axis("components[gear].motion.speed=0 rpm,30 rpm,60 rpm,90 rpm")}, 2, 1, {}, (dir.path / "s").string());
     for (const SweepRun& run : plan.runs) {
         const double jitter = run.replicate == 0 ? 1.0 : 1.02;
         if (run.variant == 0) write_fake_run(run.dir, 450.0 * jitter, 1400.0 * jitter, 1500.0 * jitter, 0.35, 0.2 * jitter);
         if (run.variant == 1) write_fake_run(run.dir, 455.0 * jitter, 700.0 * jitter, 720.0 * jitter, 0.8, 0.1 * jitter);
         if (run.variant == 2) write_fake_run(run.dir, 0, 0, 0, 0.8, 0.1, run.replicate == 0 ? "600" : "900");
+        if (run.variant == 3) write_fake_run(run.dir, 0, 0, 0, 0.8, 0.1, "never");
     }
     write_sweep_comparison(plan, (dir.path / "s" / "sweep").string(), "", "gear");
     const std::string csv = read_file(dir.path / "s" / "sweep" / "comparison.csv");
@@ -233,6 +235,9 @@ TEST(SweepCompare, TheSlowestRegionEverywhereUniformityAndShareBelowEachWithAVer
     EXPECT_EQ(rotating.find("within noise"), rotating.rfind("within noise")) << rotating;  // only there
     // A variant whose runs are too short says so and how long to run, instead of a number.
     EXPECT_NE(row_of(report, "speed-60rpm").find("too short: run 900 s"), std::string::npos) << report;
+    // One with an area no impact came near: never, at the rate its runs measured (not "the part has
+    // no impact": it has, 1000 per second).
+    EXPECT_NE(row_of(report, "speed-90rpm").find("never at this rate: an area of it had no impact near it"), std::string::npos) << report;
     // The one-seed interval is the run's own (its wider side).
     SweepPlan one = plan_sweep({parse_sweep_axis("components[gear].motion.speed=0 rpm")}, 1, 1, {}, (dir.path / "o").string());
     write_fake_run(one.runs[0].dir, 400.0, 1000.0, 1100.0, 0.5, 0.2);
