@@ -11,8 +11,11 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
@@ -151,8 +154,22 @@ std::string answer_of_child(const std::string& path, const Tessellation& tessell
 }  // namespace
 
 void require_cad_reading(const std::string& path) {
-    // One child per process: whether the module loads does not change while it runs.
-    static const std::string answer = answer_of_child(path, Tessellation{}, true);
+    // One child per value of the module's variable (a sweep checks every variant; a Python session
+    // may set the variable between two calls): whether the module loads depends on it alone.
+    static std::mutex guard;
+    static std::map<std::string, std::string> answers;
+    const char* chosen = std::getenv("PEENSIM_CAD_MODULE");
+    const std::string key = chosen != nullptr ? chosen : "";
+    std::string answer;
+    {
+        const std::lock_guard<std::mutex> lock(guard);
+        if (const auto it = answers.find(key); it != answers.end()) answer = it->second;
+    }
+    if (answer.empty()) {
+        answer = answer_of_child(path, Tessellation{}, true);
+        const std::lock_guard<std::mutex> lock(guard);
+        answers.emplace(key, answer);
+    }
     ByteReader r(answer, "loading the STEP/IGES reader: its answer");
     if (r.get<Answer>() == Answer::input_problem) throw InputError(SourceLocation{path, 0, 0}, "mesh", r.get_string());
 }

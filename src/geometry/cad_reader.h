@@ -62,8 +62,8 @@ struct CadModule {
 
 // Throws the InputError read_cad_mesh(path, ...) throws when this installation cannot read any
 // STEP or IGES file (built without OpenCASCADE, or its module does not load), without reading
-// `path`: what a sweep checks before it starts its runs. The module is tried once per process (in a
-// child, as for a read).
+// `path`: what a sweep checks before it starts its runs. The module is tried in a child, as for a
+// read, once per value of PEENSIM_CAD_MODULE.
 void require_cad_reading(const std::string& path);
 
 // The tessellated surfaces of every solid and face in the file, in metres.
