@@ -37,7 +37,8 @@ const void* load_module_entry(const std::string& file, const char* env_var, cons
         }
         void* handle = ::dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!handle) {
-            tried += "\n  " + c + ": " + ::dlerror();
+            const std::string why = ::dlerror();  // glibc's names the file first, most often
+            tried += "\n  " + (why.rfind(c + ": ", 0) == 0 ? why : c + ": " + why);
             continue;
         }
         using Entry = const void* (*)();

@@ -1,7 +1,6 @@
 #include "model/component_mesh.h"
 
 #include "common/cad_file.h"
-#include "geometry/cad_reader.h"
 
 namespace peensim {
 
@@ -13,20 +12,14 @@ TriangleMesh load_component_mesh(const ComponentDesc& desc) {
     return load_mesh(desc.mesh_path, options);
 }
 
-void check_cad_meshes_readable(const SceneDescription& scene) {
-    const auto check = [](const std::string& path, const SourceLocation& where, const std::string& field) {
-        if (!is_cad_file(path)) return;
-        try {
-            require_cad_reading(path);
-        } catch (const InputError& e) {
-            throw InputError(where, field, e.problem_at_its_place());
-        }
-    };
+std::optional<CadMeshUse> first_cad_mesh(const SceneDescription& scene) {
     for (std::size_t i = 0; i < scene.components.size(); ++i)
-        check(scene.components[i].mesh_path, scene.components[i].mesh_where, "components[" + std::to_string(i) + "].mesh");
+        if (is_cad_file(scene.components[i].mesh_path))
+            return CadMeshUse{scene.components[i].mesh_path, scene.components[i].mesh_where, "components[" + std::to_string(i) + "].mesh"};
     for (std::size_t k = 0; k < scene.sinks.size(); ++k)
-        if (scene.sinks[k].region == SinkRegion::mesh)
-            check(scene.sinks[k].mesh_path, scene.sinks[k].mesh_where, "sinks[" + std::to_string(k) + "].mesh");
+        if (scene.sinks[k].region == SinkRegion::mesh && is_cad_file(scene.sinks[k].mesh_path))
+            return CadMeshUse{scene.sinks[k].mesh_path, scene.sinks[k].mesh_where, "sinks[" + std::to_string(k) + "].mesh"};
+    return std::nullopt;
 }
 
 }  // namespace peensim

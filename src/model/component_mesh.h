@@ -4,6 +4,9 @@
 // logged facets back onto them).
 #pragma once
 
+#include <optional>
+#include <string>
+
 #include "geometry/mesh_loader.h"
 #include "scene/scene_description.h"
 
@@ -12,10 +15,15 @@ namespace peensim {
 // Throws InputError (file = the mesh file, field "mesh") as load_mesh does.
 TriangleMesh load_component_mesh(const ComponentDesc& desc);
 
-// Throws the InputError compile_model throws (at the part's `mesh:` field) for the scene's first
-// STEP or IGES mesh, component's or sink's, when this installation cannot read STEP and IGES at
-// all, without reading any file: a sweep or an optimisation refuses at once what every one of its
-// runs would refuse.
-void check_cad_meshes_readable(const SceneDescription& scene);
+// The scene's first STEP or IGES mesh, component's or sink's: its file, where the scene gives it
+// (its `mesh:` field, or `<--set>`) and that field's name ("components[2].mesh"): what a sweep
+// checks this installation can read (geometry/cad_reader.h, require_cad_reading) before it starts
+// any run, as compile_model would refuse it in every one.
+struct CadMeshUse {
+    std::string path;
+    SourceLocation where;
+    std::string field;
+};
+std::optional<CadMeshUse> first_cad_mesh(const SceneDescription& scene);
 
 }  // namespace peensim

@@ -142,7 +142,7 @@ void check_sweep(const std::string& scene_path, const SweepOverrides& overrides,
     SweepPlan plan = listed.empty() ? plan_sweep(axes, seeds, scene.process.seed, all, "out")
                                     : plan_sweep_variants(listed, seeds, scene.process.seed, all, "out");
     std::ostringstream progress;
-    check_sweep_variants(scene_path, plan, progress);
+    check_sweep_variants(scene_path, plan, {}, progress);
 }
 
 TEST(FuzzInputs, SweepFilesAreReadOrRefusedWithAnInputError) {

@@ -424,6 +424,31 @@ TEST_F(CadReaderFiles, WithoutTheCadModuleASweepOfAStepPartRefusesItBeforeAnyRun
     EXPECT_NE(listed.output.find("study.yaml:5:"), std::string::npos) << listed.output;
     EXPECT_NE(listed.output.find("reading STEP/IGES needs libpeensim_cad.so"), std::string::npos) << listed.output;
     EXPECT_FALSE(fs::exists(path("out2/stl"))) << listed.output;
+    // Where else a part is given: a grid's vary key (its own line, not the first key's), and the
+    // sweep file's set (its line: the file has no --set).
+    const auto refused_at = [&](const std::string& study, const std::string& where) {
+        std::ofstream(path("where.yaml")) << study;
+        const testing::ShellResult r = testing::run_shell(alone + "sweep '" + path("where.yaml") + "' -o '" + path("out3") + "' 2>&1");
+        EXPECT_TRUE(WIFEXITED(r.status) && WEXITSTATUS(r.status) == kExitInputError) << r.output;
+        EXPECT_NE(r.output.find(where), std::string::npos) << where << " in " << r.output;
+        EXPECT_NE(r.output.find("reading STEP/IGES needs libpeensim_cad.so"), std::string::npos) << r.output;
+    };
+    const std::string stl = std::string(PEENSIM_SOURCE_DIR) + "/assets/rod.stl";
+    refused_at("scene: " + path("rod.yaml") + "\nset: [\"components[rod].mesh=" + stl + "\"]\nvary:\n  shot.count: [8, 16]\n" +
+                   "  \"components[rod].mesh\": [\"" + stl + "\", \"" + path("rod.step") + "\"]\n",
+               "where.yaml:5:3: vary.components[rod].mesh: variant 'count-8_mesh-");  // line 4 is shot.count's
+    refused_at("scene: " + path("rod.yaml") + "\nset: [\"shot.count=8\", \"components[rod].mesh=" + path("rod.step") +
+                   "\"]\nvary: {shot.count: [8, 16]}\n",
+               "where.yaml:2:6: set: 'components[rod].mesh=" + path("rod.step") + "'");
+    // A STEP part that every variant replaces is never read: the sweep runs (and without the
+    // render module its report says why a picture is missing).
+    std::ofstream(path("replaced.yaml")) << "scene: " << path("rod.yaml") << "\nset: [\"process.duration=2 ms\"]\nvariants:\n"
+                                         << "  - {name: stl, set: {\"components[rod].mesh\": \"" << stl
+                                         << "\", \"components[rod].mesh_unit\": mm}}\n";
+    const testing::ShellResult replaced =
+        testing::run_shell(alone + "sweep '" + path("replaced.yaml") + "' -o '" + path("out4") + "' 2>&1");
+    EXPECT_EQ(replaced.status, 0) << replaced.output;
+    EXPECT_TRUE(fs::exists(path("out4/stl/s0/impacts.csv"))) << replaced.output;
 }
 
 // A module path the user set is the only one tried: a wrong one is an error that says so, even
@@ -440,6 +465,7 @@ TEST_F(CadReaderFiles, AWrongCadModulePathIsAnErrorNotAFallBack) {
     EXPECT_NE(checked.output.find("which PEENSIM_CAD_MODULE does not name:\n  " + path("junk.so") + ": "), std::string::npos)
         << checked.output;
     EXPECT_NE(checked.output.find("or unset it (peensim then looks beside itself)"), std::string::npos) << checked.output;
+    EXPECT_EQ(checked.output.find(path("junk.so") + ": " + path("junk.so")), std::string::npos) << checked.output;  // named once
     // Unset, the module beside the binary reads the part.
     EXPECT_EQ(testing::run_shell("env -u PEENSIM_CAD_MODULE " + binary + " check '" + path("rod.yaml") + "' 2>&1").status, 0);
 }

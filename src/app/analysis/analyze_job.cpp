@@ -602,6 +602,8 @@ void analyze_run(const std::string& output_dir, std::ostream& out, std::ostream&
     context.plot_note = plot_note;
     const std::map<std::string, std::string> views = made_views.get();
     if (!context.view_note.empty()) out << "analysis: " << context.view_note << "\n";
+    // Also in the report; said even to a quiet run (a sweep's log), as pictures asked for are missing.
+    if (!context.picture_note.empty()) err << "warning: " << context.picture_note << "\n";
     const std::string report = analysis_report(scene, parts, context);
     write_file_atomically((adir / "report.md").string(), report);
     // The same page with its pictures inside: one file to send.

@@ -65,7 +65,7 @@ void check_study(const Study& study, std::ostream& out) {
         }
     }
     SweepPlan plan = plan_sweep_variants(variants, 1, 0, study.overrides, "");
-    check_sweep_variants(study.scene_path, plan, out);
+    check_sweep_variants(study.scene_path, plan, SweepOverrides{study.overrides, study.set_origin, {}}, out);
 }
 
 // What decides which settings a search runs: everything but its budget and its confirmation (a
@@ -230,7 +230,7 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
 
     std::optional<MpiSweep> mpi;
     if (launched_by_mpi()) mpi.emplace();
-    SweepRunner runner{executable, study.scene_path, opt_dir + "/logs", 1, nullptr, "optimise"};
+    SweepRunner runner{executable, study.scene_path, opt_dir + "/logs", 1, nullptr, "optimise", "optimisation"};
     if (mpi && mpi->rank() != 0) {
         // The other ranks: run what rank 0 sends, round after round, until it sends nothing.
         for (std::string text = mpi->broadcast(""); !text.empty(); text = mpi->broadcast(""))
@@ -404,7 +404,6 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     result.best = measured.points.empty() ? 0 : measured.point_setting[result.model->incumbent(measured.points)];
     result.budget = budget;
     result.stopped_because = stopped_because;
-    result.failed_runs = failed.size();
     if (study.confirm > 0) {
         // Named by the settings: a search resumed with a larger budget may find another winner.
         std::vector<SweepVariant> variants{{"confirm-start", setting_overrides(study, settings[0]), {study.path}, "start"}};
@@ -422,11 +421,15 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
         result.confirmed = read_setting_figures(study, *result.confirm_plan);
     }
     finish_ranks();
+    result.failed_runs = failed.size();  // the search's and the confirmation's
     const OptimiseReportFiles files = write_optimise_report(result, opt_dir);
     out << "optimise: " << stopped_because << "; the winner is " << settings[result.best].name << "\n" << files.summary;
     out << "report: " << opt_dir << "/{report.md, report.html, evaluations.csv, winner.json" << (files.plots ? ", *.png" : "") << "}\n"
         << sweep_geometry_cache_line(opt_dir + "/logs");
-    return failed.empty() ? kExitOk : kExitRuntimeError;
+    if (failed.empty()) return kExitOk;
+    err << "optimise: " << failed.size() << (failed.size() == 1 ? " run" : " runs") << " failed for good (why: their logs in " << opt_dir
+        << "/logs); the model leaves them out\n";
+    return kExitRuntimeError;
 }
 
 }  // namespace peensim

@@ -274,6 +274,7 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
         }
     } else {
         md << "\nNo confirmation runs (`confirm: 0`).\n";
+        if (modelled) summary << "\n";  // the predicted line's end, which a confirmation would have written
     }
     md << "\nThe model's intervals are of what runs of this length give, from seed to seed. The times are forecasts: what a run "
           "carried on to the target would measure has its own interval besides, which each run's analysis gives (a setting's one "
@@ -437,7 +438,9 @@ OptimiseReportFiles write_optimise_report(const OptimiseResult& r, const std::st
           "the model fits). Each setting is an ordinary run directory, `"
        << "<setting>/s<k>/`, the confirmation runs `confirm-start/` and `confirm-<winner>/`; every figure: `evaluations.csv`.\n";
     if (r.failed_runs > 0)
-        md << "\n" << r.failed_runs << " runs failed (twice, or once refusing their input): their logs are in `optimise/logs/`.\n";
+        md << "\n"
+           << r.failed_runs << (r.failed_runs == 1 ? " run" : " runs")
+           << " failed (twice, or once refusing their input): their logs are in `optimise/logs/`.\n";
 
     // The start and the winner side by side in 3D.
     std::map<std::string, std::string> views;

@@ -94,22 +94,24 @@ public:
                 err_ << ")\n";
             }
         }
-        write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
-        slots_ = logged_slots(*model_);
-        start(setup);
-        if (const std::optional<double> every = model_->description.output.shot_positions_s)
-            shot_series_ = std::make_unique<ShotSeriesRecorder>(*model_, dir_, *every, sim_->state());
-        if (model_->description.process.until_coverage) {
+        try {
+            write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
+            slots_ = logged_slots(*model_);
+            start(setup);
+            if (const std::optional<double> every = model_->description.output.shot_positions_s)
+                shot_series_ = std::make_unique<ShotSeriesRecorder>(*model_, dir_, *every, sim_->state());
             // Coverage from the dents logged so far (a resumed run's), then as they come.
-            try {
+            if (model_->description.process.until_coverage)
                 coverage_watch_ = std::make_unique<CoverageWatch>(
                     *coverage_geometry_, options_.resume ? (fs::path(dir_) / kImpactCsvPartialFileName).string() : std::string());
-            } catch (const InputError&) {
-                // Refused before its first step (the watched areas are known only once the reach of
-                // every coverage sample is): a fresh run leaves nothing behind.
-                if (!options_.resume) forget_fresh_run(made_dir);
-                throw;
-            }
+        } catch (const InputError&) {
+            // Refused before its first step (the shot do not fit where they are placed; the watched
+            // areas are known only once the reach of every coverage sample is): a fresh run leaves
+            // nothing behind.
+            if (!options_.resume) forget_fresh_run(made_dir);
+            throw;
+        }
+        if (coverage_watch_) {
             for (const std::string& name : coverage_watch_->out_of_reach())
                 err_ << "note: until_coverage_of: no shot can reach " << name << ": not waited for\n";
             if (coverage_watch_->done()) {
@@ -157,6 +159,12 @@ private:
         // Every --set, and every option that is one (--until-coverage): the scene must be the same.
         std::string command = "peensim run " + shell_quoted(options_.scene_path) + " -o " + shell_quoted(dir_) + " --resume";
         for (const std::string& o : options_.overrides) command += " --set " + shell_quoted(o);
+        // And the options a resumed run does not take from its checkpoint: without --render it
+        // would finish without the animation asked for.
+        if (!options_.analyze) command += " --no-analyze";
+        if (options_.render) command += *options_.render ? " --render" : " --no-render";
+        if (options_.strict) command += " --strict";
+        if (!options_.geometry_cache_dir.empty()) command += " --geometry-cache " + shell_quoted(options_.geometry_cache_dir);
         return command;
     }
 

@@ -44,8 +44,15 @@ std::string sweep_duration_text(double s) {
 
 }  // namespace
 
-SweepBook::SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err, std::string job)
-    : plan_(plan), logs_(std::move(logs_dir)), slots_(std::max(1, slots)), out_(out), err_(err), job_(std::move(job)) {
+SweepBook::SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err, std::string job,
+                     std::string job_noun)
+    : plan_(plan),
+      logs_(std::move(logs_dir)),
+      slots_(std::max(1, slots)),
+      out_(out),
+      err_(err),
+      job_(std::move(job)),
+      job_noun_(std::move(job_noun)) {
     for (std::size_t k = 0; k < plan_.runs.size(); ++k) {
         if (finished(plan_.runs[k]))
             ++done_;
@@ -94,13 +101,13 @@ void SweepBook::outcome(std::size_t k, int code) {
     } else if (code == kExitInputError) {
         // Its scene (a file it names) is refused: the same run again would be, for the same reason.
         err_ << job_ << ": " << label_of(k) << " refused its input (exit " << code << ", see " << log_of(k) << "); not run again, the "
-             << job_ << " goes on without it\n";
+             << job_noun_ << " goes on without it\n";
         failed_for_good(k);
     } else if (attempts_[k] < 2 && !stopped_) {
         err_ << job_ << ": " << label_of(k) << " failed (exit " << code << ", see " << log_of(k) << "); trying it once more\n";
         queue_.push_back(k);
     } else {
-        err_ << job_ << ": " << label_of(k) << " failed again (exit " << code << ", see " << log_of(k) << "); the " << job_
+        err_ << job_ << ": " << label_of(k) << " failed again (exit " << code << ", see " << log_of(k) << "); the " << job_noun_
              << " goes on without it\n";
         failed_for_good(k);
     }
@@ -109,11 +116,15 @@ void SweepBook::outcome(std::size_t k, int code) {
 void SweepBook::failed_for_good(std::size_t k) {
     failed_.push_back(k);
     // Its folders, when it left them empty (a run refused before it wrote anything): the folder of
-    // a variant none of whose runs ran is no result. Removing a folder that holds anything fails,
-    // and is meant to.
-    std::error_code kept;
-    fs::remove(plan_.runs[k].dir, kept);
-    fs::remove(fs::path(plan_.runs[k].dir).parent_path(), kept);
+    // a variant none of whose runs ran is no result. Anything else at those paths (a file, a link,
+    // a folder with anything in it) is left as it is.
+    const auto remove_if_empty_folder = [](const fs::path& p) {
+        std::error_code e;
+        // symlink_status: a link (to a folder or not) is the user's, never followed nor removed.
+        if (fs::is_directory(fs::symlink_status(p, e)) && fs::is_empty(p, e) && !e) fs::remove(p, e);
+    };
+    remove_if_empty_folder(plan_.runs[k].dir);
+    remove_if_empty_folder(fs::path(plan_.runs[k].dir).parent_path());
 }
 
 std::string sweep_geometry_cache(const std::string& logs_dir) { return (fs::path(logs_dir).parent_path() / "geometry-cache").string(); }

@@ -20,9 +20,10 @@ namespace peensim {
 class SweepBook {
 public:
     // Queues every run of `plan` that has not finished yet (summary and analysis written); `slots`:
-    // how many run at once (for the time still to go); `job`: what the lines say runs them
-    // ("sweep", "optimise").
-    SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err, std::string job = "sweep");
+    // how many run at once (for the time still to go); `job`: the lines' prefix ("sweep",
+    // "optimise"), `job_noun` what goes on without a failed run ("sweep", "optimisation").
+    SweepBook(const SweepPlan& plan, std::string logs_dir, int slots, std::ostream& out, std::ostream& err, std::string job = "sweep",
+              std::string job_noun = "sweep");
 
     bool has_queued() const { return !queue_.empty(); }
     std::size_t take();                            // the next run to start: one more attempt of it
@@ -44,7 +45,7 @@ private:
     int slots_;
     std::ostream& out_;
     std::ostream& err_;
-    std::string job_;
+    std::string job_, job_noun_;
     std::deque<std::size_t> queue_;
     std::map<std::size_t, int> attempts_;
     std::vector<std::size_t> failed_;

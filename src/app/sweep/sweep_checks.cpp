@@ -1,9 +1,13 @@
 #include "app/sweep/sweep_checks.h"
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
+#include <utility>
 
+#include "geometry/cad_reader.h"
 #include "model/component_mesh.h"
 #include "scene/scene_parser.h"
 #include "scene/yaml_access.h"
@@ -37,6 +41,48 @@ std::string file_text(const std::string& path) {
     const bool says_it =
         field.size() >= e.field().size() && field.compare(field.size() - e.field().size(), e.field().size(), e.field()) == 0;
     throw InputError(origin, field.empty() ? e.field() : (says_it ? field : field + ": " + e.field()), problem);
+}
+
+// Whether the override value `value` (a path, perhaps quoted) names the file `path`, as far as
+// its name tells: the parser resolves a relative one against the scene, the value keeps it.
+bool names_file(std::string value, const std::string& path) {
+    while (!value.empty() && (value.front() == ' ' || value.front() == '"' || value.front() == '\'')) value.erase(value.begin());
+    while (!value.empty() && (value.back() == ' ' || value.back() == '"' || value.back() == '\'')) value.pop_back();
+    return !value.empty() && std::filesystem::path(value).filename() == std::filesystem::path(path).filename();
+}
+
+bool ends_with_mesh(const std::string& setting_path) {
+    return setting_path.size() >= 4 && setting_path.compare(setting_path.size() - 4, 4, "mesh") == 0;
+}
+
+// `e` (require_cad_reading's: this installation reads no STEP or IGES file) for `use`, the part of
+// variant `v`, at the place that gave the part: the scene file's mesh: line; the variant's
+// --vary, vary key or listed variant; or the sweep's own set (the sweep file's or study's `set`,
+// or --set).
+[[noreturn]] void blame_cad_part(const InputError& e, const CadMeshUse& use, const SweepPlan& plan, const SweepVariant& v,
+                                 const SweepOverrides& where_set) {
+    const std::string problem = e.problem_at_its_place();
+    if (use.where.file != override_file_name) throw InputError(use.where, use.field, problem);
+    for (const auto& [path, value] : v.set) {
+        if (!ends_with_mesh(path) || !names_file(value, use.path)) continue;
+        const std::string said = "variant '" + v.name + "' (" + path + "=" + value + "): " + problem;
+        if (plan.grid)
+            for (const SweepAxis& a : plan.axes)
+                if (a.path == path) throw InputError(a.origin, a.field.empty() ? a.path : a.field, said);
+        throw InputError(v.origin, v.field.empty() ? use.field : v.field + ": " + use.field, said);
+    }
+    const auto given_in = [&](const std::vector<std::string>& texts) -> const std::string* {
+        for (auto t = texts.rbegin(); t != texts.rend(); ++t) {  // the last one given wins
+            const auto equals = t->find('=');
+            if (equals != std::string::npos && ends_with_mesh(t->substr(0, equals)) && names_file(t->substr(equals + 1), use.path))
+                return &*t;
+        }
+        return nullptr;
+    };
+    if (const std::string* text = given_in(where_set.from_command_line)) throw InputError({"--set"}, "", "'" + *text + "': " + problem);
+    if (const std::string* text = given_in(where_set.from_file))
+        throw InputError(where_set.file_origin, "set", "'" + *text + "': " + problem);
+    throw InputError(use.where, use.field, problem);
 }
 
 // Progress of a long check: a line about once a second, after the first second.
@@ -73,7 +119,7 @@ SceneDescription read_sweep_scene(const std::string& scene_path, const SweepOver
     return parse_scene_file(scene_path, all);
 }
 
-void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, std::ostream& out) {
+void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const SweepOverrides& where_set, std::ostream& out) {
     // The scene's text read once (read_sweep_scene read the same file); each check parses it with its
     // overrides (a tree cannot be shared: overrides change it, and yaml-cpp's copies lose the lines).
     const std::string text = file_text(scene_path);
@@ -98,10 +144,8 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, std::o
                 progress.done(++n);
             }
     }
-    // A STEP or IGES part this installation cannot read: every run would refuse it, so nothing
-    // starts (the scene's own part blamed at its mesh: field, a variant's on the variant).
-    check_cad_meshes_readable(read({}));
     CheckProgress progress(out, "the variants", plan.variants.size());
+    std::optional<std::pair<std::size_t, CadMeshUse>> cad;  // the first variant with a STEP or IGES part, and that part
     for (std::size_t k = 0; k < plan.variants.size(); ++k) {
         const SweepVariant& v = plan.variants[k];
         std::vector<std::string> settings;
@@ -109,13 +153,24 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, std::o
         std::uint64_t seed = 0;
         try {
             const SceneDescription variant = read(settings);
-            check_cad_meshes_readable(variant);
+            if (!cad)
+                if (std::optional<CadMeshUse> use = first_cad_mesh(variant)) cad.emplace(k, std::move(*use));
             seed = variant.process.seed;
         } catch (const InputError& e) {
             blame(e, v.origin, v.field, "variant '" + v.name + "'", settings);
         }
         reseed_variant(plan, k, seed);
         progress.done(k + 1);
+    }
+    // A STEP or IGES part this installation cannot read at all: every run that has one would refuse
+    // it, so none starts. Only the variants' own scenes count: a part every variant replaces is
+    // never read.
+    if (cad) {
+        try {
+            require_cad_reading(cad->second.path);
+        } catch (const InputError& e) {
+            blame_cad_part(e, cad->second, plan, plan.variants[cad->first], where_set);
+        }
     }
 }
 

@@ -26,7 +26,10 @@ SceneDescription read_sweep_scene(const std::string& scene_path, const SweepOver
 
 // Reads the scene with each value of each axis (a grid of several axes: first each value alone,
 // so a bad value is named as such), then with each variant (a listed one: blamed on its line); re-plans the replicates of a variant
-// that sets process.seed. Progress lines on `out` after the first second, about one a second.
-void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, std::ostream& out);
+// that sets process.seed. A variant's STEP or IGES part that this installation cannot read at all
+// is an input error too, blamed where the part was given (the scene's mesh: line, the variant, or
+// the sweep's own set: `where_set`, whose texts make plan.overrides). Progress lines on `out`
+// after the first second, about one a second.
+void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const SweepOverrides& where_set, std::ostream& out);
 
 }  // namespace peensim

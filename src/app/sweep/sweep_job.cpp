@@ -78,7 +78,7 @@ int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err)
     all.insert(all.end(), overrides.from_command_line.begin(), overrides.from_command_line.end());
     SweepPlan plan = listed.empty() ? plan_sweep(axes, seeds, scene.process.seed, all, o.output_dir)
                                     : plan_sweep_variants(listed, seeds, scene.process.seed, all, o.output_dir);
-    check_sweep_variants(o.scene_path, plan, out);
+    check_sweep_variants(o.scene_path, plan, overrides, out);
     if (!o.baseline.empty() &&
         std::none_of(plan.variants.begin(), plan.variants.end(), [&](const SweepVariant& v) { return v.name == o.baseline; }))
         throw InputError(
@@ -89,7 +89,7 @@ int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err)
     fs::create_directories(sweep_dir + "/logs");
     const StopRequest stop(o.stop_requested, "peensim sweep: second interrupt, stopping at once (the runs keep their last checkpoints)\n");
 
-    SweepRunner runner{executable, o.scene_path, sweep_dir + "/logs", 1, nullptr, "sweep"};
+    SweepRunner runner{executable, o.scene_path, sweep_dir + "/logs", 1, nullptr, "sweep", "sweep"};
     const std::string headline = "sweep: " + std::to_string(plan.variants.size()) + " variants x " + std::to_string(plan.seeds) + " seeds";
     if (launched_by_mpi()) {
         // Across the ranks of an MPI job: rank 0 hands the runs out and compares them.

@@ -29,7 +29,7 @@ SweepOutcome run_sweep_plan(const SweepPlan& plan, const SweepRunner& runner, co
     fs::create_directories(runner.logs_dir);
     const int jobs = std::max(1, runner.jobs);
     const int ranks = runner.mpi != nullptr ? runner.mpi->size() : 1;
-    SweepBook book(plan, runner.logs_dir, jobs * ranks, out, err, runner.job);
+    SweepBook book(plan, runner.logs_dir, jobs * ranks, out, err, runner.job, runner.job_noun);
     out << headline << " = " << book.total() << " runs"
         << (runner.mpi != nullptr ? " over " + std::to_string(ranks) + " MPI ranks" : ", " + std::to_string(jobs) + " at once")
         << (book.done() ? ", " + std::to_string(book.done()) + " finished before" : std::string()) << "\n";

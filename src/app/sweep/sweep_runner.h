@@ -16,12 +16,13 @@ namespace peensim {
 class MpiSweep;
 
 struct SweepRunner {
-    std::string executable;     // the peensim binary each run is
-    std::string scene_path;     // the scene every run reads (with its --set)
-    std::string logs_dir;       // each run's messages: <logs_dir>/<variant>.s<k>.log
-    int jobs = 1;               // runs at once here (an MPI rank: per rank)
-    MpiSweep* mpi = nullptr;    // rank 0 of an MPI job: the other ranks run too (nullptr: local only)
-    std::string job = "sweep";  // what the progress lines say runs them ("optimise")
+    std::string executable;          // the peensim binary each run is
+    std::string scene_path;          // the scene every run reads (with its --set)
+    std::string logs_dir;            // each run's messages: <logs_dir>/<variant>.s<k>.log
+    int jobs = 1;                    // runs at once here (an MPI rank: per rank)
+    MpiSweep* mpi = nullptr;         // rank 0 of an MPI job: the other ranks run too (nullptr: local only)
+    std::string job = "sweep";       // the progress lines' prefix ("optimise")
+    std::string job_noun = "sweep";  // what goes on without a failed run ("optimisation")
 };
 
 struct SweepOutcome {

@@ -29,10 +29,11 @@ RunProgress = _native.RunProgress
 
 # Pictures (render: a scene's animation, Scene.check(picture=...)) come from this build's module,
 # and STEP and IGES parts too (a build without OpenCASCADE has none and says what to install). Set
-# only while the build's file is there: a module path that is set is the only one peensim tries.
+# only while the build's file is there (a module path that is set is the only one peensim tries),
+# and unless the user set one: empty counts as unset, as for the command line.
 for _variable, _module in (("PEENSIM_RENDER_MODULE", _native.render_module), ("PEENSIM_CAD_MODULE", _native.cad_module)):
-    if _module and os.path.isfile(_module):
-        os.environ.setdefault(_variable, _module)
+    if _module and os.path.isfile(_module) and not os.environ.get(_variable):
+        os.environ[_variable] = _module
 del _variable, _module
 
 _STOPPED = 130  # the jobs' exit code of a run stopped at a checkpoint

@@ -301,4 +301,17 @@ TEST(AnalyzeJob, WithoutTheRenderModuleTheReportSaysWhyAPictureIsMissing) {
         << report;
     EXPECT_FALSE(fs::exists(out / "analysis" / "rod_out_of_reach.png"));
     EXPECT_TRUE(fs::exists(out / "analysis" / "figures.json"));
+    // Said on the console too (even to a quiet run), not only in the report.
+    EXPECT_NE(run.output.find("warning: no picture of the area out of reach: rendering needs libpeensim_render.so"), std::string::npos)
+        << run.output;
+    // A module path that is set is the only one tried: a wrong one, with the right module beside
+    // the binary, is said so (before, the one beside was drawn with, without a word).
+    const fs::path junk = dir.path / "junk.so";
+    std::ofstream(junk) << "not a module\n";
+    const peensim::testing::ShellResult wrong = peensim::testing::run_shell(
+        "PEENSIM_RENDER_MODULE='" + junk.string() + "' '" + PEENSIM_BINARY + "' run '" + PEENSIM_SOURCE_DIR + "/scenes/rod.yaml' -o '" +
+        (dir.path / "wrong").string() + "' -q --no-render --set process.duration=0.05 2>&1");
+    ASSERT_EQ(wrong.status, 0) << wrong.output;
+    EXPECT_NE(wrong.output.find("which PEENSIM_RENDER_MODULE does not name:\n  " + junk.string()), std::string::npos) << wrong.output;
+    EXPECT_FALSE(fs::exists(dir.path / "wrong" / "analysis" / "rod_out_of_reach.png"));
 }

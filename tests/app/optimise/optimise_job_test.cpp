@@ -216,7 +216,12 @@ TEST(OptimiseJob, FailedRunsCountAsTheWorstAndTheSearchGoesOn) {
     EXPECT_NEAR(std::stod(w[3]), 70.0, 20.0);
     EXPECT_NE(read_file(dir.path / "o" / "optimise" / "report.md").find("runs failed (twice, or once refusing their input)"),
               std::string::npos);
-    EXPECT_NE(err.str().find("failed"), std::string::npos) << err.str();
+    // Each failure said as the optimisation's, and their count at the end.
+    EXPECT_NE(err.str().find("; the optimisation goes on without it"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("runs failed for good (why: their logs in " + (dir.path / "o" / "optimise" / "logs").string() +
+                             "); the model leaves them out"),
+              std::string::npos)
+        << err.str();
 }
 
 // A variable without `start` starts at the scene's own value (the gear's 30 rpm), and the start's
