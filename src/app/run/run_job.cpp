@@ -79,6 +79,9 @@ public:
             if (const std::optional<std::string> why = replica_refusal(*model_))
                 throw InputError(scene.process.where, "--replicas", *why + "; expected --replicas 1 for this scene");
         }
+        // An animation asked for needs the render module (loaded now, as it would be at the first
+        // frame): without it, refused before anything is written.
+        if (options_.render.value_or(scene.render.has_value())) (void)render_module();
         // Before anything is written; a fresh run places its shot in the cavity the check built.
         SetupCheck setup = check_setup(*model_, options_.strict, err_);
         dir_ = run_output_directory(options_, scene);

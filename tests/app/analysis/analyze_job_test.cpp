@@ -314,4 +314,12 @@ TEST(AnalyzeJob, WithoutTheRenderModuleTheReportSaysWhyAPictureIsMissing) {
     ASSERT_EQ(wrong.status, 0) << wrong.output;
     EXPECT_NE(wrong.output.find("which PEENSIM_RENDER_MODULE does not name:\n  " + junk.string()), std::string::npos) << wrong.output;
     EXPECT_FALSE(fs::exists(dir.path / "wrong" / "analysis" / "rod_out_of_reach.png"));
+    // An animation asked for without a module to draw it: refused before the run writes anything.
+    const peensim::testing::ShellResult animated = peensim::testing::run_shell(
+        "PEENSIM_RENDER_MODULE='" + junk.string() + "' '" + PEENSIM_BINARY + "' run '" + PEENSIM_SOURCE_DIR + "/scenes/rod.yaml' -o '" +
+        (dir.path / "animated").string() + "' -q --render --set process.duration=0.05 2>&1");
+    EXPECT_EQ(WEXITSTATUS(animated.status), 1) << animated.output;
+    EXPECT_NE(animated.output.find("rendering needs libpeensim_render.so"), std::string::npos) << animated.output;
+    EXPECT_EQ(animated.output.find("--resume"), std::string::npos) << animated.output;  // nothing to resume
+    EXPECT_FALSE(fs::exists(dir.path / "animated")) << animated.output;
 }
