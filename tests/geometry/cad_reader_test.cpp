@@ -410,7 +410,7 @@ TEST_F(CadReaderFiles, WithoutTheCadModuleASweepOfAStepPartRefusesItBeforeAnyRun
     EXPECT_EQ(WEXITSTATUS(swept.status), kExitInputError) << swept.output;
     EXPECT_NE(swept.output.find("reading STEP/IGES needs libpeensim_cad.so"), std::string::npos) << swept.output;
     EXPECT_NE(swept.output.find("rod.yaml:"), std::string::npos) << swept.output;
-    EXPECT_EQ(swept.output.find("seeds = "), std::string::npos) << swept.output;  // no "2 variants x 1 seeds = 2 runs"
+    EXPECT_EQ(swept.output.find("sweep: "), std::string::npos) << swept.output;  // no "sweep: 2 variants x 1 seed = 2 runs"
     EXPECT_FALSE(fs::exists(path("out/count-8"))) << swept.output;
     // The scene with an STL part (never read: the check reads no mesh), one variant a STEP part.
     std::ofstream(path("study.yaml")) << "scene: " << path("rod.yaml") << "\n"

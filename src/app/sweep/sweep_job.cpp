@@ -90,7 +90,9 @@ int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err)
     const StopRequest stop(o.stop_requested, "peensim sweep: second interrupt, stopping at once (the runs keep their last checkpoints)\n");
 
     SweepRunner runner{executable, o.scene_path, sweep_dir + "/logs", 1, nullptr, "sweep", "sweep"};
-    const std::string headline = "sweep: " + std::to_string(plan.variants.size()) + " variants x " + std::to_string(plan.seeds) + " seeds";
+    const auto counted = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+    const std::string headline = "sweep: " + counted(plan.variants.size(), "variant", "variants") + " x " +
+                                 counted(static_cast<std::size_t>(plan.seeds), "seed", "seeds");
     if (launched_by_mpi()) {
         // Across the ranks of an MPI job: rank 0 hands the runs out and compares them.
         MpiSweep mpi;

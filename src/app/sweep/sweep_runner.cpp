@@ -30,7 +30,7 @@ SweepOutcome run_sweep_plan(const SweepPlan& plan, const SweepRunner& runner, co
     const int jobs = std::max(1, runner.jobs);
     const int ranks = runner.mpi != nullptr ? runner.mpi->size() : 1;
     SweepBook book(plan, runner.logs_dir, jobs * ranks, out, err, runner.job, runner.job_noun);
-    out << headline << " = " << book.total() << " runs"
+    out << headline << " = " << book.total() << (book.total() == 1 ? " run" : " runs")
         << (runner.mpi != nullptr ? " over " + std::to_string(ranks) + " MPI ranks" : ", " + std::to_string(jobs) + " at once")
         << (book.done() ? ", " + std::to_string(book.done()) + " finished before" : std::string()) << "\n";
     if (runner.mpi != nullptr) {

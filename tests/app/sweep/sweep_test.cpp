@@ -264,7 +264,7 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
     std::ostringstream out1, err1, out2, err2;
     ASSERT_EQ(sweep_job(rod_sweep(dir.path / "one", 1), out1, err1), kExitOk) << err1.str();
     ASSERT_EQ(sweep_job(rod_sweep(dir.path / "two", 2), out2, err2), kExitOk) << err2.str();
-    EXPECT_NE(out2.str().find("sweep: 2 variants x 1 seeds = 2 runs, 2 at once"), std::string::npos) << out2.str();
+    EXPECT_NE(out2.str().find("sweep: 2 variants x 1 seed = 2 runs, 2 at once"), std::string::npos) << out2.str();
     // The same run alone, as `peensim run` does it.
     RunOptions alone;
     alone.scene_path = kRod;
@@ -415,7 +415,7 @@ TEST(SweepMpi, RanksShareTheRunsAndEachRunIsTheLocalOne) {
                      (dir.path / "mpi.out").string(), (dir.path / "mpi.err").string());
     ASSERT_EQ(mpi.wait_exit(300.0), std::optional<int>(kExitOk)) << read_file(dir.path / "mpi.err") << read_file(dir.path / "mpi.out");
     const std::string said = read_file(dir.path / "mpi.out");
-    EXPECT_NE(said.find("sweep: 2 variants x 1 seeds = 2 runs over 2 MPI ranks"), std::string::npos) << said;
+    EXPECT_NE(said.find("sweep: 2 variants x 1 seed = 2 runs over 2 MPI ranks"), std::string::npos) << said;
     EXPECT_NE(said.find("comparison: "), std::string::npos) << said;  // rank 0's, once
     EXPECT_EQ(said.find("comparison: "), said.rfind("comparison: ")) << said;
     for (const char* run : {"count-64/s0", "count-128/s0"})
