@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 #include <vector>
 
@@ -18,6 +19,9 @@ const void* load_module_entry(const std::string& file, const char* env_var, cons
     // Set (not empty): the one the user chose, alone. Falling back to another module when it does
     // not load would run a build they did not ask for, without a word.
     const char* chosen = std::getenv(env_var);
+    if (chosen != nullptr && *chosen != '\0' && std::string_view(chosen).find_first_not_of(" \t\n") == std::string_view::npos)
+        throw std::runtime_error(what + " needs " + file + " (built with peensim); " + env_var + " is set to blanks only (\"" + chosen +
+                                 "\"): set it to the module's path, or unset it (peensim then looks beside itself)");
     if (chosen != nullptr && *chosen != '\0') {
         candidates.emplace_back(chosen);
     } else {

@@ -17,7 +17,7 @@ namespace {
 const std::string kFacet =
     "  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n    endloop\n  endfacet\n";
 
-void expect_refused_at(const std::string& text, int line, int column, const std::string& phrase) {
+void expect_stl_refused_at(const std::string& text, int line, int column, const std::string& phrase) {
     testing::expect_text_mesh_refused_at([](const std::string& file, std::istream& in) { check_ascii_stl(file, in); }, text, line, column,
                                          phrase);
 }
@@ -39,43 +39,43 @@ TEST(AsciiStlCheck, TheFormsWritersEmitPass) {
 
 TEST(AsciiStlCheck, ANumberWithAWordAfterItIsRefusedNotReadAsItsDigits) {
     // The reader took "2x" for 2: a part silently of other coordinates.
-    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 2x\n", 5, 18,
-                      "expected a finite number in 'vertex', got '2x'");
-    expect_refused_at("solid s\n  facet normal 0 0 1n\n", 2, 20, "expected a number in 'facet normal', got '1n'");
-    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1e400 0 0\n", 4, 14,
-                      "expected a finite number in 'vertex', got '1e400'");
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 2x\n", 5, 18,
+                          "expected a finite number in 'vertex', got '2x'");
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1n\n", 2, 20, "expected a number in 'facet normal', got '1n'");
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1e400 0 0\n", 4, 14,
+                          "expected a finite number in 'vertex', got '1e400'");
 }
 
 TEST(AsciiStlCheck, AVertexOfOtherThanThreeNumbersIsRefused) {
-    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1 0\n", 4, 7,
-                      "expected 'vertex' followed by three numbers, got '      vertex 1 0'");
-    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1,0,0\n", 4, 7, "three numbers");
-    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1 0 0 7\n", 4, 7, "three numbers");
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1 0\n", 4, 7,
+                          "expected 'vertex' followed by three numbers, got '      vertex 1 0'");
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1,0,0\n", 4, 7, "three numbers");
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 1 0 0 7\n", 4, 7, "three numbers");
 }
 
 TEST(AsciiStlCheck, AFacetOfOtherThanThreeVerticesIsRefused) {
-    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n    endloop\n", 6, 5,
-                      "a facet of 2 vertices");
-    expect_refused_at(
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n    endloop\n", 6, 5,
+                          "a facet of 2 vertices");
+    expect_stl_refused_at(
         "solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n"
         "      vertex 1 1 0\n",
         7, 7, "a facet of more than three vertices");
 }
 
 TEST(AsciiStlCheck, AKeywordOutOfPlaceIsRefusedWithWhatWasExpected) {
-    expect_refused_at("solid s\n  facet normal 0 0 1\n    vertex 0 0 0\n", 3, 5, "expected 'outer loop'");
-    expect_refused_at("solid s\n" + kFacet + "  endloop\n", 9, 3, "expected 'facet normal X Y Z' or 'endsolid'");
-    expect_refused_at(
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1\n    vertex 0 0 0\n", 3, 5, "expected 'outer loop'");
+    expect_stl_refused_at("solid s\n" + kFacet + "  endloop\n", 9, 3, "expected 'facet normal X Y Z' or 'endsolid'");
+    expect_stl_refused_at(
         "solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 0 1 0\n"
         "    endloop\n  endloop\n",
         8, 3, "expected 'endfacet'");
-    expect_refused_at("  facet normal 0 0 1\n", 1, 3, "expected 'solid'");
-    expect_refused_at("solid s\n  facet norml 0 0 1\n", 2, 9, "expected 'facet normal X Y Z'");
+    expect_stl_refused_at("  facet normal 0 0 1\n", 1, 3, "expected 'solid'");
+    expect_stl_refused_at("solid s\n  facet norml 0 0 1\n", 2, 9, "expected 'facet normal X Y Z'");
 }
 
 TEST(AsciiStlCheck, AFileThatEndsInsideASolidIsTruncated) {
-    expect_refused_at("solid s\n" + kFacet, 8, 0, "the file ends inside a solid (no 'endsolid' after line 8)");
-    expect_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n", 4, 0, "a truncated file");
+    expect_stl_refused_at("solid s\n" + kFacet, 8, 0, "the file ends inside a solid (no 'endsolid' after line 8)");
+    expect_stl_refused_at("solid s\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n", 4, 0, "a truncated file");
 }
 
 }  // namespace

@@ -466,6 +466,13 @@ TEST_F(CadReaderFiles, AWrongCadModulePathIsAnErrorNotAFallBack) {
         << checked.output;
     EXPECT_NE(checked.output.find("or unset it (peensim then looks beside itself)"), std::string::npos) << checked.output;
     EXPECT_EQ(checked.output.find(path("junk.so") + ": " + path("junk.so")), std::string::npos) << checked.output;  // named once
+    // Set to blanks only: said so (dlopen's own words for "  " named no file a reader could see).
+    const testing::ShellResult blank = testing::run_shell("PEENSIM_CAD_MODULE='  ' " + binary + " check '" + path("rod.yaml") + "' 2>&1");
+    ASSERT_TRUE(WIFEXITED(blank.status)) << blank.output;
+    EXPECT_EQ(WEXITSTATUS(blank.status), kExitInputError) << blank.output;
+    EXPECT_NE(blank.output.find("PEENSIM_CAD_MODULE is set to blanks only (\"  \"): set it to the module's path, or unset it"),
+              std::string::npos)
+        << blank.output;
     // Unset, the module beside the binary reads the part.
     EXPECT_EQ(testing::run_shell("env -u PEENSIM_CAD_MODULE " + binary + " check '" + path("rod.yaml") + "' 2>&1").status, 0);
 }

@@ -96,14 +96,13 @@ TEST(CoverageGeometryCache, TheKeyFollowsWhatTheGeometryReadsAndNothingASweepUsu
     const std::uint64_t base = coverage_geometry_key(*gear_with(), kGearPart, 345e6);
     EXPECT_EQ(base, coverage_geometry_key(*gear_with(), kGearPart, 345e6));  // the same inputs, the same key
     // What the coverage geometry does not read: the same key.
-    for (const std::string& same :
-         {"process.seed=7", "process.duration=60 s", "shot.count=60", "components[sonotrode].vibration.amplitude=40 um",
-          "contacts.shot-aluminium-2000.C0=0.6", "output.smoothing_radius=2 mm"})
+    for (const char* same : {"process.seed=7", "process.duration=60 s", "shot.count=60", "components[sonotrode].vibration.amplitude=40 um",
+                             "contacts.shot-aluminium-2000.C0=0.6", "output.smoothing_radius=2 mm"})
         EXPECT_EQ(coverage_geometry_key(*gear_with({same}), kGearPart, 345e6), base) << same;
     // What it reads: another key each.
-    for (const std::string& other : {"shot.diameter=1.5 mm", "materials.steel.density=7.9 g/cm3",
-                                     "components[gear].translation=[0, 0, 42.1 mm]", "components[axle].translation=[0, 0.1 mm, 42 mm]",
-                                     "process.gravity=[0, -9.81, 0]", "components[gear].regions[1].distance_to_axis.max=5.2 mm"})
+    for (const char* other : {"shot.diameter=1.5 mm", "materials.steel.density=7.9 g/cm3", "components[gear].translation=[0, 0, 42.1 mm]",
+                              "components[axle].translation=[0, 0.1 mm, 42 mm]", "process.gravity=[0, -9.81, 0]",
+                              "components[gear].regions[1].distance_to_axis.max=5.2 mm"})
         EXPECT_NE(coverage_geometry_key(*gear_with({other}), kGearPart, 345e6), base) << other;
     // The part's yield stress (the dents' size, so the map's resolution).
     EXPECT_NE(coverage_geometry_key(*gear_with(), kGearPart, 300e6), base);
