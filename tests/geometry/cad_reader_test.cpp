@@ -440,6 +440,23 @@ TEST_F(CadReaderFiles, WithoutTheCadModuleASweepOfAStepPartRefusesItBeforeAnyRun
     refused_at("scene: " + path("rod.yaml") + "\nset: [\"shot.count=8\", \"components[rod].mesh=" + path("rod.step") +
                    "\"]\nvary: {shot.count: [8, 16]}\n",
                "where.yaml:2:6: set: 'components[rod].mesh=" + path("rod.step") + "'");
+    // An optimisation whose variable picks the part: blamed on that variable's line, not on the
+    // bound of the first variable, which its check varied.
+    fs::copy_file(path("rod.step"), path("rod1.step"));
+    fs::copy_file(path("rod.step"), path("rod2.step"));
+    std::ofstream(path("study5.yaml")) << "scene: " << path("rod.yaml") << "\nset: [\"components[rod].mesh=" << stl << "\"]\nvariables:\n"
+                                       << "  count: {path: shot.count, min: 8, max: 16, start: 8, integer: true}\n"
+                                       << "  part: {min: 1, max: 2, start: 1, integer: true, set: {\"components[rod].mesh\": \""
+                                       << path("rod{}.step") << "\"}}\n";
+    const testing::ShellResult optimised =
+        testing::run_shell(alone + "optimise '" + path("study5.yaml") + "' -o '" + path("out5") + "' 2>&1");
+    ASSERT_TRUE(WIFEXITED(optimised.status)) << optimised.output;
+    EXPECT_EQ(WEXITSTATUS(optimised.status), kExitInputError) << optimised.output;
+    EXPECT_NE(optimised.output.find(
+                  "study5.yaml:5:3: variables.part.start: variable 'part' at its start (components[rod].mesh=" + path("rod1.step") + "): "),
+              std::string::npos)
+        << optimised.output;
+    EXPECT_EQ(optimised.output.find("check-"), std::string::npos) << optimised.output;
     // A STEP part that every variant replaces is never read: the sweep runs (and without the
     // render module its report says why a picture is missing).
     std::ofstream(path("replaced.yaml")) << "scene: " << path("rod.yaml") << "\nset: [\"process.duration=2 ms\"]\nvariants:\n"

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -55,13 +57,31 @@ void check_study(const Study& study, std::ostream& out) {
     std::vector<SweepVariant> variants;
     StudySetting start{"start", {}, 1, 0, "start"};
     for (const StudyVariable& v : study.variables) start.values.push_back(v.has_start ? std::optional<double>(v.start) : std::nullopt);
+    std::set<std::vector<std::optional<double>>> checked;
     for (std::size_t i = 0; i < study.variables.size(); ++i) {
         const StudyVariable& v = study.variables[i];
         for (const bool at_max : {false, true}) {
             StudySetting s = start;
             s.values[i] = at_max ? v.max : v.min;
+            // A setting checked already (two variables that start at a bound): once, or the plan
+            // refuses two variants of the same values.
+            if (!checked.insert(s.values).second) continue;
             const std::string field = "variables." + v.name + (at_max ? ".max" : ".min");
-            variants.push_back({"check-" + std::to_string(variants.size()), setting_overrides(study, s), v.origin, field});
+            SweepVariant check{"check-" + std::to_string(variants.size()), {}, v.origin, field, {}};
+            // Each variable's settings blamed on its own line: another variable's start, not this bound.
+            for (std::size_t j = 0; j < study.variables.size(); ++j) {
+                StudySetting alone{"", std::vector<std::optional<double>>(study.variables.size()), 1, 0, ""};
+                alone.values[j] = s.values[j];
+                const StudyVariable& w = study.variables[j];
+                const SweepSettingOrigin o =
+                    j == i ? SweepSettingOrigin{w.origin, field, "variable '" + w.name + (at_max ? "' at its max" : "' at its min")}
+                           : SweepSettingOrigin{w.origin, "variables." + w.name + ".start", "variable '" + w.name + "' at its start"};
+                for (auto& setting : setting_overrides(study, alone)) {
+                    check.set.push_back(std::move(setting));
+                    check.set_origins.push_back(o);
+                }
+            }
+            variants.push_back(std::move(check));
         }
     }
     SweepPlan plan = plan_sweep_variants(variants, 1, 0, study.overrides, "");

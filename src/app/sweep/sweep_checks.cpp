@@ -51,6 +51,16 @@ bool names_file(std::string value, const std::string& path) {
     return !value.empty() && std::filesystem::path(value).filename() == std::filesystem::path(path).filename();
 }
 
+// Which of `texts` the parser's error names ("(in --set 'text')"), if any.
+std::optional<std::size_t> named_setting(const InputError& e, const std::vector<std::string>& texts) {
+    if (e.where().file != override_file_name) return std::nullopt;
+    const std::string problem = e.problem();
+    for (std::size_t k = 0; k < texts.size(); ++k)
+        for (const std::string& said : {" (in --set '" + texts[k] + "')", " (from --set '" + texts[k] + "')"})
+            if (problem.find(said) != std::string::npos) return k;
+    return std::nullopt;
+}
+
 bool ends_with_mesh(const std::string& setting_path) {
     return setting_path.size() >= 4 && setting_path.compare(setting_path.size() - 4, 4, "mesh") == 0;
 }
@@ -63,8 +73,13 @@ bool ends_with_mesh(const std::string& setting_path) {
                                  const SweepOverrides& where_set) {
     const std::string problem = e.problem_at_its_place();
     if (use.where.file != override_file_name) throw InputError(use.where, use.field, problem);
-    for (const auto& [path, value] : v.set) {
+    for (std::size_t k = 0; k < v.set.size(); ++k) {
+        const auto& [path, value] = v.set[k];
         if (!ends_with_mesh(path) || !names_file(value, use.path)) continue;
+        if (k < v.set_origins.size()) {
+            const SweepSettingOrigin& o = v.set_origins[k];
+            throw InputError(o.where, o.field, o.label + " (" + path + "=" + value + "): " + problem);
+        }
         const std::string said = "variant '" + v.name + "' (" + path + "=" + value + "): " + problem;
         if (plan.grid)
             for (const SweepAxis& a : plan.axes)
@@ -157,6 +172,10 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
                 if (std::optional<CadMeshUse> use = first_cad_mesh(variant)) cad.emplace(k, std::move(*use));
             seed = variant.process.seed;
         } catch (const InputError& e) {
+            if (const std::optional<std::size_t> at = named_setting(e, settings); at && *at < v.set_origins.size()) {
+                const SweepSettingOrigin& o = v.set_origins[*at];
+                blame(e, o.where, o.field, o.label, {settings[*at]});
+            }
             blame(e, v.origin, v.field, "variant '" + v.name + "'", settings);
         }
         reseed_variant(plan, k, seed);

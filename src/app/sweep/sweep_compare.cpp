@@ -29,7 +29,7 @@ namespace {
 
 // A forecast of one run (figures.json's time_to_target objects): the time to the target and the
 // half-width of its 95 % interval (the wider side; infinite when it has no upper end), or why there
-// is none ("too short: run 600 s", "never at this rate: an area of it had no impact near it (a longer run may find one)").
+// is none ("too short: run 600 s", "never at this rate: part of it has had no impact near it (a longer run may find one)").
 struct RunForecast {
     double time_s = NAN, half_width_s = NAN;
     std::string missing;
@@ -82,7 +82,7 @@ RunForecast forecast_of(const nlohmann::json& j, const char* key) {
         f.missing = std::isfinite(run_for) ? "too short: run " + fmt(run_for, 3) + " s" : "too short";
         f.run_for_s = std::isfinite(run_for) ? run_for : 0.0;
     } else if (status == "never") {
-        f.missing = "never at this rate: an area of it had no impact near it (a longer run may find one)";
+        f.missing = "never at this rate: part of it has had no impact near it (a longer run may find one)";
     } else {
         f.missing = "no coverage";
     }

@@ -76,7 +76,10 @@ std::string sweep_variant_name(const std::vector<std::pair<std::string, std::str
     for (const auto& [path, value] : set) {
         if (!name.empty()) name += '_';
         name += last_key(path) + '-';
-        for (char c : value)
+        // A file's path names it by its file name: "mesh-rod.step", not "mesh-tmpstudyrod.step"
+        // (two files of one name in two folders are numbered, as any collision is).
+        const std::string shown = value.find('/') == std::string::npos ? value : value.substr(value.rfind('/') + 1);
+        for (char c : shown)
             if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '.' || c == '-') name += c;
     }
     return name.empty() ? std::string("base") : name;

@@ -33,11 +33,20 @@ struct SweepAxis {
     std::string field;  // "" = the path
 };
 
+// Where one setting of a variant was given, when that is not the variant's own place: an
+// optimisation's check sets every variable, each written on its own line of the study.
+struct SweepSettingOrigin {
+    SourceLocation where;
+    std::string field;  // "variables.speed.start"
+    std::string label;  // "variable 'speed' at its start": how an error names it
+};
+
 struct SweepVariant {
     std::string name;                                      // directory name: [A-Za-z0-9._-]
     std::vector<std::pair<std::string, std::string>> set;  // (path, value) per axis
     SourceLocation origin{"--vary", 0, 0};                 // a sweep file's variant: its line
     std::string field;                                     // "variants[2]" for a sweep file's variant
+    std::vector<SweepSettingOrigin> set_origins;           // per entry of `set`, or empty: all given at `origin`
 };
 
 struct SweepRun {

@@ -64,6 +64,12 @@ TEST(SweepPlan, EveryCombinationFirstAxisSlowestTimesTheSeeds) {
     // length, refused); no axis: one variant, the scene itself.
     const SweepPlan close = plan_sweep({parse_sweep_axis("name=a b,ab")}, 1, 1, {}, "o");
     EXPECT_EQ(close.variants[1].name, "name-ab.2");
+    // A file by its file name; two of one name in two folders numbered.
+    const SweepPlan meshes =
+        plan_sweep({parse_sweep_axis("components[rod].mesh=/tmp/study/rod.step,../parts/thin rod.stl,/tmp/old/rod.step")}, 1, 1, {}, "o");
+    EXPECT_EQ(meshes.variants[0].name, "mesh-rod.step");
+    EXPECT_EQ(meshes.variants[1].name, "mesh-thinrod.stl");
+    EXPECT_EQ(meshes.variants[2].name, "mesh-rod.step.2");
     EXPECT_THROW(plan_sweep({parse_sweep_axis("shot.diameter=1 mm,1mm")}, 1, 1, {}, "o"), InputError);
     EXPECT_EQ(plan_sweep({}, 3, 1, {}, "o").runs.size(), 3u);
     EXPECT_EQ(plan_sweep({}, 1, 1, {}, "o").variants[0].name, "base");
@@ -237,7 +243,7 @@ TEST(SweepCompare, TheSlowestRegionEverywhereUniformityAndShareBelowEachWithAVer
     EXPECT_NE(row_of(report, "speed-60rpm").find("too short: run 900 s"), std::string::npos) << report;
     // One with an area no impact came near: never, at the rate its runs measured (not "the part has
     // no impact": it has, 1000 per second).
-    EXPECT_NE(row_of(report, "speed-90rpm").find("never at this rate: an area of it had no impact near it (a longer run may find one)"),
+    EXPECT_NE(row_of(report, "speed-90rpm").find("never at this rate: part of it has had no impact near it (a longer run may find one)"),
               std::string::npos)
         << report;
     // The one-seed interval is the run's own (its wider side).
