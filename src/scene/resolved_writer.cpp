@@ -370,6 +370,12 @@ std::string scene_yaml(const SceneDescription& s, OutputSettings settings) {
 
 std::string resolved_scene_yaml(const SceneDescription& s) { return scene_yaml(s, OutputSettings::all); }
 
+std::string scene_hash_hex(std::uint64_t hash) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+    return text;
+}
+
 std::uint64_t scene_hash(const SceneDescription& s) {
     // Rendering, the checkpoint interval and the maps' smoothing do not change what is simulated:
     // a run may be resumed with other settings for them.

@@ -17,6 +17,9 @@ std::string resolved_scene_yaml(const SceneDescription& scene);
 // how they were written.
 std::uint64_t scene_hash(const SceneDescription& scene);
 
+// A scene hash as summary.json and the checkpoints write it: 16 lowercase hexadecimal digits.
+std::string scene_hash_hex(std::uint64_t hash);
+
 // One region entry as the resolved scene writes it (a flow map on one line, SI values, angles in
 // rad): the same text for the same entry, bit for bit.
 std::string resolved_region_text(const RegionDesc& region);

@@ -57,15 +57,12 @@ void check_study(const Study& study, std::ostream& out) {
     std::vector<SweepVariant> variants;
     StudySetting start{"start", {}, 1, 0, "start"};
     for (const StudyVariable& v : study.variables) start.values.push_back(v.has_start ? std::optional<double>(v.start) : std::nullopt);
-    std::set<std::vector<std::optional<double>>> checked;
+    std::set<std::vector<std::pair<std::string, std::string>>> checked;
     for (std::size_t i = 0; i < study.variables.size(); ++i) {
         const StudyVariable& v = study.variables[i];
         for (const bool at_max : {false, true}) {
             StudySetting s = start;
             s.values[i] = at_max ? v.max : v.min;
-            // A setting checked already (two variables that start at a bound): once, or the plan
-            // refuses two variants of the same values.
-            if (!checked.insert(s.values).second) continue;
             const std::string field = "variables." + v.name + (at_max ? ".max" : ".min");
             SweepVariant check{"check-" + std::to_string(variants.size()), {}, v.origin, field, {}};
             // Each variable's settings blamed on its own line: another variable's start, not this bound.
@@ -81,7 +78,10 @@ void check_study(const Study& study, std::ostream& out) {
                     check.set_origins.push_back(o);
                 }
             }
-            variants.push_back(std::move(check));
+            // A setting checked already (two variables that start at a bound, or a bound that
+            // reads as the start: a whole number's 127.6 is 128): once, or the plan refuses two
+            // variants that set the same.
+            if (checked.insert(check.set).second) variants.push_back(std::move(check));
         }
     }
     SweepPlan plan = plan_sweep_variants(variants, 1, 0, study.overrides, "");
@@ -447,8 +447,9 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     out << "report: " << opt_dir << "/{report.md, report.html, evaluations.csv, winner.json" << (files.plots ? ", *.png" : "") << "}\n"
         << sweep_geometry_cache_line(opt_dir + "/logs");
     if (failed.empty()) return kExitOk;
-    err << "optimise: " << failed.size() << (failed.size() == 1 ? " run" : " runs") << " failed for good (why: their logs in " << opt_dir
-        << "/logs); the model leaves them out\n";
+    const bool one = failed.size() == 1;
+    err << "optimise: " << failed.size() << (one ? " run failed for good (why: its log in " : " runs failed for good (why: their logs in ")
+        << opt_dir << "/logs); the model leaves " << (one ? "it" : "them") << " out\n";
     return kExitRuntimeError;
 }
 

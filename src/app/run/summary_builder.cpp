@@ -6,11 +6,7 @@
 
 namespace peensim {
 
-std::string scene_hash_text(const Model& model) {
-    char hash[17];
-    std::snprintf(hash, sizeof(hash), "%016llx", static_cast<unsigned long long>(model.scene_hash));
-    return hash;
-}
+std::string scene_hash_text(const Model& model) { return scene_hash_hex(model.scene_hash); }
 
 RunSummary build_summary(const Simulation& sim, const std::string& scene_file, const std::vector<SpeedHistogram>& normal_speeds,
                          double wall_time_s, bool finished) {

@@ -7,8 +7,11 @@
 #include <sstream>
 #include <utility>
 
+#include <nlohmann/json.hpp>
+
 #include "geometry/cad_reader.h"
 #include "model/component_mesh.h"
+#include "scene/resolved_writer.h"
 #include "scene/scene_parser.h"
 #include "scene/yaml_access.h"
 
@@ -190,6 +193,28 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
         } catch (const InputError& e) {
             blame_cad_part(e, cad->second, plan, plan.variants[cad->first], where_set);
         }
+    }
+}
+
+void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
+    std::string text;  // the scene's text, read at the first finished run (a fresh sweep has none)
+    for (const SweepRun& run : plan.runs) {
+        const std::string summary = run.dir + "/summary.json";
+        std::ifstream in(summary);
+        if (!in) continue;
+        const auto j = nlohmann::json::parse(in, nullptr, false);
+        if (!j.is_object() || !j.value("finished", false)) continue;  // rerun or resumed: the run checks its checkpoint
+        if (text.empty()) text = file_text(scene_path);
+        if (j.value("scene_hash", std::string()) == scene_hash_hex(scene_hash(parse_scene_text(text, scene_path, run.overrides)))) continue;
+        const SweepVariant& v = plan.variants[run.variant];
+        std::string values;
+        for (const auto& [path, value] : v.set) values += (values.empty() ? "" : ", ") + path + "=" + value;
+        throw InputError({summary, 0, 0}, "scene_hash",
+                         "the run in " + run.dir + " finished with another scene or other values than this sweep gives variant '" + v.name +
+                             "'" + (values.empty() ? std::string() : " (" + values + ")") +
+                             ": the sweep would skip it and compare its results as this variant's; expected the scene and values it ran "
+                             "with: write this sweep to another folder (-o), or remove " +
+                             run.dir + " to run it again");
     }
 }
 

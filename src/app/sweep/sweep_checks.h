@@ -32,4 +32,9 @@ SceneDescription read_sweep_scene(const std::string& scene_path, const SweepOver
 // after the first second, about one a second.
 void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const SweepOverrides& where_set, std::ostream& out);
 
+// A finished run in the plan's folders that ran another scene than the plan gives it (the scene
+// file edited, another --set, or a variant's name now standing for other values: two files of one
+// name) is an input error: the sweep would skip it and compare its results as the variant's.
+void check_finished_runs(const std::string& scene_path, const SweepPlan& plan);
+
 }  // namespace peensim

@@ -36,8 +36,10 @@ int finish(const SweepOutcome& outcome, const SweepPlan& plan, const std::string
     if (!compared.plot_note.empty()) out << "plots: " << compared.plot_note << "\n";
     out << sweep_geometry_cache_line(sweep_dir + "/logs");
     if (outcome.failed.empty()) return kExitOk;
-    err << "sweep: " << outcome.failed.size() << " of " << outcome.total << " runs failed for good (why: their logs in " << sweep_dir
-        << "/logs); the comparison leaves them out\n";
+    const bool one = outcome.failed.size() == 1;
+    err << "sweep: " << outcome.failed.size() << " of " << outcome.total << (outcome.total == 1 ? " run" : " runs")
+        << (one ? " failed for good (why: its log in " : " failed for good (why: their logs in ") << sweep_dir
+        << "/logs); the comparison leaves " << (one ? "it" : "them") << " out\n";
     return kExitRuntimeError;
 }
 
@@ -79,6 +81,7 @@ int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err)
     SweepPlan plan = listed.empty() ? plan_sweep(axes, seeds, scene.process.seed, all, o.output_dir)
                                     : plan_sweep_variants(listed, seeds, scene.process.seed, all, o.output_dir);
     check_sweep_variants(o.scene_path, plan, overrides, out);
+    check_finished_runs(o.scene_path, plan);
     if (!o.baseline.empty() &&
         std::none_of(plan.variants.begin(), plan.variants.end(), [&](const SweepVariant& v) { return v.name == o.baseline; }))
         throw InputError(

@@ -242,18 +242,19 @@ TEST(OptimiseJob, TheStartIsTheScenesOwnValueAndADesignOnFewWholeValuesMerges) {
     EXPECT_NE(read_file(dir.path / "o" / "optimise" / "report.md").find("the model over all "), std::string::npos);
 }
 
-// Two variables that start at their min: the check's settings at each bound (the others at the
-// start) hold that one twice, checked once (it was refused: "variant 'check-2' sets the same values
-// as variant 'check-0'").
+// Variables that start at their min (a whole number's 127.6 reads as 128): the check's settings at
+// each bound (the others at the start) hold that one more than once, checked once (it was refused:
+// "variant 'check-2' sets the same values as variant 'check-0'").
 TEST(OptimiseJob, VariablesThatStartAtABoundAreAccepted) {
     TempDir dir;
     std::ofstream(dir.path / "study.yaml")
         << "scene: " << PEENSIM_SOURCE_DIR << "/scenes/rotating-gear.yaml\n"
         << "variables:\n  speed: {path: \"components[gear].motion.speed\", min: 15 rpm, max: 120 rpm, start: 15 rpm}\n"
-        << "  size: {path: shot.diameter, min: 1 mm, max: 3 mm, start: 1 mm}\nruns: 8\ninitial: 4\nconfirm: 0\n";
+        << "  size: {path: shot.diameter, min: 1 mm, max: 3 mm, start: 1 mm}\n"
+        << "  count: {path: shot.count, min: 127.6, max: 140, start: 128, integer: true}\nruns: 8\ninitial: 4\nconfirm: 0\n";
     std::ostringstream out, err;
     ASSERT_EQ(optimise_job(options(dir.path / "study.yaml", dir.path / "o", fake_run(dir.path)), out, err), kExitOk) << err.str();
-    EXPECT_NE(read_file(dir.path / "o" / "optimise" / "evaluations.csv").find("start,0,start,15,1,"), std::string::npos);
+    EXPECT_NE(read_file(dir.path / "o" / "optimise" / "evaluations.csv").find("start,0,start,15,1,128,"), std::string::npos);
 }
 
 // An objective no run gives (the stand-in writes no uniformity): exit 1 saying so, no winner made up.

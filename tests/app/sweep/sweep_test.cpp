@@ -311,6 +311,17 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
     ASSERT_EQ(sweep_job(rod_sweep(dir.path / "one", 1), out3, err3), kExitOk) << err3.str();
     EXPECT_NE(out3.str().find("2 finished before"), std::string::npos) << out3.str();
     EXPECT_EQ(fs::last_write_time(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), written);
+    // Run again with another value: the finished runs are not this sweep's, and are neither
+    // skipped (their results compared as the variants') nor replaced; refused before any run.
+    SweepOptions other = rod_sweep(dir.path / "one", 1);
+    other.overrides.push_back("shot.diameter=1.5 mm");
+    std::ostringstream out4, err4;
+    EXPECT_EQ(sweep_job(other, out4, err4), kExitInputError) << out4.str();
+    EXPECT_NE(err4.str().find("count-64/s0 finished with another scene or other values than this sweep gives variant 'count-64' "
+                              "(shot.count=64)"),
+              std::string::npos)
+        << err4.str();
+    EXPECT_EQ(fs::last_write_time(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), written);
 }
 
 TEST(SweepJob, AFailingRunIsRetriedOnceThenReportedAndBadInputsExitTwo) {
