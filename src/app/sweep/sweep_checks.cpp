@@ -197,25 +197,34 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
 }
 
 void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
-    std::string text;  // the scene's text, read at the first finished run (a fresh sweep has none)
+    std::string text;                    // the scene's text, read at the first finished run (a fresh sweep has none)
+    std::vector<const SweepRun*> stale;  // finished with another scene: every one named, not one per attempt
     for (const SweepRun& run : plan.runs) {
-        const std::string summary = run.dir + "/summary.json";
-        std::ifstream in(summary);
+        std::ifstream in(run.dir + "/summary.json");
         if (!in) continue;
         const auto j = nlohmann::json::parse(in, nullptr, false);
         if (!j.is_object() || !j.value("finished", false)) continue;  // rerun or resumed: the run checks its checkpoint
         if (text.empty()) text = file_text(scene_path);
-        if (j.value("scene_hash", std::string()) == scene_hash_hex(scene_hash(parse_scene_text(text, scene_path, run.overrides)))) continue;
-        const SweepVariant& v = plan.variants[run.variant];
-        std::string values;
-        for (const auto& [path, value] : v.set) values += (values.empty() ? "" : ", ") + path + "=" + value;
-        throw InputError({summary, 0, 0}, "scene_hash",
-                         "the run in " + run.dir + " finished with another scene or other values than this sweep gives variant '" + v.name +
-                             "'" + (values.empty() ? std::string() : " (" + values + ")") +
-                             ": the sweep would skip it and compare its results as this variant's; expected the scene and values it ran "
-                             "with: write this sweep to another folder (-o), or remove " +
-                             run.dir + " to run it again");
+        if (j.value("scene_hash", std::string()) != scene_hash_hex(scene_hash(parse_scene_text(text, scene_path, run.overrides))))
+            stale.push_back(&run);
     }
+    if (stale.empty()) return;
+    const SweepRun& first = *stale.front();
+    const SweepVariant& v = plan.variants[first.variant];
+    std::string values;
+    for (const auto& [path, value] : v.set) values += (values.empty() ? "" : ", ") + path + "=" + value;
+    std::string others;
+    constexpr std::size_t kNamed = 5;  // runs named beyond the first; the rest counted
+    for (std::size_t k = 1; k < stale.size() && k <= kNamed; ++k) others += (k > 1 ? ", " : "") + stale[k]->dir;
+    if (stale.size() > kNamed + 1) others += " and " + std::to_string(stale.size() - kNamed - 1) + " more";
+    throw InputError({first.dir + "/summary.json", 0, 0}, "scene_hash",
+                     "the run in " + first.dir + " finished with another scene or other values than this sweep gives variant '" + v.name +
+                         "'" + (values.empty() ? std::string() : " (" + values + ")") +
+                         (others.empty() ? std::string() : "; so did " + others) +
+                         ": the sweep would skip it and compare its results as this variant's; write this sweep to another folder, or "
+                         "remove " +
+                         (stale.size() == 1 ? first.dir : std::string("those runs' folders")) + " to run " +
+                         (stale.size() == 1 ? "it" : "them") + " again");
 }
 
 }  // namespace peensim
