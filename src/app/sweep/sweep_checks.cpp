@@ -1,5 +1,6 @@
 #include "app/sweep/sweep_checks.h"
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +29,11 @@ std::string file_text(const std::string& path) {
     return text.str();
 }
 
+// How the scene parser names the override `text` an error came from.
+std::array<std::string, 2> parser_mentions(const std::string& text) {
+    return {" (in --set '" + text + "')", " (from --set '" + text + "')"};
+}
+
 // `e`, raised reading the scene with `texts` among the overrides, as the mistake of what was given
 // at `origin` (`field`, `label`: "variant 'fast'"). The scene parser names the override it came
 // from ("(in --set 'shot.count=-5')"); the user wrote no --set, so that part names `label` instead.
@@ -37,7 +43,7 @@ std::string file_text(const std::string& path) {
         throw InputError(origin, field, label + " makes the scene invalid: " + e.what());
     std::string problem = e.problem();
     for (const std::string& text : texts)
-        for (const std::string& said : {" (in --set '" + text + "')", " (from --set '" + text + "')"})
+        for (const std::string& said : parser_mentions(text))
             if (const auto at = problem.find(said); at != std::string::npos)
                 problem.replace(at, said.size(), " (" + label + ": " + text + ")");
     // "vary.shot.count" already says "shot.count"; "variants[1]" does not.
@@ -59,7 +65,7 @@ std::optional<std::size_t> named_setting(const InputError& e, const std::vector<
     if (e.where().file != override_file_name) return std::nullopt;
     const std::string problem = e.problem();
     for (std::size_t k = 0; k < texts.size(); ++k)
-        for (const std::string& said : {" (in --set '" + texts[k] + "')", " (from --set '" + texts[k] + "')"})
+        for (const std::string& said : parser_mentions(texts[k]))
             if (problem.find(said) != std::string::npos) return k;
     return std::nullopt;
 }

@@ -23,6 +23,9 @@ namespace peensim {
 
 namespace {
 
+// "1 seed", "2 seeds".
+std::string counted(std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
+
 // After the runs: the comparison (unless interrupted) and the exit code.
 int finish(const SweepOutcome& outcome, const SweepPlan& plan, const std::string& sweep_dir, const SweepOptions& o,
            const SceneDescription& scene, std::ostream& out, std::ostream& err) {
@@ -37,7 +40,7 @@ int finish(const SweepOutcome& outcome, const SweepPlan& plan, const std::string
     out << sweep_geometry_cache_line(sweep_dir + "/logs");
     if (outcome.failed.empty()) return kExitOk;
     const bool one = outcome.failed.size() == 1;
-    err << "sweep: " << outcome.failed.size() << " of " << outcome.total << (outcome.total == 1 ? " run" : " runs")
+    err << "sweep: " << outcome.failed.size() << " of " << counted(outcome.total, "run", "runs")
         << (one ? " failed for good (why: its log in " : " failed for good (why: their logs in ") << sweep_dir
         << "/logs); the comparison leaves " << (one ? "it" : "them") << " out\n";
     return kExitRuntimeError;
@@ -93,7 +96,6 @@ int run_sweep(const SweepOptions& options, std::ostream& out, std::ostream& err)
     const StopRequest stop(o.stop_requested, "peensim sweep: second interrupt, stopping at once (the runs keep their last checkpoints)\n");
 
     SweepRunner runner{executable, o.scene_path, sweep_dir + "/logs", 1, nullptr, "sweep", "sweep"};
-    const auto counted = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
     const std::string headline = "sweep: " + counted(plan.variants.size(), "variant", "variants") + " x " +
                                  counted(static_cast<std::size_t>(plan.seeds), "seed", "seeds");
     if (launched_by_mpi()) {
