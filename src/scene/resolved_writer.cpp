@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/cad_file.h"
+#include "common/file_digest.h"
 #include "common/fnv_hash.h"
 #include "common/units.h"
 #include "scene/schema.h"
@@ -124,7 +125,19 @@ void write_rate(std::string& y, const SourceDesc& d) {
 }
 
 // Sources and sinks, only when the scene has them (most have neither).
-void write_flow(std::string& y, const SceneDescription& s) {
+// What a scene's hash leaves out of the output block: the analysis' settings (they do not change
+// the run), and the shot-position series when there is none (scenes without one keep the hash
+// they had before the series existed). A series is hashed: a run resumes only with the interval
+// its files were written at.
+// What it puts in place of a mesh file's path: the file's bytes (common/file_digest.h), so that a
+// mesh re-exported to the same path changes the hash and a copy of it elsewhere does not.
+enum class OutputSettings { all, hashed };
+
+std::string mesh_text(const std::string& path, OutputSettings settings) {
+    return yaml_text(settings == OutputSettings::hashed ? file_digest_text(path) : path);
+}
+
+void write_flow(std::string& y, const SceneDescription& s, OutputSettings settings) {
     if (!s.sources.empty()) y += "sources:\n";
     for (const SourceDesc& d : s.sources) {
         y += "  - name: " + yaml_text(d.name) + "\n";
@@ -162,7 +175,7 @@ void write_flow(std::string& y, const SceneDescription& s) {
         y += "  - name: " + yaml_text(d.name) + "\n";
         y += std::string("    region: ") + (d.region == SinkRegion::box ? "box" : d.region == SinkRegion::mesh ? "mesh" : "outside") + "\n";
         if (d.region == SinkRegion::mesh) {
-            y += "    mesh: " + yaml_text(d.mesh_path) + "\n";
+            y += "    mesh: " + mesh_text(d.mesh_path, settings) + "\n";
             if (!is_cad_file(d.mesh_path))  // (a STEP/IGES file states its own unit)
                 y += "    mesh_unit: " + mesh_unit_name(d.mesh_unit_m) + "  # " + si_text(d.mesh_unit_m) + " m per mesh unit\n";
             y += "    translation: " + vec(d.translation_m) + unit_comment(Dimension::length) + "\n";
@@ -242,10 +255,10 @@ std::string region_text(const RegionDesc& r) {
     return out + "}  # m, rad";
 }
 
-void write_component(std::string& y, const ComponentDesc& k) {
+void write_component(std::string& y, const ComponentDesc& k, OutputSettings settings) {
     y += "  - name: " + yaml_text(k.name) + "\n";
     y += std::string("    role: ") + role_name(k.role) + "\n";
-    y += "    mesh: " + yaml_text(k.mesh_path) + "\n";
+    y += "    mesh: " + mesh_text(k.mesh_path, settings) + "\n";
     if (is_cad_file(k.mesh_path))  // its own unit; the tessellation instead
         y += "    tessellation: {chordal: " + si_text(k.tessellation.chordal_m) + ", angular: " + si_text(k.tessellation.angular_rad) +
              "}  # m, rad\n";
@@ -302,12 +315,6 @@ void write_component(std::string& y, const ComponentDesc& k) {
     y += "      speed: " + si_text(r.speed_rad_per_s) + unit_comment(Dimension::angular_speed) + "\n";
 }
 
-// What a scene's hash leaves out of the output block: the analysis' settings (they do not change
-// the run), and the shot-position series when there is none (scenes without one keep the hash
-// they had before the series existed). A series is hashed: a run resumes only with the interval
-// its files were written at.
-enum class OutputSettings { all, hashed };
-
 void write_output(std::string& y, const OutputDesc& o, OutputSettings settings) {
     y += "output:\n";
     std::string log;
@@ -359,8 +366,8 @@ std::string scene_yaml(const SceneDescription& s, OutputSettings settings) {
     write_air(y, s.air);
     write_materials_and_contacts(y, s);
     y += "components:\n";
-    for (const ComponentDesc& k : s.components) write_component(y, k);
-    write_flow(y, s);
+    for (const ComponentDesc& k : s.components) write_component(y, k, settings);
+    write_flow(y, s, settings);
     write_output(y, s.output, settings);
     if (s.render) write_render(y, *s.render);
     return y;

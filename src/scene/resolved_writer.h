@@ -13,8 +13,9 @@ namespace peensim {
 std::string resolved_scene_yaml(const SceneDescription& scene);
 
 // FNV-1a 64 of resolved_scene_yaml(scene) without the settings that do not change the run (render
-// block, checkpoint interval, the analysis' output settings): equal for scenes that differ only in
-// how they were written.
+// block, checkpoint interval, the analysis' output settings), each mesh file's path replaced by its
+// bytes' digest: equal for scenes that differ only in how they were written or where the same mesh
+// lies, another for a mesh rewritten in place.
 std::uint64_t scene_hash(const SceneDescription& scene);
 
 // A scene hash as summary.json and the checkpoints write it: 16 lowercase hexadecimal digits.

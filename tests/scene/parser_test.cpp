@@ -5,12 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <string>
 
 #include "common/input_error.h"
 #include "scene/resolved_writer.h"
 #include "scene/scene_parser.h"
+#include "support/temp_dir.h"
 
 namespace peensim {
 namespace {
@@ -419,6 +421,36 @@ TEST(SceneParser, HashFollowsContentNotSpelling) {
     const SceneDescription c = parse_scene_text(minimal_scene, virtual_path, {"process.seed=2"});
     EXPECT_EQ(scene_hash(a), scene_hash(b));  // 0.001 written as "1 mm"
     EXPECT_NE(scene_hash(a), scene_hash(c));
+}
+
+// A mesh is part of what a run simulates by its bytes, not by its path: re-exported in place it is
+// another scene (a resume or a sweep's finished run must not take it for the old one), copied
+// elsewhere byte for byte it is the same one.
+TEST(SceneParser, HashFollowsTheMeshFilesBytesNotTheirPaths) {
+    namespace fs = std::filesystem;
+    const peensim::testing::TempDir dir;
+    fs::copy_file(tetrahedron_path(), dir.path / "part.stl");
+    fs::create_directory(dir.path / "copy");
+    fs::copy_file(tetrahedron_path(), dir.path / "copy" / "part.stl");
+    const auto hash_with_part = [&](const fs::path& part) {
+        return scene_hash(parse_scene_text(minimal_scene, virtual_path, {"components[rod].mesh=" + part.string()}));
+    };
+    const std::uint64_t original = hash_with_part(dir.path / "part.stl");
+    EXPECT_EQ(hash_with_part(dir.path / "copy" / "part.stl"), original);
+    // The same size, one byte of a vertex changed (the part moved, as a re-export would move it).
+    std::string bytes;
+    {
+        std::ifstream in(dir.path / "part.stl", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    ASSERT_GT(bytes.size(), 100u);
+    const std::size_t digit = bytes.find_first_of("123456789", bytes.find("vertex"));
+    ASSERT_NE(digit, std::string::npos);
+    bytes[digit] = bytes[digit] == '9' ? '8' : static_cast<char>(bytes[digit] + 1);
+    std::ofstream(dir.path / "part.stl", std::ios::binary | std::ios::trunc) << bytes;
+    fs::last_write_time(dir.path / "part.stl", fs::last_write_time(dir.path / "part.stl") + std::chrono::seconds(1));
+    EXPECT_NE(hash_with_part(dir.path / "part.stl"), original);
+    EXPECT_EQ(hash_with_part(dir.path / "copy" / "part.stl"), original);
 }
 
 TEST(SceneParser, ParsesAFileFromDisk) {

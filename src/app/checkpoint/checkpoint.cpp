@@ -103,8 +103,8 @@ Checkpoint load_checkpoint(const std::string& path) {
 void check_resumable(const std::string& path, const Checkpoint& c, const Model& model, std::size_t logged_components) {
     if (c.scene_hash != model.scene_hash)
         throw InputError(SourceLocation{path, 0, 0}, "checkpoint",
-                         "the scene changed since this checkpoint was written (only output.checkpoint_interval and render "
-                         "settings may change on resume); run without --resume to start over");
+                         "the scene changed since this checkpoint was written (a setting, or a mesh file's bytes; only "
+                         "output.checkpoint_interval and render settings may change on resume); run without --resume to start over");
     const SimulationState& s = c.state;
     const double t = s.time.seconds();
     if (!std::isfinite(s.time.hi) || !std::isfinite(s.time.lo) || t < 0.0 || t > model.duration_s)

@@ -194,7 +194,8 @@ private:
         if (j.value("scene_hash", std::string()) != scene_hash_text(*model_))
             throw InputError({summary.string(), 0, 0}, "scene_hash",
                              "the run in " + dir_ +
-                                 " finished with another scene (or other --set values) than this one; nothing to resume: "
+                                 " finished with another scene (or other --set values, or mesh files whose bytes have changed since) than "
+                                 "this one; nothing to resume: "
                                  "run without --resume to run this scene (that replaces its outputs)");
         err_ << "nothing to resume: the run in " << dir_ << " already finished (" << j.value("simulated_time_s", 0.0)
              << " s simulated); its results are in " << dir_ << "/{impacts.csv, summary.json, analysis/}\n";

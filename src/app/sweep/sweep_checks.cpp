@@ -224,8 +224,9 @@ void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
     for (std::size_t k = 1; k < stale.size() && k <= kNamed; ++k) others += (k > 1 ? ", " : "") + stale[k]->dir;
     if (stale.size() > kNamed + 1) others += " and " + std::to_string(stale.size() - kNamed - 1) + " more";
     throw InputError({first.dir + "/summary.json", 0, 0}, "scene_hash",
-                     "the run in " + first.dir + " finished with another scene or other values than this sweep gives variant '" + v.name +
-                         "'" + (values.empty() ? std::string() : " (" + values + ")") +
+                     "the run in " + first.dir +
+                         " finished with another scene (its text or a mesh file's bytes) or other values than this sweep gives variant '" +
+                         v.name + "'" + (values.empty() ? std::string() : " (" + values + ")") +
                          (others.empty() ? std::string() : "; so did " + others) +
                          ": the sweep would skip it and compare its results as this variant's; write this sweep to another folder, or "
                          "remove " +

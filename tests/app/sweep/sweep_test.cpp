@@ -317,7 +317,8 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
     other.overrides.push_back("shot.diameter=1.5 mm");
     std::ostringstream out4, err4;
     EXPECT_EQ(sweep_job(other, out4, err4), kExitInputError) << out4.str();
-    EXPECT_NE(err4.str().find("count-64/s0 finished with another scene or other values than this sweep gives variant 'count-64' "
+    EXPECT_NE(err4.str().find("count-64/s0 finished with another scene (its text or a mesh file's bytes) or other values than this sweep "
+                              "gives variant 'count-64' "
                               "(shot.count=64); so did " +
                               (dir.path / "one" / "count-128" / "s0").string() + ": "),
               std::string::npos)
