@@ -115,6 +115,7 @@ std::size_t read_leading_number(std::string_view text, double& value) {
         return 0;  // also keeps from_chars from reading "inf" / "nan"
     const auto [ptr, ec] = std::from_chars(first, last, value, std::chars_format::general);
     if (ec != std::errc()) return 0;
+    value += 0.0;  // a typed -0 is 0: the echo, the resolved scene and the files then print "0", never "-0"
     return static_cast<std::size_t>(ptr - text.data());
 }
 
@@ -211,6 +212,7 @@ double parse_quantity(std::string_view text, Dimension dim, std::string_view pla
 }
 
 std::string format_si(double value) {
+    if (value == 0.0) value = 0.0;  // -0 (typed, or a computed direction's) prints as 0
     std::array<char, 64> buf{};
     const auto [ptr, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), value);
     if (ec != std::errc()) return "nan";

@@ -57,7 +57,7 @@ std::size_t leading_number_length(std::string_view text);
 // Parses a plain decimal number ("2", "-1.5e-3", "+4"), nothing else; false if it is not one.
 bool parse_plain_number(std::string_view text, double& value);
 
-// Shortest text that reads back to exactly `value` ("0.002", "20000", "6.283185307179586").
+// Shortest text that reads back to exactly `value` ("0.002", "20000", "6.283185307179586"); -0 as "0".
 std::string format_si(double value);
 
 }  // namespace peensim

@@ -36,6 +36,19 @@ TEST(Units, LengthsConvertExactly) {
     EXPECT_EQ(parse_quantity("  0.25  ", Dimension::length), 0.25);  // plain number = SI
 }
 
+// A typed -0 reads as 0 (its sign bit clear), so that the check's echo, scene.resolved.yaml and
+// the files written from it say "0", not "-0".
+TEST(Units, MinusZeroReadsAsZero) {
+    for (const char* text : {"-0", "-0.0", "-0 mm", "-0e3 m", "  -0.000  "}) {
+        EXPECT_FALSE(std::signbit(parse_quantity(text, Dimension::length))) << text;
+        EXPECT_EQ(format_si(parse_quantity(text, Dimension::length)), "0") << text;
+    }
+    EXPECT_EQ(format_si(-0.0), "0");  // a computed -0 (a unit vector's component) too
+    double plain = -1.0;
+    ASSERT_TRUE(parse_plain_number("-0", plain));
+    EXPECT_FALSE(std::signbit(plain));
+}
+
 TEST(Units, TimesAndFrequenciesConvertExactly) {
     EXPECT_EQ(parse_quantity("5 s", Dimension::time), 5.0);
     EXPECT_EQ(parse_quantity("50 ms", Dimension::time), 0.05);

@@ -426,10 +426,14 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     result.stopped_because = stopped_because;
     if (study.confirm > 0) {
         // Named by the settings: a search resumed with a larger budget may find another winner.
-        std::vector<SweepVariant> variants{{"confirm-start", setting_overrides(study, settings[0]), {study.path}, "start"}};
+        std::vector<SweepVariant> variants{
+            {"confirm-start", setting_overrides(study, settings[0]), SourceLocation{study.path, 0, 0}, "start", {}}};
         if (result.best != 0)
-            variants.push_back(
-                {"confirm-" + settings[result.best].name, setting_overrides(study, settings[result.best]), {study.path}, "best"});
+            variants.push_back({"confirm-" + settings[result.best].name,
+                                setting_overrides(study, settings[result.best]),
+                                SourceLocation{study.path, 0, 0},
+                                "best",
+                                {}});
         result.confirm_plan = plan_sweep_variants(variants, study.confirm, scene.process.seed + kConfirmSeedOffset, study.overrides, dir);
         const SweepOutcome o = run_plan(*result.confirm_plan, "optimise: confirming the winner and the start");
         if (o.stopped) {

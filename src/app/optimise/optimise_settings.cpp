@@ -103,7 +103,7 @@ SweepPlan settings_plan(const Study& study, const std::vector<StudySetting>& set
     std::vector<SweepVariant> variants;
     std::vector<int> replicates;
     for (const StudySetting& s : settings) {
-        SweepVariant v{s.name, setting_overrides(study, s), {study.path}, "setting " + s.name};
+        SweepVariant v{s.name, setting_overrides(study, s), SourceLocation{study.path, 0, 0}, "setting " + s.name, {}};
         variants.push_back(std::move(v));
         replicates.push_back(s.seeds);
     }
@@ -187,7 +187,7 @@ SweepPlan plan_from_text(const std::string& text) {
     const auto j = nlohmann::json::parse(text);
     SweepPlan plan;
     plan.grid = false;
-    for (const auto& v : j["variants"]) plan.variants.push_back({v.get<std::string>(), {}, {}, ""});
+    for (const auto& v : j["variants"]) plan.variants.push_back({v.get<std::string>(), {}, {}, "", {}});
     for (const auto& r : j["runs"]) {
         SweepRun run;
         run.variant = r["variant"].get<std::size_t>();

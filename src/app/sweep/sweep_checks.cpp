@@ -6,10 +6,12 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include <nlohmann/json.hpp>
 
+#include "app/render_module.h"
 #include "geometry/cad_reader.h"
 #include "model/component_mesh.h"
 #include "scene/resolved_writer.h"
@@ -170,6 +172,7 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
     }
     CheckProgress progress(out, "the variants", plan.variants.size());
     std::optional<std::pair<std::size_t, CadMeshUse>> cad;  // the first variant with a STEP or IGES part, and that part
+    std::optional<std::size_t> animated;                    // the first variant whose runs record an animation
     for (std::size_t k = 0; k < plan.variants.size(); ++k) {
         const SweepVariant& v = plan.variants[k];
         std::vector<std::string> settings;
@@ -179,6 +182,7 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
             const SceneDescription variant = read(settings);
             if (!cad)
                 if (std::optional<CadMeshUse> use = first_cad_mesh(variant)) cad.emplace(k, std::move(*use));
+            if (!animated && variant.render) animated = k;
             seed = variant.process.seed;
         } catch (const InputError& e) {
             if (const std::optional<std::size_t> at = named_setting(e, settings); at && *at < v.set_origins.size()) {
@@ -198,6 +202,16 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
             require_cad_reading(cad->second.path);
         } catch (const InputError& e) {
             blame_cad_part(e, cad->second, plan, plan.variants[cad->first], where_set);
+        }
+    }
+    // The same for an animation without the render module: each run would stop before its first
+    // step (exit 1, as `peensim run` does), and be retried once.
+    if (animated) {
+        try {
+            (void)render_module();
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error("variant '" + plan.variants[*animated].name +
+                                     "' records an animation (its scene's render block), as every run that has one would: " + e.what());
         }
     }
 }

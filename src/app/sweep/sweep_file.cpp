@@ -98,7 +98,7 @@ SweepFile read_sweep_file(const std::string& path) {
             const YAML::Node v = variants[k];
             const std::string field = "variants[" + std::to_string(k) + "]";
             if (!v.IsMap() || !v["name"] || !v["name"].IsScalar()) fail(v, field + ".name", "expected each variant's name");
-            SweepVariant variant{v["name"].Scalar(), {}, yaml_location(path, v), field};
+            SweepVariant variant{v["name"].Scalar(), {}, yaml_location(path, v), field, {}};
             if (const YAML::Node set = v["set"]) {
                 if (!set.IsMap()) fail(set, field + ".set", "expected a map of path: value");
                 for (const auto& kv : set) variant.set.emplace_back(kv.first.Scalar(), yaml_text(kv.second));

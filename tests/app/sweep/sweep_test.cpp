@@ -25,6 +25,7 @@
 #include "support/child_process.h"
 #include "support/files.h"
 #include "support/mpirun_environment.h"
+#include "support/shell_command.h"
 #include "support/shipped_scenes.h"
 #include "support/temp_dir.h"
 
@@ -324,6 +325,29 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
               std::string::npos)
         << err4.str();
     EXPECT_EQ(fs::last_write_time(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), written);
+}
+
+// Runs that would record an animation without a render module to draw it are refused before any
+// run, as a STEP part without the CAD module is (each run would stop at its start, exit 1, and be
+// retried once). In a child: this process may have loaded the module already.
+TEST(SweepJob, AnAnimationWithoutTheRenderModuleIsRefusedBeforeAnyRun) {
+    TempDir dir;
+    const fs::path junk = dir.path / "junk.so";
+    std::ofstream(junk) << "not a module\n";
+    const ShellResult sweep =
+        run_shell("PEENSIM_RENDER_MODULE='" + junk.string() + "' '" + PEENSIM_BINARY + "' sweep '" + kRod + "' -o '" +
+                  (dir.path / "sweep").string() + "' --vary shot.count=32,64 --set process.duration=0.05 --set render.width=320 2>&1");
+    EXPECT_EQ(WEXITSTATUS(sweep.status), 1) << sweep.output;
+    EXPECT_NE(sweep.output.find("variant 'count-32' records an animation (its scene's render block), as every run that has one would: "
+                                "rendering needs libpeensim_render.so"),
+              std::string::npos)
+        << sweep.output;
+    EXPECT_FALSE(fs::exists(dir.path / "sweep")) << sweep.output;
+    // Without the render block, the same sweep does not need the module for its runs (their
+    // reports say which pictures are missing): not refused.
+    const ShellResult plain = run_shell("PEENSIM_RENDER_MODULE='" + junk.string() + "' '" + PEENSIM_BINARY + "' sweep '" + kRod + "' -o '" +
+                                        (dir.path / "plain").string() + "' --vary shot.count=32,64 --set process.duration=0.02 2>&1");
+    EXPECT_EQ(WEXITSTATUS(plain.status), 0) << plain.output;
 }
 
 TEST(SweepJob, AFailingRunIsRetriedOnceThenReportedAndBadInputsExitTwo) {
