@@ -383,14 +383,16 @@ std::string scene_hash_hex(std::uint64_t hash) {
     return text;
 }
 
-std::uint64_t scene_hash(const SceneDescription& s) {
+std::string hashed_scene_yaml(const SceneDescription& s) {
     // Rendering, the checkpoint interval and the maps' smoothing do not change what is simulated:
     // a run may be resumed with other settings for them.
     SceneDescription simulated = s;
     simulated.render.reset();
     simulated.output.checkpoint_interval_s = 0.0;
-    return fnv1a64(scene_yaml(simulated, OutputSettings::hashed));
+    return scene_yaml(simulated, OutputSettings::hashed);
 }
+
+std::uint64_t scene_hash(const SceneDescription& s) { return fnv1a64(hashed_scene_yaml(s)); }
 
 std::string resolved_region_text(const RegionDesc& region) { return region_text(region); }
 

@@ -18,6 +18,9 @@ std::string resolved_scene_yaml(const SceneDescription& scene);
 // lies, another for a mesh rewritten in place.
 std::uint64_t scene_hash(const SceneDescription& scene);
 
+// The text scene_hash hashes (what a run simulates, its mesh files as digests of their bytes).
+std::string hashed_scene_yaml(const SceneDescription& scene);
+
 // A scene hash as summary.json and the checkpoints write it: 16 lowercase hexadecimal digits.
 std::string scene_hash_hex(std::uint64_t hash);
 

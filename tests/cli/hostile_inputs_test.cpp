@@ -459,7 +459,8 @@ TEST(HostileInputs3, ResumingAFinishedRunSaysItIsFinishedAndWhere) {
                 "impacts.csv, summary.json, analysis/"});
     EXPECT_EQ(read_file(done / "impacts.csv"), before);  // untouched
     expect_cli(peensim({"run", kScenes + "rod.yaml", "-o", done.string(), "--set", "process.duration=0.2", "--resume"}), 2,
-               {"summary.json", "finished with another scene (or other --set values, or mesh files whose bytes", "run without --resume"});
+               {"summary.json", "finished with another scene (or other --set values, or mesh files whose bytes",
+                "(what differs: process: the run had `duration: 0.1  # s`, now `duration: 0.2  # s`)", "run without --resume"});
     expect_cli(peensim({"run", kScenes + "rod.yaml", "-o", (dir.path / "never").string(), "--resume"}), 1,
                {"no checkpoint to resume from"});
 }

@@ -11,6 +11,7 @@
 
 #include "common/input_error.h"
 #include "scene/resolved_writer.h"
+#include "scene/scene_difference.h"
 #include "scene/scene_parser.h"
 #include "support/temp_dir.h"
 
@@ -451,6 +452,28 @@ TEST(SceneParser, HashFollowsTheMeshFilesBytesNotTheirPaths) {
     fs::last_write_time(dir.path / "part.stl", fs::last_write_time(dir.path / "part.stl") + std::chrono::seconds(1));
     EXPECT_NE(hash_with_part(dir.path / "part.stl"), original);
     EXPECT_EQ(hash_with_part(dir.path / "copy" / "part.stl"), original);
+}
+
+// A refusal of another scene says what differs: the first simulated setting, in the run's and the
+// new scene's own words, or the mesh written since the run began.
+TEST(SceneParser, TheDifferenceFromARunsSceneIsNamed) {
+    namespace fs = std::filesystem;
+    const peensim::testing::TempDir dir;
+    fs::copy_file(tetrahedron_path(), dir.path / "part.stl");
+    const std::string part = "components[rod].mesh=" + (dir.path / "part.stl").string();
+    const fs::path resolved = dir.path / "scene.resolved.yaml";
+    std::ofstream(resolved) << resolved_scene_yaml(parse_scene_text(minimal_scene, virtual_path, {part}));
+    EXPECT_EQ(scene_difference(resolved.string(), parse_scene_text(minimal_scene, virtual_path, {part, "shot.diameter=1.5 mm"})),
+              "shot: the run had `diameter: 0.001  # m`, now `diameter: 0.0015  # m`");
+    EXPECT_EQ(scene_difference(resolved.string(),
+                               parse_scene_text(minimal_scene, virtual_path, {part, "components[box].translation=[0, 0, 1 mm]"})),
+              "components, entry box: the run had `translation: [0, 0, 0]  # m`, now `translation: [0, 0, 0.001]  # m`");
+    // The same settings, the part's mesh rewritten after the run began.
+    std::ofstream(dir.path / "part.stl", std::ios::app) << "\n";
+    fs::last_write_time(dir.path / "part.stl", fs::last_write_time(resolved) + std::chrono::seconds(2));
+    EXPECT_EQ(scene_difference(resolved.string(), parse_scene_text(minimal_scene, virtual_path, {part})),
+              "the same settings, but a mesh file was written since the run began: " + (dir.path / "part.stl").string());
+    EXPECT_EQ(scene_difference((dir.path / "none.yaml").string(), parse_scene_text(minimal_scene, virtual_path, {part})), "");
 }
 
 TEST(SceneParser, ParsesAFileFromDisk) {

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -15,6 +16,7 @@
 #include "common/input_error.h"
 #include "engine/law_input.h"
 #include "output/atomic_file.h"
+#include "scene/scene_difference.h"
 
 namespace peensim {
 
@@ -101,10 +103,16 @@ Checkpoint load_checkpoint(const std::string& path) {
 }
 
 void check_resumable(const std::string& path, const Checkpoint& c, const Model& model, std::size_t logged_components) {
-    if (c.scene_hash != model.scene_hash)
-        throw InputError(SourceLocation{path, 0, 0}, "checkpoint",
-                         "the scene changed since this checkpoint was written (a setting, or a mesh file's bytes; only "
-                         "output.checkpoint_interval and render settings may change on resume); run without --resume to start over");
+    if (c.scene_hash != model.scene_hash) {
+        // What differs, from the scene the run wrote beside its checkpoint.
+        const std::string what =
+            scene_difference((std::filesystem::path(path).parent_path() / "scene.resolved.yaml").string(), model.description);
+        throw InputError(
+            SourceLocation{path, 0, 0}, "checkpoint",
+            "the scene changed since this checkpoint was written (" +
+                (what.empty() ? std::string("a setting, or a mesh file's bytes") : what) +
+                "; only output.checkpoint_interval and render settings may change on resume); run without --resume to start over");
+    }
     const SimulationState& s = c.state;
     const double t = s.time.seconds();
     if (!std::isfinite(s.time.hi) || !std::isfinite(s.time.lo) || t < 0.0 || t > model.duration_s)

@@ -47,6 +47,7 @@
 #include "output/run_directory.h"
 #include "output/summary_json.h"
 #include "output/summary_text.h"
+#include "scene/scene_difference.h"
 #include "scene/scene_parser.h"
 #include "scene/schema_defaults.h"
 
@@ -98,7 +99,9 @@ public:
             }
         }
         try {
-            write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
+            // A resume writes it once its checkpoint is found to be of this scene (start()): a
+            // refused one leaves the run's own, which says what differs the next time.
+            if (!options_.resume) write_resolved_scene();
             slots_ = logged_slots(*model_);
             start(setup);
             if (const std::optional<double> every = model_->description.output.shot_positions_s)
@@ -176,6 +179,16 @@ private:
         return "\ninterrupted again: run abandoned; " + resume_command() + " continues from the last checkpoint (if one was written)\n";
     }
 
+    // " (<what differs>)" between the run's scene and this one, or "" (scene_difference.h).
+    std::string what_differs() const {
+        const std::string d = scene_difference((fs::path(dir_) / "scene.resolved.yaml").string(), model_->description);
+        return d.empty() ? std::string() : " (what differs: " + d + ")";
+    }
+
+    void write_resolved_scene() const {
+        write_file_atomically((fs::path(dir_) / "scene.resolved.yaml").string(), model_->resolved_scene_yaml);
+    }
+
     // --resume without a checkpoint: a finished run (its summary says so, of this scene) has
     // nothing to resume, which is said with where its results are (exit 0: the run is done, and
     // a script resuming until done stops); anything else cannot be resumed.
@@ -195,8 +208,9 @@ private:
             throw InputError({summary.string(), 0, 0}, "scene_hash",
                              "the run in " + dir_ +
                                  " finished with another scene (or other --set values, or mesh files whose bytes have changed since) than "
-                                 "this one; nothing to resume: "
-                                 "run without --resume to run this scene (that replaces its outputs)");
+                                 "this one" +
+                                 what_differs() +
+                                 "; nothing to resume: run without --resume to run this scene (that replaces its outputs)");
         err_ << "nothing to resume: the run in " << dir_ << " already finished (" << j.value("simulated_time_s", 0.0)
              << " s simulated); its results are in " << dir_ << "/{impacts.csv, summary.json, analysis/}\n";
         return kExitOk;
@@ -210,6 +224,7 @@ private:
         if (options_.resume) {
             Checkpoint c = load_checkpoint(checkpoint_path());
             check_resumable(checkpoint_path(), c, *model_, logged);
+            write_resolved_scene();
             sim_ = std::make_unique<Simulation>(model_, std::move(c.state));
             writer_ = std::make_unique<ImpactCsvWriter>(
                 ImpactCsvWriter::resume(dir_, component_names(*model_), c.csv_bytes, c.csv_rows, model_->has_size_mix()));

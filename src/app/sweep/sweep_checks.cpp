@@ -15,6 +15,7 @@
 #include "geometry/cad_reader.h"
 #include "model/component_mesh.h"
 #include "scene/resolved_writer.h"
+#include "scene/scene_difference.h"
 #include "scene/scene_parser.h"
 #include "scene/yaml_access.h"
 
@@ -219,14 +220,17 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
 void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
     std::string text;                    // the scene's text, read at the first finished run (a fresh sweep has none)
     std::vector<const SweepRun*> stale;  // finished with another scene: every one named, not one per attempt
+    std::string first_difference;        // what differs for the first of them (scene_difference.h)
     for (const SweepRun& run : plan.runs) {
         std::ifstream in(run.dir + "/summary.json");
         if (!in) continue;
         const auto j = nlohmann::json::parse(in, nullptr, false);
         if (!j.is_object() || !j.value("finished", false)) continue;  // rerun or resumed: the run checks its checkpoint
         if (text.empty()) text = file_text(scene_path);
-        if (j.value("scene_hash", std::string()) != scene_hash_hex(scene_hash(parse_scene_text(text, scene_path, run.overrides))))
-            stale.push_back(&run);
+        const SceneDescription now = parse_scene_text(text, scene_path, run.overrides);
+        if (j.value("scene_hash", std::string()) == scene_hash_hex(scene_hash(now))) continue;
+        if (stale.empty()) first_difference = scene_difference(run.dir + "/scene.resolved.yaml", now);
+        stale.push_back(&run);
     }
     if (stale.empty()) return;
     const SweepRun& first = *stale.front();
@@ -241,6 +245,7 @@ void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
                      "the run in " + first.dir +
                          " finished with another scene (its text or a mesh file's bytes) or other values than this sweep gives variant '" +
                          v.name + "'" + (values.empty() ? std::string() : " (" + values + ")") +
+                         (first_difference.empty() ? std::string() : "; what differs: " + first_difference) +
                          (others.empty() ? std::string() : "; so did " + others) +
                          ": the sweep would skip it and compare its results as this variant's; write this sweep to another folder, or "
                          "remove " +

@@ -156,6 +156,10 @@ TEST(CheckpointResumeChecks, TheCheckpointIntervalMayChangeOnResumeTheShotCountM
     ASSERT_EQ(run(false, {}, 50, err), kExitInterrupted) << err;
     EXPECT_EQ(run(true, {"shot.count=17"}, {}, err), kExitInputError);
     EXPECT_NE(err.find("the scene changed"), std::string::npos) << err;
+    EXPECT_NE(err.find("(shot: the run had `count: "), std::string::npos) << err;  // what differs, named
+    EXPECT_NE(err.find("now `count: 17`"), std::string::npos) << err;
+    // The refused resume leaves the run's own resolved scene (it would say what differs next time).
+    EXPECT_EQ(read_file(std::filesystem::path(dir) / "scene.resolved.yaml").find("count: 17"), std::string::npos);
     EXPECT_EQ(run(true, {"output.checkpoint_interval=5"}, {}, err), kExitOk) << err;
 }
 

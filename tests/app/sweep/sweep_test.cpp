@@ -318,11 +318,12 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
     other.overrides.push_back("shot.diameter=1.5 mm");
     std::ostringstream out4, err4;
     EXPECT_EQ(sweep_job(other, out4, err4), kExitInputError) << out4.str();
-    EXPECT_NE(err4.str().find("count-64/s0 finished with another scene (its text or a mesh file's bytes) or other values than this sweep "
-                              "gives variant 'count-64' "
-                              "(shot.count=64); so did " +
-                              (dir.path / "one" / "count-128" / "s0").string() + ": "),
-              std::string::npos)
+    EXPECT_NE(
+        err4.str().find("count-64/s0 finished with another scene (its text or a mesh file's bytes) or other values than this sweep "
+                        "gives variant 'count-64' "
+                        "(shot.count=64); what differs: shot: the run had `diameter: 0.002  # m`, now `diameter: 0.0015  # m`; so did " +
+                        (dir.path / "one" / "count-128" / "s0").string() + ": "),
+        std::string::npos)
         << err4.str();
     EXPECT_EQ(fs::last_write_time(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), written);
 }
