@@ -124,7 +124,6 @@ void write_rate(std::string& y, const SourceDesc& d) {
         y += "    rate: " + si_text(d.rate_per_s) + "  # shot per s\n";
 }
 
-// Sources and sinks, only when the scene has them (most have neither).
 // What a scene's hash leaves out of the output block: the analysis' settings (they do not change
 // the run), and the shot-position series when there is none (scenes without one keep the hash
 // they had before the series existed). A series is hashed: a run resumes only with the interval
@@ -137,6 +136,7 @@ std::string mesh_text(const std::string& path, OutputSettings settings) {
     return yaml_text(settings == OutputSettings::hashed ? file_digest_text(path) : path);
 }
 
+// Sources and sinks, only when the scene has them (most have neither).
 void write_flow(std::string& y, const SceneDescription& s, OutputSettings settings) {
     if (!s.sources.empty()) y += "sources:\n";
     for (const SourceDesc& d : s.sources) {

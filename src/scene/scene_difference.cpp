@@ -54,6 +54,14 @@ std::string scene_difference(const std::string& resolved_yaml_path, const SceneD
         const std::string was = k < before.size() ? without_indent(before[k]) : "(nothing)";
         const std::string is = k < after.size() ? without_indent(after[k]) : "(nothing)";
         if (was == is) continue;
+        // A mesh's line holds its bytes' digest: said in words, with the file as the scene names it
+        // (the resolved scene's line, the same line of the same block).
+        if (was.rfind("mesh: ", 0) == 0 && is.rfind("mesh: ", 0) == 0) {
+            const std::vector<std::string> named = resolved_lines(resolved_scene_yaml(now));
+            const std::string file = k < named.size() ? without_indent(named[k]) : std::string();
+            return place_of_line(after, k) + ": the mesh file's bytes differ from the run's" +
+                   (file.rfind("mesh: ", 0) == 0 ? " (now `" + file + "`)" : std::string());
+        }
         return place_of_line(k < after.size() ? after : before, k) + ": the run had `" + was + "`, now `" + is + "`";
     }
     // The same settings: the meshes' bytes are what differs (read now for both), those written

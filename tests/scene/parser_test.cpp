@@ -13,6 +13,7 @@
 #include "scene/resolved_writer.h"
 #include "scene/scene_difference.h"
 #include "scene/scene_parser.h"
+#include "support/files.h"
 #include "support/temp_dir.h"
 
 namespace peensim {
@@ -468,6 +469,11 @@ TEST(SceneParser, TheDifferenceFromARunsSceneIsNamed) {
     EXPECT_EQ(scene_difference(resolved.string(),
                                parse_scene_text(minimal_scene, virtual_path, {part, "components[box].translation=[0, 0, 1 mm]"})),
               "components, entry box: the run had `translation: [0, 0, 0]  # m`, now `translation: [0, 0, 0.001]  # m`");
+    // Another mesh file, of other bytes: said in words, with the file the scene names now.
+    std::ofstream(dir.path / "other.stl") << peensim::testing::read_file(tetrahedron_path()) << "\n";
+    EXPECT_EQ(scene_difference(resolved.string(), parse_scene_text(minimal_scene, virtual_path,
+                                                                   {"components[rod].mesh=" + (dir.path / "other.stl").string()})),
+              "components, entry rod: the mesh file's bytes differ from the run's (now `mesh: " + (dir.path / "other.stl").string() + "`)");
     // The same settings, the part's mesh rewritten after the run began.
     std::ofstream(dir.path / "part.stl", std::ios::app) << "\n";
     fs::last_write_time(dir.path / "part.stl", fs::last_write_time(resolved) + std::chrono::seconds(2));
