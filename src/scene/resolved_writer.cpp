@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <stdexcept>
@@ -129,11 +130,14 @@ void write_rate(std::string& y, const SourceDesc& d) {
 // they had before the series existed). A series is hashed: a run resumes only with the interval
 // its files were written at.
 // What it puts in place of a mesh file's path: the file's bytes (common/file_digest.h), so that a
-// mesh re-exported to the same path changes the hash and a copy of it elsewhere does not.
+// mesh re-exported to the same path changes the hash and a copy of it elsewhere does not. The
+// resolved scene writes the path with the same digest in a comment: what a later refusal compares
+// each file's bytes with (scene_difference.h).
 enum class OutputSettings { all, hashed };
 
 std::string mesh_text(const std::string& path, OutputSettings settings) {
-    return yaml_text(settings == OutputSettings::hashed ? file_digest_text(path) : path);
+    return settings == OutputSettings::hashed ? yaml_text(file_digest_text(path))
+                                              : yaml_text(path) + std::string(kMeshDigestComment) + file_digest_text(path);
 }
 
 // Sources and sinks, only when the scene has them (most have neither).
@@ -389,6 +393,11 @@ std::string hashed_scene_yaml(const SceneDescription& s) {
     SceneDescription simulated = s;
     simulated.render.reset();
     simulated.output.checkpoint_interval_s = 0.0;
+    // Materials and contact pairs are found by name: the order they are written in is not the run's.
+    std::sort(simulated.materials.begin(), simulated.materials.end(),
+              [](const MaterialDesc& a, const MaterialDesc& b) { return a.name < b.name; });
+    std::sort(simulated.contacts.begin(), simulated.contacts.end(),
+              [](const ContactPairDesc& a, const ContactPairDesc& b) { return a.key < b.key; });
     return scene_yaml(simulated, OutputSettings::hashed);
 }
 

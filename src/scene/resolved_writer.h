@@ -12,6 +12,10 @@ namespace peensim {
 
 std::string resolved_scene_yaml(const SceneDescription& scene);
 
+// What follows a mesh file's path in the resolved scene: "  # " and the digest of its bytes
+// (common/file_digest.h), e.g. "mesh: /parts/rod.stl  # fnv1a64 0123456789abcdef, 336084 B".
+inline constexpr const char* kMeshDigestComment = "  # ";
+
 // FNV-1a 64 of resolved_scene_yaml(scene) without the settings that do not change the run (render
 // block, checkpoint interval, the analysis' output settings), each mesh file's path replaced by its
 // bytes' digest: equal for scenes that differ only in how they were written or where the same mesh

@@ -1,10 +1,11 @@
 #include "scene/scene_difference.h"
 
-#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
-#include <system_error>
 #include <vector>
 
+#include "common/file_digest.h"
 #include "scene/resolved_writer.h"
 #include "scene/scene_parser.h"
 
@@ -19,65 +20,103 @@ std::vector<std::string> resolved_lines(const std::string& text) {
     return lines;
 }
 
-std::string without_indent(const std::string& line) {
+std::size_t indent_of(const std::string& line) {
     const auto first = line.find_first_not_of(' ');
-    return first == std::string::npos ? std::string() : line.substr(first);
+    return first == std::string::npos ? line.size() : first;
 }
 
-// Where line k of a resolved scene is: its section ("components") and, in a list, its entry's
-// name ("components, entry 'gear'").
+std::string without_indent(const std::string& line) { return line.substr(indent_of(line)); }
+
+// A line without its trailing comment (a unit, a mesh's digest), for naming a setting.
+std::string without_comment(const std::string& line) {
+    const auto hash = line.find("  # ");
+    return hash == std::string::npos ? line : line.substr(0, hash);
+}
+
+// Where line k of a resolved scene is: its section and the entries it lies in, each by its name
+// ("components, rod, motion"; "contacts, shot-steel"), from the lines that hold it.
 std::string place_of_line(const std::vector<std::string>& lines, std::size_t k) {
-    std::string entry;
-    for (std::size_t i = k + 1; i-- > 0;) {
-        const std::string& line = lines[i];
-        if (entry.empty() && line.rfind("  - name: ", 0) == 0) entry = line.substr(10);
-        if (!line.empty() && line[0] != ' ' && line[0] != '#') {
-            const std::string section = line.substr(0, line.find(':'));
-            return entry.empty() || i == k ? section : section + ", entry " + entry;
-        }
+    std::vector<std::string> parents;  // innermost first
+    // A list entry's first line ("  - name: rod") names the entry its keys (at 4) belong to.
+    std::size_t indent = indent_of(lines[k]) + (without_indent(lines[k]).rfind("- name: ", 0) == 0 ? 1 : 0);
+    for (std::size_t i = k + 1; i-- > 0 && indent > 0;) {
+        const std::size_t at = indent_of(lines[i]);
+        const std::string text = without_indent(lines[i]);
+        if (text.empty() || text[0] == '#' || at >= indent) continue;
+        parents.push_back(text.rfind("- name: ", 0) == 0 ? text.substr(8) : text.substr(0, text.find(':')));
+        indent = at;
     }
-    return "the scene";
+    std::string place;
+    for (auto p = parents.rbegin(); p != parents.rend(); ++p) place += (place.empty() ? "" : ", ") + *p;
+    return place.empty() ? "the scene" : place;
+}
+
+// The mesh files the run's resolved scene gives digests for (in the order it writes them:
+// components, then sinks) whose bytes differ now.
+std::string meshes_rewritten(const std::string& resolved_text, const SceneDescription& before) {
+    std::vector<std::string> digests;
+    for (const std::string& line : resolved_lines(resolved_text)) {
+        const std::string text = without_indent(line);
+        const auto comment = text.find(kMeshDigestComment);
+        if (text.rfind("mesh: ", 0) == 0 && comment != std::string::npos) digests.push_back(text.substr(comment + 4));
+    }
+    std::vector<std::string> paths;
+    for (const ComponentDesc& c : before.components) paths.push_back(c.mesh_path);
+    for (const SinkDesc& s : before.sinks)
+        if (s.region == SinkRegion::mesh) paths.push_back(s.mesh_path);
+    if (digests.size() != paths.size()) return "";  // an earlier peensim's resolved scene: no digests
+    std::string changed;
+    for (std::size_t k = 0; k < paths.size(); ++k)
+        if (file_digest_text(paths[k]) != digests[k] && changed.find(paths[k]) == std::string::npos)
+            changed += (changed.empty() ? "" : ", ") + paths[k];
+    return changed;
 }
 
 }  // namespace
 
 std::string scene_difference(const std::string& resolved_yaml_path, const SceneDescription& now) {
-    namespace fs = std::filesystem;
-    std::string before_text;
+    std::string resolved_text;
+    SceneDescription before;
     try {
-        before_text = hashed_scene_yaml(parse_scene_file(resolved_yaml_path));
+        std::ifstream in(resolved_yaml_path, std::ios::binary);
+        if (!in) return "";
+        resolved_text.assign(std::istreambuf_iterator<char>(in), {});
+        before = parse_scene_text(resolved_text, resolved_yaml_path);
     } catch (const std::exception&) {
-        return "";  // an older peensim's resolved scene, a damaged one, or its meshes gone
+        return "";  // a damaged resolved scene, or its meshes gone
     }
-    const std::vector<std::string> before = resolved_lines(before_text), after = resolved_lines(hashed_scene_yaml(now));
-    for (std::size_t k = 0; k < before.size() || k < after.size(); ++k) {
-        const std::string was = k < before.size() ? without_indent(before[k]) : "(nothing)";
-        const std::string is = k < after.size() ? without_indent(after[k]) : "(nothing)";
-        if (was == is) continue;
-        // A mesh's line holds its bytes' digest: said in words, with the file as the scene names it
-        // (the resolved scene's line, the same line of the same block).
-        if (was.rfind("mesh: ", 0) == 0 && is.rfind("mesh: ", 0) == 0) {
-            const std::vector<std::string> named = resolved_lines(resolved_scene_yaml(now));
-            const std::string file = k < named.size() ? without_indent(named[k]) : std::string();
-            return place_of_line(after, k) + ": the mesh file's bytes differ from the run's" +
-                   (file.rfind("mesh: ", 0) == 0 ? " (now `" + file + "`)" : std::string());
+    const std::vector<std::string> was = resolved_lines(hashed_scene_yaml(before)), is = resolved_lines(hashed_scene_yaml(now));
+    std::size_t k = 0;
+    while (k < was.size() && k < is.size() && was[k] == is[k]) ++k;
+    if (k < was.size() || k < is.size()) {
+        // A block added or removed (regions, sinks): every line after it lines up again.
+        const auto shifted = [](const std::vector<std::string>& shorter, const std::vector<std::string>& longer, std::size_t k) {
+            if (longer.size() <= shorter.size()) return false;
+            const std::size_t m = longer.size() - shorter.size();
+            for (std::size_t i = k; i < shorter.size(); ++i)
+                if (shorter[i] != longer[i + m]) return false;
+            return true;
+        };
+        if (k < was.size() && k < is.size()) {
+            const std::string a = without_indent(was[k]), b = without_indent(is[k]);
+            // A mesh's line holds its bytes' digest: said in words, with the file the scene names now.
+            if (a.rfind("mesh: ", 0) == 0 && b.rfind("mesh: ", 0) == 0) {
+                const std::vector<std::string> named = resolved_lines(resolved_scene_yaml(now));
+                const std::string file = k < named.size() ? without_comment(without_indent(named[k])) : std::string();
+                return place_of_line(is, k) + ": the mesh file's bytes differ from the run's" +
+                       (file.rfind("mesh: ", 0) == 0 ? " (now `" + file + "`)" : std::string());
+            }
+            if (shifted(was, is, k)) return place_of_line(is, k) + ": now also `" + without_comment(b) + "`, which the run had not";
+            if (shifted(is, was, k)) return place_of_line(was, k) + ": the run also had `" + without_comment(a) + "`, which is gone now";
+            return place_of_line(is, k) + ": the run had `" + a + "`, now `" + b + "`";
         }
-        return place_of_line(k < after.size() ? after : before, k) + ": the run had `" + was + "`, now `" + is + "`";
+        if (k < is.size()) return place_of_line(is, k) + ": now also `" + without_comment(without_indent(is[k])) + "`";
+        return place_of_line(was, k) + ": the run also had `" + without_comment(without_indent(was[k])) + "`";
     }
-    // The same settings: the meshes' bytes are what differs (read now for both), those written
-    // after the run began first.
-    std::error_code error;
-    const auto run_began = fs::last_write_time(resolved_yaml_path, error);
-    std::string newer;
-    const auto check = [&](const std::string& mesh_path) {
-        const auto written = fs::last_write_time(mesh_path, error);
-        if (!error && written > run_began) newer += (newer.empty() ? "" : ", ") + mesh_path;
-    };
-    for (const ComponentDesc& c : now.components) check(c.mesh_path);
-    for (const SinkDesc& s : now.sinks)
-        if (s.region == SinkRegion::mesh) check(s.mesh_path);
-    if (!newer.empty()) return "the same settings, but a mesh file was written since the run began: " + newer;
-    return "the same settings: a mesh file's bytes differ (replaced by an older file), or the run was made by an earlier peensim";
+    // The same settings: the meshes' bytes, compared with those the run's resolved scene recorded.
+    if (const std::string changed = meshes_rewritten(resolved_text, before); !changed.empty())
+        return "the same settings, but the bytes of a mesh file differ from the run's: " + changed;
+    return "the same settings: a mesh file's bytes differ, or the run was made by an earlier peensim";
 }
 
 }  // namespace peensim

@@ -258,6 +258,9 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
         return kExitOk;
     }
     const auto run_plan = [&](const SweepPlan& plan, const std::string& headline) {
+        // Its finished and interrupted runs of another scene (a mesh rewritten in place) are not
+        // taken for this study's, as a sweep's are not.
+        check_finished_runs(study.scene_path, plan);
         if (mpi) {
             mpi->broadcast(plan_text(plan));
             runner.mpi = &*mpi;

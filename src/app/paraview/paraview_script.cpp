@@ -392,8 +392,9 @@ void write_paraview_script(const fs::path& run_dir, const fs::path& write_dir, c
                            const std::vector<ComponentAnalysis>& parts, double run_duration_s, const AnalysisWindow& window) {
     const fs::path analysis = fs::absolute(run_dir / kAnalysisDirName);
     const Vec3& g = scene.process.gravity_m_per_s2;
-    const Vec3 up = g.norm() > 0.0 ? Vec3(-g.normalized()) : Vec3(Vec3::UnitZ());
-    const Vec3 from = impacts_seen_from(scene, parts);
+    // (+ 0: the script's numbers never read -0, as the negated gravity's zeros would)
+    const Vec3 up = (g.norm() > 0.0 ? Vec3(-g.normalized()) : Vec3(Vec3::UnitZ())) + Vec3::Zero();
+    const Vec3 from = impacts_seen_from(scene, parts) + Vec3::Zero();
     nlohmann::json run = {{"analysis_dir", analysis.string()},
                           {"duration_s", run_duration_s},
                           {"window_from_s", window.from_s},

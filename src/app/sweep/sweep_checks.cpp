@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/checkpoint/checkpoint.h"
 #include "app/render_module.h"
 #include "geometry/cad_reader.h"
 #include "model/component_mesh.h"
@@ -211,8 +212,12 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
         try {
             (void)render_module();
         } catch (const std::runtime_error& e) {
-            throw std::runtime_error("variant '" + plan.variants[*animated].name +
-                                     "' records an animation (its scene's render block), as every run that has one would: " + e.what());
+            // Named by the variant only when the scene itself records none (an optimisation's
+            // check settings are no variants of the user's).
+            throw std::runtime_error((read({}).render ? std::string("the runs record an animation (the scene's render block)")
+                                                      : "variant '" + plan.variants[*animated].name +
+                                                            "' records an animation (its render block), as every run that has one would") +
+                                     ": " + e.what());
         }
     }
 }
@@ -221,15 +226,34 @@ void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
     std::string text;                    // the scene's text, read at the first finished run (a fresh sweep has none)
     std::vector<const SweepRun*> stale;  // finished with another scene: every one named, not one per attempt
     std::string first_difference;        // what differs for the first of them (scene_difference.h)
+    bool first_finished = true;          // the first of them finished (else: its checkpoint)
     for (const SweepRun& run : plan.runs) {
-        std::ifstream in(run.dir + "/summary.json");
-        if (!in) continue;
-        const auto j = nlohmann::json::parse(in, nullptr, false);
-        if (!j.is_object() || !j.value("finished", false)) continue;  // rerun or resumed: the run checks its checkpoint
+        // Its scene's hash: a finished run's summary's, an interrupted one's checkpoint's (a run
+        // with neither starts afresh).
+        std::string ran;
+        bool finished = false;
+        if (std::ifstream in(run.dir + "/summary.json"); in) {
+            const auto j = nlohmann::json::parse(in, nullptr, false);
+            finished = j.is_object() && j.value("finished", false);
+            if (finished) ran = j.value("scene_hash", std::string());
+            if (finished && ran.empty()) continue;  // not a peensim run's summary (a stand-in's): nothing to compare
+        }
+        if (!finished && std::filesystem::exists(run.dir + "/checkpoint.bin")) {
+            try {
+                ran = scene_hash_hex(load_checkpoint(run.dir + "/checkpoint.bin").scene_hash);
+            } catch (const std::exception&) {
+                continue;  // a damaged checkpoint: its run says so
+            }
+        } else if (!finished) {
+            continue;
+        }
         if (text.empty()) text = file_text(scene_path);
         const SceneDescription now = parse_scene_text(text, scene_path, run.overrides);
-        if (j.value("scene_hash", std::string()) == scene_hash_hex(scene_hash(now))) continue;
-        if (stale.empty()) first_difference = scene_difference(run.dir + "/scene.resolved.yaml", now);
+        if (ran == scene_hash_hex(scene_hash(now))) continue;
+        if (stale.empty()) {
+            first_difference = scene_difference(run.dir + "/scene.resolved.yaml", now);
+            first_finished = finished;
+        }
         stale.push_back(&run);
     }
     if (stale.empty()) return;
@@ -241,16 +265,17 @@ void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
     constexpr std::size_t kNamed = 5;  // runs named beyond the first; the rest counted
     for (std::size_t k = 1; k < stale.size() && k <= kNamed; ++k) others += (k > 1 ? ", " : "") + stale[k]->dir;
     if (stale.size() > kNamed + 1) others += " and " + std::to_string(stale.size() - kNamed - 1) + " more";
-    throw InputError({first.dir + "/summary.json", 0, 0}, "scene_hash",
-                     "the run in " + first.dir +
-                         " finished with another scene (its text or a mesh file's bytes) or other values than this sweep gives variant '" +
-                         v.name + "'" + (values.empty() ? std::string() : " (" + values + ")") +
-                         (first_difference.empty() ? std::string() : "; what differs: " + first_difference) +
-                         (others.empty() ? std::string() : "; so did " + others) +
-                         ": the sweep would skip it and compare its results as this variant's; write this sweep to another folder, or "
-                         "remove " +
-                         (stale.size() == 1 ? first.dir : std::string("those runs' folders")) + " to run " +
-                         (stale.size() == 1 ? "it" : "them") + " again");
+    throw InputError(
+        {first.dir + (first_finished ? "/summary.json" : "/checkpoint.bin"), 0, 0}, first_finished ? "scene_hash" : "checkpoint",
+        "the run in " + first.dir + (first_finished ? " finished" : " was interrupted (its checkpoint.bin)") +
+            " with another scene (its text or a mesh file's bytes) or other values than this sweep gives variant '" + v.name + "'" +
+            (values.empty() ? std::string() : " (" + values + ")") +
+            (first_difference.empty() ? std::string() : "; what differs: " + first_difference) +
+            (others.empty() ? std::string() : "; so did " + others) +
+            (first_finished ? ": the sweep would skip it and compare its results as this variant's"
+                            : ": the sweep would resume it, beside runs of this scene") +
+            "; write this sweep to another folder, or remove " + (stale.size() == 1 ? first.dir : std::string("those runs' folders")) +
+            " to run " + (stale.size() == 1 ? "it" : "them") + " again");
 }
 
 }  // namespace peensim

@@ -33,8 +33,10 @@ SceneDescription read_sweep_scene(const std::string& scene_path, const SweepOver
 void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const SweepOverrides& where_set, std::ostream& out);
 
 // A finished run in the plan's folders that ran another scene than the plan gives it (the scene
-// file edited, another --set, or a variant's name now standing for other values: two files of one
-// name) is an input error: the sweep would skip it and compare its results as the variant's.
+// file edited, another --set, a mesh file rewritten in place, or a variant's name now standing for
+// other values: two files of one name) is an input error: the sweep would skip it and compare its
+// results as the variant's. So is an interrupted run whose checkpoint is of another scene: its
+// resume would be refused after other runs had run with the new scene beside it.
 void check_finished_runs(const std::string& scene_path, const SweepPlan& plan);
 
 }  // namespace peensim

@@ -331,6 +331,26 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
 // Runs that would record an animation without a render module to draw it are refused before any
 // run, as a STEP part without the CAD module is (each run would stop at its start, exit 1, and be
 // retried once). In a child: this process may have loaded the module already.
+// An interrupted run of another scene in a sweep's folders is refused before any run too: its resume
+// would be refused after the other runs had run with the new scene beside it.
+TEST(SweepJob, AnInterruptedRunOfAnotherSceneIsRefusedBeforeAnyRun) {
+    TempDir dir;
+    const fs::path stopped = dir.path / "count-64" / "s0";
+    const ShellResult run = run_shell("'" + std::string(PEENSIM_BINARY) + "' run '" + kRod + "' -o '" + stopped.string() +
+                                      "' -q --no-analyze --set process.duration=20ms --set shot.count=64 --set \"shot.diameter=1.5 mm\" "
+                                      "--set accuracy.scheme=step --stop-after-steps 5 2>&1");
+    ASSERT_EQ(WEXITSTATUS(run.status), 130) << run.output;
+    ASSERT_TRUE(fs::exists(stopped / "checkpoint.bin"));
+    std::ostringstream out, err;
+    SweepOptions sweep = rod_sweep(dir.path, 1);
+    sweep.overrides.push_back("accuracy.scheme=step");
+    EXPECT_EQ(sweep_job(sweep, out, err), kExitInputError) << out.str();
+    EXPECT_NE(err.str().find("count-64/s0 was interrupted (its checkpoint.bin) with another scene"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("what differs: shot: the run had `diameter: 0.0015  # m`, now `diameter: 0.002  # m`"), std::string::npos)
+        << err.str();
+    EXPECT_FALSE(fs::exists(dir.path / "count-128")) << out.str();  // no run started
+}
+
 TEST(SweepJob, AnAnimationWithoutTheRenderModuleIsRefusedBeforeAnyRun) {
     TempDir dir;
     const fs::path junk = dir.path / "junk.so";
@@ -339,11 +359,16 @@ TEST(SweepJob, AnAnimationWithoutTheRenderModuleIsRefusedBeforeAnyRun) {
         run_shell("PEENSIM_RENDER_MODULE='" + junk.string() + "' '" + PEENSIM_BINARY + "' sweep '" + kRod + "' -o '" +
                   (dir.path / "sweep").string() + "' --vary shot.count=32,64 --set process.duration=0.05 --set render.width=320 2>&1");
     EXPECT_EQ(WEXITSTATUS(sweep.status), 1) << sweep.output;
-    EXPECT_NE(sweep.output.find("variant 'count-32' records an animation (its scene's render block), as every run that has one would: "
-                                "rendering needs libpeensim_render.so"),
+    EXPECT_NE(sweep.output.find("the runs record an animation (the scene's render block): rendering needs libpeensim_render.so"),
               std::string::npos)
         << sweep.output;
     EXPECT_FALSE(fs::exists(dir.path / "sweep")) << sweep.output;
+    // A variant that adds the render block is named.
+    const ShellResult variant =
+        run_shell("PEENSIM_RENDER_MODULE='" + junk.string() + "' '" + PEENSIM_BINARY + "' sweep '" + kRod + "' -o '" +
+                  (dir.path / "variant").string() + "' --vary render.width=320,640 --set process.duration=0.05 2>&1");
+    EXPECT_EQ(WEXITSTATUS(variant.status), 1) << variant.output;
+    EXPECT_NE(variant.output.find("variant 'width-320' records an animation (its render block)"), std::string::npos) << variant.output;
     // Without the render block, the same sweep does not need the module for its runs (their
     // reports say which pictures are missing): not refused.
     const ShellResult plain = run_shell("PEENSIM_RENDER_MODULE='" + junk.string() + "' '" + PEENSIM_BINARY + "' sweep '" + kRod + "' -o '" +
