@@ -67,7 +67,9 @@ int main(int argc, char** argv) {
                         "run until coverage reaches this (e.g. 98%) on every region of the logged parts (or process.until_coverage_of); "
                         "process.duration caps the run");
     std::uint64_t stop_after = 0;
-    run_cmd->add_option("--stop-after-steps", stop_after, "stop (as if interrupted, resumable) after this many steps");
+    run_cmd->add_option("--stop-after-steps", stop_after,
+                        "stop (as if interrupted, resumable) after this many steps, at the next point a checkpoint can be taken (the "
+                        "event scheme's restart points come by work done: a short run may end first)");
     unsigned threads = 0;  // 0: every core
     const std::string threads_help = "cores the analysis uses (default: every core; its figures are the same on any number)";
     run_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 4096));
