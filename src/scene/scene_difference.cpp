@@ -86,32 +86,34 @@ std::string scene_difference(const std::string& resolved_yaml_path, const SceneD
         return "";  // a damaged resolved scene, or its meshes gone
     }
     const std::vector<std::string> was = resolved_lines(hashed_scene_yaml(before)), is = resolved_lines(hashed_scene_yaml(now));
+    // The lines that differ: after the common beginning and before the common end (a setting
+    // changed, a block added or removed, or one block in place of another).
     std::size_t k = 0;
     while (k < was.size() && k < is.size() && was[k] == is[k]) ++k;
-    if (k < was.size() || k < is.size()) {
-        // A block added or removed (regions, sinks): every line after it lines up again.
-        const auto shifted = [](const std::vector<std::string>& shorter, const std::vector<std::string>& longer, std::size_t k) {
-            if (longer.size() <= shorter.size()) return false;
-            const std::size_t m = longer.size() - shorter.size();
-            for (std::size_t i = k; i < shorter.size(); ++i)
-                if (shorter[i] != longer[i + m]) return false;
-            return true;
+    std::size_t tail = 0;
+    while (tail < was.size() - k && tail < is.size() - k && was[was.size() - 1 - tail] == is[is.size() - 1 - tail]) ++tail;
+    const std::size_t was_end = was.size() - tail, is_end = is.size() - tail;
+    if (k < was_end || k < is_end) {
+        // A block as said: its first lines without indent or comment, "; " between, "..." after three.
+        const auto block = [](const std::vector<std::string>& lines, std::size_t from, std::size_t to) {
+            constexpr std::size_t kShown = 3;
+            std::string text;
+            for (std::size_t i = from; i < to && i < from + kShown; ++i)
+                text += (text.empty() ? "" : "; ") + without_comment(without_indent(lines[i]));
+            return to - from > kShown ? text + "; ..." : text;
         };
-        if (k < was.size() && k < is.size()) {
-            const std::string a = without_indent(was[k]), b = without_indent(is[k]);
-            // A mesh's line holds its bytes' digest: said in words, with the file the scene names now.
-            if (a.rfind("mesh: ", 0) == 0 && b.rfind("mesh: ", 0) == 0) {
-                const std::vector<std::string> named = resolved_lines(resolved_scene_yaml(now));
-                const std::string file = k < named.size() ? without_comment(without_indent(named[k])) : std::string();
-                return place_of_line(is, k) + ": the mesh file's bytes differ from the run's" +
-                       (file.rfind("mesh: ", 0) == 0 ? " (now `" + file + "`)" : std::string());
-            }
-            if (shifted(was, is, k)) return place_of_line(is, k) + ": now also `" + without_comment(b) + "`, which the run had not";
-            if (shifted(is, was, k)) return place_of_line(was, k) + ": the run also had `" + without_comment(a) + "`, which is gone now";
-            return place_of_line(is, k) + ": the run had `" + a + "`, now `" + b + "`";
+        if (k == was_end) return place_of_line(is, k) + ": now also `" + block(is, k, is_end) + "`, which the run had not";
+        if (k == is_end) return place_of_line(was, k) + ": the run also had `" + block(was, k, was_end) + "`, which is gone now";
+        const std::string a = without_indent(was[k]), b = without_indent(is[k]);
+        // A mesh's line holds its bytes' digest: said in words, with the file the scene names now.
+        if (was_end - k == 1 && is_end - k == 1 && a.rfind("mesh: ", 0) == 0 && b.rfind("mesh: ", 0) == 0) {
+            const std::vector<std::string> named = resolved_lines(resolved_scene_yaml(now));
+            const std::string file = k < named.size() ? without_comment(without_indent(named[k])) : std::string();
+            return place_of_line(is, k) + ": the mesh file's bytes differ from the run's" +
+                   (file.rfind("mesh: ", 0) == 0 ? " (now `" + file + "`)" : std::string());
         }
-        if (k < is.size()) return place_of_line(is, k) + ": now also `" + without_comment(without_indent(is[k])) + "`";
-        return place_of_line(was, k) + ": the run also had `" + without_comment(without_indent(was[k])) + "`";
+        if (was_end - k == 1 && is_end - k == 1) return place_of_line(is, k) + ": the run had `" + a + "`, now `" + b + "`";
+        return place_of_line(is, k) + ": the run had `" + block(was, k, was_end) + "`, now `" + block(is, k, is_end) + "`";
     }
     // The same settings: the meshes' bytes, compared with those the run's resolved scene recorded.
     if (const std::string changed = meshes_rewritten(resolved_text, before); !changed.empty())

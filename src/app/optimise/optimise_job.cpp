@@ -26,6 +26,7 @@
 #include "app/sweep/sweep_runner.h"
 #include "common/input_error.h"
 #include "output/atomic_file.h"
+#include "scene/resolved_writer.h"
 #include "scene/scene_parser.h"
 
 namespace fs = std::filesystem;
@@ -90,11 +91,12 @@ void check_study(const Study& study, std::ostream& out) {
 
 // What decides which settings a search runs: everything but its budget and its confirmation (a
 // larger budget goes on from the journal; more confirmation runs add to the end), comments and
-// layout. A journal written under another identity is another study's.
+// layout. A journal written under another identity is another study's. The scene is not named
+// by its path: the journal's fingerprint is its hash (the runs' scene_hash, scene/resolved_writer.h:
+// its settings and its meshes' bytes, however written and wherever they lie).
 std::string study_identity(const Study& study, int batch) {
     std::ostringstream s;
     s.precision(17);
-    s << "scene " << study.scene_path << "\n";
     for (const std::string& o : study.overrides) s << "set " << o << "\n";
     for (const StudyVariable& v : study.variables) {
         s << "variable " << v.name << ": " << v.min << " to " << v.max << " " << v.unit << ", start " << v.start
@@ -130,7 +132,8 @@ std::string what_differs(const JournalIdentity& journal, const JournalIdentity& 
             return "its settings came from '" + (more_was ? was : std::string("(nothing)")) + "', this study has '" +
                    (more_is ? is : std::string("(nothing)")) + "'";
     }
-    return journal.scene_fingerprint != now.scene_fingerprint ? "its scene file has changed since" : "it is not this study's";
+    return journal.scene_fingerprint != now.scene_fingerprint ? "its scene has changed since (a setting, or a mesh file's bytes)"
+                                                              : "it is not this study's";
 }
 
 // The standard deviation of a figure's runs from its Student's t interval over them: ci95 sqrt(n) /
@@ -260,7 +263,7 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     const auto run_plan = [&](const SweepPlan& plan, const std::string& headline) {
         // Its finished and interrupted runs of another scene (a mesh rewritten in place) are not
         // taken for this study's, as a sweep's are not.
-        check_finished_runs(study.scene_path, plan);
+        check_finished_runs(study.scene_path, plan, {"optimisation", "setting"});
         if (mpi) {
             mpi->broadcast(plan_text(plan));
             runner.mpi = &*mpi;
@@ -317,7 +320,7 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     if (start_seeds + initial * study.seeds >= budget)
         out << "optimise: note: the budget of " << budget << " runs is spent by the start and the first design: no setting will be chosen "
             << "by the model (give runs: more than " << start_seeds + initial * study.seeds << ")\n";
-    const JournalIdentity identity{study_identity(study, batch), fingerprint_of(whole_file(study.scene_path))};
+    const JournalIdentity identity{study_identity(study, batch), scene_hash_hex(scene_hash(scene))};
 
     // The settings so far: the journal's (a resumed search), else the start and the first design.
     fs::create_directories(opt_dir);
@@ -326,6 +329,9 @@ int run_optimise(const OptimiseOptions& options, std::ostream& out, std::ostream
     if (fs::exists(journal)) {
         JournalIdentity found;
         settings = read_journal(whole_file(journal), found);
+        // Another scene only: its runs say what differs, as a sweep's would.
+        if (found.study == identity.study && !(found == identity))
+            check_finished_runs(study.scene_path, settings_plan(study, settings, scene.process.seed, dir), {"optimisation", "setting"});
         if (!(found == identity))
             throw InputError({"-o"}, "",
                              "'" + dir + "' holds the evaluations of another study: " + what_differs(found, identity) +

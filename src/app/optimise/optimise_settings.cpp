@@ -8,7 +8,6 @@
 #include <yaml-cpp/yaml.h>
 #include <nlohmann/json.hpp>
 
-#include "common/fnv_hash.h"
 #include "common/input_error.h"
 #include "common/units.h"
 #include "scene/overrides.h"
@@ -203,12 +202,6 @@ SweepPlan plan_from_text(const std::string& text) {
 ObjectiveScale ObjectiveScale::of(const Study& study) {
     const std::string& f = study.objective;
     return {f.size() > 2 && f.compare(f.size() - 2, 2, "_s") == 0, study.maximise ? -1.0 : 1.0};
-}
-
-std::string fingerprint_of(const std::string& text) {
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(text)));
-    return hex;
 }
 
 void fill_starts(Study& study, const SceneDescription& scene) {

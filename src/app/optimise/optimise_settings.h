@@ -63,8 +63,9 @@ struct SettingFigures {
 SettingFigures read_setting_figures(const Study& study, const SweepPlan& plan);
 
 // What the journal holds to know its study again: what decides which settings a search runs (a
-// line per key: the scene, set, each variable, the objective, each constraint, the design keys;
-// not `runs` or `confirm`, not comments or layout), and the scene file's fingerprint.
+// line per key: set, each variable, the objective, each constraint, the design keys; not `runs`
+// or `confirm`, not comments or layout), and the scene's hash with the study's set (its runs'
+// scene_hash: settings and meshes' bytes, not the file's text or path).
 struct JournalIdentity {
     std::string study;
     std::string scene_fingerprint;
@@ -88,8 +89,5 @@ struct ObjectiveScale {
     double to_model(double figure) const { return sign * (log ? std::log(figure) : figure); }
     double to_figure(double model) const { return log ? std::exp(sign * model) : sign * model; }
 };
-
-// FNV-1a, 64 bits (common/fnv_hash.h), as 16 hex digits: a fingerprint stable across builds.
-std::string fingerprint_of(const std::string& text);
 
 }  // namespace peensim

@@ -1,5 +1,6 @@
 #include "app/sweep/sweep_checks.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <filesystem>
@@ -222,11 +223,11 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
     }
 }
 
-void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
+void check_finished_runs(const std::string& scene_path, const SweepPlan& plan, const StaleRunWords& words) {
     std::string text;                    // the scene's text, read at the first finished run (a fresh sweep has none)
-    std::vector<const SweepRun*> stale;  // finished with another scene: every one named, not one per attempt
+    std::vector<const SweepRun*> stale;  // of another scene: every one named, not one per attempt
+    std::vector<bool> stale_finished;    // each of them finished (else: interrupted, its checkpoint)
     std::string first_difference;        // what differs for the first of them (scene_difference.h)
-    bool first_finished = true;          // the first of them finished (else: its checkpoint)
     for (const SweepRun& run : plan.runs) {
         // Its scene's hash: a finished run's summary's, an interrupted one's checkpoint's (a run
         // with neither starts afresh).
@@ -250,32 +251,47 @@ void check_finished_runs(const std::string& scene_path, const SweepPlan& plan) {
         if (text.empty()) text = file_text(scene_path);
         const SceneDescription now = parse_scene_text(text, scene_path, run.overrides);
         if (ran == scene_hash_hex(scene_hash(now))) continue;
-        if (stale.empty()) {
-            first_difference = scene_difference(run.dir + "/scene.resolved.yaml", now);
-            first_finished = finished;
-        }
+        if (stale.empty()) first_difference = scene_difference(run.dir + "/scene.resolved.yaml", now);
         stale.push_back(&run);
+        stale_finished.push_back(finished);
     }
     if (stale.empty()) return;
     const SweepRun& first = *stale.front();
+    const bool first_finished = stale_finished.front();
     const SweepVariant& v = plan.variants[first.variant];
     std::string values;
     for (const auto& [path, value] : v.set) values += (values.empty() ? "" : ", ") + path + "=" + value;
     std::string others;
     constexpr std::size_t kNamed = 5;  // runs named beyond the first; the rest counted
-    for (std::size_t k = 1; k < stale.size() && k <= kNamed; ++k) others += (k > 1 ? ", " : "") + stale[k]->dir;
+    for (std::size_t k = 1; k < stale.size() && k <= kNamed; ++k)
+        others += (k > 1 ? ", " : "") + stale[k]->dir + (stale_finished[k] ? "" : " (interrupted)");
     if (stale.size() > kNamed + 1) others += " and " + std::to_string(stale.size() - kNamed - 1) + " more";
-    throw InputError(
-        {first.dir + (first_finished ? "/summary.json" : "/checkpoint.bin"), 0, 0}, first_finished ? "scene_hash" : "checkpoint",
-        "the run in " + first.dir + (first_finished ? " finished" : " was interrupted (its checkpoint.bin)") +
-            " with another scene (its text or a mesh file's bytes) or other values than this sweep gives variant '" + v.name + "'" +
-            (values.empty() ? std::string() : " (" + values + ")") +
-            (first_difference.empty() ? std::string() : "; what differs: " + first_difference) +
-            (others.empty() ? std::string() : "; so did " + others) +
-            (first_finished ? ": the sweep would skip it and compare its results as this variant's"
-                            : ": the sweep would resume it, beside runs of this scene") +
-            "; write this sweep to another folder, or remove " + (stale.size() == 1 ? first.dir : std::string("those runs' folders")) +
-            " to run " + (stale.size() == 1 ? "it" : "them") + " again");
+    const auto finished_count = static_cast<std::size_t>(std::count(stale_finished.begin(), stale_finished.end(), true));
+    const bool one = stale.size() == 1;
+    // What the job would do with them: skip the finished (their results compared as its own), and
+    // resume the interrupted beside runs of this scene.
+    std::string would;
+    if (finished_count > 0)
+        would += std::string("skip ") +
+                 (one                              ? "it"
+                  : finished_count == stale.size() ? "them"
+                                                   : "the finished ones") +
+                 " and compare " + (one ? "its" : "their") + " results as this " + words.entry + "'s";
+    if (finished_count < stale.size())
+        would += std::string(would.empty() ? "" : ", and ") + "resume " +
+                 (one                   ? "it"
+                  : finished_count == 0 ? "them"
+                                        : "the interrupted ones") +
+                 " beside runs of this scene";
+    throw InputError({first.dir + (first_finished ? "/summary.json" : "/checkpoint.bin"), 0, 0},
+                     first_finished ? "scene_hash" : "checkpoint",
+                     "the run in " + first.dir + (first_finished ? " finished" : " was interrupted (its checkpoint.bin)") +
+                         " with another scene (its text or a mesh file's bytes) or other values than this " + words.job + " gives " +
+                         words.entry + " '" + v.name + "'" + (values.empty() ? std::string() : " (" + values + ")") +
+                         (first_difference.empty() ? std::string() : "; what differs: " + first_difference) +
+                         (others.empty() ? std::string() : "; so did " + others) + "; the " + words.job + " would " + would +
+                         "; write this " + words.job + " to another folder, or remove " +
+                         (one ? first.dir : std::string("those runs' folders")) + " to run " + (one ? "it" : "them") + " again");
 }
 
 }  // namespace peensim

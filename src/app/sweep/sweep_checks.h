@@ -37,6 +37,11 @@ void check_sweep_variants(const std::string& scene_path, SweepPlan& plan, const 
 // other values: two files of one name) is an input error: the sweep would skip it and compare its
 // results as the variant's. So is an interrupted run whose checkpoint is of another scene: its
 // resume would be refused after other runs had run with the new scene beside it.
-void check_finished_runs(const std::string& scene_path, const SweepPlan& plan);
+// How the refusal names the job and its entries: a sweep's variants, an optimisation's settings.
+struct StaleRunWords {
+    const char* job = "sweep";
+    const char* entry = "variant";
+};
+void check_finished_runs(const std::string& scene_path, const SweepPlan& plan, const StaleRunWords& words = {});
 
 }  // namespace peensim

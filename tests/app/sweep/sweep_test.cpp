@@ -322,7 +322,8 @@ TEST(SweepJob, EachRunIsTheRunAloneWhateverTheJobsAndFinishedRunsAreKept) {
         err4.str().find("count-64/s0 finished with another scene (its text or a mesh file's bytes) or other values than this sweep "
                         "gives variant 'count-64' "
                         "(shot.count=64); what differs: shot: the run had `diameter: 0.002  # m`, now `diameter: 0.0015  # m`; so did " +
-                        (dir.path / "one" / "count-128" / "s0").string() + ": "),
+                        (dir.path / "one" / "count-128" / "s0").string() +
+                        "; the sweep would skip them and compare their results as this variant's; write this sweep to another folder"),
         std::string::npos)
         << err4.str();
     EXPECT_EQ(fs::last_write_time(dir.path / "one" / "count-64" / "s0" / "impacts.csv"), written);
